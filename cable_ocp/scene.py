@@ -1,0 +1,576 @@
+"""Problem files (TOML, SI units) -> validated scenes (frozen dataclasses).
+
+This module is the only place that reads user input for the statics. Everything it
+returns is validated: downstream code may assume finite numbers, consistent end
+conditions and SI units. Every user error raises :class:`~cable_ocp.errors.CableOCPError`
+with a message that names the offending key and says what would be valid.
+
+Schema (all values SI; the README repeats this with examples)::
+
+    [meta]                       free-form strings: title, source, notes, ...
+    [layout]                     optional conveniences
+    psi0_deg = 90.0              rotate end_b about the vertical through end_a to this
+                                 bearing (deg from +x towards +y), keeping its horizontal
+                                 distance and height (De Zoysa's psi0, 000 eq. (28))
+    [environment]
+    water_depth = 183.0          m; the free surface is at z = water_depth, seabed at z = 0
+    water_density = 1021.0       kg/m^3
+    gravity = 9.81               m/s^2 (default 9.81)
+    [environment.current]        optional; absent = still water (no drag terms are built)
+    speed = 1.0278               m/s, uniform current ...
+    heading_deg = 0.0            deg, direction the water flows TO, from +x towards +y
+    profile = [[z, speed, heading_deg], ...]   ... or a depth profile (m, m/s, deg),
+                                 interpolated linearly in the velocity components
+    [cable]
+    length = 305.0               m (unstretched), or "free" with a prescribed end tension
+    diameter = 0.023             m, hydrodynamic diameter
+    weight_in_water = 12.3       N/m (per unstretched length)
+    axial_stiffness = 1.0e9      N (EA); omit or "inf" for an inextensible cable
+    normal_drag = 1.0            C_n (-)
+    tangential_drag = 0.005      C_t (-), acts on the wetted perimeter pi*D
+    drag_law = "vector"          "vector" (independence principle) | "componentwise" (000)
+    [end_a]  /  [end_b]          end_a is s = 0, end_b is s = L
+    position = [x, y, z]         m; entries may be "free"
+    force = [Fx, Fy, Fz]         N, the EXTERNAL load on the attachment (a towed body's
+                                 drag and weight, a unit's thrust); entries may be "free"
+    tension = 11146.6            N, |T| at this end; needs cable.length = "free"
+    [solver]                     see :class:`SolverOptions`
+
+At each end and for each of x, y, z exactly one of ``position`` and ``force`` gives a
+number: a fixed end gives ``position`` only, a free (towed) end ``force`` only, a
+mooring end mixes them, e.g. ``position = ["free", "free", 100.0]`` with
+``force = [2000.0, 0.0, "free"]`` (004 eqs (2.12)-(2.15)).
+
+Force sign example: a towed body whose drag is 500 N along -x and whose weight in water
+is 2 kN hangs at end_a: ``force = [-500.0, 0.0, -2000.0]``. At equilibrium the cable
+pulls on the body with (+500, 0, +2000) N, which is what the JSON output reports as
+``end_a.force`` (the force the cable exerts on the attachment).
+"""
+
+from __future__ import annotations
+
+import copy
+import math
+import tomllib
+from dataclasses import dataclass, field, replace
+from pathlib import Path
+from typing import Any
+
+from cable_ocp.errors import CableOCPError
+
+__all__ = [
+    "Cable",
+    "Current",
+    "End",
+    "Environment",
+    "Scene",
+    "SolverOptions",
+    "apply_overrides",
+    "load_scene",
+    "parse_override",
+    "scene_from_dict",
+]
+
+FREE = "free"
+
+
+@dataclass(frozen=True)
+class Current:
+    """Horizontal current, piecewise linear in z.
+
+    Attributes
+    ----------
+    z : tuple of float
+        Knot heights, m, strictly increasing. One knot means a uniform current.
+    ux, uy : tuple of float
+        Velocity components at the knots, m/s. Constant beyond the first and last knot.
+    """
+
+    z: tuple[float, ...]
+    ux: tuple[float, ...]
+    uy: tuple[float, ...]
+
+    @property
+    def uniform(self) -> bool:
+        """True when the velocity does not depend on z."""
+        return len(self.z) == 1 or (len(set(self.ux)) == 1 and len(set(self.uy)) == 1)
+
+    @property
+    def max_speed(self) -> float:
+        """Largest speed over the knots, m/s."""
+        return max(math.hypot(a, b) for a, b in zip(self.ux, self.uy, strict=True))
+
+
+@dataclass(frozen=True)
+class Environment:
+    """Water and gravity. ``water_depth`` (m) puts the surface at z = water_depth."""
+
+    water_depth: float
+    water_density: float
+    gravity: float = 9.81
+    current: Current | None = None
+
+
+@dataclass(frozen=True)
+class Cable:
+    """One uniform cable.
+
+    Attributes
+    ----------
+    length : float or None
+        Unstretched length, m; None when it is an unknown (a tension is prescribed).
+    diameter : float
+        Hydrodynamic diameter, m.
+    weight_in_water : float
+        Weight in water per unstretched length, N/m (negative = buoyant).
+    axial_stiffness : float
+        EA, N; ``math.inf`` for an inextensible cable.
+    normal_drag, tangential_drag : float
+        Drag coefficients C_n, C_t (-); the tangential one acts on the perimeter pi*D.
+    drag_law : str
+        ``"vector"`` or ``"componentwise"``.
+    """
+
+    length: float | None
+    diameter: float
+    weight_in_water: float
+    axial_stiffness: float = math.inf
+    normal_drag: float = 0.0
+    tangential_drag: float = 0.0
+    drag_law: str = "vector"
+
+    @property
+    def elastic(self) -> bool:
+        """True when EA is finite."""
+        return math.isfinite(self.axial_stiffness)
+
+
+@dataclass(frozen=True)
+class End:
+    """End condition at one end of the cable.
+
+    Attributes
+    ----------
+    position : tuple of (float or None)
+        Prescribed coordinates, m; None where the coordinate is free.
+    force : tuple of (float or None)
+        Prescribed external load on the attachment, N; None where not prescribed.
+        Exactly one of ``position[i]`` and ``force[i]`` is a number.
+    tension : float or None
+        Prescribed tension magnitude at this end, N (cable length then unknown).
+    """
+
+    position: tuple[float | None, float | None, float | None]
+    force: tuple[float | None, float | None, float | None]
+    tension: float | None = None
+
+    @property
+    def fixed_mask(self) -> tuple[bool, bool, bool]:
+        """Per component: True where the position is prescribed."""
+        return tuple(p is not None for p in self.position)  # type: ignore[return-value]
+
+    @property
+    def values(self) -> tuple[float, float, float]:
+        """Per component, the prescribed number (position in m or force in N)."""
+        return tuple(  # type: ignore[return-value]
+            p if p is not None else f for p, f in zip(self.position, self.force, strict=True)
+        )
+
+
+@dataclass(frozen=True)
+class SolverOptions:
+    """Discretisation and solver settings (all optional in a problem file).
+
+    Attributes
+    ----------
+    method : str
+        ``"collocation"`` (the only statics method so far).
+    scheme : str
+        Collocation points: ``"legendre"`` (Gauss-Legendre, order 2d at mesh points)
+        or ``"radau"`` (order 2d - 1).
+    degree : int
+        Collocation polynomial degree d, 1..9.
+    intervals : int
+        Number of uniform mesh intervals N along the unstretched arc length.
+    tolerance : float
+        Relative tolerance of the nonlinear solve (scaled residual).
+    max_iterations : int
+        IPOPT iteration limit (Newton gets 50).
+    smoothing : float
+        Velocity scale delta of the smooth modulus, m/s: |u| is replaced by
+        sqrt(u^2 + delta^2), so |u|u is off by at most delta^2 / 2 (m/s)^2.
+    vertical_blend : float
+        Componentwise law only: below this value of |e_z x t| (the sine of the angle
+        to the vertical) the load blends into the vector law, which stays defined on
+        a vertical cable.
+    error_estimate : bool
+        Compute the a-posteriori discretisation error (a second solve on N/2 intervals).
+    initial_guess : str
+        ``"catenary"`` (drag-free, default) or ``"straight"``.
+    """
+
+    method: str = "collocation"
+    scheme: str = "legendre"
+    degree: int = 3
+    intervals: int = 40
+    tolerance: float = 1e-10
+    max_iterations: int = 500
+    smoothing: float = 1e-5
+    vertical_blend: float = 1e-2
+    error_estimate: bool = True
+    initial_guess: str = "catenary"
+
+
+@dataclass(frozen=True)
+class Scene:
+    """A validated statics problem: the input of every statics method."""
+
+    environment: Environment
+    cable: Cable
+    end_a: End
+    end_b: End
+    solver: SolverOptions = field(default_factory=SolverOptions)
+    meta: dict[str, str] = field(default_factory=dict, compare=False, hash=False)
+    raw: dict[str, Any] = field(default_factory=dict, compare=False, hash=False, repr=False)
+
+    @property
+    def free_length(self) -> bool:
+        """True when the cable length is an unknown."""
+        return self.cable.length is None
+
+    def with_overrides(self, overrides: dict[str, Any]) -> Scene:
+        """Return a new scene with dotted-key overrides applied to the source dict."""
+        return scene_from_dict(apply_overrides(self.raw, overrides))
+
+
+# --------------------------------------------------------------------------------------
+# Parsing helpers
+# --------------------------------------------------------------------------------------
+
+_SCHEMA: dict[str, Any] = {
+    "meta": "any",
+    "layout": {"psi0_deg"},
+    "environment": {"water_depth", "water_density", "gravity", "current"},
+    "cable": {
+        "length",
+        "diameter",
+        "weight_in_water",
+        "axial_stiffness",
+        "normal_drag",
+        "tangential_drag",
+        "drag_law",
+    },
+    "end_a": {"position", "force", "tension"},
+    "end_b": {"position", "force", "tension"},
+    "solver": {
+        "method",
+        "scheme",
+        "degree",
+        "intervals",
+        "tolerance",
+        "max_iterations",
+        "smoothing",
+        "vertical_blend",
+        "error_estimate",
+        "initial_guess",
+    },
+}
+_CURRENT_KEYS = {"speed", "heading_deg", "profile"}
+
+
+def _number(value: Any, key: str, *, positive: bool = False, nonneg: bool = False,
+            allow_inf: bool = False) -> float:
+    if isinstance(value, bool) or not isinstance(value, (int, float, str)):
+        raise CableOCPError(f"{key} = {value!r}: expected a number")
+    if isinstance(value, str):
+        if allow_inf and value.strip().lower() in ("inf", "infinity"):
+            return math.inf
+        raise CableOCPError(
+            f"{key} = {value!r}: expected a number" + (' or "inf"' if allow_inf else "")
+        )
+    x = float(value)
+    if math.isnan(x) or (math.isinf(x) and not allow_inf):
+        raise CableOCPError(f"{key} = {value!r}: expected a finite number")
+    if positive and not x > 0:
+        raise CableOCPError(f"{key} = {value!r}: must be > 0")
+    if nonneg and x < 0:
+        raise CableOCPError(f"{key} = {value!r}: must be >= 0")
+    return x
+
+
+def _require(table: dict[str, Any], key: str, where: str) -> Any:
+    if key not in table:
+        raise CableOCPError(f"{where}.{key} is missing (required, SI units)")
+    return table[key]
+
+
+def _check_keys(table: Any, allowed: set[str], where: str) -> dict[str, Any]:
+    if not isinstance(table, dict):
+        raise CableOCPError(f"[{where}] must be a table, got {table!r}")
+    unknown = sorted(set(table) - allowed)
+    if unknown:
+        raise CableOCPError(
+            f"unknown key {where}.{unknown[0]}; valid keys in [{where}]: {', '.join(sorted(allowed))}"
+        )
+    return table
+
+
+def _vector3(value: Any, key: str) -> tuple[float | None, float | None, float | None]:
+    if not isinstance(value, (list, tuple)) or len(value) != 3:
+        raise CableOCPError(f"{key} = {value!r}: expected a list of 3 entries [x, y, z]")
+    out: list[float | None] = []
+    for i, v in enumerate(value):
+        if isinstance(v, str) and v.strip().lower() == FREE:
+            out.append(None)
+        else:
+            out.append(_number(v, f"{key}[{i}]"))
+    return tuple(out)  # type: ignore[return-value]
+
+
+def _parse_current(table: Any) -> Current | None:
+    table = _check_keys(table, _CURRENT_KEYS, "environment.current")
+    if "profile" in table:
+        if "speed" in table or "heading_deg" in table:
+            raise CableOCPError(
+                "environment.current: give either speed and heading_deg, or profile, not both"
+            )
+        prof = table["profile"]
+        if not isinstance(prof, list) or not prof:
+            raise CableOCPError(
+                "environment.current.profile: expected a non-empty list of [z, speed, heading_deg]"
+            )
+        rows = []
+        for i, row in enumerate(prof):
+            key = f"environment.current.profile[{i}]"
+            if not isinstance(row, list) or len(row) != 3:
+                raise CableOCPError(f"{key} = {row!r}: expected [z (m), speed (m/s), heading_deg]")
+            rows.append((_number(row[0], key + "[0]"), _number(row[1], key + "[1]", nonneg=True),
+                         _number(row[2], key + "[2]")))
+        rows.sort(key=lambda r: r[0])
+        zs = [r[0] for r in rows]
+        if any(b <= a for a, b in zip(zs, zs[1:], strict=False)):
+            raise CableOCPError("environment.current.profile: knot heights z must be distinct")
+        ux = tuple(r[1] * math.cos(math.radians(r[2])) for r in rows)
+        uy = tuple(r[1] * math.sin(math.radians(r[2])) for r in rows)
+        cur = Current(z=tuple(zs), ux=ux, uy=uy)
+    else:
+        speed = _number(_require(table, "speed", "environment.current"),
+                        "environment.current.speed", nonneg=True)
+        heading = _number(table.get("heading_deg", 0.0), "environment.current.heading_deg")
+        cur = Current(z=(0.0,), ux=(speed * math.cos(math.radians(heading)),),
+                      uy=(speed * math.sin(math.radians(heading)),))
+    if cur.max_speed == 0.0:
+        return None
+    return cur
+
+
+def _parse_end(table: Any, name: str) -> End:
+    table = _check_keys(table, _SCHEMA[name], name)
+    pos = _vector3(table["position"], f"{name}.position") if "position" in table else None
+    frc = _vector3(table["force"], f"{name}.force") if "force" in table else None
+    if pos is None and frc is None:
+        raise CableOCPError(f"[{name}] needs position = [x, y, z] (m) and/or force = [Fx, Fy, Fz] (N)")
+    if pos is None:
+        pos = (None, None, None)
+    if frc is None:
+        frc = (None, None, None)
+    for i, c in enumerate("xyz"):
+        if (pos[i] is None) == (frc[i] is None):
+            raise CableOCPError(
+                f"{name}: component {c} needs exactly one of position[{i}] and force[{i}] "
+                f'as a number (the other "free" or absent)'
+            )
+    tension = None
+    if "tension" in table:
+        tension = _number(table["tension"], f"{name}.tension", positive=True)
+        if not all(p is not None for p in pos):
+            raise CableOCPError(f"{name}.tension needs a fully fixed {name}.position at the same end")
+    return End(position=pos, force=frc, tension=tension)
+
+
+def scene_from_dict(data: dict[str, Any]) -> Scene:
+    """Validate a problem dictionary (as read from TOML) and return a :class:`Scene`.
+
+    Raises
+    ------
+    CableOCPError
+        On unknown keys, missing required fields, non-finite or out-of-range numbers, or
+        inconsistent end conditions; the message names the key.
+    """
+    data = copy.deepcopy(data)
+    raw = copy.deepcopy(data)
+    if not isinstance(data, dict):
+        raise CableOCPError("a problem must be a table")
+    unknown = sorted(set(data) - set(_SCHEMA))
+    if unknown:
+        raise CableOCPError(
+            f"unknown top-level table [{unknown[0]}]; valid: {', '.join(sorted(_SCHEMA))}"
+        )
+    meta = {str(k): str(v) for k, v in (data.get("meta") or {}).items()}
+
+    env_t = _check_keys(_require(data, "environment", "problem"), _SCHEMA["environment"],
+                        "environment")
+    depth = _number(_require(env_t, "water_depth", "environment"), "environment.water_depth",
+                    positive=True)
+    rho = _number(_require(env_t, "water_density", "environment"), "environment.water_density",
+                  positive=True)
+    g = _number(env_t.get("gravity", 9.81), "environment.gravity", positive=True)
+    current = _parse_current(env_t["current"]) if "current" in env_t else None
+    env = Environment(water_depth=depth, water_density=rho, gravity=g, current=current)
+
+    cab_t = _check_keys(_require(data, "cable", "problem"), _SCHEMA["cable"], "cable")
+    length_v = _require(cab_t, "length", "cable")
+    if isinstance(length_v, str) and length_v.strip().lower() == FREE:
+        length = None
+    else:
+        length = _number(length_v, "cable.length", positive=True)
+    law = cab_t.get("drag_law", "vector")
+    if law not in ("vector", "componentwise"):
+        raise CableOCPError(f'cable.drag_law = {law!r}: valid are "vector", "componentwise"')
+    need_drag = current is not None
+    diameter = (_number(_require(cab_t, "diameter", "cable"), "cable.diameter", positive=True)
+                if need_drag or "diameter" in cab_t else 0.0)
+    cn = (_number(_require(cab_t, "normal_drag", "cable"), "cable.normal_drag", nonneg=True)
+          if need_drag or "normal_drag" in cab_t else 0.0)
+    ct = (_number(_require(cab_t, "tangential_drag", "cable"), "cable.tangential_drag",
+                  nonneg=True) if need_drag or "tangential_drag" in cab_t else 0.0)
+    cable = Cable(
+        length=length,
+        diameter=diameter,
+        weight_in_water=_number(_require(cab_t, "weight_in_water", "cable"),
+                                "cable.weight_in_water"),
+        axial_stiffness=_number(cab_t.get("axial_stiffness", math.inf), "cable.axial_stiffness",
+                                positive=True, allow_inf=True),
+        normal_drag=cn,
+        tangential_drag=ct,
+        drag_law=law,
+    )
+
+    end_a = _parse_end(_require(data, "end_a", "problem"), "end_a")
+    end_b = _parse_end(_require(data, "end_b", "problem"), "end_b")
+
+    layout = _check_keys(data.get("layout", {}), _SCHEMA["layout"], "layout")
+    if "psi0_deg" in layout:
+        psi = _number(layout["psi0_deg"], "layout.psi0_deg")
+        if not (all(end_a.fixed_mask[:2]) and all(end_b.fixed_mask[:2])):
+            raise CableOCPError("layout.psi0_deg needs fixed horizontal positions at both ends")
+        ax, ay = end_a.position[0], end_a.position[1]
+        bx, by, bz = end_b.position
+        radius = math.hypot(bx - ax, by - ay)  # type: ignore[operator]
+        end_b = replace(end_b, position=(ax + radius * math.cos(math.radians(psi)),
+                                         ay + radius * math.sin(math.radians(psi)), bz))
+
+    tensions = [e.tension for e in (end_a, end_b) if e.tension is not None]
+    if length is None and len(tensions) != 1:
+        raise CableOCPError(
+            'cable.length = "free" needs exactly one end tension (end_a.tension or end_b.tension)'
+        )
+    if length is not None and tensions:
+        raise CableOCPError(
+            'an end tension makes the length an unknown: set cable.length = "free"'
+        )
+    for i, c in enumerate("xyz"):
+        if not (end_a.fixed_mask[i] or end_b.fixed_mask[i]):
+            raise CableOCPError(
+                f"the {c} position is free at both ends (end_a.position[{i}], "
+                f"end_b.position[{i}]): the cable would float away; fix it at one end"
+            )
+    if length is not None and not cable.elastic and all(end_a.fixed_mask) and all(end_b.fixed_mask):
+        chord = math.dist(end_a.position, end_b.position)  # type: ignore[arg-type]
+        if chord >= length:
+            raise CableOCPError(
+                f"cable.length = {length} m is not longer than the chord between the fixed ends "
+                f"({chord:.6g} m); an inextensible cable needs length > chord "
+                "(or give cable.axial_stiffness)"
+            )
+
+    sol_t = _check_keys(data.get("solver", {}), _SCHEMA["solver"], "solver")
+    defaults = SolverOptions()
+    method = sol_t.get("method", defaults.method)
+    if method not in ("collocation",):
+        raise CableOCPError(f'solver.method = {method!r}: valid is "collocation"')
+    scheme = sol_t.get("scheme", defaults.scheme)
+    if scheme not in ("legendre", "radau"):
+        raise CableOCPError(f'solver.scheme = {scheme!r}: valid are "legendre", "radau"')
+    degree = sol_t.get("degree", defaults.degree)
+    if isinstance(degree, bool) or not isinstance(degree, int) or not 1 <= degree <= 9:
+        raise CableOCPError(f"solver.degree = {degree!r}: expected an integer 1..9")
+    intervals = sol_t.get("intervals", defaults.intervals)
+    if isinstance(intervals, bool) or not isinstance(intervals, int) or not 1 <= intervals <= 20000:
+        raise CableOCPError(f"solver.intervals = {intervals!r}: expected an integer 1..20000")
+    max_it = sol_t.get("max_iterations", defaults.max_iterations)
+    if isinstance(max_it, bool) or not isinstance(max_it, int) or max_it < 1:
+        raise CableOCPError(f"solver.max_iterations = {max_it!r}: expected a positive integer")
+    guess = sol_t.get("initial_guess", defaults.initial_guess)
+    if guess not in ("catenary", "straight"):
+        raise CableOCPError(f'solver.initial_guess = {guess!r}: valid are "catenary", "straight"')
+    est = sol_t.get("error_estimate", defaults.error_estimate)
+    if not isinstance(est, bool):
+        raise CableOCPError(f"solver.error_estimate = {est!r}: expected true or false")
+    solver = SolverOptions(
+        method=method,
+        scheme=scheme,
+        degree=degree,
+        intervals=intervals,
+        tolerance=_number(sol_t.get("tolerance", defaults.tolerance), "solver.tolerance",
+                          positive=True),
+        max_iterations=max_it,
+        smoothing=_number(sol_t.get("smoothing", defaults.smoothing), "solver.smoothing",
+                          positive=True),
+        vertical_blend=_number(sol_t.get("vertical_blend", defaults.vertical_blend),
+                               "solver.vertical_blend", positive=True),
+        error_estimate=est,
+        initial_guess=guess,
+    )
+    if solver.vertical_blend >= 1.0:
+        raise CableOCPError(f"solver.vertical_blend = {solver.vertical_blend}: must be in (0, 1)")
+    return Scene(environment=env, cable=cable, end_a=end_a, end_b=end_b, solver=solver,
+                 meta=meta, raw=raw)
+
+
+def parse_override(text: str) -> tuple[str, Any]:
+    """Parse ``key=value`` (value in TOML syntax; bare words are strings).
+
+    Examples: ``end_b.position=[0,229,183]``, ``cable.length=free``, ``solver.degree=4``.
+    """
+    if "=" not in text:
+        raise CableOCPError(f"--set {text!r}: expected key=value, e.g. cable.length=305")
+    key, value = text.split("=", 1)
+    key = key.strip()
+    if not key:
+        raise CableOCPError(f"--set {text!r}: empty key")
+    try:
+        parsed = tomllib.loads(f"v = {value.strip()}")["v"]
+    except tomllib.TOMLDecodeError:
+        parsed = value.strip()
+    return key, parsed
+
+
+def apply_overrides(data: dict[str, Any], overrides: dict[str, Any]) -> dict[str, Any]:
+    """Return a copy of ``data`` with dotted-key overrides set (tables are created)."""
+    out = copy.deepcopy(data)
+    for key, value in overrides.items():
+        parts = key.split(".")
+        node = out
+        for p in parts[:-1]:
+            nxt = node.setdefault(p, {})
+            if not isinstance(nxt, dict):
+                raise CableOCPError(f"--set {key}: {p} is not a table")
+            node = nxt
+        node[parts[-1]] = value
+    return out
+
+
+def load_scene(path: str | Path, overrides: dict[str, Any] | None = None) -> Scene:
+    """Read a TOML problem file, apply ``overrides`` (dotted keys) and validate it."""
+    path = Path(path)
+    try:
+        with path.open("rb") as fh:
+            data = tomllib.load(fh)
+    except FileNotFoundError:
+        raise CableOCPError(f"problem file {str(path)!r} not found") from None
+    except tomllib.TOMLDecodeError as exc:
+        raise CableOCPError(f"problem file {str(path)!r} is not valid TOML: {exc}") from None
+    if overrides:
+        data = apply_overrides(data, overrides)
+    return scene_from_dict(data)

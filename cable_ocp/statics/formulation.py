@@ -1,0 +1,209 @@
+"""Static cable equations of a scene, as CasADi functions (no discretisation here).
+
+State along the unstretched arc length s (CONVENTIONS: tension carried as a vector, so
+vertical and horizontal cables are regular):
+
+    x = (r, T),  r = position (m),  T = tension vector (N), the force the part of the
+                 cable beyond s (towards end_b) exerts on the part before it.
+
+Equilibrium of an element ds and Hooke's law (000 eqs (1)-(3) in vector form; 004 eqs
+(2.1)-(2.5), (2.18)-(2.24)):
+
+    dr/ds = (1 + |T|/EA) T/|T|                       (EA = inf: no stretch term built)
+    dT/ds = -f,  f = (0, 0, -w) + (1 + |T|/EA) f_drag(U(z) , T/|T|)
+
+with w the weight in water per unstretched length (N/m) and f_drag the drag per
+stretched length (:mod:`cable_ocp.physics.drag`); the (1 + |T|/EA) factor converts it to
+per unstretched length (004 (2.46) uses the strained segment length; CONVENTIONS "Drag").
+No current: no drag terms are built.
+
+The equations are solved in scaled form: sigma = s/L in [0, 1], r = ell * rho,
+T = F * tau, with a length scale ell and a force scale F chosen from the scene, so that
+every unknown and residual is O(1) for the solvers.
+
+End conditions (004 eqs (2.6)-(2.15); 000 eqs (13)-(17)), per component i at each end:
+a prescribed position r_i = p_i, or a prescribed external load F_i on the attachment,
+which at equilibrium means T_i(0) = -F_i at end_a and T_i(L) = +F_i at end_b. A
+prescribed tension magnitude adds |T|^2 = T0^2 at its end and makes L an unknown.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+
+import casadi as ca
+import numpy as np
+
+from cable_ocp.physics.current import current_velocity
+from cable_ocp.physics.drag import drag_error_bound, drag_per_length
+from cable_ocp.scene import End, Scene
+
+NX = 6
+
+# layout of the numeric parameter vector p
+P_LENGTH = 0  # scaled length lambda = L/ell (used when the length is fixed)
+P_END_A = slice(1, 4)  # scaled prescribed values at end_a (position/ell or force/F)
+P_END_B = slice(4, 7)
+P_TENSION = 7  # scaled prescribed tension magnitude
+P_CURRENT = 8  # current scale (homotopy parameter, 1 = as specified)
+NP = 9
+
+
+@dataclass(frozen=True)
+class Scales:
+    """Reference length (m) and force (N) used to scale unknowns and residuals."""
+
+    length: float
+    force: float
+
+
+def _structure_key(scene: Scene) -> tuple:
+    """Everything about a scene that changes the equations (not just parameter values)."""
+    c = scene.cable
+    return (
+        scene.environment,
+        c.length is None,
+        c.diameter,
+        c.weight_in_water,
+        c.axial_stiffness,
+        c.normal_drag,
+        c.tangential_drag,
+        c.drag_law,
+        scene.end_a.fixed_mask,
+        scene.end_b.fixed_mask,
+        scene.end_a.tension is not None,
+        scene.end_b.tension is not None,
+        scene.solver,
+    )
+
+
+def reference_length(scene: Scene) -> float:
+    """Length scale, m: the given length, else the chord between fixed ends."""
+    if scene.cable.length is not None:
+        return scene.cable.length
+    a, b = scene.end_a.position, scene.end_b.position
+    return max(math.dist(a, b), 1.0)  # type: ignore[arg-type]
+
+
+class Formulation:
+    """The scene's ODE right-hand side and end conditions in scaled variables.
+
+    Built once per scene *structure*; the numeric parameter vector (:meth:`params`)
+    carries the end values, length, tension and current scale, so sweeps over those
+    reuse the same CasADi functions.
+
+    Attributes
+    ----------
+    scene : Scene
+        The scene it was built from.
+    scales : Scales
+        Reference length and force.
+    rhs : casadi.Function
+        ``rhs(x[6], lam, cscale) -> dx/dsigma[6]`` in scaled variables.
+    terms : tuple of str
+        Which physical terms were built (for diagnostics and tests).
+    """
+
+    def __init__(self, scene: Scene):
+        self.scene = scene
+        self.key = _structure_key(scene)
+        env, cab = scene.environment, scene.cable
+        ell = reference_length(scene)
+        fref = abs(cab.weight_in_water) * ell
+        for end in (scene.end_a, scene.end_b):
+            fref = max([fref, *(abs(f) for f in end.force if f is not None)])
+            if end.tension is not None:
+                fref = max(fref, end.tension)
+        cur = env.current
+        if cur is not None:
+            fref = max(fref, 0.5 * env.water_density * cab.normal_drag * cab.diameter
+                       * cur.max_speed**2 * ell)
+        if fref == 0.0:
+            fref = 1.0
+        self.scales = Scales(length=ell, force=fref)
+        self.terms = self._build_terms()
+
+        x = ca.SX.sym("x", NX)
+        lam = ca.SX.sym("lam")
+        cs = ca.SX.sym("cscale")
+        self.rhs = ca.Function("rhs", [x, lam, cs], [self._rhs_expr(x, lam, cs)],
+                               ["x", "lam", "cscale"], ["dx"])
+
+    # -- physics ------------------------------------------------------------------------
+    def _build_terms(self) -> tuple[str, ...]:
+        terms = ["weight"]
+        if self.scene.environment.current is not None:
+            terms.append(f"drag:{self.scene.cable.drag_law}")
+        if self.scene.cable.elastic:
+            terms.append("stretch")
+        return tuple(terms)
+
+    def _rhs_expr(self, x: ca.SX, lam: ca.SX, cscale: ca.SX) -> ca.SX:
+        sc, cab, env = self.scales, self.scene.cable, self.scene.environment
+        rho_, tau = x[0:3], x[3:6]
+        tmag = ca.sqrt(ca.dot(tau, tau))
+        t = tau / tmag
+        stretch = 1.0
+        if cab.elastic:
+            stretch = 1.0 + sc.force * tmag / cab.axial_stiffness
+        # loads per unstretched length, N/m
+        f = ca.vertcat(0, 0, -cab.weight_in_water)
+        if env.current is not None:
+            u = current_velocity(env.current, sc.length * rho_[2], cscale)
+            opts = self.scene.solver
+            fd = drag_per_length(
+                cab.drag_law, u, t, rho=env.water_density, diameter=cab.diameter,
+                normal_drag=cab.normal_drag, tangential_drag=cab.tangential_drag,
+                delta=opts.smoothing, blend=opts.vertical_blend,
+            )
+            f = f + stretch * fd
+        drho = lam * stretch * t
+        dtau = -lam * (sc.length / sc.force) * f
+        return ca.vertcat(drho, dtau)
+
+    # -- end conditions -----------------------------------------------------------------
+    def end_residual(self, end: End, x: ca.SX, values: ca.SX, at_a: bool) -> list[ca.SX]:
+        """Residuals of the end conditions at one end (scaled)."""
+        res = []
+        sign = -1.0 if at_a else 1.0
+        for i, fixed in enumerate(end.fixed_mask):
+            if fixed:
+                res.append(x[i] - values[i])
+            else:
+                res.append(x[3 + i] - sign * values[i])
+        return res
+
+    def tension_residual(self, x: ca.SX, tension: ca.SX) -> ca.SX:
+        """|tau|^2 - tau0^2 (scaled)."""
+        return ca.dot(x[3:6], x[3:6]) - tension * tension
+
+    # -- parameters ---------------------------------------------------------------------
+    def params(self, scene: Scene | None = None, current_scale: float = 1.0) -> np.ndarray:
+        """Numeric parameter vector for ``scene`` (which must share this structure)."""
+        scene = self.scene if scene is None else scene
+        if scene is not self.scene and _structure_key(scene) != self.key:
+            raise ValueError("scene structure differs from the one this formulation was built for")
+        sc = self.scales
+        p = np.zeros(NP)
+        p[P_LENGTH] = (scene.cable.length or sc.length) / sc.length
+        for sl, end in ((P_END_A, scene.end_a), (P_END_B, scene.end_b)):
+            p[sl] = [v / (sc.length if fixed else sc.force)
+                     for v, fixed in zip(end.values, end.fixed_mask, strict=True)]
+        tension = scene.end_a.tension or scene.end_b.tension
+        p[P_TENSION] = (tension or 0.0) / sc.force
+        p[P_CURRENT] = current_scale
+        return p
+
+    def smoothing_force_bound(self, length: float, max_tension: float) -> float:
+        """Bound (N) on the total drag error from the smooth modulus over the cable."""
+        env, cab = self.scene.environment, self.scene.cable
+        if env.current is None:
+            return 0.0
+        per_len = drag_error_bound(
+            cab.drag_law, rho=env.water_density, diameter=cab.diameter,
+            normal_drag=cab.normal_drag, tangential_drag=cab.tangential_drag,
+            delta=self.scene.solver.smoothing,
+        )
+        stretch = 1.0 + (max_tension / cab.axial_stiffness if cab.elastic else 0.0)
+        return per_len * length * stretch

@@ -1,0 +1,175 @@
+"""Initial guesses for a cold solve: drag-free catenaries and straight lines.
+
+Returned as node arrays in physical units, so they feed any transcription.
+
+* Both ends fixed, length known: the inextensible drag-free catenary through both ends
+  in their vertical plane (Irvine 1981; 004 eqs (2.31)-(2.33) with no point loads).
+* Both ends fixed, tension known, length free: the catenary through both ends whose
+  tension at that end equals the prescribed one; of the two such catenaries, the one
+  with the shorter cable (CONVENTIONS: Berteaux's problem has a second, non-physical
+  solution near 15 km).
+* One end fixed, the other loaded by a known force: the drag-free hanging solution
+  T(s) = T_end - w (s_end - s) e_z, integrated for the positions (004 (2.40)-(2.42)).
+* Otherwise (mixed ends), or when the above degenerate: a straight line with the
+  tension of a vertically hanging cable.
+"""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+from scipy.integrate import cumulative_trapezoid
+from scipy.optimize import brentq
+
+from cable_ocp.scene import Scene
+
+
+def _catenary_fixed(h: float, v: float, length: float) -> float:
+    """Catenary parameter a (m) with span h, rise v and arc length L (L > chord)."""
+    target = math.sqrt(max(length * length - v * v, 1e-300))
+
+    def fun(log_a: float) -> float:
+        a = math.exp(log_a)
+        arg = h / (2 * a)
+        if arg > 700:
+            return math.inf
+        return math.log(2 * a * math.sinh(arg)) - math.log(target)
+
+    lo, hi = math.log(h * 1e-4 + 1e-12), math.log(h * 1e6 + 1e-12)
+    return math.exp(brentq(fun, lo, hi, xtol=1e-14))
+
+
+def _catenary_nodes(a: float, h: float, v: float, length: float, s: np.ndarray,
+                    w: float) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """Horizontal coordinate X(s), height Z(s) (relative to end a) and tension (H, V)."""
+    x0 = h / 2 - a * math.asinh(v / (2 * a * math.sinh(h / (2 * a))))
+    s_a = a * math.sinh(-x0 / a)  # arc-length coordinate of end a from the vertex
+    xs = x0 + a * np.arcsinh((s + s_a) / a)
+    zs = a * np.cosh((xs - x0) / a) - a * math.cosh(-x0 / a)
+    th = np.full_like(s, w * a)
+    tv = w * (s + s_a)
+    return xs, zs, np.stack([th, tv], axis=1)
+
+
+def _plane(scene: Scene) -> tuple[np.ndarray, np.ndarray, float, float]:
+    ra = np.asarray(scene.end_a.position, dtype=float)
+    rb = np.asarray(scene.end_b.position, dtype=float)
+    d = rb - ra
+    h = math.hypot(d[0], d[1])
+    eh = np.array([d[0] / h, d[1] / h, 0.0]) if h > 1e-9 else np.array([1.0, 0.0, 0.0])
+    return ra, eh, h, float(d[2])
+
+
+def _catenary_guess(scene: Scene, sigma: np.ndarray, length: float
+                    ) -> tuple[np.ndarray, np.ndarray] | None:
+    w = scene.cable.weight_in_water
+    ra, eh, h, v = _plane(scene)
+    if h < 1e-6 * length or abs(w) < 1e-12 or length <= math.hypot(h, v) * (1 + 1e-9):
+        return None
+    flip = -1.0 if w < 0 else 1.0
+    a = _catenary_fixed(h, flip * v, length)
+    s = sigma * length
+    xs, zs, ht = _catenary_nodes(a, h, flip * v, length, s, abs(w))
+    r = ra + np.outer(xs, eh) + np.outer(flip * zs, [0, 0, 1.0])
+    t = np.outer(ht[:, 0], eh) + np.outer(flip * ht[:, 1], [0, 0, 1.0])
+    return r, t
+
+
+def free_length_guess(scene: Scene) -> float:
+    """Cable length (m) of the drag-free catenary with the prescribed end tension."""
+    w = abs(scene.cable.weight_in_water)
+    ra, eh, h, v = _plane(scene)
+    chord = math.hypot(h, v)
+    tension = scene.end_a.tension or scene.end_b.tension
+    if w < 1e-12 or h < 1e-9 * chord:
+        return chord * 1.01
+    at_b = scene.end_b.tension is not None
+    flip = -1.0 if scene.cable.weight_in_water < 0 else 1.0
+
+    def end_tension(length: float) -> float:
+        a = _catenary_fixed(h, flip * v, length)
+        x0 = h / 2 - a * math.asinh(flip * v / (2 * a * math.sinh(h / (2 * a))))
+        xe = h if at_b else 0.0
+        return w * a * math.cosh((xe - x0) / a)
+
+    # tension falls from infinity (taut) to a minimum as the cable lengthens; take the
+    # shorter-cable branch: the first length where the tension drops to the target.
+    lengths = chord * (1.0 + np.geomspace(1e-6, 50.0, 200))
+    vals = np.array([end_tension(x) for x in lengths])
+    below = np.nonzero(vals <= tension)[0]
+    if below.size == 0:
+        return float(lengths[int(np.argmin(vals))])
+    i = int(below[0])
+    if i == 0:
+        return float(lengths[0])
+    return float(brentq(lambda x: end_tension(x) - tension, lengths[i - 1], lengths[i]))
+
+
+def _hanging_guess(scene: Scene, sigma: np.ndarray, length: float
+                   ) -> tuple[np.ndarray, np.ndarray] | None:
+    """One end fully fixed, the other fully force-loaded."""
+    a_fixed, b_fixed = all(scene.end_a.fixed_mask), all(scene.end_b.fixed_mask)
+    w = scene.cable.weight_in_water
+    fine = np.linspace(0.0, 1.0, 20 * len(sigma) + 1)
+    s = fine * length
+    if a_fixed and not any(scene.end_b.fixed_mask):
+        tb = np.asarray(scene.end_b.force, dtype=float)
+        tens = tb[None, :] - np.outer(length - s, [0, 0, w])
+        start, from_a = np.asarray(scene.end_a.position, dtype=float), True
+    elif b_fixed and not any(scene.end_a.fixed_mask):
+        ta = -np.asarray(scene.end_a.force, dtype=float)
+        tens = ta[None, :] + np.outer(s, [0, 0, w])
+        start, from_a = np.asarray(scene.end_b.position, dtype=float), False
+    else:
+        return None
+    mag = np.linalg.norm(tens, axis=1)
+    if mag.min() < 1e-6 * max(mag.max(), 1e-12):
+        return None
+    t = tens / mag[:, None]
+    disp = cumulative_trapezoid(t, s, axis=0, initial=0.0)
+    r = start + disp if from_a else start - (disp[-1] - disp)
+    ri = np.stack([np.interp(sigma, fine, r[:, k]) for k in range(3)], axis=1)
+    ti = np.stack([np.interp(sigma, fine, tens[:, k]) for k in range(3)], axis=1)
+    return ri, ti
+
+
+def _straight_guess(scene: Scene, sigma: np.ndarray, length: float
+                    ) -> tuple[np.ndarray, np.ndarray]:
+    ea, eb = scene.end_a, scene.end_b
+    pa = np.array([p if p is not None else np.nan for p in ea.position])
+    pb = np.array([p if p is not None else np.nan for p in eb.position])
+    for i in range(3):
+        if np.isnan(pa[i]):
+            pa[i] = pb[i] - length / math.sqrt(3.0)
+        if np.isnan(pb[i]):
+            pb[i] = pa[i] + length / math.sqrt(3.0)
+    d = pb - pa
+    chord = float(np.linalg.norm(d))
+    e = d / chord if chord > 0 else np.array([0.0, 0.0, 1.0])
+    r = pa + np.outer(sigma, d)
+    w = scene.cable.weight_in_water
+    tmag = max(abs(w) * length, 1.0)
+    for end in (ea, eb):
+        tmag = max([tmag, *(abs(f) for f in end.force if f is not None)])
+        if end.tension is not None:
+            tmag = end.tension
+    t = np.outer(np.ones_like(sigma), tmag * e)
+    return r, t
+
+
+def initial_guess(scene: Scene, sigma: np.ndarray, kind: str = "catenary"
+                  ) -> tuple[np.ndarray, np.ndarray, float, str]:
+    """Guess positions (n, 3) [m], tensions (n, 3) [N] and length [m] at ``sigma`` nodes.
+
+    Returns the name of the guess actually used as the last element.
+    """
+    length = scene.cable.length if scene.cable.length is not None else free_length_guess(scene)
+    if kind == "catenary":
+        both_fixed = all(scene.end_a.fixed_mask) and all(scene.end_b.fixed_mask)
+        guess = _catenary_guess(scene, sigma, length) if both_fixed else _hanging_guess(
+            scene, sigma, length)
+        if guess is not None:
+            return guess[0], guess[1], length, "catenary" if both_fixed else "hanging"
+    r, t = _straight_guess(scene, sigma, length)
+    return r, t, length, "straight"
