@@ -1,0 +1,1 @@
+"""Other methods for the same scenes, each returning a StaticsSolution (for comparison)."""
