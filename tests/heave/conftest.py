@@ -6,7 +6,6 @@ import pytest
 
 from cable_ocp.heave import plant as pl
 from cable_ocp.heave import sea
-
 from cable_ocp.heave.thesis import A_636, B_636, HS_636, WM_636
 
 
