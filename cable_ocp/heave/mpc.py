@@ -1,0 +1,630 @@
+"""Model predictive control of the heave compensator in CasADi (issue 4, item 4).
+
+Prediction model: the assembled plant (004 eq. (6.28), or the regulator plant (6.6)) sampled
+exactly (ZOH) at ``h``, with the winch-command delay ``tau = d h`` as an **exact shift register**
+of the last ``d`` commands: ``z = [x; u0_{k-d}, ..., u0_{k-1}]``
+(:func:`cable_ocp.heave.discrete.discretize_delayed`). The cost is the continuous LQR cost
+``int (q x^2 + r u0^2) dt`` sampled exactly, with the DARE solution as terminal cost, so that
+without active constraints and delay the MPC reproduces the discrete LQR.
+
+Limits (CONVENTIONS, "Heave compensation"):
+
+* hard: stroke ``|u| <= stroke_max`` and winch speed ``|u'| <= speed_max`` for either winch. For
+  the first-order winch (6.1) with a held command, ``u`` moves monotonically between samples and
+  ``|u'|`` is largest just after a sample, so the limits imposed at the samples hold in continuous
+  time; the acceleration of that winch is impulsive at every sample, so instead the change of the
+  command per sample is limited (``command_rate_max``, m per sample). For the second-order winch
+  the acceleration ``u''`` is limited at the samples (``accel_max``).
+* soft: cable tension ``T = T_0 + (m/a) (x0 + u - x) >= T_min`` through a nonnegative slack with
+  quadratic and exact linear (L1) penalties, when the plant carries tension (``[unit] mass`` and
+  ``static_tension`` given).
+
+Wave preview: the boom-tip motion known ``preview_time`` s ahead enters as a known additive input
+on the unit's ``x0`` channel that corrects the shaping-filter prediction to the forecast.
+
+Solvers: ``"qpoases"``, ``"osqp"``, ``"qrqp"`` solve a **condensed dense QP** (decision variables:
+the ``N`` commands and ``N`` tension slacks) through CasADi's ``conic`` interface; Hessian and
+constraint matrix are constant and computed once, only the gradient and bounds change per step
+(matrix-vector products). ``"ipopt"`` solves a multiple-shooting NLP built once with CasADi
+``nlpsol`` and can use the nonlinear unit model (6.3). Every solver is built once and warm-started
+with the shifted previous solution.
+"""
+
+from __future__ import annotations
+
+import contextlib
+import os
+import sys
+import time
+from collections.abc import Iterator
+from dataclasses import dataclass, field
+
+import casadi as cs
+import numpy as np
+from scipy import linalg
+
+from cable_ocp.errors import CableOCPError
+from cable_ocp.heave.discrete import discretize_cost, discretize_delayed
+from cable_ocp.heave.plant import HeavePlant
+
+QP_SOLVERS = ("qpoases", "osqp", "qrqp")
+SOLVERS = QP_SOLVERS + ("ipopt",)
+
+
+@dataclass(frozen=True)
+class MPCSettings:
+    """MPC settings (``[controller]`` and ``[winch]`` limits of a heave scene).
+
+    Attributes
+    ----------
+    horizon : int
+        Prediction horizon ``N`` (samples).
+    sample_time : float
+        ``h``, s.
+    q : float
+        Weight on the unit's heave, 1/m^2.
+    r : float
+        Weight on the winch command, 1/m^2.
+    solver : str
+        One of :data:`SOLVERS`.
+    stroke_max, speed_max : float or None
+        Hard limits on ``|u|`` (m) and ``|u'|`` (m/s).
+    command_rate_max : float or None
+        Hard limit on ``|u0_k - u0_{k-1}|`` (m per sample; first-order winch).
+    accel_max : float or None
+        Hard limit on ``|u''|`` (m/s^2; second-order winch only).
+    tension_min : float or None
+        Soft lower limit on the tension at the unit, N (needs ``unit_mass``, ``static_tension``).
+    unit_mass : float
+        Unit mass (incl. added mass), kg; the cable stiffness is ``unit_mass / a``.
+    static_tension : float
+        Static tension at the unit, N.
+    tension_penalty : float
+        Quadratic penalty on the tension slack (1/m^2, slack in metres of stretch); the linear
+        penalty is ``sqrt`` of it times 10, enough to make the soft limit exact when feasible.
+    preview_time : float
+        Wave preview, s (0: none).
+    terminal : str
+        ``"dare"`` (terminal cost from the discrete Riccati equation) or ``"none"``.
+    nonlinear_b : float
+        Quadratic damping ``b`` of (6.3) for the IPOPT prediction model (0: linear model).
+    solver_options : dict
+        Extra options passed to the CasADi solver plugin.
+    """
+
+    horizon: int = 50
+    sample_time: float = 0.05
+    q: float = 553.6
+    r: float = 1.0
+    solver: str = "qpoases"
+    stroke_max: float | None = None
+    speed_max: float | None = None
+    command_rate_max: float | None = None
+    accel_max: float | None = None
+    tension_min: float | None = None
+    unit_mass: float = 0.0
+    static_tension: float = 0.0
+    tension_penalty: float = 1e6
+    preview_time: float = 0.0
+    terminal: str = "dare"
+    nonlinear_b: float = 0.0
+    solver_options: dict = field(default_factory=dict, hash=False)
+
+
+@dataclass(frozen=True)
+class MPCStep:
+    """Result of one :meth:`LinearMPC.step`.
+
+    Attributes
+    ----------
+    u0 : float
+        Command to apply now, m.
+    success : bool
+        Solver status.
+    solve_time : float
+        Wall time of the step (bounds/gradient assembly + solve), s.
+    plan : numpy.ndarray
+        Planned commands ``u0_k .. u0_{k+N-1}``, m.
+    max_slack : float
+        Largest tension slack (m of stretch; 0 if the tension limit is inactive).
+    """
+
+    u0: float
+    success: bool
+    solve_time: float
+    plan: np.ndarray
+    max_slack: float
+
+
+def _winch_indices(plant: HeavePlant) -> tuple[int, int | None]:
+    sl = plant.blocks["winch"]
+    iu = sl.start
+    iud = sl.start + 1 if plant.winch_model == "second_order" else None
+    return iu, iud
+
+
+class LinearMPC:
+    """Condensed linear MPC, built once (see module docstring).
+
+    Parameters
+    ----------
+    plant : HeavePlant
+        Undelayed plant; its first input is the winch command ``u0``. If its disturbance input
+        is ``w`` (full plant (6.28)) the sea is predicted by the shaping filter; if it is ``x0``
+        (regulator plant) the boom-tip motion must be supplied as a known sequence.
+    tau : float
+        Winch-command delay, s (integer multiple of ``sample_time``).
+    settings : MPCSettings
+        Horizon, weights, limits, solver.
+    """
+
+    def __init__(self, plant: HeavePlant, tau: float, settings: MPCSettings) -> None:
+        s = settings
+        if s.solver not in SOLVERS:
+            raise CableOCPError(f"[controller] solver = {s.solver!r} is unknown; valid: {SOLVERS}")
+        if not (isinstance(s.horizon, int) and s.horizon >= 1):
+            raise CableOCPError(f"[controller] horizon = {s.horizon!r} must be an integer >= 1")
+        h = s.sample_time
+        if abs(tau / h - round(tau / h)) > 1e-9:
+            raise CableOCPError(
+                f"[winch] delay = {tau} s must be an integer multiple of [controller] "
+                f"sample_time = {h} s (exact shift register)"
+            )
+        if s.accel_max is not None and plant.winch_model != "second_order":
+            raise CableOCPError(
+                "[winch] accel_max needs model = 'second_order'; for the first-order winch limit "
+                "command_rate_max (m per sample) instead"
+            )
+        if s.tension_min is not None and not (s.unit_mass > 0):
+            raise CableOCPError("[winch] tension_min needs [unit] mass > 0 (and static_tension)")
+        self.plant = plant
+        self.settings = s
+        self.tau = float(tau)
+        self.N = N = s.horizon
+        n = plant.n
+        self.n = n
+        self.exogenous_x0 = plant.sys.input_labels[1] == "x0"
+        # Known additive boom-tip input on the unit's x0 channel.
+        e_x0 = np.zeros((n, 1))
+        e_x0[plant.blocks["unit"].start + 1, 0] = 1.0 / plant.a
+        cx = plant.e("x")
+        mdl = discretize_delayed(plant.A, plant.B1, h, tau, e_x0)
+        self.model = mdl
+        A, B, E = mdl.Ad, mdl.Bd, mdl.Ed
+        nz = A.shape[0]
+        self.nz = nz
+        d = mdl.d
+        Qz, Rz, Nz = discretize_cost(plant.A, plant.B1, s.q * cx.T @ cx, s.r, h, d)
+        self.Qz, self.Rz, self.Nz = Qz, Rz, Nz
+        if s.terminal == "dare":
+            P = linalg.solve_discrete_are(A, B, Qz, Rz, s=Nz)
+        elif s.terminal == "none":
+            P = np.zeros((nz, nz))
+        else:
+            raise CableOCPError(f"[controller] terminal = {s.terminal!r}; valid: 'dare', 'none'")
+        self.P = 0.5 * (P + P.T)
+        self.K_lqr = np.linalg.solve(Rz + B.T @ self.P @ B, B.T @ self.P @ A + Nz.T)
+        # Prediction: z_k = S[k] z0 + T[k] U + W[k] D, k = 0..N.
+        S = np.zeros((N + 1, nz, nz))
+        T = np.zeros((N + 1, nz, N))
+        W = np.zeros((N + 1, nz, N))
+        S[0] = np.eye(nz)
+        for k in range(N):
+            S[k + 1] = A @ S[k]
+            T[k + 1] = A @ T[k]
+            T[k + 1][:, k] += B[:, 0]
+            W[k + 1] = A @ W[k]
+            W[k + 1][:, k] += E[:, 0]
+        self._S, self._T, self._W = S, T, W
+        # Condensed cost 0.5 U'HU + g'U, g = Gz z0 + Gd D.
+        H = np.zeros((N, N))
+        Gz = np.zeros((N, nz))
+        Gd = np.zeros((N, N))
+        for k in range(N + 1):
+            Qk = self.P if k == N else Qz
+            Tk = T[k]
+            H += 2 * Tk.T @ Qk @ Tk
+            Gz += 2 * Tk.T @ Qk @ S[k]
+            Gd += 2 * Tk.T @ Qk @ W[k]
+            if k < N:
+                ek = np.zeros((1, N))
+                ek[0, k] = 1.0
+                H += 2 * (Tk.T @ Nz @ ek + ek.T @ Nz.T @ Tk + ek.T @ Rz @ ek)
+                Gz += 2 * ek.T @ Nz.T @ S[k]
+                Gd += 2 * ek.T @ Nz.T @ W[k]
+        self._build_constraints(plant)
+        nv = N + self.ns
+        Hf = np.zeros((nv, nv))
+        Hf[:N, :N] = 0.5 * (H + H.T)
+        self.g_slack = np.zeros(nv)
+        if self.ns:
+            Hf[N:, N:] = 2 * s.tension_penalty * np.eye(self.ns)
+            self.g_slack[N:] = 10.0 * np.sqrt(s.tension_penalty)
+        self.H = Hf
+        self.Gz = np.vstack([Gz, np.zeros((self.ns, nz))])
+        self.Gd = np.vstack([Gd, np.zeros((self.ns, N))])
+        # Command bounds |u0| <= stroke_max: the first-order winch output is a convex combination
+        # of its state and its (held) commands, so the stroke limit then holds for any hold of
+        # the plan, which makes the limits recursively feasible (shifted plan + held last
+        # command stays feasible). For the second-order winch it is a sensible extra bound.
+        ulim = np.inf if s.stroke_max is None else s.stroke_max
+        self.lbx = np.concatenate([np.full(N, -ulim), np.zeros(self.ns)])
+        self.ubx = np.concatenate([np.full(N, ulim), np.full(self.ns, np.inf)])
+        self._solver = None
+        if s.solver in QP_SOLVERS:
+            self._build_qp()
+        else:
+            self._nlp = _NonlinearMPC(self)
+        self._warm = None
+        self._first = True
+        self.n_preview = int(round(s.preview_time / h))
+
+    # ---------------------------------------------------------------------------------------
+    def _build_constraints(self, plant: HeavePlant) -> None:
+        """Rows ``lb - c(z0, D, u_prev) <= A_c [U; S] <= ub - c(...)``; constant rows dropped."""
+        s = self.settings
+        N, nz, n, d = self.N, self.nz, self.n, self.model.d
+        iu, iud = _winch_indices(plant)
+        rows_U, rows_z, rows_D, rows_up, lim, lo_only, slack_idx = [], [], [], [], [], [], []
+
+        def applied(k: int) -> tuple[np.ndarray, np.ndarray]:
+            """Applied (delayed) command at step k as (z-row, U-row)."""
+            if d > 0:
+                c = np.zeros(nz)
+                c[n] = 1.0
+                return c, np.zeros(N)
+            e = np.zeros(N)
+            e[k] = 1.0
+            return np.zeros(nz), e
+
+        def add(k: int, c: np.ndarray, e: np.ndarray, f: float, limit: float) -> None:
+            rU = c @ self._T[k] + e
+            if np.max(np.abs(rU)) < 1e-14:
+                return  # fixed by the past: nothing to decide
+            rows_U.append(rU)
+            rows_z.append(c @ self._S[k])
+            wD = c @ self._W[k]
+            wD = wD.copy()
+            if f:
+                wD[k] += f
+            rows_D.append(wD)
+            rows_up.append(0.0)
+            lim.append(limit)
+            lo_only.append(False)
+            slack_idx.append(-1)
+
+        eu = np.zeros(nz)
+        eu[iu] = 1.0
+        zero = np.zeros(N)
+        if s.stroke_max is not None:
+            for k in range(1, N + 1):
+                add(k, eu, zero, 0.0, s.stroke_max)
+        if s.speed_max is not None:
+            if iud is None:
+                K = plant.K
+                for k in range(N):
+                    cz, eU = applied(k)
+                    add(k, K * (cz - eu), K * eU, 0.0, s.speed_max)
+            else:
+                eud = np.zeros(nz)
+                eud[iud] = 1.0
+                for k in range(1, N + 1):
+                    add(k, eud, zero, 0.0, s.speed_max)
+        if s.accel_max is not None:
+            ww = float(np.sqrt(-plant.A[iu + 1, iu]))
+            two_zw = float(-plant.A[iu + 1, iu + 1])
+            eud = np.zeros(nz)
+            eud[iud] = 1.0
+            for k in range(N):
+                cz, eU = applied(k)
+                add(k, ww**2 * (cz - eu) - two_zw * eud, ww**2 * eU, 0.0, s.accel_max)
+        if s.command_rate_max is not None:
+            for k in range(N):
+                e = np.zeros(N)
+                e[k] = 1.0
+                if k > 0:
+                    e[k - 1] = -1.0
+                rows_U.append(e)
+                rows_z.append(np.zeros(nz))
+                rows_D.append(np.zeros(N))
+                rows_up.append(-1.0 if k == 0 else 0.0)
+                lim.append(s.command_rate_max)
+                lo_only.append(False)
+                slack_idx.append(-1)
+        ns = 0
+        if s.tension_min is not None:
+            c_str, d_str = plant.output_row("stretch")
+            cs_ = np.zeros(nz)
+            cs_[:n] = c_str
+            kc = s.unit_mass / plant.a
+            smin = (s.tension_min - s.static_tension) / kc
+            for k in range(1, N + 1):
+                rows_U.append(cs_ @ self._T[k])
+                rows_z.append(cs_ @ self._S[k])
+                wD = (cs_ @ self._W[k]).copy()
+                if k < N:
+                    wD[k] += 1.0  # the known boom-tip correction adds to the stretch
+                rows_D.append(wD)
+                rows_up.append(0.0)
+                lim.append(smin)
+                lo_only.append(True)
+                slack_idx.append(ns)
+                ns += 1
+            self.stretch_min = smin
+        self.ns = ns
+        m = len(rows_U)
+        Ac = np.zeros((m, N + ns))
+        if m:
+            Ac[:, :N] = np.array(rows_U)
+        for i, j in enumerate(slack_idx):
+            if j >= 0:
+                Ac[i, N + j] = 1.0
+        self.Ac = Ac
+        self.Cz = np.array(rows_z).reshape(m, nz)
+        self.CD = np.array(rows_D).reshape(m, N)
+        self.Cup = np.array(rows_up)
+        lim_a = np.array(lim, dtype=float)
+        lo_only_a = np.array(lo_only, dtype=bool)
+        self.lb0 = np.where(lo_only_a, lim_a, -lim_a)
+        self.ub0 = np.where(lo_only_a, np.inf, lim_a)
+
+    def _build_qp(self) -> None:
+        s = self.settings
+        nv = self.H.shape[0]
+        m = self.Ac.shape[0]
+        opts: dict = {}
+        if s.solver == "qpoases":
+            opts = {"printLevel": "none", "error_on_fail": False}
+        elif s.solver == "osqp":
+            opts = {"osqp": {"verbose": False, "eps_abs": 1e-6, "eps_rel": 1e-6,
+                             "polish": True}, "warm_start_primal": True,
+                    "warm_start_dual": True, "error_on_fail": False}
+        elif s.solver == "qrqp":
+            opts = {"print_iter": False, "print_header": False, "print_info": False,
+                    "error_on_fail": False}
+        _merge(opts, s.solver_options)
+        Hs = cs.Sparsity.dense(nv, nv)
+        As = cs.Sparsity.dense(m, nv) if m else cs.Sparsity(0, nv)
+        with _quiet_stdout():
+            self._solver = cs.conic("heave_mpc", s.solver, {"h": Hs, "a": As}, opts)
+        self._Hdm = cs.DM(self.H)
+        self._Adm = cs.DM(self.Ac) if m else cs.DM(0, nv)
+
+    # ---------------------------------------------------------------------------------------
+    def preview_correction(self, z0: np.ndarray, x0_forecast: np.ndarray) -> np.ndarray:
+        """Known boom-tip input ``D`` that makes the prediction follow a forecast.
+
+        For the full plant, ``D_k = forecast_k - (model's predicted x0)_k`` for the first
+        ``n_preview`` steps and 0 after; for the regulator plant (boom tip exogenous), ``D`` is
+        the forecast itself, held at its last value beyond the preview.
+        """
+        N = self.N
+        D = np.zeros(N)
+        f = np.asarray(x0_forecast, dtype=float)
+        npv = min(self.n_preview if self.n_preview else N, N, f.size)
+        if self.exogenous_x0:
+            D[:npv] = f[:npv]
+            if npv < N and npv > 0:
+                D[npv:] = f[npv - 1]
+            return D
+        cx0, _ = self.plant.output_row("x0")
+        c = np.zeros(self.nz)
+        c[: self.n] = cx0
+        for k in range(npv):
+            D[k] = f[k] - c @ self._S[k] @ z0
+        return D
+
+    def step(self, z0: np.ndarray, u_prev: float = 0.0, D: np.ndarray | None = None) -> MPCStep:
+        """Solve the MPC problem at augmented state ``z0`` and return the first command.
+
+        Parameters
+        ----------
+        z0 : numpy.ndarray, shape (nz,)
+            ``[plant state; u0_{k-d} .. u0_{k-1}]``.
+        u_prev : float
+            Previous command (for the command-rate limit), m.
+        D : numpy.ndarray, shape (N,), optional
+            Known boom-tip input (see :meth:`preview_correction`), m.
+        """
+        t0 = time.perf_counter()
+        N = self.N
+        z0 = np.asarray(z0, dtype=float).reshape(-1)
+        if D is None:
+            D = np.zeros(N)
+        g = self.Gz @ z0 + self.Gd @ D + self.g_slack
+        c = self.Cz @ z0 + self.CD @ D + self.Cup * u_prev
+        lba = self.lb0 - c
+        uba = self.ub0 - c
+        if self._solver is not None:
+            args = {"h": self._Hdm, "g": g, "a": self._Adm, "lba": lba, "uba": uba,
+                    "lbx": self.lbx, "ubx": self.ubx}
+            if self._warm is not None:
+                args.update(self._warm)
+            if self._first:
+                with _quiet_stdout():  # qpOASES prints a licence banner on its first call
+                    sol = self._solver(**args)
+                self._first = False
+            else:
+                sol = self._solver(**args)
+            ok = bool(self._solver.stats().get("success", False))
+            x = np.asarray(sol["x"]).ravel()
+            if ok:
+                U, Sl = x[:N], x[N:]
+                xs = np.concatenate([U[1:], U[-1:], Sl[1:], Sl[-1:]])
+                self._warm = {"x0": xs, "lam_a0": np.asarray(sol["lam_a"]).ravel(),
+                              "lam_x0": np.asarray(sol["lam_x"]).ravel()}
+        else:
+            x, ok = self._nlp.solve(z0, u_prev, D)
+        dt = time.perf_counter() - t0
+        return MPCStep(u0=float(x[0]), success=ok, solve_time=dt, plan=x[:N].copy(),
+                       max_slack=float(np.max(x[N:])) if self.ns else 0.0)
+
+
+@contextlib.contextmanager
+def _quiet_stdout() -> Iterator[None]:
+    """Silence C-level writes to file descriptor 1 (library code never prints)."""
+    try:
+        sys.stdout.flush()
+        fd = os.dup(1)
+    except (OSError, ValueError):
+        yield
+        return
+    try:
+        with open(os.devnull, "w") as devnull:
+            os.dup2(devnull.fileno(), 1)
+            yield
+    finally:
+        os.dup2(fd, 1)
+        os.close(fd)
+
+
+def _merge(opts: dict, extra: dict) -> None:
+    for k, v in extra.items():
+        if isinstance(v, dict) and isinstance(opts.get(k), dict):
+            opts[k].update(v)
+        else:
+            opts[k] = v
+
+
+class _NonlinearMPC:
+    """Multiple-shooting NLP solved by IPOPT, built once (used by ``solver = "ipopt"``).
+
+    The prediction integrates the plant with RK4 (2 substeps per sample) and, if
+    ``nonlinear_b > 0``, replaces the unit's linear damping by ``b |x'| x'`` (004 eq. (6.3),
+    smoothed as ``b x' sqrt(x'^2 + 1e-6)``). Cost and limits are those of the condensed QP,
+    written on the shooting states.
+    """
+
+    def __init__(self, mpc: LinearMPC) -> None:
+        s = mpc.settings
+        p = mpc.plant
+        N, nz, n, d = mpc.N, mpc.nz, mpc.n, mpc.model.d
+        h = s.sample_time
+        A = p.A
+        B = p.B1
+        iv = p.blocks["unit"].start + 1
+        bnl = s.nonlinear_b
+
+        x = cs.MX.sym("x", n)
+        v = cs.MX.sym("v")
+        dd = cs.MX.sym("dd")
+        xdot = cs.mtimes(cs.DM(A), x) + cs.DM(B) * v
+        e_unit = np.zeros(n)
+        e_unit[iv] = 1.0
+        xdot = xdot + cs.DM(e_unit) * dd / p.a
+        if bnl > 0:
+            xd = x[iv]
+            corr = (p.b * xd - bnl * xd * cs.sqrt(xd**2 + 1e-6)) / p.a
+            xdot = xdot + cs.DM(e_unit) * corr
+        f = cs.Function("f", [x, v, dd], [xdot])
+        M = 2
+        hh = h / M
+        xk = x
+        for _ in range(M):
+            k1 = f(xk, v, dd)
+            k2 = f(xk + hh / 2 * k1, v, dd)
+            k3 = f(xk + hh / 2 * k2, v, dd)
+            k4 = f(xk + hh * k3, v, dd)
+            xk = xk + hh / 6 * (k1 + 2 * k2 + 2 * k3 + k4)
+        F = cs.Function("F", [x, v, dd], [xk])
+
+        Z = cs.MX.sym("Z", nz, N + 1)
+        U = cs.MX.sym("U", N)
+        Sl = cs.MX.sym("S", mpc.ns)
+        P0 = cs.MX.sym("z0", nz)
+        Pup = cs.MX.sym("up")
+        PD = cs.MX.sym("D", N)
+        g = [Z[:, 0] - P0]
+        J = 0
+        Qz, Rz, Nz = cs.DM(mpc.Qz), cs.DM(mpc.Rz), cs.DM(mpc.Nz)
+        for k in range(N):
+            zk = Z[:, k]
+            vk = zk[n] if d > 0 else U[k]
+            xn = F(zk[:n], vk, PD[k])
+            if d > 1:
+                bn = cs.vertcat(zk[n + 1 :], U[k])
+            elif d == 1:
+                bn = U[k]
+            else:
+                bn = cs.MX(0, 1)
+            g.append(Z[:, k + 1] - cs.vertcat(xn, bn))
+            J += cs.bilin(Qz, zk, zk) + 2 * cs.mtimes([zk.T, Nz, U[k]]) + Rz * U[k] ** 2
+        J += cs.bilin(cs.DM(mpc.P), Z[:, N], Z[:, N])
+        # Limits as in the QP, on the shooting states: rebuild from the condensed rows'
+        # meaning would need the condensing maps; write them directly.
+        lbg = [0.0] * (nz * (N + 1))
+        ubg = [0.0] * (nz * (N + 1))
+        iu, iud = _winch_indices(p)
+        for k in range(N + 1):
+            zk = Z[:, k]
+            if s.stroke_max is not None and k >= 1:
+                g.append(zk[iu])
+                lbg.append(-s.stroke_max)
+                ubg.append(s.stroke_max)
+            if s.speed_max is not None:
+                if iud is None and k < N:
+                    vk = zk[n] if d > 0 else U[k]
+                    g.append(p.K * (vk - zk[iu]))
+                    lbg.append(-s.speed_max)
+                    ubg.append(s.speed_max)
+                elif iud is not None and k >= 1:
+                    g.append(zk[iud])
+                    lbg.append(-s.speed_max)
+                    ubg.append(s.speed_max)
+            if s.accel_max is not None and k < N:
+                vk = zk[n] if d > 0 else U[k]
+                ww2 = -A[iu + 1, iu]
+                g.append(ww2 * (vk - zk[iu]) + A[iu + 1, iu + 1] * zk[iud])
+                lbg.append(-s.accel_max)
+                ubg.append(s.accel_max)
+            if s.command_rate_max is not None and k < N:
+                g.append(U[k] - (Pup if k == 0 else U[k - 1]))
+                lbg.append(-s.command_rate_max)
+                ubg.append(s.command_rate_max)
+            if mpc.ns and k >= 1:
+                c_str, _ = p.output_row("stretch")
+                st = cs.mtimes(cs.DM(c_str).T, zk[:n]) + (PD[k] if k < N else 0)
+                g.append(st + Sl[k - 1])
+                lbg.append(mpc.stretch_min)
+                ubg.append(np.inf)
+                J += s.tension_penalty * Sl[k - 1] ** 2 + 10 * np.sqrt(s.tension_penalty) * \
+                    Sl[k - 1]
+        w = cs.vertcat(cs.vec(Z), U, Sl)
+        nlp = {"x": w, "p": cs.vertcat(P0, Pup, PD), "f": J, "g": cs.vertcat(*g)}
+        opts = {"ipopt": {"print_level": 0, "sb": "yes", "tol": 1e-10,
+                          "warm_start_init_point": "yes", "mu_init": 1e-4},
+                "print_time": False, "error_on_fail": False}
+        _merge(opts, s.solver_options)
+        self.solver = cs.nlpsol("heave_nmpc", "ipopt", nlp, opts)
+        self.lbg = np.array(lbg)
+        self.ubg = np.array(ubg)
+        nw = w.shape[0]
+        self.lbw = np.full(nw, -np.inf)
+        self.ubw = np.full(nw, np.inf)
+        if mpc.ns:
+            self.lbw[-mpc.ns :] = 0.0
+        self.nz, self.N, self.ns = nz, N, mpc.ns
+        self.warm: dict | None = None
+
+    def solve(self, z0: np.ndarray, u_prev: float, D: np.ndarray) -> tuple[np.ndarray, bool]:
+        nz, N = self.nz, self.N
+        pv = np.concatenate([z0, [u_prev], D])
+        args = {"p": pv, "lbg": self.lbg, "ubg": self.ubg, "lbx": self.lbw, "ubx": self.ubw}
+        if self.warm is None:
+            args["x0"] = np.concatenate([np.tile(z0, N + 1), np.zeros(N + self.ns)])
+        else:
+            args.update(self.warm)
+        sol = self.solver(**args)
+        ok = bool(self.solver.stats().get("success", False))
+        w = np.asarray(sol["x"]).ravel()
+        Zs = w[: nz * (N + 1)].reshape(N + 1, nz)
+        rest = w[nz * (N + 1) :]
+        if ok:
+            Zsh = np.vstack([Zs[1:], Zs[-1:]]).ravel()
+            U = rest[:N]
+            Ush = np.concatenate([U[1:], U[-1:]])
+            Ssh = np.concatenate([rest[N + 1 :], rest[-1:]]) if self.ns else rest[N:]
+            self.warm = {"x0": np.concatenate([Zsh, Ush, Ssh]),
+                         "lam_g0": np.asarray(sol["lam_g"]).ravel(),
+                         "lam_x0": np.asarray(sol["lam_x"]).ravel()}
+        return rest, ok

@@ -1,0 +1,134 @@
+"""MPC (issue 4 item 4): equality with discrete LQR, hard limits with delay, preview."""
+
+from __future__ import annotations
+
+import numpy as np
+import pytest
+
+from cable_ocp.errors import CableOCPError
+from cable_ocp.heave import mpc
+from cable_ocp.heave import plant as pl
+from cable_ocp.heave.discrete import discretize_noise
+
+SOLVERS = [("qpoases", {}), ("qrqp", {}),
+           ("osqp", {"osqp": {"eps_abs": 1e-12, "eps_rel": 1e-12, "max_iter": 100000}}),
+           ("ipopt", {})]
+
+
+@pytest.mark.parametrize("solver,opts", SOLVERS)
+def test_unconstrained_undelayed_mpc_equals_dlqr(plant_636: pl.HeavePlant, solver: str,
+                                                 opts: dict) -> None:
+    # With the DARE solution as terminal cost, no delay and no limits, the MPC's first move is
+    # the discrete LQR's -K z0 (Bellman). The issue asks for 1e-6; the active-set and
+    # interior-point solvers reach ~1e-13/1e-9 (IPOPT tol 1e-10); OSQP needs tight eps
+    # (CONVENTIONS: at default tolerances it is off by ~1e-2).
+    m = mpc.LinearMPC(plant_636, 0.0, mpc.MPCSettings(horizon=50, sample_time=0.05,
+                                                     solver=solver, solver_options=opts))
+    rng = np.random.default_rng(0)
+    for _ in range(2):
+        z0 = rng.standard_normal(m.nz) * 0.1
+        r = m.step(z0)
+        assert r.success
+        assert r.u0 == pytest.approx(-(m.K_lqr @ z0)[0], abs=1e-6)
+
+
+def test_dlqr_of_python_control_matches_dare_gain(plant_636: pl.HeavePlant) -> None:
+    # The MPC's K from scipy's DARE equals python-control's dlqr on the same sampled cost.
+    import control as ct
+
+    m = mpc.LinearMPC(plant_636, 0.0, mpc.MPCSettings(horizon=5))
+    K, _, _ = ct.dlqr(m.model.Ad, m.model.Bd, m.Qz, m.Rz, m.Nz)
+    np.testing.assert_allclose(m.K_lqr, K, rtol=1e-7, atol=1e-10)
+
+
+def _factor(Q: np.ndarray) -> np.ndarray:
+    """``L`` with ``L L^T = Q`` for a PSD ``Q`` whose winch rows are exactly zero (no jitter)."""
+    lam, V = np.linalg.eigh(Q)
+    return V * np.sqrt(np.clip(lam, 0.0, None))
+
+
+def _run(plant: pl.HeavePlant, m: mpc.LinearMPC, steps: int, seed: int, scale: float = 1.0
+         ) -> tuple[np.ndarray, np.ndarray, np.ndarray, int]:
+    """Closed loop on the exactly sampled plant (noise by Van Loan); returns u, u', du, fails."""
+    rng = np.random.default_rng(seed)
+    Ad, Bd = m.model.Ad, m.model.Bd
+    Lw = _factor(discretize_noise(plant.A, plant.B2, np.pi, 0.05))
+    z = np.zeros(m.nz)
+    up = 0.0
+    us, speeds, dus, fails = [], [], [], 0
+    iu = plant.blocks["winch"].start
+    for _ in range(steps):
+        r = m.step(z, up)
+        fails += not r.success
+        v = z[m.n] if m.model.d else r.u0
+        speeds.append(plant.K * (v - z[iu]))
+        dus.append(r.u0 - up)
+        up = r.u0
+        z = Ad @ z + Bd[:, 0] * r.u0
+        z[: plant.n] += scale * Lw @ rng.standard_normal(plant.n)
+        us.append(z[iu])
+    return np.array(us), np.array(speeds), np.array(dus), fails
+
+
+def test_delayed_constrained_mpc_keeps_every_hard_limit(plant_636: pl.HeavePlant) -> None:
+    # Limits tight enough to be active (the wave is scaled up 3x): every step keeps stroke,
+    # speed (just after each sample, where the first-order winch is fastest) and command rate,
+    # to 1e-9 relative (solver feasibility tolerance).
+    st = mpc.MPCSettings(horizon=30, sample_time=0.05, stroke_max=0.6, speed_max=0.5,
+                         command_rate_max=0.05)
+    m = mpc.LinearMPC(plant_636, 0.2, st)
+    u, sp, du, fails = _run(plant_636, m, 600, seed=1, scale=3.0)
+    assert fails == 0
+    assert np.max(np.abs(u)) <= 0.6 * (1 + 1e-9)
+    assert np.max(np.abs(sp)) <= 0.5 * (1 + 1e-9)
+    assert np.max(np.abs(du)) <= 0.05 * (1 + 1e-9)
+    # The limits were active (otherwise this test proves nothing).
+    assert max(np.max(np.abs(u)) / 0.6, np.max(np.abs(sp)) / 0.5, np.max(np.abs(du)) / 0.05) \
+        > 0.99
+
+
+def test_second_order_winch_accel_limit() -> None:
+    from cable_ocp.heave import sea
+    from cable_ocp.heave.thesis import A_636, B_636, HS_636, WM_636
+
+    p = pl.assemble_plant(A_636, B_636, pl.winch_second(1.4, 0.7),
+                          vessel=pl.vessel_block(0.393, 0.6, 0.5),
+                          sea=sea.thesis_shaping_filter(HS_636, WM_636))
+    m = mpc.LinearMPC(p, 0.1, mpc.MPCSettings(horizon=30, stroke_max=1.0, speed_max=0.6,
+                                              accel_max=0.4))
+    rng = np.random.default_rng(2)
+    Lw = _factor(discretize_noise(p.A, p.B2, np.pi, 0.05))
+    z = np.zeros(m.nz)
+    iu = p.blocks["winch"].start
+    acc = []
+    for _ in range(400):
+        r = m.step(z)
+        assert r.success
+        acc.append(1.4**2 * (z[m.n] - z[iu]) - 2 * 0.7 * 1.4 * z[iu + 1])
+        z = m.model.Ad @ z + m.model.Bd[:, 0] * r.u0
+        z[: p.n] += 3.0 * Lw @ rng.standard_normal(p.n)
+        assert abs(z[iu]) <= 1.0 * (1 + 1e-9) and abs(z[iu + 1]) <= 0.6 * (1 + 1e-9)
+    assert np.max(np.abs(acc)) <= 0.4 * (1 + 1e-9)
+
+
+def test_acceleration_limit_rejected_for_first_order_winch(plant_636: pl.HeavePlant) -> None:
+    with pytest.raises(CableOCPError, match="command_rate_max"):
+        mpc.LinearMPC(plant_636, 0.0, mpc.MPCSettings(accel_max=1.0))
+
+
+def test_delay_must_be_whole_samples(plant_636: pl.HeavePlant) -> None:
+    with pytest.raises(CableOCPError, match="integer multiple"):
+        mpc.LinearMPC(plant_636, 0.12, mpc.MPCSettings(sample_time=0.05))
+
+
+def test_preview_of_model_prediction_changes_nothing(plant_636: pl.HeavePlant) -> None:
+    # If the "forecast" equals the shaping filter's own prediction the correction is zero and
+    # the plan is unchanged (1e-12: identical arithmetic up to rounding).
+    st = mpc.MPCSettings(horizon=20, preview_time=0.5)
+    m = mpc.LinearMPC(plant_636, 0.0, st)
+    rng = np.random.default_rng(5)
+    z0 = rng.standard_normal(m.nz) * 0.1
+    cx0, _ = plant_636.output_row("x0")
+    forecast = np.array([cx0 @ (m._S[k] @ z0)[: m.n] for k in range(20)])
+    D = m.preview_correction(z0, forecast)
+    assert np.max(np.abs(D)) < 1e-12
