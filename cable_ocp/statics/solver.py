@@ -88,6 +88,9 @@ class StaticsSolver:
             "ipopt.constr_viol_tol": self.tol,
             "ipopt.max_iter": opts.max_iterations,
             "ipopt.nlp_scaling_method": "none",
+            # the unknowns are already O(1); MUMPS' own scaling of this zero-Hessian KKT
+            # system made its fill-in explode at N = 320, d = 5 (>1 GB, no progress)
+            "ipopt.mumps_scaling": 0,
         })
         self._newton: ca.Function | None = None
         self._coarse: StaticsSolver | None = None
