@@ -20,7 +20,7 @@ import pytest
 from cable_ocp.scene import scene_from_dict
 from cable_ocp.statics.solver import solve
 
-H, V, W, L = 2000.0, -300.0, 50.0, 400.0  # N, N, N/m, m
+H, V, W, L = 20000.0, -3000.0, 50.0, 400.0  # N, N, N/m, m (moderate sag)
 ALPHA = math.radians(35.0)  # the plane of the cable, to make the test 3D
 EH = np.array([math.cos(ALPHA), math.sin(ALPHA), 0.0])
 
@@ -36,7 +36,7 @@ def closed_form(s: np.ndarray, ea: float) -> tuple[np.ndarray, np.ndarray]:
     return r, t
 
 
-def scene(end_a: dict, end_b: dict, ea: float = 2.0e6, length: float | str = L, **solver):
+def scene(end_a: dict, end_b: dict, ea: float = 2.0e7, length: float | str = L, **solver):
     cable = {"length": length, "weight_in_water": W}
     if not math.isinf(ea):
         cable["axial_stiffness"] = ea
@@ -50,7 +50,7 @@ def ends(ea: float):
     return r, t
 
 
-@pytest.mark.parametrize("ea", [2.0e6, 5.0e4, math.inf])
+@pytest.mark.parametrize("ea", [2.0e7, 2.0e5, math.inf])  # 0.1 %, 10 % strain, none
 @pytest.mark.parametrize("scheme", ["legendre", "radau"])
 def test_fixed_ends(ea, scheme):
     """Type 1 (both ends fixed): end forces and the whole profile, 1e-6 relative."""
@@ -70,8 +70,10 @@ def test_fixed_ends(ea, scheme):
     np.testing.assert_allclose(sol.position, rs, rtol=0, atol=1e-5 * L)
     np.testing.assert_allclose(sol.tension_vector, ts, rtol=0, atol=1e-5 * tmax)
     # the solver's own error estimate is honest here: the true error is below it x 10
+    # (both are compared above the solve tolerance, 1e-10, below which neither number
+    # measures discretisation error)
     true = np.max(np.abs(sol.force_a - t[0])) / tmax
-    assert true <= 10 * sol.error_estimate + 1e-12
+    assert true <= 10 * sol.error_estimate + 1e-10
 
 
 def test_stretch_is_built_only_when_elastic():
@@ -91,19 +93,19 @@ def test_inextensible_limit():
     a, b = {"position": list(r[0])}, {"position": list(r[1])}
     ref = solve(scene(a, b, math.inf))
     gaps = []
-    for ea in (1e7, 1e8, 1e9, 1e10):
+    for ea in (1e8, 1e9, 1e10, 1e11):
         sol = solve(scene(a, b, ea))
         assert sol.success
         gaps.append(np.max(np.abs(sol.force_a - ref.force_a)))
     ratios = np.array(gaps[:-1]) / np.array(gaps[1:])
     np.testing.assert_allclose(ratios, 10.0, rtol=0.05)
-    assert gaps[-1] < 1e-4 * H  # strain 2e-7 at EA = 1e10, amplified ~70x by the sag
+    assert gaps[-1] < 1e-5 * H  # strain 2e-7 at EA = 1e11
 
 
 def test_towing_force_end():
     """Type 2 (004 (2.8)-(2.11)): end_a fixed, a known external load on end_b. With the
     load equal to the closed form's T(L), end_b lands where the closed form puts it."""
-    r, t = ends(2e6)
+    r, t = ends(2e7)
     sol = solve(scene({"position": list(r[0])}, {"force": list(t[1])}))
     assert sol.success, sol.message
     np.testing.assert_allclose(sol.position[-1], r[1], rtol=0, atol=1e-6 * L)
@@ -114,7 +116,7 @@ def test_towed_body_at_end_a():
     """A towed body at end_a (s = 0) with a known external load F: the cable pulls on it
     with -F (CONVENTIONS "Forces at the ends"), and the body lands where the closed form
     says relative to the fixed ship at end_b."""
-    r, t = ends(2e6)
+    r, t = ends(2e7)
     load = -t[0]  # the body's own drag and weight, passed to the cable
     sol = solve(scene({"force": list(load)}, {"position": list(r[1])}))
     assert sol.success, sol.message
@@ -125,7 +127,7 @@ def test_towed_body_at_end_a():
 def test_mooring_mixed_end():
     """Type 3 (004 (2.12)-(2.15)): end_b has its horizontal load known and its height fixed;
     its horizontal position comes out of the solve."""
-    r, t = ends(2e6)
+    r, t = ends(2e7)
     sol = solve(scene({"position": list(r[0])},
                       {"position": ["free", "free", r[1][2]],
                        "force": [t[1][0], t[1][1], "free"]}))
@@ -138,7 +140,7 @@ def test_mooring_mixed_end():
 def test_free_length_with_tension(at):
     """Given tension, unknown length (000 eq. (15); 001): prescribing |T| of the closed form
     at either end recovers L."""
-    r, t = ends(2e6)
+    r, t = ends(2e7)
     a, b = {"position": list(r[0])}, {"position": list(r[1])}
     k = 0 if at == "end_a" else 1
     (a if at == "end_a" else b)["tension"] = float(np.linalg.norm(t[k]))

@@ -124,7 +124,9 @@ class Collocation:
         coll = []
         for j in range(1, d + 1):
             xp = ca.mtimes(xcols, ca.DM(cmat[:, j]))
-            coll.append(h * fx[:, j - 1] - xp)
+            # in derivative units (divided by h), so that one residual tolerance means the
+            # same accuracy on every mesh
+            coll.append(fx[:, j - 1] - xp / h)
         x_end = ca.mtimes(xcols, ca.DM(dvec))
         interval = ca.Function("interval", [xk, lam_s, cs_s], [ca.vertcat(*coll), x_end]).expand()
         coll_all, xend_all = interval.map(n)(blocks, lam, p[P_CURRENT])
