@@ -15,6 +15,7 @@ from cable_ocp.errors import CableOCPError
 
 _SUBCOMMAND_MODULES = [
     "cable_ocp.statics.cli",
+    "cable_ocp.heave.cli",
 ]
 
 

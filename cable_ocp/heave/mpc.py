@@ -257,6 +257,7 @@ class LinearMPC:
             self._nlp = _NonlinearMPC(self)
         self._warm = None
         self._first = True
+        self._last_plan: np.ndarray | None = None
         self.n_preview = int(round(s.preview_time / h))
 
     # ---------------------------------------------------------------------------------------
@@ -339,6 +340,8 @@ class LinearMPC:
             kc = s.unit_mass / plant.a
             smin = (s.tension_min - s.static_tension) / kc
             for k in range(1, N + 1):
+                if np.max(np.abs(cs_ @ self._T[k])) < 1e-14:
+                    continue  # stretch fixed by the past (k <= d): a slack would be degenerate
                 rows_U.append(cs_ @ self._T[k])
                 rows_z.append(cs_ @ self._S[k])
                 wD = (cs_ @ self._W[k]).copy()
@@ -455,9 +458,14 @@ class LinearMPC:
                               "lam_x0": np.asarray(sol["lam_x"]).ravel()}
         else:
             x, ok = self._nlp.solve(z0, u_prev, D)
+        if not ok and self._last_plan is not None:
+            # Fall back on the previous (feasible) plan shifted by one sample.
+            x = np.concatenate([self._last_plan[1:], self._last_plan[-1:],
+                                np.zeros(x.size - N)])
+        self._last_plan = x[:N].copy()
         dt = time.perf_counter() - t0
         return MPCStep(u0=float(x[0]), success=ok, solve_time=dt, plan=x[:N].copy(),
-                       max_slack=float(np.max(x[N:])) if self.ns else 0.0)
+                       max_slack=float(np.max(x[N:])) if x.size > N else 0.0)
 
 
 @contextlib.contextmanager
@@ -530,7 +538,8 @@ class _NonlinearMPC:
 
         Z = cs.MX.sym("Z", nz, N + 1)
         U = cs.MX.sym("U", N)
-        Sl = cs.MX.sym("S", mpc.ns)
+        ns = N if mpc.ns else 0  # one tension slack per step k = 1..N
+        Sl = cs.MX.sym("S", ns)
         P0 = cs.MX.sym("z0", nz)
         Pup = cs.MX.sym("up")
         PD = cs.MX.sym("D", N)
@@ -581,7 +590,7 @@ class _NonlinearMPC:
                 g.append(U[k] - (Pup if k == 0 else U[k - 1]))
                 lbg.append(-s.command_rate_max)
                 ubg.append(s.command_rate_max)
-            if mpc.ns and k >= 1:
+            if ns and k >= 1:
                 c_str, _ = p.output_row("stretch")
                 st = cs.mtimes(cs.DM(c_str).T, zk[:n]) + (PD[k] if k < N else 0)
                 g.append(st + Sl[k - 1])
@@ -601,9 +610,9 @@ class _NonlinearMPC:
         nw = w.shape[0]
         self.lbw = np.full(nw, -np.inf)
         self.ubw = np.full(nw, np.inf)
-        if mpc.ns:
-            self.lbw[-mpc.ns :] = 0.0
-        self.nz, self.N, self.ns = nz, N, mpc.ns
+        if ns:
+            self.lbw[-ns:] = 0.0
+        self.nz, self.N, self.ns = nz, N, ns
         self.warm: dict | None = None
 
     def solve(self, z0: np.ndarray, u_prev: float, D: np.ndarray) -> tuple[np.ndarray, bool]:

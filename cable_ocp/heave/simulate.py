@@ -1,0 +1,367 @@
+"""Closed-loop simulation and comparison on one seeded wave realisation (issue 4, item 5).
+
+The sea and vessel states (the shaping filter (6.23) and boom-tip filter (6.26)) are sampled
+exactly on the fine grid ``h_sim = h / substeps`` (ZOH transition, Van Loan noise covariance with
+intensity ``pi``, stationary initial state), once per seed: every controller sees the same boom
+tip. The unit and winch are integrated with RK4 on that grid, with the boom-tip motion linear
+between grid points, the unit's damping linear (6.2) or quadratic (6.3), and the winch command
+delayed by exactly ``tau`` (a buffer of fine steps). Controllers act every ``h`` seconds (ZOH):
+
+* ``passive``: the winch held still (``u0 = 0``; not the thesis' passive compensator).
+* ``lqr``: exact discrete-delay LQR on the full plant (sea and vessel states known).
+* ``lqg``: the same gain on a discrete Kalman filter (current estimator) that measures the
+  unit's heave with white noise of standard deviation ``measurement_noise``.
+* ``mpc``: :class:`cable_ocp.heave.mpc.LinearMPC` with full state (and wave preview if asked).
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import numpy as np
+from scipy import linalg
+
+from cable_ocp.errors import CableOCPError
+from cable_ocp.heave import mpc as mpc_mod
+from cable_ocp.heave import plant as pl
+from cable_ocp.heave import sea as sea_mod
+from cable_ocp.heave.discrete import discretize_delayed, discretize_noise
+from cable_ocp.heave.scene import HeaveScene
+from cable_ocp.heave.stochastic import (
+    WHITE_NOISE_INTENSITY,
+    discrete_delay_lqr,
+    output_variance_lyapunov,
+)
+
+
+@dataclass(frozen=True)
+class Models:
+    """Everything built from a scene: spectrum, filter, plant."""
+
+    spectrum: sea_mod.SeaSpectrum
+    filter_fit: sea_mod.FilterFit
+    plant: pl.HeavePlant
+    sigma_uncontrolled: float
+
+
+def build_models(sc: HeaveScene) -> Models:
+    """Spectrum, shaping filter and the full plant (6.28) of a scene."""
+    s = sc.sea
+    if s.modal_frequency is not None:
+        wm = s.modal_frequency
+    elif s.zero_crossing_period is not None:
+        wm = sea_mod.modal_frequency_from_zero_crossing(s.zero_crossing_period)
+    else:
+        wm = 2 * np.pi / s.peak_period
+    spec = sea_mod.SeaSpectrum(s.spectrum, s.significant_wave_height, wm, s.peak_enhancement)
+    fit = sea_mod.make_shaping_filter(spec, s.shaping_filter, s.filter_order)
+    v = sc.vessel
+    vessel = (pl.direct_vessel() if v.model == "none"
+              else pl.vessel_block(v.natural_frequency, v.damping_ratio, v.gain))
+    w = sc.winch
+    winch = (pl.winch_first(w.gain) if w.model == "first_order"
+             else pl.winch_second(w.natural_frequency, w.damping_ratio))
+    plant = pl.assemble_plant(sc.unit.a, sc.unit.b, winch, vessel=vessel, sea=fit.filter)
+    sig = float(np.sqrt(output_variance_lyapunov(plant.A, plant.B2, plant.e("x"))))
+    return Models(spec, fit, plant, sig)
+
+
+@dataclass(frozen=True)
+class Trace:
+    """Time histories of one closed-loop run (fine grid).
+
+    Attributes
+    ----------
+    t : numpy.ndarray
+        Time, s.
+    x, x0, u, u_dot, u0 : numpy.ndarray
+        Unit heave (m), boom-tip heave (m), winch output (m), winch speed (m/s), applied
+        (delayed) command (m).
+    """
+
+    t: np.ndarray
+    x: np.ndarray
+    x0: np.ndarray
+    u: np.ndarray
+    u_dot: np.ndarray
+    u0: np.ndarray
+
+
+@dataclass(frozen=True)
+class Metrics:
+    """JSON metrics of one controller (field names as in issue 4 and CONVENTIONS)."""
+
+    heave_rms: float
+    reduction_pct: float
+    peak_winch_speed: float
+    max_stroke: float
+    energy_index: float | None
+    max_constraint_violation: float
+    solve_time_median_s: float | None
+    winch_speed_rms: float
+
+    def as_dict(self) -> dict:
+        """Plain dict for JSON."""
+        return {k: getattr(self, k) for k in self.__dataclass_fields__}
+
+
+@dataclass(frozen=True)
+class Comparison:
+    """Result of :func:`compare`."""
+
+    sigma_uncontrolled: float
+    metrics: dict
+    traces: dict
+    models: Models
+    mpc_solve_times: np.ndarray | None
+    mpc_failures: int
+
+
+def wave_realisation(plant: pl.HeavePlant, t_end: float, h_sim: float, seed: int
+                     ) -> tuple[np.ndarray, np.ndarray]:
+    """Exactly sampled sea + vessel states and the boom-tip heave on ``[0, t_end]``.
+
+    Returns ``(t, x0)``; stationary start (initial state drawn from the Lyapunov covariance).
+    """
+    lo = plant.blocks["vessel"].start
+    A = plant.A[lo:, lo:]
+    G = plant.B2[lo:]
+    n = A.shape[0]
+    Phi = linalg.expm(A * h_sim)
+    Qd = discretize_noise(A, G, WHITE_NOISE_INTENSITY, h_sim)
+    lam, V = np.linalg.eigh(Qd)
+    Lq = V * np.sqrt(np.clip(lam, 0, None))
+    P = WHITE_NOISE_INTENSITY * linalg.solve_continuous_lyapunov(A, -G @ G.T)
+    lam, V = np.linalg.eigh(0.5 * (P + P.T))
+    Lp = V * np.sqrt(np.clip(lam, 0, None))
+    rng = np.random.default_rng(seed)
+    nt = int(round(t_end / h_sim)) + 1
+    xs = np.empty((nt, n))
+    xs[0] = Lp @ rng.standard_normal(n)
+    noise = rng.standard_normal((nt - 1, n)) @ Lq.T
+    for k in range(nt - 1):
+        xs[k + 1] = Phi @ xs[k] + noise[k]
+    cx0, _ = plant.output_row("x0")
+    x0 = xs @ cx0[lo:]
+    return np.arange(nt) * h_sim, x0, xs
+
+
+def _unit_winch_rhs(sc: HeaveScene):  # noqa: ANN202
+    a, b = sc.unit.a, sc.unit.b
+    bq = sc.unit.b_quadratic if sc.unit.model == "quadratic" else 0.0
+    quad = sc.unit.model == "quadratic"
+    w = sc.winch
+    first = w.model == "first_order"
+    K = w.gain
+    wn, z = w.natural_frequency, w.damping_ratio
+
+    def f(s: np.ndarray, x0: float, v: float) -> np.ndarray:
+        damp = bq * s[1] * abs(s[1]) if quad else b * s[1]
+        acc = (x0 + s[2] - s[0] - damp) / a
+        if first:
+            return np.array([s[1], acc, K * (v - s[2])])
+        return np.array([s[1], acc, s[3], wn**2 * (v - s[2]) - 2 * z * wn * s[3]])
+
+    return f
+
+
+def compare(sc: HeaveScene, controllers: tuple | None = None) -> Comparison:
+    """Simulate the scene's controllers on one wave realisation and compute the metrics."""
+    models = build_models(sc)
+    p = models.plant
+    c = sc.controller
+    h = c.sample_time
+    m = sc.simulation.substeps
+    if m < 1:
+        raise CableOCPError(f"[simulation] substeps = {m} must be >= 1")
+    hs = h / m
+    tau = sc.winch.delay
+    nd_fine = int(round(tau / hs))
+    T = sc.simulation.duration
+    n_ctrl = int(round(T / h))
+    preview = c.preview_time
+    t, x0, xs_sea = wave_realisation(p, T + preview + h, hs, sc.simulation.seed)
+    nfine = n_ctrl * m
+    f = _unit_winch_rhs(sc)
+    first = sc.winch.model == "first_order"
+    nuw = 3 if first else 4
+    n = p.n
+    lo = p.blocks["vessel"].start
+    controllers = controllers or c.controllers
+
+    # Designs on the linear plant.
+    G = discrete_delay_lqr(p.A, p.B1, p.e("x"), c.q, c.r, h, tau)
+    mdl = discretize_delayed(p.A, p.B1, h, tau)
+    d = mdl.d
+    settings = mpc_mod.MPCSettings(
+        horizon=c.horizon, sample_time=h, q=c.q, r=c.r, solver=c.solver,
+        stroke_max=sc.winch.stroke_max, speed_max=sc.winch.speed_max,
+        command_rate_max=sc.winch.command_rate_max, accel_max=sc.winch.accel_max,
+        tension_min=sc.winch.tension_min, unit_mass=sc.unit.mass,
+        static_tension=sc.unit.static_tension, tension_penalty=c.tension_penalty,
+        preview_time=preview, terminal=c.terminal,
+        nonlinear_b=sc.unit.b_quadratic if sc.unit.model == "quadratic" else 0.0)
+
+    traces, metrics = {}, {}
+    solve_times = None
+    failures = 0
+    rng_meas = np.random.default_rng(sc.simulation.seed + 1000)
+    meas_noise = rng_meas.standard_normal(n_ctrl + 1) * c.measurement_noise
+    for name in controllers:
+        ctrl = _make_controller(name, p, mdl, G, settings, tau, c, h)
+        s = np.zeros(nuw)
+        buf = np.zeros(nd_fine + 1)  # fine-step command history for the exact delay
+        xs_out = np.empty(nfine + 1)
+        u_out = np.empty(nfine + 1)
+        ud_out = np.empty(nfine + 1)
+        v_out = np.empty(nfine + 1)
+        cmds = np.zeros(n_ctrl)
+        u_prev = 0.0
+        cmd_hist = np.zeros(d)
+        for k in range(n_ctrl):
+            i = k * m
+            z = np.empty(n)
+            z[: nuw] = s
+            z[lo:] = xs_sea[i]
+            zaug = np.concatenate([z, cmd_hist])
+            x0_fore = x0[i : i + int(round(preview / hs)) + 1 : m] if preview > 0 else None
+            u0 = ctrl(zaug, u_prev, s[0] + meas_noise[k], x0_fore)
+            cmds[k] = u0
+            u_prev = u0
+            if d:
+                cmd_hist = np.concatenate([cmd_hist[1:], [u0]])
+            for j in range(m):
+                ii = i + j
+                buf = np.concatenate([buf[1:], [u0]])
+                v = buf[0]
+                xs_out[ii], u_out[ii], v_out[ii] = s[0], s[2], v
+                ud_out[ii] = sc.winch.gain * (v - s[2]) if first else s[3]
+                xa, xb = x0[ii], x0[ii + 1]
+                xm = 0.5 * (xa + xb)
+                k1 = f(s, xa, v)
+                k2 = f(s + hs / 2 * k1, xm, v)
+                k3 = f(s + hs / 2 * k2, xm, v)
+                k4 = f(s + hs * k3, xb, v)
+                s = s + hs / 6 * (k1 + 2 * k2 + 2 * k3 + k4)
+        xs_out[nfine], u_out[nfine], v_out[nfine] = s[0], s[2], buf[-1]
+        ud_out[nfine] = sc.winch.gain * (buf[-1] - s[2]) if first else s[3]
+        tr = Trace(t[: nfine + 1], xs_out, x0[: nfine + 1], u_out, ud_out, v_out)
+        traces[name] = tr
+        if name == "mpc":
+            solve_times = np.array(ctrl.times)
+            failures = ctrl.failures
+        metrics[name] = _metrics(sc, tr, cmds, name, G,
+                                 np.array(ctrl.times) if name == "mpc" else None, h)
+    if "passive" in metrics:
+        base = metrics["passive"].heave_rms
+        metrics = {k: _with_reduction(v, base) for k, v in metrics.items()}
+    return Comparison(models.sigma_uncontrolled, metrics, traces, models, solve_times, failures)
+
+
+def _with_reduction(mt: Metrics, base: float) -> Metrics:
+    d = mt.as_dict()
+    d["reduction_pct"] = float(100.0 * (1.0 - mt.heave_rms / base)) if base > 0 else 0.0
+    return Metrics(**d)
+
+
+def _metrics(sc: HeaveScene, tr: Trace, cmds: np.ndarray, name: str, G: np.ndarray,
+             times: np.ndarray | None, h: float) -> Metrics:
+    keep = tr.t >= sc.simulation.warmup
+    w = sc.winch
+    viol = 0.0
+    for val, lim in [(np.max(np.abs(tr.u)), w.stroke_max),
+                     (np.max(np.abs(tr.u_dot)), w.speed_max)]:
+        if lim is not None:
+            viol = max(viol, max(0.0, val - lim) / lim)
+    if w.command_rate_max is not None and cmds.size > 1:
+        dr = np.max(np.abs(np.diff(np.concatenate([[0.0], cmds]))))
+        viol = max(viol, max(0.0, dr - w.command_rate_max) / w.command_rate_max)
+    if w.accel_max is not None and w.model == "second_order":
+        acc = np.gradient(tr.u_dot, tr.t)
+        viol = max(viol, max(0.0, float(np.max(np.abs(acc))) - w.accel_max) / w.accel_max)
+    energy = float(np.sqrt(np.sum(G**2))) if name in ("lqr", "lqg") else None
+    return Metrics(
+        heave_rms=float(np.sqrt(np.mean(tr.x[keep] ** 2))),
+        reduction_pct=0.0,
+        peak_winch_speed=float(np.max(np.abs(tr.u_dot))),
+        max_stroke=float(np.max(np.abs(tr.u))),
+        energy_index=energy,
+        max_constraint_violation=float(viol),
+        solve_time_median_s=float(np.median(times)) if times is not None and times.size
+        else None,
+        winch_speed_rms=float(np.sqrt(np.mean(tr.u_dot[keep] ** 2))),
+    )
+
+
+class _Controller:
+    times: list
+    failures: int
+
+    def __init__(self) -> None:
+        self.times = []
+        self.failures = 0
+
+
+def _make_controller(name: str, p: pl.HeavePlant, mdl, G: np.ndarray,  # noqa: ANN001
+                     settings: mpc_mod.MPCSettings, tau: float, c, h: float):  # noqa: ANN001
+    if name == "passive":
+        class Passive(_Controller):
+            def __call__(self, z, up, y, fore):  # noqa: ANN001, ANN204
+                return 0.0
+
+        return Passive()
+    if name == "lqr":
+        class LQR(_Controller):
+            def __call__(self, z, up, y, fore):  # noqa: ANN001, ANN204
+                return float(-(G @ z)[0])
+
+        return LQR()
+    if name == "lqg":
+        return _LQG(p, mdl, G, c.measurement_noise, h)
+    if name == "mpc":
+        return _MPCController(p, tau, settings)
+    raise CableOCPError(f"controller {name!r} is unknown; valid: passive, lqr, lqg, mpc")
+
+
+class _LQG(_Controller):
+    """Discrete Kalman filter (current estimator) on the delayed sampled model + LQR gain."""
+
+    def __init__(self, p: pl.HeavePlant, mdl, G: np.ndarray, std: float, h: float) -> None:  # noqa: ANN001
+        super().__init__()
+        if std <= 0:
+            raise CableOCPError(f"[controller] measurement_noise = {std} must be > 0 m")
+        self.A, self.B, self.G = mdl.Ad, mdl.Bd, G
+        nz = mdl.Ad.shape[0]
+        n = p.n
+        Qw = np.zeros((nz, nz))
+        Qw[:n, :n] = discretize_noise(p.A, p.B2, WHITE_NOISE_INTENSITY, h)
+        Qw += 1e-14 * np.eye(nz) * np.max(np.abs(Qw))
+        C = np.zeros((1, nz))
+        C[0, :n] = p.e("x")
+        R = np.array([[std**2]])
+        P = linalg.solve_discrete_are(self.A.T, C.T, Qw, R)
+        self.M = P @ C.T @ np.linalg.inv(C @ P @ C.T + R)
+        self.C = C
+        self.xp = np.zeros(nz)  # a priori estimate
+        self.n = n
+
+    def __call__(self, z, up, y, fore):  # noqa: ANN001, ANN204
+        xh = self.xp + (self.M @ (np.array([y]) - self.C @ self.xp)).ravel()
+        xh[self.n :] = z[self.n :]  # own past commands are known exactly
+        u0 = float(-(self.G @ xh)[0])
+        self.xp = self.A @ xh + self.B[:, 0] * u0
+        return u0
+
+
+class _MPCController(_Controller):
+    def __init__(self, p: pl.HeavePlant, tau: float, settings: mpc_mod.MPCSettings) -> None:
+        super().__init__()
+        self.m = mpc_mod.LinearMPC(p, tau, settings)
+
+    def __call__(self, z, up, y, fore):  # noqa: ANN001, ANN204
+        D = self.m.preview_correction(z, fore) if fore is not None else None
+        r = self.m.step(z, up, D)
+        self.times.append(r.solve_time)
+        if not r.success:
+            self.failures += 1
+        return r.u0
