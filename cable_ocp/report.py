@@ -15,6 +15,13 @@ def _vec(v: np.ndarray, unit: str) -> str:
     return "(" + ", ".join(f"{x:12.4f}" for x in v) + f") {unit}"
 
 
+def _mesh(m: dict | None) -> str:
+    if not m:
+        return ""
+    return (f" ({m['scheme']} degree {m['degree']}, {m['intervals']} intervals, "
+            f"order {m['order']})")
+
+
 def statics_summary(sol: StaticsSolution, title: str = "") -> str:
     """Summary table of one solve: length, end forces, max tension, solver diagnostics."""
     d = sol.diagnostics
@@ -27,7 +34,7 @@ def statics_summary(sol: StaticsSolution, title: str = "") -> str:
         ("end_b position", _vec(sol.position[-1], "m")),
         ("end_b force (cable on attachment)", _vec(sol.force_b, "N")),
         ("max tension", f"{sol.max_tension:.4f} N"),
-        ("solver", f"{d.get('method')} {d.get('mesh', '')} via {d.get('solver')}"),
+        ("solver", f"{d.get('method')}{_mesh(d.get('mesh'))} via {d.get('solver')}"),
         ("start", str(d.get("start"))),
         ("iterations", str(sol.iterations)),
         ("wall time (solve)", f"{sol.wall_time_s * 1e3:.2f} ms"),

@@ -310,7 +310,8 @@ def _check_keys(table: Any, allowed: set[str], where: str) -> dict[str, Any]:
     unknown = sorted(set(table) - allowed)
     if unknown:
         raise CableOCPError(
-            f"unknown key {where}.{unknown[0]}; valid keys in [{where}]: {', '.join(sorted(allowed))}"
+            f"unknown key {where}.{unknown[0]}; valid keys in [{where}]: "
+            f"{', '.join(sorted(allowed))}"
         )
     return table
 
@@ -369,7 +370,8 @@ def _parse_end(table: Any, name: str) -> End:
     pos = _vector3(table["position"], f"{name}.position") if "position" in table else None
     frc = _vector3(table["force"], f"{name}.force") if "force" in table else None
     if pos is None and frc is None:
-        raise CableOCPError(f"[{name}] needs position = [x, y, z] (m) and/or force = [Fx, Fy, Fz] (N)")
+        raise CableOCPError(
+            f"[{name}] needs position = [x, y, z] (m) and/or force = [Fx, Fy, Fz] (N)")
     if pos is None:
         pos = (None, None, None)
     if frc is None:
@@ -384,7 +386,8 @@ def _parse_end(table: Any, name: str) -> End:
     if "tension" in table:
         tension = _number(table["tension"], f"{name}.tension", positive=True)
         if not all(p is not None for p in pos):
-            raise CableOCPError(f"{name}.tension needs a fully fixed {name}.position at the same end")
+            raise CableOCPError(
+                f"{name}.tension needs a fully fixed {name}.position at the same end")
     return End(position=pos, force=frc, tension=tension)
 
 

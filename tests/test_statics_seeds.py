@@ -81,8 +81,9 @@ def test_dezoysa_psi0_2d(dezoysa_sweep):
 def test_dezoysa_sweep_trends(dezoysa_sweep):
     """Trends of 000 Fig. 3 as its text states them (the figure itself is not in the OCR):
     Tx falls monotonically as the ship swings round to 150 deg (it bottoms out near 165 deg
-    and stays negative) and changes sign between 105 and 120 deg (CONVENTIONS); Ty vanishes in the 2D cases 0 and 180 deg and is positive between;
-    the cable is not perpendicular to the current at 90 deg (Tx far from 0)."""
+    and stays negative) and changes sign between 105 and 120 deg (CONVENTIONS); Ty vanishes
+    in the 2D cases 0 and 180 deg and is positive between; the cable is not perpendicular to
+    the current at 90 deg (Tx far from 0)."""
     angles, sols = dezoysa_sweep
     assert all(s.success for s in sols)
     f = np.array([s.force_a for s in sols])

@@ -118,7 +118,8 @@ def drag_per_length(
     out = 0.5 * rho * normal_drag * diameter * normal
     if tangential_drag != 0.0:
         ut = ca.dot(u, t)
-        out = out + 0.5 * rho * tangential_drag * math.pi * diameter * smooth_abs(ut, delta) * ut * t
+        ct = 0.5 * rho * tangential_drag * math.pi * diameter
+        out = out + ct * smooth_abs(ut, delta) * ut * t
     return out
 
 

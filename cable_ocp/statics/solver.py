@@ -267,7 +267,8 @@ class StaticsSolver:
         clipped to [1, p] (p the scheme's nominal order), and the error of x_N is estimated
         as |x_N - x_{N/2}| / (2^q - 1). Using q rather than p keeps the estimate honest
         where a kink in the drag (a flow component changing sign) lowers the order.
-        With fewer than 4 intervals only two meshes are used, with q = p.
+        With fewer than 4 intervals, or when the N/4 solve fails, only two meshes are
+        used, with q = p.
         """
         n = self.mesh.intervals
         if n < 2:
@@ -279,9 +280,12 @@ class StaticsSolver:
             c = self._coarse_solver(lev).solve(scene, warm_start=sols[-1], error_estimate=False,
                                                current_scale=current_scale)
             if not c.success:
-                sol.diagnostics["error_estimate_detail"] = {"note": f"coarse solve failed: "
-                                                            f"{c.message}"}
-                return
+                if lev == 1:
+                    sol.diagnostics["error_estimate_detail"] = {
+                        "note": f"coarse solve failed: {c.message}"}
+                    return
+                levels = 1  # fall back to two meshes and the nominal order
+                break
             sols.append(c)
 
         def diff(fine: StaticsSolution, coarse: StaticsSolution, solver: StaticsSolver

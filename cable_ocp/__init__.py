@@ -1,0 +1,33 @@
+"""cable_ocp: marine-cable problems as optimal-control and boundary-value problems in CasADi.
+
+Statics in four lines::
+
+    import cable_ocp as co
+    scene = co.load_scene("problems/dezoysa_sea_buggy.toml", {"layout.psi0_deg": 90})
+    sol = co.solve(scene)                      # StaticsSolution: arrays + diagnostics
+    sols = co.sweep(scene, "layout.psi0_deg", range(0, 181, 10))  # built once, warm-started
+
+The data flow is one way: problem file -> :mod:`cable_ocp.scene` (validated frozen
+dataclasses) -> :mod:`cable_ocp.statics.formulation` (CasADi equations, only the terms the
+scene needs) -> :mod:`cable_ocp.statics.collocation` (transcription) ->
+:mod:`cable_ocp.statics.solver` (built once, parametric, warm-started) ->
+:mod:`cable_ocp.statics.solution` -> :mod:`cable_ocp.report` / :mod:`cable_ocp.plots`.
+"""
+
+from cable_ocp.errors import CableOCPError
+from cable_ocp.scene import Scene, load_scene, scene_from_dict
+from cable_ocp.statics.solution import StaticsSolution
+from cable_ocp.statics.solver import StaticsSolver, solve, sweep
+
+__version__ = "0.1.0"
+
+__all__ = [
+    "CableOCPError",
+    "Scene",
+    "StaticsSolution",
+    "StaticsSolver",
+    "load_scene",
+    "scene_from_dict",
+    "solve",
+    "sweep",
+]

@@ -1,0 +1,82 @@
+"""Mesh convergence, the a-posteriori error estimate and the smoothing error.
+
+Rates are measured on De Zoysa at psi0 = 135 deg, where no relative-flow component changes
+sign (CONVENTIONS "Reading the seeds": at 90 deg the |u|u kink caps the order). The
+reference is Gauss-Legendre degree 5 on 320 intervals (order 10), accurate to the solve
+tolerance (~1e-10 relative), far below the errors compared here (>= 1e-8).
+"""
+
+from __future__ import annotations
+
+import numpy as np
+import pytest
+
+from cable_ocp.scene import load_scene
+from cable_ocp.statics.solver import solve
+
+
+def _scene(problems, **kw):
+    over = {"layout.psi0_deg": 135.0}
+    over.update({f"solver.{k}": v for k, v in kw.items()})
+    return load_scene(problems / "dezoysa_sea_buggy.toml", over)
+
+
+@pytest.fixture(scope="module")
+def reference(problems):
+    sol = solve(_scene(problems, intervals=320, degree=5, error_estimate=False))
+    assert sol.success
+    return sol
+
+
+@pytest.mark.parametrize(("scheme", "degree", "order"),
+                         [("legendre", 1, 2), ("legendre", 2, 4), ("radau", 2, 3)])
+def test_mesh_convergence_rate(problems, reference, scheme, degree, order):
+    """Observed order at the mesh points (end forces) matches 2d (Legendre) / 2d - 1
+    (Radau) within 0.3, and the error estimate falls at the same rate and stays within a
+    factor 2 of the true error (N >= 8; N = 4 is pre-asymptotic)."""
+    ns = [4, 8, 16, 32]
+    err, est = [], []
+    for n in ns:
+        s = solve(_scene(problems, intervals=n, degree=degree, scheme=scheme))
+        assert s.success, s.message
+        e = max(np.max(np.abs(s.force_a - reference.force_a)),
+                np.max(np.abs(s.force_b - reference.force_b))) / s.max_tension
+        err.append(e)
+        est.append(s.error_estimate)
+    err, est = np.array(err), np.array(est)
+    assert err[-1] > 1e-9  # still above the tolerance floor, so the rates mean something
+    rates = np.log2(err[:-1] / err[1:])
+    est_rates = np.log2(est[:-1] / est[1:])
+    np.testing.assert_allclose(rates[1:], order, atol=0.3)
+    np.testing.assert_allclose(est_rates[1:], order, atol=0.3)
+    ratio = est[1:] / err[1:]
+    assert np.all((ratio > 0.5) & (ratio < 2.0)), ratio
+
+
+@pytest.mark.parametrize("psi0", [90.0, 135.0])
+def test_smoothing_error_below_tolerance(problems, psi0):
+    """The smooth modulus (sqrt(u^2 + delta^2)) at the default delta changes the solution by
+    less than the solve tolerance (1e-10 relative); the error scales like delta^2 and stays
+    below the a-priori bound on the drag loads (physics.drag.drag_error_bound x L)."""
+    exact = solve(load_scene(problems / "dezoysa_sea_buggy.toml", {
+        "layout.psi0_deg": psi0, "solver.smoothing": 1e-7, "solver.error_estimate": False}))
+    diffs = {}
+    for delta in (1e-2, 1e-3, 1e-5):
+        s = solve(load_scene(problems / "dezoysa_sea_buggy.toml", {
+            "layout.psi0_deg": psi0, "solver.smoothing": delta, "solver.error_estimate": False}))
+        assert s.success
+        diffs[delta] = np.max(np.abs(s.force_a - exact.force_a)) / s.max_tension
+        assert diffs[delta] <= s.diagnostics["smoothing_force_bound_N"] / s.max_tension
+    assert diffs[1e-5] < 1e-10  # default delta
+    assert diffs[1e-2] / diffs[1e-3] == pytest.approx(100.0, rel=0.1)
+
+
+@pytest.mark.parametrize("name", ["berteaux_mooring.toml", "chucheepsakul_top_tension.toml"])
+def test_smoothing_error_other_shipped_problems(problems, name):
+    """Same check on the other shipped problems with current."""
+    exact = solve(load_scene(problems / name, {"solver.smoothing": 1e-7,
+                                               "solver.error_estimate": False}))
+    s = solve(load_scene(problems / name, {"solver.error_estimate": False}))
+    assert s.success and exact.success
+    assert np.max(np.abs(s.force_a - exact.force_a)) / s.max_tension < 1e-10
+    assert abs(s.length - exact.length) / s.length < 1e-10
