@@ -93,6 +93,8 @@ class StaticsSolution:
             return [float(v) for v in a]
 
         est = self.diagnostics.get("error_estimate_detail", {})
+        # Radau's last collocation point is the next interval's start: list it once
+        keep = np.concatenate([[True], np.diff(self.s) > 0])
         return {
             "status": self.status,
             "message": self.message,
@@ -101,11 +103,11 @@ class StaticsSolution:
             "end_b": {"position": lst(self.position[-1]), "force": lst(self.force_b)},
             "max_tension": self.max_tension,
             "profile": {
-                "s": lst(self.s),
-                "x": lst(self.position[:, 0]),
-                "y": lst(self.position[:, 1]),
-                "z": lst(self.position[:, 2]),
-                "tension": lst(self.tension),
+                "s": lst(self.s[keep]),
+                "x": lst(self.position[keep, 0]),
+                "y": lst(self.position[keep, 1]),
+                "z": lst(self.position[keep, 2]),
+                "tension": lst(self.tension[keep]),
             },
             "solver": {
                 "method": self.diagnostics.get("method"),

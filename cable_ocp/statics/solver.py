@@ -23,7 +23,7 @@ from __future__ import annotations
 
 import math
 import time
-from collections.abc import Iterable, Sequence
+from collections.abc import Iterable
 from typing import Any
 
 import casadi as ca
@@ -334,13 +334,24 @@ def solve(scene: Scene | str, overrides: dict[str, Any] | None = None,
     return sol
 
 
+def _extrapolate(a: StaticsSolution, b: StaticsSolution, factor: float) -> StaticsSolution:
+    """Secant predictor b + factor (b - a) on the node arrays (same mesh)."""
+    return StaticsSolution(
+        status="predicted", message="secant predictor", s=b.s + factor * (b.s - a.s),
+        position=b.position + factor * (b.position - a.position),
+        tension_vector=b.tension_vector + factor * (b.tension_vector - a.tension_vector),
+        length=b.length + factor * (b.length - a.length))
+
+
 def sweep(scene: Scene, key: str, values: Iterable[Any],
           error_estimate: bool | None = None) -> list[StaticsSolution]:
     """Solve ``scene`` for each value of one dotted key, warm-starting along the way.
 
     The solver is built once and reused while the scene structure stays the same (end
     positions, forces, a fixed length, the tension, ``layout.psi0_deg``); otherwise a new
-    one is built. Each point starts from the previous solution when that one succeeded.
+    one is built. Each point starts from a secant prediction through the two previous
+    solutions when the key is numeric (fewer Newton steps), else from the previous
+    solution; if Newton fails from the prediction, it is retried from the previous solution.
 
     Examples
     --------
@@ -349,27 +360,24 @@ def sweep(scene: Scene, key: str, values: Iterable[Any],
     """
     solvers: dict[tuple, StaticsSolver] = {}
     out: list[StaticsSolution] = []
-    prev: StaticsSolution | None = None
+    done: list[tuple[Any, tuple, StaticsSolution]] = []  # (value, structure, solution)
     for v in values:
         sc = scene.with_overrides({key: v})
         k = _structure_key(sc)
         if k not in solvers:
             solvers[k] = StaticsSolver(sc)
-        sol = solvers[k].solve(sc, warm_start=prev if prev is not None and prev.success else None,
-                               error_estimate=error_estimate)
+        prev = done[-1][2] if done and done[-1][2].success else None
+        start = prev
+        if (len(done) >= 2 and prev is not None and done[-2][2].success
+                and done[-1][1] == k and done[-2][1] == k
+                and all(isinstance(x, (int, float)) for x in (v, done[-1][0], done[-2][0]))
+                and done[-1][0] != done[-2][0]):
+            factor = (v - done[-1][0]) / (done[-1][0] - done[-2][0])
+            start = _extrapolate(done[-2][2], prev, factor)
+        sol = solvers[k].solve(sc, warm_start=start, error_estimate=error_estimate)
+        if start is not prev and not sol.success:
+            sol = solvers[k].solve(sc, warm_start=prev, error_estimate=error_estimate)
         sol.diagnostics["sweep"] = {"key": key, "value": v}
         out.append(sol)
-        prev = sol
+        done.append((v, k, sol))
     return out
-
-
-def solve_many(solver: StaticsSolver, scenes: Sequence[Scene]) -> list[StaticsSolution]:
-    """Solve scenes of one structure in sequence with one solver, warm-starting each."""
-    out: list[StaticsSolution] = []
-    prev = None
-    for sc in scenes:
-        sol = solver.solve(sc, warm_start=prev if prev is not None and prev.success else None)
-        out.append(sol)
-        prev = sol
-    return out
-
