@@ -426,6 +426,8 @@ def indices(des: LQRDesign, tau_true: float, t: np.ndarray, x0: np.ndarray,
     if abs((t[1] - t[0]) - dt) > 1e-12:
         raise CableOCPError(f"boom-tip record step {t[1] - t[0]} s must equal the loop step {dt} s")
     stable = bool(np.max(np.abs(np.linalg.eigvals(sys.A))) < 1)
+    if not stable:
+        return Indices(J_d=float("inf"), J_v=float("inf"), J_c=des.control_energy, stable=False)
     resp = ct.forced_response(sys, T=t, U=x0)
     y = np.asarray(resp.outputs)
     return Indices(J_d=float(np.sum(y[0] ** 2) * dt), J_v=float(np.sum(y[1] ** 2) * dt),
