@@ -56,6 +56,7 @@ from dataclasses import dataclass, field, replace
 from pathlib import Path
 from typing import Any
 
+from cable_ocp.baselines import METHODS
 from cable_ocp.errors import CableOCPError
 
 __all__ = [
@@ -184,7 +185,9 @@ class SolverOptions:
     Attributes
     ----------
     method : str
-        ``"collocation"`` (the only statics method so far).
+        ``"collocation"`` (default) or another registered method
+        (:data:`cable_ocp.baselines.METHODS`: multiple_shooting, solve_bvp,
+        wang_shooting_optimization, huang_semianalytic, chucheepsakul_fem).
     scheme : str
         Collocation points: ``"legendre"`` (Gauss-Legendre, order 2d at mesh points)
         or ``"radau"`` (order 2d - 1).
@@ -490,8 +493,8 @@ def scene_from_dict(data: dict[str, Any]) -> Scene:
     sol_t = _check_keys(data.get("solver", {}), _SCHEMA["solver"], "solver")
     defaults = SolverOptions()
     method = sol_t.get("method", defaults.method)
-    if method not in ("collocation",):
-        raise CableOCPError(f'solver.method = {method!r}: valid is "collocation"')
+    if method not in METHODS:
+        raise CableOCPError(f"solver.method = {method!r}: valid are {', '.join(METHODS)}")
     scheme = sol_t.get("scheme", defaults.scheme)
     if scheme not in ("legendre", "radau"):
         raise CableOCPError(f'solver.scheme = {scheme!r}: valid are "legendre", "radau"')

@@ -80,3 +80,25 @@ def test_smoothing_error_other_shipped_problems(problems, name):
     assert s.success and exact.success
     assert np.max(np.abs(s.force_a - exact.force_a)) / s.max_tension < 1e-10
     assert abs(s.length - exact.length) / s.length < 1e-10
+
+
+def test_multiple_shooting_rk4_order(problems, reference):
+    """Multiple shooting (RK4, one step per interval) on the same equations: order 4, and
+    its error estimate within a factor 2 of the true error."""
+    err, est = [], []
+    for n in (10, 20, 40):
+        s = solve(_scene(problems, method="multiple_shooting", intervals=n))
+        assert s.success, s.message
+        err.append(np.max(np.abs(s.force_a - reference.force_a)) / s.max_tension)
+        est.append(s.error_estimate)
+    rates = np.log2(np.array(err[:-1]) / np.array(err[1:]))
+    np.testing.assert_allclose(rates, 4.0, atol=0.3)
+    ratio = np.array(est) / np.array(err)
+    assert np.all((ratio > 0.5) & (ratio < 2.0)), ratio
+
+
+def test_solve_bvp_method_selectable(problems):
+    """``solver.method = "solve_bvp"`` goes through the same API and JSON."""
+    s = solve(load_scene(problems / "berteaux_mooring.toml", {"solver.method": "solve_bvp"}))
+    assert s.success and s.diagnostics["method"] == "solve_bvp"
+    assert s.length == pytest.approx(3013.3, abs=0.05)

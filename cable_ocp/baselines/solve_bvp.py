@@ -103,3 +103,11 @@ def solve_bvp(scene: Scene, nodes: int = 41, tol: float = 1e-8, max_nodes: int =
         constraint_violation=viol,
         diagnostics={"method": "solve_bvp", "nodes": int(res.x.size), "tol": tol},
     )
+
+
+def solve(scene: Scene, warm_start: StaticsSolution | None = None) -> StaticsSolution:
+    """Registry entry (``solver.method = "solve_bvp"``): ``solver.intervals + 1`` initial
+    nodes, solve_bvp's tolerance = ``solver.tolerance`` but not below 1e-9 (tighter
+    requests stall its mesh refinement)."""
+    return solve_bvp(scene, nodes=scene.solver.intervals + 1,
+                     tol=max(scene.solver.tolerance, 1e-9), warm_start=warm_start)

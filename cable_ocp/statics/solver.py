@@ -29,11 +29,13 @@ from typing import Any
 import casadi as ca
 import numpy as np
 
+from cable_ocp.baselines import get_method
 from cable_ocp.errors import CableOCPError
 from cable_ocp.scene import Scene, load_scene
 from cable_ocp.statics.collocation import Collocation
 from cable_ocp.statics.formulation import P_CURRENT, Formulation, _structure_key
 from cable_ocp.statics.initial_guess import initial_guess
+from cable_ocp.statics.shooting import MultipleShooting
 from cable_ocp.statics.solution import StaticsSolution
 
 __all__ = ["StaticsSolver", "solve", "sweep"]
@@ -42,7 +44,10 @@ _CONTINUATION_STEPS = (0.0, 0.1, 0.25, 0.5, 0.75, 1.0)
 
 
 class StaticsSolver:
-    """Collocation solver for every scene sharing ``scene``'s structure.
+    """Collocation (or multiple-shooting) solver for every scene sharing ``scene``'s structure.
+
+    ``scene.solver.method`` picks the transcription: ``"collocation"`` (default) or
+    ``"multiple_shooting"`` (:mod:`cable_ocp.statics.shooting`).
 
     Parameters
     ----------
@@ -68,8 +73,9 @@ class StaticsSolver:
         opts = scene.solver
         self.scene = scene
         self.form = Formulation(scene)
-        self.coll = Collocation(self.form, intervals or opts.intervals, degree or opts.degree,
-                                scheme or opts.scheme)
+        transcription = MultipleShooting if opts.method == "multiple_shooting" else Collocation
+        self.coll = transcription(self.form, intervals or opts.intervals, degree or opts.degree,
+                                  scheme or opts.scheme)
         self.tol = opts.tolerance
         # MX graph over a map of per-interval SX functions: derivatives are built per
         # interval, so the build cost does not grow with N (an all-SX graph took ~0.3 s).
@@ -130,7 +136,7 @@ class StaticsSolver:
                 "(only end values, a fixed length, the tension and the current scale may change)"
             )
         p = self.form.params(scene, current_scale)
-        diag: dict[str, Any] = {"method": "collocation", "mesh": {
+        diag: dict[str, Any] = {"method": scene.solver.method, "mesh": {
             "intervals": self.mesh.intervals, "degree": self.mesh.degree,
             "scheme": self.mesh.scheme, "order": self.mesh.order}, "terms": list(self.form.terms)}
         t0 = time.perf_counter()
@@ -321,17 +327,33 @@ class StaticsSolver:
 
 # -- convenience API ---------------------------------------------------------------------
 
-def solve(scene: Scene | str, overrides: dict[str, Any] | None = None,
-          warm_start: StaticsSolution | None = None) -> StaticsSolution:
-    """Solve a scene (or a problem file path) in one call; builds a solver each time."""
-    if not isinstance(scene, Scene):
-        scene = load_scene(scene, overrides)
-    elif overrides:
-        scene = scene.with_overrides(overrides)
+def solve_collocation(scene: Scene, warm_start: StaticsSolution | None = None
+                      ) -> StaticsSolution:
+    """Collocation solve of one scene (builds a solver; use StaticsSolver to reuse it)."""
     solver = StaticsSolver(scene)
     sol = solver.solve(scene, warm_start=warm_start)
     sol.diagnostics["build_time_s"] = solver.build_time_s
     return sol
+
+
+def solve(scene: Scene | str, overrides: dict[str, Any] | None = None,
+          warm_start: StaticsSolution | None = None) -> StaticsSolution:
+    """Solve a scene (or a problem file path) with the method its ``[solver]`` names.
+
+    Parameters
+    ----------
+    scene : Scene or path
+        Validated scene, or a TOML problem file.
+    overrides : dict, optional
+        Dotted-key overrides, e.g. ``{"layout.psi0_deg": 90}``.
+    warm_start : StaticsSolution, optional
+        A neighbouring solution to start from.
+    """
+    if not isinstance(scene, Scene):
+        scene = load_scene(scene, overrides)
+    elif overrides:
+        scene = scene.with_overrides(overrides)
+    return get_method(scene.solver.method)(scene, warm_start=warm_start)
 
 
 def _extrapolate(a: StaticsSolution, b: StaticsSolution, factor: float) -> StaticsSolution:
@@ -358,8 +380,17 @@ def sweep(scene: Scene, key: str, values: Iterable[Any],
     >>> sols = sweep(load_scene("problems/dezoysa_sea_buggy.toml"), "layout.psi0_deg",
     ...              range(0, 181, 10))  # doctest: +SKIP
     """
+    if scene.solver.method != "collocation":
+        method = get_method(scene.solver.method)
+        out: list[StaticsSolution] = []
+        for v in values:
+            prev = out[-1] if out and out[-1].success else None
+            sol = method(scene.with_overrides({key: v}), warm_start=prev)
+            sol.diagnostics["sweep"] = {"key": key, "value": v}
+            out.append(sol)
+        return out
     solvers: dict[tuple, StaticsSolver] = {}
-    out: list[StaticsSolution] = []
+    out = []
     done: list[tuple[Any, tuple, StaticsSolution]] = []  # (value, structure, solution)
     for v in values:
         sc = scene.with_overrides({key: v})
