@@ -198,7 +198,9 @@ class SolverOptions:
     tolerance : float
         Relative tolerance of the nonlinear solve (scaled residual).
     max_iterations : int
-        IPOPT iteration limit (Newton gets 50).
+        IPOPT iteration limit per attempt (Newton gets 30). A square system from a good
+        start converges in well under 30; the limit caps the cost of a doomed attempt
+        before the current ramp takes over.
     smoothing : float
         Velocity scale delta of the smooth modulus, m/s: |u| is replaced by
         sqrt(u^2 + delta^2), so |u|u is off by at most delta^2 / 2 (m/s)^2.
@@ -207,7 +209,15 @@ class SolverOptions:
         to the vertical) the load blends into the vector law, which stays defined on
         a vertical cable.
     error_estimate : bool
-        Compute the a-posteriori discretisation error (a second solve on N/2 intervals).
+        Compute the a-posteriori discretisation error (re-solves on N/2 and N/4 intervals).
+    accuracy : float
+        Target relative discretisation error (-). A solve whose error estimate exceeds it
+        is refined (N doubled, up to ``max_intervals``) when ``refine`` is true, and is
+        reported as ``"inaccurate"`` (not solved) if it still exceeds it.
+    refine : bool
+        Refine the mesh automatically to reach ``accuracy``.
+    max_intervals : int
+        Upper limit of the automatic refinement.
     initial_guess : str
         ``"catenary"`` (drag-free, default) or ``"straight"``.
     """
@@ -217,10 +227,13 @@ class SolverOptions:
     degree: int = 3
     intervals: int = 40
     tolerance: float = 1e-10
-    max_iterations: int = 500
+    max_iterations: int = 100
     smoothing: float = 1e-5
     vertical_blend: float = 1e-2
     error_estimate: bool = True
+    accuracy: float = 1e-6
+    refine: bool = True
+    max_intervals: int = 2560
     initial_guess: str = "catenary"
 
 
@@ -276,6 +289,9 @@ _SCHEMA: dict[str, Any] = {
         "vertical_blend",
         "error_estimate",
         "initial_guess",
+        "accuracy",
+        "refine",
+        "max_intervals",
     },
 }
 _CURRENT_KEYS = {"speed", "heading_deg", "profile"}
@@ -513,6 +529,12 @@ def scene_from_dict(data: dict[str, Any]) -> Scene:
     est = sol_t.get("error_estimate", defaults.error_estimate)
     if not isinstance(est, bool):
         raise CableOCPError(f"solver.error_estimate = {est!r}: expected true or false")
+    refine = sol_t.get("refine", defaults.refine)
+    if not isinstance(refine, bool):
+        raise CableOCPError(f"solver.refine = {refine!r}: expected true or false")
+    max_int = sol_t.get("max_intervals", defaults.max_intervals)
+    if isinstance(max_int, bool) or not isinstance(max_int, int) or max_int < 1:
+        raise CableOCPError(f"solver.max_intervals = {max_int!r}: expected a positive integer")
     solver = SolverOptions(
         method=method,
         scheme=scheme,
@@ -527,6 +549,10 @@ def scene_from_dict(data: dict[str, Any]) -> Scene:
                                "solver.vertical_blend", positive=True),
         error_estimate=est,
         initial_guess=guess,
+        accuracy=_number(sol_t.get("accuracy", defaults.accuracy), "solver.accuracy",
+                         positive=True),
+        refine=refine,
+        max_intervals=max_int,
     )
     if solver.vertical_blend >= 1.0:
         raise CableOCPError(f"solver.vertical_blend = {solver.vertical_blend}: must be in (0, 1)")

@@ -16,7 +16,7 @@ from cable_ocp.statics.solver import solve
 
 
 def _scene(problems, **kw):
-    over = {"layout.psi0_deg": 135.0}
+    over = {"layout.psi0_deg": 135.0, "solver.refine": False}  # fixed meshes here
     over.update({f"solver.{k}": v for k, v in kw.items()})
     return load_scene(problems / "dezoysa_sea_buggy.toml", over)
 
@@ -38,7 +38,7 @@ def test_mesh_convergence_rate(problems, reference, scheme, degree, order):
     err, est = [], []
     for n in ns:
         s = solve(_scene(problems, intervals=n, degree=degree, scheme=scheme))
-        assert s.success, s.message
+        assert s.status in ("solved", "inaccurate"), s.message  # coarse meshes may miss 1e-6
         e = max(np.max(np.abs(s.force_a - reference.force_a)),
                 np.max(np.abs(s.force_b - reference.force_b))) / s.max_tension
         err.append(e)
@@ -88,7 +88,7 @@ def test_multiple_shooting_rk4_order(problems, reference):
     err, est = [], []
     for n in (10, 20, 40):
         s = solve(_scene(problems, method="multiple_shooting", intervals=n))
-        assert s.success, s.message
+        assert s.status in ("solved", "inaccurate"), s.message
         err.append(np.max(np.abs(s.force_a - reference.force_a)) / s.max_tension)
         est.append(s.error_estimate)
     rates = np.log2(np.array(err[:-1]) / np.array(err[1:]))
@@ -102,3 +102,23 @@ def test_solve_bvp_method_selectable(problems):
     s = solve(load_scene(problems / "berteaux_mooring.toml", {"solver.method": "solve_bvp"}))
     assert s.success and s.diagnostics["method"] == "solve_bvp"
     assert s.length == pytest.approx(3013.3, abs=0.05)
+
+
+def test_refinement_reaches_accuracy(problems, reference):
+    """A coarse mesh whose error estimate misses solver.accuracy is refined (N doubled)
+    until it meets it; the true error then meets it too (within the estimate's factor)."""
+    s = solve(_scene(problems, intervals=4, degree=2, refine=True, accuracy=1e-7))
+    assert s.success, s.message
+    steps = s.diagnostics["refinement"]
+    assert [r["intervals"] for r in steps][:2] == [4, 8] and len(steps) >= 3
+    assert steps[-1]["error_estimate"] <= 1e-7 < steps[0]["error_estimate"]
+    err = np.max(np.abs(s.force_a - reference.force_a)) / s.max_tension
+    assert err < 2e-7
+
+
+def test_inaccurate_is_not_solved(problems):
+    """Without refinement, a mesh too coarse for solver.accuracy is reported as
+    "inaccurate": converged equations, but not a solution to be used."""
+    s = solve(_scene(problems, intervals=4, degree=1, accuracy=1e-9))
+    assert s.status == "inaccurate" and not s.success
+    assert "solver.intervals" in s.message

@@ -110,4 +110,5 @@ def solve(scene: Scene, warm_start: StaticsSolution | None = None) -> StaticsSol
     nodes, solve_bvp's tolerance = ``solver.tolerance`` but not below 1e-9 (tighter
     requests stall its mesh refinement)."""
     return solve_bvp(scene, nodes=scene.solver.intervals + 1,
-                     tol=max(scene.solver.tolerance, 1e-9), warm_start=warm_start)
+                     tol=max(scene.solver.tolerance, 1e-9), max_nodes=10000,
+                     warm_start=warm_start)

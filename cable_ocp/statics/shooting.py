@@ -103,10 +103,8 @@ class MultipleShooting(Collocation):
 
 
 def solve(scene: Scene, warm_start: StaticsSolution | None = None) -> StaticsSolution:
-    """Registry entry (``solver.method = "multiple_shooting"``): N = ``solver.intervals``."""
-    from cable_ocp.statics.solver import StaticsSolver
+    """Registry entry (``solver.method = "multiple_shooting"``): N = ``solver.intervals``,
+    refined like the collocation (:func:`cable_ocp.statics.solver.solve_collocation`)."""
+    from cable_ocp.statics.solver import solve_collocation
 
-    solver = StaticsSolver(scene)
-    sol = solver.solve(scene, warm_start=warm_start)
-    sol.diagnostics["build_time_s"] = solver.build_time_s
-    return sol
+    return solve_collocation(scene, warm_start)

@@ -58,6 +58,9 @@ class StaticsSolver:
         Override the mesh.
     scheme : {"legendre", "radau"}, optional
         Override the collocation points.
+    cache : dict, optional
+        Solvers of the same scene on other meshes, keyed by their number of intervals;
+        shared so that the error estimate and the refinement build each mesh once.
 
     Notes
     -----
@@ -68,7 +71,7 @@ class StaticsSolver:
     """
 
     def __init__(self, scene: Scene, intervals: int | None = None, degree: int | None = None,
-                 scheme: str | None = None):
+                 scheme: str | None = None, cache: dict[int, StaticsSolver] | None = None):
         t0 = time.perf_counter()
         opts = scene.solver
         self.scene = scene
@@ -99,7 +102,10 @@ class StaticsSolver:
             "ipopt.mumps_scaling": 0,
         })
         self._newton: ca.Function | None = None
-        self._coarse: list[StaticsSolver] = []
+        # solvers of the same scene on other meshes (by number of intervals), shared by the
+        # error estimate and the mesh refinement so that no mesh is built twice
+        self._cache = {} if cache is None else cache
+        self._cache[self.coll.mesh.intervals] = self
         self.build_time_s = time.perf_counter() - t0
 
     # -- public -------------------------------------------------------------------------
@@ -160,6 +166,12 @@ class StaticsSolver:
         if sol.success and (scene.solver.error_estimate if error_estimate is None
                             else error_estimate):
             self._estimate_error(sol, scene, current_scale)
+            if sol.error_estimate is not None and sol.error_estimate > scene.solver.accuracy:
+                sol.status = "inaccurate"
+                sol.message = (
+                    f"converged, but the discretisation error estimate "
+                    f"{sol.error_estimate:.1e} exceeds solver.accuracy = "
+                    f"{scene.solver.accuracy:.0e}; increase solver.intervals")
         return sol
 
     # -- internals ----------------------------------------------------------------------
@@ -258,12 +270,12 @@ class StaticsSolver:
         return sol
 
     def _coarse_solver(self, level: int) -> StaticsSolver:
-        """Solver on N / 2**level intervals, built on first use."""
-        while len(self._coarse) < level:
-            n = self.mesh.intervals // 2 ** (len(self._coarse) + 1)
-            self._coarse.append(StaticsSolver(self.scene, intervals=n, degree=self.mesh.degree,
-                                              scheme=self.mesh.scheme))
-        return self._coarse[level - 1]
+        """Solver on N / 2**level intervals, built on first use (shared cache)."""
+        n = self.mesh.intervals // 2**level
+        if n not in self._cache:
+            StaticsSolver(self.scene, intervals=n, degree=self.mesh.degree,
+                          scheme=self.mesh.scheme, cache=self._cache)
+        return self._cache[n]
 
     def _estimate_error(self, sol: StaticsSolution, scene: Scene, current_scale: float) -> None:
         """Richardson estimate with the observed order.
@@ -329,10 +341,30 @@ class StaticsSolver:
 
 def solve_collocation(scene: Scene, warm_start: StaticsSolution | None = None
                       ) -> StaticsSolution:
-    """Collocation solve of one scene (builds a solver; use StaticsSolver to reuse it)."""
+    """Solve one scene by collocation or multiple shooting, refining the mesh to accuracy.
+
+    Builds a solver (use :class:`StaticsSolver` to reuse one across solves). When the error
+    estimate exceeds ``solver.accuracy`` and ``solver.refine`` is true, the number of
+    intervals is doubled (each solve warm-started from the previous one) up to
+    ``solver.max_intervals``; the diagnostics list the refinement steps.
+    """
+    t0 = time.perf_counter()
     solver = StaticsSolver(scene)
+    build = solver.build_time_s
     sol = solver.solve(scene, warm_start=warm_start)
-    sol.diagnostics["build_time_s"] = solver.build_time_s
+    history = [(solver.mesh.intervals, sol.error_estimate)]
+    opts = scene.solver
+    while (sol.status == "inaccurate" and opts.refine
+           and 2 * solver.mesh.intervals <= opts.max_intervals):
+        solver = StaticsSolver(scene, intervals=2 * solver.mesh.intervals, cache=solver._cache)
+        build += solver.build_time_s
+        sol = solver.solve(scene, warm_start=sol)
+        history.append((solver.mesh.intervals, sol.error_estimate))
+    if len(history) > 1:
+        sol.diagnostics["refinement"] = [
+            {"intervals": n, "error_estimate": e} for n, e in history]
+        sol.wall_time_s = time.perf_counter() - t0 - build
+    sol.diagnostics["build_time_s"] = build
     return sol
 
 

@@ -1,0 +1,67 @@
+"""Robustness matrix: every statics method on every extreme scene (issue 5).
+
+Each cell is one of
+
+* ``ok``     converged, and the end forces and length agree with the reference to 1 %;
+* ``FAIL``   not converged, with the method's own status message (an honest failure);
+* ``n/a``    the method cannot represent the scene and says so (CableOCPError);
+* ``WRONG``  reported as converged but more than 1 % off the reference: a defect. This
+             column must stay empty for the collocation solver.
+* ``CRASH``  an unexpected exception (a defect too).
+
+The 1 % threshold is what an engineer would call a wrong answer; each method runs at its
+default resolution (``solver.intervals`` = 40), so the lower-order baselines are still well
+inside it on smooth scenes. The reference is :func:`cable_ocp.bench.common.reference_solution`.
+"""
+
+from __future__ import annotations
+
+from pathlib import Path
+from typing import Any
+
+from cable_ocp.baselines import METHODS
+from cable_ocp.bench.common import force_error, reference_solution, timed_solve
+from cable_ocp.scene import load_scene
+
+ROOT = Path(__file__).resolve().parents[2] / "problems"
+WRONG_THRESHOLD = 1e-2
+
+
+def default_scenes() -> list[Path]:
+    """The extreme scenes plus the shipped published examples."""
+    return sorted((ROOT / "extreme").glob("*.toml")) + [
+        ROOT / "berteaux_mooring.toml", ROOT / "dezoysa_sea_buggy.toml"]
+
+
+def classify(sol: Any, note: str, ref: Any) -> tuple[str, float | None, str]:
+    """Cell category, error against the reference, and the detail message."""
+    if sol is None:
+        return ("n/a" if note.startswith("unsupported") else "CRASH"), None, note
+    if not sol.success:
+        return "FAIL", None, f"{sol.status}: {sol.message}"
+    if ref is None or not ref.success:
+        return "ok?", None, "no reference to compare with"
+    err = max(force_error(sol, ref), abs(sol.length - ref.length) / ref.length)
+    return ("WRONG" if err > WRONG_THRESHOLD else "ok"), err, sol.message
+
+
+def run(scenes: list[Path] | None = None, methods: list[str] | None = None) -> dict[str, Any]:
+    """Run the matrix; returns rows of cells and the details of every cell."""
+    scenes = scenes or default_scenes()
+    methods = methods or list(METHODS)
+    rows, details = [], []
+    for path in scenes:
+        scene = load_scene(path)
+        ref = reference_solution(scene)
+        row: list[Any] = [path.stem, f"{ref.agreement:.0e}"]
+        for m in methods:
+            sol, dt, note = timed_solve(scene.with_overrides({"solver.method": m}))
+            cat, err, msg = classify(sol, note, ref.solution)
+            row.append(cat if err is None else f"{cat} {err:.0e}")
+            details.append({"scene": path.stem, "method": m, "category": cat, "error": err,
+                            "time_s": dt, "message": msg})
+        rows.append(row)
+    headers = ["scene", "ref check", *methods]
+    wrong_ours = [d for d in details if d["method"] == "collocation"
+                  and d["category"] in ("WRONG", "CRASH")]
+    return {"headers": headers, "rows": rows, "details": details, "wrong_ours": wrong_ours}
