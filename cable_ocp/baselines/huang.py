@@ -1,0 +1,954 @@
+"""Huang's semi-analytic statics (004, chapter 2): elastic catenaries between point loads.
+
+The method (004 sections 2.2-2.5), as implemented here:
+
+1. **Point loads, exact.** The cable (unstretched length L, weight in water w = W/L per
+   unstretched length, axial stiffness EA) carries point loads F^i at arc lengths s_i.
+   Between two consecutive loads the tension vector is known in closed form from the end
+   force V = (V_x, V_y, V_z) that the support at s = 0 exerts on the cable (004 (2.1)-(2.3),
+   (2.24)), in Huang's frame with z **downwards**::
+
+       T_vec(s) = -(V + sum_{s_i <= s} F^i + w s e_z),   T = |T_vec|         (2.1)-(2.3), (2.24)
+
+   and Hooke's law (2.5) with (2.18)-(2.23) integrates exactly over each piece
+   [s_n, s_{n+1}] to the increments (2.31)-(2.33). With a = V + sum F^i (constant on the
+   piece), h = sqrt(a_x^2 + a_y^2), A = a_z + w s_n, B = a_z + w s_{n+1}, T_A = sqrt(h^2 + A^2),
+   T_B = sqrt(h^2 + B^2)::
+
+       Delta x = -a_x [ (s_{n+1} - s_n)/EA + I ],  I = (1/w)[asinh(B/h) - asinh(A/h)]   (2.31)
+       Delta y = -a_y [ (s_{n+1} - s_n)/EA + I ]                                        (2.32)
+       Delta z = (A^2 - B^2)/(2 w EA) + (T_A - T_B)/w                                    (2.33)
+
+   (2.33) is garbled in the OCR of the thesis (CONVENTIONS.md): the relation above is
+   *derived here* by integrating (2.23) with (2.24), dz/ds = -X (1/EA + 1/T), X = a_z + w s,
+   and agrees with the legible parts of (2.33) (its first bracket is the 1/EA term; the
+   second is (L/W) times T(s_n) - T(s_{n+1})). Since T_A - T_B = -w (s_{n+1} - s_n)(A + B)/
+   (T_A + T_B), both terms are evaluated without dividing by w (so w = 0, a neutrally
+   buoyant cable, is regular), and I is evaluated through log1p in a cancellation-free
+   form that is also regular on a vertical piece (h = 0) and at w -> 0 (see
+   :func:`_piece_terms`). EA = inf makes the 1/EA terms vanish (inextensible cable).
+2. **Boundary conditions, per component** (004 (2.34)-(2.45)). A component fixed at both
+   ends gives an equation sum Delta r_i = r_i(L) - r_i(0) (type 1, (2.34)-(2.36)); a force
+   prescribed at end_b gives V_i directly from (2.40)-(2.42) (type 2), so the mooring case
+   (type 3) is (2.43)-(2.44) for V_x, V_y and (2.45) for V_z; a force prescribed at end_a
+   is V_i itself. The remaining unknowns are found by Newton-Raphson (section 2.5) with
+   the analytic Jacobian. The sum sum Delta r is minus the gradient of the convex
+   complementary energy Phi(V) = int (T + T^2 / (2 EA)) ds, so each Newton step is also
+   checked against Phi + V . target and halved if it would increase it (and the residual):
+   a safeguard the thesis does not have (it notes that Newton "only guarantees local
+   convergence", 2.7); a full step is always tried first.
+3. **Drag, lumped** (004 (2.46)-(2.47), Figure 2.3). The cable is divided into
+   N = ``scene.solver.intervals`` segments of equal unstretched length. The drag on
+   segment i (nodes i-1, i) is computed from its chord (strained length l, direction
+   t = chord / l: the strain factor of CONVENTIONS "Drag" is thereby included) and the
+   mean of the current at its two end nodes, and applied as one point load. Huang numbers
+   segments and loads so that F^i, the load "acting on the i-th segment", enters the sums
+   (2.1)-(2.3) from s_i on, i.e. it sits at the segment's far end node s_i (i = 1..N):
+   ``drag_placement="end"``, the default and the thesis' reading, first order in 1/N.
+   ``drag_placement="midpoint"`` puts it at the segment's mid-length instead (a midpoint
+   rule, second order): an option, not the thesis'. ``drag_law="vector"`` is exactly
+   (2.46)-(2.47); for ``"componentwise"`` the normal part of the segment's mean flow is
+   split along Wang's e_b = e_z x t / |e_z x t| and e_n = t x e_b (000 eqs (4)-(6)) with
+   the same vertical blend as :mod:`cable_ocp.physics.drag` (``solver.vertical_blend``);
+   here the modulus is exact (no smoothing is needed).
+4. **Outer fixed-point iteration** (section 2.5, Figure 2.3): start from the drag-free
+   solution, compute the loads from the previous iterate's segment geometry, re-solve,
+   repeat until the loads stop changing (sum_i |F^i_new - F^i_old| <= tolerance x force
+   scale). No relaxation.
+5. **Current ramp** (section 2.5, not eq. (2.5), which is Hooke's law): "when the drag force
+   becomes dominant ... increase the current speed step by step until the prescribed
+   value; the results of the previous iteration serve as the starting estimate".
+   ``current_ramp="auto"``: if the largest normal drag per length, 1/2 rho C_n D U_max^2,
+   exceeds the weight per length |w| (ratio q), the speed is raised in
+   m = ceil(sqrt(q)) equal steps U_max k/m; otherwise the full current is applied at once.
+   Whenever a stage fails, the step to it is halved (up to 6 halvings per step).
+   ``"off"``: the full current at once, no fallback; a sequence of factors ending at 1:
+   those stages.
+
+**Free length** (a prescribed end tension): an outer 1-D root find on L (bracketing from
+the drag-free catenary length, then Brent) around the whole drag iteration, each
+evaluation warm-started from the previous one. Extra point loads (clump weights, buoys)
+are given as ``point_loads=[(s, (Fx, Fy, Fz)), ...]`` in the project frame: s is the
+unstretched arc length from end_a (m), F the external force on the cable (N).
+
+Frames: the scene and the returned solution use the project frame (z up, seabed z = 0);
+Huang's z-down frame (004 (2.3), (2.42)) exists only inside this module (``_FLIP``).
+
+The returned profile lists each piece's start and end, so at a loaded point s appears
+twice, with the tension just before and just after the load (T jumps by -F there).
+"""
+
+from __future__ import annotations
+
+import math
+import time
+from collections.abc import Sequence
+from dataclasses import dataclass, field
+from typing import Any
+
+import numpy as np
+from scipy.optimize import brentq
+
+from cable_ocp.errors import CableOCPError
+from cable_ocp.scene import Scene
+from cable_ocp.statics.initial_guess import free_length_guess
+from cable_ocp.statics.solution import StaticsSolution
+
+__all__ = ["METHOD", "solve", "solve_huang", "solve_point_loads"]
+
+METHOD = "huang_semianalytic"
+
+# project frame (z up) <-> Huang's frame (z down, 004 (2.3), (2.42)): flip z
+_FLIP = np.array([1.0, 1.0, -1.0])
+
+_MAX_NEWTON = 50
+_MAX_HALVINGS = 6
+_PointLoads = Sequence[tuple[float, Sequence[float]]]
+
+
+# --------------------------------------------------------------------------------------
+# One piece between point loads: (2.31)-(2.33), their Jacobian and the energy
+# --------------------------------------------------------------------------------------
+
+def _phi(e: np.ndarray) -> np.ndarray:
+    """log1p(e) / e, with its limit 1 at e = 0 (e > -1)."""
+    small = np.abs(e) < 1e-8
+    es = np.where(small, 1.0, e)
+    return np.where(small, 1.0 - 0.5 * e, np.log1p(es) / es)
+
+
+def _plus(x: np.ndarray, t: np.ndarray, h2: np.ndarray) -> np.ndarray:
+    """T + X without cancellation (= h^2 / (T - X) for X < 0)."""
+    neg = x < 0
+    return np.where(neg, h2 / np.where(neg, t - x, 1.0), t + x)
+
+
+def _minus(x: np.ndarray, t: np.ndarray, h2: np.ndarray) -> np.ndarray:
+    """T - X without cancellation (= h^2 / (T + X) for X > 0)."""
+    pos = x > 0
+    return np.where(pos, h2 / np.where(pos, t + x, 1.0), t - x)
+
+
+def _piece_terms(v: np.ndarray, s0: np.ndarray, ds: np.ndarray, cum: np.ndarray, w: float,
+                 inv_ea: float, derivatives: bool = True
+                 ) -> tuple[np.ndarray, np.ndarray | None, float]:
+    """Exact increments of all pieces, Huang's frame (z down).
+
+    Parameters
+    ----------
+    v : ndarray, shape (3,)
+        End force V on the cable at s = 0, N (004 (2.1)-(2.3)).
+    s0, ds : ndarray, shape (M,)
+        Start and unstretched length of each piece, m.
+    cum : ndarray, shape (M, 3)
+        Sum of the point loads acting on the cable at or before each piece's start, N.
+    w : float
+        Weight in water per unstretched length, N/m (W/L of the thesis).
+    inv_ea : float
+        1/EA, 1/N (0 for an inextensible cable).
+    derivatives : bool
+        Also return the Jacobian d(sum Delta r)/dV.
+
+    Returns
+    -------
+    dr : ndarray, shape (M, 3)
+        (Delta x, Delta y, Delta z) of each piece, m: (2.31), (2.32) and the derived (2.33).
+    jac : ndarray, shape (3, 3) or None
+        d(sum_pieces Delta r)/dV, m/N (symmetric negative definite unless degenerate).
+    energy : float
+        Phi(V) = int (T + T^2/(2 EA)) ds, N m; grad Phi = -sum Delta r.
+    """
+    a = v[None, :] + cum
+    ax, ay = a[:, 0], a[:, 1]
+    h2 = ax * ax + ay * ay
+    xa = a[:, 2] + w * s0
+    xb = xa + w * ds
+    ta = np.sqrt(h2 + xa * xa)
+    tb = np.sqrt(h2 + xb * xb)
+    ssum = ta + tb
+    pa, pb = _plus(xa, ta, h2), _plus(xb, tb, h2)
+    ma, mb = _minus(xa, ta, h2), _minus(xb, tb, h2)
+    # I = int ds / T = (1/w)[asinh(B/h) - asinh(A/h)] = (1/w) ln((T_B + B)/(T_A + A))
+    branch = xa + xb >= 0
+    ep = w * ds * (pa + pb) / ssum / pa
+    em = -w * ds * (ma + mb) / ssum / np.where(branch, 1.0, ma)
+    integral = np.where(branch, ds * (pa + pb) / ssum / pa * _phi(np.where(branch, ep, 0.0)),
+                        ds * (ma + mb) / ssum / np.where(branch, 1.0, ma)
+                        * _phi(np.where(branch, 0.0, em)))
+    # int X / T ds = (T_B - T_A)/w
+    xt = ds * (xa + xb) / ssum
+    lin = ds * inv_ea
+    dr = np.empty_like(a)
+    dr[:, 0] = -ax * (lin + integral)
+    dr[:, 1] = -ay * (lin + integral)
+    dr[:, 2] = -0.5 * (xa + xb) * lin - xt
+    # energy: int T ds = 1/2 [ds M + h^2 I], M = (B T_B - A T_A)/(B - A)
+    mean = 0.5 * (ssum + (xa + xb) ** 2 / ssum)
+    energy = float(np.sum(0.5 * (ds * mean + h2 * integral)
+                          + 0.5 * inv_ea * (h2 * ds + ds * (xa * xa + xa * xb + xb * xb) / 3.0)))
+    if not derivatives:
+        return dr, None, energy
+    # int ds/T^3 and int X/T^3 ds
+    k3 = 2.0 * ssum * ds / ((pa + mb) * (ma + pb) * ta * tb)
+    n3 = ds * (xa + xb) / (ssum * ta * tb)
+    jac = np.empty((3, 3))
+    base = -(lin + integral)
+    jac[0, 0] = np.sum(base + ax * ax * k3)
+    jac[1, 1] = np.sum(base + ay * ay * k3)
+    jac[0, 1] = jac[1, 0] = np.sum(ax * ay * k3)
+    jac[0, 2] = jac[2, 0] = np.sum(ax * n3)
+    jac[1, 2] = jac[2, 1] = np.sum(ay * n3)
+    jac[2, 2] = np.sum(-lin - h2 * k3)
+    return dr, jac, energy
+
+
+# --------------------------------------------------------------------------------------
+# Point-load problem: Newton on V (2.34)-(2.45)
+# --------------------------------------------------------------------------------------
+
+@dataclass
+class _Inner:
+    """One exact solve for given point loads (Huang's frame inside, project frame out)."""
+
+    v: np.ndarray
+    length: float
+    breaks: np.ndarray  # piece boundaries, (M + 1,)
+    cum: np.ndarray  # (M, 3) loads before each piece, Huang frame
+    jump_start: np.ndarray  # load applied at s = 0 (Huang frame)
+    jump_end: np.ndarray  # load applied at s = L (Huang frame)
+    start: np.ndarray  # position of end_a, project frame
+    dr: np.ndarray  # (M, 3), Huang frame
+    iterations: int
+    residual: float  # relative end-position mismatch
+    converged: bool
+    message: str
+    extra: dict[str, Any] = field(default_factory=dict)
+
+    def nodes(self) -> np.ndarray:
+        """Positions of the piece boundaries, project frame, (M + 1, 3)."""
+        steps = self.dr * _FLIP
+        return self.start[None, :] + np.vstack([np.zeros(3), np.cumsum(steps, axis=0)])
+
+    def tension_at_end(self, at_b: bool, w: float) -> np.ndarray:
+        """Tension vector at s = L (after any load there) or at s = 0 (before), project."""
+        if at_b:
+            return -_FLIP * (self.v + self.cum[-1] + self.jump_end
+                             + w * self.length * np.array([0.0, 0.0, 1.0]))
+        return -_FLIP * self.v
+
+
+def _direct_components(scene: Scene, total_load: np.ndarray, w: float, length: float
+                       ) -> tuple[np.ndarray, np.ndarray]:
+    """V components fixed by a prescribed force (Huang frame) and the Newton mask.
+
+    end_a force: the support passes F_a to the cable, V_i = F_a,i. end_b force: (2.40)-(2.42)
+    (and (2.43)-(2.44)) with the tension T(L) = F_b (004 (2.9)-(2.11)).
+    """
+    v = np.zeros(3)
+    unknown = np.zeros(3, dtype=bool)
+    weight = np.array([0.0, 0.0, w * length])
+    for i in range(3):
+        fa, fb = scene.end_a.force[i], scene.end_b.force[i]
+        if fa is not None:
+            v[i] = _FLIP[i] * fa
+        elif fb is not None:
+            v[i] = -_FLIP[i] * fb - total_load[i] - weight[i]
+        else:
+            unknown[i] = True
+    return v, unknown
+
+
+def _guess_v(scene: Scene, length: float) -> np.ndarray:
+    """Drag-free starting V (Huang frame) from a catenary/parabola estimate (004 2.5)."""
+    w = scene.cable.weight_in_water
+    pa, pb = scene.end_a.position, scene.end_b.position
+    # chord over the components fixed at both ends (the others are not Newton unknowns)
+    d = np.array([b - a if a is not None and b is not None else 0.0
+                  for a, b in zip(pa, pb, strict=True)])
+    chord = float(np.linalg.norm(d))
+    dh = math.hypot(d[0], d[1])
+    eh = d[:2] / dh if dh > 0 else np.array([1.0, 0.0])
+    ea = scene.cable.axial_stiffness
+    if chord > 0 and length <= chord and math.isfinite(ea):
+        t0 = (ea * (chord / length - 1.0) + abs(w) * length) * d / chord
+        t0[2] -= 0.5 * w * length
+    elif dh > 1e-9 * max(chord, 1.0):
+        ratio = (length * length - d[2] ** 2) / (dh * dh) - 1.0
+        lam = math.sqrt(3.0 * ratio) if ratio > 0 else 0.2
+        hor = max(abs(w) * dh / (2.0 * max(lam, 1e-3)), 1e-6 * max(abs(w) * length, 1.0))
+        t0 = np.array([hor * eh[0], hor * eh[1], hor * d[2] / dh - 0.5 * w * length])
+    else:
+        t0 = np.array([0.0, 0.0, 0.5 * abs(w) * length * (1.0 if d[2] >= 0 else -1.0)
+                       + (w * length * 0.5)])
+        if t0[2] == 0.0:
+            t0[2] = max(abs(w) * length, 1.0)
+    return -_FLIP * t0
+
+
+def _pieces(length: float, load_s: np.ndarray, nodes_s: np.ndarray) -> np.ndarray:
+    """Sorted piece boundaries: 0, L, the nodes and the interior load positions."""
+    pts = np.concatenate([[0.0, length], nodes_s, load_s])
+    pts = pts[(pts >= 0.0) & (pts <= length)]
+    pts = np.unique(pts)
+    keep = np.concatenate([[True], np.diff(pts) > 1e-12 * length])
+    return pts[keep]
+
+
+def _inner_solve(scene: Scene, length: float, load_s: np.ndarray, load_f: np.ndarray,
+                 v_guess: np.ndarray | None, nodes_s: np.ndarray | None = None) -> _Inner:
+    """Solve the cable under given point loads exactly (004 (2.24)-(2.45)).
+
+    ``load_s`` (m) and ``load_f`` (N, Huang frame, shape (K, 3)) are the point loads;
+    ``nodes_s`` are extra piece boundaries (segment nodes, no load).
+    """
+    cab = scene.cable
+    w = cab.weight_in_water
+    inv_ea = 1.0 / cab.axial_stiffness if cab.elastic else 0.0
+    tol = scene.solver.tolerance
+    nodes_s = np.zeros(0) if nodes_s is None else nodes_s
+    breaks = _pieces(length, load_s, nodes_s)
+    s0, ds = breaks[:-1], np.diff(breaks)
+    eps = 1e-12 * length
+    at_start = load_s <= eps
+    at_end = load_s >= length - eps
+    # cumulative loads: a load at s_k acts on every piece starting at or after s_k
+    # (loads at s = 0 act from the first piece on, as F^0 in (2.1)-(2.3))
+    cum = np.zeros((s0.size, 3))
+    for k in np.nonzero(~at_end)[0]:
+        # loads are piece boundaries by construction: the piece that starts there
+        j = 0 if at_start[k] else int(np.argmin(np.abs(s0 - load_s[k])))
+        cum[j:] += load_f[k]
+    jump_start = load_f[at_start].sum(axis=0) if np.any(at_start) else np.zeros(3)
+    jump_end = load_f[at_end].sum(axis=0) if np.any(at_end) else np.zeros(3)
+    total = load_f.sum(axis=0) if load_f.size else np.zeros(3)
+    v_known, unknown = _direct_components(scene, total, w, length)
+
+    # targets of the Newton equations (2.34)-(2.36)/(2.45), Huang frame
+    pa, pb = scene.end_a.position, scene.end_b.position
+    target = np.array([_FLIP[i] * (pb[i] - pa[i]) for i in range(3) if unknown[i]])
+    scale = max(length, float(np.linalg.norm(target)) if target.size else 0.0, 1e-300)
+
+    def evaluate(v: np.ndarray, deriv: bool = True
+                 ) -> tuple[np.ndarray, np.ndarray | None, float, np.ndarray]:
+        dr, jac, energy = _piece_terms(v, s0, ds, cum, w, inv_ea, deriv)
+        tot = dr.sum(axis=0)
+        return dr, jac, energy, tot[unknown] - target
+
+    v = v_known.copy()
+    if np.any(unknown):
+        g = _guess_v(scene, length) if v_guess is None else np.asarray(v_guess, float)
+        v[unknown] = g[unknown]
+    it, converged, msg = 0, False, ""
+    dr, jac, energy, res = evaluate(v)
+    if not np.any(unknown):
+        converged = bool(np.all(np.isfinite(dr)))
+        msg = "direct (2.40)-(2.42)" if converged else "non-finite profile (zero tension?)"
+    else:
+        for it in range(_MAX_NEWTON + 1):  # noqa: B007 - it is reported
+            if not (np.all(np.isfinite(res)) and np.isfinite(energy)):
+                msg = "non-finite Newton iterate (zero tension in a piece?)"
+                break
+            if np.max(np.abs(res)) <= tol * scale:
+                converged, msg = True, f"Newton-Raphson converged in {it} steps"
+                break
+            if it == _MAX_NEWTON:
+                msg = f"Newton-Raphson: no convergence in {_MAX_NEWTON} steps"
+                break
+            juu = jac[np.ix_(unknown, unknown)]
+            try:
+                step = -np.linalg.solve(juu, res)
+            except np.linalg.LinAlgError:
+                msg = "singular Newton matrix"
+                break
+            merit0 = energy + target @ v[unknown]
+            slope = -res @ step  # grad(merit) . step
+            alpha, accepted = 1.0, False
+            while alpha >= 1e-12:
+                vt = v.copy()
+                vt[unknown] += alpha * step
+                drt, jact, energyt, rest = evaluate(vt)
+                if np.all(np.isfinite(rest)) and np.isfinite(energyt) and (
+                        energyt + target @ vt[unknown] <= merit0 + 1e-4 * alpha * slope
+                        or np.linalg.norm(rest) < np.linalg.norm(res)):
+                    accepted = True
+                    break
+                alpha *= 0.5
+            if not accepted:
+                msg = "Newton-Raphson line search failed"
+                break
+            v, dr, jac, energy, res = vt, drt, jact, energyt, rest
+    # position of end_a: given where fixed; else from end_b and the increments
+    tot = dr.sum(axis=0) * _FLIP
+    start = np.array([pa[i] if pa[i] is not None else pb[i] - tot[i] for i in range(3)])
+    resid = float(np.max(np.abs(res)) / scale) if res.size else 0.0
+    if not np.all(np.isfinite(start)):
+        converged = False
+    return _Inner(v=v, length=length, breaks=breaks, cum=cum, jump_start=jump_start,
+                  jump_end=jump_end, start=start, dr=dr, iterations=it, residual=resid,
+                  converged=converged, message=msg)
+
+
+def _profile(inner: _Inner, w: float) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """s, positions and tension vectors (project frame) at every piece's start and end."""
+    br = inner.breaks
+    nodes = inner.nodes()
+    m = br.size - 1
+    ez = np.array([0.0, 0.0, 1.0])
+    s_list, r_list, t_list = [], [], []
+    if np.any(inner.jump_start):
+        s_list.append(0.0)
+        r_list.append(nodes[0])
+        t_list.append(-_FLIP * inner.v)
+    for j in range(m):
+        a = inner.v + inner.cum[j]
+        for k in (j, j + 1):
+            s_list.append(br[k])
+            r_list.append(nodes[k])
+            t_list.append(-_FLIP * (a + w * br[k] * ez))
+    if np.any(inner.jump_end):
+        s_list.append(br[-1])
+        r_list.append(nodes[-1])
+        t_list.append(inner.tension_at_end(True, w))
+    s = np.asarray(s_list)
+    r = np.asarray(r_list)
+    t = np.asarray(t_list)
+    # drop duplicates where nothing jumps
+    keep = np.ones(s.size, dtype=bool)
+    for i in range(1, s.size):
+        if s[i] == s[i - 1] and np.array_equal(t[i], t[i - 1]):
+            keep[i] = False
+    return s[keep], r[keep], t[keep]
+
+
+def _end_mismatch(scene: Scene, inner: _Inner) -> float:
+    """Largest relative mismatch of the end conditions (positions / L, forces / |T|max)."""
+    w = scene.cable.weight_in_water
+    nodes = inner.nodes()
+    ta = inner.tension_at_end(False, w)
+    tb = inner.tension_at_end(True, w)
+    fscale = max(float(np.linalg.norm(ta)), float(np.linalg.norm(tb)), 1e-300)
+    out = 0.0
+    for end, pos, t, sign in ((scene.end_a, nodes[0], ta, -1.0), (scene.end_b, nodes[-1], tb, 1.0)):
+        for i in range(3):
+            if end.position[i] is not None:
+                out = max(out, abs(pos[i] - end.position[i]) / inner.length)
+            else:
+                out = max(out, abs(t[i] - sign * end.force[i]) / fscale)
+        if end.tension is not None:
+            out = max(out, abs(float(np.linalg.norm(t)) - end.tension) / end.tension)
+    return out
+
+
+def _normalise_loads(point_loads: _PointLoads | None) -> tuple[np.ndarray, np.ndarray]:
+    """(s, F) list in the project frame -> arrays (s, F in Huang's frame)."""
+    if not point_loads:
+        return np.zeros(0), np.zeros((0, 3))
+    s, f = [], []
+    for k, item in enumerate(point_loads):
+        try:
+            sk, fk = item
+            fk = [float(x) for x in fk]
+            sk = float(sk)
+        except (TypeError, ValueError):
+            raise CableOCPError(
+                f"point_loads[{k}] = {item!r}: expected (s, (Fx, Fy, Fz)) in m and N") from None
+        if len(fk) != 3 or not all(math.isfinite(x) for x in [sk, *fk]):
+            raise CableOCPError(f"point_loads[{k}] = {item!r}: expected finite (s, (Fx, Fy, Fz))")
+        if sk < 0:
+            raise CableOCPError(f"point_loads[{k}]: s = {sk} m must be >= 0")
+        s.append(sk)
+        f.append(_FLIP * np.asarray(fk))
+    return np.asarray(s), np.asarray(f)
+
+
+def _check_scene(scene: Scene) -> None:
+    if scene.solver.intervals < 1:  # pragma: no cover - validated by the scene
+        raise CableOCPError(f"solver.method = {METHOD!r} needs solver.intervals >= 1")
+
+
+def _find_length(scene: Scene, evaluate: Any, length0: float) -> tuple[Any, float, int, str]:
+    """Outer 1-D root find on L: |T(end)| = prescribed tension.
+
+    ``evaluate(L, previous) -> (state, tension_magnitude)``; state None on failure.
+    Brackets from ``length0`` (the drag-free catenary length) by growing steps, keeping
+    L above the chord between the ends (the physical, short-cable branch), then Brent.
+    """
+    target = scene.end_a.tension or scene.end_b.tension
+    pa, pb = scene.end_a.position, scene.end_b.position
+    chord = math.dist(pa, pb)  # type: ignore[arg-type]
+    lo_limit = chord * (1.0 + 1e-9) if not scene.cable.elastic else 1e-6 * chord
+    cache: dict[float, tuple[Any, float]] = {}
+    last: list[Any] = [None]
+    count = [0]
+
+    def f(length: float) -> float:
+        if length in cache:
+            return cache[length][1] - target
+        state, tmag = evaluate(length, last[0])
+        count[0] += 1
+        if state is None:
+            raise _RootFailure(f"the solve at L = {length:.9g} m failed")
+        cache[length] = (state, tmag)
+        last[0] = state
+        return tmag - target
+
+    l0 = max(length0, lo_limit * (1.0 + 1e-6))
+    try:
+        f0 = f(l0)
+        step = 0.02 * l0
+        a, fa = l0, f0
+        b = None
+        for _ in range(60):
+            # tension decreases as the cable lengthens (short-cable branch)
+            cand = a + step if fa > 0 else max(a - step, 0.5 * (a + lo_limit))
+            fc = f(cand)
+            if fc * fa <= 0:
+                b = cand
+                break
+            a, fa = cand, fc
+            step *= 2.0
+        if b is None:
+            raise _RootFailure("no length bracket found for the prescribed tension")
+        lo, hi = (a, b) if a < b else (b, a)
+        root = brentq(f, lo, hi, xtol=1e-13 * hi, rtol=4 * np.finfo(float).eps, maxiter=200)
+    except _RootFailure as exc:
+        return None, math.nan, count[0], str(exc)
+    state, _ = cache[root] if root in cache else evaluate(root, last[0])
+    return state, root, count[0], "Brent on L"
+
+
+class _RootFailure(Exception):
+    """An evaluation inside the length root find failed."""
+
+
+# --------------------------------------------------------------------------------------
+# Public: point loads only (no drag)
+# --------------------------------------------------------------------------------------
+
+def solve_point_loads(scene: Scene, point_loads: _PointLoads | None = None, *,
+                      length: float | None = None, v_guess: Sequence[float] | None = None
+                      ) -> StaticsSolution:
+    """Exact elastic-catenary solution under given point loads, no drag (004 (2.21)-(2.45)).
+
+    The scene's current is ignored: this is the core of the method, exact (to the Newton
+    tolerance ``scene.solver.tolerance``) for the given loads.
+
+    Parameters
+    ----------
+    scene : Scene
+        Cable, end conditions and tolerance (``solver.tolerance``, relative to L).
+    point_loads : sequence of (s, (Fx, Fy, Fz)), optional
+        External forces on the cable, project frame (z up): s the unstretched arc length
+        from end_a, m (0 <= s <= L); F in N. A load at s = 0 or s = L acts on the cable's
+        end point, so the reported end force includes it (F^0 and F^N of (2.1), (2.40)).
+    length : float, optional
+        Unstretched length, m; default ``scene.cable.length``. With a free length and no
+        ``length``, L is found by a 1-D root find on the prescribed end tension.
+    v_guess : sequence of 3 floats, optional
+        Starting end force V (Huang's frame, N) for Newton.
+
+    Returns
+    -------
+    StaticsSolution
+        ``diagnostics["V_huang"]`` is the converged V (N, z down).
+    """
+    _check_scene(scene)
+    t0 = time.perf_counter()
+    load_s, load_f = _normalise_loads(point_loads)
+    w = scene.cable.weight_in_water
+    at_b = scene.end_b.tension is not None
+    evals, how = 1, "given length"
+
+    def run(ell: float, prev: _Inner | None) -> tuple[_Inner | None, float]:
+        guess = prev.v if prev is not None else (None if v_guess is None else np.asarray(v_guess))
+        inner = _inner_solve(scene, ell, load_s, load_f, guess)
+        if not inner.converged:
+            return None, math.nan
+        return inner, float(np.linalg.norm(inner.tension_at_end(at_b, w)))
+
+    if length is None and scene.free_length:
+        inner, ell, evals, how = _find_length(scene, run, free_length_guess(scene))
+        if inner is None:
+            return _failed(scene, "length_root_failed", how, t0)
+    else:
+        ell = float(length if length is not None else scene.cable.length)
+        inner = _inner_solve(scene, ell, load_s, load_f,
+                             None if v_guess is None else np.asarray(v_guess, float))
+    wall = time.perf_counter() - t0
+    return _make_solution(scene, inner, wall, iterations=inner.iterations,
+                          ok=inner.converged, msg=inner.message, diag={
+                              "outer_iterations": 0, "current_ramp": [], "length_search": how,
+                              "length_evaluations": evals})
+
+
+def _failed(scene: Scene, status: str, msg: str, t0: float) -> StaticsSolution:
+    length = scene.cable.length or math.nan
+    return StaticsSolution(status=status, message=f"{METHOD}: {msg}", s=np.array([0.0]),
+                           position=np.full((1, 3), np.nan), tension_vector=np.full((1, 3), np.nan),
+                           length=length, wall_time_s=time.perf_counter() - t0,
+                           constraint_violation=math.inf, diagnostics={"method": METHOD})
+
+
+def _make_solution(scene: Scene, inner: _Inner, wall: float, iterations: int, ok: bool,
+                   msg: str, diag: dict[str, Any], status_fail: str = "failed"
+                   ) -> StaticsSolution:
+    w = scene.cable.weight_in_water
+    s, r, t = _profile(inner, w)
+    viol = _end_mismatch(scene, inner)
+    tol = scene.solver.tolerance
+    finite = bool(np.all(np.isfinite(r)) and np.all(np.isfinite(t)))
+    ends_ok = viol <= 10.0 * tol
+    if ok and finite and ends_ok:
+        status, message = "solved", f"{METHOD}: {msg}; end mismatch {viol:.2e}"
+    elif ok and finite:
+        status, message = "failed", (f"{METHOD}: {msg}, but the end mismatch {viol:.2e} exceeds "
+                                     f"10 x tolerance {tol:.1e}")
+    else:
+        status, message = status_fail, f"{METHOD}: {msg}"
+    warnings: list[str] = []
+    min_z = float(np.min(r[:, 2])) if finite else math.nan
+    if finite and min_z < -1e-6 * inner.length:
+        warnings.append(f"the profile goes {-min_z:.3g} m below the seabed plane z = 0; this "
+                        "method has no seabed contact, so that part is not physical")
+    if finite and np.min(np.linalg.norm(t, axis=1)) <= 0.0:
+        warnings.append("tension vanishes somewhere along the cable")
+    out = {"method": METHOD, "V_huang": [float(x) for x in inner.v],
+           "newton_iterations": inner.iterations, "end_mismatch": viol, "min_z": min_z,
+           "warnings": warnings, "pieces": int(inner.breaks.size - 1)}
+    out.update(diag)
+    return StaticsSolution(status=status, message=message, s=s, position=r, tension_vector=t,
+                           length=inner.length, iterations=iterations, wall_time_s=wall,
+                           constraint_violation=viol, diagnostics=out)
+
+
+# --------------------------------------------------------------------------------------
+# Drag: (2.46)-(2.47), the outer iteration (Figure 2.3) and the current ramp (2.5)
+# --------------------------------------------------------------------------------------
+
+def _current_at(scene: Scene, z: np.ndarray) -> np.ndarray:
+    """Current velocity (m/s, project frame) at heights z (CONVENTIONS: linear in ux, uy)."""
+    cur = scene.environment.current
+    out = np.zeros((z.size, 3))
+    if cur is None:
+        return out
+    out[:, 0] = np.interp(z, cur.z, cur.ux)
+    out[:, 1] = np.interp(z, cur.z, cur.uy)
+    return out
+
+
+def _drag_per_length(scene: Scene, u: np.ndarray, t: np.ndarray) -> np.ndarray:
+    """Drag per stretched length, N/m, project frame: (2.46)-(2.47) or Wang's split.
+
+    ``u`` the segments' mean flow (m/s), ``t`` their unit chord directions, shape (n, 3).
+    """
+    cab, env = scene.cable, scene.environment
+    rho, d = env.water_density, cab.diameter
+    ut = np.sum(u * t, axis=1)
+    u_tan = ut[:, None] * t
+    u_n = u - u_tan
+    vec = np.linalg.norm(u_n, axis=1)[:, None] * u_n
+    if cab.drag_law == "componentwise":
+        beta = scene.solver.vertical_blend
+        b = np.stack([-t[:, 1], t[:, 0], np.zeros(len(t))], axis=1)  # e_z x t
+        n = np.cross(t, b)
+        sig2 = b[:, 0] ** 2 + b[:, 1] ** 2
+        floor = 1e-6 * beta
+        sig = np.sqrt(sig2 + floor * floor)[:, None]
+        eb, en = b / sig, n / sig
+        ub = np.sum(u * eb, axis=1)[:, None]
+        un = np.sum(u * en, axis=1)[:, None]
+        comp = np.abs(ub) * ub * eb + np.abs(un) * un * en
+        lo2 = 0.25 * beta * beta
+        x = np.clip((sig2 - lo2) / (beta * beta - lo2), 0.0, 1.0)[:, None]
+        wgt = x * x * (3.0 - 2.0 * x)
+        normal = wgt * comp + (1.0 - wgt) * vec
+    else:
+        normal = vec
+    return (0.5 * rho * cab.normal_drag * d * normal
+            + 0.5 * rho * cab.tangential_drag * math.pi * d * (np.abs(ut) * ut)[:, None] * t)
+
+
+def _drag_loads(scene: Scene, nodes: np.ndarray, factor: float) -> np.ndarray:
+    """Lumped drag of every segment (N, 3), project frame, N: l x per-length drag.
+
+    Segment i has end nodes i-1, i; its mean flow is the mean of the current at the two
+    nodes times ``factor`` (the ramp); l is the strained chord length (2.46).
+    """
+    chord = np.diff(nodes, axis=0)
+    ell = np.linalg.norm(chord, axis=1)
+    t = chord / np.where(ell > 0, ell, 1.0)[:, None]
+    cur = _current_at(scene, nodes[:, 2])
+    u = factor * 0.5 * (cur[:-1] + cur[1:])
+    return ell[:, None] * _drag_per_length(scene, u, t)
+
+
+@dataclass
+class _DragState:
+    """Converged (or last) state of the outer iteration at one length."""
+
+    inner: _Inner
+    loads: np.ndarray  # (N, 3) project frame, the loads the inner solve used
+    outer_iterations: int
+    newton_iterations: int
+    stages: list[float]
+    change: float
+    ok: bool
+    status: str
+    message: str
+
+
+def _node_s(length: float, n: int, placement: str) -> tuple[np.ndarray, np.ndarray]:
+    nodes = np.linspace(0.0, length, n + 1)
+    if placement == "end":
+        return nodes, nodes[1:]
+    return nodes, 0.5 * (nodes[:-1] + nodes[1:])
+
+
+def _outer(scene: Scene, length: float, n: int, placement: str, factor: float,
+           loads0: np.ndarray, v0: np.ndarray | None, extra_s: np.ndarray,
+           extra_f: np.ndarray) -> _DragState:
+    """Fixed-point iteration on the drag loads at one current factor (Figure 2.3)."""
+    nodes_s, load_pos = _node_s(length, n, placement)
+    all_s = np.concatenate([load_pos, extra_s])
+    tol = scene.solver.tolerance
+    max_it = scene.solver.max_iterations
+    loads = loads0
+    v = v0
+    newton = 0
+    history: list[float] = []
+    inner = None
+    for k in range(1, max_it + 1):
+        all_f = np.vstack([loads * _FLIP, extra_f]) if extra_f.size else loads * _FLIP
+        inner = _inner_solve(scene, length, all_s, all_f, v, nodes_s)
+        newton += inner.iterations
+        if not inner.converged:
+            return _DragState(inner, loads, k, newton, [], math.inf, False, "newton_failed",
+                              f"inner Newton failed at outer iteration {k}: {inner.message}")
+        nodes = inner.nodes()
+        node_idx = np.searchsorted(inner.breaks, nodes_s)
+        new = _drag_loads(scene, nodes[node_idx], factor)
+        w = scene.cable.weight_in_water
+        fscale = max(float(np.max(np.abs(inner.v))),
+                     float(np.max(np.abs(inner.tension_at_end(True, w)))),
+                     float(np.sum(np.linalg.norm(new, axis=1))), abs(w) * length, 1e-300)
+        change = float(np.sum(np.linalg.norm(new - loads, axis=1))) / fscale
+        history.append(change)
+        if not np.isfinite(change):
+            return _DragState(inner, loads, k, newton, [], change, False, "diverged",
+                              f"non-finite drag loads at outer iteration {k}")
+        if change <= tol:
+            return _DragState(inner, loads, k, newton, [], change, True, "solved",
+                              f"outer iteration converged in {k} steps (load change "
+                              f"{change:.1e})")
+        # divergence: growing for 8 iterations in a row, or 1e3 x the smallest change
+        if (len(history) > 8 and all(history[-i] > history[-i - 1] for i in range(1, 9))) or (
+                change > 1e3 * min(history) and change > 1e-2):
+            return _DragState(inner, loads, k, newton, [], change, False, "diverged",
+                              f"outer fixed-point iteration diverges (load change {change:.2e} "
+                              f"at iteration {k}, smallest {min(history):.2e})")
+        loads = new
+        v = inner.v
+    assert inner is not None
+    return _DragState(inner, loads, max_it, newton, [], history[-1], False, "max_iterations",
+                      f"outer iteration: load change {history[-1]:.2e} after {max_it} "
+                      "iterations (solver.max_iterations)")
+
+
+def _ramp_factors(scene: Scene, current_ramp: str | Sequence[float]) -> list[float]:
+    if not isinstance(current_ramp, str):
+        fac = [float(x) for x in current_ramp]
+        if not fac or abs(fac[-1] - 1.0) > 1e-12 or any(not 0 <= x <= 1 for x in fac):
+            raise CableOCPError(f"current_ramp = {current_ramp!r}: factors in [0, 1] ending at 1")
+        return fac
+    if current_ramp == "off":
+        return [1.0]
+    if current_ramp != "auto":
+        raise CableOCPError(f'current_ramp = {current_ramp!r}: "auto", "off" or a sequence')
+    env, cab = scene.environment, scene.cable
+    drag = 0.5 * env.water_density * cab.normal_drag * cab.diameter * env.current.max_speed ** 2
+    w = abs(cab.weight_in_water)
+    q = drag / w if w > 0 else math.inf
+    if q <= 1.0:
+        return [1.0]
+    m = min(math.ceil(math.sqrt(q)), 50) if math.isfinite(q) else 10
+    return [k / m for k in range(1, m + 1)]
+
+
+def _drag_solve(scene: Scene, length: float, n: int, placement: str,
+                current_ramp: str | Sequence[float], extra_s: np.ndarray, extra_f: np.ndarray,
+                start: _DragState | None, warm_nodes: np.ndarray | None = None,
+                warm_v: np.ndarray | None = None) -> _DragState:
+    """Drag iteration at one length, with the current ramp (004 section 2.5)."""
+    if scene.environment.current is None:
+        inner = _inner_solve(scene, length, extra_s, extra_f,
+                             None if start is None else start.inner.v,
+                             _node_s(length, n, placement)[0])
+        return _DragState(inner, np.zeros((n, 3)), 0, inner.iterations, [], 0.0,
+                          inner.converged, "solved" if inner.converged else "newton_failed",
+                          inner.message)
+    # a warm start: previous loads / geometry at the full current, no ramp
+    if start is not None or warm_nodes is not None:
+        if start is not None:
+            loads0, v0 = start.loads, start.inner.v
+        else:
+            loads0, v0 = _drag_loads(scene, warm_nodes, 1.0), warm_v
+        st = _outer(scene, length, n, placement, 1.0, loads0, v0, extra_s, extra_f)
+        if st.ok:
+            st.stages = [1.0]
+            return st
+        fallback_outer, fallback_newton = st.outer_iterations, st.newton_iterations
+    else:
+        fallback_outer = fallback_newton = 0
+    factors = _ramp_factors(scene, current_ramp)
+    adaptive = current_ramp == "auto"
+    loads = np.zeros((n, 3))
+    v = None
+    done: list[float] = []
+    total_outer, total_newton = fallback_outer, fallback_newton
+    prev_factor = 0.0
+    queue = list(factors)
+    halvings = 0
+    st = None
+    while queue:
+        fac = queue[0]
+        # the stage's first loads: the previous geometry at the new current
+        st = _outer(scene, length, n, placement, fac,
+                    loads * (fac / prev_factor) ** 2 if prev_factor > 0 else loads,
+                    v, extra_s, extra_f)
+        total_outer += st.outer_iterations
+        total_newton += st.newton_iterations
+        if st.ok:
+            done.append(fac)
+            loads, v, prev_factor = st.loads, st.inner.v, fac
+            queue.pop(0)
+            halvings = 0
+            continue
+        if not adaptive or halvings >= _MAX_HALVINGS or fac - prev_factor < 1e-3:
+            break
+        queue.insert(0, 0.5 * (prev_factor + fac))
+        halvings += 1
+    assert st is not None
+    st.outer_iterations, st.newton_iterations = total_outer, total_newton
+    st.stages = done if st.ok else [*done, queue[0] if queue else 1.0]
+    if not st.ok:
+        reached = done[-1] if done else 0.0
+        st.message = (f"{st.message}; current ramp reached {reached:g} of the current "
+                      f"(stages tried: {', '.join(f'{x:.4g}' for x in done)})")
+    return st
+
+
+def solve_huang(scene: Scene, warm_start: StaticsSolution | None = None, *,
+                point_loads: _PointLoads | None = None,
+                current_ramp: str | Sequence[float] = "auto",
+                drag_placement: str = "end",
+                intervals: int | None = None) -> StaticsSolution:
+    """Huang's semi-analytic method with drag (004 ch. 2; see the module docstring).
+
+    Parameters
+    ----------
+    scene : Scene
+        The statics problem (project frame).
+    warm_start : StaticsSolution, optional
+        A neighbouring solution: its geometry gives the first drag loads and its T(0) the
+        first V; the full current is applied at once (fallback: a cold start).
+    point_loads : sequence of (s, (Fx, Fy, Fz)), optional
+        Extra point loads on the cable (clump weights, buoys), project frame, m and N.
+    current_ramp : "auto", "off" or sequence of float
+        Current ramp (004 section 2.5), see the module docstring.
+    drag_placement : {"end", "midpoint"}
+        Where each segment's lumped drag acts: its far end node (Huang's numbering, first
+        order in 1/N) or its mid-length (second order; not the thesis').
+    intervals : int, optional
+        Number of segments N (default ``scene.solver.intervals``).
+
+    Returns
+    -------
+    StaticsSolution
+        ``iterations`` = total outer (drag) iterations; diagnostics: ``outer_iterations``,
+        ``current_ramp`` (current factors of the converged stages), ``newton_iterations``,
+        ``V_huang`` (N, Huang's z-down frame), ``outer_load_change``, ``length_evaluations``.
+    """
+    _check_scene(scene)
+    if drag_placement not in ("end", "midpoint"):
+        raise CableOCPError(f'drag_placement = {drag_placement!r}: "end" or "midpoint"')
+    n = int(intervals or scene.solver.intervals)
+    if n < 1:
+        raise CableOCPError(f"solver.intervals = {n}: {METHOD} needs >= 1 segment")
+    if not isinstance(current_ramp, str):
+        _ramp_factors(scene, current_ramp)
+    elif current_ramp not in ("auto", "off"):
+        raise CableOCPError(f'current_ramp = {current_ramp!r}: "auto", "off" or a sequence')
+    extra_s, extra_f = _normalise_loads(point_loads)
+    t0 = time.perf_counter()
+    w = scene.cable.weight_in_water
+    at_b = scene.end_b.tension is not None
+
+    warm_nodes = warm_v = None
+    if warm_start is not None and warm_start.success and np.all(np.isfinite(warm_start.position)):
+        warm_len = warm_start.length
+        src, idx = np.unique(warm_start.s / warm_len, return_index=True)
+        sig = np.linspace(0.0, 1.0, n + 1)
+        warm_nodes = np.stack([np.interp(sig, src, warm_start.position[idx, k])
+                               for k in range(3)], axis=1)
+        warm_v = -_FLIP * warm_start.tension_vector[0]
+    else:
+        warm_len = None
+
+    counter = {"outer": 0, "newton": 0}
+
+    def run(ell: float, prev: _DragState | None) -> tuple[_DragState | None, float]:
+        st = _drag_solve(scene, ell, n, placement=drag_placement, current_ramp=current_ramp,
+                         extra_s=extra_s, extra_f=extra_f, start=prev,
+                         warm_nodes=warm_nodes if prev is None else None,
+                         warm_v=warm_v if prev is None else None)
+        counter["outer"] += st.outer_iterations
+        counter["newton"] += st.newton_iterations
+        if not st.ok:
+            run.last_fail = st  # type: ignore[attr-defined]
+            return None, math.nan
+        return st, float(np.linalg.norm(st.inner.tension_at_end(at_b, w)))
+
+    if scene.free_length:
+        guess = warm_len if warm_len is not None else free_length_guess(scene)
+        st, ell, evals, how = _find_length(scene, run, guess)
+        if st is None:
+            fail = getattr(run, "last_fail", None)
+            msg = how + (f" ({fail.status}: {fail.message})" if fail is not None else "")
+            if fail is None:
+                return _failed(scene, "length_root_failed", msg, t0)
+            st = fail
+            st.status, st.message = "length_root_failed", msg
+    else:
+        ell, evals, how = float(scene.cable.length), 1, "given length"
+        st = _drag_solve(scene, ell, n, placement=drag_placement, current_ramp=current_ramp,
+                         extra_s=extra_s, extra_f=extra_f, start=None, warm_nodes=warm_nodes,
+                         warm_v=warm_v)
+        counter["outer"] += st.outer_iterations
+        counter["newton"] += st.newton_iterations
+    wall = time.perf_counter() - t0
+    diag = {
+        "outer_iterations": counter["outer"],
+        "outer_iterations_final": st.outer_iterations,
+        "current_ramp": [float(x) for x in st.stages],
+        "newton_iterations_total": counter["newton"],
+        "outer_load_change": st.change,
+        "segments": n,
+        "drag_placement": drag_placement,
+        "drag_law": scene.cable.drag_law,
+        "length_search": how,
+        "length_evaluations": evals,
+        "extra_point_loads": int(extra_s.size),
+    }
+    return _make_solution(scene, st.inner, wall, iterations=counter["outer"], ok=st.ok,
+                          msg=st.message, diag=diag, status_fail=st.status)
+
+
+def solve(scene: Scene, warm_start: StaticsSolution | None = None) -> StaticsSolution:
+    """Registry entry (``solver.method = "huang_semianalytic"``).
+
+    N = ``solver.intervals`` segments, drag lumped at each segment's far end (Huang's
+    numbering), the automatic current ramp, tolerance ``solver.tolerance`` for both the
+    inner Newton (end positions / L) and the outer iteration (load change / force scale),
+    at most ``solver.max_iterations`` outer iterations per ramp stage.
+    """
+    return solve_huang(scene, warm_start)
