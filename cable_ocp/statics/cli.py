@@ -23,11 +23,20 @@ def register(sub: argparse._SubParsersAction) -> None:
 
     b = sub.add_parser("bench", help="benchmarks that print a table",
                        description="Timing benchmarks (tables; nothing is asserted).")
-    b.add_argument("which", nargs="?", default="sweep", choices=["sweep"],
-                   help="sweep: De Zoysa psi0 sweep, collocation vs scipy solve_bvp")
-    b.add_argument("--scene", default=None, help="problem file (default: De Zoysa)")
-    b.add_argument("--intervals", type=int, default=40)
-    b.add_argument("--plot", metavar="PATH", help="save the swept forces figure")
+    b.add_argument("which", nargs="?", default="sweep",
+                   choices=["sweep", "accuracy", "robustness"],
+                   help="sweep: De Zoysa psi0 sweep timing, collocation vs scipy solve_bvp; "
+                        "accuracy: error against run time of every method; robustness: "
+                        "every method on every extreme scene")
+    b.add_argument("--scene", action="append", default=None,
+                   help="problem file (repeatable; default: the benchmark's own scenes)")
+    b.add_argument("--method", action="append", default=None,
+                   help="restrict to these methods (accuracy: labels; robustness: names)")
+    b.add_argument("--intervals", type=int, default=40, help="sweep: collocation intervals")
+    b.add_argument("--repeats", type=int, default=3, help="accuracy: timing repeats")
+    b.add_argument("--plot", metavar="PATH", help="save the figure")
+    b.add_argument("--csv", metavar="PATH", help="accuracy: write the table as CSV")
+    b.add_argument("--json", metavar="PATH", help="accuracy/robustness: write JSON")
     b.set_defaults(func=_cmd_bench)
 
 
@@ -55,11 +64,15 @@ def _cmd_solve(args: argparse.Namespace) -> int:
 
 
 def _cmd_bench(args: argparse.Namespace) -> int:
+    if args.which == "accuracy":
+        return _bench_accuracy(args)
+    if args.which == "robustness":
+        return _bench_robustness(args)
     from cable_ocp.bench import statics_sweep
 
     kw = {"intervals": args.intervals}
     if args.scene:
-        kw["scene_path"] = args.scene
+        kw["scene_path"] = args.scene[0]
     res = statics_sweep.run(**kw)
     print(f"De Zoysa psi0 sweep, {len(res['angles'])} angles, {args.intervals} intervals "
           "(fastest of 3 repeats for the collocation sweep)")
@@ -74,3 +87,58 @@ def _cmd_bench(args: argparse.Namespace) -> int:
         plot_sweep(res["angles"], res["forces"], args.plot, "psi0 [deg]",
                    "De Zoysa: force at the buggy", overlays={"solve_bvp": res["forces_bvp"]})
     return 0
+
+
+def _bench_accuracy(args: argparse.Namespace) -> int:
+    from cable_ocp.bench import accuracy
+    from cable_ocp.bench.common import fmt_sci
+
+    scenes = None
+    if args.scene:
+        scenes = [(Path(f).stem, Path(f), {}) for f in args.scene]
+    results = accuracy.run(scenes, args.method, repeats=args.repeats)
+    for res in results:
+        print(f"\n{res['scene']}: reference = {res['reference']} "
+              f"(agreement {res['reference_check']:.1e})")
+        rows = [[r["method"], r["resolution"], f"{r['time_s'] * 1e3:.2f}", r["status"],
+                 fmt_sci(r["force_error"]), fmt_sci(r["profile_error"]),
+                 fmt_sci(r["estimate_ratio"])] for r in res["rows"]]
+        print(report.table(["method", "resolution", "time [ms]", "status", "force err",
+                            "profile err", "est/true"], rows))
+        for name, note in res["notes"].items():
+            print(f"  {name}: {note}")
+        for name, d in sorted(res["dominance"].items()):
+            print(f"  {name}: {d}")
+    low = [(res["scene"], r["method"], r["resolution"], r["estimate_ratio"])
+           for res in results for r in res["rows"]
+           if r["estimate_ratio"] is not None and r["estimate_ratio"] < 0.1]
+    print("\nerror estimates under-estimating by more than 10x: "
+          + (", ".join(f"{a} {b} {c} ({d:.2f})" for a, b, c, d in low) if low else "none"))
+    if args.csv:
+        accuracy.write_csv(results, args.csv)
+    if args.json:
+        accuracy.write_json(results, args.json)
+    if args.plot:
+        accuracy.plot(results, args.plot)
+    return 0
+
+
+def _bench_robustness(args: argparse.Namespace) -> int:
+    from cable_ocp.bench import robustness
+
+    scenes = [Path(f) for f in args.scene] if args.scene else None
+    res = robustness.run(scenes, args.method)
+    print("Robustness matrix (ok: converged and within 1 % of the reference; FAIL: honest "
+          "failure; n/a: method cannot represent the scene; WRONG: converged but off by "
+          "more than 1 %)")
+    print(report.table(res["headers"], res["rows"]))
+    print("\nnot ok:")
+    for d in res["details"]:
+        if d["category"] != "ok":
+            print(f"  {d['scene']:<26} {d['method']:<28} {d['category']:<6} "
+                  f"{d['message'][:110]}")
+    print("\ncollocation reported as success but wrong: "
+          + (", ".join(d["scene"] for d in res["wrong_ours"]) or "none"))
+    if args.json:
+        Path(args.json).write_text(report.to_json(res))
+    return 1 if res["wrong_ours"] else 0

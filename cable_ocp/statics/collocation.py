@@ -144,6 +144,28 @@ class Collocation:
         gexpr = ca.vertcat(*g)
         return ca.Function("G", [w, p], [gexpr], ["w", "p"], ["g"])
 
+    # -- evaluation ---------------------------------------------------------------------
+    def interpolate(self, values: np.ndarray, sigma: np.ndarray) -> np.ndarray:
+        """Evaluate the collocation polynomials of node values (n_nodes, k) at ``sigma``.
+
+        Each interval's polynomial passes through its start and its d collocation points
+        (the polynomial the collocation equations define), so this is the solution itself
+        between the nodes, not a re-interpolation.
+        """
+        n, d = self.mesh.intervals, self.mesh.degree
+        pts = np.array([0.0, *self.mesh.tau])
+        sigma = np.asarray(sigma, dtype=float)
+        k = np.clip(np.floor(sigma * n).astype(int), 0, n - 1)
+        tau = sigma * n - k
+        out = np.zeros((sigma.size, values.shape[1]))
+        for j in range(d + 1):
+            basis = np.ones_like(tau)
+            for r in range(d + 1):
+                if r != j:
+                    basis *= (tau - pts[r]) / (pts[j] - pts[r])
+            out += basis[:, None] * values[k * (d + 1) + j]
+        return out
+
     # -- packing ------------------------------------------------------------------------
     def pack(self, r: np.ndarray, tension: np.ndarray, length: float) -> np.ndarray:
         """Scaled unknown vector from node arrays r (n, 3) [m], T (n, 3) [N], L [m]."""

@@ -95,7 +95,7 @@ def free_length_guess(scene: Scene) -> float:
 
     # tension falls from infinity (taut) to a minimum as the cable lengthens; take the
     # shorter-cable branch: the first length where the tension drops to the target.
-    lengths = chord * (1.0 + np.geomspace(1e-6, 50.0, 200))
+    lengths = chord * (1.0 + np.geomspace(1e-6, 50.0, 48))
     vals = np.array([end_tension(x) for x in lengths])
     below = np.nonzero(vals <= tension)[0]
     if below.size == 0:

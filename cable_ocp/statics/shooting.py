@@ -77,6 +77,13 @@ class MultipleShooting(Collocation):
         self.n_w = self.n_x + (1 if self.free_length else 0)
         self.residual = self._build()
 
+    def interpolate(self, values: np.ndarray, sigma: np.ndarray) -> np.ndarray:
+        """Piecewise-linear between the nodes (RK4 has no dense output here); exact at the
+        nodes, which is where the error estimate compares shooting solutions."""
+        grid = self.mesh.sigma()
+        return np.stack([np.interp(sigma, grid, values[:, k]) for k in range(values.shape[1])],
+                        axis=1)
+
     def _build(self) -> ca.Function:
         n = self.mesh.intervals
         h = 1.0 / n

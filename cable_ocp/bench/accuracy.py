@@ -1,0 +1,170 @@
+"""Work-precision benchmark: error against wall time for every statics method (issue 5).
+
+For each scene, a reference (:func:`cable_ocp.bench.common.reference_solution`: collocation
+of order 10 on 320 intervals, checked against multiple shooting on 1280) and then each
+method over a range of resolutions. Times are whole calls as a user makes them (problem
+already parsed; CasADi build included), the fastest of up to three repeats; the error
+estimate and mesh refinement are off while timing. Errors: end forces over the largest
+tension, and positions at the method's own nodes over the length
+(:func:`cable_ocp.bench.common.profile_error`).
+
+Methods with an a-posteriori estimate are re-run with it on (not timed) and the ratio
+estimate / true error is reported: it must not fall below 0.1 (issue 5).
+"""
+
+from __future__ import annotations
+
+import csv
+from pathlib import Path
+from typing import Any
+
+import numpy as np
+
+from cable_ocp.bench.common import (
+    force_error,
+    profile_error,
+    reference_solution,
+    timed_solve,
+)
+from cable_ocp.scene import Scene, load_scene
+from cable_ocp.statics.solver import solve
+
+ROOT = Path(__file__).resolve().parents[2] / "problems"
+
+# label -> (overrides, resolutions, key that the resolution sets)
+PLAN: dict[str, tuple[dict[str, Any], list[Any], str]] = {
+    "collocation legendre d=2": ({"solver.method": "collocation", "solver.degree": 2},
+                                 [4, 8, 16, 32, 64, 128], "solver.intervals"),
+    "collocation legendre d=3": ({"solver.method": "collocation", "solver.degree": 3},
+                                 [2, 4, 8, 16, 32, 64], "solver.intervals"),
+    "collocation legendre d=4": ({"solver.method": "collocation", "solver.degree": 4},
+                                 [2, 4, 8, 16, 32], "solver.intervals"),
+    "collocation radau d=3": ({"solver.method": "collocation", "solver.degree": 3,
+                               "solver.scheme": "radau"}, [4, 8, 16, 32, 64],
+                              "solver.intervals"),
+    "multiple shooting (RK4)": ({"solver.method": "multiple_shooting"},
+                                [10, 20, 40, 80, 160, 320], "solver.intervals"),
+    "scipy solve_bvp": ({"solver.method": "solve_bvp", "solver.intervals": 10},
+                        [1e-3, 1e-4, 1e-5, 1e-6, 1e-7, 1e-8, 1e-9], "solver.tolerance"),
+    "Wang shooting-optimization": ({"solver.method": "wang_shooting_optimization"},
+                                   [10, 20, 40, 80, 160], "solver.intervals"),
+    "Huang semi-analytic": ({"solver.method": "huang_semianalytic"},
+                            [10, 20, 40, 80, 160, 320], "solver.intervals"),
+    "Chucheepsakul FEM": ({"solver.method": "chucheepsakul_fem"},
+                          [5, 10, 20, 40, 80], "solver.intervals"),
+}
+OURS = [k for k in PLAN if k.startswith(("collocation", "multiple"))]
+
+
+def default_scenes() -> list[tuple[str, Path, dict[str, Any]]]:
+    """(label, file, overrides) of the scenes the README shows."""
+    return [("De Zoysa psi0=90", ROOT / "dezoysa_sea_buggy.toml", {"layout.psi0_deg": 90.0}),
+            ("Berteaux", ROOT / "berteaux_mooring.toml", {})]
+
+
+def run_scene(label: str, scene: Scene, methods: list[str] | None = None,
+              repeats: int = 3) -> dict[str, Any]:
+    """All methods on one scene; rows of (method, resolution, time, errors, ratio)."""
+    ref = reference_solution(scene)
+    rows: list[dict[str, Any]] = []
+    notes: dict[str, str] = {}
+    for name in methods or list(PLAN):
+        over, resolutions, key = PLAN[name]
+        for res in resolutions:
+            sc = scene.with_overrides({**over, key: res, "solver.error_estimate": False,
+                                       "solver.refine": False})
+            sol, dt, note = timed_solve(sc, repeats=repeats)
+            if sol is None:
+                notes[name] = note
+                break
+            row = {"scene": label, "method": name, "resolution": res, "time_s": dt,
+                   "status": sol.status, "force_error": None, "profile_error": None,
+                   "estimate_ratio": None}
+            if sol.success and ref.solution.success:
+                row["force_error"] = force_error(sol, ref.solution)
+                row["profile_error"] = profile_error(sol, ref.solution)
+                if name in OURS:
+                    est = solve(sc.with_overrides({"solver.error_estimate": True,
+                                                   "solver.accuracy": 1.0}))
+                    true = max(row["force_error"], row["profile_error"])
+                    if est.error_estimate is not None and true > 1e-9:
+                        row["estimate_ratio"] = est.error_estimate / true
+            rows.append(row)
+    return {"scene": label, "reference": ref.how, "reference_check": ref.agreement,
+            "rows": rows, "notes": notes, "dominance": dominance(rows)}
+
+
+def dominance(rows: list[dict[str, Any]]) -> dict[str, str]:
+    """For each baseline: is every one of its points beaten (less or equal time and smaller
+    error) by some collocation point? Reports the share of its points that are."""
+    def err(r: dict[str, Any]) -> float:
+        return max(r["force_error"], r["profile_error"])
+
+    ours = [(r["time_s"], err(r)) for r in rows
+            if r["method"].startswith("collocation") and r["force_error"] is not None]
+    out = {}
+    for name in {r["method"] for r in rows} - {r["method"] for r in rows
+                                              if r["method"].startswith("collocation")}:
+        pts = [(r["time_s"], err(r)) for r in rows
+               if r["method"] == name and r["force_error"] is not None]
+        if not pts:
+            continue
+        beaten = sum(any(t <= tb and e < eb for t, e in ours) for tb, eb in pts)
+        out[name] = f"{beaten}/{len(pts)} points dominated by collocation"
+    return out
+
+
+def run(scenes: list[tuple[str, Path, dict[str, Any]]] | None = None,
+        methods: list[str] | None = None, repeats: int = 3) -> list[dict[str, Any]]:
+    """Run every scene."""
+    return [run_scene(label, load_scene(path, over), methods, repeats)
+            for label, path, over in (scenes or default_scenes())]
+
+
+def write_csv(results: list[dict[str, Any]], path: str | Path) -> None:
+    """One row per (scene, method, resolution)."""
+    keys = ["scene", "method", "resolution", "time_s", "status", "force_error",
+            "profile_error", "estimate_ratio"]
+    with Path(path).open("w", newline="") as fh:
+        w = csv.DictWriter(fh, fieldnames=keys)
+        w.writeheader()
+        for res in results:
+            for r in res["rows"]:
+                w.writerow({k: r[k] for k in keys})
+
+
+def write_json(results: list[dict[str, Any]], path: str | Path) -> None:
+    """The whole result, JSON."""
+    from cable_ocp.report import to_json
+
+    Path(path).write_text(to_json(results))
+
+
+def plot(results: list[dict[str, Any]], path: str | Path) -> Path:
+    """Log-log error (the larger of force and profile error) against wall time."""
+    import matplotlib
+
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+
+    fig, axes = plt.subplots(1, len(results), figsize=(6.5 * len(results), 5), squeeze=False)
+    for ax, res in zip(axes[0], results, strict=True):
+        methods = list(dict.fromkeys(r["method"] for r in res["rows"]))
+        for k, m in enumerate(methods):
+            pts = [(r["time_s"], max(r["force_error"], r["profile_error"]))
+                   for r in res["rows"] if r["method"] == m and r["force_error"] is not None]
+            if not pts:
+                continue
+            t, e = np.array(pts).T
+            style = "-o" if m in OURS else "--s"
+            ax.loglog(t * 1e3, np.maximum(e, 1e-16), style, ms=4, color=f"C{k % 10}", label=m)
+        ax.set_xlabel("wall time per solve [ms] (build included)")
+        ax.set_ylabel("relative error (end forces, profile)")
+        ax.set_title(res["scene"])
+        ax.grid(True, which="both", alpha=0.3)
+        ax.legend(fontsize=7)
+    fig.tight_layout()
+    path = Path(path)
+    fig.savefig(path, dpi=120)
+    plt.close(fig)
+    return path
