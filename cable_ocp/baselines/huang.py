@@ -34,7 +34,7 @@ The method (004 sections 2.2-2.5), as implemented here:
    is V_i itself. The remaining unknowns are found by Newton-Raphson (section 2.5) with
    the analytic Jacobian. The sum sum Delta r is minus the gradient of the convex
    complementary energy Phi(V) = int (T + T^2 / (2 EA)) ds, so each Newton step is also
-   checked against Phi + V . target and halved if it would increase it (and the residual):
+   checked against the merit Phi + V . target (Armijo) and halved until it decreases it:
    a safeguard the thesis does not have (it notes that Newton "only guarantees local
    convergence", 2.7); a full step is always tried first.
 3. **Drag, lumped** (004 (2.46)-(2.47), Figure 2.3). The cable is divided into
@@ -61,7 +61,7 @@ The method (004 sections 2.2-2.5), as implemented here:
    ``current_ramp="auto"``: if the largest normal drag per length, 1/2 rho C_n D U_max^2,
    exceeds the weight per length |w| (ratio q), the speed is raised in
    m = ceil(sqrt(q)) equal steps U_max k/m; otherwise the full current is applied at once.
-   Whenever a stage fails, the step to it is halved (up to 6 halvings per step).
+   Whenever a stage fails, the step to it is halved (at most 8 halvings per ramp).
    ``"off"``: the full current at once, no fallback; a sequence of factors ending at 1:
    those stages.
 
@@ -102,7 +102,7 @@ METHOD = "huang_semianalytic"
 _FLIP = np.array([1.0, 1.0, -1.0])
 
 _MAX_NEWTON = 50
-_MAX_HALVINGS = 6
+_MAX_HALVINGS = 8  # per ramp, in total
 _PointLoads = Sequence[tuple[float, Sequence[float]]]
 
 
@@ -367,9 +367,13 @@ def _inner_solve(scene: Scene, length: float, load_s: np.ndarray, load_f: np.nda
                 vt = v.copy()
                 vt[unknown] += alpha * step
                 drt, jact, energyt, rest = evaluate(vt)
+                merit = energyt + target @ vt[unknown]
+                # Armijo on the convex merit; near the solution, where the merit changes
+                # by rounding only, a smaller residual is accepted instead
                 if np.all(np.isfinite(rest)) and np.isfinite(energyt) and (
-                        energyt + target @ vt[unknown] <= merit0 + 1e-4 * alpha * slope
-                        or np.linalg.norm(rest) < np.linalg.norm(res)):
+                        merit <= merit0 + 1e-4 * alpha * slope
+                        or (merit <= merit0 + 1e-12 * abs(merit0)
+                            and np.linalg.norm(rest) < np.linalg.norm(res))):
                     accepted = True
                     break
                 alpha *= 0.5
@@ -706,12 +710,11 @@ def _node_s(length: float, n: int, placement: str) -> tuple[np.ndarray, np.ndarr
 
 def _outer(scene: Scene, length: float, n: int, placement: str, factor: float,
            loads0: np.ndarray, v0: np.ndarray | None, extra_s: np.ndarray,
-           extra_f: np.ndarray) -> _DragState:
+           extra_f: np.ndarray, max_it: int) -> _DragState:
     """Fixed-point iteration on the drag loads at one current factor (Figure 2.3)."""
     nodes_s, load_pos = _node_s(length, n, placement)
     all_s = np.concatenate([load_pos, extra_s])
     tol = scene.solver.tolerance
-    max_it = scene.solver.max_iterations
     loads = loads0
     v = v0
     newton = 0
@@ -746,38 +749,87 @@ def _outer(scene: Scene, length: float, n: int, placement: str, factor: float,
             return _DragState(inner, loads, k, newton, [], change, False, "diverged",
                               f"outer fixed-point iteration diverges (load change {change:.2e} "
                               f"at iteration {k}, smallest {min(history):.2e})")
+        # a cycle: no progress over the last 50 iterations
+        if len(history) > 100 and min(history[-50:]) > 0.5 * min(history[:-50]):
+            return _DragState(inner, loads, k, newton, [], change, False, "diverged",
+                              f"outer fixed-point iteration stalls (load change {change:.2e} "
+                              f"at iteration {k}; no progress in 50 iterations)")
         loads = new
         v = inner.v
     assert inner is not None
     return _DragState(inner, loads, max_it, newton, [], history[-1], False, "max_iterations",
                       f"outer iteration: load change {history[-1]:.2e} after {max_it} "
-                      "iterations (solver.max_iterations)")
+                      "iterations (max_outer)")
 
 
-def _ramp_factors(scene: Scene, current_ramp: str | Sequence[float]) -> list[float]:
+def _ramp_plans(scene: Scene, current_ramp: str | Sequence[float]
+                ) -> list[tuple[list[float], bool]]:
+    """Current-factor sequences to try in turn, each with "halve a failed step" on/off."""
     if not isinstance(current_ramp, str):
         fac = [float(x) for x in current_ramp]
-        if not fac or abs(fac[-1] - 1.0) > 1e-12 or any(not 0 <= x <= 1 for x in fac):
-            raise CableOCPError(f"current_ramp = {current_ramp!r}: factors in [0, 1] ending at 1")
-        return fac
+        if not fac or abs(fac[-1] - 1.0) > 1e-12 or any(not 0 < x <= 1 for x in fac):
+            raise CableOCPError(f"current_ramp = {current_ramp!r}: factors in (0, 1] ending at 1")
+        return [(fac, False)]
     if current_ramp == "off":
-        return [1.0]
+        return [([1.0], False)]
     if current_ramp != "auto":
         raise CableOCPError(f'current_ramp = {current_ramp!r}: "auto", "off" or a sequence')
     env, cab = scene.environment, scene.cable
-    drag = 0.5 * env.water_density * cab.normal_drag * cab.diameter * env.current.max_speed ** 2
+    speed = env.current.max_speed if env.current is not None else 0.0
+    drag = 0.5 * env.water_density * cab.normal_drag * cab.diameter * speed ** 2
     w = abs(cab.weight_in_water)
     q = drag / w if w > 0 else math.inf
-    if q <= 1.0:
-        return [1.0]
     m = min(math.ceil(math.sqrt(q)), 50) if math.isfinite(q) else 10
-    return [k / m for k in range(1, m + 1)]
+    if q > 1.0:  # drag dominates: Huang's ramp first, the direct iteration as fallback
+        return [([k / m for k in range(1, m + 1)], True), ([1.0], False)]
+    m = max(m, 4)
+    return [([1.0], False), ([k / m for k in range(1, m + 1)], True)]
+
+
+def _run_stages(scene: Scene, length: float, n: int, placement: str, factors: list[float],
+                adaptive: bool, extra_s: np.ndarray, extra_f: np.ndarray, max_outer: int
+                ) -> tuple[_DragState, list[float]]:
+    """The outer iteration at each current factor in turn, from the drag-free start.
+
+    Returns the last state and the factors of the stages that converged.
+    """
+    loads = np.zeros((n, 3))
+    v = None
+    done: list[float] = []
+    total_outer = total_newton = 0
+    prev_factor = 0.0
+    queue = list(factors)
+    halvings = 0
+    st = None
+    while queue:
+        fac = queue[0]
+        # the stage's first loads: the previous geometry at the new current (drag ~ U^2)
+        st = _outer(scene, length, n, placement, fac,
+                    loads * (fac / prev_factor) ** 2 if prev_factor > 0 else loads,
+                    v, extra_s, extra_f, max_outer)
+        total_outer += st.outer_iterations
+        total_newton += st.newton_iterations
+        if st.ok:
+            done.append(fac)
+            loads, v, prev_factor = st.loads, st.inner.v, fac
+            queue.pop(0)
+            continue
+        if not adaptive or halvings >= _MAX_HALVINGS or fac - prev_factor < 1e-3:
+            break
+        queue.insert(0, 0.5 * (prev_factor + fac))
+        halvings += 1
+    assert st is not None
+    st.outer_iterations, st.newton_iterations = total_outer, total_newton
+    if not st.ok:
+        st.message = (f"{st.message} (at current factor {queue[0]:.4g}; converged stages: "
+                      f"{', '.join(f'{x:.4g}' for x in done) or 'none'})")
+    return st, done
 
 
 def _drag_solve(scene: Scene, length: float, n: int, placement: str,
                 current_ramp: str | Sequence[float], extra_s: np.ndarray, extra_f: np.ndarray,
                 start: _DragState | None, warm_nodes: np.ndarray | None = None,
-                warm_v: np.ndarray | None = None) -> _DragState:
+                warm_v: np.ndarray | None = None, max_outer: int = 1000) -> _DragState:
     """Drag iteration at one length, with the current ramp (004 section 2.5)."""
     if scene.environment.current is None:
         inner = _inner_solve(scene, length, extra_s, extra_f,
@@ -786,62 +838,47 @@ def _drag_solve(scene: Scene, length: float, n: int, placement: str,
         return _DragState(inner, np.zeros((n, 3)), 0, inner.iterations, [], 0.0,
                           inner.converged, "solved" if inner.converged else "newton_failed",
                           inner.message)
+    total_outer = total_newton = 0
+    notes: list[str] = []
     # a warm start: previous loads / geometry at the full current, no ramp
     if start is not None or warm_nodes is not None:
         if start is not None:
             loads0, v0 = start.loads, start.inner.v
         else:
             loads0, v0 = _drag_loads(scene, warm_nodes, 1.0), warm_v
-        st = _outer(scene, length, n, placement, 1.0, loads0, v0, extra_s, extra_f)
+        st = _outer(scene, length, n, placement, 1.0, loads0, v0, extra_s, extra_f, max_outer)
         if st.ok:
             st.stages = [1.0]
             return st
-        fallback_outer, fallback_newton = st.outer_iterations, st.newton_iterations
-    else:
-        fallback_outer = fallback_newton = 0
-    factors = _ramp_factors(scene, current_ramp)
-    adaptive = current_ramp == "auto"
-    loads = np.zeros((n, 3))
-    v = None
-    done: list[float] = []
-    total_outer, total_newton = fallback_outer, fallback_newton
-    prev_factor = 0.0
-    queue = list(factors)
-    halvings = 0
-    st = None
-    while queue:
-        fac = queue[0]
-        # the stage's first loads: the previous geometry at the new current
-        st = _outer(scene, length, n, placement, fac,
-                    loads * (fac / prev_factor) ** 2 if prev_factor > 0 else loads,
-                    v, extra_s, extra_f)
+        total_outer, total_newton = st.outer_iterations, st.newton_iterations
+        notes.append(f"warm start failed ({st.status})")
+    first = None
+    for factors, adaptive in _ramp_plans(scene, current_ramp):
+        st, done = _run_stages(scene, length, n, placement, factors, adaptive, extra_s, extra_f,
+                               max_outer)
         total_outer += st.outer_iterations
         total_newton += st.newton_iterations
+        st.outer_iterations, st.newton_iterations = total_outer, total_newton
+        st.stages = done
+        label = "direct" if factors == [1.0] else f"ramp in {len(factors)} steps"
         if st.ok:
-            done.append(fac)
-            loads, v, prev_factor = st.loads, st.inner.v, fac
-            queue.pop(0)
-            halvings = 0
-            continue
-        if not adaptive or halvings >= _MAX_HALVINGS or fac - prev_factor < 1e-3:
-            break
-        queue.insert(0, 0.5 * (prev_factor + fac))
-        halvings += 1
-    assert st is not None
-    st.outer_iterations, st.newton_iterations = total_outer, total_newton
-    st.stages = done if st.ok else [*done, queue[0] if queue else 1.0]
-    if not st.ok:
-        reached = done[-1] if done else 0.0
-        st.message = (f"{st.message}; current ramp reached {reached:g} of the current "
-                      f"(stages tried: {', '.join(f'{x:.4g}' for x in done)})")
-    return st
+            if notes:
+                st.message += f" [{label}, after: {'; '.join(notes)}]"
+            return st
+        notes.append(f"{label}: {st.status}")
+        first = first or st
+    assert first is not None
+    first.outer_iterations, first.newton_iterations = total_outer, total_newton
+    first.message += f" [tried: {'; '.join(notes)}]"
+    return first
 
 
 def solve_huang(scene: Scene, warm_start: StaticsSolution | None = None, *,
                 point_loads: _PointLoads | None = None,
                 current_ramp: str | Sequence[float] = "auto",
                 drag_placement: str = "end",
-                intervals: int | None = None) -> StaticsSolution:
+                intervals: int | None = None,
+                max_outer: int = 1000) -> StaticsSolution:
     """Huang's semi-analytic method with drag (004 ch. 2; see the module docstring).
 
     Parameters
@@ -860,6 +897,10 @@ def solve_huang(scene: Scene, warm_start: StaticsSolution | None = None, *,
         order in 1/N) or its mid-length (second order; not the thesis').
     intervals : int, optional
         Number of segments N (default ``scene.solver.intervals``).
+    max_outer : int
+        Outer (drag) iterations allowed per current stage. Not ``solver.max_iterations``,
+        which is IPOPT's budget: the unrelaxed fixed-point iteration contracts slowly on
+        drag-dominated cables (hundreds of iterations at about 0.3 ms each).
 
     Returns
     -------
@@ -874,10 +915,7 @@ def solve_huang(scene: Scene, warm_start: StaticsSolution | None = None, *,
     n = int(intervals or scene.solver.intervals)
     if n < 1:
         raise CableOCPError(f"solver.intervals = {n}: {METHOD} needs >= 1 segment")
-    if not isinstance(current_ramp, str):
-        _ramp_factors(scene, current_ramp)
-    elif current_ramp not in ("auto", "off"):
-        raise CableOCPError(f'current_ramp = {current_ramp!r}: "auto", "off" or a sequence')
+    _ramp_plans(scene, current_ramp)  # validates it
     extra_s, extra_f = _normalise_loads(point_loads)
     t0 = time.perf_counter()
     w = scene.cable.weight_in_water
@@ -900,7 +938,7 @@ def solve_huang(scene: Scene, warm_start: StaticsSolution | None = None, *,
         st = _drag_solve(scene, ell, n, placement=drag_placement, current_ramp=current_ramp,
                          extra_s=extra_s, extra_f=extra_f, start=prev,
                          warm_nodes=warm_nodes if prev is None else None,
-                         warm_v=warm_v if prev is None else None)
+                         warm_v=warm_v if prev is None else None, max_outer=max_outer)
         counter["outer"] += st.outer_iterations
         counter["newton"] += st.newton_iterations
         if not st.ok:
@@ -922,7 +960,7 @@ def solve_huang(scene: Scene, warm_start: StaticsSolution | None = None, *,
         ell, evals, how = float(scene.cable.length), 1, "given length"
         st = _drag_solve(scene, ell, n, placement=drag_placement, current_ramp=current_ramp,
                          extra_s=extra_s, extra_f=extra_f, start=None, warm_nodes=warm_nodes,
-                         warm_v=warm_v)
+                         warm_v=warm_v, max_outer=max_outer)
         counter["outer"] += st.outer_iterations
         counter["newton"] += st.newton_iterations
     wall = time.perf_counter() - t0
@@ -949,6 +987,6 @@ def solve(scene: Scene, warm_start: StaticsSolution | None = None) -> StaticsSol
     N = ``solver.intervals`` segments, drag lumped at each segment's far end (Huang's
     numbering), the automatic current ramp, tolerance ``solver.tolerance`` for both the
     inner Newton (end positions / L) and the outer iteration (load change / force scale),
-    at most ``solver.max_iterations`` outer iterations per ramp stage.
+    at most 1000 outer iterations per ramp stage.
     """
     return solve_huang(scene, warm_start)
