@@ -16,6 +16,9 @@ Schema (all values SI; the README repeats this with examples)::
     water_depth = 183.0          m; the free surface is at z = water_depth, seabed at z = 0
     water_density = 1021.0       kg/m^3
     gravity = 9.81               m/s^2 (default 9.81)
+    [environment.seabed]         optional; turns seabed contact on (a plane; see Seabed):
+    depth_offset = 0.0           m, friction = 0.0 (-), slope_deg = 0.0,
+                                 slope_heading_deg = 0.0 (direction the seabed rises)
     [environment.current]        optional; absent = still water (no drag terms are built)
     speed = 1.0278               m/s, uniform current ...
     heading_deg = 0.0            deg, direction the water flows TO, from +x towards +y
@@ -65,6 +68,7 @@ __all__ = [
     "End",
     "Environment",
     "Scene",
+    "Seabed",
     "SolverOptions",
     "apply_overrides",
     "load_scene",
@@ -103,13 +107,41 @@ class Current:
 
 
 @dataclass(frozen=True)
+class Seabed:
+    """A plane seabed with contact (``[environment.seabed]``).
+
+    Attributes
+    ----------
+    depth_offset : float
+        Height of the seabed plane at x = y = 0, m (default 0: seabed at z = 0).
+    friction : float
+        Axial friction coefficient on the grounded cable (-), default 0.
+    slope_deg : float
+        Slope of the plane, deg, in [0, 45).
+    slope_heading_deg : float
+        Direction in which the seabed rises, deg from +x towards +y.
+    """
+
+    depth_offset: float = 0.0
+    friction: float = 0.0
+    slope_deg: float = 0.0
+    slope_heading_deg: float = 0.0
+
+
+@dataclass(frozen=True)
 class Environment:
-    """Water and gravity. ``water_depth`` (m) puts the surface at z = water_depth."""
+    """Water and gravity. ``water_depth`` (m) puts the surface at z = water_depth.
+
+    ``seabed`` is None when the scene has no ``[environment.seabed]`` table: the seabed
+    plane z = 0 is then only checked (a warning when the profile passes below it), not
+    modelled.
+    """
 
     water_depth: float
     water_density: float
     gravity: float = 9.81
     current: Current | None = None
+    seabed: Seabed | None = None
 
 
 @dataclass(frozen=True)
@@ -266,7 +298,7 @@ class Scene:
 _SCHEMA: dict[str, Any] = {
     "meta": "any",
     "layout": {"psi0_deg"},
-    "environment": {"water_depth", "water_density", "gravity", "current"},
+    "environment": {"water_depth", "water_density", "gravity", "current", "seabed"},
     "cable": {
         "length",
         "diameter",
@@ -384,6 +416,21 @@ def _parse_current(table: Any) -> Current | None:
     return cur
 
 
+def _parse_seabed(table: Any) -> Seabed:
+    table = _check_keys(table, {"depth_offset", "friction", "slope_deg", "slope_heading_deg"},
+                        "environment.seabed")
+    slope = _number(table.get("slope_deg", 0.0), "environment.seabed.slope_deg", nonneg=True)
+    if slope >= 45.0:
+        raise CableOCPError(f"environment.seabed.slope_deg = {slope}: must be in [0, 45)")
+    return Seabed(
+        depth_offset=_number(table.get("depth_offset", 0.0), "environment.seabed.depth_offset"),
+        friction=_number(table.get("friction", 0.0), "environment.seabed.friction", nonneg=True),
+        slope_deg=slope,
+        slope_heading_deg=_number(table.get("slope_heading_deg", 0.0),
+                                  "environment.seabed.slope_heading_deg"),
+    )
+
+
 def _parse_end(table: Any, name: str) -> End:
     table = _check_keys(table, _SCHEMA[name], name)
     pos = _vector3(table["position"], f"{name}.position") if "position" in table else None
@@ -438,7 +485,9 @@ def scene_from_dict(data: dict[str, Any]) -> Scene:
                   positive=True)
     g = _number(env_t.get("gravity", 9.81), "environment.gravity", positive=True)
     current = _parse_current(env_t["current"]) if "current" in env_t else None
-    env = Environment(water_depth=depth, water_density=rho, gravity=g, current=current)
+    seabed = _parse_seabed(env_t["seabed"]) if "seabed" in env_t else None
+    env = Environment(water_depth=depth, water_density=rho, gravity=g, current=current,
+                      seabed=seabed)
 
     cab_t = _check_keys(_require(data, "cable", "problem"), _SCHEMA["cable"], "cable")
     length_v = _require(cab_t, "length", "cable")

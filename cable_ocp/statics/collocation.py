@@ -97,14 +97,41 @@ class Collocation:
         Number of unknowns (= number of equations).
     """
 
-    def __init__(self, form: Formulation, intervals: int, degree: int, scheme: str):
+    def __init__(self, form: Formulation, intervals: int, degree: int, scheme: str,
+                 grounded: bool = False):
         self.form = form
         tau = ca.collocation_points(degree, scheme)
         self.mesh = Mesh(intervals, degree, scheme, tuple(float(t) for t in tau))
-        self.free_length = form.scene.free_length
-        self.n_x = self.mesh.n_nodes * NX
-        self.n_w = self.n_x + (1 if self.free_length else 0)
+        self._setup(grounded)
         self.residual = self._build()
+
+    def _setup(self, grounded: bool) -> None:
+        """Unknown layout: node states, then lam (free length), then g (grounded)."""
+        self.free_length = self.form.scene.free_length
+        self.grounded = grounded
+        self.n_x = self.mesh.n_nodes * NX
+        self.i_lam = self.n_x if self.free_length else None
+        self.i_g = self.n_x + (1 if self.free_length else 0) if grounded else None
+        self.n_w = self.n_x + (1 if self.free_length else 0) + (1 if grounded else 0)
+
+    def _lengths(self, w: ca.MX, p: ca.MX) -> tuple[ca.MX, ca.MX | float]:
+        """Scaled length of the collocated (suspended) part and scaled grounded length."""
+        g = w[self.i_g] if self.grounded else 0.0
+        lam = w[self.i_lam] if self.free_length else p[P_LENGTH] - g
+        return lam, g
+
+    def _boundary(self, x0: ca.MX, xn: ca.MX, g: ca.MX | float, p: ca.MX) -> list[ca.MX]:
+        """End conditions (both ends, the tension, the touchdown), scaled."""
+        sc = self.form.scene
+        if self.grounded:
+            bc = self.form.touchdown_residual(x0, g, p[P_END_A])
+        else:
+            bc = self.form.end_residual(sc.end_a, x0, p[P_END_A], at_a=True)
+        bc += self.form.end_residual(sc.end_b, xn, p[P_END_B], at_a=False)
+        if self.free_length:
+            x_t = x0 if sc.end_a.tension is not None else xn
+            bc.append(self.form.tension_residual(x_t, p[P_TENSION]))
+        return bc
 
     def _build(self) -> ca.Function:
         n, d = self.mesh.intervals, self.mesh.degree
@@ -112,7 +139,7 @@ class Collocation:
         h = 1.0 / n
         w = ca.MX.sym("w", self.n_w)
         p = ca.MX.sym("p", len(self.form.params()))
-        lam = w[self.n_x] if self.free_length else p[P_LENGTH]
+        lam, g_len = self._lengths(w, p)
         xs = ca.reshape(w[: self.n_x], NX, self.mesh.n_nodes)
         # interval blocks: columns k*(d+1) .. k*(d+1)+d
         blocks = ca.reshape(xs[:, : n * (d + 1)], NX * (d + 1), n)  # one column per interval
@@ -132,16 +159,8 @@ class Collocation:
         coll_all, xend_all = interval.map(n)(blocks, lam, p[P_CURRENT])
         starts = ca.horzcat(*[xs[:, (k + 1) * (d + 1)] for k in range(n)])
         cont = ca.vec(xend_all - starts)
-        x0 = xs[:, 0]
-        xN = xs[:, -1]
-        sc = self.form.scene
-        bc = self.form.end_residual(sc.end_a, x0, p[P_END_A], at_a=True)
-        bc += self.form.end_residual(sc.end_b, xN, p[P_END_B], at_a=False)
-        g = [ca.vec(coll_all), cont, ca.vertcat(*bc)]
-        if self.free_length:
-            x_t = x0 if sc.end_a.tension is not None else xN
-            g.append(self.form.tension_residual(x_t, p[P_TENSION]))
-        gexpr = ca.vertcat(*g)
+        bc = self._boundary(xs[:, 0], xs[:, -1], g_len, p)
+        gexpr = ca.vertcat(ca.vec(coll_all), cont, *bc)
         return ca.Function("G", [w, p], [gexpr], ["w", "p"], ["g"])
 
     # -- evaluation ---------------------------------------------------------------------
@@ -167,18 +186,26 @@ class Collocation:
         return out
 
     # -- packing ------------------------------------------------------------------------
-    def pack(self, r: np.ndarray, tension: np.ndarray, length: float) -> np.ndarray:
-        """Scaled unknown vector from node arrays r (n, 3) [m], T (n, 3) [N], L [m]."""
+    def pack(self, r: np.ndarray, tension: np.ndarray, length: float,
+             grounded_length: float = 0.0) -> np.ndarray:
+        """Scaled unknowns from the suspended part's node arrays r (n, 3) [m], T (n, 3) [N],
+        the total unstretched length L [m] and the grounded length g [m]."""
         sc = self.form.scales
         x = np.hstack([r / sc.length, tension / sc.force]).reshape(-1)
         if self.free_length:
-            x = np.append(x, length / sc.length)
+            x = np.append(x, (length - grounded_length) / sc.length)
+        if self.grounded:
+            x = np.append(x, grounded_length / sc.length)
         return x
 
-    def unpack(self, w: np.ndarray, p: np.ndarray) -> tuple[np.ndarray, np.ndarray, float]:
-        """Node arrays r (n, 3) [m], T (n, 3) [N] and length L [m] from unknowns."""
+    def unpack(self, w: np.ndarray, p: np.ndarray
+               ) -> tuple[np.ndarray, np.ndarray, float, float]:
+        """Suspended-part node arrays r (n, 3) [m], T (n, 3) [N], the total length L [m]
+        and the grounded length g [m] from the unknowns."""
         sc = self.form.scales
         w = np.asarray(w, dtype=float).reshape(-1)
         xs = w[: self.n_x].reshape(self.mesh.n_nodes, NX)
-        lam = w[self.n_x] if self.free_length else p[P_LENGTH]
-        return xs[:, :3] * sc.length, xs[:, 3:] * sc.force, float(lam * sc.length)
+        g = float(w[self.i_g]) if self.grounded else 0.0
+        length = w[self.i_lam] + g if self.free_length else p[P_LENGTH]
+        return (xs[:, :3] * sc.length, xs[:, 3:] * sc.force, float(length * sc.length),
+                g * sc.length)

@@ -37,6 +37,8 @@ import numpy as np
 
 from cable_ocp.physics.current import current_velocity
 from cable_ocp.physics.drag import drag_error_bound, drag_per_length
+from cable_ocp.physics.seabed import axial_gradient, grounded_tension_integral
+from cable_ocp.physics.seabed import normal as seabed_normal
 from cable_ocp.scene import End, Scene
 
 NX = 6
@@ -172,6 +174,25 @@ class Formulation:
                 res.append(x[i] - values[i])
             else:
                 res.append(x[3 + i] - sign * values[i])
+        return res
+
+    def touchdown_residual(self, x0: ca.MX, g: ca.MX, anchor: ca.MX) -> list[ca.MX]:
+        """End conditions at end_a when its cable lies on the seabed for a length g
+        (scaled): the touchdown point is where the anchor's straight grounded line ends
+        (stretched), and the cable is tangent to the seabed there (T . n = 0).
+        See :mod:`cable_ocp.physics.seabed`."""
+        sb = self.scene.environment.seabed
+        cab, sc = self.scene.cable, self.scales
+        n = seabed_normal(sb)
+        tau = x0[3:6]
+        tmag = ca.sqrt(ca.dot(tau, tau))
+        e = tau / tmag
+        k = axial_gradient(sb, cab.weight_in_water, e) * sc.length / sc.force
+        dist = g
+        if cab.elastic:
+            dist = g + sc.force / cab.axial_stiffness * grounded_tension_integral(tmag, k, g)
+        res = [x0[i] - (anchor[i] + e[i] * dist) for i in range(3)]
+        res.append(ca.dot(tau, ca.DM(n)))
         return res
 
     def tension_residual(self, x: ca.SX, tension: ca.SX) -> ca.SX:

@@ -177,3 +177,43 @@ def initial_guess(scene: Scene, sigma: np.ndarray, kind: str = "catenary"
             return guess[0], guess[1], length, "catenary" if both_fixed else "hanging"
     r, t = _straight_guess(scene, sigma, length)
     return r, t, length, "straight"
+
+
+def touchdown_guess(scene: Scene, sigma: np.ndarray
+                    ) -> tuple[np.ndarray, np.ndarray, float, float] | None:
+    """Drag-free inextensible catenary with touchdown, for an anchored end_a.
+
+    The cable lies straight from the anchor towards end_b's horizontal position for a
+    grounded length g, then hangs as a catenary that leaves the seabed horizontally:
+    with a = H/w, suspended length L_s = sqrt(h^2 + 2 h a) and span x_s = a acosh(1 + h/a)
+    for a rise h; H solves L - L_s + x_s = X (the horizontal distance). Returns the
+    suspended part's nodes at ``sigma`` (0 = touchdown point), the total length and g;
+    None when no such catenary exists (the cable is too short to touch).
+    """
+    w = scene.cable.weight_in_water
+    length = scene.cable.length
+    if w <= 0 or length is None:
+        return None
+    ra, eh, x_tot, h = _plane(scene)
+    if h <= 0:
+        return None
+
+    def excess(log_a: float) -> float:
+        a = math.exp(log_a)
+        ls = math.sqrt(h * h + 2 * h * a)
+        return (length - ls + a * math.acosh(1 + h / a)) - x_tot
+
+    lo, hi = math.log(1e-6 * h), math.log(1e6 * max(x_tot, h))
+    if excess(lo) * excess(hi) > 0:
+        return None
+    a = math.exp(brentq(excess, lo, hi, xtol=1e-12))
+    ls = math.sqrt(h * h + 2 * h * a)
+    if ls >= length:
+        return None
+    g = length - ls
+    s = sigma * ls
+    xs = a * np.arcsinh(s / a)
+    zs = a * (np.sqrt(1 + (s / a) ** 2) - 1)
+    r = ra + np.outer(g + xs, eh) + np.outer(zs, [0, 0, 1.0])
+    t = np.outer(np.full_like(s, w * a), eh) + np.outer(w * s, [0, 0, 1.0])
+    return r, t, length, g

@@ -26,10 +26,6 @@ from cable_ocp.statics.collocation import Collocation
 from cable_ocp.statics.formulation import (
     NX,
     P_CURRENT,
-    P_END_A,
-    P_END_B,
-    P_LENGTH,
-    P_TENSION,
     Formulation,
 )
 from cable_ocp.statics.solution import StaticsSolution
@@ -69,12 +65,10 @@ class MultipleShooting(Collocation):
     """
 
     def __init__(self, form: Formulation, intervals: int, degree: int = 0,
-                 scheme: str = "rk4"):
+                 scheme: str = "rk4", grounded: bool = False):
         self.form = form
         self.mesh = ShootingMesh(intervals)  # type: ignore[assignment]
-        self.free_length = form.scene.free_length
-        self.n_x = self.mesh.n_nodes * NX
-        self.n_w = self.n_x + (1 if self.free_length else 0)
+        self._setup(grounded)
         self.residual = self._build()
 
     def interpolate(self, values: np.ndarray, sigma: np.ndarray) -> np.ndarray:
@@ -94,19 +88,13 @@ class MultipleShooting(Collocation):
             "number_of_finite_elements": 1, "simplify": True})
         w = ca.MX.sym("w", self.n_w)
         p = ca.MX.sym("p", len(self.form.params()))
-        lam = w[self.n_x] if self.free_length else p[P_LENGTH]
+        lam, g_len = self._lengths(w, p)
         xs = ca.reshape(w[: self.n_x], NX, self.mesh.n_nodes)
         qq = ca.repmat(ca.vertcat(lam, p[P_CURRENT]), 1, n)
         xf = step.map(n)(x0=xs[:, :n], p=qq)["xf"]
         cont = ca.vec(xf - xs[:, 1:]) / h
-        sc = self.form.scene
-        bc = self.form.end_residual(sc.end_a, xs[:, 0], p[P_END_A], at_a=True)
-        bc += self.form.end_residual(sc.end_b, xs[:, -1], p[P_END_B], at_a=False)
-        g = [cont, ca.vertcat(*bc)]
-        if self.free_length:
-            x_t = xs[:, 0] if sc.end_a.tension is not None else xs[:, -1]
-            g.append(self.form.tension_residual(x_t, p[P_TENSION]))
-        return ca.Function("G", [w, p], [ca.vertcat(*g)], ["w", "p"], ["g"])
+        bc = self._boundary(xs[:, 0], xs[:, -1], g_len, p)
+        return ca.Function("G", [w, p], [ca.vertcat(cont, *bc)], ["w", "p"], ["g"])
 
 
 def solve(scene: Scene, warm_start: StaticsSolution | None = None) -> StaticsSolution:

@@ -56,6 +56,12 @@ class StaticsSolution:
     constraint_violation: float = math.nan
     error_estimate: float | None = None
     diagnostics: dict[str, Any] = field(default_factory=dict)
+    node_offset: int = 0  # nodes of an analytic grounded part before the computed ones
+
+    @property
+    def grounded_length(self) -> float:
+        """Unstretched length lying on the seabed at end_a, m (0 without contact)."""
+        return float(self.s[self.node_offset]) if self.node_offset else 0.0
 
     @property
     def success(self) -> bool:
@@ -102,6 +108,7 @@ class StaticsSolution:
             "end_a": {"position": lst(self.position[0]), "force": lst(self.force_a)},
             "end_b": {"position": lst(self.position[-1]), "force": lst(self.force_b)},
             "max_tension": self.max_tension,
+            "touchdown": self.diagnostics.get("touchdown"),
             "profile": {
                 "s": lst(self.s[keep]),
                 "x": lst(self.position[keep, 0]),

@@ -23,7 +23,7 @@ from __future__ import annotations
 
 import math
 import time
-from collections.abc import Iterable
+from collections.abc import Callable, Iterable
 from typing import Any
 
 import casadi as ca
@@ -31,10 +31,16 @@ import numpy as np
 
 from cable_ocp.baselines import get_method
 from cable_ocp.errors import CableOCPError
+from cable_ocp.physics import seabed
 from cable_ocp.scene import Scene, load_scene
 from cable_ocp.statics.collocation import Collocation
-from cable_ocp.statics.formulation import P_CURRENT, Formulation, _structure_key
-from cable_ocp.statics.initial_guess import initial_guess
+from cable_ocp.statics.formulation import (
+    P_CURRENT,
+    Formulation,
+    _structure_key,
+    reference_length,
+)
+from cable_ocp.statics.initial_guess import initial_guess, touchdown_guess
 from cable_ocp.statics.shooting import MultipleShooting
 from cable_ocp.statics.solution import StaticsSolution
 
@@ -59,8 +65,11 @@ class StaticsSolver:
     scheme : {"legendre", "radau"}, optional
         Override the collocation points.
     cache : dict, optional
-        Solvers of the same scene on other meshes, keyed by their number of intervals;
-        shared so that the error estimate and the refinement build each mesh once.
+        Solvers of the same scene on other meshes, keyed by (intervals, grounded); shared
+        so that the error estimate, the refinement and the contact switch build each once.
+    grounded : bool
+        Seabed contact at end_a: the cable lies on the seabed from the anchor for an
+        unknown length and lifts off tangentially (:mod:`cable_ocp.physics.seabed`).
 
     Notes
     -----
@@ -71,14 +80,16 @@ class StaticsSolver:
     """
 
     def __init__(self, scene: Scene, intervals: int | None = None, degree: int | None = None,
-                 scheme: str | None = None, cache: dict[int, StaticsSolver] | None = None):
+                 scheme: str | None = None, cache: dict[tuple, StaticsSolver] | None = None,
+                 grounded: bool = False):
         t0 = time.perf_counter()
         opts = scene.solver
         self.scene = scene
         self.form = Formulation(scene)
+        self.grounded = grounded
         transcription = MultipleShooting if opts.method == "multiple_shooting" else Collocation
         self.coll = transcription(self.form, intervals or opts.intervals, degree or opts.degree,
-                                  scheme or opts.scheme)
+                                  scheme or opts.scheme, grounded=grounded)
         self.tol = opts.tolerance
         # MX graph over a map of per-interval SX functions: derivatives are built per
         # interval, so the build cost does not grow with N (an all-SX graph took ~0.3 s).
@@ -87,7 +98,7 @@ class StaticsSolver:
         g = self.coll.residual(w, p)
         self._lbx = -np.inf * np.ones(self.coll.n_w)
         if self.coll.free_length:
-            self._lbx[-1] = 1e-6
+            self._lbx[self.coll.i_lam] = 1e-6
         self._ipopt = ca.nlpsol("statics_ipopt", "ipopt", {"x": w, "p": p, "f": 0, "g": g}, {
             "print_time": False,
             "error_on_fail": False,
@@ -108,7 +119,7 @@ class StaticsSolver:
         # solvers of the same scene on other meshes (by number of intervals), shared by the
         # error estimate and the mesh refinement so that no mesh is built twice
         self._cache = {} if cache is None else cache
-        self._cache[self.coll.mesh.intervals] = self
+        self._cache[(self.coll.mesh.intervals, grounded)] = self
         self.build_time_s = time.perf_counter() - t0
 
     # -- public -------------------------------------------------------------------------
@@ -179,19 +190,36 @@ class StaticsSolver:
 
     # -- internals ----------------------------------------------------------------------
     def _guess(self, scene: Scene) -> tuple[np.ndarray, str]:
+        if self.grounded:
+            td = touchdown_guess(scene, self.mesh.sigma())
+            if td is not None:
+                return self.coll.pack(*td), "catenary with touchdown"
         r, t, length, kind = initial_guess(scene, self.mesh.sigma(), scene.solver.initial_guess)
         return self.coll.pack(r, t, length), kind
 
     def _from_solution(self, sol: StaticsSolution) -> np.ndarray:
+        """Unknowns from a neighbouring solution (any mesh, grounded or not)."""
+        off = sol.node_offset
+        g = sol.grounded_length if self.grounded else 0.0
+        if self.grounded and not off:
+            # switching contact on: the grounded length starts as the stretch that went
+            # below the seabed at end_a (or a small fraction of the length)
+            below = seabed.gap(self.scene.environment.seabed, sol.position) < 0
+            first_above = int(np.argmin(below[1:])) + 1 if below[1:].any() else 0
+            g = max(float(sol.s[first_above]), 1e-3 * sol.length)
+        if self.grounded or not off:
+            s_src, r_src, t_src = sol.s[off:], sol.position[off:], sol.tension_vector[off:]
+        else:  # contact switched off: the grounded nodes become part of the profile
+            s_src, r_src, t_src = sol.s, sol.position, sol.tension_vector
+        s0 = g if self.grounded else 0.0
         sig = self.mesh.sigma()
-        src = sol.s / sol.length
+        src = (s_src - s0) / (sol.length - s0)
         if len(src) == len(sig) and np.allclose(src, sig, atol=1e-12, rtol=0):
-            r, t = sol.position, sol.tension_vector
+            r, t = r_src, t_src
         else:
-            r = np.stack([np.interp(sig, src, sol.position[:, k]) for k in range(3)], axis=1)
-            t = np.stack([np.interp(sig, src, sol.tension_vector[:, k]) for k in range(3)],
-                         axis=1)
-        return self.coll.pack(r, t, sol.length)
+            r = np.stack([np.interp(sig, src, r_src[:, k]) for k in range(3)], axis=1)
+            t = np.stack([np.interp(sig, src, t_src[:, k]) for k in range(3)], axis=1)
+        return self.coll.pack(r, t, sol.length, g)
 
     def _newton_solve(self, w0: np.ndarray, p: np.ndarray) -> tuple[np.ndarray, int, bool, str]:
         if self._newton is None:
@@ -242,9 +270,26 @@ class StaticsSolver:
                        wall: float, diag: dict[str, Any]) -> StaticsSolution:
         g = np.asarray(self.coll.residual(w, p)).reshape(-1)
         viol = float(np.max(np.abs(g))) if np.all(np.isfinite(g)) else math.inf
-        r, t, length = self.coll.unpack(w, p)
-        s = self.mesh.sigma() * length
+        r, t, length, g_len = self.coll.unpack(w, p)
+        s = g_len + self.mesh.sigma() * (length - g_len)
         finite = bool(np.all(np.isfinite(w)))
+        offset = 0
+        if self.grounded and finite:
+            sb, cab = self.scene.environment.seabed, self.scene.cable
+            tmag0 = float(np.linalg.norm(t[0]))
+            e = t[0] / tmag0
+            k = float(seabed.axial_gradient(sb, cab.weight_in_water, e))
+            anchor = np.asarray(self.scene.end_a.position, dtype=float)
+            ng = max(2, min(41, int(np.ceil(g_len / max(length, 1e-12) * len(s))) + 1))
+            sg, rg, tg = seabed.grounded_nodes(anchor, e, tmag0, k, max(g_len, 0.0),
+                                               cab.axial_stiffness, ng)
+            s, r, t = (np.concatenate([sg[:-1], s]), np.vstack([rg[:-1], r]),
+                       np.vstack([tg[:-1], t]))
+            offset = ng - 1
+            diag["touchdown"] = {"position": [float(v) for v in r[offset]],
+                                 "grounded_length": float(g_len)}
+        elif self.scene.environment.seabed is not None:
+            diag["touchdown"] = None
         tol_ok = viol <= 10.0 * self.tol
         if ok and finite and tol_ok:
             status, msg = "solved", f"converged ({how}), max scaled residual {viol:.2e}"
@@ -258,15 +303,19 @@ class StaticsSolver:
             status, msg = "failed", f"did not converge ({how}); max scaled residual {viol:.2e}"
         sol = StaticsSolution(status=status, message=msg, s=s, position=r, tension_vector=t,
                               length=length, iterations=it, wall_time_s=wall,
-                              constraint_violation=viol, diagnostics=diag)
+                              constraint_violation=viol, diagnostics=diag, node_offset=offset)
         tmax = float(np.max(np.linalg.norm(t, axis=1))) if finite else math.nan
         diag["smoothing_force_bound_N"] = self.form.smoothing_force_bound(length, tmax)
         diag["min_z"] = float(np.min(r[:, 2])) if finite else math.nan
         warnings = []
-        if finite and diag["min_z"] < -1e-6 * self.form.scales.length:
+        sb = self.scene.environment.seabed
+        if finite and sb is None and diag["min_z"] < -1e-6 * self.form.scales.length:
             warnings.append(
-                f"the profile goes {-diag['min_z']:.3g} m below the seabed plane z = 0; this "
-                "formulation has no seabed contact, so that part is not physical")
+                f"the profile goes {-diag['min_z']:.3g} m below the seabed plane z = 0; the "
+                "scene has no [environment.seabed] (no contact model), so that part is not "
+                "physical")
+        if finite and sb is not None:
+            diag["min_gap"] = float(np.min(seabed.gap(sb, r)))
         if finite and np.min(np.linalg.norm(t, axis=1)) <= 0.0:
             warnings.append("tension vanishes somewhere along the cable")
         diag["warnings"] = warnings
@@ -275,10 +324,10 @@ class StaticsSolver:
     def _coarse_solver(self, level: int) -> StaticsSolver:
         """Solver on N / 2**level intervals, built on first use (shared cache)."""
         n = self.mesh.intervals // 2**level
-        if n not in self._cache:
+        if (n, self.grounded) not in self._cache:
             StaticsSolver(self.scene, intervals=n, degree=self.mesh.degree,
-                          scheme=self.mesh.scheme, cache=self._cache)
-        return self._cache[n]
+                          scheme=self.mesh.scheme, cache=self._cache, grounded=self.grounded)
+        return self._cache[(n, self.grounded)]
 
     def _estimate_error(self, sol: StaticsSolution, scene: Scene, current_scale: float) -> None:
         """Richardson estimate with the observed order.
@@ -317,13 +366,16 @@ class StaticsSolver:
             polynomials; multiple-shooting solutions at their common nodes."""
             dforce = max(np.max(np.abs(fine.force_a - coarse.force_a)),
                          np.max(np.abs(fine.force_b - coarse.force_b)))
+            fo, co = fine.node_offset, coarse.node_offset
+            fpos, cpos = fine.position[fo:], coarse.position[co:]
             if solver.mesh.degree >= 1:
-                sig = fine.s / fine.length
-                dpos = np.max(np.abs(fine.position
-                                     - solver.coll.interpolate(coarse.position, sig)))
+                g = fine.grounded_length
+                sig = (fine.s[fo:] - g) / (fine.length - g)
+                dpos = np.max(np.abs(fpos - solver.coll.interpolate(cpos, sig)))
             else:
-                dpos = np.max(np.abs(fine.position[::2] - coarse.position))
-            return float(dforce), max(float(dpos), abs(fine.length - coarse.length))
+                dpos = np.max(np.abs(fpos[::2] - cpos))
+            return float(dforce), max(float(dpos), abs(fine.length - coarse.length),
+                                      abs(fine.grounded_length - coarse.grounded_length))
 
         d1 = diff(sols[0], sols[1], self._coarse_solver(1))
         p = self.mesh.order
@@ -346,30 +398,88 @@ class StaticsSolver:
 
 # -- convenience API ---------------------------------------------------------------------
 
+def _can_ground(scene: Scene) -> bool:
+    """True when the scene models the seabed and end_a is fixed on it (an anchor)."""
+    sb = scene.environment.seabed
+    if sb is None or not all(scene.end_a.fixed_mask):
+        return False
+    gap = seabed.gap(sb, np.asarray(scene.end_a.position, dtype=float))[0]
+    return abs(gap) <= 1e-6 * reference_length(scene)
+
+
+def _penetration(sol: StaticsSolution, scene: Scene) -> float:
+    """Largest depth below the seabed of the computed (suspended) nodes, m (0 if none)."""
+    gaps = seabed.gap(scene.environment.seabed, sol.position[sol.node_offset + 1:])
+    return float(max(0.0, -np.min(gaps))) if gaps.size else 0.0
+
+
+def _solve_with_contact(scene: Scene, get: Callable[[bool], StaticsSolver],
+                        warm_start: StaticsSolution | None,
+                        error_estimate: bool | None = None) -> StaticsSolution:
+    """Solve, switching seabed contact at end_a on or off as the solution demands.
+
+    Without ``[environment.seabed]`` this is a plain solve. With it: a solution that
+    passes below the seabed next to an anchored end_a is re-solved with a grounded part
+    (touchdown formulation); a grounded solution whose grounded length comes out negative
+    is re-solved without. A result that still passes below the seabed (contact away from
+    end_a, which is not modelled) is a failure, never a solution.
+    """
+    kw = {"error_estimate": error_estimate}
+    grounded = bool(warm_start is not None and warm_start.node_offset and _can_ground(scene))
+    sol = get(grounded).solve(scene, warm_start=warm_start, **kw)
+    if scene.environment.seabed is None or sol.status not in ("solved", "inaccurate"):
+        return sol
+    tol = 1e-6 * reference_length(scene)
+    if not grounded and _can_ground(scene) and _penetration(sol, scene) > tol:
+        alt = get(True).solve(scene, warm_start=sol, **kw)
+        if alt.status not in ("solved", "inaccurate") or alt.grounded_length <= 0:
+            alt = get(True).solve(scene, **kw)  # cold, from the catenary with touchdown
+        if alt.status in ("solved", "inaccurate") and alt.grounded_length > 0:
+            sol = alt
+    elif grounded and sol.grounded_length < 0:
+        sol = get(False).solve(scene, warm_start=sol, **kw)
+    depth = _penetration(sol, scene) if sol.status in ("solved", "inaccurate") else 0.0
+    if depth > tol:
+        sol.status = "failed"
+        sol.message = (
+            f"the cable passes {depth:.3g} m below the seabed"
+            + ("" if _can_ground(scene) else " and end_a is not anchored on it")
+            + "; contact away from an anchored end_a is not modelled yet")
+    return sol
+
+
 def solve_collocation(scene: Scene, warm_start: StaticsSolution | None = None
                       ) -> StaticsSolution:
-    """Solve one scene by collocation or multiple shooting, refining the mesh to accuracy.
+    """Solve one scene by collocation or multiple shooting, with accuracy control.
 
-    Builds a solver (use :class:`StaticsSolver` to reuse one across solves). When the error
+    Builds its solvers (use :class:`StaticsSolver` to reuse one across solves). Seabed
+    contact is switched on where needed (:func:`_solve_with_contact`). When the error
     estimate exceeds ``solver.accuracy`` and ``solver.refine`` is true, the number of
     intervals is doubled (each solve warm-started from the previous one) up to
     ``solver.max_intervals``; the diagnostics list the refinement steps.
     """
     t0 = time.perf_counter()
-    solver = StaticsSolver(scene)
-    build = solver.build_time_s
-    sol = solver.solve(scene, warm_start=warm_start)
-    history = [(solver.mesh.intervals, sol.error_estimate)]
+    cache: dict[tuple, StaticsSolver] = {}
+
+    def getter(n: int) -> Callable[[bool], StaticsSolver]:
+        def get(grounded: bool) -> StaticsSolver:
+            if (n, grounded) not in cache:
+                StaticsSolver(scene, intervals=n, cache=cache, grounded=grounded)
+            return cache[(n, grounded)]
+        return get
+
+    n = scene.solver.intervals
+    sol = _solve_with_contact(scene, getter(n), warm_start)
+    history = [(n, sol.error_estimate)]
     opts = scene.solver
-    while (sol.status == "inaccurate" and opts.refine
-           and 2 * solver.mesh.intervals <= opts.max_intervals):
-        solver = StaticsSolver(scene, intervals=2 * solver.mesh.intervals, cache=solver._cache)
-        build += solver.build_time_s
-        sol = solver.solve(scene, warm_start=sol)
-        history.append((solver.mesh.intervals, sol.error_estimate))
+    while sol.status == "inaccurate" and opts.refine and 2 * n <= opts.max_intervals:
+        n *= 2
+        sol = _solve_with_contact(scene, getter(n), sol)
+        history.append((n, sol.error_estimate))
+    build = sum(sv.build_time_s for sv in cache.values())
     if len(history) > 1:
         sol.diagnostics["refinement"] = [
-            {"intervals": n, "error_estimate": e} for n, e in history]
+            {"intervals": k, "error_estimate": e} for k, e in history]
         sol.wall_time_s = time.perf_counter() - t0 - build
     sol.diagnostics["build_time_s"] = build
     return sol
@@ -428,25 +538,32 @@ def sweep(scene: Scene, key: str, values: Iterable[Any],
             sol.diagnostics["sweep"] = {"key": key, "value": v}
             out.append(sol)
         return out
-    solvers: dict[tuple, StaticsSolver] = {}
+    caches: dict[tuple, dict[tuple, StaticsSolver]] = {}
     out = []
     done: list[tuple[Any, tuple, StaticsSolution]] = []  # (value, structure, solution)
     for v in values:
         sc = scene.with_overrides({key: v})
         k = _structure_key(sc)
-        if k not in solvers:
-            solvers[k] = StaticsSolver(sc)
+        cache = caches.setdefault(k, {})
+
+        def get(grounded: bool, sc: Scene = sc, cache: dict = cache) -> StaticsSolver:
+            n = sc.solver.intervals
+            if (n, grounded) not in cache:
+                StaticsSolver(sc, cache=cache, grounded=grounded)
+            return cache[(n, grounded)]
+
         prev = done[-1][2] if done and done[-1][2].success else None
         start = prev
         if (len(done) >= 2 and prev is not None and done[-2][2].success
                 and done[-1][1] == k and done[-2][1] == k
                 and all(isinstance(x, (int, float)) for x in (v, done[-1][0], done[-2][0]))
-                and done[-1][0] != done[-2][0]):
+                and done[-1][0] != done[-2][0]
+                and prev.node_offset == done[-2][2].node_offset == 0):
             factor = (v - done[-1][0]) / (done[-1][0] - done[-2][0])
             start = _extrapolate(done[-2][2], prev, factor)
-        sol = solvers[k].solve(sc, warm_start=start, error_estimate=error_estimate)
+        sol = _solve_with_contact(sc, get, start, error_estimate)
         if start is not prev and not sol.success:
-            sol = solvers[k].solve(sc, warm_start=prev, error_estimate=error_estimate)
+            sol = _solve_with_contact(sc, get, prev, error_estimate)
         sol.diagnostics["sweep"] = {"key": key, "value": v}
         out.append(sol)
         done.append((v, k, sol))

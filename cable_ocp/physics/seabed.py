@@ -1,0 +1,83 @@
+"""Seabed plane and the grounded part of a cable lying on it (touchdown formulation).
+
+The cable leaves an anchor on the seabed (end_a), lies on the plane for a grounded length
+g, and lifts off at the touchdown point (TDP), where it is tangent to the seabed:
+T(TDP) . n = 0 with n the plane's unit normal. On the seabed the cable carries no current
+load (it lies in the boundary layer; CONVENTIONS "Seabed") and no lateral load resists
+it, so the grounded part is straight, from the anchor towards the TDP along e = T/|T|.
+
+Axial tension along the grounded part, with s' measured from the anchor (0 <= s' <= g):
+
+    T(s') = max(T_td - k (g - s'), 0),    k = w e_z + mu w n_z,
+
+where w e_z is the weight component along a sloping line and mu w n_z the axial friction
+(mu times the normal reaction w n_z per length). Friction convention (quasi-static, as in
+MoorPy's catenary and most mooring codes): the cable is taken to have been pulled taut from
+the suspended side, so friction reduces the tension from the TDP towards the anchor; where
+it would go negative the cable lies slack with zero tension. The lateral component of the
+weight on a slope is assumed carried by the seabed (embedment), not modelled.
+
+The TDP lies at r_a + e (g + (1/EA) integral of T ds') (stretch of the grounded part).
+"""
+
+from __future__ import annotations
+
+import math
+from typing import Any
+
+import casadi as ca
+import numpy as np
+
+from cable_ocp.scene import Seabed
+
+
+def normal(seabed: Seabed) -> np.ndarray:
+    """Unit normal of the seabed plane, pointing up into the water."""
+    a, h = math.radians(seabed.slope_deg), math.radians(seabed.slope_heading_deg)
+    return np.array([-math.sin(a) * math.cos(h), -math.sin(a) * math.sin(h), math.cos(a)])
+
+
+def height(seabed: Seabed, x: Any, y: Any) -> Any:
+    """Seabed height z at (x, y), m."""
+    t = math.tan(math.radians(seabed.slope_deg))
+    h = math.radians(seabed.slope_heading_deg)
+    return seabed.depth_offset + t * (x * math.cos(h) + y * math.sin(h))
+
+
+def gap(seabed: Seabed, r: np.ndarray) -> np.ndarray:
+    """Signed distance of points (n, 3) above the seabed plane, m (negative = below)."""
+    r = np.atleast_2d(r)
+    return (r[:, 2] - height(seabed, r[:, 0], r[:, 1])) * normal(seabed)[2]
+
+
+def axial_gradient(seabed: Seabed, w: float, e: Any) -> Any:
+    """k = w e_z + mu w n_z: tension drop per metre from the TDP towards the anchor, N/m."""
+    return w * e[2] + seabed.friction * w * float(normal(seabed)[2])
+
+
+def grounded_tension_integral(t_td: Any, k: Any, g: Any) -> Any:
+    """Integral of T over the grounded length (N m), with the slack floor at T = 0.
+
+    Works on CasADi expressions and floats; k may be 0 (no friction, flat seabed).
+    """
+    if isinstance(k, (int, float)) and k <= 0:
+        return t_td * g - 0.5 * k * g * g
+    g_eff = ca.fmin(g, t_td / ca.fmax(k, 1e-300)) if not isinstance(k, (int, float)) else (
+        min(g, t_td / k))
+    if isinstance(k, (int, float)):
+        return t_td * g_eff - 0.5 * k * g_eff * g_eff
+    return ca.if_else(k > 0, t_td * g_eff - 0.5 * k * g_eff * g_eff, t_td * g - 0.5 * k * g * g)
+
+
+def grounded_nodes(anchor: np.ndarray, e: np.ndarray, t_td: float, k: float, g: float,
+                   ea: float, n: int) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """Arc length (from the anchor), positions and tension vectors of n grounded nodes."""
+    sp = np.linspace(0.0, g, n)
+    tens = np.maximum(t_td - k * (g - sp), 0.0)
+    if math.isfinite(ea):
+        # stretched distance from the anchor: integral of (1 + T/EA) ds'
+        seg = np.concatenate([[0.0], np.cumsum(0.5 * (tens[1:] + tens[:-1]) * np.diff(sp))])
+        dist = sp + seg / ea
+    else:
+        dist = sp
+    return sp, anchor + np.outer(dist, e), np.outer(tens, e)
