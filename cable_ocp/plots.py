@@ -14,6 +14,15 @@ import numpy as np  # noqa: E402
 from cable_ocp.statics.solution import StaticsSolution  # noqa: E402
 
 
+def _save(fig: plt.Figure, path: str | Path) -> Path:
+    """Lay out, write and close a figure."""
+    fig.tight_layout()
+    path = Path(path)
+    fig.savefig(path, dpi=120)
+    plt.close(fig)
+    return path
+
+
 def plot_statics(sol: StaticsSolution, path: str | Path, title: str = "") -> Path:
     """Save a 3D profile and the tension along the cable to ``path`` (PNG, PDF, ...)."""
     fig = plt.figure(figsize=(11, 4.8))
@@ -40,11 +49,7 @@ def plot_statics(sol: StaticsSolution, path: str | Path, title: str = "") -> Pat
     ax2.set_title(f"L = {sol.length:.2f} m, max |T| = {sol.max_tension / 1e3:.3f} kN")
     if title:
         fig.suptitle(title)
-    fig.tight_layout()
-    path = Path(path)
-    fig.savefig(path, dpi=120)
-    plt.close(fig)
-    return path
+    return _save(fig, path)
 
 
 def plot_sweep(values: Sequence[float], forces: np.ndarray, path: str | Path, xlabel: str,
@@ -64,8 +69,4 @@ def plot_sweep(values: Sequence[float], forces: np.ndarray, path: str | Path, xl
     ax.legend()
     if title:
         ax.set_title(title)
-    fig.tight_layout()
-    path = Path(path)
-    fig.savefig(path, dpi=120)
-    plt.close(fig)
-    return path
+    return _save(fig, path)

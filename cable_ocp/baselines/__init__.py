@@ -20,8 +20,12 @@ from __future__ import annotations
 
 import importlib
 from collections.abc import Callable
+from typing import TYPE_CHECKING
 
 from cable_ocp.errors import CableOCPError
+
+if TYPE_CHECKING:
+    from cable_ocp.scene import Scene
 
 # name -> "module:function"; imported on first use
 METHODS: dict[str, str] = {
@@ -32,6 +36,25 @@ METHODS: dict[str, str] = {
     "huang_semianalytic": "cable_ocp.baselines.huang:solve",
     "chucheepsakul_fem": "cable_ocp.baselines.chucheepsakul:solve",
 }
+
+
+def unsupported(method: str, reason: str) -> CableOCPError:
+    """The error a method raises for a scene it cannot represent (names solver.method)."""
+    return CableOCPError(f"solver.method = {method!r} cannot represent this scene: {reason}")
+
+
+def rising_fixed_ends(scene: Scene, method: str, why: str) -> tuple[float, float]:
+    """Heights (m) of end_a and end_b for the z-parametrised methods (000, 001), which
+    need both ends fixed and end_b above end_a; ``why`` cites the method's equations."""
+    ea, eb = scene.end_a, scene.end_b
+    if not all(ea.fixed_mask) or not all(eb.fixed_mask):
+        raise unsupported(method, f"both end_a and end_b need a fully fixed position ({why})")
+    za, zb = float(ea.position[2]), float(eb.position[2])  # type: ignore[arg-type]
+    if not zb > za:
+        raise unsupported(method, f"end_b (z = {zb} m) must lie above end_a (z = {za} m): z "
+                                  "is the independent variable and the cable must rise "
+                                  "monotonically from end_a to end_b")
+    return za, zb
 
 
 def get_method(name: str) -> Callable:

@@ -94,6 +94,7 @@ import numpy as np
 import scipy.sparse as sp
 from scipy.sparse.linalg import spsolve
 
+from cable_ocp.baselines import rising_fixed_ends, unsupported
 from cable_ocp.errors import CableOCPError
 from cable_ocp.scene import Scene
 from cable_ocp.statics.initial_guess import initial_guess
@@ -112,7 +113,7 @@ _WG = 0.5 * _WG
 
 
 def _fail(reason: str) -> CableOCPError:
-    return CableOCPError(f"solver.method = {METHOD!r} cannot represent this scene: {reason}")
+    return unsupported(METHOD, reason)
 
 
 def _hermite(xi: np.ndarray, h: float) -> tuple[np.ndarray, np.ndarray]:
@@ -142,13 +143,8 @@ class FemProblem:
     def __init__(self, scene: Scene, elements: int, tangential_in_tension: bool = True):
         self.tangential_in_tension = tangential_in_tension
         ea, eb = scene.end_a, scene.end_b
-        if not all(ea.fixed_mask) or not all(eb.fixed_mask):
-            raise _fail("both end_a and end_b need a fully fixed position (001 fixes both ends "
-                        "and integrates in z between them)")
-        za, zb = float(ea.position[2]), float(eb.position[2])  # type: ignore[arg-type]
-        if not zb > za:
-            raise _fail(f"end_b (z = {zb} m) must lie above end_a (z = {za} m): x(z), y(z) "
-                        "need a cable that rises monotonically from end_a to end_b")
+        za, zb = rising_fixed_ends(
+            scene, METHOD, "001 fixes both ends and integrates in z between them")
         if ea.tension is not None and eb.tension is not None:  # pragma: no cover - schema
             raise _fail("only one end tension can be given")
         self.scene = scene

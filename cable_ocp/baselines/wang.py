@@ -122,6 +122,7 @@ from collections.abc import Callable
 import numpy as np
 from scipy.optimize import minimize
 
+from cable_ocp.baselines import rising_fixed_ends, unsupported
 from cable_ocp.errors import CableOCPError
 from cable_ocp.scene import Scene
 from cable_ocp.statics.initial_guess import initial_guess
@@ -138,7 +139,7 @@ __all__ = ["METHOD", "TOLERANCE", "WangProblem", "solve"]
 
 
 def _fail(reason: str) -> CableOCPError:
-    return CableOCPError(f"solver.method = {METHOD!r} cannot represent this scene: {reason}")
+    return unsupported(METHOD, reason)
 
 
 class WangProblem:
@@ -170,14 +171,8 @@ class WangProblem:
     def __init__(self, scene: Scene):
         env, cab = scene.environment, scene.cable
         ea, eb = scene.end_a, scene.end_b
-        if not all(ea.fixed_mask) or not all(eb.fixed_mask):
-            raise _fail("both end_a and end_b need a fully fixed position (000 eqs (10)-(16) "
-                        "integrate from a fixed bottom end to a fixed top end)")
-        za, zb = float(ea.position[2]), float(eb.position[2])  # type: ignore[arg-type]
-        if not zb > za:
-            raise _fail(f"end_b (z = {zb} m) must lie above end_a (z = {za} m): z is the "
-                        "independent variable and the cable must rise monotonically from "
-                        "end_a to end_b")
+        za, zb = rising_fixed_ends(
+            scene, METHOD, "000 eqs (10)-(16) integrate from a fixed bottom end to a fixed top end")
         self.scene = scene
         self.origin = np.array(ea.position, dtype=float)
         self.height = h_ = zb - za
