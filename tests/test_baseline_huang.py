@@ -39,7 +39,13 @@ from cable_ocp.statics.solver import solve as solve_collocation
 
 
 def _scene(end_a: dict, end_b: dict, *, length: float = 100.0, w: float = 10.0,
-           ea: float | str = 1e5, tol: float = 1e-12) -> Scene:
+           ea: float | str = 1e5, tol: float = 1e-12, z0: float = 400.0) -> Scene:
+    """A cable without current; numeric end heights are lifted by z0 (m) so that the
+    constructed cases stay above the seabed z = 0."""
+    end_a, end_b = ({k: list(v) for k, v in e.items()} for e in (end_a, end_b))
+    for e in (end_a, end_b):
+        if "position" in e and not isinstance(e["position"][2], str):
+            e["position"][2] += z0
     return scene_from_dict({
         "environment": {"water_depth": 500.0, "water_density": 1025.0},
         "cable": {"length": length, "weight_in_water": w, "axial_stiffness": ea},
@@ -180,9 +186,9 @@ def test_no_point_load_matches_closed_form_catenary(ea: float | str) -> None:
                                            - np.arcsinh(big_v / big_h))
     z = (big_v * s + w * s**2 / 2) * inv_ea + big_h / w * (
         np.sqrt(1 + ((big_v + w * s) / big_h) ** 2) - np.sqrt(1 + (big_v / big_h) ** 2))
-    expect = np.column_stack([xh * eh[0], xh * eh[1], z])
+    expect = np.column_stack([xh * eh[0], xh * eh[1], z + 400.0])
     np.testing.assert_allclose(sol.position, expect, rtol=0, atol=1e-9 * length)
-    np.testing.assert_allclose(sol.position[-1], [60.0, 45.0, 30.0], rtol=0,
+    np.testing.assert_allclose(sol.position[-1], [60.0, 45.0, 430.0], rtol=0,
                                atol=1e-9 * length)
     # tension: T(s) = T(0) + (0, 0, w s)
     np.testing.assert_allclose(sol.tension_vector, t0 + np.outer(s, [0, 0, w]), rtol=1e-12,
@@ -363,7 +369,8 @@ def test_berteaux_free_length() -> None:
 
 def test_current_ramp_rescues_drag_dominated_case() -> None:
     """A light cable (5 N/m) in 2 m/s current, 1000 m between an anchor and a point 300 m
-    downstream, 200 m up (problems/extreme/drag_dominated.toml with speed 2, length 1000):
+    downstream, 200 m up (problems/extreme/drag_dominated.toml with speed 2, length 1000,
+lifted 200 m clear of the seabed; the current is uniform):
     drag ~ 16x the weight. With N = 160 segments, drag at the segment ends, the direct
     outer iteration from the drag-free catenary cycles without converging (reported as
     "diverged", not "solved"); raising the current in steps converges, to the collocation
@@ -371,6 +378,8 @@ def test_current_ramp_rescues_drag_dominated_case() -> None:
     6.3e-2 at N = 40, 80)."""
     sc = load_scene("problems/extreme/drag_dominated.toml", {
         "environment.current.speed": 2.0, "cable.length": 1000.0,
+        "environment.water_depth": 600.0, "end_a.position": [0.0, 0.0, 200.0],
+        "end_b.position": [300.0, 0.0, 400.0],  # lifted: the cable sags 56 m below end_a
         "solver.error_estimate": False, "solver.intervals": 160})
     direct = solve_huang(sc, current_ramp="off")
     assert not direct.success
@@ -383,3 +392,13 @@ def test_current_ramp_rescues_drag_dominated_case() -> None:
     err = np.abs(ramped.force_a - ref.force_a).max() / np.abs(ref.force_a).max()
     assert err < 0.04
     assert math.isclose(ramped.diagnostics["current_ramp"][-1], 1.0)
+
+
+def test_profile_through_seabed_is_not_solved() -> None:
+    """No seabed contact in 004 ch. 2: a slack cable whose free-hanging answer passes
+    below z = 0 must not be reported as solved."""
+    sc = _scene({"position": [0.0, 0.0, 0.0]}, {"position": [100.0, 0.0, 10.0]},
+                length=200.0, z0=0.0)
+    sol = solve_point_loads(sc)
+    assert sol.status == "seabed_contact"
+    assert sol.diagnostics["min_z"] < -10.0

@@ -74,6 +74,9 @@ unstretched arc length from end_a (m), F the external force on the cable (N).
 Frames: the scene and the returned solution use the project frame (z up, seabed z = 0);
 Huang's z-down frame (004 (2.3), (2.42)) exists only inside this module (``_FLIP``).
 
+There is no seabed contact (004 ch. 2 has none): a profile that goes below z = 0 comes
+back with status ``"seabed_contact"``, not ``"solved"``.
+
 The returned profile lists each piece's start and end, so at a loaded point s appears
 twice, with the tension just before and just after the load (T jumps by -F there).
 """
@@ -392,6 +395,30 @@ def _inner_solve(scene: Scene, length: float, load_s: np.ndarray, load_f: np.nda
                   converged=converged, message=msg)
 
 
+def _lowest_z(scene: Scene, inner: _Inner) -> float:
+    """Exact lowest height of the profile, m (project frame).
+
+    Inside a piece the cable is lowest where the vertical tension component changes sign
+    (Huang's X = a_z + w s goes from < 0 to > 0); there the piece is cut and its exact
+    increment evaluated.
+    """
+    w = scene.cable.weight_in_water
+    nodes = inner.nodes()
+    low = float(np.min(nodes[:, 2]))
+    if w <= 0:
+        return low
+    inv_ea = 1.0 / scene.cable.axial_stiffness if scene.cable.elastic else 0.0
+    s0, ds = inner.breaks[:-1], np.diff(inner.breaks)
+    xa = inner.v[2] + inner.cum[:, 2] + w * s0
+    xb = xa + w * ds
+    cut = (xa < 0) & (xb > 0)
+    if np.any(cut):
+        dr, _, _ = _piece_terms(inner.v, s0[cut], -xa[cut] / w, inner.cum[cut], w, inv_ea,
+                                derivatives=False)
+        low = min(low, float(np.min(nodes[:-1][cut, 2] - dr[:, 2])))
+    return low
+
+
 def _profile(inner: _Inner, w: float) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
     """s, positions and tension vectors (project frame) at every piece's start and end."""
     br = inner.breaks
@@ -546,8 +573,10 @@ def solve_point_loads(scene: Scene, point_loads: _PointLoads | None = None, *,
         from end_a, m (0 <= s <= L); F in N. A load at s = 0 or s = L acts on the cable's
         end point, so the reported end force includes it (F^0 and F^N of (2.1), (2.40)).
     length : float, optional
-        Unstretched length, m; default ``scene.cable.length``. With a free length and no
-        ``length``, L is found by a 1-D root find on the prescribed end tension.
+        Unstretched length, m; default ``scene.cable.length``. The profile is listed at
+        ``solver.intervals + 1`` uniform nodes and at the loads (exact everywhere). With
+        a free length and no ``length``, L is found by a 1-D root find on the prescribed
+        end tension.
     v_guess : sequence of 3 floats, optional
         Starting end force V (Huang's frame, N) for Newton.
 
@@ -565,7 +594,8 @@ def solve_point_loads(scene: Scene, point_loads: _PointLoads | None = None, *,
 
     def run(ell: float, prev: _Inner | None) -> tuple[_Inner | None, float]:
         guess = prev.v if prev is not None else (None if v_guess is None else np.asarray(v_guess))
-        inner = _inner_solve(scene, ell, load_s, load_f, guess)
+        inner = _inner_solve(scene, ell, load_s, load_f, guess,
+                             np.linspace(0.0, ell, scene.solver.intervals + 1))
         if not inner.converged:
             return None, math.nan
         return inner, float(np.linalg.norm(inner.tension_at_end(at_b, w)))
@@ -577,7 +607,8 @@ def solve_point_loads(scene: Scene, point_loads: _PointLoads | None = None, *,
     else:
         ell = float(length if length is not None else scene.cable.length)
         inner = _inner_solve(scene, ell, load_s, load_f,
-                             None if v_guess is None else np.asarray(v_guess, float))
+                             None if v_guess is None else np.asarray(v_guess, float),
+                             np.linspace(0.0, ell, scene.solver.intervals + 1))
     wall = time.perf_counter() - t0
     return _make_solution(scene, inner, wall, iterations=inner.iterations,
                           ok=inner.converged, msg=inner.message, diag={
@@ -602,7 +633,14 @@ def _make_solution(scene: Scene, inner: _Inner, wall: float, iterations: int, ok
     tol = scene.solver.tolerance
     finite = bool(np.all(np.isfinite(r)) and np.all(np.isfinite(t)))
     ends_ok = viol <= 10.0 * tol
-    if ok and finite and ends_ok:
+    min_z = _lowest_z(scene, inner) if finite else math.nan
+    below = finite and min_z < -1e-6 * inner.length
+    if ok and finite and ends_ok and below:
+        # no seabed contact in 004 ch. 2: a profile through the seabed is not an answer
+        status, message = "seabed_contact", (
+            f"{METHOD}: {msg}, but the profile goes {-min_z:.3g} m below the seabed z = 0; "
+            "this method has no seabed contact")
+    elif ok and finite and ends_ok:
         status, message = "solved", f"{METHOD}: {msg}; end mismatch {viol:.2e}"
     elif ok and finite:
         status, message = "failed", (f"{METHOD}: {msg}, but the end mismatch {viol:.2e} exceeds "
@@ -610,10 +648,6 @@ def _make_solution(scene: Scene, inner: _Inner, wall: float, iterations: int, ok
     else:
         status, message = status_fail, f"{METHOD}: {msg}"
     warnings: list[str] = []
-    min_z = float(np.min(r[:, 2])) if finite else math.nan
-    if finite and min_z < -1e-6 * inner.length:
-        warnings.append(f"the profile goes {-min_z:.3g} m below the seabed plane z = 0; this "
-                        "method has no seabed contact, so that part is not physical")
     if finite and np.min(np.linalg.norm(t, axis=1)) <= 0.0:
         warnings.append("tension vanishes somewhere along the cable")
     out = {"method": METHOD, "V_huang": [float(x) for x in inner.v],
