@@ -20,7 +20,9 @@ from __future__ import annotations
 
 import importlib
 from collections.abc import Callable
-from typing import TYPE_CHECKING
+from typing import TYPE_CHECKING, Any
+
+import numpy as np
 
 from cable_ocp.errors import CableOCPError
 
@@ -55,6 +57,56 @@ def rising_fixed_ends(scene: Scene, method: str, why: str) -> tuple[float, float
                                   "is the independent variable and the cable must rise "
                                   "monotonically from end_a to end_b")
     return za, zb
+
+
+UNRESOLVED_LIMIT = 1e-2  # the robustness matrix calls 1 % off a wrong answer
+
+
+def with_resolution_check(scene: Scene, solve_fn: Callable, warm_start: Any, order: float,
+                          method: str) -> Any:
+    """Solve at N = ``solver.intervals`` and N/2 and attach a Richardson error estimate.
+
+    est = max(end-force change / largest tension, length change / L) / (2^order - 1).
+    A converged solution whose estimate exceeds 1 % is reported as ``"unresolved"``: the
+    method's equations are solved but its discretisation is too coarse for the scene, and
+    calling that a solution would put a wrong answer in a table. Used by the baselines that
+    carry no estimate of their own (Wang's has one built in).
+    """
+    sol = solve_fn(scene, warm_start)
+    n = scene.solver.intervals
+    if not sol.success or n < 4:
+        return sol
+    half = solve_fn(scene.with_overrides({"solver.intervals": n // 2}), sol)
+    if not half.success:
+        sol.diagnostics["error_estimate_note"] = f"N/2 solve failed: {half.message}"
+        return sol
+    dforce = max(np.max(np.abs(sol.force_a - half.force_a)),
+                 np.max(np.abs(sol.force_b - half.force_b))) / sol.max_tension
+    diff = max(float(dforce), abs(sol.length - half.length) / sol.length)
+    sol.error_estimate = diff / (2.0**order - 1.0)
+    sol.diagnostics["error_estimate_detail"] = {
+        "method": f"Richardson, N={n} vs N={n // 2}, assumed order {order}"}
+    if sol.error_estimate > UNRESOLVED_LIMIT:
+        sol.status = "unresolved"
+        sol.message = (f"{method}: converged, but the N/2 comparison estimates a "
+                       f"{sol.error_estimate:.1e} relative error (> 1 %): increase "
+                       "solver.intervals")
+    return sol
+
+
+def seabed_check(scene: Scene, sol: Any, method: str) -> Any:
+    """Mark a method's solution that passes below a modelled seabed as a failure."""
+    sb = scene.environment.seabed
+    if sb is None or not sol.success:
+        return sol
+    from cable_ocp.physics.seabed import gap
+
+    depth = float(-np.min(gap(sb, sol.position)))
+    if depth > 1e-6 * sol.length:
+        sol.status = "seabed_contact"
+        sol.message = (f"{method}: the profile passes {depth:.3g} m below the seabed and this "
+                       "method has no contact model")
+    return sol
 
 
 def get_method(name: str) -> Callable:

@@ -1021,6 +1021,10 @@ def solve(scene: Scene, warm_start: StaticsSolution | None = None) -> StaticsSol
     N = ``solver.intervals`` segments, drag lumped at each segment's far end (Huang's
     numbering), the automatic current ramp, tolerance ``solver.tolerance`` for both the
     inner Newton (end positions / L) and the outer iteration (load change / force scale),
-    at most 1000 outer iterations per ramp stage.
+    at most 1000 outer iterations per ramp stage. The result carries a Richardson error
+    estimate from a second solve on N/2 segments (first order) and is ``"unresolved"``
+    above 1 % (:func:`cable_ocp.baselines.with_resolution_check`).
     """
-    return solve_huang(scene, warm_start)
+    from cable_ocp.baselines import with_resolution_check
+
+    return with_resolution_check(scene, solve_huang, warm_start, 1.0, METHOD)

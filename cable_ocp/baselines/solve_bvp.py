@@ -108,7 +108,11 @@ def solve_bvp(scene: Scene, nodes: int = 41, tol: float = 1e-8, max_nodes: int =
 def solve(scene: Scene, warm_start: StaticsSolution | None = None) -> StaticsSolution:
     """Registry entry (``solver.method = "solve_bvp"``): ``solver.intervals + 1`` initial
     nodes, solve_bvp's tolerance = ``solver.tolerance`` but not below 1e-9 (tighter
-    requests stall its mesh refinement)."""
-    return solve_bvp(scene, nodes=scene.solver.intervals + 1,
-                     tol=max(scene.solver.tolerance, 1e-9), max_nodes=10000,
-                     warm_start=warm_start)
+    requests stall its mesh refinement). It has no seabed contact: a profile through a
+    modelled seabed is reported as ``"seabed_contact"``."""
+    from cable_ocp.baselines import seabed_check
+
+    sol = solve_bvp(scene, nodes=scene.solver.intervals + 1,
+                    tol=max(scene.solver.tolerance, 1e-9), max_nodes=10000,
+                    warm_start=warm_start)
+    return seabed_check(scene, sol, "solve_bvp")
