@@ -338,7 +338,7 @@ class StaticsSolver:
         as |x_N - x_{N/2}| / (2^q - 1). Using q rather than p keeps the estimate honest
         where a kink in the drag (a flow component changing sign) lowers the order.
         With fewer than 4 intervals, or when the N/4 solve fails, only two meshes are
-        used, with q = p.
+        used, with q = min(p, d + 1) (the stage order, which the interior points follow).
         """
         n = self.mesh.intervals
         if n < 2:
@@ -379,7 +379,9 @@ class StaticsSolver:
 
         d1 = diff(sols[0], sols[1], self._coarse_solver(1))
         p = self.mesh.order
-        q = float(p)
+        # two meshes only: assume the order of the slowest-converging quantity compared,
+        # the stage order d + 1 of the interior collocation points (not the mesh order)
+        q = float(min(p, self.mesh.degree + 1) if self.mesh.degree >= 1 else p)
         if levels == 2:
             d2 = diff(sols[1], sols[2], self._coarse_solver(2))
             rel1 = max(d1[0] / sol.max_tension, d1[1] / sol.length)
