@@ -12,6 +12,10 @@ delayed by exactly ``tau`` (a buffer of fine steps). Controllers act every ``h``
 * ``lqg``: the same gain on a discrete Kalman filter (current estimator) that measures the
   unit's heave with white noise of standard deviation ``measurement_noise``.
 * ``mpc``: :class:`cable_ocp.heave.mpc.LinearMPC` with full state (and wave preview if asked).
+
+The unit and winch start at rest in a sea that starts in its stationary state; that start is
+artificial, so **every** metric is taken over the same window ``t >= [simulation] warmup``
+(see :func:`_metrics`).
 """
 
 from __future__ import annotations
@@ -243,8 +247,11 @@ def compare(sc: HeaveScene, controllers: tuple | None = None) -> Comparison:
                 k3 = f(s + hs / 2 * k2, xm, v)
                 k4 = f(s + hs * k3, xb, v)
                 s = s + hs / 6 * (k1 + 2 * k2 + 2 * k3 + k4)
-        xs_out[nfine], u_out[nfine], v_out[nfine] = s[0], s[2], buf[-1]
-        ud_out[nfine] = sc.winch.gain * (buf[-1] - s[2]) if first else s[3]
+        # t = T: the command applied over the last fine step is buf[0] (buf[-1] is the newest
+        # command, still inside the delay line), so u'(T) is the left limit K (buf[0] - u(T)).
+        v_last = buf[0]
+        xs_out[nfine], u_out[nfine], v_out[nfine] = s[0], s[2], v_last
+        ud_out[nfine] = sc.winch.gain * (v_last - s[2]) if first else s[3]
         tr = Trace(t[: nfine + 1], xs_out, x0[: nfine + 1], u_out, ud_out, v_out)
         traces[name] = tr
         if name == "mpc":
@@ -266,30 +273,44 @@ def _with_reduction(mt: Metrics, base: float) -> Metrics:
 
 def _metrics(sc: HeaveScene, tr: Trace, cmds: np.ndarray, name: str, G: np.ndarray,
              times: np.ndarray | None, h: float) -> Metrics:
-    keep = tr.t >= sc.simulation.warmup
+    """Metrics of one run, all over the same window ``t >= [simulation] warmup``.
+
+    The run starts with the unit and winch at rest while the sea starts in a stationary random
+    state, so the first seconds are an artificial start-up transient. Every metric (RMS values,
+    peaks, stroke, constraint violations, including the command change per sample and the
+    second-order winch's acceleration) is taken after the warm-up only, so that they describe
+    the same stationary operation.
+    """
+    warm = sc.simulation.warmup
+    keep = tr.t >= warm - 1e-12
+    u, ud = tr.u[keep], tr.u_dot[keep]
     w = sc.winch
     viol = 0.0
-    for val, lim in [(np.max(np.abs(tr.u)), w.stroke_max),
-                     (np.max(np.abs(tr.u_dot)), w.speed_max)]:
+    for val, lim in [(np.max(np.abs(u)), w.stroke_max), (np.max(np.abs(ud)), w.speed_max)]:
         if lim is not None:
             viol = max(viol, max(0.0, val - lim) / lim)
     if w.command_rate_max is not None and cmds.size > 1:
-        dr = np.max(np.abs(np.diff(np.concatenate([[0.0], cmds]))))
-        viol = max(viol, max(0.0, dr - w.command_rate_max) / w.command_rate_max)
+        # Command k is issued at t = k h (command -1 is the initial 0); its change from
+        # command k - 1 counts if k h >= warm-up.
+        k0 = max(0, int(np.ceil(warm / h - 1e-9)))
+        dcmd = np.diff(np.concatenate([[0.0], cmds]))[k0:]
+        if dcmd.size:
+            dr = float(np.max(np.abs(dcmd)))
+            viol = max(viol, max(0.0, dr - w.command_rate_max) / w.command_rate_max)
     if w.accel_max is not None and w.model == "second_order":
-        acc = np.gradient(tr.u_dot, tr.t)
+        acc = np.gradient(tr.u_dot, tr.t)[keep]
         viol = max(viol, max(0.0, float(np.max(np.abs(acc))) - w.accel_max) / w.accel_max)
     energy = float(np.sqrt(np.sum(G**2))) if name in ("lqr", "lqg") else None
     return Metrics(
         heave_rms=float(np.sqrt(np.mean(tr.x[keep] ** 2))),
         reduction_pct=0.0,
-        peak_winch_speed=float(np.max(np.abs(tr.u_dot))),
-        max_stroke=float(np.max(np.abs(tr.u))),
+        peak_winch_speed=float(np.max(np.abs(ud))),
+        max_stroke=float(np.max(np.abs(u))),
         energy_index=energy,
         max_constraint_violation=float(viol),
         solve_time_median_s=float(np.median(times)) if times is not None and times.size
         else None,
-        winch_speed_rms=float(np.sqrt(np.mean(tr.u_dot[keep] ** 2))),
+        winch_speed_rms=float(np.sqrt(np.mean(ud**2))),
     )
 
 
