@@ -38,6 +38,7 @@ Schema (all values SI; the README repeats this with examples)::
                                  drag and weight, a unit's thrust); entries may be "free"
     tension = 11146.6            N, |T| at this end; needs cable.length = "free"
     [solver]                     see :class:`SolverOptions`
+    [footprint]                  optional; see :class:`Footprint`
 
 At each end and for each of x, y, z exactly one of ``position`` and ``force`` gives a
 number: a fixed end gives ``position`` only, a free (towed) end ``force`` only, a
@@ -67,6 +68,7 @@ __all__ = [
     "Current",
     "End",
     "Environment",
+    "Footprint",
     "Scene",
     "Seabed",
     "SolverOptions",
@@ -270,6 +272,34 @@ class SolverOptions:
 
 
 @dataclass(frozen=True)
+class Footprint:
+    """Footprint problem settings (``[footprint]``; 004 section 2.2.4, type 4).
+
+    The subsea unit is end_a, resting on the seabed (its z fixed, x and y free), pushed by
+    its thrusters (the external load ``end_a.force`` x, y); the ship is end_b, fixed.
+
+    Attributes
+    ----------
+    max_length : float
+        Largest cable length L_max, m.
+    min_length : float
+        Smallest cable length considered, m.
+    bound : str
+        ``"magnitude"`` (default: |T_h| <= thrust_max) or ``"components"`` (|T_x| <=
+        thrust_x_max, |T_y| <= thrust_y_max, symmetric; CONVENTIONS "Footprint").
+    thrust_max, thrust_x_max, thrust_y_max : float
+        Thrust limits, N.
+    """
+
+    max_length: float
+    min_length: float
+    bound: str = "magnitude"
+    thrust_max: float = 0.0
+    thrust_x_max: float = 0.0
+    thrust_y_max: float = 0.0
+
+
+@dataclass(frozen=True)
 class Scene:
     """A validated statics problem: the input of every statics method."""
 
@@ -278,6 +308,7 @@ class Scene:
     end_a: End
     end_b: End
     solver: SolverOptions = field(default_factory=SolverOptions)
+    footprint: Footprint | None = None
     meta: dict[str, str] = field(default_factory=dict, compare=False, hash=False)
     raw: dict[str, Any] = field(default_factory=dict, compare=False, hash=False, repr=False)
 
@@ -308,6 +339,8 @@ _SCHEMA: dict[str, Any] = {
         "tangential_drag",
         "drag_law",
     },
+    "footprint": {"max_length", "min_length", "bound", "thrust_max", "thrust_x_max",
+                  "thrust_y_max"},
     "end_a": {"position", "force", "tension"},
     "end_b": {"position", "force", "tension"},
     "solver": {
@@ -605,8 +638,31 @@ def scene_from_dict(data: dict[str, Any]) -> Scene:
     )
     if solver.vertical_blend >= 1.0:
         raise CableOCPError(f"solver.vertical_blend = {solver.vertical_blend}: must be in (0, 1)")
+    footprint = (_parse_footprint(data["footprint"], end_a, end_b)
+                 if "footprint" in data else None)
     return Scene(environment=env, cable=cable, end_a=end_a, end_b=end_b, solver=solver,
-                 meta=meta, raw=raw)
+                 footprint=footprint, meta=meta, raw=raw)
+
+
+def _parse_footprint(table: Any, end_a: End, end_b: End) -> Footprint:
+    table = _check_keys(table, _SCHEMA["footprint"], "footprint")
+    if end_a.fixed_mask != (False, False, True) or not all(end_b.fixed_mask):
+        raise CableOCPError(
+            '[footprint] needs the unit at end_a with position = ["free", "free", z] and '
+            'force = [Fx, Fy, "free"] (thrust), and the ship at a fixed end_b.position')
+    lmax = _number(_require(table, "max_length", "footprint"), "footprint.max_length",
+                   positive=True)
+    lmin = _number(table.get("min_length", abs(end_b.position[2] - end_a.position[2])),
+                   "footprint.min_length", positive=True)
+    if lmin >= lmax:
+        raise CableOCPError(f"footprint.min_length = {lmin} must be < max_length = {lmax}")
+    bound = table.get("bound", "magnitude")
+    if bound not in ("magnitude", "components"):
+        raise CableOCPError(f'footprint.bound = {bound!r}: valid are "magnitude", "components"')
+    need = ("thrust_max",) if bound == "magnitude" else ("thrust_x_max", "thrust_y_max")
+    vals = {k: _number(_require(table, k, "footprint"), f"footprint.{k}", nonneg=True)
+            for k in need}
+    return Footprint(max_length=lmax, min_length=lmin, bound=bound, **vals)
 
 
 def parse_override(text: str) -> tuple[str, Any]:

@@ -21,6 +21,15 @@ def register(sub: argparse._SubParsersAction) -> None:
     p.add_argument("--plot", metavar="PATH", help="save the profile and tension figure")
     p.set_defaults(func=_cmd_solve)
 
+    f = sub.add_parser("footprint", help="footprint of a tethered seabed unit (004 2.2.4)",
+                       description="Reach of a thrust-limited seabed unit in N directions.")
+    f.add_argument("file", help="problem file with a [footprint] table")
+    f.add_argument("--directions", type=int, default=72)
+    f.add_argument("--set", dest="overrides", action="append", default=[], metavar="KEY=VALUE")
+    f.add_argument("--plot", metavar="PATH", help="save the footprint polygon")
+    f.add_argument("--json", metavar="PATH", help="write the polygon and per-direction data")
+    f.set_defaults(func=_cmd_footprint)
+
     b = sub.add_parser("bench", help="benchmarks that print a table",
                        description="Timing benchmarks (tables; nothing is asserted).")
     b.add_argument("which", nargs="?", default="sweep",
@@ -142,3 +151,28 @@ def _bench_robustness(args: argparse.Namespace) -> int:
     if args.json:
         Path(args.json).write_text(report.to_json(res))
     return 1 if res["wrong_ours"] else 0
+
+
+def _cmd_footprint(args: argparse.Namespace) -> int:
+    from cable_ocp.statics.footprint import footprint, plot_footprint
+
+    scene = load_scene(args.file, dict(parse_override(s) for s in args.overrides))
+    res = footprint(scene, args.directions)
+    rows = [[f"{th:.1f}", "-" if r != r else f"{r:.3f}", "-" if r != r else f"{x:.3f}",
+             "-" if r != r else f"{y:.3f}", "-" if r != r else f"{tx:.1f}",
+             "-" if r != r else f"{ty:.1f}", "-" if r != r else f"{ln:.3f}", st]
+            for th, r, (x, y), (tx, ty), ln, st in zip(
+                res.theta_deg, res.reach, res.points, res.thrust, res.length, res.status,
+                strict=True)]
+    print(f"{scene.meta.get('title', args.file)}: {args.directions} directions, "
+          f"{res.wall_time_s:.2f} s")
+    print(report.table(["theta [deg]", "reach [m]", "x [m]", "y [m]", "Tx [N]", "Ty [N]",
+                        "L [m]", "status"], rows))
+    if args.plot:
+        plot_footprint(res, args.plot, scene.meta.get("title", ""))
+    if args.json:
+        Path(args.json).write_text(report.to_json({
+            "theta_deg": res.theta_deg.tolist(), "reach": res.reach.tolist(),
+            "points": res.points.tolist(), "thrust": res.thrust.tolist(),
+            "length": res.length.tolist(), "status": res.status}))
+    return 0 if all(s == "solved" for s in res.status) else 1

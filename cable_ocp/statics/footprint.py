@@ -1,0 +1,178 @@
+"""Footprint of a tethered subsea unit (004 section 2.2.4, type 4, eqs (2.16)-(2.17)).
+
+The unit (end_a) rests on the seabed and pushes with bounded thrust; the ship (end_b) is
+fixed. For each direction theta, one NLP maximises the unit's horizontal distance from the
+ship along theta,
+
+    max  c1 = (r_a - r_b)_h . (cos theta, sin theta)
+    s.t. (r_a - r_b)_h . (-sin theta, cos theta) = 0,     the collocated statics,
+         |T_h| <= T_max  (or |T_x| <= T_xmax, |T_y| <= T_ymax; CONVENTIONS "Footprint"),
+         L_min <= L <= L_max,  the cable above the seabed (z >= 0 at the nodes) and leaving
+         the unit upwards (vertical force on the unit >= 0),
+
+over the thrust components and the cable length (:class:`~cable_ocp.statics.optimize.
+StaticsNLP`, built once with theta as a parameter). Each direction starts from its
+neighbour's optimum. A direction with no feasible configuration is reported with IPOPT's
+status (e.g. ``Infeasible_Problem_Detected``), never as a reach.
+"""
+
+from __future__ import annotations
+
+import time
+from dataclasses import dataclass
+
+import casadi as ca
+import numpy as np
+
+from cable_ocp.errors import CableOCPError
+from cable_ocp.scene import Scene
+from cable_ocp.statics.optimize import OptimizationResult, StaticsNLP, View
+from cable_ocp.statics.solver import solve
+
+
+@dataclass
+class FootprintResult:
+    """Footprint polygon and per-direction diagnostics.
+
+    Attributes
+    ----------
+    theta_deg : ndarray
+        Directions, deg from +x towards +y.
+    reach : ndarray
+        Largest horizontal distance from the ship along each direction, m (NaN if failed).
+    points : ndarray, shape (n, 2)
+        Unit positions (x, y) at the optimum of each direction, m.
+    thrust : ndarray, shape (n, 2)
+        Thrust (Tx, Ty) at the optimum, N.
+    length : ndarray
+        Cable length at the optimum, m.
+    status : list of str
+        Per direction: ``"solved"`` or IPOPT's status.
+    wall_time_s : float
+        Total time, s.
+    ship : ndarray, shape (2,)
+        Horizontal position of the ship (end_b), m.
+    """
+
+    theta_deg: np.ndarray
+    reach: np.ndarray
+    points: np.ndarray
+    thrust: np.ndarray
+    length: np.ndarray
+    status: list[str]
+    wall_time_s: float
+    ship: np.ndarray
+
+
+def footprint(scene: Scene, directions: int = 72) -> FootprintResult:
+    """Compute the footprint of ``scene`` (which needs a ``[footprint]`` table)."""
+    fp = scene.footprint
+    if fp is None:
+        raise CableOCPError("the scene has no [footprint] table (max_length, thrust limits)")
+    if directions < 3:
+        raise CableOCPError(f"--directions {directions}: need at least 3")
+    t0 = time.perf_counter()
+    if fp.bound == "magnitude":
+        tx = ty = fp.thrust_max
+    else:
+        tx, ty = fp.thrust_x_max, fp.thrust_y_max
+    length0 = min(max(scene.cable.length or fp.max_length, fp.min_length), fp.max_length)
+    scene = scene.with_overrides({"cable.length": length0, "solver.error_estimate": False})
+    nlp = StaticsNLP(scene, {"end_a.force.x": (-tx, tx), "end_a.force.y": (-ty, ty),
+                             "cable.length": (fp.min_length, fp.max_length)})
+    ship = np.asarray(scene.end_b.position[:2], dtype=float)
+    ell = fp.max_length
+    sb = scene.environment.seabed
+    floor = sb.depth_offset if sb is not None else 0.0
+
+    def horiz(v: View) -> ca.MX:
+        return v.position[0, 0:2].T - ca.DM(ship)
+
+    def objective(v: View) -> ca.MX:
+        d = ca.vertcat(ca.cos(v.theta[0]), ca.sin(v.theta[0]))
+        return -ca.dot(horiz(v), d) / ell
+
+    def constraints(v: View) -> list:
+        n = ca.vertcat(-ca.sin(v.theta[0]), ca.cos(v.theta[0]))
+        cons = [(ca.dot(horiz(v), n) / ell, 0.0, 0.0),
+                (v.position[:, 2] - floor, 0.0, np.inf),
+                (v.force_a[2] / (abs(scene.cable.weight_in_water) * ell), 0.0, np.inf)]
+        if fp.bound == "magnitude" and fp.thrust_max > 0:
+            fx, fy = v.var["end_a.force.x"], v.var["end_a.force.y"]
+            cons.append(((fx * fx + fy * fy) / fp.thrust_max**2, -np.inf, 1.0))
+        return cons
+
+    nlp.build(objective, constraints, n_theta=1)
+    thetas = np.linspace(0.0, 360.0, directions, endpoint=False)
+    reach = np.full(directions, np.nan)
+    points = np.full((directions, 2), np.nan)
+    thrust = np.full((directions, 2), np.nan)
+    lengths = np.full(directions, np.nan)
+    status: list[str] = []
+    prev: OptimizationResult | None = None
+    def fresh_start(rad: float) -> tuple:
+        """A statics solve with the full thrust pointing along the direction and the
+        shortest cable, so that the NLP starts on the near side of the ship, with the
+        cable leaving the unit upwards (from the far side IPOPT can stop at a spurious
+        stationary point with a negative reach)."""
+        f = np.array([tx * np.cos(rad), ty * np.sin(rad)])
+        sc = scene.with_overrides({"end_a.force": [float(f[0]), float(f[1]), "free"],
+                                   "cable.length": fp.min_length})
+        sol = solve(sc)
+        vals = {"end_a.force.x": f[0], "end_a.force.y": f[1], "cable.length": fp.min_length}
+        return (sol if sol.success else None), vals
+
+    def reach_of(res: OptimizationResult, rad: float) -> float:
+        r = res.solution.position[0, :2]
+        return float((r - ship) @ [np.cos(rad), np.sin(rad)]) if res.success else -np.inf
+
+    for k, th in enumerate(thetas):
+        rad = np.radians(th)
+        if prev is None:
+            start, vals = fresh_start(rad)
+            res = nlp.run([rad], start=start, start_values=vals)
+        else:
+            res = nlp.run([rad], start=prev.solution, start_values=prev.variables)
+        if not res.success or reach_of(res, rad) < 0:  # retry from a fresh start
+            start, vals = fresh_start(rad)
+            alt = nlp.run([rad], start=start, start_values=vals)
+            if reach_of(alt, rad) > reach_of(res, rad):
+                res = alt
+        status.append(res.status)
+        if res.success:
+            r = res.solution.position[0, :2]
+            points[k] = r
+            reach[k] = float((r - ship) @ [np.cos(rad), np.sin(rad)])
+            thrust[k] = [res.variables["end_a.force.x"], res.variables["end_a.force.y"]]
+            lengths[k] = res.variables["cable.length"]
+            prev = res
+    return FootprintResult(theta_deg=thetas, reach=reach, points=points, thrust=thrust,
+                           length=lengths, status=status, wall_time_s=time.perf_counter() - t0,
+                           ship=ship)
+
+
+def plot_footprint(res: FootprintResult, path: str, title: str = "") -> None:
+    """Draw the footprint polygon (unit positions) around the ship."""
+    import matplotlib
+
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+
+    fig, ax = plt.subplots(figsize=(6, 6))
+    ok = np.isfinite(res.reach)
+    pts = res.points[ok]
+    if len(pts):
+        closed = np.vstack([pts, pts[:1]])
+        ax.plot(closed[:, 0], closed[:, 1], "-o", ms=3, label="footprint (unit on seabed)")
+    if (~ok).any():
+        ax.plot([], [], "x", color="r", label=f"{int((~ok).sum())} unreachable directions")
+    ax.plot(*res.ship, "r^", ms=10, label="ship")
+    ax.set_aspect("equal")
+    ax.set_xlabel("x [m]")
+    ax.set_ylabel("y [m]")
+    ax.grid(True, alpha=0.3)
+    ax.legend(loc="best", fontsize=8)
+    ax.set_title(title or "footprint")
+    fig.tight_layout()
+    fig.savefig(path, dpi=120)
+    plt.close(fig)

@@ -1,0 +1,86 @@
+"""Footprint (004 section 2.2.4): an NLP per direction over thrust and cable length."""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+import pytest
+from scipy.optimize import minimize
+
+from cable_ocp.cli import main
+from cable_ocp.errors import CableOCPError
+from cable_ocp.scene import load_scene
+from cable_ocp.statics.footprint import footprint
+
+W, H_SHIP, T_MAX, L_MAX, L_MIN = 12.3, 183.0, 2000.0, 305.0, 190.0
+
+
+def still_water_radius() -> float:
+    """Independent answer in still water: maximise the span of an inextensible catenary
+    from the unit (horizontal tension H <= T_max = the thrust, vertical force V0 >= 0 at
+    the unit) to the ship H_SHIP above, over H, V0 and L in [L_min, L_max] (SLSQP)."""
+    def span(q):
+        h, v0, length = q
+        return h / W * (math.asinh((v0 + W * length) / h) - math.asinh(v0 / h))
+
+    def rise(q):
+        h, v0, length = q
+        return h / W * (math.sqrt(1 + ((v0 + W * length) / h) ** 2)
+                        - math.sqrt(1 + (v0 / h) ** 2)) - H_SHIP
+
+    res = minimize(lambda q: -span(q), [1500.0, 100.0, 290.0], method="SLSQP",
+                   bounds=[(1.0, T_MAX), (0.0, 1e5), (L_MIN, L_MAX)],
+                   constraints=[{"type": "eq", "fun": rise}],
+                   options={"ftol": 1e-14, "maxiter": 500})
+    assert res.success
+    return span(res.x)
+
+
+def test_still_water_footprint_is_the_catenary_circle(problems):
+    """No current: the footprint is a circle, every direction reaches the radius of the
+    independent catenary optimisation (to 1e-6 relative: both are converged optimisers on
+    the same physics, the collocation error at 40 intervals of degree 3 is ~1e-10)."""
+    sc = load_scene(problems / "footprint_tethered_unit.toml")
+    sc = sc.with_overrides({"environment": {"water_depth": 183.0, "water_density": 1021.0}})
+    res = footprint(sc, directions=8)
+    assert all(s == "solved" for s in res.status)
+    np.testing.assert_allclose(res.reach, still_water_radius(), rtol=1e-6)
+    np.testing.assert_allclose(np.hypot(*res.thrust.T), T_MAX, rtol=1e-6)
+
+
+def test_current_footprint_shape(problems):
+    """In the current along +x the footprint is symmetric about the x axis and reaches
+    further downstream than upstream; the thrust bound is active everywhere."""
+    res = footprint(load_scene(problems / "footprint_tethered_unit.toml"), directions=12)
+    assert all(s == "solved" for s in res.status)
+    r = dict(zip(res.theta_deg, res.reach, strict=True))
+    for a in (30.0, 60.0, 90.0, 120.0, 150.0):
+        assert r[a] == pytest.approx(r[360.0 - a], rel=1e-6)
+    assert r[0.0] > r[90.0] > r[180.0]
+    np.testing.assert_allclose(np.hypot(*res.thrust.T), T_MAX, rtol=1e-6)
+    assert np.all(res.length <= L_MAX + 1e-6)
+
+
+def test_unreachable_directions_are_reported(problems):
+    """With 50 N of thrust and 200 m of cable the unit cannot leave the downstream wake
+    line: every cross-stream direction reports IPOPT's infeasibility (NaN reach, never a
+    number), and even pushing upstream at full thrust it stays downstream of the ship
+    (reach along 180 deg negative, as Huang's c1 allows)."""
+    sc = load_scene(problems / "footprint_tethered_unit.toml", {"footprint.thrust_max": 50.0,
+                                                                "footprint.max_length": 200.0})
+    res = footprint(sc, directions=8)
+    assert res.status[0] == res.status[4] == "solved"
+    for k in (1, 2, 3, 5, 6, 7):
+        assert res.status[k] != "solved" and math.isnan(res.reach[k])
+    assert res.reach[0] > 0 > res.reach[4]
+
+
+def test_footprint_cli(problems, tmp_path, capsys):
+    png = tmp_path / "fp.png"
+    assert main(["footprint", str(problems / "footprint_tethered_unit.toml"),
+                 "--directions", "8", "--plot", str(png)]) == 0
+    out = capsys.readouterr().out
+    assert "reach" in out and png.stat().st_size > 10_000
+    with pytest.raises(CableOCPError, match="footprint"):
+        footprint(load_scene(problems / "dezoysa_sea_buggy.toml"))
