@@ -26,8 +26,9 @@ Solvers: ``"qpoases"``, ``"osqp"``, ``"qrqp"`` solve a **condensed dense QP** (d
 the ``N`` commands and ``N`` tension slacks) through CasADi's ``conic`` interface; Hessian and
 constraint matrix are constant and computed once, only the gradient and bounds change per step
 (matrix-vector products). ``"ipopt"`` solves a multiple-shooting NLP built once with CasADi
-``nlpsol`` and can use the nonlinear unit model (6.3). Every solver is built once and warm-started
-with the shifted previous solution.
+``nlpsol`` with exactly the QP's cost, limit rows and bounds (with the linear unit the two are
+the same convex problem); it can use the nonlinear unit model (6.3). Every solver is built
+once and warm-started with the shifted previous solution.
 """
 
 from __future__ import annotations
@@ -134,6 +135,22 @@ class MPCStep:
     solve_time: float
     plan: np.ndarray
     max_slack: float
+
+
+@dataclass(frozen=True)
+class _Row:
+    """One limit at prediction step ``k``: ``c_z z_k + c_u u0_k + c_p u0_{k-1} + c_D D_k``
+    (plus a tension slack if ``slack``) within ``[-limit, limit]``, or ``>= limit`` if
+    ``lo_only``."""
+
+    k: int
+    cz: np.ndarray
+    cu: float
+    cp: float
+    cd: float
+    limit: float
+    lo_only: bool
+    slack: bool
 
 
 def _winch_indices(plant: HeavePlant) -> tuple[int, int | None]:
@@ -243,10 +260,15 @@ class LinearMPC:
         self.H = Hf
         self.Gz = np.vstack([Gz, np.zeros((self.ns, nz))])
         self.Gd = np.vstack([Gd, np.zeros((self.ns, N))])
-        # Command bounds |u0| <= stroke_max: the first-order winch output is a convex combination
-        # of its state and its (held) commands, so the stroke limit then holds for any hold of
-        # the plan, which makes the limits recursively feasible (shifted plan + held last
-        # command stays feasible). For the second-order winch it is a sensible extra bound.
+        # Command bounds |u0| <= stroke_max. For the first-order winch the output is a convex
+        # combination of its state and its held commands, so with these bounds the stroke limit
+        # can never become infeasible (it is implied from the first free sample on), and
+        # holding the last command keeps the command-rate limit. The speed limit (and the
+        # second-order winch's limits) has no terminal constraint, so recursive feasibility is
+        # NOT guaranteed for it: the shifted plan can violate the speed row appended at the end
+        # of the horizon. No infeasible step occurred in the examples; if one does, ``step``
+        # falls back on the shifted previous plan and reports ``success = False``. For the
+        # second-order winch the bound is a sensible extra limit, not a guarantee.
         ulim = np.inf if s.stroke_max is None else s.stroke_max
         self.lbx = np.concatenate([np.full(N, -ulim), np.zeros(self.ns)])
         self.ubx = np.concatenate([np.full(N, ulim), np.full(self.ns, np.inf)])
@@ -262,112 +284,106 @@ class LinearMPC:
 
     # ---------------------------------------------------------------------------------------
     def _build_constraints(self, plant: HeavePlant) -> None:
-        """Rows ``lb - c(z0, D, u_prev) <= A_c [U; S] <= ub - c(...)``; constant rows dropped."""
+        """Limit rows, built once as step-wise descriptors and condensed for the QP.
+
+        Each limit is a row ``lim_lo <= c_z z_k + c_u u0_k + c_p u0_{k-1} + c_D D_k (+ s) <=
+        lim_hi`` on the predicted state ``z_k`` (:class:`_Row`); ``u0_{-1}`` is the previous
+        command. Rows that no decision variable can change (fixed by commands already sent,
+        ``k <= d``) are dropped: they can only make the problem infeasible. The condensed QP
+        uses ``lb - c(z0, D, u_prev) <= A_c [U; S] <= ub - c(...)``; the IPOPT formulation
+        (:class:`_NonlinearMPC`) writes the same rows on its shooting states.
+        """
         s = self.settings
         N, nz, n, d = self.N, self.nz, self.n, self.model.d
         iu, iud = _winch_indices(plant)
-        rows_U, rows_z, rows_D, rows_up, lim, lo_only, slack_idx = [], [], [], [], [], [], []
+        rows: list[_Row] = []
 
-        def applied(k: int) -> tuple[np.ndarray, np.ndarray]:
-            """Applied (delayed) command at step k as (z-row, U-row)."""
+        def applied(k: int) -> tuple[np.ndarray, float]:
+            """Applied (delayed) command at step k as (z-row, coefficient of u0_k)."""
+            c = np.zeros(nz)
             if d > 0:
-                c = np.zeros(nz)
                 c[n] = 1.0
-                return c, np.zeros(N)
-            e = np.zeros(N)
-            e[k] = 1.0
-            return np.zeros(nz), e
+                return c, 0.0
+            return c, 1.0
 
-        def add(k: int, c: np.ndarray, e: np.ndarray, f: float, limit: float) -> None:
-            rU = c @ self._T[k] + e
+        def add(k: int, cz: np.ndarray, cu: float, limit: float, cp: float = 0.0,
+                cd: float = 0.0, lo_only: bool = False, slack: bool = False) -> None:
+            rU = cz @ self._T[k]
+            if k < N:
+                rU = rU.copy()
+                rU[k] += cu
+            if k > 0:
+                rU = rU.copy()
+                rU[k - 1] += cp
             if np.max(np.abs(rU)) < 1e-14:
                 return  # fixed by the past: nothing to decide
-            rows_U.append(rU)
-            rows_z.append(c @ self._S[k])
-            wD = c @ self._W[k]
-            wD = wD.copy()
-            if f:
-                wD[k] += f
-            rows_D.append(wD)
-            rows_up.append(0.0)
-            lim.append(limit)
-            lo_only.append(False)
-            slack_idx.append(-1)
+            rows.append(_Row(k, cz, cu, cp, cd if k < N else 0.0, limit, lo_only, slack))
 
         eu = np.zeros(nz)
         eu[iu] = 1.0
-        zero = np.zeros(N)
         if s.stroke_max is not None:
             for k in range(1, N + 1):
-                add(k, eu, zero, 0.0, s.stroke_max)
+                add(k, eu, 0.0, s.stroke_max)
         if s.speed_max is not None:
             if iud is None:
                 K = plant.K
                 for k in range(N):
-                    cz, eU = applied(k)
-                    add(k, K * (cz - eu), K * eU, 0.0, s.speed_max)
+                    cz, cu = applied(k)
+                    add(k, K * (cz - eu), K * cu, s.speed_max)
             else:
                 eud = np.zeros(nz)
                 eud[iud] = 1.0
                 for k in range(1, N + 1):
-                    add(k, eud, zero, 0.0, s.speed_max)
+                    add(k, eud, 0.0, s.speed_max)
         if s.accel_max is not None:
             ww = float(np.sqrt(-plant.A[iu + 1, iu]))
             two_zw = float(-plant.A[iu + 1, iu + 1])
             eud = np.zeros(nz)
             eud[iud] = 1.0
             for k in range(N):
-                cz, eU = applied(k)
-                add(k, ww**2 * (cz - eu) - two_zw * eud, ww**2 * eU, 0.0, s.accel_max)
+                cz, cu = applied(k)
+                add(k, ww**2 * (cz - eu) - two_zw * eud, ww**2 * cu, s.accel_max)
         if s.command_rate_max is not None:
             for k in range(N):
-                e = np.zeros(N)
-                e[k] = 1.0
-                if k > 0:
-                    e[k - 1] = -1.0
-                rows_U.append(e)
-                rows_z.append(np.zeros(nz))
-                rows_D.append(np.zeros(N))
-                rows_up.append(-1.0 if k == 0 else 0.0)
-                lim.append(s.command_rate_max)
-                lo_only.append(False)
-                slack_idx.append(-1)
-        ns = 0
+                add(k, np.zeros(nz), 1.0, s.command_rate_max, cp=-1.0)
         if s.tension_min is not None:
-            c_str, d_str = plant.output_row("stretch")
+            c_str, _ = plant.output_row("stretch")
             cs_ = np.zeros(nz)
             cs_[:n] = c_str
             kc = s.unit_mass / plant.a
             smin = (s.tension_min - s.static_tension) / kc
             for k in range(1, N + 1):
-                if np.max(np.abs(cs_ @ self._T[k])) < 1e-14:
-                    continue  # stretch fixed by the past (k <= d): a slack would be degenerate
-                rows_U.append(cs_ @ self._T[k])
-                rows_z.append(cs_ @ self._S[k])
-                wD = (cs_ @ self._W[k]).copy()
-                if k < N:
-                    wD[k] += 1.0  # the known boom-tip correction adds to the stretch
-                rows_D.append(wD)
-                rows_up.append(0.0)
-                lim.append(smin)
-                lo_only.append(True)
-                slack_idx.append(ns)
-                ns += 1
+                # The known boom-tip correction D_k adds to the stretch.
+                add(k, cs_, 0.0, smin, cd=1.0, lo_only=True, slack=True)
             self.stretch_min = smin
+        self.rows = rows
+        m = len(rows)
+        self.slack_of_row = np.full(m, -1)
+        ns = 0
+        Ac = np.zeros((m, N + sum(r.slack for r in rows)))
+        Cz = np.zeros((m, nz))
+        CD = np.zeros((m, N))
+        Cup = np.zeros(m)
+        for i, r in enumerate(rows):
+            k = r.k
+            Ac[i, :N] = r.cz @ self._T[k]
+            Cz[i] = r.cz @ self._S[k]
+            CD[i] = r.cz @ self._W[k]
+            if k < N:
+                Ac[i, k] += r.cu
+                CD[i, k] += r.cd
+            if k > 0:
+                Ac[i, k - 1] += r.cp
+            else:
+                Cup[i] = r.cp
+            if r.slack:
+                Ac[i, N + ns] = 1.0
+                self.slack_of_row[i] = ns
+                ns += 1
         self.ns = ns
-        m = len(rows_U)
-        Ac = np.zeros((m, N + ns))
-        if m:
-            Ac[:, :N] = np.array(rows_U)
-        for i, j in enumerate(slack_idx):
-            if j >= 0:
-                Ac[i, N + j] = 1.0
-        self.Ac = Ac
-        self.Cz = np.array(rows_z).reshape(m, nz)
-        self.CD = np.array(rows_D).reshape(m, N)
-        self.Cup = np.array(rows_up)
-        lim_a = np.array(lim, dtype=float)
-        lo_only_a = np.array(lo_only, dtype=bool)
+        self.Ac, self.Cz, self.CD, self.Cup = Ac, Cz, CD, Cup
+        lim_a = np.array([r.limit for r in rows], dtype=float)
+        lo_only_a = np.array([r.lo_only for r in rows], dtype=bool)
         self.lb0 = np.where(lo_only_a, lim_a, -lim_a)
         self.ub0 = np.where(lo_only_a, np.inf, lim_a)
 
@@ -497,10 +513,15 @@ def _merge(opts: dict, extra: dict) -> None:
 class _NonlinearMPC:
     """Multiple-shooting NLP solved by IPOPT, built once (used by ``solver = "ipopt"``).
 
-    The prediction integrates the plant with RK4 (2 substeps per sample) and, if
-    ``nonlinear_b > 0``, replaces the unit's linear damping by ``b |x'| x'`` (004 eq. (6.3),
-    smoothed as ``b x' sqrt(x'^2 + 1e-6)``). Cost and limits are those of the condensed QP,
-    written on the shooting states.
+    Cost, limits, command bounds and slacks are exactly those of the condensed QP of
+    :class:`LinearMPC`: the same stage cost ``z^T Qz z + 2 z^T Nz u + Rz u^2``, DARE terminal
+    cost, the same limit rows (:class:`_Row`, including the dropping of rows fixed by commands
+    already sent), ``|u0| <= stroke_max`` and one nonnegative slack per kept tension row with
+    the same penalties. With the linear unit (6.2) the shooting constraints are the exact ZOH
+    model ``z_{k+1} = Ad z_k + Bd u0_k + Ed D_k``, so the NLP *is* the QP (same minimiser; a
+    test checks the closed-loop moves agree). If ``nonlinear_b > 0`` the plant part is
+    integrated with RK4 (2 substeps per sample) with the unit's damping ``b |x'| x'`` (004
+    eq. (6.3), smoothed as ``b x' sqrt(x'^2 + 1e-6)``) instead.
     """
 
     def __init__(self, mpc: LinearMPC) -> None:
@@ -508,22 +529,88 @@ class _NonlinearMPC:
         p = mpc.plant
         N, nz, n, d = mpc.N, mpc.nz, mpc.n, mpc.model.d
         h = s.sample_time
-        A = p.A
-        B = p.B1
-        iv = p.blocks["unit"].start + 1
         bnl = s.nonlinear_b
+        Z = cs.MX.sym("Z", nz, N + 1)
+        U = cs.MX.sym("U", N)
+        ns = mpc.ns
+        Sl = cs.MX.sym("S", ns)
+        P0 = cs.MX.sym("z0", nz)
+        Pup = cs.MX.sym("up")
+        PD = cs.MX.sym("D", N)
+        if bnl > 0:
+            F = self._rk4_plant(p, h, bnl)
+        Ad, Bd, Ed = cs.DM(mpc.model.Ad), cs.DM(mpc.model.Bd), cs.DM(mpc.model.Ed)
+        g = [Z[:, 0] - P0]
+        J = 0
+        Qz, Rz, Nz = cs.DM(mpc.Qz), cs.DM(mpc.Rz), cs.DM(mpc.Nz)
+        for k in range(N):
+            zk = Z[:, k]
+            if bnl > 0:
+                vk = zk[n] if d > 0 else U[k]
+                xn = F(zk[:n], vk, PD[k])
+                if d > 1:
+                    bn = cs.vertcat(zk[n + 1 :], U[k])
+                elif d == 1:
+                    bn = U[k]
+                else:
+                    bn = cs.MX(0, 1)
+                znext = cs.vertcat(xn, bn)
+            else:
+                znext = cs.mtimes(Ad, zk) + Bd * U[k] + Ed * PD[k]
+            g.append(Z[:, k + 1] - znext)
+            J += cs.bilin(Qz, zk, zk) + 2 * cs.mtimes([zk.T, Nz, U[k]]) + Rz * U[k] ** 2
+        J += cs.bilin(cs.DM(mpc.P), Z[:, N], Z[:, N])
+        lbg = [0.0] * (nz * (N + 1))
+        ubg = [0.0] * (nz * (N + 1))
+        for i, r in enumerate(mpc.rows):
+            k = r.k
+            e = cs.mtimes(cs.DM(r.cz).T, Z[:, k])
+            if k < N:
+                e = e + r.cu * U[k] + r.cd * PD[k]
+            e = e + r.cp * (U[k - 1] if k > 0 else Pup)
+            j = int(mpc.slack_of_row[i])
+            if j >= 0:
+                e = e + Sl[j]
+                J += s.tension_penalty * Sl[j] ** 2 + mpc.g_slack[N + j] * Sl[j]
+            g.append(e)
+            lbg.append(mpc.lb0[i])
+            ubg.append(mpc.ub0[i])
+        w = cs.vertcat(cs.vec(Z), U, Sl)
+        nlp = {"x": w, "p": cs.vertcat(P0, Pup, PD), "f": J, "g": cs.vertcat(*g)}
+        # No automatic NLP scaling: the gradient-based scaling divides the objective by the
+        # slack penalty's large linear term, which loosens the effective tolerance to ~1e-5 m on
+        # the moves; unscaled (SI units, well scaled here) tol 1e-10 gives ~1e-8 m.
+        opts = {"ipopt": {"print_level": 0, "sb": "yes", "tol": 1e-10,
+                          "nlp_scaling_method": "none",
+                          "warm_start_init_point": "yes", "mu_init": 1e-4},
+                "print_time": False, "error_on_fail": False}
+        _merge(opts, s.solver_options)
+        self.solver = cs.nlpsol("heave_nmpc", "ipopt", nlp, opts)
+        self.lbg = np.array(lbg)
+        self.ubg = np.array(ubg)
+        nw = w.shape[0]
+        self.lbw = np.full(nw, -np.inf)
+        self.ubw = np.full(nw, np.inf)
+        # Command and slack bounds exactly as the QP's lbx/ubx.
+        self.lbw[nz * (N + 1) :] = mpc.lbx
+        self.ubw[nz * (N + 1) :] = mpc.ubx
+        self.nz, self.N, self.ns = nz, N, ns
+        self.warm: dict | None = None
 
+    @staticmethod
+    def _rk4_plant(p: HeavePlant, h: float, bnl: float) -> cs.Function:
+        """One sample of the plant with the quadratic damping (6.3), RK4 with 2 substeps."""
+        n = p.n
+        iv = p.blocks["unit"].start + 1
         x = cs.MX.sym("x", n)
         v = cs.MX.sym("v")
         dd = cs.MX.sym("dd")
-        xdot = cs.mtimes(cs.DM(A), x) + cs.DM(B) * v
         e_unit = np.zeros(n)
         e_unit[iv] = 1.0
-        xdot = xdot + cs.DM(e_unit) * dd / p.a
-        if bnl > 0:
-            xd = x[iv]
-            corr = (p.b * xd - bnl * xd * cs.sqrt(xd**2 + 1e-6)) / p.a
-            xdot = xdot + cs.DM(e_unit) * corr
+        xd = x[iv]
+        corr = (p.b * xd - bnl * xd * cs.sqrt(xd**2 + 1e-6)) / p.a
+        xdot = (cs.mtimes(cs.DM(p.A), x) + cs.DM(p.B1) * v
+                + cs.DM(e_unit) * (dd / p.a + corr))
         f = cs.Function("f", [x, v, dd], [xdot])
         M = 2
         hh = h / M
@@ -534,86 +621,7 @@ class _NonlinearMPC:
             k3 = f(xk + hh / 2 * k2, v, dd)
             k4 = f(xk + hh * k3, v, dd)
             xk = xk + hh / 6 * (k1 + 2 * k2 + 2 * k3 + k4)
-        F = cs.Function("F", [x, v, dd], [xk])
-
-        Z = cs.MX.sym("Z", nz, N + 1)
-        U = cs.MX.sym("U", N)
-        ns = N if mpc.ns else 0  # one tension slack per step k = 1..N
-        Sl = cs.MX.sym("S", ns)
-        P0 = cs.MX.sym("z0", nz)
-        Pup = cs.MX.sym("up")
-        PD = cs.MX.sym("D", N)
-        g = [Z[:, 0] - P0]
-        J = 0
-        Qz, Rz, Nz = cs.DM(mpc.Qz), cs.DM(mpc.Rz), cs.DM(mpc.Nz)
-        for k in range(N):
-            zk = Z[:, k]
-            vk = zk[n] if d > 0 else U[k]
-            xn = F(zk[:n], vk, PD[k])
-            if d > 1:
-                bn = cs.vertcat(zk[n + 1 :], U[k])
-            elif d == 1:
-                bn = U[k]
-            else:
-                bn = cs.MX(0, 1)
-            g.append(Z[:, k + 1] - cs.vertcat(xn, bn))
-            J += cs.bilin(Qz, zk, zk) + 2 * cs.mtimes([zk.T, Nz, U[k]]) + Rz * U[k] ** 2
-        J += cs.bilin(cs.DM(mpc.P), Z[:, N], Z[:, N])
-        # Limits as in the QP, on the shooting states: rebuild from the condensed rows'
-        # meaning would need the condensing maps; write them directly.
-        lbg = [0.0] * (nz * (N + 1))
-        ubg = [0.0] * (nz * (N + 1))
-        iu, iud = _winch_indices(p)
-        for k in range(N + 1):
-            zk = Z[:, k]
-            if s.stroke_max is not None and k >= 1:
-                g.append(zk[iu])
-                lbg.append(-s.stroke_max)
-                ubg.append(s.stroke_max)
-            if s.speed_max is not None:
-                if iud is None and k < N:
-                    vk = zk[n] if d > 0 else U[k]
-                    g.append(p.K * (vk - zk[iu]))
-                    lbg.append(-s.speed_max)
-                    ubg.append(s.speed_max)
-                elif iud is not None and k >= 1:
-                    g.append(zk[iud])
-                    lbg.append(-s.speed_max)
-                    ubg.append(s.speed_max)
-            if s.accel_max is not None and k < N:
-                vk = zk[n] if d > 0 else U[k]
-                ww2 = -A[iu + 1, iu]
-                g.append(ww2 * (vk - zk[iu]) + A[iu + 1, iu + 1] * zk[iud])
-                lbg.append(-s.accel_max)
-                ubg.append(s.accel_max)
-            if s.command_rate_max is not None and k < N:
-                g.append(U[k] - (Pup if k == 0 else U[k - 1]))
-                lbg.append(-s.command_rate_max)
-                ubg.append(s.command_rate_max)
-            if ns and k >= 1:
-                c_str, _ = p.output_row("stretch")
-                st = cs.mtimes(cs.DM(c_str).T, zk[:n]) + (PD[k] if k < N else 0)
-                g.append(st + Sl[k - 1])
-                lbg.append(mpc.stretch_min)
-                ubg.append(np.inf)
-                J += s.tension_penalty * Sl[k - 1] ** 2 + 10 * np.sqrt(s.tension_penalty) * \
-                    Sl[k - 1]
-        w = cs.vertcat(cs.vec(Z), U, Sl)
-        nlp = {"x": w, "p": cs.vertcat(P0, Pup, PD), "f": J, "g": cs.vertcat(*g)}
-        opts = {"ipopt": {"print_level": 0, "sb": "yes", "tol": 1e-10,
-                          "warm_start_init_point": "yes", "mu_init": 1e-4},
-                "print_time": False, "error_on_fail": False}
-        _merge(opts, s.solver_options)
-        self.solver = cs.nlpsol("heave_nmpc", "ipopt", nlp, opts)
-        self.lbg = np.array(lbg)
-        self.ubg = np.array(ubg)
-        nw = w.shape[0]
-        self.lbw = np.full(nw, -np.inf)
-        self.ubw = np.full(nw, np.inf)
-        if ns:
-            self.lbw[-ns:] = 0.0
-        self.nz, self.N, self.ns = nz, N, ns
-        self.warm: dict | None = None
+        return cs.Function("F", [x, v, dd], [xk])
 
     def solve(self, z0: np.ndarray, u_prev: float, D: np.ndarray) -> tuple[np.ndarray, bool]:
         nz, N = self.nz, self.N

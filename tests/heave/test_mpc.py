@@ -132,3 +132,55 @@ def test_preview_of_model_prediction_changes_nothing(plant_636: pl.HeavePlant) -
     forecast = np.array([cx0 @ (m._S[k] @ z0)[: m.n] for k in range(20)])
     D = m.preview_correction(z0, forecast)
     assert np.max(np.abs(D)) < 1e-12
+
+
+def test_ipopt_and_qp_give_the_same_moves_with_active_limits(plant_636: pl.HeavePlant) -> None:
+    # The IPOPT formulation has the QP's cost, limit rows (rows fixed by commands already sent
+    # dropped), |u0| <= stroke_max bound and tension slacks, and with the linear unit the exact
+    # sampled model: it is the same convex problem. Along a closed-loop run (driven by the QP
+    # MPC, 3x the sea, limits tight enough to be active), IPOPT solved at the same state must
+    # give the same first move. Tolerance 5e-7 m: with tol = 1e-12 IPOPT agrees to ~7e-8 m
+    # (interior point near weakly active limits; at the default tol 1e-10, ~2e-6 m), the
+    # active-set QP to ~1e-15.
+    lim = {"stroke_max": 0.3, "speed_max": 0.15, "command_rate_max": 0.01,
+           "tension_min": 5000.0, "unit_mass": 125000.0, "static_tension": 50000.0}
+    mq = mpc.LinearMPC(plant_636, 0.2, mpc.MPCSettings(horizon=20, solver="qpoases", **lim))
+    mi = mpc.LinearMPC(plant_636, 0.2, mpc.MPCSettings(
+        horizon=20, solver="ipopt", solver_options={"ipopt": {"tol": 1e-12}}, **lim))
+    assert mi._nlp.ns == mq.ns == 16  # the 4 stretch rows fixed by the 4-sample delay dropped
+    rng = np.random.default_rng(1)
+    Lw = _factor(discretize_noise(plant_636.A, plant_636.B2, np.pi, 0.05))
+    iu = plant_636.blocks["winch"].start
+    z = np.zeros(mq.nz)
+    up = 0.0
+    diffs, active = [], 0
+    for _ in range(130):
+        rq, ri = mq.step(z, up), mi.step(z, up)
+        assert rq.success and ri.success
+        diffs.append(abs(rq.u0 - ri.u0))
+        used = max(abs(z[iu]) / 0.3, abs(z[mq.n] - z[iu]) / 0.15, abs(rq.u0 - up) / 0.01)
+        active += used > 1 - 1e-6
+        up = rq.u0
+        z = mq.model.Ad @ z + mq.model.Bd[:, 0] * rq.u0
+        z[: plant_636.n] += 3.0 * Lw @ rng.standard_normal(plant_636.n)
+    assert max(diffs) < 5e-7
+    assert active >= 10  # limits were active on the first move (else this proves little)
+
+
+def test_rows_fixed_by_sent_commands_do_not_make_ipopt_infeasible(plant_636: pl.HeavePlant
+                                                                   ) -> None:
+    # The winch is at u = 0.31 m > stroke_max = 0.3 m and the 4 buffered commands are 0.3 m:
+    # the stroke over the next 4 samples is fixed by commands already sent and violates the
+    # limit. Those rows are dropped (nothing can be decided), so both formulations solve and
+    # agree (5e-7 m as above); keeping them made the IPOPT problem infeasible.
+    st = {"horizon": 15, "stroke_max": 0.3, "speed_max": 0.3, "command_rate_max": 0.2}
+    mq = mpc.LinearMPC(plant_636, 0.2, mpc.MPCSettings(solver="qpoases", **st))
+    mi = mpc.LinearMPC(plant_636, 0.2, mpc.MPCSettings(
+        solver="ipopt", solver_options={"ipopt": {"tol": 1e-12}}, **st))
+    z = np.zeros(mq.nz)
+    z[plant_636.blocks["winch"].start] = 0.31
+    z[mq.n :] = 0.3
+    rq, ri = mq.step(z, 0.3), mi.step(z, 0.3)
+    assert rq.success and ri.success
+    assert ri.u0 == pytest.approx(rq.u0, abs=5e-7)
+    assert abs(ri.u0) <= 0.3 * (1 + 1e-9)  # the command bound |u0| <= stroke_max
