@@ -94,6 +94,44 @@ def with_resolution_check(scene: Scene, solve_fn: Callable, warm_start: Any, ord
     return sol
 
 
+def equilibrium_check(scene: Scene, sol: Any, method: str) -> Any:
+    """Independent a-posteriori check of a baseline's answer: integrate the cable
+    equations (:class:`~cable_ocp.statics.formulation.Formulation`, scipy's DOP853 at
+    rtol 1e-10) from end_a with the method's own r(0), T(0) and L, and compare where the
+    shot lands with the method's end_b. A method whose parametrisation cannot represent the
+    true equilibrium (e.g. x(z) for a cable that dips below its anchor) can converge to a
+    profile that is no equilibrium at all; a landing error over 1 % of L (or of the largest
+    tension) marks it ``"not_equilibrium"``."""
+    if not sol.success:
+        return sol
+    from scipy.integrate import solve_ivp
+
+    from cable_ocp.statics.formulation import Formulation
+
+    form = Formulation(scene)
+    sc = form.scales
+    lam = sol.length / sc.length
+    y0 = np.concatenate([sol.position[0] / sc.length, sol.tension_vector[0] / sc.force])
+
+    def rhs(_s: float, y: np.ndarray) -> np.ndarray:
+        return np.asarray(form.rhs(y, lam, 1.0)).ravel()
+
+    shot = solve_ivp(rhs, (0.0, 1.0), y0, method="DOP853", rtol=1e-10, atol=1e-12)
+    if not shot.success:
+        return sol
+    yb = shot.y[:, -1]
+    miss = max(float(np.max(np.abs(yb[:3] * sc.length - sol.position[-1]))) / sol.length,
+               float(np.max(np.abs(yb[3:] * sc.force - sol.tension_vector[-1])))
+               / sol.max_tension)
+    sol.diagnostics["equilibrium_check"] = miss
+    if miss > UNRESOLVED_LIMIT:
+        sol.status = "not_equilibrium"
+        sol.message = (f"{method}: converged, but integrating the cable equations from its "
+                       f"end_a state misses its end_b by {miss:.1e} (relative): the profile is "
+                       "not an equilibrium (the method's parametrisation cannot represent it)")
+    return sol
+
+
 def seabed_check(scene: Scene, sol: Any, method: str) -> Any:
     """Mark a method's solution that passes below a modelled seabed as a failure."""
     sb = scene.environment.seabed

@@ -435,9 +435,10 @@ def solve(scene: Scene, warm_start: StaticsSolution | None = None) -> StaticsSol
     Richardson error estimate from N/2 elements (order 2 assumed: the measured end-force
     order is 2.5-3, so this over- rather than under-estimates) and ``"unresolved"`` above
     1 % (:func:`cable_ocp.baselines.with_resolution_check`)."""
-    from cable_ocp.baselines import with_resolution_check
+    from cable_ocp.baselines import equilibrium_check, with_resolution_check
 
-    return with_resolution_check(scene, solve_fem, warm_start, 2.0, METHOD)
+    sol = with_resolution_check(scene, solve_fem, warm_start, 2.0, METHOD)
+    return equilibrium_check(scene, sol, METHOD)
 
 
 def solve_fem(scene: Scene, warm_start: StaticsSolution | None = None,
