@@ -5,8 +5,8 @@ from __future__ import annotations
 import numpy as np
 import pytest
 
+from cable_ocp.heave import lqr, sea
 from cable_ocp.heave import plant as pl
-from cable_ocp.heave import sea
 from cable_ocp.heave import stochastic as st
 from cable_ocp.heave.thesis import (
     A_636,
@@ -64,14 +64,32 @@ def test_weight_for_sigma_inverts_design(plant_636: pl.HeavePlant) -> None:
 
 def test_discrete_exact_delay_design_recovers_sigma(plant_636: pl.HeavePlant) -> None:
     # CONVENTIONS: the exact discrete-delay design (tau = 0.2 s, h = 0.05 s) recovers 2.96e-4 m
-    # (within 1 %: sampling changes the optimum slightly), while the undelayed continuous gain
-    # applied through a true 0.2 s delay does not (here it is unstable).
+    # (within 1 %: sampling changes the optimum slightly).
     p = plant_636
     G = st.discrete_delay_lqr(p.A, p.B1, p.e("x"), Q_636, 1.0, 0.05, 0.2)
     s = st.sampled_loop_sigma(p.A, p.B1, p.B2, p.e("x"), 0.05, 0.2, G[:, :11], G[:, 11:])
     assert s == pytest.approx(SIGMA_CONTROLLED_636, rel=0.01)
+
+
+def test_undelayed_gain_on_the_true_delay(plant_636: pl.HeavePlant) -> None:
+    # The undelayed q = 553.6 gain has a continuous delay margin of 0.2161 s (exact crossing
+    # condition, confirmed by the Nyquist count on either side), so with a true 0.2 s delay it
+    # is stable but degraded: sigma = 8.71e-4 m (sampled at 1 ms; 8.70e-4 extrapolated to
+    # h -> 0, O(h) convergence, 0.5 % tolerance), about 3x the 2.96e-4 m of the delay-aware
+    # design. Sampled with a ZOH at 0.05 s (about h/2 = 25 ms of extra delay, past the margin)
+    # the same gain is unstable.
+    p = plant_636
     g0 = st.stochastic_lqr(p.A, p.B1, p.B2, p.e("x"), Q_636).G
-    assert st.sampled_loop_sigma(p.A, p.B1, p.B2, p.e("x"), 0.01, 0.2, g0) > 2 * s
+    des = lqr.LQRDesign(g0, "none", 0.0, p.n, p.A, p.B1, p.B2, np.zeros((0, 0)),
+                        np.zeros((0, 1)))
+    margin = lqr.delay_margin(des, 1.0)
+    assert margin == pytest.approx(0.2161, abs=1e-4)
+    assert lqr.unstable_roots(des, 0.2) == 0
+    assert lqr.unstable_roots(des, margin + 2e-3) > 0
+    s_fine = st.sampled_loop_sigma(p.A, p.B1, p.B2, p.e("x"), 1e-3, 0.2, g0)
+    assert s_fine == pytest.approx(8.71e-4, rel=5e-3)
+    assert s_fine > 2.9 * SIGMA_CONTROLLED_636
+    assert st.sampled_loop_sigma(p.A, p.B1, p.B2, p.e("x"), 0.05, 0.2, g0) == float("inf")
 
 
 def test_sampled_loop_matches_continuous_for_small_step(plant_636: pl.HeavePlant) -> None:
