@@ -2,8 +2,10 @@
 
 Run ``python examples/heave_regulator_6_2_6.py [OUT.png]``. Prints the printed gains' closed-loop
 poles and delay margins, the LQR gains of the three delay treatments, and saves the trade-off
-curves J_d, J_v versus J_c (6.16)-(6.18) on a seeded Pierson-Moskowitz boom-tip record
-(Hs = 6 m, Tz = 14 s, Fig. 6.10).
+curves J_d, J_v (6.16)-(6.17) versus the winch-speed energy J_w = int u'^2 dt on a seeded
+Pierson-Moskowitz boom-tip record (Hs = 6 m, Tz = 14 s, Fig. 6.10). The thesis plots against
+J_c = sum G_i^2 (6.18); that depends on the state realisation of a Pade design, J_w does not
+(:func:`cable_ocp.heave.plots.tradeoff_data`).
 """
 
 from __future__ import annotations
@@ -51,8 +53,8 @@ def main(out: str | None = None, duration: float = 200.0) -> dict:
         for label, arr in res["tradeoff"].items():
             ax[0].loglog(arr[:, 0], arr[:, 1], "o-", label=label)
             ax[1].loglog(arr[:, 0], arr[:, 2], "o-", label=label)
-        ax[0].set(xlabel="J_c (6.18)", ylabel="J_d (6.16), m^2 s", title="Fig. 6.18")
-        ax[1].set(xlabel="J_c (6.18)", ylabel="J_v (6.17), m^2/s", title="Fig. 6.19")
+        ax[0].set(xlabel="J_w = int u'^2 dt, m^2/s", ylabel="J_d (6.16), m^2 s", title="Fig. 6.18")
+        ax[1].set(xlabel="J_w = int u'^2 dt, m^2/s", ylabel="J_v (6.17), m^2/s", title="Fig. 6.19")
         ax[0].legend()
         fig.tight_layout()
         fig.savefig(out, dpi=110)

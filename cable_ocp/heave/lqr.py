@@ -11,7 +11,8 @@
 Every design is judged on the **true** delayed loop: stability versus the actual delay (the
 stable interval of delays containing the design delay, from the exact frequency-domain crossing
 condition of ``1 + L2(s) + L1(s) e^{-s tau} = 0``) and the indices J_d, J_v, J_c
-(6.16)-(6.18) on a boom-tip record.
+(6.16)-(6.18) on a boom-tip record, plus the coordinate-free winch-speed energy ``J_w`` that the
+trade-off curves use as their effort axis (``J_c`` of a Pade design depends on its realisation).
 
 Sign convention: ``u0 = -G x`` (the thesis' (6.9) writes ``u0 = G x`` with ``G = -R^{-1} B^T M``
 in (6.10); its printed gains in Figs. 6.15-6.17 are positive, i.e. the ``-G`` convention).
@@ -403,7 +404,15 @@ class Indices:
     J_v : float
         ``int x'^2 dt``, m^2/s.
     J_c : float
-        ``sum G_i^2``.
+        ``sum G_i^2`` (6.18). It depends on the coordinates of the controller's internal delay
+        states: for a Pade design (realised by ``control.ss(control.tf(...))``) any similarity
+        transform of that realisation gives the same controller and a different ``J_c``. Use
+        it only for designs whose states are physical (undelayed, Taylor (6.14)).
+    J_w : float
+        ``int u'^2 dt``, m^2/s: the winch-speed energy, a coordinate-free control-effort
+        measure that compares any two controllers (CONVENTIONS: the winch speed is "the
+        comparison that holds across controllers"). Evaluated from the winch output ``u`` of
+        the loop as ``sum ((u_{k+1} - u_k) / dt)^2 dt`` (mean speed over each loop step).
     stable : bool
         Whether the sampled true loop is stable.
     """
@@ -412,11 +421,12 @@ class Indices:
     J_v: float
     J_c: float
     stable: bool
+    J_w: float = float("nan")
 
 
 def indices(des: LQRDesign, tau_true: float, t: np.ndarray, x0: np.ndarray,
             h: float | None = None) -> Indices:
-    """Run the true delayed loop on the boom-tip record ``x0(t)`` and compute (6.16)-(6.18).
+    """Run the true delayed loop on the boom-tip record ``x0(t)``: (6.16)-(6.18) and ``J_w``.
 
     ``t`` must be uniform with the loop's sample time (0.01 s for continuous designs unless
     ``h`` is given, ``des.h`` for discrete ones).
@@ -427,11 +437,13 @@ def indices(des: LQRDesign, tau_true: float, t: np.ndarray, x0: np.ndarray,
         raise CableOCPError(f"boom-tip record step {t[1] - t[0]} s must equal the loop step {dt} s")
     stable = bool(np.max(np.abs(np.linalg.eigvals(sys.A))) < 1)
     if not stable:
-        return Indices(J_d=float("inf"), J_v=float("inf"), J_c=des.control_energy, stable=False)
+        return Indices(J_d=float("inf"), J_v=float("inf"), J_c=des.control_energy, stable=False,
+                       J_w=float("inf"))
     resp = ct.forced_response(sys, T=t, U=x0)
     y = np.asarray(resp.outputs)
     return Indices(J_d=float(np.sum(y[0] ** 2) * dt), J_v=float(np.sum(y[1] ** 2) * dt),
-                   J_c=des.control_energy, stable=stable)
+                   J_c=des.control_energy, stable=stable,
+                   J_w=float(np.sum(np.diff(y[2]) ** 2) / dt))
 
 
 def return_difference_min(A: np.ndarray, B: np.ndarray, G: np.ndarray) -> float:  # noqa: N803
@@ -457,7 +469,7 @@ def return_difference_min(A: np.ndarray, B: np.ndarray, G: np.ndarray) -> float:
 def tradeoff_curve(a: float, b: float, q_values: np.ndarray, t: np.ndarray, x0: np.ndarray,
                    *, tau: float, method: str, K: float = 1.0, pade_order: int = 2
                    ) -> list[tuple[float, Indices]]:
-    """J_d and J_v against J_c for ``Q = diag(q, 0, 0)``, ``R = 1`` (Figs. 6.18-6.19).
+    """J_d, J_v, J_c and J_w for ``Q = diag(q, 0, 0)``, ``R = 1`` (Figs. 6.18-6.19).
 
     Each design is evaluated on the true loop with the delay ``tau``.
     """

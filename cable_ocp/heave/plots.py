@@ -18,20 +18,29 @@ from cable_ocp.heave.simulate import Comparison  # noqa: E402
 
 def tradeoff_data(a: float, b: float, K: float, tau: float, t: np.ndarray, x0: np.ndarray,
                   q_values: np.ndarray | None = None) -> dict:
-    """J_d, J_v versus J_c for the undelayed design on the undelayed plant and the Taylor and
-    Pade designs on the true delayed plant (004 Figs. 6.18-6.19)."""
+    """Trade-off data of 004 Figs. 6.18-6.19 for ``Q = diag(q, 0, 0)``, ``R = 1``.
+
+    The undelayed design on the undelayed plant and the Taylor and Pade designs on the true
+    delayed plant. Returns ``{label: array of rows [J_w, J_d, J_v, J_c]}`` over the stable
+    designs (:class:`cable_ocp.heave.lqr.Indices`). The effort axis is ``J_w = int u'^2 dt``
+    (m^2/s), not the thesis' ``J_c = sum G_i^2`` (6.18): ``J_c`` of the Pade design depends on
+    the arbitrary state realisation of the Pade filter, ``J_w`` on nothing but the loop.
+    """
     q_values = np.logspace(1, 5, 7) if q_values is None else q_values
     out = {}
     for label, tt, meth in [("tau = 0", 0.0, "none"), (f"Taylor, tau = {tau:g} s", tau, "taylor"),
                             (f"Pade(2), tau = {tau:g} s", tau, "pade")]:
         cur = lqr_mod.tradeoff_curve(a, b, q_values, t, x0, tau=tt, method=meth, K=K)
-        out[label] = np.array([[c[1].J_c, c[1].J_d, c[1].J_v] for c in cur if c[1].stable])
+        out[label] = np.array([[c[1].J_w, c[1].J_d, c[1].J_v, c[1].J_c] for c in cur
+                               if c[1].stable]).reshape(-1, 4)
     return out
 
 
 def plot_comparison(res: Comparison, path: str | Path, tradeoff: dict | None = None) -> None:
-    """Save a 2x2 figure: spectrum and fit, boom tip and unit heave, winch output, trade-off."""
-    fig, ax = plt.subplots(2, 2, figsize=(12, 8))
+    """Save a 2x3 figure: spectrum and fit (Fig. 6.21), boom tip and unit heave, winch output
+    and winch speed (Figs. 6.22-6.24), and, if ``tradeoff`` (from :func:`tradeoff_data`), J_d
+    and J_v against the winch-speed energy J_w (Figs. 6.18 and 6.19)."""
+    fig, ax = plt.subplots(2, 3, figsize=(16, 8))
     spec = res.models.spectrum
     w = np.linspace(0.02, 5 * spec.omega_m, 600)
     ax[0, 0].plot(w, spec(w), label=f"{spec.kind} (Hs = {spec.hs:g} m)")
@@ -45,16 +54,22 @@ def plot_comparison(res: Comparison, path: str | Path, tradeoff: dict | None = N
         ax[0, 1].plot(tr.t, tr.x, lw=0.8, label=f"unit x, {name}")
         if name != "passive":
             ax[1, 0].plot(tr.t, tr.u, lw=0.8, label=f"winch u, {name}")
+            ax[0, 2].plot(tr.t, tr.u_dot, lw=0.8, label=f"winch u', {name}")
     ax[0, 1].set(xlabel="t (s)", ylabel="heave (m)", title="Time series")
     ax[0, 1].legend(fontsize=7)
     ax[1, 0].set(xlabel="t (s)", ylabel="u (m)", title="Winch output")
     ax[1, 0].legend(fontsize=7)
+    ax[0, 2].set(xlabel="t (s)", ylabel="u' (m/s)", title="Winch speed")
+    ax[0, 2].legend(fontsize=7)
     if tradeoff:
         for label, arr in tradeoff.items():
             if arr.size:
                 ax[1, 1].loglog(arr[:, 0], arr[:, 1], "o-", label=label)
-        ax[1, 1].set(xlabel="J_c = sum G_i^2 (6.18)", ylabel="J_d (m^2 s) (6.16)",
+                ax[1, 2].loglog(arr[:, 0], arr[:, 2], "o-", label=label)
+        ax[1, 1].set(xlabel="J_w = int u'^2 dt (m^2/s)", ylabel="J_d (m^2 s) (6.16)",
                      title="Trade-off (Fig. 6.18)")
+        ax[1, 2].set(xlabel="J_w = int u'^2 dt (m^2/s)", ylabel="J_v (m^2/s) (6.17)",
+                     title="Trade-off (Fig. 6.19)")
         ax[1, 1].legend(fontsize=7)
     fig.tight_layout()
     fig.savefig(path, dpi=110)

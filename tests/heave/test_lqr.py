@@ -2,6 +2,8 @@
 
 from __future__ import annotations
 
+import dataclasses
+
 import numpy as np
 import pytest
 
@@ -63,20 +65,42 @@ def test_delay_designs_tolerate_the_delay_better() -> None:
         assert lqr.delay_margin(des) > max(none, 0.3)
 
 
-def test_indices_tradeoff_more_energy_less_motion() -> None:
-    # Figs. 6.18-6.19: along Q = diag(q,0,0), J_c increases and J_d decreases with q, and at the
-    # same J_c the delayed loop does worse (needs more energy for the same J_d).
+def _record() -> tuple[np.ndarray, np.ndarray]:
     rng = np.random.default_rng(3)
     t = np.arange(0.0, 100.0, 0.01)
-    x0 = np.convolve(rng.standard_normal(t.size), np.hanning(400), mode="same") * 0.05
+    return t, np.convolve(rng.standard_normal(t.size), np.hanning(400), mode="same") * 0.05
+
+
+def test_indices_tradeoff_more_energy_less_motion() -> None:
+    # Figs. 6.18-6.19: along Q = diag(q,0,0), the effort J_w = int u'^2 dt increases and J_d
+    # decreases with q, and at the same effort the delayed loop does worse (more motion).
+    t, x0 = _record()
     qs = [1e2, 1e3, 1e4]
     c0 = lqr.tradeoff_curve(A_626, B_626, qs, t, x0, tau=0.0, method="none")
     c2 = lqr.tradeoff_curve(A_626, B_626, qs, t, x0, tau=0.2, method="taylor")
-    jc0 = [c[1].J_c for c in c0]
+    jw0 = [c[1].J_w for c in c0]
     jd0 = [c[1].J_d for c in c0]
-    assert jc0[0] < jc0[1] < jc0[2] and jd0[0] > jd0[1] > jd0[2]
-    jd2 = np.interp(np.log(jc0[1]), np.log([c[1].J_c for c in c2]), [c[1].J_d for c in c2])
+    assert jw0[0] < jw0[1] < jw0[2] and jd0[0] > jd0[1] > jd0[2]
+    assert [c[1].J_c for c in c0] == sorted(c[1].J_c for c in c0)
+    jd2 = np.interp(np.log(jw0[1]), np.log([c[1].J_w for c in c2]), [c[1].J_d for c in c2])
     assert jd2 > jd0[1]
+
+
+def test_effort_axis_is_independent_of_the_pade_realisation() -> None:
+    # A similarity transform T of the Pade filter's states (Af -> T^-1 Af T, Bf -> T^-1 Bf,
+    # Gf -> Gf T) is the same controller: J_d, J_v and J_w must not change (1e-10 relative,
+    # rounding in the transformed matrices), while the thesis' J_c = sum G_i^2 (6.18) does
+    # (here by a factor ~10). Hence the trade-off plots use J_w.
+    t, x0 = _record()
+    des = lqr.design_lqr(A_626, B_626, np.diag([1e3, 0, 0]), tau=0.2, method="pade")
+    T = np.array([[2.0, 0.5], [0.0, 0.1]])
+    Ti = np.linalg.inv(T)
+    d2 = dataclasses.replace(des, G=np.hstack([des.Gp, des.Gf @ T]), Af=Ti @ des.Af @ T,
+                             Bf=Ti @ des.Bf)
+    i1, i2 = lqr.indices(des, 0.2, t, x0), lqr.indices(d2, 0.2, t, x0)
+    for k in ("J_d", "J_v", "J_w"):
+        assert getattr(i2, k) == pytest.approx(getattr(i1, k), rel=1e-10)
+    assert i1.J_c / i2.J_c > 5
 
 
 def test_discrete_design_needs_integer_delay() -> None:
