@@ -191,7 +191,7 @@ def plot(results: list[dict[str, Any]], path: str | Path) -> Path:
             t, e = np.array(pts).T
             style = "-o" if (m in OURS or m == REUSED) else "--s"
             ax.loglog(t * 1e3, np.maximum(e, 1e-16), style, ms=4, color=f"C{k % 10}", label=m)
-        ax.set_xlabel("wall time per solve [ms] (build included)")
+        ax.set_xlabel("wall time per solve [ms] (cold calls include the CasADi build)")
         ax.set_ylabel("relative error (end forces, profile)")
         ax.set_title(res["scene"])
         ax.grid(True, which="both", alpha=0.3)
