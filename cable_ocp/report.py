@@ -45,6 +45,10 @@ def statics_summary(sol: StaticsSolution, title: str = "") -> str:
               f"{est.get('position_m', 0):.2e} m; {est.get('method', '')})"),
         ("smoothing bound on drag", f"{d.get('smoothing_force_bound_N', 0):.2e} N over the cable"),
     ]
+    td = d.get("touchdown")
+    if td:
+        rows.insert(6, ("touchdown (on the seabed)", _vec(np.asarray(td["position"]), "m")
+                        + f", grounded length {td['grounded_length']:.4f} m"))
     if d.get("continuation"):
         rows.append(("continuation", str(d["continuation"])))
     for w in d.get("warnings", []):
