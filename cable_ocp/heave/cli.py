@@ -41,9 +41,9 @@ def run_heave(args: argparse.Namespace) -> int:
     if args.duration is not None:
         sc = dataclasses.replace(sc, simulation=dataclasses.replace(sc.simulation,
                                                                     duration=args.duration))
-        from cable_ocp.heave.scene import _check
+        from cable_ocp.heave.scene import check
 
-        _check(sc)
+        check(sc)
     res = compare(sc, tuple(args.controllers) if args.controllers else None)
     fit = res.models.filter_fit
     print(f"{sc.title or args.file}")

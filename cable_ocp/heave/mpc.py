@@ -181,6 +181,7 @@ class LinearMPC:
             raise CableOCPError(f"[controller] solver = {s.solver!r} is unknown; valid: {SOLVERS}")
         if not (isinstance(s.horizon, int) and s.horizon >= 1):
             raise CableOCPError(f"[controller] horizon = {s.horizon!r} must be an integer >= 1")
+        _check_settings(s)
         h = s.sample_time
         if abs(tau / h - round(tau / h)) > 1e-9:
             raise CableOCPError(
@@ -482,6 +483,23 @@ class LinearMPC:
         dt = time.perf_counter() - t0
         return MPCStep(u0=float(x[0]), success=ok, solve_time=dt, plan=x[:N].copy(),
                        max_slack=float(np.max(x[N:])) if x.size > N else 0.0)
+
+
+def _check_settings(s: MPCSettings) -> None:
+    """Reject settings that would fail deep inside a solver (names as in the scene file)."""
+    rules = [("winch", "stroke_max", s.stroke_max, True), ("winch", "speed_max", s.speed_max, True),
+             ("winch", "command_rate_max", s.command_rate_max, True),
+             ("winch", "accel_max", s.accel_max, True),
+             ("controller", "sample_time", s.sample_time, True),
+             ("controller", "q", s.q, False), ("controller", "r", s.r, True),
+             ("controller", "preview_time", s.preview_time, False),
+             ("controller", "tension_penalty", s.tension_penalty, True)]
+    for table, key, val, strict in rules:
+        if val is None:
+            continue
+        if not (np.isfinite(val) and (val > 0 if strict else val >= 0)):
+            raise CableOCPError(f"[{table}] {key} = {val!r} must be finite and "
+                                f"{'> 0' if strict else '>= 0'}")
 
 
 @contextlib.contextmanager

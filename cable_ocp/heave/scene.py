@@ -58,6 +58,7 @@ Schema (SI units; see ``problems/heave/*.toml`` for commented examples)::
 
 from __future__ import annotations
 
+import math
 import tomllib
 from dataclasses import dataclass, field, fields
 from pathlib import Path
@@ -196,7 +197,10 @@ def _build(cls: type, table: str, data: dict[str, Any]) -> Any:
             pass
         elif isinstance(default, int) and not isinstance(val, int):
             raise CableOCPError(f"[{table}] {key} = {val!r} must be an integer")
-        elif isinstance(default, float) or default is None and key not in ("cable_scene",):
+        elif key == "cable_scene":
+            if not isinstance(val, str):
+                raise CableOCPError(f"[{table}] {key} = {val!r} must be a file path (string)")
+        elif isinstance(default, float) or default is None:
             if isinstance(val, bool) or not isinstance(val, (int, float)):
                 raise CableOCPError(f"[{table}] {key} = {val!r} must be a number")
             val = float(val)
@@ -225,11 +229,72 @@ def scene_from_dict(data: dict[str, Any]) -> HeaveScene:
                 f"unknown top-level key {key!r}; valid: title, source, {', '.join(tables)}"
             )
     scene = HeaveScene(**kwargs)
-    _check(scene)
+    check(scene)
     return scene
 
 
-def _check(sc: HeaveScene) -> None:
+#: Sign rules for numeric keys: (table, key) -> (rule, unit); rule ">0" or ">=0". Optional keys
+#: (None = not given) are only checked when given.
+_SIGN_RULES: dict[tuple[str, str], tuple[str, str]] = {
+    ("sea", "significant_wave_height"): (">0", "m"),
+    ("sea", "modal_frequency"): (">0", "rad/s"),
+    ("sea", "zero_crossing_period"): (">0", "s"),
+    ("sea", "peak_period"): (">0", "s"),
+    ("sea", "peak_enhancement"): (">0", "JONSWAP gamma, usually 1-7"),
+    ("sea", "filter_order"): (">0", "second-order sections"),
+    ("vessel", "natural_frequency"): (">0", "rad/s"),
+    ("vessel", "damping_ratio"): (">0", "-"),
+    ("vessel", "gain"): (">0", "-"),
+    ("winch", "gain"): (">0", "1/s"),
+    ("winch", "natural_frequency"): (">0", "rad/s"),
+    ("winch", "damping_ratio"): (">0", "-"),
+    ("winch", "delay"): (">=0", "s"),
+    ("winch", "stroke_max"): (">0", "m"),
+    ("winch", "speed_max"): (">0", "m/s"),
+    ("winch", "command_rate_max"): (">0", "m per sample"),
+    ("winch", "accel_max"): (">0", "m/s^2"),
+    ("winch", "tension_min"): (">=0", "N"),
+    ("unit", "a"): (">0", "s^2"),
+    ("unit", "b"): (">0", "s"),
+    ("unit", "b_quadratic"): (">=0", "s^2/m"),
+    ("unit", "mass"): (">=0", "kg"),
+    ("unit", "static_tension"): (">=0", "N"),
+    ("controller", "q"): (">=0", "1/m^2"),
+    ("controller", "r"): (">0", "1/m^2"),
+    ("controller", "horizon"): (">0", "samples"),
+    ("controller", "sample_time"): (">0", "s"),
+    ("controller", "preview_time"): (">=0", "s"),
+    ("controller", "measurement_noise"): (">0", "m"),
+    ("controller", "tension_penalty"): (">0", "1/m^2"),
+    ("simulation", "duration"): (">0", "s"),
+    ("simulation", "seed"): (">=0", "-"),
+    ("simulation", "substeps"): (">0", "-"),
+    ("simulation", "warmup"): (">=0", "s"),
+}
+
+
+def _check_signs(sc: HeaveScene) -> None:
+    for (table, key), (rule, unit) in _SIGN_RULES.items():
+        val = getattr(getattr(sc, table), key)
+        if val is None:
+            continue
+        ok = math.isfinite(val) and (val > 0 if rule == ">0" else val >= 0)
+        if not ok:
+            bound = "> 0" if rule == ">0" else ">= 0"
+            raise CableOCPError(f"[{table}] {key} = {val!r} must be finite and {bound} ({unit})")
+
+
+def check(sc: HeaveScene) -> None:
+    """Validate a scene built in Python (``scene_from_dict`` calls it on every file).
+
+    Raises
+    ------
+    CableOCPError
+        Naming the offending key: a value of the wrong sign (limits, weights, times, model
+        coefficients; see ``_SIGN_RULES``), a missing or ambiguous sea frequency, a delay that is
+        not a whole number of samples, or inconsistent options.
+    """
+    _check_signs(sc)
     s = sc.sea
     given = [k for k in ("modal_frequency", "zero_crossing_period", "peak_period")
              if getattr(s, k) is not None]

@@ -34,6 +34,45 @@ def test_bad_scenes_raise(doc: dict, match: str) -> None:
         scene_from_dict(doc)
 
 
+@pytest.mark.parametrize("table,key,val", [
+    ("winch", "stroke_max", -1.0),        # reached qpOASES as a RuntimeError before
+    ("winch", "speed_max", 0.0),          # ZeroDivisionError in the metrics before
+    ("winch", "command_rate_max", -0.1),
+    ("winch", "delay", -0.2),
+    ("controller", "q", -1.0),            # LinAlgError in the Riccati solver before
+    ("controller", "preview_time", -1.0),  # IndexError in the simulation before
+    ("controller", "r", 0.0),             # accepted silently before
+    ("controller", "measurement_noise", 0.0),
+    ("sea", "peak_enhancement", 0.0),     # accepted silently before
+    ("sea", "peak_enhancement", -1.0),
+    ("unit", "a", 0.0),
+    ("simulation", "seed", -1),
+])
+def test_bad_values_raise_naming_the_key(table: str, key: str, val: float) -> None:
+    doc: dict = {"sea": {"modal_frequency": 0.7}}
+    doc.setdefault(table, {})[key] = val
+    with pytest.raises(CableOCPError, match=f"\\[{table}\\] {key} = "):
+        scene_from_dict(doc)
+
+
+def test_problem_file_with_bad_value_raises_before_simulating(tmp_path: Path) -> None:
+    # The CLI path: a problem file with a bad limit fails at load time with the key named.
+    src = (ROOT / "problems" / "heave" / "ex_6_3_6.toml").read_text()
+    bad = tmp_path / "bad.toml"
+    bad.write_text(src.replace("stroke_max = 2.0", "stroke_max = -1.0"))
+    with pytest.raises(CableOCPError, match="stroke_max = -1.0 must be finite and > 0"):
+        load_scene(bad)
+
+
+@pytest.mark.parametrize("key,val", [("stroke_max", -1.0), ("speed_max", 0.0), ("q", -1.0),
+                                     ("r", 0.0), ("preview_time", -1.0)])
+def test_mpc_settings_checked_in_the_python_api(plant_636, key: str, val: float) -> None:  # noqa: ANN001
+    from cable_ocp.heave import mpc
+
+    with pytest.raises(CableOCPError, match=f"{key} = "):
+        mpc.LinearMPC(plant_636, 0.0, mpc.MPCSettings(horizon=5, **{key: val}))
+
+
 def test_missing_file_raises() -> None:
     with pytest.raises(CableOCPError, match="not found"):
         load_scene("/nonexistent/heave.toml")
