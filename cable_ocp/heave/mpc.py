@@ -34,6 +34,8 @@ once and warm-started with the shifted previous solution.
 from __future__ import annotations
 
 import contextlib
+import ctypes
+import io
 import os
 import sys
 import time
@@ -396,8 +398,11 @@ class LinearMPC:
         if s.solver == "qpoases":
             opts = {"printLevel": "none", "error_on_fail": False}
         elif s.solver == "osqp":
+            # Polishing off: OSQP prints "Polishing not needed ..." on every solve without
+            # an active set, whatever ``verbose`` says. Every OSQP call is also silenced
+            # (``step``), in case ``solver_options`` turns polishing back on.
             opts = {"osqp": {"verbose": False, "eps_abs": 1e-6, "eps_rel": 1e-6,
-                             "polish": True}, "warm_start_primal": True,
+                             "polish": False}, "warm_start_primal": True,
                     "warm_start_dual": True, "error_on_fail": False}
         elif s.solver == "qrqp":
             opts = {"print_iter": False, "print_header": False, "print_info": False,
@@ -460,13 +465,23 @@ class LinearMPC:
                     "lbx": self.lbx, "ubx": self.ubx}
             if self._warm is not None:
                 args.update(self._warm)
-            if self._first:
-                with _quiet_stdout():  # qpOASES prints a licence banner on its first call
+            if self._first or self.settings.solver == "osqp":
+                # qpOASES prints a banner on its first call, OSQP's polish on every call (about
+                # 16 us per call to redirect file descriptor 1; library code never prints).
+                with _quiet_stdout():
                     sol = self._solver(**args)
                 self._first = False
             else:
                 sol = self._solver(**args)
             ok = bool(self._solver.stats().get("success", False))
+            if not ok and self._warm is not None:
+                # A stale warm start (e.g. after a jump in the state) can make an active-set
+                # solver fail (qrqp: "Failed to calculate search direction"): retry cold once.
+                for key in self._warm:
+                    args.pop(key)
+                with _quiet_stdout():
+                    sol = self._solver(**args)
+                ok = bool(self._solver.stats().get("success", False))
             x = np.asarray(sol["x"]).ravel()
             if ok:
                 U, Sl = x[:N], x[N:]
@@ -504,20 +519,40 @@ def _check_settings(s: MPCSettings) -> None:
 
 @contextlib.contextmanager
 def _quiet_stdout() -> Iterator[None]:
-    """Silence C-level writes to file descriptor 1 (library code never prints)."""
+    """Silence a solver call (library code never prints).
+
+    Two paths reach the terminal: CasADi routes its plugins' messages (qpOASES' banner, OSQP's
+    polish notice) to Python's ``sys.stdout``, which is replaced by a sink here; C code that
+    writes to file descriptor 1 directly is sent to ``/dev/null`` (C stdio buffers are flushed
+    before the descriptor is restored, or they would surface later).
+    """
+    sink = io.StringIO()
     try:
         sys.stdout.flush()
         fd = os.dup(1)
-    except (OSError, ValueError):
-        yield
+    except (OSError, ValueError, AttributeError):
+        with contextlib.redirect_stdout(sink):
+            yield
         return
     try:
         with open(os.devnull, "w") as devnull:
             os.dup2(devnull.fileno(), 1)
-            yield
+            try:
+                with contextlib.redirect_stdout(sink):
+                    yield
+            finally:
+                _flush_c_stdio()
     finally:
         os.dup2(fd, 1)
         os.close(fd)
+
+
+def _flush_c_stdio() -> None:
+    """``fflush(NULL)`` of the C runtime (no-op where libc cannot be loaded)."""
+    try:
+        ctypes.CDLL(None).fflush(None)
+    except (OSError, AttributeError, TypeError):
+        pass
 
 
 def _merge(opts: dict, extra: dict) -> None:

@@ -184,3 +184,21 @@ def test_rows_fixed_by_sent_commands_do_not_make_ipopt_infeasible(plant_636: pl.
     assert rq.success and ri.success
     assert ri.u0 == pytest.approx(rq.u0, abs=5e-7)
     assert abs(ri.u0) <= 0.3 * (1 + 1e-9)  # the command bound |u0| <= stroke_max
+
+
+@pytest.mark.parametrize("solver,opts", [("osqp", {}), ("osqp", {"osqp": {"polish": True}}),
+                                         ("qpoases", {}), ("qrqp", {}), ("ipopt", {})])
+@pytest.mark.parametrize("limits", [{}, {"stroke_max": 2.0, "speed_max": 1.5,
+                                         "command_rate_max": 0.1}])
+def test_mpc_steps_print_nothing(plant_636: pl.HeavePlant, capfd: pytest.CaptureFixture,
+                                 solver: str, opts: dict, limits: dict) -> None:
+    # Library code never prints. OSQP with polishing printed "Polishing not needed ..." on
+    # every unconstrained solve; qpOASES prints a banner on its first call. Captured at the
+    # file-descriptor level (C libraries write to fd 1 directly).
+    m = mpc.LinearMPC(plant_636, 0.2, mpc.MPCSettings(horizon=10, solver=solver,
+                                                     solver_options=opts, **limits))
+    rng = np.random.default_rng(0)
+    for _ in range(4):
+        assert m.step(rng.standard_normal(m.nz) * 0.01).success
+    out, err = capfd.readouterr()
+    assert out == "" and err == ""
