@@ -72,7 +72,12 @@ def run_heave(args: argparse.Namespace) -> int:
         step = 0.01
         t = np.arange(0.0, min(tr.t[-1], 200.0), step)
         x0 = np.interp(t, tr.t, tr.x0)
-        td = tradeoff_data(sc.unit.a, sc.unit.b, sc.winch.gain, sc.winch.delay or 0.2, t, x0)
+        tau = sc.winch.delay
+        if tau <= 0:
+            tau = 0.2
+            print("trade-off plot: the scene has no delay; its delayed curves use 0.2 s, the "
+                  "delay of the thesis' study (Fig. 6.17)")
+        td = tradeoff_data(sc.unit.a, sc.unit.b, sc.winch.gain, tau, t, x0)
         plot_comparison(res, args.plot, td)
     return 0
 

@@ -27,13 +27,8 @@ import numpy as np
 from scipy import optimize
 
 from cable_ocp.errors import CableOCPError
-from cable_ocp.heave.discrete import discretize_cost, discretize_delayed
+from cable_ocp.heave.discrete import DelayedDiscreteModel, discretize_cost, discretize_delayed
 from cable_ocp.heave.plant import HeavePlant, assemble_plant, delay_block, winch_first
-
-#: The gains printed in 004 (Fig. 6.15/6.16 captions, state [x, x', u]; Fig. 6.17 caption,
-#: state [x, x', u, u0(t - tau), u0'(t - tau)], tau = 0.2 s).
-THESIS_G3 = np.array([[93.944, 41.41, 5.166]])
-THESIS_G5 = np.array([[296.97, 132.73, 15.95, 2.306, 0.164]])
 
 
 @dataclass(frozen=True)
@@ -103,6 +98,47 @@ def _pad_Q(Q: np.ndarray, n: int) -> np.ndarray:  # noqa: N802
     return out
 
 
+def exact_delay_dlqr(A: np.ndarray, B: np.ndarray, Q: np.ndarray, R: float, h: float,  # noqa: N803
+                     tau: float) -> tuple[np.ndarray, DelayedDiscreteModel]:
+    """Exact discrete-delay LQR: ``dlqr`` on the shift-register model (section 6.2.5 done
+    exactly instead of by the Taylor model (6.13)).
+
+    ``x' = A x + B u0(t - tau)`` is sampled by ZOH at ``h`` with the last ``d = tau / h``
+    commands as extra states, and the continuous cost ``int (x^T Q x + R u0^2) dt`` is sampled
+    exactly (:func:`cable_ocp.heave.discrete.discretize_cost`); then python-control's ``dlqr``.
+
+    Parameters
+    ----------
+    A, B : numpy.ndarray
+        Continuous plant and command column (any plant: regulator (6.6) or full (6.28)).
+    Q : numpy.ndarray
+        State weight (n x n).
+    R : float
+        Command weight, 1/m^2.
+    h : float
+        Sample time, s.
+    tau : float
+        Delay, s; ``tau / h`` must be an integer.
+
+    Returns
+    -------
+    G : numpy.ndarray, shape (1, n + d)
+        Gains on ``[x; u0_{k-d} .. u0_{k-1}]``, ``u0_k = -G z_k``.
+    model : DelayedDiscreteModel
+        The sampled shift-register model.
+    """
+    d_real = tau / h
+    if abs(d_real - round(d_real)) > 1e-9:
+        raise CableOCPError(
+            f"[winch] delay = {tau} s must be an integer multiple of [controller] "
+            f"sample_time = {h} s for the exact discrete design"
+        )
+    mdl = discretize_delayed(A, B, h, tau)
+    Qz, Rz, Nz = discretize_cost(A, B, Q, R, h, mdl.d)
+    G, _, _ = ct.dlqr(mdl.Ad, mdl.Bd, Qz, Rz, Nz)
+    return np.asarray(G), mdl
+
+
 def design_lqr(a: float, b: float, Q: np.ndarray, R: float = 1.0, *, tau: float = 0.0,
                method: str = "taylor", pade_order: int = 2, K: float = 1.0,
                winch: ct.StateSpace | None = None, h: float = 0.05) -> LQRDesign:
@@ -143,17 +179,8 @@ def design_lqr(a: float, b: float, Q: np.ndarray, R: float = 1.0, *, tau: float 
     Ap, Bp, Ep = base.A, base.B1, base.B2
     empty = np.zeros((0, 0)), np.zeros((0, 1))
     if method == "discrete":
-        d_real = tau / h
-        if abs(d_real - round(d_real)) > 1e-9:
-            raise CableOCPError(
-                f"[winch] delay = {tau} s must be an integer multiple of [controller] "
-                f"sample_time = {h} s for the exact discrete design"
-            )
-        mdl = discretize_delayed(Ap, Bp, h, tau)
-        Qz, Rz, Nz = discretize_cost(Ap, Bp, _pad_Q(Q, n_p), R, h, mdl.d)
-        G, _, _ = ct.dlqr(mdl.Ad, mdl.Bd, Qz, Rz, Nz)
-        return LQRDesign(np.asarray(G), method, float(tau), n_p, Ap, Bp, Ep, *empty, h=h,
-                         d=mdl.d)
+        G, mdl = exact_delay_dlqr(Ap, Bp, _pad_Q(Q, n_p), R, h, tau)
+        return LQRDesign(G, method, float(tau), n_p, Ap, Bp, Ep, *empty, h=h, d=mdl.d)
     kind = "none" if method == "none" else method
     dblk = delay_block(kind, tau, pade_order)
     plant = regulator_plant(a, b, K, winch, dblk)
@@ -164,7 +191,7 @@ def design_lqr(a: float, b: float, Q: np.ndarray, R: float = 1.0, *, tau: float 
 
 def design_from_gains(a: float, b: float, G: np.ndarray, *, tau: float = 0.0,
                       method: str = "none", K: float = 1.0) -> LQRDesign:
-    """Wrap printed gains (e.g. :data:`THESIS_G3`, :data:`THESIS_G5`) as a design."""
+    """Wrap printed gains (e.g. :data:`cable_ocp.heave.thesis.G3_626`, ``G5_626``) as a design."""
     base = regulator_plant(a, b, K)
     G = np.atleast_2d(np.asarray(G, dtype=float))
     if method == "none":

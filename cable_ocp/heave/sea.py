@@ -23,9 +23,9 @@ import numpy as np
 from scipy import integrate, optimize
 
 from cable_ocp.errors import CableOCPError
+from cable_ocp.heave.stochastic import WHITE_NOISE_INTENSITY, output_variance_lyapunov
 
-#: Intensity of the continuous white noise that has a one-sided spectral density of 1.
-WHITE_NOISE_INTENSITY = np.pi
+__all__ = ["WHITE_NOISE_INTENSITY"]  # defined with the variance convention in ``stochastic``
 
 #: Constants of the thesis' rational approximation (6.21)-(6.22) (Triantafyllou et al. 1983).
 THESIS_S0_FACTOR = 1.8861
@@ -253,8 +253,6 @@ def fit_quality(sys: ct.StateSpace, spectrum: SeaSpectrum) -> tuple[float, float
     tuple of float
         ``(spectral_error, variance_error)``, both dimensionless.
     """
-    from cable_ocp.heave.stochastic import output_variance_lyapunov
-
     w = _grid(spectrum.omega_m)
     s_true = spectrum(w)
     s_fit = filter_spectrum(sys, w)
@@ -304,9 +302,6 @@ def fit_shaping_filter(spectrum: SeaSpectrum, n_sections: int = 3) -> FilterFit:
     s_true = spectrum(w)
     scale = np.linalg.norm(s_true)
     m0 = spectrum.m0()
-
-    from cable_ocp.heave.stochastic import output_variance_lyapunov
-
     jw = 1j * w
 
     def residual(p: np.ndarray) -> np.ndarray:

@@ -122,10 +122,21 @@ class Comparison:
 
 
 def wave_realisation(plant: pl.HeavePlant, t_end: float, h_sim: float, seed: int
-                     ) -> tuple[np.ndarray, np.ndarray]:
+                     ) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
     """Exactly sampled sea + vessel states and the boom-tip heave on ``[0, t_end]``.
 
-    Returns ``(t, x0)``; stationary start (initial state drawn from the Lyapunov covariance).
+    The shaping filter (6.21)-(6.23) and the vessel filter (6.25)-(6.26) are sampled exactly
+    (ZOH transition, Van Loan noise covariance with intensity ``pi``); stationary start (initial
+    state drawn from the Lyapunov covariance (6.31)).
+
+    Returns
+    -------
+    t : numpy.ndarray
+        Time, s (step ``h_sim``).
+    x0 : numpy.ndarray
+        Boom-tip heave, m.
+    states : numpy.ndarray, shape (len(t), n_vessel + n_sea)
+        Vessel and sea states (the plant's states from the vessel block on).
     """
     lo = plant.blocks["vessel"].start
     A = plant.A[lo:, lo:]

@@ -13,6 +13,7 @@ reproduces its sigma = 0.255 m for 6.3.6.
 
 from __future__ import annotations
 
+from collections.abc import Callable
 from dataclasses import dataclass
 
 import control as ct
@@ -20,7 +21,13 @@ import numpy as np
 from scipy import integrate, linalg
 
 from cable_ocp.errors import CableOCPError
-from cable_ocp.heave.sea import WHITE_NOISE_INTENSITY
+from cable_ocp.heave.discrete import discretize_delayed, discretize_noise
+from cable_ocp.heave.lqr import exact_delay_dlqr
+from cable_ocp.heave.plant import HeavePlant
+
+#: Intensity of the continuous white noise that has a one-sided spectral density of 1 (module
+#: docstring); also exported by :mod:`cable_ocp.heave.sea`.
+WHITE_NOISE_INTENSITY = np.pi
 
 
 def state_covariance(A0: np.ndarray, B2: np.ndarray) -> np.ndarray:  # noqa: N803
@@ -227,8 +234,8 @@ def lqg_closed_loop_sigma(A: np.ndarray, B1: np.ndarray, B2: np.ndarray,  # noqa
     return float(np.sqrt((Ccl @ P @ Ccl.T)[0, 0]))
 
 
-def winch_gain_study(build: callable, K_values: np.ndarray, sigma_target: float,  # noqa: N803
-                     r: float = 1.0) -> list[tuple[float, float, float]]:
+def winch_gain_study(build: Callable[[float], HeavePlant], K_values: np.ndarray,  # noqa: N803
+                     sigma_target: float, r: float = 1.0) -> list[tuple[float, float, float]]:
     """Energy index versus winch gain ``K`` at a prescribed sigma (004 section 6.3.5, Fig. 6.25).
 
     Parameters
@@ -267,8 +274,6 @@ def sampled_loop_sigma(A: np.ndarray, B1: np.ndarray, B2: np.ndarray,  # noqa: N
     the plant's buffer). Sampled stationary variance = continuous stationary variance at the
     sample instants; ``sigma^2 = C P C^T`` with ``P`` from the discrete Lyapunov equation.
     """
-    from cable_ocp.heave.discrete import discretize_delayed, discretize_noise
-
     n = A.shape[0]
     mdl = discretize_delayed(A, B1, h, tau_true)
     N = mdl.Ad.shape[0]
@@ -292,26 +297,18 @@ def sampled_loop_sigma(A: np.ndarray, B1: np.ndarray, B2: np.ndarray,  # noqa: N
 
 def discrete_delay_lqr(A: np.ndarray, B1: np.ndarray, c_x: np.ndarray, q: float,  # noqa: N803
                        r: float, h: float, tau: float) -> np.ndarray:
-    """Exact discrete-delay LQR for the full plant: ``dlqr`` on the shift-register model.
+    """Exact discrete-delay LQR for the full plant (6.28) with ``Q = q c_x^T c_x``, ``R = r``.
 
-    The continuous cost ``int (q x^2 + r u0^2) dt`` is sampled exactly
-    (:func:`cable_ocp.heave.discrete.discretize_cost`); ``tau/h`` must be an integer.
+    The same design as :func:`cable_ocp.heave.lqr.design_lqr` with ``method="discrete"``
+    (:func:`cable_ocp.heave.lqr.exact_delay_dlqr`: ``dlqr`` on the shift-register model with
+    the continuous cost ``int (q x^2 + r u0^2) dt`` sampled exactly); ``tau/h`` must be an
+    integer.
 
     Returns
     -------
     numpy.ndarray, shape (1, n + d)
         Gains on ``[x; u_{k-d} .. u_{k-1}]``.
     """
-    from cable_ocp.heave.discrete import discretize_cost, discretize_delayed
-
-    d_real = tau / h
-    if abs(d_real - round(d_real)) > 1e-9:
-        raise CableOCPError(
-            f"[winch] delay = {tau} s must be an integer multiple of [controller] sample_time "
-            f"= {h} s"
-        )
-    mdl = discretize_delayed(A, B1, h, tau)
-    cx = np.asarray(c_x).reshape(1, -1)
-    Qz, Rz, Nz = discretize_cost(A, B1, q * cx.T @ cx, r, h, mdl.d)
-    G, _, _ = ct.dlqr(mdl.Ad, mdl.Bd, Qz, Rz, Nz)
-    return np.asarray(G)
+    cx = np.asarray(c_x, dtype=float).reshape(1, -1)
+    G, _ = exact_delay_dlqr(A, B1, q * cx.T @ cx, r, h, tau)
+    return G
