@@ -1,29 +1,46 @@
 """MPC timing benchmark (issue 4): solve time per step, median and p99, with the delay.
 
-Plant: example 6.3.6 (``problems/heave/ex_6_3_6.toml`` values: 11 states, first-order winch,
-0.2 s delay = 4 samples at 0.05 s, stroke/speed/command-rate limits, soft tension), closed loop
-on the exactly sampled plant driven by the seeded sea. Each solver's problem is built once and
-warm-started; the timing covers the whole ``step`` (gradient/bound assembly + solve). do-mpc is
-timed on the same plant when it is installed (optional; never a test dependency).
+Problem: example 6.3.6 as in ``problems/heave/ex_6_3_6.toml`` (plant (6.28) with 11 states,
+first-order winch, 0.2 s delay = 4 samples at 0.05 s, weights q, r, stroke/speed/command-rate
+limits and the soft tension limit, all read from that file), closed loop on the exactly sampled
+plant driven by the seeded sea. Each solver's problem is built once and warm-started; the timing
+covers the whole ``step`` (gradient/bound assembly + solve). do-mpc (optional, never a test
+dependency) is given the same problem when installed: the same sampled model and stage cost
+(state, cross and input terms), DARE terminal cost, command bounds, stroke, speed and
+command-rate limits and the soft tension limit (do-mpc's soft constraints have a linear penalty
+only; ours add a quadratic one).
 """
 
 from __future__ import annotations
 
 import time
 from dataclasses import dataclass
+from pathlib import Path
 
 import numpy as np
 
 from cable_ocp.heave import mpc as mpc_mod
 from cable_ocp.heave import plant as pl
-from cable_ocp.heave import sea
 from cable_ocp.heave.discrete import discretize_noise
-from cable_ocp.heave.thesis import A_636, B_636, HS_636, KV_636, WM_636, WV_636, ZETA_V_636
+from cable_ocp.heave.scene import HeaveScene, load_scene
+from cable_ocp.heave.simulate import build_models
 
-H = 0.05
-TAU = 0.2
-LIMITS = {"stroke_max": 2.0, "speed_max": 1.5, "command_rate_max": 0.1, "tension_min": 5000.0,
-          "unit_mass": 125000.0, "static_tension": 50000.0}
+SCENE = Path(__file__).resolve().parents[2] / "problems" / "heave" / "ex_6_3_6.toml"
+
+
+def bench_scene() -> HeaveScene:
+    """The 6.3.6 scene the benchmark runs (limits, weights, delay, sample time)."""
+    return load_scene(SCENE)
+
+
+def bench_settings(sc: HeaveScene, horizon: int, solver: str) -> mpc_mod.MPCSettings:
+    """MPC settings from the scene's ``[controller]`` and ``[winch]`` tables."""
+    c, w, u = sc.controller, sc.winch, sc.unit
+    return mpc_mod.MPCSettings(
+        horizon=horizon, sample_time=c.sample_time, q=c.q, r=c.r, solver=solver,
+        stroke_max=w.stroke_max, speed_max=w.speed_max, command_rate_max=w.command_rate_max,
+        accel_max=w.accel_max, tension_min=w.tension_min, unit_mass=u.mass,
+        static_tension=u.static_tension, tension_penalty=c.tension_penalty)
 
 
 @dataclass(frozen=True)
@@ -39,25 +56,23 @@ class BenchRow:
     note: str = ""
 
 
-def bench_plant() -> pl.HeavePlant:
-    """The 6.3.6 plant (6.28)."""
-    return pl.assemble_plant(A_636, B_636, pl.winch_first(1.0),
-                             vessel=pl.vessel_block(WV_636, ZETA_V_636, KV_636),
-                             sea=sea.thesis_shaping_filter(HS_636, WM_636))
+def bench_plant(sc: HeaveScene | None = None) -> pl.HeavePlant:
+    """The 6.3.6 plant (6.28), built from the scene."""
+    return build_models(sc or bench_scene()).plant
 
 
-def _noise(p: pl.HeavePlant, steps: int, seed: int) -> np.ndarray:
-    lam, V = np.linalg.eigh(discretize_noise(p.A, p.B2, np.pi, H))
+def _noise(p: pl.HeavePlant, h: float, steps: int, seed: int) -> np.ndarray:
+    lam, V = np.linalg.eigh(discretize_noise(p.A, p.B2, np.pi, h))
     L = V * np.sqrt(np.clip(lam, 0, None))
     return np.random.default_rng(seed).standard_normal((steps, p.n)) @ L.T
 
 
 def time_cas(solver: str, horizon: int, steps: int, seed: int = 0) -> BenchRow:
     """Closed-loop timing of :class:`cable_ocp.heave.mpc.LinearMPC` with ``solver``."""
-    p = bench_plant()
-    m = mpc_mod.LinearMPC(p, TAU, mpc_mod.MPCSettings(horizon=horizon, sample_time=H,
-                                                      solver=solver, **LIMITS))
-    w = _noise(p, steps, seed)
+    sc = bench_scene()
+    p = bench_plant(sc)
+    m = mpc_mod.LinearMPC(p, sc.winch.delay, bench_settings(sc, horizon, solver))
+    w = _noise(p, sc.controller.sample_time, steps, seed)
     z = np.zeros(m.nz)
     up = 0.0
     ts, fails = [], 0
@@ -75,38 +90,52 @@ def time_cas(solver: str, horizon: int, steps: int, seed: int = 0) -> BenchRow:
 
 
 def time_do_mpc(horizon: int, steps: int, seed: int = 0) -> BenchRow:
-    """Same plant, delay (shift states), limits and cost in do-mpc (discrete model)."""
+    """The same problem in do-mpc (discrete model with the shift register, IPOPT)."""
     import casadi as cs
     import do_mpc  # optional benchmark dependency
 
-    p = bench_plant()
-    ref = mpc_mod.LinearMPC(p, TAU, mpc_mod.MPCSettings(horizon=1, sample_time=H, **LIMITS))
-    Ad, Bd, nz, n = ref.model.Ad, ref.model.Bd, ref.nz, p.n
+    sc = bench_scene()
+    p = bench_plant(sc)
+    st = bench_settings(sc, horizon, "qpoases")
+    ref = mpc_mod.LinearMPC(p, sc.winch.delay, st)  # sampled model, cost and terminal cost
+    Ad, Bd, nz, n, d = ref.model.Ad, ref.model.Bd, ref.nz, p.n, ref.model.d
     model = do_mpc.model.Model("discrete")
     z = model.set_variable("_x", "z", shape=(nz, 1))
     u = model.set_variable("_u", "u0")
     model.set_rhs("z", cs.mtimes(cs.DM(Ad), z) + cs.DM(Bd) * u)
-    c_str, _ = p.output_row("stretch")
-    model.set_expression("stretch", cs.mtimes(cs.DM(c_str).T, z[:n]))
     iu = p.blocks["winch"].start
-    model.set_expression("speed", p.K * (z[n] - z[iu]))
+    applied = z[n] if d > 0 else u
+    model.set_expression("speed", p.K * (applied - z[iu]))
+    c_str, _ = p.output_row("stretch")
+    model.set_expression("stretch", cs.mtimes(cs.DM(c_str).reshape((1, n)), z[:n]))
+    if d > 0:
+        model.set_expression("rate", u - z[nz - 1])  # newest buffered command = u0_{k-1}
     model.setup()
     ctl = do_mpc.controller.MPC(model)
     ctl.settings.n_horizon = horizon
-    ctl.settings.t_step = H
+    ctl.settings.t_step = st.sample_time
     ctl.settings.store_full_solution = False
     ctl.settings.nlpsol_opts = {"ipopt.print_level": 0, "print_time": 0, "ipopt.sb": "yes"}
-    Qz = cs.DM(ref.Qz)
-    lterm = cs.bilin(Qz, z, z)
-    mterm = cs.bilin(cs.DM(ref.P), z, z)
-    ctl.set_objective(lterm=lterm, mterm=mterm)
+    lterm = (cs.bilin(cs.DM(ref.Qz), z, z) + 2 * cs.mtimes([z.T, cs.DM(ref.Nz), u])
+             + float(ref.Rz[0, 0]) * u**2)
+    ctl.set_objective(lterm=lterm, mterm=cs.bilin(cs.DM(ref.P), z, z))
     ctl.set_rterm(u0=0.0)
-    ctl.bounds["lower", "_u", "u0"] = -LIMITS["stroke_max"]
-    ctl.bounds["upper", "_u", "u0"] = LIMITS["stroke_max"]
-    ctl.set_nl_cons("speed_hi", model.aux["speed"], ub=LIMITS["speed_max"])
-    ctl.set_nl_cons("speed_lo", -model.aux["speed"], ub=LIMITS["speed_max"])
+    ctl.bounds["lower", "_u", "u0"] = -st.stroke_max
+    ctl.bounds["upper", "_u", "u0"] = st.stroke_max
+    lo = np.full((nz, 1), -np.inf)
+    hi = np.full((nz, 1), np.inf)
+    lo[iu], hi[iu] = -st.stroke_max, st.stroke_max
+    ctl.bounds["lower", "_x", "z"] = lo
+    ctl.bounds["upper", "_x", "z"] = hi
+    ctl.set_nl_cons("speed_hi", model.aux["speed"], ub=st.speed_max)
+    ctl.set_nl_cons("speed_lo", -model.aux["speed"], ub=st.speed_max)
+    if d > 0:
+        ctl.set_nl_cons("rate_hi", model.aux["rate"], ub=st.command_rate_max)
+        ctl.set_nl_cons("rate_lo", -model.aux["rate"], ub=st.command_rate_max)
+    ctl.set_nl_cons("tension", -model.aux["stretch"], ub=-ref.stretch_min, soft_constraint=True,
+                    penalty_term_cons=float(ref.g_slack[-1]))
     ctl.setup()
-    w = _noise(p, steps, seed)
+    w = _noise(p, st.sample_time, steps, seed)
     x = np.zeros((nz, 1))
     ctl.x0 = x
     ctl.set_initial_guess()
@@ -121,8 +150,8 @@ def time_do_mpc(horizon: int, steps: int, seed: int = 0) -> BenchRow:
     ts = np.array(ts[1:])
     return BenchRow("do-mpc (ipopt)", horizon, float(np.median(ts)),
                     float(np.percentile(ts, 99)), steps, fails,
-                    f"do-mpc {do_mpc.__version__}, collocation-free discrete model; "
-                    "stroke as command bound, speed limit, no rate/tension limits")
+                    f"do-mpc {do_mpc.__version__}, discrete model, same cost and limits "
+                    "(tension: linear penalty)")
 
 
 def run(horizons: list[int] | tuple = (20, 50, 100), steps: int = 300,
@@ -150,7 +179,9 @@ def format_table(rows: list[BenchRow]) -> str:
     for r in rows:
         note = r.note
         if not r.solver.startswith("do-mpc") and np.isfinite(dom.get(r.horizon, np.nan)):
-            note += f"; {dom[r.horizon] / r.median_s:.1f}x faster than do-mpc"
+            ratio = dom[r.horizon] / r.median_s
+            note += (f"; {ratio:.1f}x faster than do-mpc" if ratio >= 1
+                     else f"; {1 / ratio:.1f}x slower than do-mpc")
         lines.append(f"{r.solver:<16} {r.horizon:>4} {1e3 * r.median_s:10.3f} "
                      f"{1e3 * r.p99_s:9.3f} {r.steps:>6} {r.failures:>6}  {note}")
     return "\n".join(lines)
