@@ -493,6 +493,48 @@ def return_difference_min(A: np.ndarray, B: np.ndarray, G: np.ndarray) -> float:
     return float(min(res.fun, vals[i]))
 
 
+def diagonal_weights_for_gain(A: np.ndarray, B: np.ndarray, G: np.ndarray,  # noqa: N803
+                              R: float = 1.0) -> tuple[np.ndarray, np.ndarray]:
+    """The only diagonal ``Q`` (and its ``P``) for which a SISO gain ``G`` solves the LQR
+    equations (inverse LQR, 004 (6.7)-(6.10) read backwards).
+
+    With ``R B^T P = G`` the Riccati equation ``A^T P + P A - P B R^{-1} B^T P + Q = 0`` becomes
+    linear in ``(P, Q)``: ``A^T P + P A + Q = G^T R G``. For ``n`` states that is
+    ``n (n + 1) / 2 + n`` equations for the ``n (n + 1) / 2`` entries of ``P`` and the ``n``
+    diagonal entries of ``Q``: square, solved directly. ``G`` is an LQR gain of a diagonal
+    ``Q >= 0`` only if the returned ``Q`` is PSD (and ``P > 0``).
+
+    Raises
+    ------
+    CableOCPError
+        If the linear system is singular (the diagonal ``Q`` is not unique).
+    """
+    A = np.asarray(A, dtype=float)
+    n = A.shape[0]
+    B = np.asarray(B, dtype=float).reshape(n, 1)
+    G = np.asarray(G, dtype=float).reshape(1, n)
+    idx = [(i, j) for i in range(n) for j in range(i, n)]
+    npv = len(idx)
+
+    def unpack(x: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+        P = np.zeros((n, n))
+        for k, (i, j) in enumerate(idx):
+            P[i, j] = P[j, i] = x[k]
+        return P, np.diag(x[npv:])
+
+    def resid(x: np.ndarray) -> np.ndarray:
+        P, Q = unpack(x)
+        r1 = A.T @ P + P @ A + Q - R * G.T @ G
+        return np.concatenate([[r1[i, j] for (i, j) in idx], (R * B.T @ P - G).ravel()])
+
+    r0 = resid(np.zeros(npv + n))
+    J = np.column_stack([resid(e) - r0 for e in np.eye(npv + n)])
+    if np.linalg.matrix_rank(J) < J.shape[1]:
+        raise CableOCPError("no unique diagonal Q for this gain (singular inverse-LQR system)")
+    P, Q = unpack(np.linalg.solve(J, -r0))
+    return Q, P
+
+
 def tradeoff_curve(a: float, b: float, q_values: np.ndarray, t: np.ndarray, x0: np.ndarray,
                    *, tau: float, method: str, K: float = 1.0, pade_order: int = 2
                    ) -> list[tuple[float, Indices]]:

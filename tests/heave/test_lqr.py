@@ -52,6 +52,16 @@ def test_printed_g3_is_not_diagonal_lqr_but_passes_kalman_test() -> None:
     des = lqr.design_lqr(A_626, B_626, np.diag([8825.0, 0, 0]), 1.0, method="none")
     assert des.G[0, 0] == pytest.approx(89.2, abs=0.1)
     assert abs(des.G[0, 1] - G3_626[0, 1]) > 30
+    # Closed form: with B^T P = G the Riccati equation is linear in (P, Q); the diagonal Q
+    # that reproduces G3 is unique, Q = diag(9995.28, -6809.33, 25.7358) (1e-6 relative,
+    # the printed digits), and indefinite: no PSD diagonal Q gives G3.
+    Q, P = lqr.diagonal_weights_for_gain(d3.Ap, d3.Bp, d3.Gp)
+    np.testing.assert_allclose(np.diag(Q), [9995.28, -6809.33, 25.7358], rtol=1e-6)
+    assert np.allclose(Q, np.diag(np.diag(Q)))
+    np.testing.assert_allclose(d3.Bp.T @ P, d3.Gp, rtol=1e-10)
+    res = d3.Ap.T @ P + P @ d3.Ap - P @ d3.Bp @ d3.Bp.T @ P + Q
+    assert np.max(np.abs(res)) < 1e-8 * np.max(np.abs(Q))
+    assert np.min(np.diag(Q)) < 0
 
 
 def test_delay_designs_tolerate_the_delay_better() -> None:

@@ -113,6 +113,33 @@ def test_lqg_approaches_lqr_as_noise_vanishes(plant_636: pl.HeavePlant) -> None:
     assert sig[0] > sig[1] > sig[2] > d.sigma
 
 
+def test_lqg_variance_lyapunov_equals_spectral_of_hand_built_loop(plant_636: pl.HeavePlant
+                                                                    ) -> None:
+    # Two independent paths to the LQG heave variance (1 cm sensor at 0.05 s): (a) the library
+    # (python-control feedback with sign=+1, Lyapunov of the augmented loop); (b) the loop
+    # [x; x_hat]' = [[A, -B1 G], [L C, A - B1 G - L C]] [x; x_hat] + [[B2, 0], [0, L]] [w; v]
+    # written by hand, its variance by quadrature of the one-sided spectral integral (6.33)
+    # for each noise (intensities pi and RN, so v contributes RN/pi times its integral).
+    # Relative 1e-6 as for the other Lyapunov/spectral pairs.
+    p = plant_636
+    cx = p.e("x")
+    d = st.stochastic_lqr(p.A, p.B1, p.B2, cx, Q_636)
+    std, h = 0.01, 0.05
+    L = st.lqg_kalman(p.A, p.B2, cx, std, h)
+    RN = std**2 * h
+    s_lib = st.lqg_closed_loop_sigma(p.A, p.B1, p.B2, cx, d.G, L, RN)
+    n = p.n
+    Acl = np.block([[p.A, -p.B1 @ d.G], [L @ cx, p.A - p.B1 @ d.G - L @ cx]])
+    Bw = np.vstack([p.B2, np.zeros((n, 1))])
+    Bv = np.vstack([np.zeros((n, 1)), L])
+    C = np.hstack([cx, np.zeros((1, n))])
+    var = st.output_variance_spectral(Acl, Bw, C) + RN / np.pi * st.output_variance_spectral(
+        Acl, Bv, C)
+    assert np.sqrt(var) == pytest.approx(s_lib, rel=1e-6)
+    # and it lies between full-state LQR and no control (separation principle)
+    assert d.sigma < s_lib < d.sigma_uncontrolled
+
+
 def test_winch_gain_study_energy_decreases_with_K() -> None:
     # 004 Fig. 6.25: at a prescribed sigma, the energy index falls as K grows and levels off.
     f = sea.thesis_shaping_filter(HS_636, WM_636)
