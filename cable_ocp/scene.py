@@ -32,6 +32,16 @@ Schema (all values SI; the README repeats this with examples)::
     normal_drag = 1.0            C_n (-)
     tangential_drag = 0.005      C_t (-), acts on the wetted perimeter pi*D
     drag_law = "vector"          "vector" (independence principle) | "componentwise" (000)
+    [[cable.segments]]           optional multi-segment line, listed from end_a to end_b;
+                                 each with length, diameter, weight_in_water,
+                                 axial_stiffness, normal_drag, tangential_drag (as above)
+                                 and optional intervals (collocation intervals); then
+                                 [cable] holds only drag_law (see :class:`Scene`)
+    [[bodies]]                   optional point bodies at joints between segments:
+    joint = 1                    1..n_segments-1: after this many segments from end_a
+    kind = "clump"               "clump" (weight_in_water, N) | "buoy" (net_buoyancy, N)
+                                 | "unit" (weight_in_water N, drag_area m^2,
+                                 drag_coefficient -, thrust = [Tx, Ty, Tz] N)
     [end_a]  /  [end_b]          end_a is s = 0, end_b is s = L
     position = [x, y, z]         m; entries may be "free"
     force = [Fx, Fy, Fz]         N, the EXTERNAL load on the attachment (a towed body's
@@ -64,6 +74,7 @@ from cable_ocp.baselines import METHODS
 from cable_ocp.errors import CableOCPError
 
 __all__ = [
+    "Body",
     "Cable",
     "Current",
     "End",
@@ -178,6 +189,48 @@ class Cable:
     def elastic(self) -> bool:
         """True when EA is finite."""
         return math.isfinite(self.axial_stiffness)
+
+
+@dataclass(frozen=True)
+class Body:
+    """A point body at a joint between two cable segments (``[[bodies]]``).
+
+    Attributes
+    ----------
+    joint : int
+        Number of segments between end_a and the body (1 .. n_segments - 1).
+    kind : str
+        ``"clump"``, ``"buoy"`` or ``"unit"``.
+    weight_in_water : float
+        Weight in water, N (clump, unit; pulls down). 0 for a buoy.
+    net_buoyancy : float
+        Net buoyancy, N (buoy; pulls up). 0 otherwise.
+    drag_area : float
+        Projected area for the drag, m^2 (unit; 0 = no drag).
+    drag_coefficient : float
+        Drag coefficient C_d (-) (unit).
+    thrust : tuple of float
+        Thrust vector, N (unit), an external load on the body.
+    """
+
+    joint: int
+    kind: str
+    weight_in_water: float = 0.0
+    net_buoyancy: float = 0.0
+    drag_area: float = 0.0
+    drag_coefficient: float = 0.0
+    thrust: tuple[float, float, float] = (0.0, 0.0, 0.0)
+
+    @property
+    def static_load(self) -> tuple[float, float, float]:
+        """External load without drag (weight, buoyancy, thrust), N."""
+        fz = self.net_buoyancy - self.weight_in_water
+        return (self.thrust[0], self.thrust[1], self.thrust[2] + fz)
+
+    @property
+    def has_drag(self) -> bool:
+        """True when the body has a drag area and coefficient."""
+        return self.drag_area > 0.0 and self.drag_coefficient > 0.0
 
 
 @dataclass(frozen=True)
@@ -301,7 +354,14 @@ class Footprint:
 
 @dataclass(frozen=True)
 class Scene:
-    """A validated statics problem: the input of every statics method."""
+    """A validated statics problem: the input of every statics method.
+
+    A multi-segment line (``[[cable.segments]]``) has its segments, from end_a to end_b,
+    in ``segments`` (each a :class:`Cable` with its own length) and its point bodies in
+    ``bodies``; ``cable`` then summarises the line: the total length with the first
+    segment's properties (the segment that touches the seabed at an anchored end_a).
+    A single-cable scene has ``segments == ()`` and ``bodies == ()``.
+    """
 
     environment: Environment
     cable: Cable
@@ -309,6 +369,9 @@ class Scene:
     end_b: End
     solver: SolverOptions = field(default_factory=SolverOptions)
     footprint: Footprint | None = None
+    segments: tuple[Cable, ...] = ()
+    segment_intervals: tuple[int | None, ...] = ()
+    bodies: tuple[Body, ...] = ()
     meta: dict[str, str] = field(default_factory=dict, compare=False, hash=False)
     raw: dict[str, Any] = field(default_factory=dict, compare=False, hash=False, repr=False)
 
@@ -316,6 +379,11 @@ class Scene:
     def free_length(self) -> bool:
         """True when the cable length is an unknown."""
         return self.cable.length is None
+
+    @property
+    def lines(self) -> tuple[Cable, ...]:
+        """The segments from end_a to end_b (a single cable is one segment)."""
+        return self.segments or (self.cable,)
 
     def with_overrides(self, overrides: dict[str, Any]) -> Scene:
         """Return a new scene with dotted-key overrides applied to the source dict."""
@@ -338,7 +406,9 @@ _SCHEMA: dict[str, Any] = {
         "normal_drag",
         "tangential_drag",
         "drag_law",
+        "segments",
     },
+    "bodies": "list",
     "footprint": {"max_length", "min_length", "bound", "thrust_max", "thrust_x_max",
                   "thrust_y_max"},
     "end_a": {"position", "force", "tension"},
@@ -360,6 +430,10 @@ _SCHEMA: dict[str, Any] = {
     },
 }
 _CURRENT_KEYS = {"speed", "heading_deg", "profile"}
+_SEGMENT_KEYS = {"length", "diameter", "weight_in_water", "axial_stiffness", "normal_drag",
+                 "tangential_drag", "intervals"}
+_BODY_KEYS = {"joint", "kind", "weight_in_water", "net_buoyancy", "drag_area",
+              "drag_coefficient", "thrust"}
 
 
 def _number(value: Any, key: str, *, positive: bool = False, nonneg: bool = False,
@@ -490,6 +564,146 @@ def _parse_end(table: Any, name: str) -> End:
     return End(position=pos, force=frc, tension=tension)
 
 
+def _parse_law(cab_t: dict[str, Any]) -> str:
+    law = cab_t.get("drag_law", "vector")
+    if law not in ("vector", "componentwise"):
+        raise CableOCPError(f'cable.drag_law = {law!r}: valid are "vector", "componentwise"')
+    return law
+
+
+def _parse_single_cable(cab_t: dict[str, Any], need_drag: bool) -> Cable:
+    length_v = _require(cab_t, "length", "cable")
+    if isinstance(length_v, str) and length_v.strip().lower() == FREE:
+        length = None
+    else:
+        length = _number(length_v, "cable.length", positive=True)
+    law = _parse_law(cab_t)
+    diameter = (_number(_require(cab_t, "diameter", "cable"), "cable.diameter", positive=True)
+                if need_drag or "diameter" in cab_t else 0.0)
+    cn = (_number(_require(cab_t, "normal_drag", "cable"), "cable.normal_drag", nonneg=True)
+          if need_drag or "normal_drag" in cab_t else 0.0)
+    ct = (_number(_require(cab_t, "tangential_drag", "cable"), "cable.tangential_drag",
+                  nonneg=True) if need_drag or "tangential_drag" in cab_t else 0.0)
+    cable = Cable(
+        length=length,
+        diameter=diameter,
+        weight_in_water=_number(_require(cab_t, "weight_in_water", "cable"),
+                                "cable.weight_in_water"),
+        axial_stiffness=_number(cab_t.get("axial_stiffness", math.inf), "cable.axial_stiffness",
+                                positive=True, allow_inf=True),
+        normal_drag=cn,
+        tangential_drag=ct,
+        drag_law=law,
+    )
+    return cable
+
+
+def _parse_segments(cab_t: dict[str, Any], need_drag: bool
+                    ) -> tuple[Cable, tuple[Cable, ...], tuple[int | None, ...]]:
+    """``[[cable.segments]]`` -> (summary cable, segments, per-segment intervals)."""
+    law = _parse_law(cab_t)
+    for key in sorted(set(cab_t) - {"segments", "drag_law"}):
+        raise CableOCPError(
+            f"cable.{key}: with [[cable.segments]] every segment gives its own {key}; "
+            "[cable] may hold only drag_law and segments")
+    segs_t = cab_t["segments"]
+    if not isinstance(segs_t, list) or not segs_t:
+        raise CableOCPError("cable.segments: expected a non-empty array of tables "
+                            "([[cable.segments]])")
+    segs, ivals = [], []
+    for i, t in enumerate(segs_t):
+        where = f"cable.segments[{i}]"
+        t = _check_keys(t, _SEGMENT_KEYS, where)
+        lv = _require(t, "length", where)
+        if isinstance(lv, str) and lv.strip().lower() == FREE:
+            raise CableOCPError(
+                f'{where}.length = "free": a free length (prescribed end tension) is not '
+                "supported for multi-segment lines; give every segment its length")
+        length = _number(lv, f"{where}.length", positive=True)
+
+        def opt(key: str, t: dict[str, Any] = t, where: str = where) -> float:
+            if need_drag or key in t:
+                return _number(_require(t, key, where), f"{where}.{key}",
+                               positive=key == "diameter", nonneg=key != "diameter")
+            return 0.0
+
+        segs.append(Cable(
+            length=length,
+            diameter=opt("diameter"),
+            weight_in_water=_number(_require(t, "weight_in_water", where),
+                                    f"{where}.weight_in_water"),
+            axial_stiffness=_number(t.get("axial_stiffness", math.inf),
+                                    f"{where}.axial_stiffness", positive=True, allow_inf=True),
+            normal_drag=opt("normal_drag"),
+            tangential_drag=opt("tangential_drag"),
+            drag_law=law,
+        ))
+        iv = t.get("intervals")
+        if iv is not None and (isinstance(iv, bool) or not isinstance(iv, int)
+                               or not 1 <= iv <= 20000):
+            raise CableOCPError(f"{where}.intervals = {iv!r}: expected an integer 1..20000")
+        ivals.append(iv)
+    first = segs[0]
+    summary = replace(first, length=sum(c.length for c in segs))  # type: ignore[misc]
+    return summary, tuple(segs), tuple(ivals)
+
+
+def _parse_bodies(value: Any, n_segments: int) -> tuple[Body, ...]:
+    """``[[bodies]]`` -> point bodies at the joints between segments."""
+    if not isinstance(value, list):
+        raise CableOCPError("bodies: expected an array of tables ([[bodies]])")
+    if value and n_segments < 2:
+        raise CableOCPError(
+            "bodies[0].joint: point bodies sit at joints between segments; give at least two "
+            "[[cable.segments]] (a body at an end is an end force: add it to end_a/end_b.force)")
+    out = []
+    for i, t in enumerate(value):
+        where = f"bodies[{i}]"
+        t = _check_keys(t, _BODY_KEYS, where)
+        joint = _require(t, "joint", where)
+        if isinstance(joint, bool) or not isinstance(joint, int) or not 1 <= joint < n_segments:
+            raise CableOCPError(
+                f"{where}.joint = {joint!r}: expected an integer 1..{n_segments - 1} (the number "
+                "of segments between end_a and the body); a body at an end is an end force")
+        kind = _require(t, "kind", where)
+        allowed = {"clump": {"joint", "kind", "weight_in_water"},
+                   "buoy": {"joint", "kind", "net_buoyancy"},
+                   "unit": {"joint", "kind", "weight_in_water", "drag_area",
+                            "drag_coefficient", "thrust"}}
+        if kind not in allowed:
+            raise CableOCPError(f'{where}.kind = {kind!r}: valid are "clump", "buoy", "unit"')
+        extra = sorted(set(t) - allowed[kind])
+        if extra:
+            raise CableOCPError(f"{where}.{extra[0]}: not a key of a {kind} body; valid: "
+                                f"{', '.join(sorted(allowed[kind]))}")
+        if kind == "clump":
+            body = Body(joint, kind, weight_in_water=_number(
+                _require(t, "weight_in_water", where), f"{where}.weight_in_water",
+                positive=True))
+        elif kind == "buoy":
+            body = Body(joint, kind, net_buoyancy=_number(
+                _require(t, "net_buoyancy", where), f"{where}.net_buoyancy", positive=True))
+        else:
+            area = _number(t.get("drag_area", 0.0), f"{where}.drag_area", nonneg=True)
+            cd = _number(t.get("drag_coefficient", 0.0), f"{where}.drag_coefficient",
+                         nonneg=True)
+            if (area > 0) != (cd > 0):
+                raise CableOCPError(f"{where}: give both drag_area (m^2) and drag_coefficient "
+                                    "(-), or neither")
+            thrust = (0.0, 0.0, 0.0)
+            if "thrust" in t:
+                v = t["thrust"]
+                if not isinstance(v, list) or len(v) != 3:
+                    raise CableOCPError(f"{where}.thrust = {v!r}: expected [Tx, Ty, Tz] (N)")
+                thrust = tuple(_number(c, f"{where}.thrust[{k}]")  # type: ignore[assignment]
+                               for k, c in enumerate(v))
+            body = Body(joint, kind, weight_in_water=_number(
+                _require(t, "weight_in_water", where), f"{where}.weight_in_water"),
+                drag_area=area, drag_coefficient=cd, thrust=thrust)
+        out.append(body)
+    return tuple(out)
+
+
 def scene_from_dict(data: dict[str, Any]) -> Scene:
     """Validate a problem dictionary (as read from TOML) and return a :class:`Scene`.
 
@@ -523,32 +737,14 @@ def scene_from_dict(data: dict[str, Any]) -> Scene:
                       seabed=seabed)
 
     cab_t = _check_keys(_require(data, "cable", "problem"), _SCHEMA["cable"], "cable")
-    length_v = _require(cab_t, "length", "cable")
-    if isinstance(length_v, str) and length_v.strip().lower() == FREE:
-        length = None
+    segments: tuple[Cable, ...] = ()
+    seg_intervals: tuple[int | None, ...] = ()
+    if "segments" in cab_t:
+        cable, segments, seg_intervals = _parse_segments(cab_t, current is not None)
     else:
-        length = _number(length_v, "cable.length", positive=True)
-    law = cab_t.get("drag_law", "vector")
-    if law not in ("vector", "componentwise"):
-        raise CableOCPError(f'cable.drag_law = {law!r}: valid are "vector", "componentwise"')
-    need_drag = current is not None
-    diameter = (_number(_require(cab_t, "diameter", "cable"), "cable.diameter", positive=True)
-                if need_drag or "diameter" in cab_t else 0.0)
-    cn = (_number(_require(cab_t, "normal_drag", "cable"), "cable.normal_drag", nonneg=True)
-          if need_drag or "normal_drag" in cab_t else 0.0)
-    ct = (_number(_require(cab_t, "tangential_drag", "cable"), "cable.tangential_drag",
-                  nonneg=True) if need_drag or "tangential_drag" in cab_t else 0.0)
-    cable = Cable(
-        length=length,
-        diameter=diameter,
-        weight_in_water=_number(_require(cab_t, "weight_in_water", "cable"),
-                                "cable.weight_in_water"),
-        axial_stiffness=_number(cab_t.get("axial_stiffness", math.inf), "cable.axial_stiffness",
-                                positive=True, allow_inf=True),
-        normal_drag=cn,
-        tangential_drag=ct,
-        drag_law=law,
-    )
+        cable = _parse_single_cable(cab_t, current is not None)
+    length = cable.length
+    bodies = _parse_bodies(data.get("bodies"), len(segments)) if "bodies" in data else ()
 
     end_a = _parse_end(_require(data, "end_a", "problem"), "end_a")
     end_b = _parse_end(_require(data, "end_b", "problem"), "end_b")
@@ -565,6 +761,11 @@ def scene_from_dict(data: dict[str, Any]) -> Scene:
                                          ay + radius * math.sin(math.radians(psi)), bz))
 
     tensions = [e.tension for e in (end_a, end_b) if e.tension is not None]
+    if segments and tensions:
+        raise CableOCPError(
+            f"{'end_a' if end_a.tension is not None else 'end_b'}.tension: a prescribed end "
+            "tension (free length) is not supported for multi-segment lines "
+            "([[cable.segments]]); prescribe the positions or forces instead")
     if length is None and len(tensions) != 1:
         raise CableOCPError(
             'cable.length = "free" needs exactly one end tension (end_a.tension or end_b.tension)'
@@ -579,7 +780,8 @@ def scene_from_dict(data: dict[str, Any]) -> Scene:
                 f"the {c} position is free at both ends (end_a.position[{i}], "
                 f"end_b.position[{i}]): the cable would float away; fix it at one end"
             )
-    if length is not None and not cable.elastic and all(end_a.fixed_mask) and all(end_b.fixed_mask):
+    inextensible = not any(c.elastic for c in (segments or (cable,)))
+    if length is not None and inextensible and all(end_a.fixed_mask) and all(end_b.fixed_mask):
         chord = math.dist(end_a.position, end_b.position)  # type: ignore[arg-type]
         if chord >= length:
             raise CableOCPError(
@@ -640,8 +842,16 @@ def scene_from_dict(data: dict[str, Any]) -> Scene:
         raise CableOCPError(f"solver.vertical_blend = {solver.vertical_blend}: must be in (0, 1)")
     footprint = (_parse_footprint(data["footprint"], end_a, end_b)
                  if "footprint" in data else None)
+    if segments and solver.method != "collocation":
+        raise CableOCPError(
+            f"solver.method = {solver.method!r}: multi-segment lines ([[cable.segments]]) are "
+            'solved by solver.method = "collocation" only')
+    if segments and footprint is not None:
+        raise CableOCPError("[footprint] is not supported with [[cable.segments]]; give a "
+                            "single [cable]")
     return Scene(environment=env, cable=cable, end_a=end_a, end_b=end_b, solver=solver,
-                 footprint=footprint, meta=meta, raw=raw)
+                 footprint=footprint, meta=meta, raw=raw, segments=segments,
+                 segment_intervals=seg_intervals, bodies=bodies)
 
 
 def _parse_footprint(table: Any, end_a: End, end_b: End) -> Footprint:

@@ -39,7 +39,7 @@ from cable_ocp.physics.current import current_velocity
 from cable_ocp.physics.drag import drag_error_bound, drag_per_length
 from cable_ocp.physics.seabed import axial_gradient, grounded_tension_integral
 from cable_ocp.physics.seabed import normal as seabed_normal
-from cable_ocp.scene import End, Scene
+from cable_ocp.scene import Body, Cable, End, Scene
 
 NX = 6
 
@@ -77,6 +77,9 @@ def _structure_key(scene: Scene) -> tuple:
         scene.end_a.tension is not None,
         scene.end_b.tension is not None,
         scene.solver,
+        scene.segments,
+        scene.segment_intervals,
+        scene.bodies,
     )
 
 
@@ -110,17 +113,21 @@ class Formulation:
     def __init__(self, scene: Scene):
         self.scene = scene
         self.key = _structure_key(scene)
-        env, cab = scene.environment, scene.cable
+        env = scene.environment
+        self.lines = scene.lines
+        self.segmented = bool(scene.segments)
         ell = reference_length(scene)
-        fref = abs(cab.weight_in_water) * ell
+        fref = max(abs(c.weight_in_water) for c in self.lines) * ell
+        for body in scene.bodies:
+            fref = max([fref, *(abs(f) for f in body.static_load)])
         for end in (scene.end_a, scene.end_b):
             fref = max([fref, *(abs(f) for f in end.force if f is not None)])
             if end.tension is not None:
                 fref = max(fref, end.tension)
         cur = env.current
         if cur is not None:
-            fref = max(fref, 0.5 * env.water_density * cab.normal_drag * cab.diameter
-                       * cur.max_speed**2 * ell)
+            fref = max(fref, max(0.5 * env.water_density * c.normal_drag * c.diameter
+                                 * cur.max_speed**2 * ell for c in self.lines))
         if fref == 0.0:
             fref = 1.0
         self.scales = Scales(length=ell, force=fref)
@@ -129,20 +136,59 @@ class Formulation:
         x = ca.SX.sym("x", NX)
         lam = ca.SX.sym("lam")
         cs = ca.SX.sym("cscale")
-        self.rhs = ca.Function("rhs", [x, lam, cs], [self._rhs_expr(x, lam, cs)],
-                               ["x", "lam", "cscale"], ["dx"])
+        self.rhs_list = tuple(
+            ca.Function("rhs", [x, lam, cs], [self._rhs_expr(x, lam, cs, c)],
+                        ["x", "lam", "cscale"], ["dx"]) for c in self.lines)
+        self.rhs = self.rhs_list[0]
+        total = sum(c.length for c in self.lines) if self.segmented else 1.0
+        #: share L_k / L of each segment in the unstretched length (-)
+        self.fractions = (tuple(c.length / total for c in self.lines)  # type: ignore[operator]
+                          if self.segmented else (1.0,))
+        #: ``load(x[6], cscale) -> P / F`` (scaled external load) of each body and of the
+        #: bodies at each joint (x the joint state)
+        self.body_loads = tuple(
+            ca.Function(f"body_load_{i}", [x, cs], [self._body_load_expr(b, x, cs)],
+                        ["x", "cscale"], ["load"]) for i, b in enumerate(scene.bodies))
+        self.joint_loads = tuple(
+            ca.Function(f"joint_load_{k}", [x, cs], [sum(
+                (self.body_loads[i](x, cs) for i, b in enumerate(scene.bodies) if b.joint == k),
+                ca.SX.zeros(3))], ["x", "cscale"], ["load"]) for k in range(1, len(self.lines)))
 
     # -- physics ------------------------------------------------------------------------
     def _build_terms(self) -> tuple[str, ...]:
         terms = ["weight"]
         if self.scene.environment.current is not None:
             terms.append(f"drag:{self.scene.cable.drag_law}")
-        if self.scene.cable.elastic:
+        if any(c.elastic for c in self.lines):
             terms.append("stretch")
+        if self.segmented:
+            terms.append(f"segments:{len(self.lines)}")
+        terms.extend(f"body:{b.kind}@{b.joint}" for b in self.scene.bodies)
         return tuple(terms)
 
-    def _rhs_expr(self, x: ca.SX, lam: ca.SX, cscale: ca.SX) -> ca.SX:
-        sc, cab, env = self.scales, self.scene.cable, self.scene.environment
+    def _body_load_expr(self, body: Body, x: ca.SX, cscale: ca.SX) -> ca.SX:
+        """Scaled external load P / F of one body at the joint state x (its height sets the
+        current): weight, buoyancy, thrust and drag 0.5 rho C_d A |U| U (smooth modulus)."""
+        env, sc = self.scene.environment, self.scales
+        load = ca.DM(body.static_load)
+        if body.has_drag and env.current is not None:
+            u = current_velocity(env.current, sc.length * x[2], cscale)
+            speed = ca.sqrt(ca.dot(u, u) + self.scene.solver.smoothing**2)
+            load = load + 0.5 * env.water_density * body.drag_coefficient * body.drag_area \
+                * speed * u
+        return load / sc.force
+
+    def body_load(self, index: int, position: np.ndarray, current_scale: float = 1.0
+                  ) -> np.ndarray:
+        """External load of ``scene.bodies[index]`` at ``position`` (m), N."""
+        x = np.concatenate([np.asarray(position, float) / self.scales.length, np.ones(3)])
+        return np.asarray(self.body_loads[index](x, current_scale)).reshape(-1) \
+            * self.scales.force
+
+    def _rhs_expr(self, x: ca.SX, lam: ca.SX, cscale: ca.SX, cab: Cable | None = None
+                  ) -> ca.SX:
+        sc, env = self.scales, self.scene.environment
+        cab = self.scene.cable if cab is None else cab
         rho_, tau = x[0:3], x[3:6]
         tmag = ca.sqrt(ca.dot(tau, tau))
         t = tau / tmag
@@ -221,6 +267,21 @@ class Formulation:
         env, cab = self.scene.environment, self.scene.cable
         if env.current is None:
             return 0.0
+        if self.segmented:
+            total = 0.0
+            for c in self.lines:
+                per_len = drag_error_bound(
+                    c.drag_law, rho=env.water_density, diameter=c.diameter,
+                    normal_drag=c.normal_drag, tangential_drag=c.tangential_drag,
+                    delta=self.scene.solver.smoothing)
+                total += per_len * c.length * (
+                    1.0 + (max_tension / c.axial_stiffness if c.elastic else 0.0))
+            delta = self.scene.solver.smoothing
+            for b in self.scene.bodies:
+                if b.has_drag:  # |sqrt(u^2 + d^2) u - |u| u| <= d^2 / 2
+                    total += 0.25 * env.water_density * b.drag_coefficient * b.drag_area \
+                        * delta**2
+            return total
         per_len = drag_error_bound(
             cab.drag_law, rho=env.water_density, diameter=cab.diameter,
             normal_drag=cab.normal_drag, tangential_drag=cab.tangential_drag,

@@ -124,6 +124,9 @@ class StaticsNLP:
     def __init__(self, scene: Scene, variables: dict[str, tuple[float, float]]):
         if scene.solver.method not in ("collocation", "multiple_shooting"):
             raise CableOCPError("optimisation needs solver.method = \"collocation\"")
+        if scene.segments:
+            raise CableOCPError("optimisation is not supported for multi-segment lines "
+                                "([[cable.segments]]) yet")
         self.scene = scene
         self.form = Formulation(scene)
         o = scene.solver

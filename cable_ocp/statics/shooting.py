@@ -38,6 +38,7 @@ class ShootingMesh:
     intervals: int
     degree: int = 0
     scheme: str = "rk4"
+    segments: tuple[int, ...] = ()  # one cable only (see ``Mesh``)
 
     @property
     def n_nodes(self) -> int:

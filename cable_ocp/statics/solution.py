@@ -101,7 +101,7 @@ class StaticsSolution:
         est = self.diagnostics.get("error_estimate_detail", {})
         # Radau's last collocation point is the next interval's start: list it once
         keep = np.concatenate([[True], np.diff(self.s) > 0])
-        return {
+        out = {
             "status": self.status,
             "message": self.message,
             "length": float(self.length),
@@ -128,3 +128,12 @@ class StaticsSolution:
                 "continuation": self.diagnostics.get("continuation"),
             },
         }
+        if "bodies" in self.diagnostics:
+            # point bodies at joints (multi-segment lines): joint, kind, position (m) and
+            # the body's total external load (N), after the touchdown entry
+            keys = list(out)
+            items = [(k, out[k]) for k in keys[: keys.index("touchdown") + 1]]
+            items.append(("bodies", self.diagnostics["bodies"]))
+            items += [(k, out[k]) for k in keys[keys.index("touchdown") + 1:]]
+            out = dict(items)
+        return out

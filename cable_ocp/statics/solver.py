@@ -24,6 +24,7 @@ from __future__ import annotations
 import math
 import time
 from collections.abc import Callable, Iterable
+from dataclasses import replace
 from typing import Any
 
 import casadi as ca
@@ -99,6 +100,12 @@ class StaticsSolver:
         self._lbx = -np.inf * np.ones(self.coll.n_w)
         if self.coll.free_length:
             self._lbx[self.coll.i_lam] = 1e-6
+        self._ubx = np.inf * np.ones(self.coll.n_w)
+        if grounded and self.form.segmented:
+            # the grounded part stays on the first segment (scaled lengths)
+            self._lbx[self.coll.i_g] = 0.0
+            self._ubx[self.coll.i_g] = (1.0 - 1e-6) * scene.segments[0].length \
+                / self.form.scales.length
         self._ipopt = ca.nlpsol("statics_ipopt", "ipopt", {"x": w, "p": p, "f": 0, "g": g}, {
             "print_time": False,
             "error_on_fail": False,
@@ -159,6 +166,8 @@ class StaticsSolver:
         diag: dict[str, Any] = {"method": scene.solver.method, "mesh": {
             "intervals": self.mesh.intervals, "degree": self.mesh.degree,
             "scheme": self.mesh.scheme, "order": self.mesh.order}, "terms": list(self.form.terms)}
+        if getattr(self.mesh, "segments", ()):
+            diag["mesh"]["segments"] = list(self.mesh.segments)  # intervals per segment
         t0 = time.perf_counter()
         if warm_start is not None:
             w0 = self._from_solution(warm_start)
@@ -190,11 +199,21 @@ class StaticsSolver:
 
     # -- internals ----------------------------------------------------------------------
     def _guess(self, scene: Scene) -> tuple[np.ndarray, str]:
+        sig = self.mesh.sigma()
+        if scene.segments:
+            scene = _mean_cable_scene(scene)
         if self.grounded:
-            td = touchdown_guess(scene, self.mesh.sigma())
+            td = touchdown_guess(scene, sig)
+            if td is not None and self.form.segmented:
+                # the same catenary at this mesh's nodes (segment 1 starts at touchdown)
+                length, g = td[2], td[3]
+                sig_td = (self.coll.node_s(length, g) - g) / (length - g)
+                td = touchdown_guess(scene, sig_td)
+                if g >= self.scene.segments[0].length:  # keep the grounded part on segment 1
+                    td = (td[0], td[1], length, 0.5 * self.scene.segments[0].length)
             if td is not None:
                 return self.coll.pack(*td), "catenary with touchdown"
-        r, t, length, kind = initial_guess(scene, self.mesh.sigma(), scene.solver.initial_guess)
+        r, t, length, kind = initial_guess(scene, sig, scene.solver.initial_guess)
         return self.coll.pack(r, t, length), kind
 
     def _from_solution(self, sol: StaticsSolution) -> np.ndarray:
@@ -211,6 +230,9 @@ class StaticsSolver:
             s_src, r_src, t_src = sol.s[off:], sol.position[off:], sol.tension_vector[off:]
         else:  # contact switched off: the grounded nodes become part of the profile
             s_src, r_src, t_src = sol.s, sol.position, sol.tension_vector
+        if self.form.segmented:
+            r, t = self.coll.resample(s_src, r_src, t_src, sol.length, g)
+            return self.coll.pack(r, t, sol.length, g)
         s0 = g if self.grounded else 0.0
         sig = self.mesh.sigma()
         src = (s_src - s0) / (sol.length - s0)
@@ -242,7 +264,8 @@ class StaticsSolver:
         return w, int(st.get("iter_count", st.get("n_iter", 0))), ok, "newton"
 
     def _ipopt_solve(self, w0: np.ndarray, p: np.ndarray) -> tuple[np.ndarray, int, bool, str]:
-        res = self._ipopt(x0=w0, p=p, lbx=self._lbx, ubx=np.inf, lbg=0, ubg=0)
+        res = self._ipopt(x0=np.clip(w0, self._lbx, self._ubx), p=p, lbx=self._lbx,
+                          ubx=self._ubx, lbg=0, ubg=0)
         st = self._ipopt.stats()
         w = np.asarray(res["x"]).reshape(-1)
         return w, int(st.get("iter_count", 0)), bool(st.get("success", False)), (
@@ -271,7 +294,7 @@ class StaticsSolver:
         g = np.asarray(self.coll.residual(w, p)).reshape(-1)
         viol = float(np.max(np.abs(g))) if np.all(np.isfinite(g)) else math.inf
         r, t, length, g_len = self.coll.unpack(w, p)
-        s = g_len + self.mesh.sigma() * (length - g_len)
+        s = self.coll.node_s(length, g_len)
         finite = bool(np.all(np.isfinite(w)))
         offset = 0
         if self.grounded and finite:
@@ -319,7 +342,41 @@ class StaticsSolver:
         if finite and np.min(np.linalg.norm(t, axis=1)) <= 0.0:
             warnings.append("tension vanishes somewhere along the cable")
         diag["warnings"] = warnings
+        if self.form.segmented and finite:
+            self._segment_diagnostics(sol, r, offset, p)
         return sol
+
+    def _segment_diagnostics(self, sol: StaticsSolution, r: np.ndarray, offset: int,
+                             p: np.ndarray) -> None:
+        """Per-body loads at the joints, and the free-surface check: a multi-segment line
+        (a buoy may lift it) that would leave the water is a failure, never a profile."""
+        diag, scene = sol.diagnostics, self.scene
+        offs = self.mesh.segment_offsets()
+        bodies = []
+        for i, body in enumerate(scene.bodies):
+            pos = r[offset + offs[body.joint] - 1]
+            force = self.form.body_load(i, pos, float(p[P_CURRENT]))
+            bodies.append({"joint": body.joint, "kind": body.kind,
+                           "position": [float(v) for v in pos],
+                           "force": [float(v) for v in force]})
+        diag["bodies"] = bodies
+        diag["joints"] = [[float(v) for v in r[offset + offs[k] - 1]]
+                          for k in range(1, len(offs) - 1)]
+        first = scene.segments[0].length
+        if sol.status in ("solved", "inaccurate") and sol.grounded_length >= first:
+            sol.status = "failed"
+            sol.message = (
+                f"the grounded length {sol.grounded_length:.6g} m reaches beyond the first "
+                f"segment (cable.segments[0].length = {first:g} m); contact of later "
+                "segments and bodies with the seabed is not modelled")
+        depth = scene.environment.water_depth
+        above = float(np.max(r[:, 2])) - depth
+        if sol.status in ("solved", "inaccurate") and above > 1e-6 * self.form.scales.length:
+            sol.status = "failed"
+            sol.message = (
+                f"the line would rise {above:.3g} m above the free surface "
+                f"(environment.water_depth = {depth:g} m): a buoy lifts it out of the water; "
+                "reduce the buoyancy or lengthen the line")
 
     def _coarse_solver(self, level: int) -> StaticsSolver:
         """Solver on N / 2**level intervals, built on first use (shared cache)."""
@@ -370,7 +427,7 @@ class StaticsSolver:
             fpos, cpos = fine.position[fo:], coarse.position[co:]
             if solver.mesh.degree >= 1:
                 g = fine.grounded_length
-                sig = (fine.s[fo:] - g) / (fine.length - g)
+                sig = solver.coll.sigma_of_s(fine.s[fo:], fine.length, g)
                 dpos = np.max(np.abs(fpos - solver.coll.interpolate(cpos, sig)))
             else:
                 dpos = np.max(np.abs(fpos[::2] - cpos))
@@ -399,6 +456,16 @@ class StaticsSolver:
 
 
 # -- convenience API ---------------------------------------------------------------------
+
+def _mean_cable_scene(scene: Scene) -> Scene:
+    """A single-cable scene with the line's mean weight per length, the bodies' vertical
+    loads spread over it (for the drag-free initial guesses of a multi-segment line)."""
+    total = sum(c.length for c in scene.segments)  # type: ignore[misc]
+    weight = sum(c.weight_in_water * c.length for c in scene.segments)  # type: ignore[operator]
+    weight -= sum(b.static_load[2] for b in scene.bodies)
+    cable = replace(scene.cable, weight_in_water=weight / total)
+    return replace(scene, cable=cable, segments=(), segment_intervals=(), bodies=())
+
 
 def _can_ground(scene: Scene) -> bool:
     """True when the scene models the seabed and end_a is fixed on it (an anchor)."""
