@@ -345,23 +345,17 @@ class Collocation:
             k = np.clip(np.floor(local * nk).astype(int), 0, nk - 1)
             tau = local * nk - k
             base = np.asarray(self.mesh.segment_offsets())[seg] + k * (d + 1)
-            out = np.zeros((sigma.size, values.shape[1]))
-            for j in range(d + 1):
-                basis = np.ones_like(tau)
-                for r in range(d + 1):
-                    if r != j:
-                        basis *= (tau - pts[r]) / (pts[j] - pts[r])
-                out += basis[:, None] * values[base + j]
-            return out
-        k = np.clip(np.floor(sigma * n).astype(int), 0, n - 1)
-        tau = sigma * n - k
+        else:
+            k = np.clip(np.floor(sigma * n).astype(int), 0, n - 1)
+            tau = sigma * n - k
+            base = k * (d + 1)
         out = np.zeros((sigma.size, values.shape[1]))
-        for j in range(d + 1):
+        for j in range(d + 1):  # Lagrange basis through the interval start and tau_1..tau_d
             basis = np.ones_like(tau)
             for r in range(d + 1):
                 if r != j:
                     basis *= (tau - pts[r]) / (pts[j] - pts[r])
-            out += basis[:, None] * values[k * (d + 1) + j]
+            out += basis[:, None] * values[base + j]
         return out
 
     # -- packing ------------------------------------------------------------------------
