@@ -49,6 +49,10 @@ def statics_summary(sol: StaticsSolution, title: str = "") -> str:
     if td:
         rows.insert(6, ("touchdown (on the seabed)", _vec(np.asarray(td["position"]), "m")
                         + f", grounded length {td['grounded_length']:.4f} m"))
+    for b in d.get("bodies") or []:
+        rows.append((f"body at joint {b['joint']} ({b['kind']})",
+                     _vec(np.asarray(b["position"]), "m") + "; load "
+                     + _vec(np.asarray(b["force"]), "N")))
     if d.get("continuation"):
         rows.append(("continuation", str(d["continuation"])))
     for w in d.get("warnings", []):
