@@ -35,7 +35,9 @@ Schema (all values SI; the README repeats this with examples)::
     [[cable.segments]]           optional multi-segment line, listed from end_a to end_b;
                                  each with length, diameter, weight_in_water,
                                  axial_stiffness, normal_drag, tangential_drag (as above)
-                                 and optional intervals (collocation intervals); then
+                                 and optional intervals (collocation intervals) and
+                                 bending_stiffness (EI, N m^2: a planar beam-cable in the
+                                 x-z plane, pinned ends, see formulation); then
                                  [cable] holds only drag_law (see :class:`Scene`)
     [[bodies]]                   optional point bodies at joints between segments:
     joint = 1                    1..n_segments-1: after this many segments from end_a
@@ -175,6 +177,10 @@ class Cable:
         Drag coefficients C_n, C_t (-); the tangential one acts on the perimeter pi*D.
     drag_law : str
         ``"vector"`` or ``"componentwise"``.
+    bending_stiffness : float
+        EI, N m^2 (``[[cable.segments]]`` only); 0 = a perfectly flexible cable. A segment
+        with EI > 0 is a planar beam-cable in the x-z plane
+        (:mod:`cable_ocp.statics.formulation`).
     """
 
     length: float | None
@@ -184,6 +190,7 @@ class Cable:
     normal_drag: float = 0.0
     tangential_drag: float = 0.0
     drag_law: str = "vector"
+    bending_stiffness: float = 0.0
 
     @property
     def elastic(self) -> bool:
@@ -431,7 +438,7 @@ _SCHEMA: dict[str, Any] = {
 }
 _CURRENT_KEYS = {"speed", "heading_deg", "profile"}
 _SEGMENT_KEYS = {"length", "diameter", "weight_in_water", "axial_stiffness", "normal_drag",
-                 "tangential_drag", "intervals"}
+                 "tangential_drag", "intervals", "bending_stiffness"}
 _BODY_KEYS = {"joint", "kind", "weight_in_water", "net_buoyancy", "drag_area",
               "drag_coefficient", "thrust"}
 
@@ -572,6 +579,10 @@ def _parse_law(cab_t: dict[str, Any]) -> str:
 
 
 def _parse_single_cable(cab_t: dict[str, Any], need_drag: bool) -> Cable:
+    if "bending_stiffness" in cab_t:
+        raise CableOCPError(
+            "cable.bending_stiffness: bending stiffness is given per segment; put the stiff "
+            "part in its own [[cable.segments]] entry with bending_stiffness (EI, N m^2)")
     length_v = _require(cab_t, "length", "cable")
     if isinstance(length_v, str) and length_v.strip().lower() == FREE:
         length = None
@@ -637,6 +648,8 @@ def _parse_segments(cab_t: dict[str, Any], need_drag: bool
             normal_drag=opt("normal_drag"),
             tangential_drag=opt("tangential_drag"),
             drag_law=law,
+            bending_stiffness=_number(t.get("bending_stiffness", 0.0),
+                                      f"{where}.bending_stiffness", nonneg=True),
         ))
         iv = t.get("intervals")
         if iv is not None and (isinstance(iv, bool) or not isinstance(iv, int)
@@ -646,6 +659,36 @@ def _parse_segments(cab_t: dict[str, Any], need_drag: bool
     first = segs[0]
     summary = replace(first, length=sum(c.length for c in segs))  # type: ignore[misc]
     return summary, tuple(segs), tuple(ivals)
+
+
+def _check_planar_bending(segments: tuple[Cable, ...], env: Environment, end_a: End,
+                          end_b: End, bodies: tuple[Body, ...]) -> None:
+    """Bending stiffness is modelled in the vertical x-z plane only (a planar beam-cable):
+    reject any scene that could leave that plane, naming the key."""
+    stiff = [i for i, c in enumerate(segments) if c.bending_stiffness > 0.0]
+    if not stiff:
+        return
+    key = f"cable.segments[{stiff[0]}].bending_stiffness"
+    why = (f"{key}: bending stiffness is modelled in the vertical x-z plane only (planar "
+           "beam-cable); ")
+    for name, end in (("end_a", end_a), ("end_b", end_b)):
+        if end.position[1] is not None and end.position[1] != 0.0:
+            raise CableOCPError(why + f"{name}.position[1] = {end.position[1]} must be 0")
+        if end.force[1] is not None and end.force[1] != 0.0:
+            raise CableOCPError(why + f"{name}.force[1] = {end.force[1]} must be 0")
+    cur = env.current
+    if cur is not None:
+        for uy in cur.uy:
+            if abs(uy) > 1e-12 * max(cur.max_speed, 1.0):
+                raise CableOCPError(why + "environment.current: the heading must be 0 or "
+                                    "180 deg at every knot (a current in the x-z plane)")
+    for i, b in enumerate(bodies):
+        if b.thrust[1] != 0.0:
+            raise CableOCPError(why + f"bodies[{i}].thrust[1] = {b.thrust[1]} must be 0")
+    if env.seabed is not None and segments[0].bending_stiffness > 0.0:
+        raise CableOCPError(
+            "cable.segments[0].bending_stiffness: seabed contact is modelled on a flexible "
+            "first segment only; put a cable segment first or drop [environment.seabed]")
 
 
 def _parse_bodies(value: Any, n_segments: int) -> tuple[Body, ...]:
@@ -849,6 +892,7 @@ def scene_from_dict(data: dict[str, Any]) -> Scene:
     if segments and footprint is not None:
         raise CableOCPError("[footprint] is not supported with [[cable.segments]]; give a "
                             "single [cable]")
+    _check_planar_bending(segments, env, end_a, end_b, bodies)
     return Scene(environment=env, cable=cable, end_a=end_a, end_b=end_b, solver=solver,
                  footprint=footprint, meta=meta, raw=raw, segments=segments,
                  segment_intervals=seg_intervals, bodies=bodies)
@@ -894,16 +938,25 @@ def parse_override(text: str) -> tuple[str, Any]:
 
 
 def apply_overrides(data: dict[str, Any], overrides: dict[str, Any]) -> dict[str, Any]:
-    """Return a copy of ``data`` with dotted-key overrides set (tables are created)."""
+    """Return a copy of ``data`` with dotted-key overrides set (tables are created; an
+    integer part indexes an array of tables, e.g. ``cable.segments.0.length``)."""
     out = copy.deepcopy(data)
     for key, value in overrides.items():
         parts = key.split(".")
         node = out
         for p in parts[:-1]:
-            nxt = node.setdefault(p, {})
-            if not isinstance(nxt, dict):
+            if isinstance(node, list):  # an array of tables: cable.segments.0.length
+                if not p.isdigit() or int(p) >= len(node):
+                    raise CableOCPError(f"--set {key}: {p} is not an index 0..{len(node) - 1}")
+                nxt = node[int(p)]
+            else:
+                nxt = node.setdefault(p, {})
+            if not isinstance(nxt, (dict, list)):
                 raise CableOCPError(f"--set {key}: {p} is not a table")
             node = nxt
+        if isinstance(node, list):
+            raise CableOCPError(f"--set {key}: give an index and a key, e.g. "
+                                "cable.segments.0.length=1000")
         node[parts[-1]] = value
     return out
 

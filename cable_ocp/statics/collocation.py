@@ -167,7 +167,8 @@ class Collocation:
         """Unknown layout: node states, then lam (free length), then g (grounded)."""
         self.free_length = self.form.scene.free_length
         self.grounded = grounded
-        self.n_x = self.mesh.n_nodes * NX
+        self.nx = self.form.nx
+        self.n_x = self.mesh.n_nodes * self.nx
         self.i_lam = self.n_x if self.free_length else None
         self.i_g = self.n_x + (1 if self.free_length else 0) if grounded else None
         self.n_w = self.n_x + (1 if self.free_length else 0) + (1 if grounded else 0)
@@ -200,7 +201,7 @@ class Collocation:
         w = ca.MX.sym("w", self.n_w)
         p = ca.MX.sym("p", len(self.form.params()))
         lam, g_len = self._lengths(w, p)
-        xs = ca.reshape(w[: self.n_x], NX, self.mesh.n_nodes)
+        xs = ca.reshape(w[: self.n_x], self.nx, self.mesh.n_nodes)
         # interval blocks: columns k*(d+1) .. k*(d+1)+d
         blocks = ca.reshape(xs[:, : n * (d + 1)], NX * (d + 1), n)  # one column per interval
         xk = ca.MX.sym("xk", NX * (d + 1))
@@ -225,12 +226,12 @@ class Collocation:
 
     def _interval_function(self, rhs: ca.Function, h: float) -> ca.Function:
         """Collocation residuals and end state of one interval of width h (sigma)."""
-        d = self.mesh.degree
+        d, nx = self.mesh.degree, self.nx
         cmat, dvec = _lagrange_matrices(list(self.mesh.tau))
-        xk = ca.MX.sym("xk", NX * (d + 1))
+        xk = ca.MX.sym("xk", nx * (d + 1))
         lam_s = ca.MX.sym("lam")
         cs_s = ca.MX.sym("cs")
-        xcols = ca.reshape(xk, NX, d + 1)
+        xcols = ca.reshape(xk, nx, d + 1)
         fx = rhs.map(d)(xcols[:, 1:], lam_s, cs_s)
         coll = [fx[:, j - 1] - ca.mtimes(xcols, ca.DM(cmat[:, j])) / h for j in range(1, d + 1)]
         x_end = ca.mtimes(xcols, ca.DM(dvec))
@@ -240,25 +241,28 @@ class Collocation:
         """Residual of a multi-segment line: per segment, collocation on its own share of
         sigma (local variable in [0, 1], scaled length lam_k = L_k / ell, minus the
         grounded length on the first); joint conditions between segments."""
-        d, form = self.mesh.degree, self.form
+        d, form, nx = self.mesh.degree, self.form, self.nx
         w = ca.MX.sym("w", self.n_w)
         p = ca.MX.sym("p", len(form.params()))
         g_len = w[self.i_g] if self.grounded else 0.0
-        xs = ca.reshape(w[: self.n_x], NX, self.mesh.n_nodes)
+        xs = ca.reshape(w[: self.n_x], nx, self.mesh.n_nodes)
         offs = self.mesh.segment_offsets()
         res, joints = [], []
         for k, n in enumerate(self.mesh.segments):
             lam = p[P_LENGTH] * form.fractions[k] - (g_len if k == 0 else 0.0)
             seg = xs[:, offs[k]: offs[k + 1]]
-            blocks = ca.reshape(seg[:, : n * (d + 1)], NX * (d + 1), n)
+            blocks = ca.reshape(seg[:, : n * (d + 1)], nx * (d + 1), n)
             interval = self._interval_function(form.rhs_list[k], 1.0 / n)
             coll_all, xend_all = interval.map(n)(blocks, lam, p[P_CURRENT])
             starts = ca.horzcat(*[seg[:, (i + 1) * (d + 1)] for i in range(n)])
             res += [ca.vec(coll_all), ca.vec(xend_all - starts)]
+            x_prev = xs[:, offs[k] - 1] if k > 0 else None
             if k > 0:
-                x_end, x_start = xs[:, offs[k] - 1], xs[:, offs[k]]
-                load = form.joint_loads[k - 1](x_end, p[P_CURRENT])
+                x_end, x_start = x_prev, xs[:, offs[k]]
+                load = form.joint_loads[k - 1](x_end[0:NX], p[P_CURRENT])
                 joints += [x_start[0:3] - x_end[0:3], x_start[3:6] - (x_end[3:6] - load)]
+            joints += form.bending_joint_residual(k, x_prev, xs[:, offs[k]],
+                                                  xs[:, offs[k + 1] - 1])
         bc = self._boundary(xs[:, 0], xs[:, -1], g_len, p)
         gexpr = ca.vertcat(*res, *joints, *bc)
         return ca.Function("G", [w, p], [gexpr], ["w", "p"], ["g"])
@@ -360,11 +364,26 @@ class Collocation:
 
     # -- packing ------------------------------------------------------------------------
     def pack(self, r: np.ndarray, tension: np.ndarray, length: float,
-             grounded_length: float = 0.0) -> np.ndarray:
+             grounded_length: float = 0.0, bending: np.ndarray | None = None) -> np.ndarray:
         """Scaled unknowns from the suspended part's node arrays r (n, 3) [m], T (n, 3) [N],
-        the total unstretched length L [m] and the grounded length g [m]."""
+        the total unstretched length L [m] and the grounded length g [m]; with bending
+        stiffness also (theta [rad], M [N m]) per node in ``bending`` (n, 2), by default
+        theta along the chord of each stiff segment, M = 0 (dummies 0 elsewhere)."""
         sc = self.form.scales
-        x = np.hstack([r / sc.length, tension / sc.force]).reshape(-1)
+        cols = [r / sc.length, tension / sc.force]
+        if self.nx > NX:
+            if bending is None:
+                bending = np.zeros((len(r), 2))
+                offs = self.mesh.segment_offsets()
+                for k, st in enumerate(self.form.stiff):
+                    if st:
+                        chord = r[offs[k + 1] - 1] - r[offs[k]]
+                        bending[offs[k]: offs[k + 1], 0] = np.arctan2(chord[2], chord[0])
+            else:
+                bending = np.array(bending, dtype=float)
+            bending[:, 1] /= self.form.moment_scale
+            cols.append(bending)
+        x = np.hstack(cols).reshape(-1)
         if self.free_length:
             x = np.append(x, (length - grounded_length) / sc.length)
         if self.grounded:
@@ -377,8 +396,17 @@ class Collocation:
         and the grounded length g [m] from the unknowns."""
         sc = self.form.scales
         w = np.asarray(w, dtype=float).reshape(-1)
-        xs = w[: self.n_x].reshape(self.mesh.n_nodes, NX)
+        xs = w[: self.n_x].reshape(self.mesh.n_nodes, self.nx)
         g = float(w[self.i_g]) if self.grounded else 0.0
         length = w[self.i_lam] + g if self.free_length else p[P_LENGTH]
-        return (xs[:, :3] * sc.length, xs[:, 3:] * sc.force, float(length * sc.length),
+        return (xs[:, :3] * sc.length, xs[:, 3:6] * sc.force, float(length * sc.length),
                 g * sc.length)
+
+    def unpack_bending(self, w: np.ndarray) -> np.ndarray | None:
+        """Per node (theta [rad], M [N m]) with bending stiffness (dummies on flexible
+        segments), else None."""
+        if self.nx == NX:
+            return None
+        xs = np.asarray(w, dtype=float).reshape(-1)[: self.n_x].reshape(self.mesh.n_nodes,
+                                                                        self.nx)
+        return np.stack([xs[:, 6], xs[:, 7] * self.form.moment_scale], axis=1)

@@ -21,6 +21,26 @@ The equations are solved in scaled form: sigma = s/L in [0, 1], r = ell * rho,
 T = F * tau, with a length scale ell and a force scale F chosen from the scene, so that
 every unknown and residual is O(1) for the solvers.
 
+Bending stiffness (``bending_stiffness`` = EI > 0 on a segment; 003 eqs (4)-(7) treat the
+towed object as a beam but print only a first-approximation deflection): when any
+segment asks for it, every node carries two more states, x = (r, T, theta, M), and only
+the stiff segments get equations for them. A stiff segment is a planar beam-cable in the
+x-z plane (Kirchhoff rod, inextensible in bending), theta the angle of the tangent
+t = (cos theta, 0, sin theta) from +x towards +z, M = EI dtheta/ds the bending moment
+(N m; the moment vector is -M e_y), T the whole internal force (tension and shear):
+
+    dr/ds = (1 + T.t/EA) t,   dT/ds = -f(t),   dtheta/ds = M/EI,
+    dM/ds = (1 + T.t/EA) (t_z T_x - t_x T_z)      (= -shear; moment balance m' + r' x n = 0)
+
+so the tangent comes from theta, not from T (a free tail with T = 0 is regular). Out of
+the plane, dy/ds = T_y / F (F the force scale) only pins T_y = 0 when y is fixed at both
+ends; scenes that could leave the x-z plane are rejected by the scene validation. With
+M = 0 the last equation forces T || t: the cable. On flexible segments theta and M are
+dummies (d/ds = 0, both 0 at the segment start). Conditions: M = 0 at a free or pinned
+end and where a stiff segment meets a flexible one or a body; theta and M continuous
+between two stiff segments. The moment is scaled by M_ref = min(F ell, sqrt(EI F)), the
+boundary-layer moment of a tensioned beam.
+
 End conditions (004 eqs (2.6)-(2.15); 000 eqs (13)-(17)), per component i at each end:
 a prescribed position r_i = p_i, or a prescribed external load F_i on the attachment,
 which at equilibrium means T_i(0) = -F_i at end_a and T_i(L) = +F_i at end_b. A
@@ -72,6 +92,7 @@ def _structure_key(scene: Scene) -> tuple:
         c.normal_drag,
         c.tangential_drag,
         c.drag_law,
+        tuple(s.bending_stiffness for s in scene.segments),
         scene.end_a.fixed_mask,
         scene.end_b.fixed_mask,
         scene.end_a.tension is not None,
@@ -131,13 +152,21 @@ class Formulation:
         if fref == 0.0:
             fref = 1.0
         self.scales = Scales(length=ell, force=fref)
+        #: True for the segments with bending stiffness (EI > 0)
+        self.stiff = tuple(c.bending_stiffness > 0.0 for c in self.lines)
+        #: states per node: 6, or 8 (theta, M) when a segment has bending stiffness
+        self.nx = NX + 2 if any(self.stiff) else NX
+        ei_max = max((c.bending_stiffness for c in self.lines), default=0.0)
+        #: moment scale M_ref, N m (1 without bending stiffness)
+        self.moment_scale = min(fref * ell, math.sqrt(ei_max * fref)) if any(self.stiff) \
+            else 1.0
         self.terms = self._build_terms()
 
-        x = ca.SX.sym("x", NX)
+        x = ca.SX.sym("x", self.nx)
         lam = ca.SX.sym("lam")
         cs = ca.SX.sym("cscale")
         self.rhs_list = tuple(
-            ca.Function("rhs", [x, lam, cs], [self._rhs_expr(x, lam, cs, c)],
+            ca.Function("rhs", [x, lam, cs], [self._segment_rhs(x, lam, cs, c)],
                         ["x", "lam", "cscale"], ["dx"]) for c in self.lines)
         self.rhs = self.rhs_list[0]
         total = sum(c.length for c in self.lines) if self.segmented else 1.0
@@ -146,6 +175,7 @@ class Formulation:
                           if self.segmented else (1.0,))
         #: ``load(x[6], cscale) -> P / F`` (scaled external load) of each body and of the
         #: bodies at each joint (x the joint state)
+        x = ca.SX.sym("x", NX)
         self.body_loads = tuple(
             ca.Function(f"body_load_{i}", [x, cs], [self._body_load_expr(b, x, cs)],
                         ["x", "cscale"], ["load"]) for i, b in enumerate(scene.bodies))
@@ -163,6 +193,7 @@ class Formulation:
             terms.append("stretch")
         if self.segmented:
             terms.append(f"segments:{len(self.lines)}")
+        terms.extend(f"bending:{k}" for k, st in enumerate(self.stiff) if st)
         terms.extend(f"body:{b.kind}@{b.joint}" for b in self.scene.bodies)
         return tuple(terms)
 
@@ -184,6 +215,63 @@ class Formulation:
         x = np.concatenate([np.asarray(position, float) / self.scales.length, np.ones(3)])
         return np.asarray(self.body_loads[index](x, current_scale)).reshape(-1) \
             * self.scales.force
+
+    def _segment_rhs(self, x: ca.SX, lam: ca.SX, cscale: ca.SX, cab: Cable) -> ca.SX:
+        """Right-hand side of one segment with ``self.nx`` states (see module docstring)."""
+        if self.nx == NX:
+            return self._rhs_expr(x, lam, cscale, cab)
+        if cab.bending_stiffness <= 0.0:
+            return ca.vertcat(self._rhs_expr(x[0:NX], lam, cscale, cab), 0, 0)
+        return self._beam_rhs(x, lam, cscale, cab)
+
+    def _beam_rhs(self, x: ca.SX, lam: ca.SX, cscale: ca.SX, cab: Cable) -> ca.SX:
+        """Planar beam-cable (x-z plane): x = (rho, tau, theta, m), scaled; d/dsigma."""
+        sc, env = self.scales, self.scene.environment
+        tau, theta, m = x[3:6], x[6], x[7]
+        t = ca.vertcat(ca.cos(theta), 0, ca.sin(theta))
+        stretch = 1.0
+        if cab.elastic:
+            stretch = 1.0 + sc.force * ca.dot(tau, t) / cab.axial_stiffness
+        f = ca.vertcat(0, 0, -cab.weight_in_water)
+        if env.current is not None:
+            u = current_velocity(env.current, sc.length * x[2], cscale)
+            opts = self.scene.solver
+            f = f + stretch * drag_per_length(
+                cab.drag_law, u, t, rho=env.water_density, diameter=cab.diameter,
+                normal_drag=cab.normal_drag, tangential_drag=cab.tangential_drag,
+                delta=opts.smoothing, blend=opts.vertical_blend)
+        mref = self.moment_scale
+        # out of plane: dy/dsigma = lam tau_y keeps the system regular when y is fixed at
+        # both ends (it pins T_y); the validated planar scenes have T_y = 0, y = const
+        drho = lam * stretch * t + ca.vertcat(0, lam * tau[1], 0)
+        dtau = -lam * (sc.length / sc.force) * f
+        dtheta = lam * sc.length * mref / cab.bending_stiffness * m
+        dm = lam * sc.length * sc.force / mref * stretch * (t[2] * tau[0] - t[0] * tau[2])
+        return ca.vertcat(drho, dtau, dtheta, dm)
+
+    def bending_joint_residual(self, k: int, x_prev: ca.MX | None, x_start: ca.MX,
+                               x_end: ca.MX) -> list[ca.MX]:
+        """Conditions on (theta, m) of segment k (scaled), given its first and last node
+        and the last node of segment k - 1 (None for k = 0): a flexible segment's dummies
+        are 0 at its start; a stiff one has M = 0 where it meets a flexible segment, a body
+        or an end, and continuous theta, M after a stiff segment without a body between."""
+        if self.nx == NX:
+            return []
+        if not self.stiff[k]:
+            return [x_start[6], x_start[7]]
+        res = []
+        joined = (k > 0 and self.stiff[k - 1]
+                  and not any(b.joint == k for b in self.scene.bodies))
+        if joined:
+            res += [x_start[6] - x_prev[6], x_start[7] - x_prev[7]]
+        else:
+            res.append(x_start[7])
+        last = k == len(self.lines) - 1
+        nxt_joined = (not last and self.stiff[k + 1]
+                      and not any(b.joint == k + 1 for b in self.scene.bodies))
+        if not nxt_joined:
+            res.append(x_end[7])
+        return res
 
     def _rhs_expr(self, x: ca.SX, lam: ca.SX, cscale: ca.SX, cab: Cable | None = None
                   ) -> ca.SX:

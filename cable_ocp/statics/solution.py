@@ -128,6 +128,12 @@ class StaticsSolution:
                 "continuation": self.diagnostics.get("continuation"),
             },
         }
+        if "bending" in self.diagnostics:
+            # segments with bending stiffness: tangent angle from +x towards +z (rad) and
+            # bending moment (N m) per node, 0 on flexible segments
+            for key in ("angle_rad", "moment_Nm"):
+                vals = np.asarray(self.diagnostics["bending"][key])
+                out["profile"][f"bending_{key}"] = lst(vals[keep])
         if "bodies" in self.diagnostics:
             # point bodies at joints (multi-segment lines): joint, kind, position (m) and
             # the body's total external load (N), after the touchdown entry

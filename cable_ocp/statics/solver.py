@@ -200,6 +200,10 @@ class StaticsSolver:
     # -- internals ----------------------------------------------------------------------
     def _guess(self, scene: Scene) -> tuple[np.ndarray, str]:
         sig = self.mesh.sigma()
+        if self.form.nx > 6 and not self.grounded:
+            tow = _towed_guess(scene, self.coll.node_s(sum(c.length for c in scene.segments)))
+            if tow is not None:
+                return self.coll.pack(*tow), "straight towed line"
         if scene.segments:
             scene = _mean_cable_scene(scene)
         if self.grounded:
@@ -226,13 +230,20 @@ class StaticsSolver:
             below = seabed.gap(self.scene.environment.seabed, sol.position) < 0
             first_above = int(np.argmin(below[1:])) + 1 if below[1:].any() else 0
             g = max(float(sol.s[first_above]), 1e-3 * sol.length)
-        if self.grounded or not off:
-            s_src, r_src, t_src = sol.s[off:], sol.position[off:], sol.tension_vector[off:]
-        else:  # contact switched off: the grounded nodes become part of the profile
-            s_src, r_src, t_src = sol.s, sol.position, sol.tension_vector
+        # contact switched off (not grounded, off > 0): the grounded nodes become part of
+        # the profile
+        keep = slice(off, None) if (self.grounded or not off) else slice(None)
+        s_src, r_src, t_src = sol.s[keep], sol.position[keep], sol.tension_vector[keep]
         if self.form.segmented:
             r, t = self.coll.resample(s_src, r_src, t_src, sol.length, g)
-            return self.coll.pack(r, t, sol.length, g)
+            bend = sol.diagnostics.get("bending")
+            b = None
+            if self.form.nx > 6 and bend is not None and len(bend["angle_rad"]) == len(sol.s):
+                src = np.zeros((len(s_src), 3))
+                src[:, 0] = np.asarray(bend["angle_rad"])[keep]
+                src[:, 1] = np.asarray(bend["moment_Nm"])[keep]
+                b = self.coll.resample(s_src, r_src, src, sol.length, g)[1][:, :2]
+            return self.coll.pack(r, t, sol.length, g, bending=b)
         s0 = g if self.grounded else 0.0
         sig = self.mesh.sigma()
         src = (s_src - s0) / (sol.length - s0)
@@ -344,6 +355,12 @@ class StaticsSolver:
         diag["warnings"] = warnings
         if self.form.segmented and finite:
             self._segment_diagnostics(sol, r, offset, p)
+        bend = self.coll.unpack_bending(w)
+        if bend is not None:
+            bend = np.vstack([np.zeros((offset, 2)), bend])  # grounded nodes: no bending
+            # per node: tangent angle from +x towards +z (rad) and bending moment (N m);
+            # zeros on flexible segments (planar beam-cable, formulation module)
+            diag["bending"] = {"angle_rad": bend[:, 0].tolist(), "moment_Nm": bend[:, 1].tolist()}
         return sol
 
     def _segment_diagnostics(self, sol: StaticsSolution, r: np.ndarray, offset: int,
@@ -465,6 +482,37 @@ def _mean_cable_scene(scene: Scene) -> Scene:
     weight -= sum(b.static_load[2] for b in scene.bodies)
     cable = replace(scene.cable, weight_in_water=weight / total)
     return replace(scene, cable=cable, segments=(), segment_intervals=(), bodies=())
+
+
+def _towed_guess(scene: Scene, s: np.ndarray) -> tuple[np.ndarray, np.ndarray, float] | None:
+    """Guess for a towed line (end_a fixed, end_b free under a given load, a uniform
+    current in the x-z plane): a straight line from end_a downstream, sloping down at
+    0.1 rad, with the tension of the tangential drag and the end load accumulated from
+    end_b. None when the scene is not of that kind."""
+    cur, a, b = scene.environment.current, scene.end_a, scene.end_b
+    if cur is None or not all(a.fixed_mask) or any(b.fixed_mask) or cur.max_speed == 0.0:
+        return None
+    rho = scene.environment.water_density
+    ux = cur.ux[0] if cur.ux[0] != 0.0 else cur.max_speed
+    e = np.array([math.copysign(math.cos(0.1), ux), 0.0, -math.sin(0.1)])
+    lens = [c.length for c in scene.segments]
+    cum = np.concatenate([[0.0], np.cumsum(lens)])
+    total = float(cum[-1])
+    # tangential drag per metre of each segment, N/m (0.5 rho C_t pi D U^2), plus the
+    # weight's component along the 0.1 rad slope
+    ft = [0.5 * rho * c.tangential_drag * math.pi * c.diameter * ux**2 + abs(
+        c.weight_in_water) * 0.1 for c in scene.segments]
+    pull = float(np.linalg.norm([f or 0.0 for f in b.force]))
+
+    def beyond(sv: float) -> float:
+        """Drag on the line beyond arc length sv, N."""
+        return sum(f * max(0.0, min(hi, total) - max(lo, sv))
+                   for f, lo, hi in zip(ft, cum[:-1], cum[1:], strict=True))
+
+    tmag = np.array([pull + beyond(float(v)) for v in s])
+    tmag = np.maximum(tmag, 1e-6 * max(tmag.max(), 1.0))
+    r = np.asarray(a.position, dtype=float) + np.outer(s, e)
+    return r, np.outer(tmag, e), total
 
 
 def _can_ground(scene: Scene) -> bool:
