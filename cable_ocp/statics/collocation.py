@@ -196,27 +196,13 @@ class Collocation:
         if self.mesh.segments:
             return self._build_segmented()
         n, d = self.mesh.intervals, self.mesh.degree
-        cmat, dvec = _lagrange_matrices(list(self.mesh.tau))
-        h = 1.0 / n
         w = ca.MX.sym("w", self.n_w)
         p = ca.MX.sym("p", len(self.form.params()))
         lam, g_len = self._lengths(w, p)
         xs = ca.reshape(w[: self.n_x], self.nx, self.mesh.n_nodes)
-        # interval blocks: columns k*(d+1) .. k*(d+1)+d
-        blocks = ca.reshape(xs[:, : n * (d + 1)], NX * (d + 1), n)  # one column per interval
-        xk = ca.MX.sym("xk", NX * (d + 1))
-        lam_s = ca.MX.sym("lam")
-        cs_s = ca.MX.sym("cs")
-        xcols = ca.reshape(xk, NX, d + 1)
-        fx = self.form.rhs.map(d)(xcols[:, 1:], lam_s, cs_s)  # 6 x d
-        coll = []
-        for j in range(1, d + 1):
-            xp = ca.mtimes(xcols, ca.DM(cmat[:, j]))
-            # in derivative units (divided by h), so that one residual tolerance means the
-            # same accuracy on every mesh
-            coll.append(fx[:, j - 1] - xp / h)
-        x_end = ca.mtimes(xcols, ca.DM(dvec))
-        interval = ca.Function("interval", [xk, lam_s, cs_s], [ca.vertcat(*coll), x_end]).expand()
+        # interval blocks: columns k*(d+1) .. k*(d+1)+d, one column per interval
+        blocks = ca.reshape(xs[:, : n * (d + 1)], self.nx * (d + 1), n)
+        interval = self._interval_function(self.form.rhs, 1.0 / n)
         coll_all, xend_all = interval.map(n)(blocks, lam, p[P_CURRENT])
         starts = ca.horzcat(*[xs[:, (k + 1) * (d + 1)] for k in range(n)])
         cont = ca.vec(xend_all - starts)
@@ -225,7 +211,10 @@ class Collocation:
         return ca.Function("G", [w, p], [gexpr], ["w", "p"], ["g"])
 
     def _interval_function(self, rhs: ca.Function, h: float) -> ca.Function:
-        """Collocation residuals and end state of one interval of width h (sigma)."""
+        """Collocation residuals and end state of one interval of width h (sigma).
+
+        The residuals are in derivative units (divided by h), so that one residual
+        tolerance means the same accuracy on every mesh."""
         d, nx = self.mesh.degree, self.nx
         cmat, dvec = _lagrange_matrices(list(self.mesh.tau))
         xk = ca.MX.sym("xk", nx * (d + 1))
