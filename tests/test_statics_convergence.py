@@ -127,3 +127,16 @@ def test_inaccurate_is_not_solved(problems):
     s = solve(_scene(problems, intervals=4, degree=1, accuracy=1e-9))
     assert s.status == "inaccurate" and not s.success
     assert "solver.intervals" in s.message
+
+
+def test_sweep_refines_points_that_miss_accuracy(problems):
+    """A sweep point whose estimate misses solver.accuracy is refined like a single solve
+    (not left "inaccurate"), and the other points keep the sweep's mesh."""
+    from cable_ocp.statics.solver import sweep
+
+    sc = load_scene(problems / "dezoysa_sea_buggy.toml",
+                    {"solver.intervals": 4, "solver.degree": 2, "solver.accuracy": 1e-7})
+    sols = sweep(sc, "layout.psi0_deg", [120.0, 135.0])
+    assert all(s.success for s in sols)
+    assert all(s.error_estimate <= 1e-7 for s in sols)
+    assert sols[0].diagnostics["refinement"][0]["intervals"] == 4

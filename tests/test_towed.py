@@ -35,6 +35,7 @@ import copy
 import json
 import math
 import tomllib
+from pathlib import Path
 
 import numpy as np
 import pytest
@@ -325,3 +326,18 @@ def test_set_index_errors(problems, capsys):
                "cable.segments.7.length=500"])
     assert rc == 2
     assert "cable.segments.7.length" in capsys.readouterr().err
+
+
+def test_still_water_tow_hangs_down():
+    """Without current the towed line hangs straight down from the tow point (the stable
+    branch; an upward start would land on an inverted column in compression), and the
+    stiff object carries no compression."""
+    from cable_ocp.scene import load_scene
+    from cable_ocp.statics.solver import solve
+
+    path = Path(__file__).resolve().parents[1] / "problems" / "bielanski_tow.toml"
+    sol = solve(load_scene(path, {"environment.current.speed": 0.0}))
+    assert sol.success, sol.message
+    assert sol.position[-1, 2] < sol.position[0, 2] - 0.99 * sol.length
+    assert sol.diagnostics["bending"]["min_axial_force_N"] >= -1e-6 * sol.max_tension
+    assert not any("compression" in w for w in sol.diagnostics["warnings"])

@@ -361,6 +361,22 @@ class StaticsSolver:
             # per node: tangent angle from +x towards +z (rad) and bending moment (N m);
             # zeros on flexible segments (planar beam-cable, formulation module)
             diag["bending"] = {"angle_rad": bend[:, 0].tolist(), "moment_Nm": bend[:, 1].tolist()}
+            # axial force T . t on the stiff segments (T carries the shear there too):
+            # a stiff segment in compression may sit on an unstable branch (an inverted
+            # column), which a statics solve cannot tell from a stable one
+            ang = bend[:, 0]
+            axial = t[:, 0] * np.cos(ang) + t[:, 2] * np.sin(ang)
+            on_stiff = np.zeros(len(axial), dtype=bool)
+            offs = self.mesh.segment_offsets()
+            for k, stiff in enumerate(self.form.stiff):
+                if stiff:
+                    on_stiff[offset + offs[k]: offset + offs[k + 1]] = True
+            worst = float(np.min(axial[on_stiff])) if on_stiff.any() else 0.0
+            diag["bending"]["min_axial_force_N"] = worst
+            if worst < -1e-6 * max(tmax, 1.0):
+                warnings.append(
+                    f"a stiff segment carries {-worst:.4g} N of compression: this equilibrium "
+                    "may be unstable (e.g. an inverted column); check the branch")
         return sol
 
     def _segment_diagnostics(self, sol: StaticsSolution, r: np.ndarray, offset: int,
@@ -488,20 +504,27 @@ def _towed_guess(scene: Scene, s: np.ndarray) -> tuple[np.ndarray, np.ndarray, f
     """Guess for a towed line (end_a fixed, end_b free under a given load, a uniform
     current in the x-z plane): a straight line from end_a downstream, sloping down at
     0.1 rad, with the tension of the tangential drag and the end load accumulated from
-    end_b. None when the scene is not of that kind."""
+    end_b; in still water a line hanging straight down. None when the scene is not of
+    that kind."""
     cur, a, b = scene.environment.current, scene.end_a, scene.end_b
-    if cur is None or not all(a.fixed_mask) or any(b.fixed_mask) or cur.max_speed == 0.0:
+    if not all(a.fixed_mask) or any(b.fixed_mask):
         return None
-    rho = scene.environment.water_density
-    ux = cur.ux[0] if cur.ux[0] != 0.0 else cur.max_speed
-    e = np.array([math.copysign(math.cos(0.1), ux), 0.0, -math.sin(0.1)])
     lens = [c.length for c in scene.segments]
     cum = np.concatenate([[0.0], np.cumsum(lens)])
     total = float(cum[-1])
-    # tangential drag per metre of each segment, N/m (0.5 rho C_t pi D U^2), plus the
-    # weight's component along the 0.1 rad slope
-    ft = [0.5 * rho * c.tangential_drag * math.pi * c.diameter * ux**2 + abs(
-        c.weight_in_water) * 0.1 for c in scene.segments]
+    if cur is None or cur.max_speed == 0.0:
+        # still water: the line hangs straight down from end_a, its tension the weight
+        # below (a sinking line; an inverted start would land on the unstable branch)
+        e = np.array([0.0, 0.0, -1.0])
+        ft = [abs(c.weight_in_water) for c in scene.segments]
+    else:
+        rho = scene.environment.water_density
+        ux = cur.ux[0] if cur.ux[0] != 0.0 else cur.max_speed
+        e = np.array([math.copysign(math.cos(0.1), ux), 0.0, -math.sin(0.1)])
+        # tangential drag per metre of each segment, N/m (0.5 rho C_t pi D U^2), plus the
+        # weight's component along the 0.1 rad slope
+        ft = [0.5 * rho * c.tangential_drag * math.pi * c.diameter * ux**2 + abs(
+            c.weight_in_water) * 0.1 for c in scene.segments]
     pull = float(np.linalg.norm([f or 0.0 for f in b.force]))
 
     def beyond(sv: float) -> float:
@@ -547,21 +570,35 @@ def _solve_with_contact(scene: Scene, get: Callable[[bool], StaticsSolver],
     if scene.environment.seabed is None or sol.status not in ("solved", "inaccurate"):
         return sol
     tol = 1e-6 * reference_length(scene)
+    why = ""
     if not grounded and _can_ground(scene) and _penetration(sol, scene) > tol:
         alt = get(True).solve(scene, warm_start=sol, **kw)
         if alt.status not in ("solved", "inaccurate") or alt.grounded_length <= 0:
             alt = get(True).solve(scene, **kw)  # cold, from the catenary with touchdown
         if alt.status in ("solved", "inaccurate") and alt.grounded_length > 0:
             sol = alt
+        else:
+            why = f"; the solve with contact at end_a did not converge ({alt.message})"
+            if len(scene.segments) > 1:
+                why += ("; note that the grounded part is limited to the first segment: "
+                        "contact of later segments or of a body at a joint is not modelled "
+                        "yet")
     elif grounded and sol.grounded_length < 0:
         sol = get(False).solve(scene, warm_start=sol, **kw)
     depth = _penetration(sol, scene) if sol.status in ("solved", "inaccurate") else 0.0
     if depth > tol:
+        first = scene.segments[0].length if scene.segments else sol.length
+        if sol.node_offset and sol.grounded_length >= first * (1.0 - 1e-6) \
+                and len(scene.segments) > 1:
+            why += ("; the grounded part reached the end of the first segment: contact of "
+                    "later segments or of a body at a joint is not modelled yet")
+        elif not why:
+            why = ("; contact away from an anchored end_a is not modelled yet"
+                   if _can_ground(scene) else
+                   "; end_a is not anchored on the seabed, and contact elsewhere is not "
+                   "modelled yet")
         sol.status = "failed"
-        sol.message = (
-            f"the cable passes {depth:.3g} m below the seabed"
-            + ("" if _can_ground(scene) else " and end_a is not anchored on it")
-            + "; contact away from an anchored end_a is not modelled yet")
+        sol.message = f"the cable passes {depth:.3g} m below the seabed" + why
     return sol
 
 
@@ -640,6 +677,8 @@ def sweep(scene: Scene, key: str, values: Iterable[Any],
     one is built. Each point starts from a secant prediction through the two previous
     solutions when the key is numeric (fewer Newton steps), else from the previous
     solution; if Newton fails from the prediction, it is retried from the previous solution.
+    A point whose error estimate misses ``solver.accuracy`` is refined like a single solve
+    (:func:`solve_collocation`).
 
     Examples
     --------
@@ -679,8 +718,12 @@ def sweep(scene: Scene, key: str, values: Iterable[Any],
             factor = (v - done[-1][0]) / (done[-1][0] - done[-2][0])
             start = _extrapolate(done[-2][2], prev, factor)
         sol = _solve_with_contact(sc, get, start, error_estimate)
-        if start is not prev and not sol.success:
+        if start is not prev and not sol.success and sol.status != "inaccurate":
             sol = _solve_with_contact(sc, get, prev, error_estimate)
+        if sol.status == "inaccurate" and sc.solver.refine:
+            # this point needs a finer mesh than the sweep's: refine it on its own (the
+            # next points keep the sweep's solver and warm-start from this solution)
+            sol = solve_collocation(sc, warm_start=sol)
         sol.diagnostics["sweep"] = {"key": key, "value": v}
         out.append(sol)
         done.append((v, k, sol))
