@@ -70,3 +70,13 @@ def test_python_m_entry_point(problems):
                          capture_output=True, text=True, timeout=120)
     assert res.returncode == 0, res.stderr
     assert "3013" in res.stdout
+
+
+def test_json_dash_is_stdout_for_every_command(problems, tmp_path, capsys, monkeypatch):
+    """'--json -' writes the JSON alone to stdout (no file named '-')."""
+    monkeypatch.chdir(tmp_path)
+    assert main(["footprint", str(problems / "footprint_tethered_unit.toml"),
+                 "--directions", "4", "--json", "-"]) == 0
+    data = json.loads(capsys.readouterr().out)
+    assert len(data["reach"]) == 4
+    assert not (tmp_path / "-").exists()

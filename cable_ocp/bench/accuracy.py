@@ -166,13 +166,6 @@ def write_csv(results: list[dict[str, Any]], path: str | Path) -> None:
                 w.writerow({k: r[k] for k in keys})
 
 
-def write_json(results: list[dict[str, Any]], path: str | Path) -> None:
-    """The whole result, JSON."""
-    from cable_ocp.report import to_json
-
-    Path(path).write_text(to_json(results))
-
-
 def plot(results: list[dict[str, Any]], path: str | Path) -> Path:
     """Log-log error (the larger of force and profile error) against wall time."""
     import matplotlib

@@ -9,6 +9,7 @@ import argparse
 import dataclasses
 import json
 from pathlib import Path
+from typing import Any
 
 import numpy as np
 
@@ -45,6 +46,23 @@ def run_heave(args: argparse.Namespace) -> int:
 
         check(sc)
     res = compare(sc, tuple(args.controllers) if args.controllers else None)
+    if args.json != "-":  # '-' = the JSON alone on stdout
+        _print_table(sc, args, res)
+    if args.json:
+        out = {"sigma_uncontrolled": res.sigma_uncontrolled,
+               "controllers": {k: v.as_dict() for k, v in res.metrics.items()}}
+        text = json.dumps(out, indent=2)
+        if args.json == "-":
+            print(text)
+        else:
+            Path(args.json).write_text(text)
+    if args.plot:
+        _plot(sc, args, res)
+    return 0
+
+
+def _print_table(sc: Any, args: argparse.Namespace, res: Any) -> None:
+    """The comparison table (what `cable-ocp heave` prints)."""
     fit = res.models.filter_fit
     print(f"{sc.title or args.file}")
     print(f"sigma_uncontrolled (Lyapunov, sigma^2 = pi P11): {res.sigma_uncontrolled:.4f} m")
@@ -61,25 +79,23 @@ def run_heave(args: argparse.Namespace) -> int:
               f"{m.max_constraint_violation:8.3f} {st:>11}")
     if "mpc" in res.metrics:
         print(f"MPC solver failures (fell back on the shifted plan): {res.mpc_failures}")
-    if args.json:
-        out = {"sigma_uncontrolled": res.sigma_uncontrolled,
-               "controllers": {k: v.as_dict() for k, v in res.metrics.items()}}
-        Path(args.json).write_text(json.dumps(out, indent=2))
-    if args.plot:
-        from cable_ocp.heave.plots import plot_comparison, tradeoff_data
 
-        tr = next(iter(res.traces.values()))
-        step = 0.01
-        t = np.arange(0.0, min(tr.t[-1], 200.0), step)
-        x0 = np.interp(t, tr.t, tr.x0)
-        tau = sc.winch.delay
-        if tau <= 0:
-            tau = 0.2
-            print("trade-off plot: the scene has no delay; its delayed curves use 0.2 s, the "
-                  "delay of the thesis' study (Fig. 6.17)")
-        td = tradeoff_data(sc.unit.a, sc.unit.b, sc.winch.gain, tau, t, x0)
-        plot_comparison(res, args.plot, td)
-    return 0
+
+def _plot(sc: Any, args: argparse.Namespace, res: Any) -> None:
+    """Spectra, time series and the trade-off curves (`--plot`)."""
+    from cable_ocp.heave.plots import plot_comparison, tradeoff_data
+
+    tr = next(iter(res.traces.values()))
+    step = 0.01
+    t = np.arange(0.0, min(tr.t[-1], 200.0), step)
+    x0 = np.interp(t, tr.t, tr.x0)
+    tau = sc.winch.delay
+    if tau <= 0:
+        tau = 0.2
+        print("trade-off plot: the scene has no delay; its delayed curves use 0.2 s, the "
+              "delay of the thesis' study (Fig. 6.17)")
+    td = tradeoff_data(sc.unit.a, sc.unit.b, sc.winch.gain, tau, t, x0)
+    plot_comparison(res, args.plot, td)
 
 
 def run_bench(args: argparse.Namespace) -> int:

@@ -27,7 +27,8 @@ def register(sub: argparse._SubParsersAction) -> None:
     f.add_argument("--directions", type=int, default=72)
     f.add_argument("--set", dest="overrides", action="append", default=[], metavar="KEY=VALUE")
     f.add_argument("--plot", metavar="PATH", help="save the footprint polygon")
-    f.add_argument("--json", metavar="PATH", help="write the polygon and per-direction data")
+    f.add_argument("--json", metavar="PATH",
+                   help="write the polygon and per-direction data ('-' = stdout)")
     f.set_defaults(func=_cmd_footprint)
 
     b = sub.add_parser("bench", help="benchmarks that print a table",
@@ -47,6 +48,14 @@ def register(sub: argparse._SubParsersAction) -> None:
     b.add_argument("--csv", metavar="PATH", help="accuracy: write the table as CSV")
     b.add_argument("--json", metavar="PATH", help="accuracy/robustness: write JSON")
     b.set_defaults(func=_cmd_bench)
+
+
+def _emit_json(path: str, text: str) -> None:
+    """Write JSON text to ``path``, or to stdout when it is '-'."""
+    if path == "-":
+        print(text)
+    else:
+        Path(path).write_text(text)
 
 
 def _cmd_solve(args: argparse.Namespace) -> int:
@@ -126,7 +135,7 @@ def _bench_accuracy(args: argparse.Namespace) -> int:
     if args.csv:
         accuracy.write_csv(results, args.csv)
     if args.json:
-        accuracy.write_json(results, args.json)
+        _emit_json(args.json, report.to_json(results))
     if args.plot:
         accuracy.plot(results, args.plot)
     return 0
@@ -149,7 +158,7 @@ def _bench_robustness(args: argparse.Namespace) -> int:
     print("\ncollocation reported as success but wrong: "
           + (", ".join(d["scene"] for d in res["wrong_ours"]) or "none"))
     if args.json:
-        Path(args.json).write_text(report.to_json(res))
+        _emit_json(args.json, report.to_json(res))
     return 1 if res["wrong_ours"] else 0
 
 
@@ -164,14 +173,15 @@ def _cmd_footprint(args: argparse.Namespace) -> int:
             for th, r, (x, y), (tx, ty), ln, st in zip(
                 res.theta_deg, res.reach, res.points, res.thrust, res.length, res.status,
                 strict=True)]
-    print(f"{scene.meta.get('title', args.file)}: {args.directions} directions, "
-          f"{res.wall_time_s:.2f} s")
-    print(report.table(["theta [deg]", "reach [m]", "x [m]", "y [m]", "Tx [N]", "Ty [N]",
-                        "L [m]", "status"], rows))
+    if args.json != "-":  # '-' = JSON only on stdout
+        print(f"{scene.meta.get('title', args.file)}: {args.directions} directions, "
+              f"{res.wall_time_s:.2f} s")
+        print(report.table(["theta [deg]", "reach [m]", "x [m]", "y [m]", "Tx [N]", "Ty [N]",
+                            "L [m]", "status"], rows))
     if args.plot:
         plot_footprint(res, args.plot, scene.meta.get("title", ""))
     if args.json:
-        Path(args.json).write_text(report.to_json({
+        _emit_json(args.json, report.to_json({
             "theta_deg": res.theta_deg.tolist(), "reach": res.reach.tolist(),
             "points": res.points.tolist(), "thrust": res.thrust.tolist(),
             "length": res.length.tolist(), "status": res.status}))
