@@ -6,7 +6,7 @@ import math
 
 import numpy as np
 import pytest
-from scipy.optimize import minimize
+from scipy.optimize import minimize_scalar
 
 from cable_ocp.cli import main
 from cable_ocp.errors import CableOCPError
@@ -16,25 +16,40 @@ from cable_ocp.statics.footprint import footprint
 W, H_SHIP, T_MAX, L_MAX, L_MIN = 12.3, 183.0, 2000.0, 305.0, 190.0
 
 
+def _catenary_length(h: float, v0: float) -> float:
+    """Length of an inextensible catenary with horizontal tension h and vertical force v0
+    at its lower end that rises H_SHIP (from h/W (sqrt(1+((v0+WL)/h)^2) - sqrt(1+(v0/h)^2))
+    = H_SHIP solved for L)."""
+    c = W * H_SHIP / h + math.sqrt(1.0 + (v0 / h) ** 2)
+    return (h * math.sqrt(c * c - 1.0) - v0) / W
+
+
+def _span(h: float, v0: float) -> float:
+    length = _catenary_length(h, v0)
+    return h / W * (math.asinh((v0 + W * length) / h) - math.asinh(v0 / h))
+
+
 def still_water_radius() -> float:
-    """Independent answer in still water: maximise the span of an inextensible catenary
+    """Independent answer in still water: the largest span of an inextensible catenary
     from the unit (horizontal tension H <= T_max = the thrust, vertical force V0 >= 0 at
-    the unit) to the ship H_SHIP above, over H, V0 and L in [L_min, L_max] (SLSQP)."""
-    def span(q):
-        h, v0, length = q
-        return h / W * (math.asinh((v0 + W * length) / h) - math.asinh(v0 / h))
+    the unit) to the ship H_SHIP above, with L in [L_min, L_max].
 
-    def rise(q):
-        h, v0, length = q
-        return h / W * (math.sqrt(1 + ((v0 + W * length) / h) ** 2)
-                        - math.sqrt(1 + (v0 / h) ** 2)) - H_SHIP
-
-    res = minimize(lambda q: -span(q), [1500.0, 100.0, 290.0], method="SLSQP",
-                   bounds=[(1.0, T_MAX), (0.0, 1e5), (L_MIN, L_MAX)],
-                   constraints=[{"type": "eq", "fun": rise}],
-                   options={"ftol": 1e-14, "maxiter": 500})
-    assert res.success
-    return span(res.x)
+    Closed form: the span grows with H and falls with V0, so the optimum is H = T_max,
+    V0 = 0 (the catenary's vertex at the unit), span = (H/W) acosh(1 + W H_SHIP / H),
+    provided that catenary's length lies in [L_min, L_max] (asserted). The monotonicity
+    is checked numerically by a bounded scalar search over V0 at H = T_max and over H at
+    V0 = 0 (scipy's bounded Brent; SLSQP on the joint problem stops early on newer scipy).
+    """
+    radius = T_MAX / W * math.acosh(1.0 + W * H_SHIP / T_MAX)
+    assert L_MIN <= _catenary_length(T_MAX, 0.0) <= L_MAX
+    by_v0 = minimize_scalar(lambda v: -_span(T_MAX, v), bounds=(0.0, 5000.0),
+                            method="bounded", options={"xatol": 1e-10})
+    by_h = minimize_scalar(lambda h: -_span(h, 0.0), bounds=(1.0, T_MAX),
+                           method="bounded", options={"xatol": 1e-10})
+    assert -by_v0.fun <= radius * (1 + 1e-12) and -by_h.fun <= radius * (1 + 1e-12)
+    # bounded Brent approaches the bound H = T_max to ~1e-5 N, not exactly: 1e-7 relative
+    assert -by_h.fun == pytest.approx(radius, rel=1e-7)
+    return radius
 
 
 def test_still_water_footprint_is_the_catenary_circle(problems):
