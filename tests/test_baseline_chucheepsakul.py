@@ -9,9 +9,10 @@ from __future__ import annotations
 import numpy as np
 import pytest
 
-from cable_ocp.baselines import chucheepsakul, get_method
+from cable_ocp.baselines import chucheepsakul
 from cable_ocp.errors import CableOCPError
 from cable_ocp.scene import load_scene
+from cable_ocp.statics.registry import get_method
 from cable_ocp.statics.solver import solve as collocation
 
 

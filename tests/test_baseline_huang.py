@@ -28,9 +28,9 @@ import pytest
 from scipy.integrate import quad, solve_ivp
 from scipy.optimize import root
 
-from cable_ocp.baselines import get_method
 from cable_ocp.baselines.huang import _piece_terms, solve, solve_huang, solve_point_loads
 from cable_ocp.scene import Scene, load_scene, scene_from_dict
+from cable_ocp.statics.registry import get_method
 from cable_ocp.statics.solver import solve as solve_collocation
 
 # --------------------------------------------------------------------------------------

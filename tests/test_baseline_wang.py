@@ -12,9 +12,10 @@ import math
 import numpy as np
 import pytest
 
-from cable_ocp.baselines import get_method, wang
+from cable_ocp.baselines import wang
 from cable_ocp.errors import CableOCPError
 from cable_ocp.scene import load_scene
+from cable_ocp.statics.registry import get_method
 from cable_ocp.statics.solver import solve as collocation
 
 

@@ -94,10 +94,16 @@ import numpy as np
 import scipy.sparse as sp
 from scipy.sparse.linalg import spsolve
 
-from cable_ocp.baselines import rising_fixed_ends, unsupported
+from cable_ocp.baselines.common import (
+    equilibrium_check,
+    rising_fixed_ends,
+    unsupported,
+    with_resolution_check,
+)
 from cable_ocp.errors import CableOCPError
 from cable_ocp.scene import Scene
 from cable_ocp.statics.initial_guess import initial_guess
+from cable_ocp.statics.registry import register
 from cable_ocp.statics.solution import StaticsSolution
 
 METHOD = "chucheepsakul_fem"
@@ -435,7 +441,6 @@ def solve(scene: Scene, warm_start: StaticsSolution | None = None) -> StaticsSol
     Richardson error estimate from N/2 elements (order 2 assumed: the measured end-force
     order is 2.5-3, so this over- rather than under-estimates) and ``"unresolved"`` above
     1 % (:func:`cable_ocp.baselines.with_resolution_check`)."""
-    from cable_ocp.baselines import equilibrium_check, with_resolution_check
 
     sol = with_resolution_check(scene, solve_fem, warm_start, 2.0, METHOD)
     return equilibrium_check(scene, sol, METHOD)
@@ -533,3 +538,5 @@ def solve_fem(scene: Scene, warm_start: StaticsSolution | None = None,
     viol = rel if status != "solved" else max(rel, abs(hist[-1][1]))
     return _result(fem, q, tens, status, f"{METHOD}: {msg}", total, wall, viol, diag)
 
+
+register("chucheepsakul_fem", solve)

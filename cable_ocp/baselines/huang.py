@@ -92,9 +92,11 @@ from typing import Any
 import numpy as np
 from scipy.optimize import brentq
 
+from cable_ocp.baselines.common import with_resolution_check
 from cable_ocp.errors import CableOCPError
 from cable_ocp.scene import Scene
 from cable_ocp.statics.initial_guess import free_length_guess
+from cable_ocp.statics.registry import register
 from cable_ocp.statics.solution import StaticsSolution
 
 __all__ = ["METHOD", "solve", "solve_huang", "solve_point_loads"]
@@ -1025,8 +1027,10 @@ def solve(scene: Scene, warm_start: StaticsSolution | None = None) -> StaticsSol
     estimate from a second solve on N/2 segments (first order) and is ``"unresolved"``
     above 1 % (:func:`cable_ocp.baselines.with_resolution_check`).
     """
-    from cable_ocp.baselines import with_resolution_check
 
     # no equilibrium_check: shooting the cable equations from a first-order answer
     # amplifies its ~1e-2 lumping error past the check's threshold on ordinary scenes
     return with_resolution_check(scene, solve_huang, warm_start, 1.0, METHOD)
+
+
+register("huang_semianalytic", solve)

@@ -13,6 +13,7 @@ import time
 import numpy as np
 from scipy.integrate import solve_bvp as _scipy_solve_bvp
 
+from cable_ocp.baselines.common import seabed_check
 from cable_ocp.scene import Scene
 from cable_ocp.statics.formulation import (
     P_CURRENT,
@@ -23,6 +24,7 @@ from cable_ocp.statics.formulation import (
     Formulation,
 )
 from cable_ocp.statics.initial_guess import initial_guess
+from cable_ocp.statics.registry import register
 from cable_ocp.statics.solution import StaticsSolution
 
 
@@ -110,9 +112,11 @@ def solve(scene: Scene, warm_start: StaticsSolution | None = None) -> StaticsSol
     nodes, solve_bvp's tolerance = ``solver.tolerance`` but not below 1e-9 (tighter
     requests stall its mesh refinement). It has no seabed contact: a profile through a
     modelled seabed is reported as ``"seabed_contact"``."""
-    from cable_ocp.baselines import seabed_check
 
     sol = solve_bvp(scene, nodes=scene.solver.intervals + 1,
                     tol=max(scene.solver.tolerance, 1e-9), max_nodes=10000,
                     warm_start=warm_start)
     return seabed_check(scene, sol, "solve_bvp")
+
+
+register("solve_bvp", solve)

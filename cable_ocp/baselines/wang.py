@@ -122,10 +122,11 @@ from collections.abc import Callable
 import numpy as np
 from scipy.optimize import minimize
 
-from cable_ocp.baselines import rising_fixed_ends, unsupported
+from cable_ocp.baselines.common import rising_fixed_ends, unsupported
 from cable_ocp.errors import CableOCPError
 from cable_ocp.scene import Scene
 from cable_ocp.statics.initial_guess import initial_guess
+from cable_ocp.statics.registry import register
 from cable_ocp.statics.solution import StaticsSolution
 
 METHOD = "wang_shooting_optimization"
@@ -560,3 +561,6 @@ def solve(scene: Scene, warm_start: StaticsSolution | None = None) -> StaticsSol
         iterations=nit, wall_time_s=wall, constraint_violation=viol, error_estimate=estimate,
         diagnostics=diag,
     )
+
+
+register("wang_shooting_optimization", solve)

@@ -19,9 +19,8 @@ from __future__ import annotations
 from pathlib import Path
 from typing import Any
 
-from cable_ocp.baselines import METHODS
 from cable_ocp.bench.common import force_error, reference_solution, timed_solve
-from cable_ocp.scene import load_scene
+from cable_ocp.scene import METHODS, load_scene
 
 ROOT = Path(__file__).resolve().parents[2] / "problems"
 WRONG_THRESHOLD = 1e-2

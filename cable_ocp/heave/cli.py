@@ -35,14 +35,14 @@ def register(subparsers: argparse._SubParsersAction) -> None:
 
 def run_heave(args: argparse.Namespace) -> int:
     """Run the comparison for a scene file; print a table; write JSON/plot if asked."""
-    from cable_ocp.heave.scene import load_scene
     from cable_ocp.heave.simulate import compare
+    from cable_ocp.scene.heave import load_scene
 
     sc = load_scene(args.file)
     if args.duration is not None:
         sc = dataclasses.replace(sc, simulation=dataclasses.replace(sc.simulation,
                                                                     duration=args.duration))
-        from cable_ocp.heave.scene import check
+        from cable_ocp.scene.heave import check
 
         check(sc)
     res = compare(sc, tuple(args.controllers) if args.controllers else None)

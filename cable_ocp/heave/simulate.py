@@ -30,12 +30,12 @@ from cable_ocp.heave import mpc as mpc_mod
 from cable_ocp.heave import plant as pl
 from cable_ocp.heave import sea as sea_mod
 from cable_ocp.heave.discrete import discretize_delayed, discretize_noise
-from cable_ocp.heave.scene import HeaveScene
 from cable_ocp.heave.stochastic import (
     WHITE_NOISE_INTENSITY,
     discrete_delay_lqr,
     output_variance_lyapunov,
 )
+from cable_ocp.scene.heave import HeaveScene
 
 
 @dataclass(frozen=True)

@@ -25,15 +25,15 @@ import math
 import time
 from collections.abc import Callable, Iterable
 from dataclasses import replace
+from pathlib import Path
 from typing import Any
 
 import casadi as ca
 import numpy as np
 
-from cable_ocp.baselines import get_method
 from cable_ocp.errors import CableOCPError
 from cable_ocp.physics import seabed
-from cable_ocp.scene import Scene, load_scene
+from cable_ocp.scene import Scene, apply_overrides, load_scene, scene_from_dict
 from cable_ocp.statics.collocation import Collocation
 from cable_ocp.statics.formulation import (
     P_CURRENT,
@@ -42,6 +42,7 @@ from cable_ocp.statics.formulation import (
     reference_length,
 )
 from cable_ocp.statics.initial_guess import initial_guess, touchdown_guess
+from cable_ocp.statics.registry import get_method, register
 from cable_ocp.statics.shooting import MultipleShooting
 from cable_ocp.statics.solution import StaticsSolution
 
@@ -639,23 +640,40 @@ def solve_collocation(scene: Scene, warm_start: StaticsSolution | None = None
     return sol
 
 
-def solve(scene: Scene | str, overrides: dict[str, Any] | None = None,
+def solve(scene: Scene | str | Path | dict[str, Any], overrides: dict[str, Any] | None = None,
           warm_start: StaticsSolution | None = None) -> StaticsSolution:
-    """Solve a scene (or a problem file path) with the method its ``[solver]`` names.
+    """Solve a scene with the method its ``[solver]`` names.
 
     Parameters
     ----------
-    scene : Scene or path
-        Validated scene, or a TOML problem file.
+    scene : Scene, path or dict
+        A validated scene, a TOML problem file, or a problem as a dictionary (the TOML
+        tables as nested dicts, validated by :func:`cable_ocp.scene.scene_from_dict`).
     overrides : dict, optional
         Dotted-key overrides, e.g. ``{"layout.psi0_deg": 90}``.
     warm_start : StaticsSolution, optional
         A neighbouring solution to start from.
+
+    Returns
+    -------
+    StaticsSolution
+        Check ``status`` (``"solved"`` or why not) before using the numbers.
+
+    Raises
+    ------
+    CableOCPError
+        When the scene is invalid (the message names the key).
     """
-    if not isinstance(scene, Scene):
+    if isinstance(scene, dict):
+        scene = scene_from_dict(apply_overrides(scene, overrides or {}))
+    elif isinstance(scene, (str, Path)):
         scene = load_scene(scene, overrides)
-    elif overrides:
-        scene = scene.with_overrides(overrides)
+    elif isinstance(scene, Scene):
+        if overrides:
+            scene = scene.with_overrides(overrides)
+    else:
+        raise CableOCPError(f"solve(scene): expected a Scene, a problem file path or a dict, "
+                            f"got {type(scene).__name__}")
     return get_method(scene.solver.method)(scene, warm_start=warm_start)
 
 
@@ -728,3 +746,8 @@ def sweep(scene: Scene, key: str, values: Iterable[Any],
         out.append(sol)
         done.append((v, k, sol))
     return out
+
+
+# both transcriptions are solved by solve_collocation (the scene's solver.method picks one)
+register("collocation", solve_collocation)
+register("multiple_shooting", solve_collocation)

@@ -10,7 +10,7 @@ import numpy as np
 import pytest
 
 from cable_ocp.heave import simulate as sm
-from cable_ocp.heave.scene import load_scene
+from cable_ocp.scene.heave import load_scene
 
 ROOT = Path(__file__).resolve().parents[2]
 

@@ -2,8 +2,9 @@
 
 Schema (SI units; see ``problems/heave/*.toml`` for commented examples)::
 
-    title = "..."            # optional
-    source = "..."           # optional, citation
+    [meta]                   # optional, free-form text as in every scene kind
+    title = "..."
+    source = "..."           # citation
 
     [sea]
     spectrum = "bretschneider" | "pierson_moskowitz" | "jonswap"
@@ -58,13 +59,15 @@ Schema (SI units; see ``problems/heave/*.toml`` for commented examples)::
 
 from __future__ import annotations
 
+import copy
 import math
-import tomllib
 from dataclasses import dataclass, field, fields
 from pathlib import Path
 from typing import Any
 
 from cable_ocp.errors import CableOCPError
+from cable_ocp.scene.files import apply_overrides, check_kind, read_problem
+from cable_ocp.scene.parts import parse_meta
 
 
 @dataclass(frozen=True)
@@ -156,8 +159,17 @@ class HeaveScene:
     unit: UnitSpec = field(default_factory=UnitSpec)
     controller: ControllerSpec = field(default_factory=ControllerSpec)
     simulation: SimulationSpec = field(default_factory=SimulationSpec)
-    title: str = ""
-    source: str = ""
+    meta: dict[str, str] = field(default_factory=dict, compare=False, hash=False)
+    raw: dict[str, Any] = field(default_factory=dict, compare=False, hash=False, repr=False)
+
+    @property
+    def title(self) -> str:
+        """``[meta] title``, or an empty string."""
+        return self.meta.get("title", "")
+
+    def with_overrides(self, overrides: dict[str, Any]) -> HeaveScene:
+        """A new scene with dotted-key overrides applied to the source dict."""
+        return scene_from_dict(apply_overrides(self.raw, overrides))
 
 
 _CHOICES = {
@@ -218,15 +230,18 @@ def scene_from_dict(data: dict[str, Any]) -> HeaveScene:
     """
     tables = {"sea": SeaSpec, "vessel": VesselSpec, "winch": WinchSpec, "unit": UnitSpec,
               "controller": ControllerSpec, "simulation": SimulationSpec}
-    kwargs: dict[str, Any] = {}
+    kwargs: dict[str, Any] = {"raw": copy.deepcopy(data)}
     for key, val in data.items():
         if key in tables:
             kwargs[key] = _build(tables[key], key, val)
+        elif key == "meta":
+            kwargs["meta"] = parse_meta(val)
         elif key in ("title", "source"):
-            kwargs[key] = str(val)
+            raise CableOCPError(f"{key} = ...: put it in the [meta] table ([meta] {key} = "
+                                "\"...\"), as in every scene kind")
         else:
             raise CableOCPError(
-                f"unknown top-level key {key!r}; valid: title, source, {', '.join(tables)}"
+                f"unknown top-level table [{key}]; valid: meta, {', '.join(tables)}"
             )
     scene = HeaveScene(**kwargs)
     check(scene)
@@ -334,14 +349,16 @@ def check(sc: HeaveScene) -> None:
                             f"warmup = {sc.simulation.warmup} s")
 
 
-def load_scene(path: str | Path) -> HeaveScene:
-    """Read and validate a heave TOML file."""
-    p = Path(path)
-    try:
-        with p.open("rb") as fh:
-            data = tomllib.load(fh)
-    except FileNotFoundError as exc:
-        raise CableOCPError(f"heave scene file {str(p)!r} not found") from exc
-    except tomllib.TOMLDecodeError as exc:
-        raise CableOCPError(f"heave scene file {str(p)!r} is not valid TOML: {exc}") from exc
+def load_scene(path: str | Path, overrides: dict[str, Any] | None = None) -> HeaveScene:
+    """Read and validate a heave TOML file, with optional dotted-key ``overrides``.
+
+    Raises
+    ------
+    CableOCPError
+        When the file cannot be read, is a statics or dynamics scene, or does not validate.
+    """
+    data = read_problem(path)
+    check_kind(data, "heave", path)
+    if overrides:
+        data = apply_overrides(data, overrides)
     return scene_from_dict(data)
