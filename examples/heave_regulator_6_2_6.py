@@ -43,7 +43,7 @@ def main(out: str | None = None, duration: float = 200.0) -> dict:
         des = lqr.design_lqr(A_626, B_626, Q, tau=TAU_626, method=m)
         res["designs"][m] = (des.G, lqr.delay_margin(des))
     t, x0 = boom_tip(duration)
-    from cable_ocp.heave.plots import tradeoff_data
+    from cable_ocp.heave.lqr import tradeoff_data
 
     res["tradeoff"] = tradeoff_data(A_626, B_626, 1.0, TAU_626, t, x0)
     if out:

@@ -112,5 +112,5 @@ def test_contact_away_from_anchor_is_a_failure():
         "environment": {"water_depth": 100.0, "water_density": 1025.0, "seabed": {}},
         "cable": {"length": 600.0, "weight_in_water": 50.0},
         "end_a": {"position": [0.0, 0.0, 50.0]}, "end_b": {"position": [300.0, 0.0, 50.0]}}))
-    assert sol.status == "failed"
+    assert sol.status == "below_seabed"
     assert "below the seabed" in sol.message

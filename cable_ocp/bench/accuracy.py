@@ -16,6 +16,7 @@ from __future__ import annotations
 
 import csv
 import time
+from collections.abc import Callable
 from pathlib import Path
 from typing import Any
 
@@ -64,8 +65,11 @@ def default_scenes() -> list[tuple[str, Path, dict[str, Any]]]:
 
 
 def run_scene(label: str, scene: Scene, methods: list[str] | None = None,
-              repeats: int = 3) -> dict[str, Any]:
-    """All methods on one scene; rows of (method, resolution, time, errors, ratio)."""
+              repeats: int = 3, progress: Callable[[dict[str, Any]], None] | None = None
+              ) -> dict[str, Any]:
+    """All methods on one scene; rows of (method, resolution, time, errors, ratio).
+
+    ``progress(row)`` is called after each row."""
     ref = reference_solution(scene)
     rows: list[dict[str, Any]] = []
     notes: dict[str, str] = {}
@@ -93,8 +97,13 @@ def run_scene(label: str, scene: Scene, methods: list[str] | None = None,
                     if est.error_estimate is not None and true > 1e-9:
                         row["estimate_ratio"] = est.error_estimate / true
             rows.append(row)
+            if progress is not None:
+                progress(row)
     if methods is None or REUSED in methods:
-        rows += _reused_rows(label, scene, ref.solution, repeats)
+        for row in _reused_rows(label, scene, ref.solution, repeats):
+            rows.append(row)
+            if progress is not None:
+                progress(row)
     return {"scene": label, "reference": ref.how, "reference_check": ref.agreement,
             "rows": rows, "notes": notes, "dominance": dominance(rows)}
 
@@ -147,10 +156,17 @@ def dominance(rows: list[dict[str, Any]]) -> dict[str, str]:
     return out
 
 
+def planned_rows(methods: list[str] | None = None) -> int:
+    """Number of rows one scene gives (for a progress bar)."""
+    n = sum(len(PLAN[m][1]) for m in (methods or list(PLAN)) if m in PLAN)
+    return n + (5 if methods is None or REUSED in methods else 0)
+
+
 def run(scenes: list[tuple[str, Path, dict[str, Any]]] | None = None,
-        methods: list[str] | None = None, repeats: int = 3) -> list[dict[str, Any]]:
-    """Run every scene."""
-    return [run_scene(label, load_scene(path, over), methods, repeats)
+        methods: list[str] | None = None, repeats: int = 3,
+        progress: Callable[[dict[str, Any]], None] | None = None) -> list[dict[str, Any]]:
+    """Run every scene; ``progress(row)`` is called after each row."""
+    return [run_scene(label, load_scene(path, over), methods, repeats, progress)
             for label, path, over in (scenes or default_scenes())]
 
 

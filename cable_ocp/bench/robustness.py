@@ -16,6 +16,7 @@ inside it on smooth scenes. The reference is :func:`cable_ocp.bench.common.refer
 
 from __future__ import annotations
 
+from collections.abc import Callable
 from pathlib import Path
 from typing import Any
 
@@ -44,11 +45,20 @@ def classify(sol: Any, note: str, ref: Any) -> tuple[str, float | None, str]:
     return ("WRONG" if err > WRONG_THRESHOLD else "ok"), err, sol.message
 
 
-def run(scenes: list[Path] | None = None, methods: list[str] | None = None) -> dict[str, Any]:
-    """Run the matrix; returns rows of cells and the details of every cell."""
+def run(scenes: list[Path] | None = None, methods: list[str] | None = None,
+        progress: Callable[[int, int, dict[str, Any]], None] | None = None,
+        details: list[dict[str, Any]] | None = None) -> dict[str, Any]:
+    """Run the matrix; returns rows of cells and the details of every cell.
+
+    ``progress(done, total, detail)`` is called after each cell; ``details``, if given, is
+    the list the cell details are appended to (so that a caller keeps the finished cells
+    when the run is interrupted).
+    """
     scenes = scenes or default_scenes()
     methods = methods or list(METHODS)
-    rows, details = [], []
+    rows: list[list[Any]] = []
+    details = [] if details is None else details
+    total = len(scenes) * len(methods)
     for path in scenes:
         scene = load_scene(path)
         ref = reference_solution(scene)
@@ -59,6 +69,8 @@ def run(scenes: list[Path] | None = None, methods: list[str] | None = None) -> d
             row.append(cat if err is None else f"{cat} {err:.0e}")
             details.append({"scene": path.stem, "method": m, "category": cat, "error": err,
                             "time_s": dt, "message": msg})
+            if progress is not None:
+                progress(len(details), total, details[-1])
         rows.append(row)
     headers = ["scene", "ref check", *methods]
     wrong_ours = [d for d in details if d["method"] == "collocation"

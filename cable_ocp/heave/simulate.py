@@ -20,7 +20,9 @@ artificial, so **every** metric is taken over the same window ``t >= [simulation
 
 from __future__ import annotations
 
+from collections.abc import Callable
 from dataclasses import dataclass
+from typing import Any
 
 import numpy as np
 from scipy import linalg
@@ -180,8 +182,13 @@ def _unit_winch_rhs(sc: HeaveScene):  # noqa: ANN202
     return f
 
 
-def compare(sc: HeaveScene, controllers: tuple | None = None) -> Comparison:
-    """Simulate the scene's controllers on one wave realisation and compute the metrics."""
+def compare(sc: HeaveScene, controllers: tuple | None = None,
+            progress: Callable[[int, int, Any], None] | None = None) -> Comparison:
+    """Simulate the scene's controllers on one wave realisation and compute the metrics.
+
+    ``progress``, if given, is called as ``progress(done, total, None)`` every 100 control
+    samples (``total`` = samples x controllers).
+    """
     models = build_models(sc)
     p = models.plant
     c = sc.controller
@@ -222,7 +229,8 @@ def compare(sc: HeaveScene, controllers: tuple | None = None) -> Comparison:
     failures = 0
     rng_meas = np.random.default_rng(sc.simulation.seed + 1000)
     meas_noise = rng_meas.standard_normal(n_ctrl + 1) * c.measurement_noise
-    for name in controllers:
+    total = n_ctrl * len(controllers)
+    for n_done, name in enumerate(controllers):
         ctrl = _make_controller(name, p, mdl, G, settings, tau, c, h)
         s = np.zeros(nuw)
         buf = np.zeros(nd_fine + 1)  # fine-step command history for the exact delay
@@ -234,6 +242,8 @@ def compare(sc: HeaveScene, controllers: tuple | None = None) -> Comparison:
         u_prev = 0.0
         cmd_hist = np.zeros(d)
         for k in range(n_ctrl):
+            if progress is not None and k % 100 == 0:
+                progress(n_done * n_ctrl + k, total, None)
             i = k * m
             z = np.empty(n)
             z[: nuw] = s
@@ -270,6 +280,8 @@ def compare(sc: HeaveScene, controllers: tuple | None = None) -> Comparison:
             failures = ctrl.failures
         metrics[name] = _metrics(sc, tr, cmds, name, G,
                                  np.array(ctrl.times) if name == "mpc" else None, h)
+    if progress is not None:
+        progress(total, total, None)
     if "passive" in metrics:
         base = metrics["passive"].heave_rms
         metrics = {k: _with_reduction(v, base) for k, v in metrics.items()}

@@ -383,7 +383,9 @@ def scene_from_dict(data: dict[str, Any]) -> Scene:
         degree=degree,
         intervals=intervals,
         tolerance=number(sol_t.get("tolerance", defaults.tolerance), "solver.tolerance",
-                          positive=True),
+                         low=1e-16, high=1e-2,
+                         why="a scaled residual; above 1e-2 an iterate is no solution, and "
+                             "the error estimate reports what the tolerance lets through"),
         max_iterations=max_it,
         smoothing=number(sol_t.get("smoothing", defaults.smoothing), "solver.smoothing",
                           positive=True),

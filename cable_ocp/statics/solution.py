@@ -13,6 +13,9 @@ from typing import Any
 
 import numpy as np
 
+#: statuses whose iterate solves the discretised equations (see :attr:`StaticsSolution.converged`)
+CONVERGED = ("solved", "inaccurate", "below_seabed", "above_surface")
+
 
 @dataclass
 class StaticsSolution:
@@ -69,6 +72,13 @@ class StaticsSolution:
         return self.status == "solved"
 
     @property
+    def converged(self) -> bool:
+        """True when the discretised equations were solved, whether or not the result is a
+        success (``"inaccurate"``, or a profile that leaves the water column): such a
+        result is a valid warm start for a neighbouring solve."""
+        return self.status in CONVERGED
+
+    @property
     def tension(self) -> np.ndarray:
         """Tension magnitude |T(s)| at the nodes, N."""
         return np.linalg.norm(self.tension_vector, axis=1)
@@ -116,8 +126,12 @@ class StaticsSolution:
                 "z": lst(self.position[keep, 2]),
                 "tension": lst(self.tension[keep]),
             },
+            "warnings": list(self.diagnostics.get("warnings", [])),
             "solver": {
                 "method": self.diagnostics.get("method"),
+                "intervals": (self.diagnostics.get("mesh") or {}).get("intervals"),
+                "degree": (self.diagnostics.get("mesh") or {}).get("degree"),
+                "refinements": self.diagnostics.get("refinement", []),
                 "iterations": int(self.iterations),
                 "wall_time_s": float(self.wall_time_s),
                 "constraint_violation": float(self.constraint_violation),

@@ -34,6 +34,7 @@ import numpy as np
 from cable_ocp.errors import CableOCPError
 from cable_ocp.physics import seabed
 from cable_ocp.scene import Scene, apply_overrides, load_scene, scene_from_dict
+from cable_ocp.statics.checks import check_physical
 from cable_ocp.statics.collocation import Collocation
 from cable_ocp.statics.formulation import (
     P_CURRENT,
@@ -124,6 +125,7 @@ class StaticsSolver:
             "ipopt.mumps_scaling": 0,
         })
         self._newton: ca.Function | None = None
+        self._jacobian: ca.Function | None = None
         # solvers of the same scene on other meshes (by number of intervals), shared by the
         # error estimate and the mesh refinement so that no mesh is built twice
         self._cache = {} if cache is None else cache
@@ -155,9 +157,17 @@ class StaticsSolver:
         Returns
         -------
         StaticsSolution
-            Check ``success`` before use.
+            Check ``success`` before use: a profile above the surface or below an
+            unmodelled seabed is not a success (:func:`cable_ocp.statics.checks.check_physical`).
         """
         scene = self.scene if scene is None else scene
+        sol = self._solve(scene, warm_start, error_estimate, current_scale)
+        return check_physical(scene, sol)
+
+    def _solve(self, scene: Scene, warm_start: StaticsSolution | None = None,
+               error_estimate: bool | None = None, current_scale: float = 1.0
+               ) -> StaticsSolution:
+        """:meth:`solve` without the physical check (used for the coarse meshes too)."""
         if scene is not self.scene and _structure_key(scene) != self.form.key:
             raise CableOCPError(
                 "this solver was built for another scene structure; build a new StaticsSolver "
@@ -190,12 +200,26 @@ class StaticsSolver:
         if sol.success and (scene.solver.error_estimate if error_estimate is None
                             else error_estimate):
             self._estimate_error(sol, scene, current_scale)
+            if sol.error_estimate is not None:
+                # the iterate's own (algebraic) error, from one Newton correction: the
+                # estimate stays true whatever solver.tolerance allowed
+                alg = self._algebraic_error(w, p, sol)
+                sol.error_estimate += alg
+                sol.diagnostics["error_estimate_detail"]["algebraic"] = alg
             if sol.error_estimate is not None and sol.error_estimate > scene.solver.accuracy:
+                alg = sol.diagnostics["error_estimate_detail"].get("algebraic", 0.0)
                 sol.status = "inaccurate"
-                sol.message = (
-                    f"converged, but the discretisation error estimate "
-                    f"{sol.error_estimate:.1e} exceeds solver.accuracy = "
-                    f"{scene.solver.accuracy:.0e}; increase solver.intervals")
+                if alg > 0.5 * sol.error_estimate:
+                    sol.diagnostics["algebraic_error_dominates"] = True
+                    sol.message = (
+                        f"the iterate's algebraic error {alg:.1e} (one more Newton correction) "
+                        f"exceeds solver.accuracy = {scene.solver.accuracy:.0e}: lower "
+                        f"solver.tolerance = {scene.solver.tolerance:.0e}")
+                else:
+                    sol.message = (
+                        f"converged, but the discretisation error estimate "
+                        f"{sol.error_estimate:.1e} exceeds solver.accuracy = "
+                        f"{scene.solver.accuracy:.0e}; increase solver.intervals")
         return sol
 
     # -- internals ----------------------------------------------------------------------
@@ -275,6 +299,28 @@ class StaticsSolver:
             ok = False
         return w, int(st.get("iter_count", st.get("n_iter", 0))), ok, "newton"
 
+    def _algebraic_error(self, w: np.ndarray, p: np.ndarray, sol: StaticsSolution) -> float:
+        """Relative change of the end forces, positions and length under one more Newton
+        correction -J(w)^-1 g(w) at the returned iterate (0 for a converged one): the
+        algebraic part of the error, which the mesh comparison cannot see."""
+        if self._jacobian is None:
+            fn = self.coll.residual.expand()
+            ws, ps = ca.SX.sym("w", self.coll.n_w), ca.SX.sym("p", fn.size1_in(1))
+            g = fn(ws, ps)
+            self._jacobian = ca.Function("statics_jac", [ws, ps], [g, ca.jacobian(g, ws)])
+        g, jac = self._jacobian(w, p)
+        try:
+            dw = np.asarray(ca.solve(jac, -g, "csparse")).reshape(-1)
+        except RuntimeError:
+            return math.inf
+        if not np.all(np.isfinite(dw)):
+            return math.inf
+        r0, t0, l0, _ = self.coll.unpack(w, p)
+        r1, t1, l1, _ = self.coll.unpack(w + dw, p)
+        tmax, length = max(sol.max_tension, 1e-300), max(sol.length, 1e-300)
+        return float(max(np.max(np.abs(t1 - t0)) / tmax, np.max(np.abs(r1 - r0)) / length,
+                         abs(l1 - l0) / length))
+
     def _ipopt_solve(self, w0: np.ndarray, p: np.ndarray) -> tuple[np.ndarray, int, bool, str]:
         res = self._ipopt(x0=np.clip(w0, self._lbx, self._ubx), p=p, lbx=self._lbx,
                           ubx=self._ubx, lbg=0, ubg=0)
@@ -344,11 +390,6 @@ class StaticsSolver:
         diag["min_z"] = float(np.min(r[:, 2])) if finite else math.nan
         warnings = []
         sb = self.scene.environment.seabed
-        if finite and sb is None and diag["min_z"] < -1e-6 * self.form.scales.length:
-            warnings.append(
-                f"the profile goes {-diag['min_z']:.3g} m below the seabed plane z = 0; the "
-                "scene has no [environment.seabed] (no contact model), so that part is not "
-                "physical")
         if finite and sb is not None:
             diag["min_gap"] = float(np.min(seabed.gap(sb, r)))
         if finite and np.min(np.linalg.norm(t, axis=1)) <= 0.0:
@@ -403,14 +444,6 @@ class StaticsSolver:
                 f"the grounded length {sol.grounded_length:.6g} m reaches beyond the first "
                 f"segment (cable.segments[0].length = {first:g} m); contact of later "
                 "segments and bodies with the seabed is not modelled")
-        depth = scene.environment.water_depth
-        above = float(np.max(r[:, 2])) - depth
-        if sol.status in ("solved", "inaccurate") and above > 1e-6 * self.form.scales.length:
-            sol.status = "failed"
-            sol.message = (
-                f"the line would rise {above:.3g} m above the free surface "
-                f"(environment.water_depth = {depth:g} m): a buoy lifts it out of the water; "
-                "reduce the buoyancy or lengthen the line")
 
     def _coarse_solver(self, level: int) -> StaticsSolver:
         """Solver on N / 2**level intervals, built on first use (shared cache)."""
@@ -438,8 +471,9 @@ class StaticsSolver:
         levels = 2 if n >= 4 else 1
         sols = [sol]
         for lev in range(1, levels + 1):
-            c = self._coarse_solver(lev).solve(scene, warm_start=sols[-1], error_estimate=False,
-                                               current_scale=current_scale)
+            c = self._coarse_solver(lev)._solve(scene, warm_start=sols[-1],
+                                                error_estimate=False,
+                                                current_scale=current_scale)
             if not c.success:
                 if lev == 1:
                     sol.diagnostics["error_estimate_detail"] = {
@@ -598,7 +632,7 @@ def _solve_with_contact(scene: Scene, get: Callable[[bool], StaticsSolver],
                    if _can_ground(scene) else
                    "; end_a is not anchored on the seabed, and contact elsewhere is not "
                    "modelled yet")
-        sol.status = "failed"
+        sol.status = "below_seabed"
         sol.message = f"the cable passes {depth:.3g} m below the seabed" + why
     return sol
 
@@ -627,11 +661,17 @@ def solve_collocation(scene: Scene, warm_start: StaticsSolution | None = None
     sol = _solve_with_contact(scene, getter(n), warm_start)
     history = [(n, sol.error_estimate)]
     opts = scene.solver
-    while sol.status == "inaccurate" and opts.refine and 2 * n <= opts.max_intervals:
+    while (sol.status == "inaccurate" and opts.refine and 2 * n <= opts.max_intervals
+           and not sol.diagnostics.get("algebraic_error_dominates")):
         n *= 2
         sol = _solve_with_contact(scene, getter(n), sol)
         history.append((n, sol.error_estimate))
     build = sum(sv.build_time_s for sv in cache.values())
+    if sol.status == "inaccurate" and opts.refine and 2 * n > opts.max_intervals:
+        sol.diagnostics.setdefault("warnings", []).append(
+            f"mesh refinement stopped at solver.max_intervals = {opts.max_intervals} with "
+            f"the error estimate {sol.error_estimate:.1e} above solver.accuracy = "
+            f"{opts.accuracy:.0e}")
     if len(history) > 1:
         sol.diagnostics["refinement"] = [
             {"intervals": k, "error_estimate": e} for k, e in history]
@@ -674,7 +714,7 @@ def solve(scene: Scene | str | Path | dict[str, Any], overrides: dict[str, Any] 
     else:
         raise CableOCPError(f"solve(scene): expected a Scene, a problem file path or a dict, "
                             f"got {type(scene).__name__}")
-    return get_method(scene.solver.method)(scene, warm_start=warm_start)
+    return check_physical(scene, get_method(scene.solver.method)(scene, warm_start=warm_start))
 
 
 def _extrapolate(a: StaticsSolution, b: StaticsSolution, factor: float) -> StaticsSolution:
@@ -707,8 +747,9 @@ def sweep(scene: Scene, key: str, values: Iterable[Any],
         method = get_method(scene.solver.method)
         out: list[StaticsSolution] = []
         for v in values:
-            prev = out[-1] if out and out[-1].success else None
-            sol = method(scene.with_overrides({key: v}), warm_start=prev)
+            prev = out[-1] if out and out[-1].converged else None
+            sc = scene.with_overrides({key: v})
+            sol = check_physical(sc, method(sc, warm_start=prev))
             sol.diagnostics["sweep"] = {"key": key, "value": v}
             out.append(sol)
         return out
@@ -726,9 +767,9 @@ def sweep(scene: Scene, key: str, values: Iterable[Any],
                 StaticsSolver(sc, cache=cache, grounded=grounded)
             return cache[(n, grounded)]
 
-        prev = done[-1][2] if done and done[-1][2].success else None
+        prev = done[-1][2] if done and done[-1][2].converged else None
         start = prev
-        if (len(done) >= 2 and prev is not None and done[-2][2].success
+        if (len(done) >= 2 and prev is not None and done[-2][2].converged
                 and done[-1][1] == k and done[-2][1] == k
                 and all(isinstance(x, (int, float)) for x in (v, done[-1][0], done[-2][0]))
                 and done[-1][0] != done[-2][0]
@@ -736,7 +777,7 @@ def sweep(scene: Scene, key: str, values: Iterable[Any],
             factor = (v - done[-1][0]) / (done[-1][0] - done[-2][0])
             start = _extrapolate(done[-2][2], prev, factor)
         sol = _solve_with_contact(sc, get, start, error_estimate)
-        if start is not prev and not sol.success and sol.status != "inaccurate":
+        if start is not prev and not sol.converged:
             sol = _solve_with_contact(sc, get, prev, error_estimate)
         if sol.status == "inaccurate" and sc.solver.refine:
             # this point needs a finer mesh than the sweep's: refine it on its own (the

@@ -11,6 +11,8 @@ matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
 import numpy as np  # noqa: E402
 
+from cable_ocp.scene import Scene  # noqa: E402
+from cable_ocp.statics.footprint import FootprintResult  # noqa: E402
 from cable_ocp.statics.solution import StaticsSolution  # noqa: E402
 
 
@@ -23,7 +25,8 @@ def _save(fig: plt.Figure, path: str | Path) -> Path:
     return path
 
 
-def plot_statics(sol: StaticsSolution, path: str | Path, title: str = "") -> Path:
+def plot_statics(sol: StaticsSolution, path: str | Path, title: str = "",
+                 scene: Scene | None = None) -> Path:
     """Save a 3D profile and the tension along the cable to ``path`` (PNG, PDF, ...)."""
     fig = plt.figure(figsize=(11, 4.8))
     ax = fig.add_subplot(1, 2, 1, projection="3d")
@@ -70,3 +73,25 @@ def plot_sweep(values: Sequence[float], forces: np.ndarray, path: str | Path, xl
     if title:
         ax.set_title(title)
     return _save(fig, path)
+
+
+def plot_footprint(res: FootprintResult, path: str, title: str = "") -> None:
+    """Draw the footprint polygon (unit positions) around the ship."""
+    fig, ax = plt.subplots(figsize=(6, 6))
+    ok = np.isfinite(res.reach)
+    pts = res.points[ok]
+    if len(pts):
+        closed = np.vstack([pts, pts[:1]])
+        ax.plot(closed[:, 0], closed[:, 1], "-o", ms=3, label="footprint (unit on seabed)")
+    if (~ok).any():
+        ax.plot([], [], "x", color="r", label=f"{int((~ok).sum())} unreachable directions")
+    ax.plot(*res.ship, "r^", ms=10, label="ship")
+    ax.set_aspect("equal")
+    ax.set_xlabel("x [m]")
+    ax.set_ylabel("y [m]")
+    ax.grid(True, alpha=0.3)
+    ax.legend(loc="best", fontsize=8)
+    ax.set_title(title or "footprint")
+    fig.tight_layout()
+    fig.savefig(path, dpi=120)
+    plt.close(fig)
