@@ -22,7 +22,7 @@ from cable_ocp.statics.solver import StaticsSolver, solve, sweep
 # the baseline methods register themselves (statics.registry) when imported
 from cable_ocp import baselines  # noqa: E402, F401  isort: skip
 
-__version__ = "0.1.0"
+__version__ = "0.2.0"
 
 __all__ = [
     "CableOCPError",
