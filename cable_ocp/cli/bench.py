@@ -70,6 +70,19 @@ def register(sub: argparse._SubParsersAction, parent: argparse.ArgumentParser) -
     out.add_csv_option(r, "one row per cell")
     r.set_defaults(func=cmd_robustness)
 
+    bb = which.add_parser(
+        "batch", parents=[parent],
+        help="load-case batch: per-case overhead and parallel speed-up",
+        description="De Zoysa's cable over psi0 x current speed (200 cases by default): the "
+                    "cases solved bare in this process, then as batches on 1 and 2 local "
+                    "workers, in one run: per-case overhead of the batch machinery and the "
+                    "parallel speed-up.")
+    bb.add_argument("--angles", type=int, default=20, metavar="N", help="psi0 values (20)")
+    bb.add_argument("--speeds", type=int, default=10, metavar="N",
+                    help="current speeds (10)")
+    out.add_json_option(bb, "the rows and the summary")
+    bb.set_defaults(func=cmd_bench_batch)
+
     h = sub.add_parser(
         "bench-heave", parents=[parent],
         help="MPC solve time per closed-loop step, every solver and do-mpc",
@@ -262,4 +275,27 @@ def cmd_bench_heave(args: argparse.Namespace) -> int:
     out.say(args, format_table(rows))
     out.emit_json(args, out.envelope("ok", "benchmark completed", {
         "rows": [dataclasses.asdict(r) for r in rows]}))
+    return out.EXIT_OK
+
+
+def cmd_bench_batch(args: argparse.Namespace) -> int:
+    """``cable-ocp bench batch``."""
+    from cable_ocp import report
+    from cable_ocp.bench import batch
+
+    out.check_outputs(args)
+    if not (1 <= args.angles <= 1000 and 1 <= args.speeds <= 1000):
+        raise out_error("--angles and --speeds: give 1..1000")
+    res = batch.run(args.angles, args.speeds, progress=lambda what: out.note(args, what))
+    keys = ["run", "wall_s", "per_case_ms", "overhead_ms", "speedup", "solved"]
+    out.say(args, report.table(["run", "wall [s]", "per case [ms]", "overhead/case [ms]",
+                                "speed-up [-]", "solved"],
+                               [["-" if r[k] is None else r[k] for k in keys]
+                                for r in res["rows"]]))
+    sm = res["summary"]
+    out.say(args, f"\n{sm['cases']} cases: overhead of the batch on one worker "
+                  f"{sm['overhead_per_case_ms']:.2f} ms per case "
+                  f"({100 * sm['overhead_fraction']:.1f} % of a bare solve, target < 10 %); "
+                  f"speed-up on 2 workers {sm['speedup_2_workers']:.2f}x (target >= 1.8x)")
+    out.emit_json(args, out.envelope("ok", "benchmark completed", res))
     return out.EXIT_OK

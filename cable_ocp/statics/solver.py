@@ -717,6 +717,53 @@ def solve(scene: Scene | str | Path | dict[str, Any], overrides: dict[str, Any] 
     return check_physical(scene, get_method(scene.solver.method)(scene, warm_start=warm_start))
 
 
+class SolveSession:
+    """Solve many scenes in a row, as a load-case batch does: each solver is built once per
+    scene structure and kept, and each solve starts from the previous converged solution of
+    the same structure, falling back to a cold start when the warm start fails.
+
+    Parameters
+    ----------
+    error_estimate : bool, optional
+        Override ``solver.error_estimate`` of every scene.
+    """
+
+    def __init__(self, error_estimate: bool | None = None) -> None:
+        self.error_estimate = error_estimate
+        self._caches: dict[tuple, dict[tuple, StaticsSolver]] = {}
+        self._prev: dict[tuple, StaticsSolution] = {}
+
+    def solve(self, scene: Scene) -> StaticsSolution:
+        """Solve ``scene`` (any method; collocation and shooting reuse their solvers)."""
+        key = (_structure_key(scene) if scene.solver.method in ("collocation",
+                                                                 "multiple_shooting")
+               else ("method", scene.solver.method))
+        prev = self._prev.get(key)
+        if key[0] == "method":
+            sol = solve(scene, warm_start=prev)
+            if prev is not None and not sol.converged:
+                sol = solve(scene)
+        else:
+            cache = self._caches.setdefault(key, {})
+
+            def get(grounded: bool) -> StaticsSolver:
+                n = scene.solver.intervals
+                if (n, grounded) not in cache:
+                    StaticsSolver(scene, cache=cache, grounded=grounded)
+                return cache[(n, grounded)]
+
+            sol = _solve_with_contact(scene, get, prev, self.error_estimate)
+            if prev is not None and not sol.converged:
+                sol = _solve_with_contact(scene, get, None, self.error_estimate)
+                sol.diagnostics["start"] = "cold (the warm start failed)"
+            if (sol.status == "inaccurate" and scene.solver.refine
+                    and not sol.diagnostics.get("algebraic_error_dominates")):
+                sol = solve_collocation(scene, warm_start=sol)
+        if sol.converged:
+            self._prev[key] = sol
+        return sol
+
+
 def _extrapolate(a: StaticsSolution, b: StaticsSolution, factor: float) -> StaticsSolution:
     """Secant predictor b + factor (b - a) on the node arrays (same mesh)."""
     return StaticsSolution(
