@@ -205,6 +205,18 @@ def test_statics_profile_current_and_no_scene(buggy, tmp_path: Path) -> None:
     assert "seabed" in gids and "surface" not in gids
 
 
+def test_statics_non_finite_iterate(buggy, tmp_path: Path) -> None:
+    """A failed solve with a non-finite iterate still gives a figure, which says so."""
+    sc, sol = buggy
+    pos = sol.position.copy()
+    pos[3, 2] = np.nan
+    bad = replace(sol, status="failed", message="non-finite iterate", position=pos)
+    fig = plot_statics(bad, tmp_path / "bad.png", scene=sc)
+    assert (tmp_path / "bad.png").stat().st_size > 1000
+    (text,) = _axes(fig)["message"].texts
+    assert "not finite" in text.get_text() and "failed" in text.get_text()
+
+
 # --------------------------------------------------------------------------------------
 # footprint, sweep, work-precision: synthetic data (the drawing, not the numbers)
 # --------------------------------------------------------------------------------------

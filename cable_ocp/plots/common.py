@@ -13,7 +13,6 @@ from collections.abc import Iterable, Sequence
 from pathlib import Path
 from typing import Any
 
-import numpy as np
 from matplotlib.artist import Artist
 from matplotlib.axes import Axes
 from matplotlib.backends.backend_agg import FigureCanvasAgg
@@ -106,7 +105,3 @@ def plain_log_ticks(ax: Axes, which: str = "x") -> None:
     if hi / max(lo, 1e-300) < 10.0:
         axis.set_minor_formatter(fmt)
 
-
-def display_points(ax: Axes, x: np.ndarray, y: np.ndarray) -> np.ndarray:
-    """Data points of ``ax`` in display (pixel) coordinates, shape (n, 2)."""
-    return ax.transData.transform(np.column_stack([x, y]))

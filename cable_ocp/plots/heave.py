@@ -34,7 +34,7 @@ from cable_ocp.plots.common import (
 #: thesis figures that correspond to the panels, by section of Huang (1992), ch. 6
 THESIS_FIGURES: dict[str, dict[str, str]] = {
     "6.2.6": {
-        "spectrum": "cf. Huang 1992, Fig. 6.10, a record of it",
+        "spectrum": "cf. Huang 1992, Fig. 6.10",
         "passive": "cf. Huang 1992, Figs. 6.14 and 6.17",
         "controlled": "cf. Huang 1992, Figs. 6.15-6.17",
         "tradeoff_d": "cf. Huang 1992, Fig. 6.18",
@@ -73,7 +73,7 @@ def references_for(scene: Any) -> dict[str, str]:
 
 def _title(words: str, refs: dict[str, str], key: str) -> str:
     """A panel title in words, with the thesis figure when there is one (wrapped)."""
-    return wrap(f"{words} ({refs[key]})" if key in refs else words, 6.2, 10)
+    return wrap(f"{words} ({refs[key]})" if key in refs else words, 6.6, 10)
 
 
 def _name(name: str) -> str:

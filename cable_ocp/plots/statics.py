@@ -24,7 +24,6 @@ import numpy as np
 from matplotlib.axes import Axes
 from matplotlib.collections import PolyCollection
 from matplotlib.figure import Figure
-from matplotlib.lines import Line2D
 from matplotlib.ticker import MaxNLocator
 
 from cable_ocp.physics import seabed as seabed_mod
@@ -296,9 +295,6 @@ class _CurrentInfo:
     def at(self, z: float) -> tuple[float, float]:
         return (float(np.interp(z, self.z, self.ux)), float(np.interp(z, self.z, self.uy)))
 
-    @property
-    def speed_max(self) -> float:
-        return float(np.hypot(self.ux, self.uy).max())
 
 
 def _current(scene: Scene | None) -> _CurrentInfo | None:
@@ -307,15 +303,6 @@ def _current(scene: Scene | None) -> _CurrentInfo | None:
         return None
     return _CurrentInfo(np.asarray(cur.z, float), np.asarray(cur.ux, float),
                         np.asarray(cur.uy, float), cur.uniform)
-
-
-def _current_words(cur: _CurrentInfo, z_top: float) -> str:
-    if cur.uniform:
-        ux, uy = cur.ux[0], cur.uy[0]
-        return f"current {math.hypot(ux, uy):.3g} m/s {_heading_words(ux, uy)}, uniform"
-    ux, uy = cur.at(z_top)
-    return (f"current varies with depth (profile panel); at z = {z_top:.4g} m "
-            f"{math.hypot(ux, uy):.3g} m/s {_heading_words(ux, uy)}")
 
 
 # --------------------------------------------------------------------------------------
@@ -698,6 +685,16 @@ def statics_figure(sol: StaticsSolution, title: str = "", scene: Scene | None = 
     ``"elevation"``, ``"tension"``, and for a 3D line also ``"3d"`` and ``"plan"``, and
     ``"current profile"`` when the current varies with depth.
     """
+    head = title or (scene.meta.get("title", "") if scene is not None else "")
+    if not (np.isfinite(sol.position).all() and np.isfinite(sol.tension_vector).all()):
+        # a failed solve may leave a non-finite iterate: say so rather than draw it
+        fig = new_figure(8.0, 3.0)
+        ax = fig.add_subplot(label="message")
+        ax.axis("off")
+        ax.text(0.5, 0.5, wrap(f"{head}\nNo profile to draw: the iterate is not finite.\n"
+                               f"status {sol.status}: {sol.message}", 7.5, 11),
+                ha="center", va="center", color="#b00000", fontsize=11)
+        return fig
     dr = _Drawing(sol, scene)
     varying = dr.current is not None and not dr.current.uniform
     view = _elevation_view(dr)
@@ -743,7 +740,6 @@ def statics_figure(sol: StaticsSolution, title: str = "", scene: Scene | None = 
                           view.z_lim)
     _draw_elevation(ax_el, dr, view, w_el)
     _draw_tension(ax_t, dr, w_t)
-    head = title or (scene.meta.get("title", "") if scene is not None else "")
     info = f"L = {sol.length:.2f} m, max tension {sol.max_tension / 1e3:.4g} kN"
     if sol.grounded_length > 0:
         info += f", grounded {sol.grounded_length:.1f} m"
@@ -943,7 +939,3 @@ def plot_footprint(res: FootprintResult, path: str | Path, title: str = "",
     save(fig, path)
     return fig
 
-
-def legend_handles(fig: Figure) -> list[Line2D]:
-    """The line handles of the figure's legend(s) (for tests and callers)."""
-    return [h for leg in fig.legends for h in leg.legend_handles]
