@@ -327,6 +327,12 @@ def test_heave_comparison(tmp_path: Path) -> None:
     assert "Fig. 6.21" in axes["spectrum"].get_title()
     _legends_outside_axes(fig, _draw(fig))
     _units_on_labels(fig)
+    # passive only, no trade-off: three rows, and the controlled cell says why it is empty
+    only = Comparison(0.255, {"passive": metrics["passive"]}, {"passive": traces["passive"]},
+                      res.models, None, 0)
+    fig = plot_comparison(only, tmp_path / "p.svg", scene=sc)
+    assert "tradeoff_d" not in _axes(fig)
+    assert "no controller" in _axes(fig)["controlled"].texts[0].get_text()
     # running RMS of a sine of amplitude A over whole periods is A / sqrt(2)
     tt, rms = running_rms(t, np.sin(2 * np.pi * t), 10.0)
     np.testing.assert_allclose(rms, 1 / math.sqrt(2), rtol=2e-3)

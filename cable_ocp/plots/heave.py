@@ -160,6 +160,11 @@ def comparison_figure(res: Comparison, tradeoff: dict | None = None, scene: Any 
                  fontsize=10)
 
     # controlled unit heave: one strip per controller, each on its own scale (mm)
+    if not controlled:
+        ax = fig.add_subplot(gs[1, 0], label="controlled")
+        ax.axis("off")
+        ax.text(0.5, 0.5, "no controller ran (passive only)", ha="center", va="center",
+                fontsize=11, transform=ax.transAxes)
     strips = gs[1, 0].subgridspec(max(len(controlled), 1), 1, hspace=0.0)
     for i, name in enumerate(controlled):
         ax = fig.add_subplot(strips[i, 0], label=f"controlled {name}")

@@ -727,7 +727,9 @@ def statics_figure(sol: StaticsSolution, title: str = "", scene: Scene | None = 
         fig = new_figure(width, h_top + h_bot + 3.4)
         outer = fig.add_gridspec(2, 2 if varying else 1, height_ratios=[h_top, h_bot],
                                  width_ratios=[width - w_prof, w_prof] if varying else [1])
-        top = outer[0, 0].subgridspec(1, 2, width_ratios=[w_3d, w_plan])
+        # the plan's cell is shaped like the plan; the 3D view takes the rest of the row
+        top = outer[0, 0].subgridspec(1, 2, width_ratios=[width - w_prof - 0.9 - w_plan,
+                                                          w_plan])
         bot = outer[1, 0].subgridspec(1, 2, width_ratios=[w_el, w_t])
         ax_3d = fig.add_subplot(top[0, 0], projection="3d", label="3d")
         ax_plan = fig.add_subplot(top[0, 1], label="plan")
