@@ -749,7 +749,7 @@ def statics_figure(sol: StaticsSolution, title: str = "", scene: Scene | None = 
         info += ", solved"
         color = "k"
     else:
-        info += f", NOT SOLVED: {sol.status} ({sol.message})"
+        info += f", not a success: status {sol.status} ({sol.message})"
         color = "#b00000"
     fig.suptitle(wrap((head + "\n" if head else "") + info, fig.get_figwidth(), 11),
                  fontsize=11, color=color)
