@@ -130,8 +130,8 @@ def cmd_sweep(args: argparse.Namespace) -> int:
         from cable_ocp.plots.statics import plot_sweep
 
         out.emit_plot(args, lambda path: plot_sweep(
-            res["angles"], res["forces"], path, "psi0 [deg]", "De Zoysa: force at the buggy",
-            overlays={"solve_bvp": res["forces_bvp"]}))
+            res["angles"], res["forces"], path, "psi0 (deg)", "De Zoysa: force at the buggy",
+            overlays={"solve_bvp": res["forces_bvp"]}, name="collocation"))
     return out.EXIT_OK
 
 
