@@ -32,7 +32,7 @@ def plot_batch(res: Any, column: str, path: str | Path, title: str = "") -> Figu
             m = np.array([r["status"] == st for r in res.rows])
             ax.plot(x[m], y[m], "x", ms=7, label=st)
         ax.set_xlabel(keys[0])
-        ax.set_ylabel(column)
+        ax.set_ylabel(_label(column))
         legend_below(fig, ax.get_lines())
     else:
         kx, ky = keys[0], keys[1]
@@ -44,7 +44,7 @@ def plot_batch(res: Any, column: str, path: str | Path, title: str = "") -> Figu
                 grid[ys.index(r[ky]), xs.index(r[kx])] = v
         mesh = ax.pcolormesh(_edges(np.asarray(xs, float)), _edges(np.asarray(ys, float)),
                              np.ma.masked_invalid(grid), shading="flat")
-        fig.colorbar(mesh, ax=ax, label=column)
+        fig.colorbar(mesh, ax=ax, label=_label(column))
         ax.set_xlabel(kx)
         ax.set_ylabel(ky)
         if (~ok).any():
@@ -56,6 +56,11 @@ def plot_batch(res: Any, column: str, path: str | Path, title: str = "") -> Figu
     ax.grid(True, alpha=0.3)
     save(fig, path)
     return fig
+
+
+def _label(column: str) -> str:
+    """``name [unit]`` -> ``name (unit)``, the figures' way of writing units."""
+    return column.replace(" [", " (").replace("]", ")") if column.endswith("]") else column
 
 
 def _edges(v: np.ndarray) -> np.ndarray:
