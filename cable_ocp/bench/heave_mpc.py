@@ -1,10 +1,13 @@
-"""MPC timing benchmark (issue 4): solve time per step, median and p99, with the delay.
+"""MPC timing benchmark: solve time per step, median and p99, with the delay.
 
-Problem: example 6.3.6 as in ``problems/heave/ex_6_3_6.toml`` (plant (6.28) with 11 states,
-first-order winch, 0.2 s delay = 4 samples at 0.05 s, weights q, r, stroke/speed/command-rate
-limits and the soft tension limit, all read from that file), closed loop on the exactly sampled
-plant driven by the seeded sea. Each solver's problem is built once and warm-started; the timing
-covers the whole ``step`` (gradient/bound assembly + solve). do-mpc (optional, never a test
+Problem: example 6.3.6 of Huang (1992) as in ``problems/heave/ex_6_3_6.toml`` (plant (6.28) with
+11 states, first-order winch, 0.2 s delay = 4 samples at 0.05 s, weights q, r,
+stroke/speed/command-rate limits and the soft tension limit, all read from that file), closed
+loop on the exactly sampled plant driven by the seeded sea. Each solver's problem is built once
+and warm-started; the timing covers the whole ``step`` (gradient/bound assembly + solve), the
+first step (one-off set-up) excluded. With the file's limits and sea no limit is active after the
+first steps; ``sea_scale`` multiplies the sea to make them active (:func:`profile_daqp` counts
+the steps that change the working set). do-mpc (optional, never a test
 dependency) is given the same problem when installed: the same sampled model and stage cost
 (state, cross and input terms), DARE terminal cost, command bounds, stroke, speed and
 command-rate limits and the soft tension limit (do-mpc's soft constraints have a linear penalty
@@ -67,12 +70,24 @@ def _noise(p: pl.HeavePlant, h: float, steps: int, seed: int) -> np.ndarray:
     return np.random.default_rng(seed).standard_normal((steps, p.n)) @ L.T
 
 
-def time_cas(solver: str, horizon: int, steps: int, seed: int = 0) -> BenchRow:
-    """Closed-loop timing of :class:`cable_ocp.heave.mpc.LinearMPC` with ``solver``."""
+NOTES = {"daqp": "condensed dense QP, persistent DAQP workspace",
+         "qpoases": "condensed dense QP via CasADi conic",
+         "osqp": "condensed dense QP via CasADi conic",
+         "qrqp": "condensed dense QP via CasADi conic",
+         "ipopt": "multiple shooting NLP"}
+
+
+def time_cas(solver: str, horizon: int, steps: int, seed: int = 0,
+             sea_scale: float = 1.0) -> BenchRow:
+    """Closed-loop timing of :class:`cable_ocp.heave.mpc.LinearMPC` with ``solver``.
+
+    ``steps`` closed-loop steps are run; the first (one-off set-up) is left out of the median
+    and p99. ``sea_scale`` multiplies the sea's process noise (1: the scene's sea).
+    """
     sc = bench_scene()
     p = bench_plant(sc)
     m = mpc_mod.LinearMPC(p, sc.winch.delay, bench_settings(sc, horizon, solver))
-    w = _noise(p, sc.controller.sample_time, steps, seed)
+    w = sea_scale * _noise(p, sc.controller.sample_time, steps, seed)
     z = np.zeros(m.nz)
     up = 0.0
     ts, fails = [], 0
@@ -85,8 +100,68 @@ def time_cas(solver: str, horizon: int, steps: int, seed: int = 0) -> BenchRow:
         z[: p.n] += w[k]
     ts = np.array(ts[1:])  # the first call includes one-off set-up
     return BenchRow(solver, horizon, float(np.median(ts)), float(np.percentile(ts, 99)),
-                    steps, fails,
-                    "condensed dense QP" if solver != "ipopt" else "multiple shooting NLP")
+                    steps, fails, NOTES.get(solver, ""))
+
+
+def profile_daqp(horizon: int = 50, steps: int = 300, seed: int = 0,
+                 sea_scale: float = 1.0) -> dict:
+    """Where the time of a ``"daqp"`` step goes (medians over the closed loop, s).
+
+    At every closed-loop step the phases of :meth:`LinearMPC.step` are repeated one by one on
+    the same state and timed separately: ``assembly`` (the one matrix-vector product with the
+    precomputed parametric maps that gives the gradient and the row offsets), ``bounds`` (row
+    bounds), ``update`` (DAQP's update of the gradient and bounds in its factored problem),
+    ``solve`` (DAQP's iterations). Then the real ``step`` runs (its working set is then already
+    the optimal one: the same one-iteration solve as in :func:`time_cas` after a step that kept
+    the working set); ``other`` is the step minus the phases (argument handling, the plan copy,
+    the result object). Also returned: the step median and p99 of :func:`time_cas` for the same
+    loop, the DAQP iterations per step (median, max) and the number of steps whose working set
+    changed (``iterations > 1``), i.e. where a limit became active or inactive.
+    """
+    sc = bench_scene()
+    p = bench_plant(sc)
+    m = mpc_mod.LinearMPC(p, sc.winch.delay, bench_settings(sc, horizon, "daqp"))
+    qp = m._daqp
+    assert qp is not None
+    w = sea_scale * _noise(p, sc.controller.sample_time, steps, seed)
+    nv = m._nv
+    z = np.zeros(m.nz)
+    up = 0.0
+    rec: dict[str, list[float]] = {k: [] for k in ("assembly", "bounds", "update", "solve",
+                                                   "other", "step")}
+    its = []
+    pc = time.perf_counter
+    for k in range(steps):
+        t0 = pc()
+        v = m._Pz @ z
+        v += m._p0
+        v += up * m._Pu
+        g, c = v[:nv], v[nv:]
+        t1 = pc()
+        np.subtract(qp.ub0, c, out=qp.bu[nv:])
+        np.subtract(qp.lb0, c, out=qp.bl[nv:])
+        t2 = pc()
+        qp.model.update(f=g, bupper=qp.bu, blower=qp.bl)
+        t3 = pc()
+        _, _, _, info = qp.model.solve()
+        t4 = pc()
+        r = m.step(z, up)
+        its.append(int(info["iterations"]))
+        if k > 0:
+            for key, dt in (("assembly", t1 - t0), ("bounds", t2 - t1), ("update", t3 - t2),
+                            ("solve", t4 - t3), ("step", r.solve_time)):
+                rec[key].append(dt)
+            rec["other"].append(r.solve_time - (t4 - t0))
+        up = r.u0
+        z = m.model.Ad @ z + m.model.Bd[:, 0] * r.u0
+        z[: p.n] += w[k]
+    out = {key: float(np.median(v)) for key, v in rec.items()}
+    out["step_p99"] = float(np.percentile(rec["step"], 99))
+    out["iterations_median"] = float(np.median(its[1:]))
+    out["iterations_max"] = int(np.max(its[1:]))
+    out["working_set_changes"] = int(np.sum(np.array(its[1:]) > 1))
+    out["n_variables"], out["n_rows"] = int(nv), int(m.Ac.shape[0])
+    return out
 
 
 def time_do_mpc(horizon: int, steps: int, seed: int = 0) -> BenchRow:
@@ -96,7 +171,7 @@ def time_do_mpc(horizon: int, steps: int, seed: int = 0) -> BenchRow:
 
     sc = bench_scene()
     p = bench_plant(sc)
-    st = bench_settings(sc, horizon, "qpoases")
+    st = bench_settings(sc, horizon, "daqp")
     ref = mpc_mod.LinearMPC(p, sc.winch.delay, st)  # sampled model, cost and terminal cost
     Ad, Bd, nz, n, d = ref.model.Ad, ref.model.Bd, ref.nz, p.n, ref.model.d
     model = do_mpc.model.Model("discrete")
@@ -155,13 +230,17 @@ def time_do_mpc(horizon: int, steps: int, seed: int = 0) -> BenchRow:
 
 
 def run(horizons: list[int] | tuple = (20, 50, 100), steps: int = 300,
-        solvers: list[str] | tuple = ("qpoases", "osqp", "qrqp", "ipopt"),
-        with_do_mpc: bool = True) -> list[BenchRow]:
-    """Timing rows for every solver and horizon (IPOPT and do-mpc with steps/5 steps)."""
+        solvers: list[str] | tuple = mpc_mod.SOLVERS,
+        with_do_mpc: bool = True, sea_scale: float = 1.0) -> list[BenchRow]:
+    """Timing rows for every solver and horizon (IPOPT and do-mpc with steps/5 steps).
+
+    do-mpc's row has ``steps = 0`` and NaN times when it is not installed.
+    """
     rows = []
     for N in horizons:
         for s in solvers:
-            rows.append(time_cas(s, N, steps if s != "ipopt" else max(20, steps // 5)))
+            rows.append(time_cas(s, N, steps if s != "ipopt" else max(20, steps // 5),
+                                 sea_scale=sea_scale))
         if with_do_mpc:
             try:
                 rows.append(time_do_mpc(N, max(20, steps // 5)))
@@ -185,3 +264,22 @@ def format_table(rows: list[BenchRow]) -> str:
         lines.append(f"{r.solver:<16} {r.horizon:>4} {1e3 * r.median_s:10.3f} "
                      f"{1e3 * r.p99_s:9.3f} {r.steps:>6} {r.failures:>6}  {note}")
     return "\n".join(lines)
+
+
+def json_data(rows: list[BenchRow]) -> dict:
+    """``{"rows": [{"solver", "horizon", "median_ms", "p99_ms", "steps", "failures"}]}``.
+
+    ``steps`` is the number of closed-loop steps run (the first, with the one-off set-up, is
+    not in the median and p99); times in ms. do-mpc is included when it is installed (its
+    placeholder row without steps is left out).
+    """
+    return {"rows": [{"solver": r.solver, "horizon": r.horizon,
+                      "median_ms": 1e3 * r.median_s, "p99_ms": 1e3 * r.p99_s,
+                      "steps": r.steps, "failures": r.failures}
+                     for r in rows if r.steps > 0]}
+
+
+def bench_json(horizons: list[int] | tuple = (20, 50, 100), steps: int = 300,
+               solvers: list[str] | tuple = mpc_mod.SOLVERS, with_do_mpc: bool = True) -> dict:
+    """Run the benchmark (:func:`run`) and return :func:`json_data` of its rows."""
+    return json_data(run(horizons, steps, solvers, with_do_mpc))

@@ -28,8 +28,10 @@ def register(subparsers: argparse._SubParsersAction) -> None:
     b = subparsers.add_parser("bench-heave", help="MPC solve time per step (median, p99)")
     b.add_argument("--horizons", type=int, nargs="+", default=[20, 50, 100])
     b.add_argument("--steps", type=int, default=300, help="closed-loop steps per case")
-    b.add_argument("--solvers", nargs="+", default=["qpoases", "osqp", "qrqp", "ipopt"])
+    b.add_argument("--solvers", nargs="+", default=["daqp", "qpoases", "osqp", "qrqp", "ipopt"])
     b.add_argument("--no-do-mpc", action="store_true", help="skip do-mpc even if installed")
+    b.add_argument("--json", metavar="PATH", help="write the timing rows as JSON ('-' = the "
+                   "JSON alone on stdout)")
     b.set_defaults(func=run_bench)
 
 
@@ -99,10 +101,17 @@ def _plot(sc: Any, args: argparse.Namespace, res: Any) -> None:
 
 
 def run_bench(args: argparse.Namespace) -> int:
-    """Print the MPC timing table (cable_ocp.bench.heave_mpc)."""
-    from cable_ocp.bench.heave_mpc import format_table, run
+    """Print the MPC timing table (cable_ocp.bench.heave_mpc); write its JSON if asked."""
+    from cable_ocp.bench.heave_mpc import format_table, json_data, run
 
     rows = run(horizons=args.horizons, steps=args.steps, solvers=args.solvers,
                with_do_mpc=not args.no_do_mpc)
-    print(format_table(rows))
+    if args.json != "-":  # '-' = the JSON alone on stdout
+        print(format_table(rows))
+    if args.json:
+        text = json.dumps(json_data(rows), indent=2)
+        if args.json == "-":
+            print(text)
+        else:
+            Path(args.json).write_text(text)
     return 0
