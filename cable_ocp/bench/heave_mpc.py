@@ -6,8 +6,9 @@ stroke/speed/command-rate limits and the soft tension limit, all read from that 
 loop on the exactly sampled plant driven by the seeded sea. Each solver's problem is built once
 and warm-started; the timing covers the whole ``step`` (gradient/bound assembly + solve), the
 first step (one-off set-up) excluded. With the file's limits and sea no limit is active after the
-first steps; ``sea_scale`` multiplies the sea to make them active (:func:`profile_daqp` counts
-the steps that change the working set). do-mpc (optional, never a test
+first steps (not even under a 12x sea in the 15 s of a 300-step run); :data:`ACTIVE_LIMITS` with
+``sea_scale = 3`` makes every limit active on many steps (:func:`profile_daqp` counts the steps
+that change the working set). do-mpc (optional, never a test
 dependency) is given the same problem when installed: the same sampled model and stage cost
 (state, cross and input terms), DARE terminal cost, command bounds, stroke, speed and
 command-rate limits and the soft tension limit (do-mpc's soft constraints have a linear penalty
@@ -16,6 +17,7 @@ only; ours add a quadratic one).
 
 from __future__ import annotations
 
+import dataclasses
 import time
 from dataclasses import dataclass
 from pathlib import Path
@@ -70,6 +72,11 @@ def _noise(p: pl.HeavePlant, h: float, steps: int, seed: int) -> np.ndarray:
     return np.random.default_rng(seed).standard_normal((steps, p.n)) @ L.T
 
 
+# Limits that the 3x sea makes active (stroke via the command bounds, speed, command rate and the
+# soft tension limit), as in the equality test of the DAQP and qpOASES moves.
+ACTIVE_LIMITS = {"stroke_max": 0.2, "speed_max": 0.15, "command_rate_max": 0.01,
+                 "tension_min": 40000.0}
+
 NOTES = {"daqp": "condensed dense QP, persistent DAQP workspace",
          "qpoases": "condensed dense QP via CasADi conic",
          "osqp": "condensed dense QP via CasADi conic",
@@ -77,16 +84,18 @@ NOTES = {"daqp": "condensed dense QP, persistent DAQP workspace",
          "ipopt": "multiple shooting NLP"}
 
 
-def time_cas(solver: str, horizon: int, steps: int, seed: int = 0,
-             sea_scale: float = 1.0) -> BenchRow:
+def time_cas(solver: str, horizon: int, steps: int, seed: int = 0, sea_scale: float = 1.0,
+             overrides: dict | None = None) -> BenchRow:
     """Closed-loop timing of :class:`cable_ocp.heave.mpc.LinearMPC` with ``solver``.
 
     ``steps`` closed-loop steps are run; the first (one-off set-up) is left out of the median
-    and p99. ``sea_scale`` multiplies the sea's process noise (1: the scene's sea).
+    and p99. ``sea_scale`` multiplies the sea's process noise (1: the scene's sea);
+    ``overrides`` replaces MPC settings (e.g. :data:`ACTIVE_LIMITS`).
     """
     sc = bench_scene()
     p = bench_plant(sc)
-    m = mpc_mod.LinearMPC(p, sc.winch.delay, bench_settings(sc, horizon, solver))
+    st = dataclasses.replace(bench_settings(sc, horizon, solver), **(overrides or {}))
+    m = mpc_mod.LinearMPC(p, sc.winch.delay, st)
     w = sea_scale * _noise(p, sc.controller.sample_time, steps, seed)
     z = np.zeros(m.nz)
     up = 0.0
@@ -103,32 +112,39 @@ def time_cas(solver: str, horizon: int, steps: int, seed: int = 0,
                     steps, fails, NOTES.get(solver, ""))
 
 
-def profile_daqp(horizon: int = 50, steps: int = 300, seed: int = 0,
-                 sea_scale: float = 1.0) -> dict:
+def profile_daqp(horizon: int = 50, steps: int = 300, seed: int = 0, sea_scale: float = 1.0,
+                 overrides: dict | None = None) -> dict:
     """Where the time of a ``"daqp"`` step goes (medians over the closed loop, s).
 
-    At every closed-loop step the phases of :meth:`LinearMPC.step` are repeated one by one on
-    the same state and timed separately: ``assembly`` (the one matrix-vector product with the
-    precomputed parametric maps that gives the gradient and the row offsets), ``bounds`` (row
-    bounds), ``update`` (DAQP's update of the gradient and bounds in its factored problem),
-    ``solve`` (DAQP's iterations). Then the real ``step`` runs (its working set is then already
-    the optimal one: the same one-iteration solve as in :func:`time_cas` after a step that kept
-    the working set); ``other`` is the step minus the phases (argument handling, the plan copy,
-    the result object). Also returned: the step median and p99 of :func:`time_cas` for the same
-    loop, the DAQP iterations per step (median, max) and the number of steps whose working set
-    changed (``iterations > 1``), i.e. where a limit became active or inactive.
+    Two runs of the same closed loop (same states: the moves agree to round-off). The first
+    times the real :meth:`LinearMPC.step` (``step``, ``step_p99``, as :func:`time_cas`). The
+    second repeats the phases of a step one by one and times each: ``assembly`` (the one
+    matrix-vector product with the precomputed parametric maps that gives the gradient and the
+    row offsets), then for the QP without the tension rows ``bounds`` (its row bounds),
+    ``update`` (DAQP's update of the gradient and bounds in its factored problem) and ``solve``
+    (DAQP's iterations from the previous working set), ``check`` (the tension rows at that
+    solution), and ``full`` (the whole QP with the slacks, timed over the steps that need it,
+    ``full_steps`` of them). ``other`` is ``step`` minus the phases' medians (argument handling,
+    the plan copy, the result object). Also: DAQP iterations of the reduced QP per step (median,
+    max) and the steps that changed its working set (more than one iteration).
     """
     sc = bench_scene()
     p = bench_plant(sc)
-    m = mpc_mod.LinearMPC(p, sc.winch.delay, bench_settings(sc, horizon, "daqp"))
+    st = dataclasses.replace(bench_settings(sc, horizon, "daqp"), **(overrides or {}))
+    ref = time_cas("daqp", horizon, steps, seed, sea_scale, overrides)
+    m = mpc_mod.LinearMPC(p, sc.winch.delay, st)
     qp = m._daqp
     assert qp is not None
+    red = qp.reduced if qp.reduced is not None else qp.full
+    two_stage = qp.reduced is not None
     w = sea_scale * _noise(p, sc.controller.sample_time, steps, seed)
-    nv = m._nv
+    nv, N = m._nv, m.N
+    mh = qp.mh if two_stage else m.Ac.shape[0]
+    nr = red.nv
     z = np.zeros(m.nz)
     up = 0.0
     rec: dict[str, list[float]] = {k: [] for k in ("assembly", "bounds", "update", "solve",
-                                                   "other", "step")}
+                                                   "check", "full")}
     its = []
     pc = time.perf_counter
     for k in range(steps):
@@ -138,29 +154,42 @@ def profile_daqp(horizon: int = 50, steps: int = 300, seed: int = 0,
         v += up * m._Pu
         g, c = v[:nv], v[nv:]
         t1 = pc()
-        np.subtract(qp.ub0, c, out=qp.bu[nv:])
-        np.subtract(qp.lb0, c, out=qp.bl[nv:])
+        np.subtract(red.ub0, c[:mh], out=red.bu[nr:])
+        np.subtract(red.lb0, c[:mh], out=red.bl[nr:])
         t2 = pc()
-        qp.model.update(f=g, bupper=qp.bu, blower=qp.bl)
+        red.model.update(f=g[:nr], bupper=red.bu, blower=red.bl)
         t3 = pc()
-        _, _, _, info = qp.model.solve()
+        x, _, _, info = red.model.solve()
         t4 = pc()
-        r = m.step(z, up)
+        need_full = False
+        if two_stage:
+            tt = qp.A_soft @ x[:N]
+            tt += c[mh:]
+            need_full = not np.all(tt >= qp.lb_soft)
+        t5 = pc()
+        if need_full:
+            x, _ = qp.full.solve(g, c)
+        t6 = pc()
         its.append(int(info["iterations"]))
         if k > 0:
             for key, dt in (("assembly", t1 - t0), ("bounds", t2 - t1), ("update", t3 - t2),
-                            ("solve", t4 - t3), ("step", r.solve_time)):
+                            ("solve", t4 - t3), ("check", t5 - t4)):
                 rec[key].append(dt)
-            rec["other"].append(r.solve_time - (t4 - t0))
-        up = r.u0
-        z = m.model.Ad @ z + m.model.Bd[:, 0] * r.u0
+            if need_full:
+                rec["full"].append(t6 - t5)
+        up = float(x[0])
+        z = m.model.Ad @ z + m.model.Bd[:, 0] * up
         z[: p.n] += w[k]
-    out = {key: float(np.median(v)) for key, v in rec.items()}
-    out["step_p99"] = float(np.percentile(rec["step"], 99))
+    out = {key: float(np.median(v)) if v else 0.0 for key, v in rec.items()}
+    out["full_steps"] = len(rec["full"])
+    out["step"], out["step_p99"] = ref.median_s, ref.p99_s
+    phases = sum(out[k] for k in ("assembly", "bounds", "update", "solve", "check"))
+    out["other"] = out["step"] - phases - out["full"] * out["full_steps"] / max(1, steps - 1)
     out["iterations_median"] = float(np.median(its[1:]))
     out["iterations_max"] = int(np.max(its[1:]))
     out["working_set_changes"] = int(np.sum(np.array(its[1:]) > 1))
     out["n_variables"], out["n_rows"] = int(nv), int(m.Ac.shape[0])
+    out["n_variables_reduced"], out["n_rows_reduced"] = int(nr), int(mh)
     return out
 
 
@@ -231,17 +260,19 @@ def time_do_mpc(horizon: int, steps: int, seed: int = 0) -> BenchRow:
 
 def run(horizons: list[int] | tuple = (20, 50, 100), steps: int = 300,
         solvers: list[str] | tuple = mpc_mod.SOLVERS,
-        with_do_mpc: bool = True, sea_scale: float = 1.0) -> list[BenchRow]:
+        with_do_mpc: bool = True, sea_scale: float = 1.0,
+        overrides: dict | None = None) -> list[BenchRow]:
     """Timing rows for every solver and horizon (IPOPT and do-mpc with steps/5 steps).
 
-    do-mpc's row has ``steps = 0`` and NaN times when it is not installed.
+    do-mpc's row has ``steps = 0`` and NaN times when it is not installed; it runs only on the
+    scene as it is (``sea_scale = 1``, no ``overrides``).
     """
     rows = []
     for N in horizons:
         for s in solvers:
             rows.append(time_cas(s, N, steps if s != "ipopt" else max(20, steps // 5),
-                                 sea_scale=sea_scale))
-        if with_do_mpc:
+                                 sea_scale=sea_scale, overrides=overrides))
+        if with_do_mpc and sea_scale == 1.0 and not overrides:
             try:
                 rows.append(time_do_mpc(N, max(20, steps // 5)))
             except ImportError:

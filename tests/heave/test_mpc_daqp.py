@@ -47,11 +47,16 @@ def test_daqp_moves_equal_qpoases_with_active_limits_and_delay(plant_636: pl.Hea
     # give the same first move and plan to 1e-8 m (the target; both are active-set solvers
     # that end on an exact solve of the same optimality system, and agree to ~1e-14 here).
     # The run must actually activate every kind of limit in the plans (counted from the
-    # qpOASES solution) and the tension slack, or this test proves little.
+    # qpOASES solution) and the tension slack, and DAQP must take both of its paths (the QP
+    # without tension rows alone, and the whole QP when a tension row binds), or this test
+    # proves little.
     mq = mpc.LinearMPC(plant_636, 0.2, mpc.MPCSettings(horizon=horizon, solver="qpoases",
                                                        **LIMITS))
     md = mpc.LinearMPC(plant_636, 0.2, mpc.MPCSettings(horizon=horizon, solver="daqp",
                                                        **LIMITS))
+    full_calls = []
+    full_solve = md._daqp.full.solve
+    md._daqp.full.solve = lambda g, c: full_calls.append(1) or full_solve(g, c)
     iu = plant_636.blocks["winch"].start
     kinds = _row_kinds(mq, iu)
     rng = np.random.default_rng(1)
@@ -83,6 +88,7 @@ def test_daqp_moves_equal_qpoases_with_active_limits_and_delay(plant_636: pl.Hea
     assert max(dplan) < 1e-8
     assert np.all(active_kinds >= 5), active_kinds  # each kind of limit active on >= 5 steps
     assert slack_steps >= 5
+    assert 5 <= len(full_calls) <= steps - 5
 
 
 def test_parametric_maps_give_the_gradient_and_row_offsets(plant_636: pl.HeavePlant) -> None:
@@ -105,8 +111,10 @@ def test_infeasible_step_reports_failure_and_falls_back_on_the_plan(plant_636: p
     # K (U_0 - u_4) with u_4 fixed by the past. The winch is at u = 0.5 m with the buffer full
     # of 0.5 m, so |speed| <= 0.1 m/s needs U_0 in [0.4, 0.6] m, while |U_0 - u_prev| <= 0.01 m
     # with u_prev = 0 needs U_0 in [-0.01, 0.01] m: infeasible. Both solvers must report
-    # failure (no exception) and return the previous plan shifted by one sample.
-    st = {"horizon": 10, "speed_max": 0.1, "command_rate_max": 0.01}
+    # failure (no exception) and return the previous plan shifted by one sample. (With the
+    # tension limit DAQP tries the QP without tension rows, then the whole QP.)
+    st = {"horizon": 10, "speed_max": 0.1, "command_rate_max": 0.01, "tension_min": 5000.0,
+          "unit_mass": 125000.0, "static_tension": 50000.0}
     for solver in ("daqp", "qpoases"):
         m = mpc.LinearMPC(plant_636, 0.2, mpc.MPCSettings(solver=solver, **st))
         first = m.step(np.zeros(m.nz), 0.0)
