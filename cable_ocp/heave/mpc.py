@@ -49,6 +49,7 @@ import sys
 import time
 from collections.abc import Iterator
 from dataclasses import dataclass, field
+from typing import Any
 
 import casadi as cs
 import numpy as np
@@ -605,7 +606,7 @@ class _DaqpWorkspace:
     INF = 1e30  # DAQP's infinity (DAQP_INF)
     ACTIVE_LOWER = 3  # sense flags: ACTIVE (1) | LOWER (2)
 
-    def __init__(self, daqp: object, settings: dict, H: np.ndarray, A: np.ndarray,
+    def __init__(self, daqp: Any, settings: dict, H: np.ndarray, A: np.ndarray,
                  lbx: np.ndarray, ubx: np.ndarray, lb0: np.ndarray, ub0: np.ndarray,
                  sense: np.ndarray) -> None:
         nv, m = H.shape[0], A.shape[0]
@@ -617,7 +618,7 @@ class _DaqpWorkspace:
         self.bu = np.concatenate([np.minimum(ubx, inf), self.ub0])
         self.bl = np.concatenate([np.maximum(lbx, -inf), self.lb0])
         self.sense0 = sense
-        self.model = daqp.Model()  # type: ignore[attr-defined]
+        self.model = daqp.Model()
         self.model.settings = settings
         A = np.ascontiguousarray(A) if m else np.zeros((0, nv))
         flag, _ = self.model.setup(np.ascontiguousarray(H), np.zeros(nv), A, self.bu, self.bl,
