@@ -119,15 +119,16 @@ def profile_daqp(horizon: int = 50, steps: int = 300, seed: int = 0, sea_scale: 
 
     Two runs of the same closed loop (same states: the moves agree to round-off). The first
     times the real :meth:`LinearMPC.step` (``step``, ``step_p99``, as :func:`time_cas`). The
-    second repeats the phases of a step one by one and times each: ``assembly`` (the one
-    matrix-vector product with the precomputed parametric maps that gives the gradient and the
-    row offsets), then for the QP without the tension rows ``bounds`` (its row bounds),
-    ``update`` (DAQP's update of the gradient and bounds in its factored problem) and ``solve``
-    (DAQP's iterations from the previous working set), ``check`` (the tension rows at that
-    solution), and ``full`` (the whole QP with the slacks, timed over the steps that need it,
-    ``full_steps`` of them). ``other`` is ``step`` minus the phases' medians (argument handling,
-    the plan copy, the result object). Also: DAQP iterations of the reduced QP per step (median,
-    max) and the steps that changed its working set (more than one iteration).
+    second repeats the phases of a step one by one, as ``step`` does them, and times each:
+    ``assembly`` (the one matrix-vector product with the precomputed parametric maps that gives
+    the gradient and the row offsets), then for the QP without the tension rows ``bounds`` (its
+    row bounds), ``update`` (DAQP's update of the gradient and bounds in its factored problem),
+    ``solve`` (DAQP's iterations from the previous working set) and ``check`` (the tension rows
+    at that solution); ``full`` is the whole QP with the slacks (bounds, update and solve),
+    timed over the ``full_steps`` steps that need it (a tension row binds). ``phases`` is the
+    median of the per-step sum of the phases and ``other`` = ``step`` - ``phases`` (argument
+    handling, the plan copy, the result object). Also: DAQP iterations of the reduced QP per
+    step (median, max) and the steps that changed its working set (more than one iteration).
     """
     sc = bench_scene()
     p = bench_plant(sc)
@@ -136,17 +137,18 @@ def profile_daqp(horizon: int = 50, steps: int = 300, seed: int = 0, sea_scale: 
     m = mpc_mod.LinearMPC(p, sc.winch.delay, st)
     qp = m._daqp
     assert qp is not None
-    red = qp.reduced if qp.reduced is not None else qp.full
     two_stage = qp.reduced is not None
+    red = qp.reduced if two_stage else qp.full
     w = sea_scale * _noise(p, sc.controller.sample_time, steps, seed)
     nv, N = m._nv, m.N
     mh = qp.mh if two_stage else m.Ac.shape[0]
     nr = red.nv
     z = np.zeros(m.nz)
     up = 0.0
-    rec: dict[str, list[float]] = {k: [] for k in ("assembly", "bounds", "update", "solve",
-                                                   "check", "full")}
+    keys = ("assembly", "bounds", "update", "solve", "check", "full", "phases")
+    rec: dict[str, list[float]] = {k: [] for k in keys}
     its = []
+    binding = False
     pc = time.perf_counter
     for k in range(steps):
         t0 = pc()
@@ -155,37 +157,39 @@ def profile_daqp(horizon: int = 50, steps: int = 300, seed: int = 0, sea_scale: 
         v += up * m._Pu
         g, c = v[:nv], v[nv:]
         t1 = pc()
-        np.subtract(red.ub0, c[:mh], out=red.bu[nr:])
-        np.subtract(red.lb0, c[:mh], out=red.bl[nr:])
-        t2 = pc()
-        red.model.update(f=g[:nr], bupper=red.bu, blower=red.bl)
-        t3 = pc()
-        x, _, _, info = red.model.solve()
-        t4 = pc()
-        need_full = False
-        if two_stage:
-            tt = qp.A_soft @ x[:N]
-            tt += c[mh:]
-            need_full = not np.all(tt >= qp.lb_soft)
-        t5 = pc()
+        times = {"assembly": t1 - t0}
+        need_full = binding
+        if not binding:
+            np.subtract(red.ub0, c[:mh], out=red.bu[nr:])
+            np.subtract(red.lb0, c[:mh], out=red.bl[nr:])
+            t2 = pc()
+            red.model.update(f=g[:nr], bupper=red.bu, blower=red.bl)
+            t3 = pc()
+            x, _, _, info = red.model.solve()
+            t4 = pc()
+            if two_stage:
+                tt = qp.A_soft @ x[:N]
+                tt += c[mh:]
+                need_full = not (tt >= qp.lb_soft).all()
+            t5 = pc()
+            times.update(bounds=t2 - t1, update=t3 - t2, solve=t4 - t3, check=t5 - t4)
+            its.append(int(info["iterations"]))
         if need_full:
+            t5 = pc()
             x, _ = qp.full.solve(g, c)
-        t6 = pc()
-        its.append(int(info["iterations"]))
+            times["full"] = pc() - t5
+            binding = float(np.max(x[N:])) > qp.tol
         if k > 0:
-            for key, dt in (("assembly", t1 - t0), ("bounds", t2 - t1), ("update", t3 - t2),
-                            ("solve", t4 - t3), ("check", t5 - t4)):
+            for key, dt in times.items():
                 rec[key].append(dt)
-            if need_full:
-                rec["full"].append(t6 - t5)
+            rec["phases"].append(sum(times.values()))
         up = float(x[0])
         z = m.model.Ad @ z + m.model.Bd[:, 0] * up
         z[: p.n] += w[k]
     out = {key: float(np.median(v)) if v else 0.0 for key, v in rec.items()}
     out["full_steps"] = len(rec["full"])
     out["step"], out["step_p99"] = ref.median_s, ref.p99_s
-    phases = sum(out[k] for k in ("assembly", "bounds", "update", "solve", "check"))
-    out["other"] = out["step"] - phases - out["full"] * out["full_steps"] / max(1, steps - 1)
+    out["other"] = out["step"] - out["phases"]
     out["iterations_median"] = float(np.median(its[1:]))
     out["iterations_max"] = int(np.max(its[1:]))
     out["working_set_changes"] = int(np.sum(np.array(its[1:]) > 1))

@@ -596,7 +596,7 @@ class _DaqpQP:
             if ok:
                 t = self.A_soft @ u
                 t += c[mh:]
-                if np.all(t >= self.lb_soft):
+                if (t >= self.lb_soft).all():
                     return np.concatenate([u, self.zeros_s]), True
         x, ok = self.full.solve(g, c)
         if red is not None:
