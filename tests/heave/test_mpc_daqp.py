@@ -45,7 +45,7 @@ def test_daqp_moves_equal_qpoases_with_active_limits_and_delay(plant_636: pl.Hea
     # speed and command-rate rows, soft tension rows with slacks). Along a closed loop driven
     # by the qpOASES moves under 3x the sea, DAQP at the same state and previous command must
     # give the same first move and plan to 1e-8 m (the target; both are active-set solvers
-    # that end on an exact solve of the same optimality system, and agree to ~1e-14 here).
+    # that end on an exact solve of the same optimality system, and agree to ~1e-13 here).
     # The run must actually activate every kind of limit in the plans (counted from the
     # qpOASES solution) and the tension slack, and DAQP must take both of its paths (the QP
     # without tension rows alone, and the whole QP when a tension row binds), or this test
