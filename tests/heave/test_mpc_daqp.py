@@ -136,3 +136,24 @@ def test_daqp_missing_or_bad_options_raise_clear_errors(plant_636: pl.HeavePlant
     monkeypatch.setitem(sys.modules, "daqp", None)  # import daqp -> ImportError
     with pytest.raises(CableOCPError, match="pip install daqp"):
         mpc.LinearMPC(plant_636, 0.0, mpc.MPCSettings(horizon=5, solver="daqp"))
+
+
+def test_daqp_two_stage_steps_print_nothing(plant_636: pl.HeavePlant,
+                                            capfd: pytest.CaptureFixture) -> None:
+    # Library code never prints: both DAQP workspaces (the QP without tension rows, and the
+    # whole QP once the tension binds), captured at the file-descriptor level.
+    m = mpc.LinearMPC(plant_636, 0.2, mpc.MPCSettings(horizon=10, solver="daqp", **LIMITS))
+    full_calls = []
+    full_solve = m._daqp.full.solve
+    m._daqp.full.solve = lambda g, c: full_calls.append(1) or full_solve(g, c)
+    z = np.zeros(m.nz)
+    assert m.step(z).success
+    # Winch at u = -0.15 m with the buffered commands there too: the stretch x0 + u - x stays
+    # at -0.15 m for the next samples, below the -0.072 m that the 40 kN limit allows.
+    z[plant_636.blocks["winch"].start] = -0.15
+    z[m.n :] = -0.15
+    r = m.step(z, -0.15)
+    assert r.success and r.max_slack > 0
+    assert full_calls
+    out, err = capfd.readouterr()
+    assert out == "" and err == ""
