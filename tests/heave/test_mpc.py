@@ -10,7 +10,7 @@ from cable_ocp.heave import mpc
 from cable_ocp.heave import plant as pl
 from cable_ocp.heave.discrete import discretize_noise
 
-SOLVERS = [("qpoases", {}), ("qrqp", {}),
+SOLVERS = [("daqp", {}), ("qpoases", {}), ("qrqp", {}),
            ("osqp", {"osqp": {"eps_abs": 1e-12, "eps_rel": 1e-12, "max_iter": 100000}}),
            ("ipopt", {})]
 
@@ -210,7 +210,8 @@ def test_rows_fixed_by_sent_commands_do_not_make_ipopt_infeasible(plant_636: pl.
 
 
 @pytest.mark.parametrize("solver,opts", [("osqp", {}), ("osqp", {"osqp": {"polish": True}}),
-                                         ("qpoases", {}), ("qrqp", {}), ("ipopt", {})])
+                                         ("qpoases", {}), ("qrqp", {}), ("ipopt", {}),
+                                         ("daqp", {})])
 @pytest.mark.parametrize("limits", [{}, {"stroke_max": 2.0, "speed_max": 1.5,
                                          "command_rate_max": 0.1}])
 def test_mpc_steps_print_nothing(plant_636: pl.HeavePlant, capfd: pytest.CaptureFixture,
