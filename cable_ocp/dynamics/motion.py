@@ -6,7 +6,8 @@ positions (no finite differences), and a time-stepper written as a CasADi functi
 evaluate them inside ``mapaccum`` without Python per step.
 
 Formulas (t in s; offsets in m from ``end_b.position``; ``r(t)`` the ramp, 1 without
-``ramp_time``, else 3x^2 - 2x^3 with x = min(t / ramp_time, 1); ``R(t)`` its integral,
+``ramp_time``, else 10x^3 - 15x^4 + 6x^5 with x = min(t / ramp_time, 1), twice
+continuously differentiable, so the ramp adds no force step; ``R(t)`` its integral,
 t - ramp_time/2 after the ramp):
 
 * heave: dz = r A sin(w t)
@@ -37,8 +38,8 @@ def _ramp(tm: TopMotion, t: ca.SX) -> tuple[ca.SX, ca.SX]:
     if tau <= 0.0:
         return ca.SX(1.0), t
     x = ca.fmin(ca.fmax(t / tau, 0.0), 1.0)
-    r = 3 * x**2 - 2 * x**3
-    big_r = ca.if_else(t < tau, tau * (x**3 - 0.5 * x**4), t - 0.5 * tau)
+    r = x**3 * (10.0 - 15.0 * x + 6.0 * x**2)
+    big_r = ca.if_else(t < tau, tau * x**4 * (2.5 - 3.0 * x + x**2), t - 0.5 * tau)
     return r, big_r
 
 

@@ -77,6 +77,8 @@ class SimulationResult:
         The time-integration scheme.
     diagnostics : dict
         Everything else: build time, steps, Newton residuals, the static start, ...
+    node_velocities : ndarray, shape (n_t, n_nodes, 3), or None
+        Material velocities of the nodes, m/s (None when a model does not provide them).
     """
 
     t: np.ndarray
@@ -95,6 +97,7 @@ class SimulationResult:
     model: str = ""
     scheme: str = ""
     diagnostics: dict[str, Any] = field(default_factory=dict)
+    node_velocities: np.ndarray | None = None
 
     @property
     def success(self) -> bool:
@@ -107,8 +110,8 @@ class SimulationResult:
         Fields: ``status``, ``message``, ``model``, ``scheme``, ``t`` (s), ``length`` (m,
         unstretched), ``top_position`` ([[x, y, z], ...], m), ``unit_position``,
         ``top_tension`` (N), ``min_tension`` (N), ``slack``, ``wall_time_s``, ``warnings``,
-        ``diagnostics``; with ``full`` also ``node_positions`` (m) and
-        ``segment_tensions`` (N).
+        ``diagnostics``; with ``full`` also ``node_positions`` (m), ``segment_tensions``
+        (N) and ``node_velocities`` (m/s, when the model gives them).
         """
         out: dict[str, Any] = {
             "status": self.status,
@@ -129,6 +132,8 @@ class SimulationResult:
         if full:
             out["node_positions"] = self.node_positions
             out["segment_tensions"] = self.segment_tensions
+            if self.node_velocities is not None:
+                out["node_velocities"] = self.node_velocities
         return json_safe(out)
 
 

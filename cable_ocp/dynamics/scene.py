@@ -47,7 +47,8 @@ Schema of the dynamic keys (all SI; units in brackets)::
     series = [[t, dx, dy, dz], ...]   s, m: a measured vessel motion, linear in t between
                                  rows, held after the last row (rows from t = 0, increasing)
     ramp_time = 0.0              s; > 0 ramps the oscillation amplitudes and the pay-out /
-                                 tow speeds smoothly (3x^2 - 2x^3) from 0 (Huang (1992)
+                                 tow speeds smoothly (10x^3 - 15x^4 + 6x^5, x = t/ramp_time:
+                                 no jump in velocity or acceleration) from 0 (Huang (1992)
                                  5.6.1: avoid impulsive loading); 0 = start at once
     payout_law = "linear"        "linear" | "quadratic" | "periodic" (Huang (1992) 3.1):
                                  L = L0 + v t  |  L0 + v t + a t^2/2  |  L0 + p sin(w t)

@@ -182,13 +182,14 @@ def test_motion_laws_and_derivatives() -> None:
     assert xb[2] == pytest.approx(1000.0 + 0.5 * math.sin(1.3 * t), rel=1e-15)
     assert vb[2] == pytest.approx(0.5 * 1.3 * math.cos(1.3 * t), rel=1e-13)
     assert ab[2] == pytest.approx(-0.5 * 1.3**2 * math.sin(1.3 * t), rel=1e-13)
-    # periodic law, ramp: L = L0 + r(t) p sin(w t), r = 3x^2 - 2x^3
+    # periodic law, ramp: L = L0 + r(t) p sin(w t), r = 10x^3 - 15x^4 + 6x^5
     d = with_("top_motion", {"payout_law": "periodic", "payout_amplitude": 2.0,
                              "payout_frequency": 0.5, "ramp_time": 4.0})
     s = dynamic_scene_from_dict(d)
     ls, _ = length_numeric(s.top_motion, 100.0, [1.0, 6.0])
     x = 0.25
-    assert ls[0] == pytest.approx(100.0 + (3 * x**2 - 2 * x**3) * 2.0 * math.sin(0.5), rel=1e-15)
+    assert ls[0] == pytest.approx(100.0 + x**3 * (10 - 15 * x + 6 * x**2) * 2.0 * math.sin(0.5),
+                           rel=1e-15)
     assert ls[1] == pytest.approx(100.0 + 2.0 * math.sin(3.0), rel=1e-15)
 
 
