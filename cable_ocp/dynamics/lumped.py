@@ -59,8 +59,12 @@ __all__ = [
     "SCHEMES",
     "LumpedMassModel",
     "LumpedParams",
+    "LumpedRun",
     "PointBody",
     "UnitParams",
+    "modes_lumped",
+    "run",
+    "simulate_lumped",
     "uniform_params",
 ]
 
@@ -369,6 +373,9 @@ class LumpedMassModel:
         Indices of the free nodes.
     forces : casadi.Function
         ``forces(x, v, t) -> F`` (N), the right-hand side of (5.2) at the free nodes.
+    external_forces : casadi.Function
+        ``external_forces(x, v, t) -> F`` (N): the same without the segment tensions
+        (weights, drag with current, loads of the unit and bodies).
     mass_matrix : casadi.Function
         ``mass_matrix(x, t) -> M`` (kg), sparse block diagonal (3x3 per node).
     tensions : casadi.Function
@@ -376,6 +383,11 @@ class LumpedMassModel:
         (without the material damping term).
     segment_tension : casadi.Function
         ``segment_tension(x, v, t) -> T`` (N), with the material damping term.
+    top_force : casadi.Function
+        ``top_force(x, v, t) -> F`` (N): the force end_b's attachment applies to the cable
+        (node N's balance: its mass times the prescribed acceleration minus the tension of
+        the top segment, the node's weight and drag); its magnitude is the top tension
+        (the tension at s = L, including the top half-segment).
     nodes : casadi.Function
         ``nodes(x, t) -> r`` (3, N+1), all node positions including the prescribed ends.
     energy : casadi.Function
@@ -406,6 +418,9 @@ class LumpedMassModel:
         f_drag = self._drag(r, vel)
         f = self._free(self._sum(f_el, f_ext, f_drag))
         self.forces = ca.Function("forces", [x, v, t], [f], ["x", "v", "t"], ["F"])
+        self.external_forces = ca.Function(
+            "external_forces", [x, v, t], [self._free(self._sum(f_ext, f_drag))],
+            ["x", "v", "t"], ["F"])
         self.mass_matrix = ca.Function("mass_matrix", [x, t], [self._mass_expr(r)],
                                        ["x", "t"], ["M"])
         tens, strain = self._tension_expr(r)
@@ -415,12 +430,21 @@ class LumpedMassModel:
         self.segment_tension = ca.Function(
             "segment_tension", [x, v, t], [self._tension_expr(r, vel)[0]], ["x", "v", "t"],
             ["T"])
+        # the force the attachment applies to node N: M_N a_b - (cable, weight, drag)
+        acc_b = ca.jacobian(vel[-1], t)
+        f_n = self._sum(self._elastic(r, None, vel, None), f_ext, f_drag)[-1]
+        self.top_force = ca.Function(
+            "top_force", [x, v, t], [ca.mtimes(self._mass_blocks(r)[-1], acc_b) - f_n],
+            ["x", "v", "t"], ["F"])
         self.energy = ca.Function("energy", [x, v, t], list(self._energy_expr(v, r)),
                                   ["x", "v", "t"], ["kinetic", "potential"])
         f0 = self._free(self._sum(self._elastic(r, None, None, None), f_ext))
         self.static_stiffness = ca.Function(
             "static_stiffness", [x, t], [-ca.jacobian(f0, x)], ["x", "t"], ["K"])
-        fs = ca.substitute(f, v, ca.SX.zeros(nf3))
+        # at rest: every node, the prescribed ends included, has zero velocity
+        still = [ca.SX.zeros(3) for _ in r]
+        fs = self._free(self._sum(self._elastic(r, None, None, None), f_ext,
+                                  self._drag(r, still)))
         self._static_fj = ca.Function("static_fj", [x, t], [fs, ca.jacobian(fs, x)])
         self._steps: dict[tuple, ca.Function] = {}
 
@@ -634,6 +658,11 @@ class LumpedMassModel:
     def _mass_expr(self, r: list[Any]) -> Any:
         """Block-diagonal mass matrix of the free nodes with the direction-dependent added
         mass of (5.2), kg."""
+        blocks = self._mass_blocks(r)
+        return ca.diagcat(*[blocks[i] for i in self.free_nodes])
+
+    def _mass_blocks(self, r: list[Any]) -> list[Any]:
+        """3x3 mass blocks of every node (kg), with the added mass of (5.2)."""
         p = self.params
         n = p.segments
         blocks = [ca.SX(ca.diag(ca.DM(self._node_mass[i]))) for i in range(n + 1)]
@@ -649,7 +678,7 @@ class LumpedMassModel:
             add = 0.5 * (en * (ca.SX.eye(3) - tt) + et * tt)
             blocks[j] = blocks[j] + add
             blocks[j + 1] = blocks[j + 1] + add
-        return ca.diagcat(*[blocks[i] for i in self.free_nodes])
+        return blocks
 
     def _energy_expr(self, v: Any, r: list[Any]) -> tuple[Any, Any]:
         """Kinetic energy 1/2 v^T M v and potential energy (strain + weight), J."""
@@ -710,7 +739,7 @@ class LumpedMassModel:
 
     def step_function(self, dt: float, scheme: str = "midpoint", *, tol: float = 1e-10,
                       max_iter: int = 20, solver: str = "newton",
-                      linear_solver: str = "ldl", compile_kernel: bool = True,
+                      linear_solver: str = "qr", compile_kernel: bool = True,
                       force_scale: float | None = None) -> ca.Function:
         """One time step ``step(z, t0) -> (z1, residual, iterations)`` as a CasADi Function.
 
@@ -752,8 +781,9 @@ class LumpedMassModel:
             mass and drag terms taken as M(x)/dt^2-type and velocity-derivative terms (the
             derivatives of the added-mass projector and of the drag with respect to the
             segment orientation are left out: they multiply small quantities, so Newton
-            still converges fast, to the exact solution of the step). That matrix is
-            symmetric positive definite: sparse LDL^T (``linear_solver``, CasADi ``ldl``).
+            still converges fast, to the exact solution of the step), with a backtracking
+            line search on the residual. Sparse QR (``linear_solver``, CasADi ``qr``): the
+            midpoint's matrix is not symmetric.
         ``"rootfinder"``: CasADi's ``rootfinder("newton")`` with the exact Jacobian (about
             5x slower per iteration; a reference).
         """
@@ -937,10 +967,10 @@ class LumpedMassModel:
             ccols[node] = ccols[node] + ck
         return ca.horzcat(*fcols), ca.horzcat(*ccols)
 
-    def _fast_step(self, dt: float, scheme: str, tol: float, max_iter: int,
+    def _core_step(self, dt: float, scheme: str, tol: float, max_iter: int,
                    linear_solver: str, compile_kernel: bool, force_scale: float | None
                    ) -> ca.Function:
-        """The ``"newton"`` solver of :meth:`step_function` (see there)."""
+        """One Newton-solved step ``(z, t0) -> (z1, residual, iterations, converged)``."""
         p = self.params
         n = p.segments
         nf = self.n_free
@@ -986,7 +1016,7 @@ class LumpedMassModel:
                 for c in range(3):
                     rows += [3 * a + r, 3 * (a + 1) + r]
                     cols += [3 * (a + 1) + c, 3 * a + c]
-                    src += [off + 9 * a + 3 * r + c, off + 9 * a + 3 * c + r]
+                    src += [off + 9 * a + 3 * r + c, off + 9 * a + 3 * r + c]
         sp = ca.Sparsity.triplet(nf3, nf3, rows, cols)
         # order the values as the sparsity stores them (column-major)
         order = np.lexsort((np.asarray(rows), np.asarray(cols)))
@@ -1052,24 +1082,47 @@ class LumpedMassModel:
         jac = ca.MX(sp, 0)
         jac.nz[:] = vals[src_sorted]
         gj = ca.Function("gj", [x1, zsym, t0], [res, jac, fres])
-        # Newton with skipped iterations once converged
+        # Newton with backtracking, skipped once converged: an iteration evaluates the
+        # residual at x; if it did not decrease (2-norm) from the last accepted point, x
+        # moves back along the last step (halving it, down to 1/16); else a Newton step.
         xk = ca.MX.sym("xk", nf3)
+        xo = ca.MX.sym("xo", nf3)
+        dl = ca.MX.sym("dl", nf3)
+        rno = ca.MX.sym("rno")
+        lam = ca.MX.sym("lam")
         rk, jk, fk = gj(xk, zsym, t0)
         rn = ca.norm_inf(rk)
-        upd = ca.if_else(rn <= tol, xk, xk - ca.solve(jk, fk, linear_solver), True)
-        work = ca.Function("work", [xk, zsym, t0, ca.MX.sym("r")], [upd, rn, rn <= tol])
-        xi_s, r_s = ca.MX.sym("xk", nf3), ca.MX.sym("r")
-        idle = ca.Function("idle", [xi_s, zsym, t0, r_s], [xi_s, r_s, 1.0])
-        it = ca.Function.if_else("newton_iteration", idle, work)
+        rn2 = ca.norm_2(rk)
+        conv = rn <= tol
+        worse = ca.logic_and(rn2 > rno, lam > 1.0 / 16.0)
+        newton_dx = ca.Function("newton_dx", [xk, zsym, t0], [ca.solve(jk, fk, linear_solver)])
+        x_back = xo - 0.5 * lam * dl
+        dx = ca.if_else(ca.logic_or(conv, worse), ca.MX.zeros(nf3), newton_dx(xk, zsym, t0),
+                        True)
+        x_new = ca.if_else(conv, xk, ca.if_else(worse, x_back, xk - dx))
+        xo_new = ca.if_else(ca.logic_or(conv, worse), xo, xk)
+        dl_new = ca.if_else(ca.logic_or(conv, worse), dl, dx)
+        rno_new = ca.if_else(ca.logic_or(conv, worse), rno, rn2)
+        lam_new = ca.if_else(worse, 0.5 * lam, 1.0)
+        state_in = [xk, xo, dl, rno, lam, zsym, t0]
+        work = ca.Function("work", state_in,
+                           [x_new, xo_new, dl_new, rno_new, lam_new, rn, conv])
+        rs = ca.MX.sym("r")
+        idle = ca.Function("idle", state_in + [rs], [xk, xo, dl, rno, lam, rs, 1.0])
+        work_r = ca.Function("work_r", state_in + [rs], work(*state_in))
+        it = ca.Function.if_else("newton_iteration", idle, work_r)
         if scheme in ("midpoint", "trapezoidal"):
             guess = x0 + dt * v0 + 0.5 * dt * dt * zsym[2 * nf3:3 * nf3]
         else:
             st = zsym[4 * nf3]
             guess = x0 + dt * v0 + st * (x0 - zsym[2 * nf3:3 * nf3] - dt * v0)
-        xi, rni, done, count = guess, ca.MX(ca.inf), ca.MX(0.0), ca.MX(0.0)
+        xi, xoi, dli = guess, guess, ca.MX.zeros(nf3)
+        rnoi, lami = ca.MX(ca.inf), ca.MX(1.0)
+        rni, done, count = ca.MX(ca.inf), ca.MX(0.0), ca.MX(0.0)
         for _ in range(max_iter):
             count = count + (1.0 - done)
-            xi, rni, done = it(done, xi, zsym, t0, rni)
+            xi, xoi, dli, rnoi, lami, rni, done = it(done, xi, xoi, dli, rnoi, lami, zsym, t0,
+                                                     rni)
         resid = ca.if_else(done, rni, ca.norm_inf(gj(xi, zsym, t0)[0]), True)
         x1m = xi
         if scheme == "midpoint":
@@ -1083,17 +1136,54 @@ class LumpedMassModel:
             xp = zsym[2 * nf3:3 * nf3]
             v1m = ((1.0 + 0.5 * st) * x1m + (-1.0 - st) * x0 + 0.5 * st * xp) / dt
             z1 = ca.vertcat(x1m, v1m, x0, v0, 1.0)
-        eps = self.tensions(x1m, t0 + dt)[1]
+        return ca.Function(f"core_{scheme}", [zsym, t0], [z1, resid, count, done])
+
+    def _halving_step(self, dt: float, scheme: str, tol: float, max_iter: int,
+                      linear_solver: str, compile_kernel: bool, force_scale: float | None,
+                      halvings: int) -> ca.Function:
+        """``(z, t0) -> (z1, residual, iterations, converged)``: the core step; where its
+        Newton iteration does not converge, two steps of dt/2 instead (recursively, at
+        most ``halvings`` times; only for the one-step schemes)."""
+        core = self._core_step(dt, scheme, tol, max_iter, linear_solver, compile_kernel,
+                               force_scale)
+        if halvings <= 0 or scheme == "bdf2":
+            return core
+        half = self._halving_step(0.5 * dt, scheme, tol, max_iter, linear_solver,
+                                  compile_kernel, force_scale, halvings - 1)
+        z = ca.MX.sym("z", self.state_size(scheme))
+        t0 = ca.MX.sym("t0")
+        za, ra, ia, da = half(z, t0)
+        zb, rb, ib, db = half(za, t0 + 0.5 * dt)
+        two = ca.Function("two_halves", [z, t0],
+                          [ca.vertcat(zb, ca.fmax(ra, rb), ia + ib, da * db)])
+        z1, r1, i1, d1 = core(z, t0)
+        packed = ca.if_else(d1, ca.vertcat(z1, r1, i1, d1), two(z, t0), True)
+        n = z.shape[0]
+        return ca.Function(f"halving_{scheme}", [z, t0],
+                           [packed[0:n], packed[n], packed[n + 1], packed[n + 2]])
+
+    def _fast_step(self, dt: float, scheme: str, tol: float, max_iter: int,
+                   linear_solver: str, compile_kernel: bool, force_scale: float | None,
+                   halvings: int = 3) -> ca.Function:
+        """The ``"newton"`` solver of :meth:`step_function` (see there)."""
+        step = self._halving_step(dt, scheme, tol, max_iter, linear_solver, compile_kernel,
+                                  force_scale, halvings)
+        nf3 = 3 * self.n_free
+        z = ca.MX.sym("z", self.state_size(scheme))
+        t0 = ca.MX.sym("t0")
+        z1, resid, count, _ = step(z, t0)
+        eps = self.tensions(z1[0:nf3], t0 + dt)[1]
         emin = ca.mmin(eps)
-        return ca.Function(f"step_{scheme}", [zsym, t0],
+        return ca.Function(f"step_{scheme}", [z, t0],
                            [z1, resid, count, emin, ca.find(eps <= emin)],
                            ["z", "t0"], ["z1", "residual", "iterations", "min_strain",
                                          "slack_segment"])
 
     # -- statics and modes ---------------------------------------------------------------
-    def static_equilibrium(self, x_guess: np.ndarray, t: float = 0.0, *, tol: float = 1e-11,
+    def static_equilibrium(self, x_guess: np.ndarray, t: float = 0.0, *, tol: float = 1e-9,
                            max_iter: int = 60) -> tuple[np.ndarray, dict[str, Any]]:
-        """Rest state of the discrete model: F(x, 0, t) = 0 by damped Newton.
+        """Rest state of the discrete model by damped Newton: the forces vanish with every
+        node at rest (the prescribed ends too) at their positions at time t.
 
         Parameters
         ----------
@@ -1103,7 +1193,9 @@ class LumpedMassModel:
             Time at which the ends are taken, s.
         tol : float
             Stop when the largest nodal force is below ``tol`` times the force scale
-            (largest nodal weight or tension), relative.
+            (largest nodal weight or tension), relative; or, at the rounding floor of a
+            stiff cable, when Newton steps stall below 1e-12 of the line length with the
+            force below 1e-6 of the scale.
 
         Returns
         -------
@@ -1123,6 +1215,7 @@ class LumpedMassModel:
 
         f, jac = resid(x)
         it = 0
+        stalled = False
         from scipy.sparse import csc_matrix
         from scipy.sparse.linalg import spsolve
         for it in range(1, max_iter + 1):  # noqa: B007 - reported
@@ -1148,8 +1241,11 @@ class LumpedMassModel:
                 lam *= 0.5
             x = x + lam * dx
             f, jac = fn, jn
+            stalled = lam * np.abs(dx).max() <= 1e-12 * self.params.length
+            if stalled and np.abs(f).max() <= 1e-6 * fscale:
+                break
         rmax = float(np.abs(f).max()) if np.all(np.isfinite(f)) else math.inf
-        ok = rmax <= tol * fscale
+        ok = rmax <= tol * fscale or (stalled and rmax <= 1e-6 * fscale)
         return x, {"converged": bool(ok), "iterations": it, "residual_N": rmax,
                    "relative_residual": rmax / fscale}
 
@@ -1219,6 +1315,9 @@ class LumpedRun:
         All node positions from end_a to end_b, m.
     tension : ndarray (n, N)
         Segment tensions, N.
+    top_force : ndarray (n, 3)
+        Force of end_b's attachment on the cable, N (:attr:`LumpedMassModel.top_force`);
+        its norm is the top tension.
     strain : ndarray (n, N)
         Segment strains (-); <= 0 means slack.
     residual : ndarray (n,)
@@ -1251,6 +1350,7 @@ class LumpedRun:
     positions: np.ndarray
     tension: np.ndarray
     strain: np.ndarray
+    top_force: np.ndarray
     residual: np.ndarray
     scheme: str
     time_step: float
@@ -1335,7 +1435,7 @@ def run(model: LumpedMassModel, x0: np.ndarray, v0: np.ndarray | None, duration:
     zs = ca.MX.sym("z", step.size1_in(0))
     ts = ca.MX.sym("t")
     # a record = k steps: last state, largest residual, iterations, smallest strain, the
-    # first step (0..k-1) that ends slack (-1: none) and its slack segment
+    # first step (0..k-1) that ends slack (k: none) and its slack segment
     acc = step.mapaccum("acc", k)
     zk, rk, ik, ek, sk = acc(zs, ts + dt * ca.DM(np.arange(k).reshape(1, -1)))
     first = ca.find((ek <= 0.0).T)
@@ -1372,16 +1472,18 @@ def run(model: LumpedMassModel, x0: np.ndarray, v0: np.ndarray | None, duration:
         zc = np.asarray(zc).T[:m]
         rc = np.asarray(rc).reshape(-1)[:m]
         tstart = tstart[:m]
-        iterations += float(np.nansum(np.asarray(ic).reshape(-1)[:m]))
+        ic = np.asarray(ic).reshape(-1)[:m]
         ec = np.asarray(ec).reshape(-1)[:m]
         fc = np.asarray(fc).reshape(-1)[:m]
         sc = np.asarray(sc).reshape(-1)[:m]
-        if slack is None and np.any(fc >= 0):
-            j = int(np.flatnonzero(fc >= 0)[0])
+        found = (fc >= 0) & (fc < k)  # casadi.find returns k when nothing is found
+        if slack is None and np.any(found):
+            j = int(np.flatnonzero(found)[0])
             slack = (float(tstart[j] + dt * (fc[j] + 1)), int(round(sc[j])))
         min_strain = min(min_strain, float(np.min(ec)))
         bad = np.flatnonzero(~np.isfinite(rc) | (rc > tol_fail)
                              | ~np.all(np.isfinite(zc), axis=1))
+        iterations += float(np.nansum(ic[:bad[0]] if bad.size else ic))
         if bad.size:
             b = int(bad[0])
             zs_out.append(zc[:b])
@@ -1409,10 +1511,11 @@ def run(model: LumpedMassModel, x0: np.ndarray, v0: np.ndarray | None, duration:
     positions = pos.reshape(3, n, model.params.segments + 1).transpose(1, 2, 0)
     strain = model.tensions.map(n)(xs.T, tall[None, :])[1]
     tens = model.segment_tension.map(n)(xs.T, vs.T, tall[None, :])
+    ftop = np.asarray(model.top_force.map(n)(xs.T, vs.T, tall[None, :])).T
     steps = (len(tall) - 1) * k
     return LumpedRun(
         status=status, message=message, t=tall, x=xs, v=vs, positions=positions,
-        tension=np.asarray(tens).T, strain=np.asarray(strain).T,
+        tension=np.asarray(tens).T, strain=np.asarray(strain).T, top_force=ftop,
         residual=np.concatenate(res_out), scheme=scheme, time_step=dt,
         steps=steps, wall_time_s=wall, build_time_s=build,
         mean_iterations=iterations / max(steps, 1), compiled=compiled,
@@ -1442,8 +1545,10 @@ def _segment_kernel_expr(drag_law: str) -> ca.Function:
     (|d1| l). Drag and added mass are taken at the mean positions (r0 + r1) / 2.
 
     Outputs: the forces on nodes a and b (N), the added-mass share of each node (3x3,
-    kg, row-major 9-vector), and the Newton blocks ``kb`` = beta K_s + gamma (c/l) H e e^T
-    (N/m) and ``cb`` = gamma |d| D / 4 (N/m) of :meth:`LumpedMassModel.step_function`.
+    kg, row-major 9-vector), and the Newton blocks ``kb`` (the tension's stiffness: the
+    derivative of the mean tension along e e^T plus T / |d| across, times beta = 1/2 for
+    the midpoint, 1 otherwise; plus gamma (c/l) H e e^T) and ``cb`` = gamma |d| D / 4
+    (N/m) of :meth:`LumpedMassModel.step_function`.
     """
     ra0, rb0, ra1, rb1, va, vb, u_c = (ca.SX.sym(n, 3) for n in
                                        ("ra0", "rb0", "ra1", "rb1", "va", "vb", "u"))
@@ -1468,6 +1573,9 @@ def _segment_kernel_expr(drag_law: str) -> ca.Function:
     e1 = l1 / ell - 1.0
     em, de = 0.5 * (e0 + e1), 0.5 * (e1 - e0)
     tbar = sum(w * tension(em + g * de) for g, w in zip(_GAUSS_X, _GAUSS_W, strict=True))
+    # derivative of the Gauss mean with respect to eps1 (the midpoint's Newton matrix)
+    dtbar = sum(w * ea * taut(em + g * de) * 0.5 * (1.0 + g)
+                for g, w in zip(_GAUSS_X, _GAUSS_W, strict=True))
     rate = mid * (l1 - l0) / (ell * dt) + (1.0 - mid) * ca.dot(d1, vb - va) / (l1 * ell)
     tbar = tbar + c * rate * taut(em)
     f_el = tbar * (d0 + d1) / (l0 + l1)
@@ -1484,9 +1592,13 @@ def _segment_kernel_expr(drag_law: str) -> ca.Function:
     eet = ca.mtimes(tm, tm.T)
     madd = 0.5 * (en * (eye - eet) + et * eet)
     # Newton blocks
-    tnow = tension(em)
-    kb = beta * (ea / ell * taut(em) * eet + tnow / lm * (eye - eet)) + gamma * c / ell * taut(
-        em) * eet
+    # d(T u)/d d1 with u = (d0 + d1) / (|d0| + |d1|), e1 = d1 / |d1|:
+    # (dT/deps1 / l) u e1^T + T (I - u e1^T) / (|d0| + |d1|), times 2 beta (beta = 1/2 for
+    # the midpoint, where T is the Gauss mean; 1 with r0 = r1, where dtbar = T'/2 and u =
+    # e1). Not symmetric for the midpoint: the strain at level 1 follows e1, the force u.
+    uet = ca.mtimes((d0 + d1) / (l0 + l1), (d1 / l1).T)
+    kb = 2.0 * beta * (dtbar / ell * uet + tbar / (l0 + l1) * (eye - uet)) + gamma * c / ell * (
+        taut(em) * uet)
     un = urel - ut * tm
     sn = ca.sqrt(ca.dot(un, un) + delta * delta)
     st = ca.sqrt(ut * ut + delta * delta)
@@ -1558,3 +1670,19 @@ def _compile(fn: ca.Function) -> ca.Function:
         return ca.external(name, lib)
     except Exception:  # noqa: BLE001 - any failure: fall back to the interpreted function
         return fn
+
+
+def simulate_lumped(scene: Any, progress: Callable[[int, int], None] | None = None) -> Any:
+    """Entry point of :func:`cable_ocp.dynamics.simulate` for ``model = "lumped3d"``
+    (see :func:`cable_ocp.dynamics.lumped_scene.simulate_lumped`)."""
+    from cable_ocp.dynamics.lumped_scene import simulate_lumped as _simulate
+
+    return _simulate(scene, progress)
+
+
+def modes_lumped(scene: Any, count: int) -> Any:
+    """Entry point of :func:`cable_ocp.dynamics.modes` for ``model = "lumped3d"``
+    (see :func:`cable_ocp.dynamics.lumped_scene.modes_lumped`)."""
+    from cable_ocp.dynamics.lumped_scene import modes_lumped as _modes
+
+    return _modes(scene, count)
