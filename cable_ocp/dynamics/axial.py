@@ -147,7 +147,8 @@ class AxialModel:
     Attributes
     ----------
     n : int
-        Number of elements; the state is (Z_0..Z_{N-1} - z_b(0), V_0..V_{N-1}).
+        Number of elements; the state is (zeta_0..zeta_{N-1}, V_0..V_{N-1})
+        (:meth:`_fields`).
     """
 
     def __init__(self, scene: DynamicScene, segments: int | None = None) -> None:
@@ -171,28 +172,46 @@ class AxialModel:
         self.z_top0 = float(scene.top_position[2])
         self.length0 = scene.length
         self.motion = motion_function(scene)
+        #: a tension below -slack_tolerance (N) is slack: 1e-9 of the static top tension,
+        #: clear of round-off where a line released unstretched carries no load yet
+        self.slack_tolerance = 1e-9 * (self.unit_weight + abs(self.w) * self.length0)
+        self.gravity = st.environment.gravity
+        #: static elongation of the line, m (floored at 1e-9 L): the position scale of the
+        #: Newton residual
+        self.elongation = max((self.unit_weight * self.length0
+                               + 0.5 * abs(self.w) * self.length0**2) / self.ea,
+                              1e-9 * self.length0)
         self._rhs_fn: ca.Function | None = None
 
     # ------------------------------------------------------------------ equations
     def _fields(self, t: Any, x: Any) -> dict[str, Any]:
-        """Symbolic nodal fields at time t for state x (shared by rhs and outputs)."""
+        """Symbolic nodal fields at time t for state x (shared by rhs and outputs).
+
+        The state holds zeta_i = Z_i - Z_ref(y_i, t), the height relative to the
+        unstretched line hanging from the current top, Z_ref = z_b(t) - L(t) (1 - y):
+        zeta is of the size of the elongation, so the strains (zeta_{i+1} - zeta_i) / h
+        carry no round-off from the absolute heights; zeta_N = 0 at the sheave.
+        """
         n = self.n
         zeta, vel = x[:n], x[n:]
         length, dl, ddl, xb, vb, ab = self.motion(t)
         dy = 1.0 / n
         h = length * dy
-        z_full = ca.vertcat(zeta, xb[2] - self.z_top0)
-        eps = (z_full[1:] - z_full[:-1]) / h - 1.0
+        z_full = ca.vertcat(zeta, 0.0)
+        eps = (z_full[1:] - z_full[:-1]) / h
         if n >= 2:
-            zy_top = (3 * z_full[n] - 4 * z_full[n - 1] + z_full[n - 2]) / (2 * dy)
+            zeta_y_top = (3 * z_full[n] - 4 * z_full[n - 1] + z_full[n - 2]) / (2 * dy)
         else:
-            zy_top = (z_full[n] - z_full[n - 1]) / dy
-        v_top = vb[2] - dl * zy_top / length
+            zeta_y_top = (z_full[n] - z_full[n - 1]) / dy
+        v_top = vb[2] - dl * (1.0 + zeta_y_top / length)
         v_full = ca.vertcat(vel, v_top)
         eps_dot = (v_full[1:] - v_full[:-1]) / h
         tension = self.ea * eps + self.c * eps_dot
-        return dict(zeta=zeta, vel=vel, length=length, dl=dl, ddl=ddl, ab=ab, h=h, dy=dy,
-                    z_full=z_full, v_full=v_full, eps=eps, tension=tension)
+        y = ca.DM(np.arange(n + 1) / n)
+        heights = z_full + xb[2] - length * (1.0 - y)
+        return dict(zeta=zeta, vel=vel, length=length, dl=dl, ddl=ddl, vb=vb, ab=ab, h=h,
+                    dy=dy, z_full=z_full, v_full=v_full, eps=eps, tension=tension,
+                    heights=heights)
 
     def rhs(self, t: Any, x: Any) -> Any:
         """Time derivative of the state (CasADi expression)."""
@@ -202,6 +221,7 @@ class AxialModel:
         z_full, v_full = f["z_full"], f["v_full"]
         y = np.arange(n) * (1.0 / n)
         adv = ca.DM(y) * f["dl"] / f["length"]  # y L_t / L at the nodes
+        ref_rate = f["dl"] - f["vb"][2]  # L_t - z_b': zeta_t = V + L_t - z_b' + adv zeta_y
         # strain at the nodes (mean of the neighbouring elements; the end element at node 0)
         eps_node = ca.vertcat(eps[0], 0.5 * (eps[:-1] + eps[1:])) if n >= 2 else eps[0]
         drag = self.k_drag * (1.0 + eps_node) * ca.fabs(vel) * vel
@@ -210,13 +230,13 @@ class AxialModel:
         f0 = (ten[0] - self.unit_weight - 0.5 * h * (self.w + drag[0])
               - self.unit_drag * ca.fabs(vel[0]) * vel[0])
         acc = [f0 / m0]
-        dz = [vel[0]]
+        dz = [vel[0] + ref_rate]
         for i in range(1, n):
             zy = (z_full[i + 1] - z_full[i - 1]) / (2 * dy)
             vy = (v_full[i + 1] - v_full[i - 1]) / (2 * dy)
             acc.append((ten[i] - ten[i - 1] - h * (self.w + drag[i])) / (self.mu * h)
                        + adv[i] * vy)
-            dz.append(vel[i] + adv[i] * zy)
+            dz.append(vel[i] + ref_rate + adv[i] * zy)
         return ca.vertcat(*dz, *acc)
 
     def outputs(self, t: Any, x: Any) -> tuple[Any, Any, Any, Any, Any]:
@@ -228,19 +248,20 @@ class AxialModel:
         a_top = f["ab"][2] - f["ddl"] * (1.0 + eps_top)
         drag_top = self.k_drag * (1.0 + eps_top) * ca.fabs(v_top) * v_top
         top = f["tension"][self.n - 1] + 0.5 * f["h"] * (self.w + self.mu * a_top + drag_top)
-        return f["z_full"] + self.z_top0, f["tension"], top, f["length"], f["v_full"]
+        return f["heights"], f["tension"], top, f["length"], f["v_full"]
 
     # ------------------------------------------------------------------ initial state
     def initial_state(self) -> np.ndarray:
         """State at t = 0: the closed-form static profile ("static") or the unstretched
-        line hanging straight down from end_b ("unstrained"), at rest."""
+        line hanging straight down from end_b ("unstrained", zeta = 0), at rest."""
         n = self.n
         s = np.arange(n) * self.length0 / n
         if self.scene.simulation.start == "unstrained":
-            z = self.z_top0 - (self.length0 - s)
+            zeta = np.zeros(n)
         else:
             z, _ = static_profile(self.scene, s)
-        return np.concatenate([z - self.z_top0, np.zeros(n)])
+            zeta = z - (self.z_top0 - (self.length0 - s))
+        return np.concatenate([zeta, np.zeros(n)])
 
     # ------------------------------------------------------------------ time stepping
     def _rhs_function(self) -> ca.Function:
@@ -260,7 +281,10 @@ class AxialModel:
         """
         n2 = 2 * self.n
         f = self._rhs_function()
-        scale_x = ca.DM([1.0] * self.n + [dt] * self.n) / self.length0
+        # residual scales: positions in units of the static elongation of the line (the
+        # displacement scale of the motion), accelerations in units of g, so that the
+        # tolerance bounds the force balance of every node relative to its weight
+        scale_x = ca.DM([1.0 / self.elongation] * self.n + [1.0 / (dt * self.gravity)] * self.n)
         x0 = ca.SX.sym("x0", n2)
         t0 = ca.SX.sym("t0")
         params = [x0, t0]
@@ -286,7 +310,7 @@ class AxialModel:
             rows = []
             for i in range(2):
                 xi = x0 + dt * (_GAUSS_A[i][0] * k[:, 0] + _GAUSS_A[i][1] * k[:, 1])
-                rows.append((k[:, i] - f(t0 + _GAUSS_C[i] * dt, xi)) * dt * scale_x)
+                rows.append((k[:, i] - f(t0 + _GAUSS_C[i] * dt, xi)) * dt * scale_x)  # dt k ~ x
             res = ca.vertcat(*rows)
             x_new = x0 + 0.5 * dt * (k[:, 0] + k[:, 1])
         else:
@@ -323,7 +347,7 @@ class AxialModel:
         idx = ca.DM(np.arange(self.n, dtype=float))
         is_min = tens <= tmin_step
         e_now = ca.dot(idx, is_min) / ca.sum1(is_min)
-        first_slack = ca.logic_and(tmin_step <= 0.0, t_slack > 1e300)
+        first_slack = ca.logic_and(tmin_step <= -self.slack_tolerance, t_slack > 1e300)
         new = [xn] + ([xa, ca.MX(0.0)] if bdf else []) + [
             ca.fmax(rmax, ca.if_else(r <= 1e300, r, ca.inf)),  # a NaN residual -> inf
             ca.fmin(tmin, tmin_step),
@@ -360,14 +384,12 @@ class AxialModel:
         build_time = time.perf_counter() - t_build
 
         x0 = self.initial_state()
+        # the initial state is given (static or unstrained), not checked for slack
         ten0 = float(np.min(np.asarray(post(0.0, x0)[1])))
         bdf = scheme == "bdf2"
         off = 2 * n2 + 1 if bdf else n2
         acc = np.concatenate([x0] + ([x0, [1.0]] if bdf else [])
                              + [[0.0, ten0, np.inf, -1.0]])
-        if ten0 <= 0.0:
-            acc[off + 2] = 0.0
-            acc[off + 3] = float(np.argmin(np.asarray(post(0.0, x0)[1])))
         states = [x0]
         times = [0.0]
         done = 0

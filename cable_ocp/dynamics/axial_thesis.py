@@ -15,7 +15,8 @@ Readings (the text leaves them open):
 * "linearization": the moduli |dU/dT - (v y / L) dU/dy + v| in D, F, G, D', F', G' are
   evaluated with dU/dT extrapolated from the three known levels,
   (5 U^j - 8 U^(j-1) + 3 U^(j-2)) / (2 dT) (second order), and dU/dy from U^j;
-* the start is at rest: U^(-1) = U^(-2) = U^0 = the static profile;
+* the start is at rest: U^(-1), U^(-2) from U^0 by a Taylor expansion with the
+  acceleration of the equations at rest (equal to U^0 for the static start);
 * the printed equations have L = L0 + v T: this baseline accepts the linear pay-out law
   only, without a ramp on the pay-out (a heave ramp is fine);
 * as printed, the drag has no stretch factor and the added mass in (3.1) is the cable's
@@ -101,14 +102,59 @@ class ThesisAxialModel:
         """R(T): the downward displacement of the sheave, m."""
         return -(self.motion(t)[3][2] - self.z_top0)
 
+    def _coefficients(self, y: float, ell: Any, wabs: Any) -> tuple[Any, ...]:
+        """A, B, C, D, F, G of (3.5) at y for length ell and modulus wabs (m/s)."""
+        mu, ea, kap, v = self.mu, self.ea, self.kappa, self.v
+        return (mu * v**2 * y**2 / ell**2 - ea / ell**2,
+                mu,
+                -2 * mu * v * y / ell,
+                2 * mu * v**2 * y / ell**2 - kap * v * y / ell * wabs,
+                kap * wabs,
+                v * kap * wabs - self.w1)
+
+    def _unit_coefficients(self, ell: Any, wabs: Any) -> tuple[Any, ...]:
+        """A', B', C', D', F', G' of (3.7) for length ell and modulus wabs (m/s)."""
+        big_m, cs, ea, v = self.mass, self.unit_drag, self.ea, self.v
+        return (big_m * v**2 / ell**2,
+                big_m,
+                -2 * big_m * v / ell,
+                2 * big_m * v**2 / ell**2 + ea / ell - v * cs / ell * wabs,
+                cs * wabs,
+                v * cs * wabs - self.w2)
+
+    def initial_history(self, u0: np.ndarray, dt: float) -> tuple[np.ndarray, np.ndarray]:
+        """(U^(-1), U^(-2)) for a start at rest (dU/dT = 0) from U^0.
+
+        The second-order Taylor expansion U^(-k) = U^0 + (k dT)^2 / 2 U_TT with U_TT from
+        (3.5) and (3.7) at rest (the same stencils as (3.8)-(3.10)); a static start gives
+        U_TT = 0, i.e. U^(-2) = U^(-1) = U^0. Without it a start away from equilibrium (e.g.
+        ``start = "unstrained"``) would carry a first-order error in dT.
+        """
+        n = self.n
+        dy = 1.0 / n
+        ell = self.length0
+        v = self.v
+        acc = np.zeros(n + 1)
+        for i in range(1, n):
+            uyy = (u0[i + 1] - 2 * u0[i] + u0[i - 1]) / dy**2
+            uy = (u0[i + 1] - u0[i - 1]) / (2 * dy)
+            wabs = abs(v - v * i * dy / ell * uy)
+            a, b, _, d, _, g = self._coefficients(i * dy, ell, wabs)
+            acc[i] = -(a * uyy + d * uy + g) / b
+        uyy = (2 * u0[n] - 5 * u0[n - 1] + 4 * u0[n - 2] - u0[n - 3]) / dy**2
+        uy = (3 * u0[n] - 4 * u0[n - 1] + u0[n - 2]) / (2 * dy)
+        wabs = abs(v - v / ell * uy)
+        a, b, _, d, _, g = self._unit_coefficients(ell, wabs)
+        acc[n] = -(a * uyy + d * uy + g) / b
+        return u0 + 0.5 * dt**2 * acc, u0 + 2.0 * dt**2 * acc
+
     def step_function(self, dt: float) -> ca.Function:
         """``(acc, t_j) -> acc``: one step from level j to j + 1. ``acc`` stacks U^j,
         U^(j-1), U^(j-2) (N + 1 each), the smallest element tension so far, the time of
         the first tension <= 0 (inf if none) and that element's index."""
         n = self.n
         dy = 1.0 / n
-        mu, ea, kap = self.mu, self.ea, self.kappa
-        big_m, cs = self.mass, self.unit_drag
+        ea = self.ea
         v = self.v
         acc = ca.SX.sym("acc", 3 * (n + 1) + 3)
         tj = ca.SX.sym("t")
@@ -132,13 +178,7 @@ class ThesisAxialModel:
         rows: list[dict[int, Any]] = []
         rhs: list[Any] = []
         for i in range(1, n):
-            wabs = speed(i)
-            a = mu * v**2 * y[i] ** 2 / ell**2 - ea / ell**2
-            b = mu
-            c = -2 * mu * v * y[i] / ell
-            d = 2 * mu * v**2 * y[i] / ell**2 - kap * v * y[i] / ell * wabs
-            f = kap * wabs
-            g = v * kap * wabs - self.w1
+            a, b, c, d, f, g = self._coefficients(y[i], ell, speed(i))
             p = a / dy**2 + 3 * c / (4 * dy * dt) + d / (2 * dy)
             q = -2 * a / dy**2 + 2 * b / dt**2 + 3 * f / (2 * dt)
             r = a / dy**2 - 3 * c / (4 * dy * dt) - d / (2 * dy)
@@ -148,13 +188,7 @@ class ThesisAxialModel:
             rows.append({i + 1: p, i: q, i - 1: r})
             rhs.append(e)
         # the unit, (3.7) discretised as (3.10)
-        wabs = speed(n)
-        a_ = big_m * v**2 / ell**2
-        b_ = big_m
-        c_ = -2 * big_m * v / ell
-        d_ = 2 * big_m * v**2 / ell**2 + ea / ell - v * cs / ell * wabs
-        f_ = cs * wabs
-        g_ = v * cs * wabs - self.w2
+        a_, b_, c_, d_, f_, g_ = self._unit_coefficients(ell, speed(n))
         p_n = (2 * a_ / dy**2 + 2 * b_ / dt**2 + 9 * c_ / (4 * dy * dt) + 3 * d_ / (2 * dy)
                + 3 * f_ / (2 * dt))
         q_n = -5 * a_ / dy**2 - 3 * c_ / (dy * dt) - 2 * d_ / dy
@@ -200,7 +234,8 @@ class ThesisAxialModel:
         u_new = ca.vertcat(r_top, *sol)
         tens = ea * (u_new[1:] - u_new[:-1]) / (dy * ell)
         tmin_step = ca.mmin(tens)
-        first = ca.logic_and(tmin_step <= 0.0, t_slack > 1e300)
+        slack_tol = 1e-9 * (self.w2 + abs(self.w1) * self.length0)  # as the main model
+        first = ca.logic_and(tmin_step <= -slack_tol, t_slack > 1e300)
         # element index counted from the unit (element 0 at the unit)
         idx = ca.DM(np.arange(n - 1, -1, -1, dtype=float))
         is_min = tens <= tmin_step
@@ -243,10 +278,8 @@ class ThesisAxialModel:
         if sim.start == "unstrained":
             u_init = np.zeros(n1)
         ten0 = np.asarray(post(0.0, u_init)[1]).ravel()
-        acc = np.concatenate([u_init, u_init, u_init, [ten0.min(), np.inf, -1.0]])
-        if ten0.min() <= 0.0:
-            acc[-2] = 0.0
-            acc[-1] = float(np.argmin(ten0))
+        u_m1, u_m2 = self.initial_history(u_init, dt)
+        acc = np.concatenate([u_init, u_m1, u_m2, [ten0.min(), np.inf, -1.0]])
         states = [u_init]
         times = [0.0]
         done = 0

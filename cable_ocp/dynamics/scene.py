@@ -73,7 +73,8 @@ Schema of the dynamic keys (all SI; units in brackets)::
                                  (at rest, unstretched, hanging straight down from end_b,
                                  as Huang (1992) 5.7.1)
     scheme = "midpoint"          time integration; valid values per model in SCHEMES
-    tolerance = 1e-10            Newton tolerance of an implicit step (scaled residual)
+    tolerance = 1e-10            Newton tolerance of an implicit step (scaled residual:
+                                 positions over the static elongation, accelerations over g)
     max_iterations = 20          Newton iterations per step
     on_slack = "continue"        "continue" | "stop": what to do when a tension <= 0 is
                                  found (Huang (1992) 4.5.1: the model predicts slack but
