@@ -390,6 +390,8 @@ class LumpedMassModel:
         (the tension at s = L, including the top half-segment).
     nodes : casadi.Function
         ``nodes(x, t) -> r`` (3, N+1), all node positions including the prescribed ends.
+    node_velocities : casadi.Function
+        ``node_velocities(v, t) -> u`` (3, N+1), all node velocities (m/s).
     energy : casadi.Function
         ``energy(x, v, t) -> (kinetic, potential)`` (J): 1/2 v^T M v and the strain energy
         plus the potential of the weights in water.
@@ -427,6 +429,8 @@ class LumpedMassModel:
         self.tensions = ca.Function("tensions", [x, t], [tens, strain], ["x", "t"],
                                     ["T", "strain"])
         self.nodes = ca.Function("nodes", [x, t], [ca.horzcat(*r)], ["x", "t"], ["r"])
+        self.node_velocities = ca.Function("node_velocities", [v, t], [ca.horzcat(*vel)],
+                                           ["v", "t"], ["u"])
         self.segment_tension = ca.Function(
             "segment_tension", [x, v, t], [self._tension_expr(r, vel)[0]], ["x", "v", "t"],
             ["T"])
@@ -443,9 +447,10 @@ class LumpedMassModel:
             "static_stiffness", [x, t], [-ca.jacobian(f0, x)], ["x", "t"], ["K"])
         # at rest: every node, the prescribed ends included, has zero velocity
         still = [ca.SX.zeros(3) for _ in r]
+        lam = ca.SX.sym("lam")  # load factor on the drag (continuation)
         fs = self._free(self._sum(self._elastic(r, None, None, None), f_ext,
-                                  self._drag(r, still)))
-        self._static_fj = ca.Function("static_fj", [x, t], [fs, ca.jacobian(fs, x)])
+                                  [lam * fd for fd in self._drag(r, still)]))
+        self._static_fj = ca.Function("static_fj", [x, t, lam], [fs, ca.jacobian(fs, x)])
         self._steps: dict[tuple, ca.Function] = {}
 
     # -- parameters ---------------------------------------------------------------------
@@ -1183,7 +1188,8 @@ class LumpedMassModel:
     def static_equilibrium(self, x_guess: np.ndarray, t: float = 0.0, *, tol: float = 1e-9,
                            max_iter: int = 60) -> tuple[np.ndarray, dict[str, Any]]:
         """Rest state of the discrete model by damped Newton: the forces vanish with every
-        node at rest (the prescribed ends too) at their positions at time t.
+        node at rest (the prescribed ends too) at their positions at time t. If Newton fails
+        from ``x_guess``, the current's drag is ramped in (0, 1/4, ..., 1) from there.
 
         Parameters
         ----------
@@ -1208,16 +1214,34 @@ class LumpedMassModel:
         x = np.asarray(x_guess, float).reshape(-1).copy()
         tens = np.asarray(self.tensions(x, t)[0]).reshape(-1)
         fscale = max(float(np.abs(self._node_weight).max()), float(np.abs(tens).max()), 1.0)
+        x1, info = self._static_newton(x, t, 1.0, tol, max_iter, fscale)
+        if info["converged"]:
+            return x1, info
+        # continuation: the current's drag scaled from 0 to 1 (as the statics' ramp)
+        xc = x
+        total = info["iterations"]
+        for lam in (0.0, 0.25, 0.5, 0.75, 1.0):
+            xc, info = self._static_newton(xc, t, lam, tol, max_iter, fscale)
+            total += info["iterations"]
+            if not info["converged"]:
+                break
+        info["iterations"] = total
+        info["continuation"] = True
+        return xc, info
+
+    def _static_newton(self, x: np.ndarray, t: float, lam_drag: float, tol: float,
+                       max_iter: int, fscale: float) -> tuple[np.ndarray, dict[str, Any]]:
+        from scipy.sparse import csc_matrix
+        from scipy.sparse.linalg import spsolve
 
         def resid(xx: np.ndarray) -> tuple[np.ndarray, Any]:
-            fv, jv = self._static_fj(xx, t)
+            fv, jv = self._static_fj(xx, t, lam_drag)
             return np.asarray(fv).reshape(-1), jv
 
+        x = x.copy()
         f, jac = resid(x)
         it = 0
         stalled = False
-        from scipy.sparse import csc_matrix
-        from scipy.sparse.linalg import spsolve
         for it in range(1, max_iter + 1):  # noqa: B007 - reported
             if not np.all(np.isfinite(f)):
                 break
@@ -1313,6 +1337,8 @@ class LumpedRun:
         Free-node positions (m) and velocities (m/s).
     positions : ndarray (n, N + 1, 3)
         All node positions from end_a to end_b, m.
+    velocities : ndarray (n, N + 1, 3) or None
+        All node velocities, m/s.
     tension : ndarray (n, N)
         Segment tensions, N.
     top_force : ndarray (n, 3)
@@ -1348,6 +1374,7 @@ class LumpedRun:
     x: np.ndarray
     v: np.ndarray
     positions: np.ndarray
+    velocities: np.ndarray | None
     tension: np.ndarray
     strain: np.ndarray
     top_force: np.ndarray
@@ -1509,12 +1536,15 @@ def run(model: LumpedMassModel, x0: np.ndarray, v0: np.ndarray | None, duration:
     n = len(tall)
     pos = np.asarray(model.nodes.map(n)(xs.T, tall[None, :]))
     positions = pos.reshape(3, n, model.params.segments + 1).transpose(1, 2, 0)
+    vel = np.asarray(model.node_velocities.map(n)(vs.T, tall[None, :]))
+    velocities = vel.reshape(3, n, model.params.segments + 1).transpose(1, 2, 0)
     strain = model.tensions.map(n)(xs.T, tall[None, :])[1]
     tens = model.segment_tension.map(n)(xs.T, vs.T, tall[None, :])
     ftop = np.asarray(model.top_force.map(n)(xs.T, vs.T, tall[None, :])).T
     steps = (len(tall) - 1) * k
     return LumpedRun(
         status=status, message=message, t=tall, x=xs, v=vs, positions=positions,
+        velocities=velocities,
         tension=np.asarray(tens).T, strain=np.asarray(strain).T, top_force=ftop,
         residual=np.concatenate(res_out), scheme=scheme, time_step=dt,
         steps=steps, wall_time_s=wall, build_time_s=build,

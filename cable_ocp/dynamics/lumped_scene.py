@@ -278,6 +278,7 @@ def _result(scene: DynamicScene, model: LumpedMassModel, out: LumpedRun,
                        f"went slack at t = {t_slack:.6g} s; Huang (1992) ch. 5 excludes "
                        f"slack cable: {action}")
     positions = out.positions[:ts.size]
+    velocities = out.velocities[:ts.size] if out.velocities is not None else None
     warnings = []
     tm = scene.top_motion
     for name, w in (("heave_frequency", tm.heave_frequency),
@@ -302,7 +303,7 @@ def _result(scene: DynamicScene, model: LumpedMassModel, out: LumpedRun,
     return SimulationResult(
         t=ts, length=np.full(ts.size, p.length), top_position=positions[:, -1, :].copy(),
         unit_position=positions[:, 0, :].copy(), top_tension=top,
-        node_positions=positions, segment_tensions=tens,
+        node_positions=positions, segment_tensions=tens, node_velocities=velocities,
         min_tension=float(np.min(tens)) if tens.size else math.nan, slack=slack,
         status=status, message=message, warnings=warnings, wall_time_s=out.wall_time_s,
         model="lumped3d", scheme=sim.scheme, diagnostics=diagnostics)

@@ -197,6 +197,8 @@ def run_thesis(model: LumpedMassModel, x0: np.ndarray, v0: np.ndarray | None,
     n = ta.size
     pos = np.asarray(model.nodes.map(n)(xa.T, ta[None, :]))
     positions = pos.reshape(3, n, model.params.segments + 1).transpose(1, 2, 0)
+    vel = np.asarray(model.node_velocities.map(n)(va.T, ta[None, :]))
+    velocities = vel.reshape(3, n, model.params.segments + 1).transpose(1, 2, 0)
     d = positions[:, 1:] - positions[:, :-1]
     strain = np.linalg.norm(d, axis=2) / model.params.segment_length - 1.0
     tension = model.params.axial_stiffness * strain  # (5.3): compression allowed
@@ -206,6 +208,7 @@ def run_thesis(model: LumpedMassModel, x0: np.ndarray, v0: np.ndarray | None,
     if bad.size:
         slack = (float(ta[bad[0, 0]]), int(bad[0, 1]))
     return LumpedRun(status=status, message=message, t=ta, x=xa, v=va, positions=positions,
+                     velocities=velocities,
                      tension=tension, strain=strain, top_force=ftop,
                      residual=np.zeros(n), scheme="thesis", time_step=dt,
                      steps=(n - 1) * k, wall_time_s=wall, build_time_s=build,
