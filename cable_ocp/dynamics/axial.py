@@ -467,6 +467,17 @@ class AxialModel:
             message = f"{sim.steps} steps of {dt:g} s ({sim.scheme}), {self.n} elements"
         warnings = []
         tm_ = sc.top_motion
+        if tm_.ramp_time == 0.0:
+            # a velocity jump dv at the top sends a tension step mu c dv down the line
+            jump = abs(tm_.payout_speed) + abs(tm_.heave_amplitude * tm_.heave_frequency)
+            step = self.mu * math.sqrt(self.ea / self.mu) * jump
+            static_top = self.unit_weight + self.w * self.length0
+            if step > 0.1 * static_top:
+                warnings.append(
+                    f"the top starts at full speed ({jump:.3g} m/s at t = 0): a tension step "
+                    f"of about {step:.3g} N (mu c dv) runs down the line, "
+                    f"{step / static_top:.0%} of the static top tension; set "
+                    "top_motion.ramp_time for a smooth start")
         for name, w_ in (("heave_frequency", tm_.heave_frequency),
                          ("payout_frequency", tm_.payout_frequency)):
             if w_ > 0.0 and w_ * dt > 2.0 * math.pi / 20.0:
