@@ -254,9 +254,11 @@ def _energy(res, model: AxialModel) -> np.ndarray:
 @pytest.mark.parametrize("scheme", ("midpoint", "gauss4", "trapezoidal"))
 def test_energy_is_conserved_in_air(scheme: str) -> None:
     """Undamped, no drag, top fixed, released unstretched: the energy of the discrete
-    system is a quadratic invariant, kept by these symplectic / symmetric schemes to the
-    Newton tolerance (1e-10 of L per step); 2000 steps at omega_max dt = 8 (stiff)."""
-    d = air_scene(duration=2.0, time_step=0.001, segments=20, start="unstrained",
+    system is a quadratic invariant, kept by these symmetric schemes to the Newton
+    tolerance; 2000 steps of 0.01 s with the highest mode at omega dt = 4 (unresolved:
+    the schemes are A-stable). Observed drift 1e-12 of the kinetic energy swing (112 J),
+    1e-16 of the total; tolerance 1e-9."""
+    d = air_scene(duration=20.0, time_step=0.01, segments=20, start="unstrained",
                   scheme=scheme)
     s = dynamic_scene_from_dict(d)
     res = simulate(s)
@@ -267,7 +269,7 @@ def test_energy_is_conserved_in_air(scheme: str) -> None:
     m = np.full(n, model.mu * h)
     m[0] += model.unit_mass - 0.5 * model.mu * h
     kinetic = 0.5 * (m * res.node_velocities[:, :n, 2] ** 2).sum(1)
-    assert kinetic.max() > 1.0  # J: the line really swings (about 77 J)
+    assert kinetic.max() > 100.0  # J: the line really swings (112 J)
     assert np.max(np.abs(e - e[0])) <= 1e-9 * kinetic.max()
 
 
