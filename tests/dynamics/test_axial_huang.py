@@ -101,7 +101,8 @@ def test_material_model_and_huang_scheme_agree_while_lowering() -> None:
     here)."""
     s = load_dynamic_scene(PROBLEMS / "huang_3_3_5.toml")
     over = {"cable.length": 450.0, "top_motion.payout_speed": 1.0,
-            "top_motion.heave_amplitude": 0.2, "simulation.duration": 150.0,
+            "top_motion.heave_amplitude": 0.2, "top_motion.ramp_time": 0.0,
+            "simulation.duration": 150.0,
             "simulation.time_step": 0.05, "simulation.output_step": 0.25}
     runs = {}
     for scheme in ("midpoint", "thesis"):
