@@ -117,8 +117,9 @@ def _slack_text(slack: dict[str, Any]) -> str:
     if not slack.get("occurred"):
         return "none"
     loc = slack.get("location")
-    return (f"first at t = {slack.get('first_time'):.4g} s"
-            + (f", {loc}" if loc is not None else ""))
+    where = (f", at s = {loc:.4g} m from end_a" if isinstance(loc, (int, float))
+             else f", {loc}" if loc is not None else "")
+    return f"first at t = {slack.get('first_time'):.4g} s{where}"
 
 
 def _series_table(res: Any) -> tuple[list[str], list[list[float]]]:

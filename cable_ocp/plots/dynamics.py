@@ -10,7 +10,7 @@ from typing import Any
 import numpy as np
 from matplotlib.figure import Figure
 
-from cable_ocp.plots.common import force_scale, legend_below, new_figure, save
+from cable_ocp.plots.common import force_scale, legend_below, new_figure, save, wrap
 
 
 def simulation_figure(res: Any, title: str = "", scene: Any = None) -> Figure:
@@ -134,17 +134,22 @@ def plot_deployment(chart: Any, path: str | Path, title: str = "") -> Figure:
     band = a.axhspan(lo, hi, color="C0", alpha=0.15,
                      label=f"wave band {lo:.3g}-{hi:.3g} rad/s")
     for k in range(chart.frequencies.shape[1]):
-        a.plot(chart.lengths, chart.frequencies[:, k], lw=1.5, label=f"mode {k + 1}")
+        a.plot(chart.lengths, chart.frequencies[:, k], "-o", ms=3, lw=1.5, label=f"mode {k + 1}")
     for c in chart.crossings():
         a.plot(c["length_m"], c["edge"], "x", color="firebrick", ms=8)
     a.plot([], [], "x", color="firebrick", label="mode enters/leaves the band")
     a.set_xlabel("paid-out length (unstretched) (m)")
     a.set_ylabel("natural frequency omega (rad/s)")
-    top = np.nanmax(chart.frequencies) if np.isfinite(chart.frequencies).any() else hi
-    a.set_ylim(0.0, max(top, hi) * 1.1)
+    # the band is what matters: show up to 3x its upper edge (higher modes run off the top)
+    f = chart.frequencies[np.isfinite(chart.frequencies)]
+    top = min(float(f.max()) * 1.05 if f.size else hi, 3.0 * hi)
+    a.set_ylim(0.0, max(top, 1.2 * hi))
     a.grid(True, alpha=0.3)
     handles = [band, *a.get_lines()]
     legend_below(fig, handles)
-    a.set_title(f"{title}: deployment resonance chart ({chart.model} model)", fontsize=11)
+    hidden = int(np.sum(np.nanmin(chart.frequencies, axis=0) > a.get_ylim()[1]))
+    note = f"; {hidden} higher modes above the axis" if hidden else ""
+    a.set_title(wrap(f"{title}: deployment resonance chart ({chart.model} model{note})", 9.0,
+                     11), fontsize=11)
     save(fig, path)
     return fig
