@@ -75,8 +75,9 @@ def cmd_heave(args: argparse.Namespace) -> int:
     ctrl = {k: {"status": statuses[k], **v.as_dict()} for k, v in res.metrics.items()}
     if "mpc" in ctrl:
         ctrl["mpc"]["solver_failures"] = res.mpc_failures
-    out.emit_json(args, out.envelope(status, message, {
-        "sigma_uncontrolled": res.sigma_uncontrolled, "controllers": ctrl}))
+    data = {"sigma_uncontrolled": res.sigma_uncontrolled, "controllers": ctrl}
+    data.update(getattr(res, "json_extra", None) or {})  # cable scenes: plant, identified
+    out.emit_json(args, out.envelope(status, message, data))
     if args.csv:
         names = list(res.traces)
         t = next(iter(res.traces.values())).t
@@ -114,6 +115,36 @@ def _print_table(sc: Any, args: argparse.Namespace, res: Any) -> None:
               f"{f(m.max_constraint_violation, '13.3f')} {f(m.solve_time_median_s, '16.2e')}")
     if "mpc" in res.metrics:
         print(f"MPC solver failures (fell back on the shifted plan): {res.mpc_failures}")
+    extra = getattr(res, "json_extra", None) or {}
+    if extra:
+        _print_cable(extra, res)
+
+
+def _print_cable(extra: dict, res: Any) -> None:
+    """Identification and, on the cable plant, predicted vs achieved (cable scenes)."""
+    idf = extra.get("identified")
+    if idf:
+        print(f"identified from the cable ({idf['excitation']}, {idf['duration']:g} s): "
+              f"a = {idf['a']:.5g} +- {idf['a_std']:.2g} s^2, b = {idf['b']:.4g} +- "
+              f"{idf['b_std']:.2g} s, fit {idf['fit_pct']:.2f} %; (6.3): b_quadratic = "
+              f"{idf['b_quadratic']:.4g} s^2/m, fit {idf['fit_pct_quadratic']:.2f} %; "
+              f"first axial mode {idf['omega_1']:.4g} rad/s: 1/omega_1^2 = "
+              f"{idf['a_modal']:.5g} s^2 ({idf['a_vs_modal_pct']:+.2f} %)")
+    dm = extra.get("design_model", {})
+    print(f"design model: a = {dm.get('a', float('nan')):.5g} s^2, "
+          f"b = {dm.get('b', float('nan')):.4g} s ({dm.get('source', '-')}); "
+          f"plant: {extra.get('plant', 'model')}")
+    if extra.get("plant") != "cable" or "deployment" in extra:
+        return
+    print("{:<10} {:>15} {:>15} {:>23} {:>23} {:>6}".format(
+        "controller", "predicted [%]", "achieved [%]", "tension unit [kN]",
+        "tension top [kN]", "slack"))
+    for name, m in res.metrics.items():
+        d = m.as_dict()
+        print(f"{name:<10} {d['reduction_predicted_pct']:15.3f} {d['reduction_pct']:15.3f} "
+              f"{d['tension_unit_min'] / 1e3:11.1f} {d['tension_unit_max'] / 1e3:11.1f} "
+              f"{d['tension_top_min'] / 1e3:11.1f} {d['tension_top_max'] / 1e3:11.1f} "
+              f"{d['slack_samples']:6d}")
 
 
 def _plot(sc: Any, args: argparse.Namespace, res: Any, path: str) -> None:
@@ -121,6 +152,11 @@ def _plot(sc: Any, args: argparse.Namespace, res: Any, path: str) -> None:
     from cable_ocp.heave.lqr import tradeoff_data
     from cable_ocp.plots.heave import plot_comparison
 
+    if "deployment" in (getattr(res, "json_extra", None) or {}):
+        from cable_ocp.plots.heave_cable import plot_deployment
+
+        plot_deployment(res, path, sc.title)
+        return
     tr = next(iter(res.traces.values()))
     step = 0.01
     t = np.arange(0.0, min(tr.t[-1], 200.0), step)
@@ -130,7 +166,9 @@ def _plot(sc: Any, args: argparse.Namespace, res: Any, path: str) -> None:
         tau = 0.2
         out.note(args, "trade-off plot: the scene has no delay; its delayed curves use 0.2 s, "
                        "the delay of the thesis' study (Fig. 6.17)")
-    td = tradeoff_data(sc.unit.a, sc.unit.b, sc.winch.gain, tau, t, x0)
+    dm = (getattr(res, "json_extra", None) or {}).get("design_model", {})
+    td = tradeoff_data(dm.get("a", sc.unit.a), dm.get("b", sc.unit.b), sc.winch.gain, tau, t,
+                       x0)
     plot_comparison(res, path, td, scene=sc)
 
 

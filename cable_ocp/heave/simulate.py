@@ -188,7 +188,15 @@ def compare(sc: HeaveScene, controllers: tuple | None = None,
 
     ``progress``, if given, is called as ``progress(done, total, None)`` every 100 control
     samples (``total`` = samples x controllers).
+
+    A scene with ``[unit] cable_scene`` goes to :func:`cable_ocp.heave.cable_plant.compare_cable`
+    (identification from the cable model; ``[simulation] plant = "cable"`` runs the
+    controllers against the cable).
     """
+    if sc.unit.cable_scene is not None:
+        from cable_ocp.heave.cable_plant import compare_cable
+
+        return compare_cable(sc, controllers, progress)
     models = build_models(sc)
     p = models.plant
     c = sc.controller

@@ -39,6 +39,8 @@ Schema (SI units; see ``problems/heave/*.toml`` for commented examples)::
     b_quadratic = 0.2                    # s^2/m, (6.3)
     mass = 125000.0                      # kg (with added mass)
     static_tension = 50000.0             # N at the unit
+    cable_scene = "../dynamics/x.toml"   # a dynamic scene (path relative to this file): a, b
+                                         # are identified from it unless a and b are given
 
     [controller]
     q = 553.6                            # 1/m^2, weight on the unit's heave
@@ -47,7 +49,10 @@ Schema (SI units; see ``problems/heave/*.toml`` for commented examples)::
     sample_time = 0.05                   # s
     solver = "daqp" | "qpoases" | "osqp" | "qrqp" | "ipopt"
     preview_time = 0.0                   # s
-    measurement_noise = 0.01             # m, std of the sampled position sensor (LQG)
+    measurement_noise = 0.01             # m, std of the sampled unit-depth sensor
+    winch_noise = 0.001                  # m, std of the winch-position sensor (cable plant)
+    boom_tip_noise = 0.05                # m, std of the motion sensor's boom-tip heave
+    depth_bias_time = 60.0               # s, estimator time constant of a depth offset
     controllers = ["passive", "lqr", "lqg", "mpc"]
 
     [simulation]
@@ -55,6 +60,23 @@ Schema (SI units; see ``problems/heave/*.toml`` for commented examples)::
     seed = 1
     substeps = 5                         # plant integration steps per control sample
     warmup = 30.0                        # s discarded from the metrics
+    plant = "model" | "cable"            # the design model (6.2)/(6.3), or the cable scene
+
+    [identification]                     # the experiment of 004 6.2.3 on the cable scene
+    excitation = "multisine" | "chirp" | "step" | "sea"
+    duration = 180.0                     # s
+    amplitude = 0.28                     # m RMS of the boom-tip motion (default: the sea's)
+    band = [0.39, 2.4]                   # rad/s (multisine, chirp; default from the sea)
+    noise = 0.01                         # m, depth-sensor noise (default measurement_noise)
+    seed = 7
+
+    [deployment]                         # lowering through resonance (cable plant)
+    final_length = 600.0                 # m (from the cable scene's length)
+    payout_speed = 0.5                   # m/s
+    schedule_lengths = [100.0, 200.0]    # m, where a, b and the LQR gain are tabulated
+    fixed_length = 100.0                 # m, the length of the fixed-gain design
+    window = 10.0                        # m of length per row of the result table
+    ramp_time = 20.0                     # s, smooth start of the pay-out
 """
 
 from __future__ import annotations
@@ -135,6 +157,9 @@ class ControllerSpec:
     terminal: str = "dare"
     preview_time: float = 0.0
     measurement_noise: float = 0.01
+    winch_noise: float = 0.001
+    boom_tip_noise: float = 0.05
+    depth_bias_time: float = 60.0
     tension_penalty: float = 1e6
     controllers: tuple = ("passive", "lqr", "lqg", "mpc")
 
@@ -147,6 +172,35 @@ class SimulationSpec:
     seed: int = 1
     substeps: int = 5
     warmup: float = 30.0
+    plant: str = "model"
+
+
+@dataclass(frozen=True)
+class IdentificationSpec:
+    """``[identification]``: the identification experiment on the cable scene (004 6.2.3).
+
+    ``None`` values take defaults from the rest of the scene (see
+    :mod:`cable_ocp.heave.identify_cable`).
+    """
+
+    excitation: str = "multisine"
+    duration: float = 180.0
+    amplitude: float | None = None
+    band: tuple | None = None
+    noise: float | None = None
+    seed: int = 7
+
+
+@dataclass(frozen=True)
+class DeploymentSpec:
+    """``[deployment]``: lowering the unit with the compensator on (cable plant)."""
+
+    final_length: float | None = None
+    payout_speed: float = 0.5
+    schedule_lengths: tuple | None = None
+    fixed_length: float | None = None
+    window: float | None = None
+    ramp_time: float = 20.0
 
 
 @dataclass(frozen=True)
@@ -159,6 +213,8 @@ class HeaveScene:
     unit: UnitSpec = field(default_factory=UnitSpec)
     controller: ControllerSpec = field(default_factory=ControllerSpec)
     simulation: SimulationSpec = field(default_factory=SimulationSpec)
+    identification: IdentificationSpec = field(default_factory=IdentificationSpec)
+    deployment: DeploymentSpec | None = None
     meta: dict[str, str] = field(default_factory=dict, compare=False, hash=False)
     raw: dict[str, Any] = field(default_factory=dict, compare=False, hash=False, repr=False)
 
@@ -180,6 +236,8 @@ _CHOICES = {
     ("unit", "model"): ("linear", "quadratic"),
     ("controller", "solver"): ("daqp", "qpoases", "osqp", "qrqp", "ipopt"),
     ("controller", "terminal"): ("dare", "none"),
+    ("simulation", "plant"): ("model", "cable"),
+    ("identification", "excitation"): ("multisine", "chirp", "step", "sea"),
 }
 _CONTROLLERS = ("passive", "lqr", "lqg", "mpc")
 
@@ -205,6 +263,8 @@ def _build(cls: type, table: str, data: dict[str, Any]) -> Any:
                     f"[controller] controllers = {val!r} is invalid; give a list of {_CONTROLLERS}"
                 )
             val = tuple(val)
+        elif key in ("band", "schedule_lengths"):
+            val = _number_list(table, key, val, 2 if key == "band" else None)
         elif isinstance(default, bool):
             pass
         elif isinstance(default, int) and not isinstance(val, int):
@@ -220,8 +280,24 @@ def _build(cls: type, table: str, data: dict[str, Any]) -> Any:
     return cls(**kwargs)
 
 
-def scene_from_dict(data: dict[str, Any]) -> HeaveScene:
+def _number_list(table: str, key: str, val: Any, size: int | None) -> tuple:
+    """A list of positive finite numbers, strictly increasing (``size`` entries if given)."""
+    what = f"a list of {size} numbers" if size else "a list of numbers"
+    if (not isinstance(val, list) or not val or (size is not None and len(val) != size)
+            or any(isinstance(v, bool) or not isinstance(v, (int, float)) for v in val)):
+        raise CableOCPError(f"[{table}] {key} = {val!r} must be {what}")
+    out = tuple(float(v) for v in val)
+    if not all(math.isfinite(v) and v > 0 for v in out) or any(
+            b <= a for a, b in zip(out[:-1], out[1:], strict=True)):
+        raise CableOCPError(f"[{table}] {key} = {val!r} must be finite, > 0 and increasing")
+    return out
+
+
+def scene_from_dict(data: dict[str, Any], base_dir: str | Path | None = None) -> HeaveScene:
     """Validate a parsed TOML document and return the scene.
+
+    ``base_dir`` is the directory that a relative ``[unit] cable_scene`` is read from (the
+    heave file's; default the working directory); the scene keeps the resolved path.
 
     Raises
     ------
@@ -229,7 +305,9 @@ def scene_from_dict(data: dict[str, Any]) -> HeaveScene:
         On unknown tables or keys, wrong types, invalid choices or inconsistent values.
     """
     tables = {"sea": SeaSpec, "vessel": VesselSpec, "winch": WinchSpec, "unit": UnitSpec,
-              "controller": ControllerSpec, "simulation": SimulationSpec}
+              "controller": ControllerSpec, "simulation": SimulationSpec,
+              "identification": IdentificationSpec, "deployment": DeploymentSpec}
+    data = _resolve_cable_scene(data, base_dir)
     kwargs: dict[str, Any] = {"raw": copy.deepcopy(data)}
     for key, val in data.items():
         if key in tables:
@@ -246,6 +324,39 @@ def scene_from_dict(data: dict[str, Any]) -> HeaveScene:
     scene = HeaveScene(**kwargs)
     check(scene)
     return scene
+
+
+def _resolve_cable_scene(data: dict[str, Any], base_dir: str | Path | None) -> dict[str, Any]:
+    """``[unit] cable_scene`` made absolute (relative to ``base_dir``, else the working
+    directory), so that the scene and its overrides keep pointing at the same file."""
+    unit = data.get("unit")
+    if not isinstance(unit, dict) or not isinstance(unit.get("cable_scene"), str):
+        return data
+    path = Path(unit["cable_scene"]).expanduser()
+    if not path.is_absolute():
+        path = Path(base_dir or ".") / path
+    data = copy.deepcopy(data)
+    data["unit"]["cable_scene"] = str(path.resolve())
+    return data
+
+
+def load_cable_scene(sc: HeaveScene) -> Any:
+    """The dynamic scene of ``[unit] cable_scene`` (a :class:`~cable_ocp.dynamics.DynamicScene`).
+
+    Raises
+    ------
+    CableOCPError
+        Naming the key when the file is missing, not a dynamic scene, or invalid.
+    """
+    from cable_ocp.dynamics.scene import load_dynamic_scene
+
+    path = sc.unit.cable_scene
+    if path is None:
+        raise CableOCPError("[unit] cable_scene is not given")
+    try:
+        return load_dynamic_scene(path)
+    except CableOCPError as exc:
+        raise CableOCPError(f"[unit] cable_scene = {path!r}: {exc}") from None
 
 
 #: Sign rules for numeric keys: (table, key) -> (rule, unit); rule ">0" or ">=0". Optional keys
@@ -280,6 +391,13 @@ _SIGN_RULES: dict[tuple[str, str], tuple[str, str]] = {
     ("controller", "sample_time"): (">0", "s"),
     ("controller", "preview_time"): (">=0", "s"),
     ("controller", "measurement_noise"): (">0", "m"),
+    ("controller", "winch_noise"): (">0", "m"),
+    ("controller", "boom_tip_noise"): (">0", "m"),
+    ("controller", "depth_bias_time"): (">=0", "s (0: no depth-offset state)"),
+    ("identification", "duration"): (">0", "s"),
+    ("identification", "amplitude"): (">0", "m RMS"),
+    ("identification", "noise"): (">=0", "m"),
+    ("identification", "seed"): (">=0", "-"),
     ("controller", "tension_penalty"): (">0", "1/m^2"),
     ("simulation", "duration"): (">0", "s"),
     ("simulation", "seed"): (">=0", "-"),
@@ -288,8 +406,18 @@ _SIGN_RULES: dict[tuple[str, str], tuple[str, str]] = {
 }
 
 
+#: ``[deployment]`` keys (checked only when the table is given).
+_DEPLOYMENT_RULES: dict[str, tuple[str, str]] = {
+    "final_length": (">0", "m"), "payout_speed": (">0", "m/s"), "fixed_length": (">0", "m"),
+    "window": (">0", "m"), "ramp_time": (">=0", "s"),
+}
+
+
 def _check_signs(sc: HeaveScene) -> None:
-    for (table, key), (rule, unit) in _SIGN_RULES.items():
+    rules = dict(_SIGN_RULES)
+    if sc.deployment is not None:
+        rules.update({("deployment", k): v for k, v in _DEPLOYMENT_RULES.items()})
+    for (table, key), (rule, unit) in rules.items():
         val = getattr(getattr(sc, table), key)
         if val is None:
             continue
@@ -321,12 +449,7 @@ def check(sc: HeaveScene) -> None:
     if s.significant_wave_height <= 0:
         raise CableOCPError(f"[sea] significant_wave_height = {s.significant_wave_height} must "
                             "be > 0 m")
-    if sc.unit.cable_scene is not None:
-        raise CableOCPError(
-            f"[unit] cable_scene = {sc.unit.cable_scene!r}: identifying a, b from a cable scene "
-            "needs the cable-dynamics model, which is not available yet; give [unit] a and b "
-            "(cable_ocp.heave.identify fits them to a recorded response)"
-        )
+    _check_cable(sc)
     if sc.unit.model == "quadratic" and not sc.unit.b_quadratic > 0:
         raise CableOCPError("[unit] model = 'quadratic' needs b_quadratic > 0 (s^2/m, eq. (6.3))")
     c = sc.controller
@@ -342,11 +465,62 @@ def check(sc: HeaveScene) -> None:
     if sc.winch.accel_max is not None and sc.winch.model != "second_order":
         raise CableOCPError("[winch] accel_max needs model = 'second_order'; limit "
                             "command_rate_max (m per sample) for the first-order winch")
-    if sc.winch.tension_min is not None and not (sc.unit.mass > 0):
+    if (sc.winch.tension_min is not None and not (sc.unit.mass > 0)
+            and sc.unit.cable_scene is None):
         raise CableOCPError("[winch] tension_min needs [unit] mass > 0 and static_tension")
     if sc.simulation.duration <= sc.simulation.warmup:
         raise CableOCPError(f"[simulation] duration = {sc.simulation.duration} s must exceed "
                             f"warmup = {sc.simulation.warmup} s")
+
+
+def _check_cable(sc: HeaveScene) -> None:
+    """The cable-scene keys: ``[unit] cable_scene`` readable and an axial line when the cable
+    is the plant, ``[simulation] plant = "cable"`` and ``[deployment]`` with a cable scene."""
+    if sc.unit.cable_scene is None:
+        if sc.simulation.plant == "cable":
+            raise CableOCPError("[simulation] plant = 'cable' needs [unit] cable_scene = "
+                                "\"PATH\" (a dynamic scene, relative to the heave file)")
+        if sc.deployment is not None:
+            raise CableOCPError("[deployment] needs [unit] cable_scene = \"PATH\" (the line "
+                                "that is lowered, a dynamic scene)")
+        return
+    dyn = load_cable_scene(sc)
+    if dyn.simulation.model != "axial":
+        raise CableOCPError(
+            f"[unit] cable_scene = {sc.unit.cable_scene!r}: [simulation] model = "
+            f"{dyn.simulation.model!r}; the heave plant and the identification use the axial "
+            "model (model = \"axial\"): a vertical line whose length the winch changes")
+    from cable_ocp.dynamics.axial import check_axial
+
+    try:
+        check_axial(dyn)
+    except CableOCPError as exc:
+        raise CableOCPError(f"[unit] cable_scene = {sc.unit.cable_scene!r}: {exc}") from None
+    h = sc.controller.sample_time
+    ratio = h / dyn.simulation.time_step
+    if abs(ratio - round(ratio)) > 1e-9 * max(1.0, ratio) or round(ratio) < 1:
+        raise CableOCPError(
+            f"[unit] cable_scene: its [simulation] time_step = {dyn.simulation.time_step} s "
+            f"must divide [controller] sample_time = {h} s (the cable is stepped per sample)")
+    band = sc.identification.band
+    if band is not None and not band[0] < band[1]:
+        raise CableOCPError(f"[identification] band = {list(band)} must be [low, high] rad/s "
+                            "with low < high")
+    dep = sc.deployment
+    if dep is not None:
+        if dep.final_length is None:
+            raise CableOCPError("[deployment] final_length (m) is required")
+        if dep.final_length == dyn.length:
+            raise CableOCPError(f"[deployment] final_length = {dep.final_length} m equals the "
+                                "cable scene's length: nothing is paid out")
+        lo, hi = sorted((dyn.length, dep.final_length))
+        for key in ("schedule_lengths", "fixed_length"):
+            val = getattr(dep, key)
+            vals = () if val is None else (val if isinstance(val, tuple) else (val,))
+            if any(v < lo - 1e-9 or v > hi + 1e-9 for v in vals):
+                raise CableOCPError(f"[deployment] {key} = {val}: must lie between the cable "
+                                    f"scene's length {dyn.length} m and final_length "
+                                    f"{dep.final_length} m")
 
 
 def load_scene(path: str | Path, overrides: dict[str, Any] | None = None) -> HeaveScene:
@@ -361,4 +535,4 @@ def load_scene(path: str | Path, overrides: dict[str, Any] | None = None) -> Hea
     check_kind(data, "heave", path)
     if overrides:
         data = apply_overrides(data, overrides)
-    return scene_from_dict(data)
+    return scene_from_dict(data, Path(path).parent)
