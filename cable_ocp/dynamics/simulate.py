@@ -25,6 +25,7 @@ Progress = Callable[[int, int], None]
 #: model name -> "module:function" of its simulator
 SIMULATORS: dict[str, str] = {
     "axial": "cable_ocp.dynamics.axial:simulate_axial",
+    "axial:thesis": "cable_ocp.dynamics.axial_thesis:simulate_thesis",
     "lumped3d": "cable_ocp.dynamics.lumped:simulate_lumped",
 }
 
@@ -77,5 +78,8 @@ def simulate(scene: DynamicScene | str | Path, progress: Progress | None = None,
         scene = load_dynamic_scene(scene, overrides)
     elif overrides:
         scene = scene.with_overrides(overrides)
-    fn = _resolve(SIMULATORS, scene.simulation.model, "time-domain simulation")
+    model = scene.simulation.model
+    if scene.simulation.scheme == "thesis" and f"{model}:thesis" in SIMULATORS:
+        model = f"{model}:thesis"  # the thesis' own scheme, a separate implementation
+    fn = _resolve(SIMULATORS, model, "time-domain simulation")
     return fn(scene, progress=progress)

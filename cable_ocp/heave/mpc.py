@@ -845,3 +845,22 @@ class _NonlinearMPC:
                          "lam_g0": np.asarray(sol["lam_g"]).ravel(),
                          "lam_x0": np.asarray(sol["lam_x"]).ravel()}
         return rest, ok
+
+
+def settings_from_scene(sc: Any) -> MPCSettings:
+    """The MPC settings a heave scene asks for (``[controller]``, ``[winch]`` limits,
+    ``[unit]`` tension data), as the closed-loop simulation builds them.
+
+    Parameters
+    ----------
+    sc : HeaveScene
+        A validated heave scene (:func:`cable_ocp.scene.heave.load_scene`).
+    """
+    c, w, u = sc.controller, sc.winch, sc.unit
+    return MPCSettings(
+        horizon=c.horizon, sample_time=c.sample_time, q=c.q, r=c.r, solver=c.solver,
+        stroke_max=w.stroke_max, speed_max=w.speed_max, command_rate_max=w.command_rate_max,
+        accel_max=w.accel_max, tension_min=w.tension_min, unit_mass=u.mass,
+        static_tension=u.static_tension, tension_penalty=c.tension_penalty,
+        preview_time=c.preview_time, terminal=c.terminal,
+        nonlinear_b=u.b_quadratic if u.model == "quadratic" else 0.0)
