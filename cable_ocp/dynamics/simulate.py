@@ -25,6 +25,7 @@ Progress = Callable[[int, int], None]
 #: model name -> "module:function" of its simulator
 SIMULATORS: dict[str, str] = {
     "axial": "cable_ocp.dynamics.axial:simulate_axial",
+    "planar": "cable_ocp.dynamics.planar:simulate_planar",
     "lumped3d": "cable_ocp.dynamics.lumped:simulate_lumped",
 }
 
@@ -70,8 +71,7 @@ def simulate(scene: DynamicScene | str | Path, progress: Progress | None = None,
     Raises
     ------
     CableOCPError
-        An invalid scene (the key is named), or a model that is not built yet
-        (``"planar"``).
+        An invalid scene (the key is named), or a model that is not built yet.
     """
     if not isinstance(scene, DynamicScene):
         scene = load_dynamic_scene(scene, overrides)
