@@ -72,6 +72,7 @@ from __future__ import annotations
 
 import math
 import time
+import warnings
 from collections.abc import Callable
 from typing import Any
 
@@ -500,9 +501,10 @@ class PlanarModel:
                            [rs, tens.T, top, mo["L"], vs, eps.T])
 
     # ------------------------------------------------------------------ statics
-    def _static_function(self, with_drag: bool = True) -> ca.Function:
+    def _static_function(self, with_drag: bool = True, linear: bool = False) -> ca.Function:
         """``q -> (F, dF/dq)``: the nodal forces (N) at rest at t = 0 (every node at rest,
-        the current's drag included if ``with_drag``)."""
+        the current's drag included if ``with_drag``; ``linear``: Hooke's law EA e in
+        tension and compression)."""
         n = self.n
         q = ca.SX.sym("q", 2 * self.nf)
         mo = self._motion(0.0)
@@ -510,7 +512,9 @@ class PlanarModel:
         qq = self._offsets(q, mo)
         dd = self._elements(qq, h)
         ll = self._norms(dd)
-        force = self._spread(ca.repmat(self._tension(ll / h - 1.0) / ll, 2, 1) * dd)
+        eps = ll / h - 1.0
+        tens = self.ea * eps if linear else self._tension(eps)
+        force = self._spread(ca.repmat(tens / ll, 2, 1) * dd)
         if with_drag:
             zs = self._heights(qq, mo)
             force = force + self._halves(self._element_drag(
@@ -534,12 +538,38 @@ class PlanarModel:
     def static_equilibrium(self, q_guess: np.ndarray, tol: float = 1e-12,
                            max_iter: int = 80) -> tuple[np.ndarray, dict[str, Any]]:
         """Rest state of the discrete model at t = 0 by damped Newton from ``q_guess``
-        (offsets, m): the nodal forces below ``tol`` times the force scale."""
+        (offsets, m): the nodal forces below ``tol`` times the force scale.
+
+        Where the guess has compressed elements (the chords of a strongly curved, lightly
+        loaded stretch are shorter than the arc: the statics solution interpolated at the
+        nodes), the no-compression law gives them no stiffness; Hooke's law in tension
+        and compression is solved first from there, then the model's own law.
+        """
+        q = np.asarray(q_guess, dtype=float).copy()
+        eps = np.asarray(self._strain_function()(q)).ravel()
+        its = 0
+        if np.any(eps <= 0.0):
+            q_lin, info = self._newton(self._static_function(linear=True), q, tol, max_iter)
+            its = info["iterations"]
+            if info["converged"]:
+                q = q_lin
+        q, info = self._newton(self._static_function(), q, tol, max_iter)
+        info["iterations"] += its
+        return q, info
+
+    def _strain_function(self) -> ca.Function:
+        q = ca.SX.sym("q", 2 * self.nf)
+        h = self.length0 / self.n
+        dd = self._elements(self._offsets(q, self._motion(0.0)), h)
+        return ca.Function("strain", [q], [self._norms(dd) / h - 1.0])
+
+    def _newton(self, fj: ca.Function, q: np.ndarray, tol: float, max_iter: int
+                ) -> tuple[np.ndarray, dict[str, Any]]:
+        """Damped Newton on the nodal forces of ``fj`` (see :meth:`static_equilibrium`)."""
         from scipy.sparse import csc_matrix
         from scipy.sparse.linalg import spsolve
 
-        fj = self._static_function()
-        q = np.asarray(q_guess, dtype=float).copy()
+        q = q.copy()
 
         def ev(x: np.ndarray) -> tuple[np.ndarray, Any]:
             f, j = fj(x)
@@ -553,8 +583,10 @@ class PlanarModel:
                 it -= 1
                 break
             try:
-                dq = -spsolve(csc_matrix(jac.sparse()), f)
-            except Exception:  # noqa: BLE001 - a singular Jacobian: reported, never raised
+                with warnings.catch_warnings():  # a singular Jacobian: NaN, reported below
+                    warnings.simplefilter("ignore")
+                    dq = -spsolve(csc_matrix(jac.sparse()), f)
+            except Exception:  # noqa: BLE001 - reported, never raised
                 break
             if not np.all(np.isfinite(dq)):
                 break
@@ -565,7 +597,8 @@ class PlanarModel:
                 if np.all(np.isfinite(fn)) and np.linalg.norm(fn) < (1.0 - 1e-4 * lam) * n0:
                     break
                 lam *= 0.5
-            else:
+            else:  # no decrease along the Newton step: the rounding floor (or a failure)
+                stalled = True
                 break
             q = q + lam * dq
             f, jac = fn, jn
@@ -653,6 +686,8 @@ class PlanarModel:
                 raise CableOCPError(f"state: expected {2 * nf2} numbers (q and V of "
                                     f"{self.nf} free nodes), got {x0.size}")
             info = {"source": "given", "converged": True, "message": "the given state"}
+            eps = np.asarray(self._strain_function()(x0[:nf2])).ravel()
+            self.force_scale = max(self.force_scale, self.ea * float(np.max(eps)))
         t_build = time.perf_counter()
         step = self.step_function(dt, sim.tolerance, sim.max_iterations)
         macro = step.fold(every)
