@@ -52,7 +52,7 @@ Space: lumped-mass finite differences on the uniform grid y_i = i / N, as the ax
 (:mod:`cable_ocp.dynamics.axial`): node i carries half of each adjacent element's mass
 and added mass, element tensions act along the element chords, drag acts on each element
 at its mean velocity (half to each end node). At fixed length this is exactly Huang's ch. 5
-lumped-mass chain restricted to the plane, so the two models agree to round-off; the
+lumped-mass chain restricted to the plane, so the two agree to the Newton tolerance; the
 undamped semi-discrete system is Hamiltonian, and the modes are a symmetric generalised
 eigenproblem. The pay-out (advection) terms a R_y and a V_y use central differences, at
 the top a one-sided second-order difference.
