@@ -26,6 +26,7 @@ Progress = Callable[[int, int], None]
 SIMULATORS: dict[str, str] = {
     "axial": "cable_ocp.dynamics.axial:simulate_axial",
     "axial:thesis": "cable_ocp.dynamics.axial_thesis:simulate_thesis",
+    "planar": "cable_ocp.dynamics.planar:simulate_planar",
     "lumped3d": "cable_ocp.dynamics.lumped:simulate_lumped",
 }
 
@@ -71,8 +72,7 @@ def simulate(scene: DynamicScene | str | Path, progress: Progress | None = None,
     Raises
     ------
     CableOCPError
-        An invalid scene (the key is named), or a model that is not built yet
-        (``"planar"``).
+        An invalid scene (the key is named), or a model that is not built yet.
     """
     if not isinstance(scene, DynamicScene):
         scene = load_dynamic_scene(scene, overrides)
