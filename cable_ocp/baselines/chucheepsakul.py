@@ -492,7 +492,7 @@ def solve(scene: Scene, warm_start: StaticsSolution | None = None) -> StaticsSol
                              f"solver.max_intervals = {lim}", ORDER_RANGE[1], "elements")
 
     sol = refine_to_accuracy(scene, METHOD, scene.solver.intervals, solve_at, estimate, finer,
-                             warm_start)
+                             warm_start, label=lambda n: f"{n} elements")
     return equilibrium_check(scene, sol, METHOD)
 
 

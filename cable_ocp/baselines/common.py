@@ -155,8 +155,8 @@ def refine_to_accuracy(scene: Scene, method: str, start: Any,
                        estimate: Callable[[Any, StaticsSolution], Estimate],
                        finer: Callable[[Any, Estimate], tuple[Any, str]],
                        warm_start: StaticsSolution | None = None,
-                       describe: Callable[[Any], dict[str, Any]] | None = None
-                       ) -> StaticsSolution:
+                       describe: Callable[[Any], dict[str, Any]] | None = None,
+                       label: Callable[[Any], str] = str) -> StaticsSolution:
     """The accuracy contract of ``solver.accuracy``, shared by every baseline method.
 
     Solve at the resolution ``start``; unless ``solver.error_estimate`` is false, attach
@@ -169,7 +169,8 @@ def refine_to_accuracy(scene: Scene, method: str, start: Any,
     that has no estimate) is reported as ``"inaccurate"``, with the estimate, the accuracy
     and what stopped the refinement in the message and in ``diagnostics["warnings"]``;
     ``"solved"`` means estimate <= ``solver.accuracy``. ``diagnostics["refinement"]``
-    lists the levels tried, ``describe(level)`` gives the ``diagnostics["mesh"]`` entry.
+    lists the levels tried, ``describe(level)`` gives the ``diagnostics["mesh"]`` entry
+    and ``label(level)`` names a level in messages (e.g. "40 segments").
     """
     opts = scene.solver
     describe = describe or (lambda level: {"intervals": level})
@@ -193,7 +194,7 @@ def refine_to_accuracy(scene: Scene, method: str, start: Any,
             cold = solve_at(nxt, None)
             new = cold if cold.success else new
         if not new.success:
-            why = (f"the refined solve at {_level_text(describe(nxt))} did not succeed "
+            why = (f"the refined solve at {label(nxt)} did not succeed "
                    f"({new.status}: {new.message})")
             break
         new_est = estimate(nxt, new)
@@ -202,7 +203,7 @@ def refine_to_accuracy(scene: Scene, method: str, start: Any,
         level, sol, est = nxt, new, new_est
         sol.diagnostics["mesh"] = describe(level)
         if not better and not est.value <= opts.accuracy:
-            why = (f"refining to {_level_text(describe(level))} did not lower the estimate "
+            why = (f"refining to {label(level)} did not lower the estimate "
                    f"({history[-2]['error_estimate']:.1e} -> {est.value:.1e}): the "
                    "discretisation does not converge on this scene")
             break
@@ -211,23 +212,20 @@ def refine_to_accuracy(scene: Scene, method: str, start: Any,
     if len(history) > 1:
         sol.diagnostics["refinement"] = history
     if not est.value <= opts.accuracy:
-        what = (f"the error estimate {est.value:.1e}" if math.isfinite(est.value) else
-                f"no error estimate ({est.detail.get('note', 'not available')})")
+        if math.isfinite(est.value):
+            what = (f"the error estimate {est.value:.1e} exceeds solver.accuracy = "
+                    f"{opts.accuracy:.0e}")
+        else:
+            what = (f"there is no error estimate ({est.detail.get('note', 'not available')}),"
+                    f" so solver.accuracy = {opts.accuracy:.0e} is not established")
         sol.status = "inaccurate"
-        sol.message = (f"{method}: converged at {_level_text(describe(level))}, but "
-                       f"{what} does not meet solver.accuracy = {opts.accuracy:.0e}; "
-                       f"refinement stopped: {why}")
+        sol.message = (f"{method}: converged on {label(level)}, but {what}; refinement "
+                       f"stopped: {why}")
         sol.diagnostics.setdefault("warnings", []).append(
-            f"refinement stopped ({why}) with {what} above solver.accuracy = "
-            f"{opts.accuracy:.0e}")
+            f"refinement stopped on {label(level)} ({why}): {what}")
     else:
         sol.message += f"; error estimate {est.value:.1e} <= solver.accuracy"
     return sol
-
-
-def _level_text(d: dict[str, Any]) -> str:
-    return ", ".join(f"{k} = {v:g}" if isinstance(v, float) else f"{k} = {v}"
-                     for k, v in d.items())
 
 
 def double_within(n: int, est: Estimate, accuracy: float, limit: int, limit_text: str,

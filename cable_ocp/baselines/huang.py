@@ -1078,7 +1078,7 @@ def solve(scene: Scene, warm_start: StaticsSolution | None = None) -> StaticsSol
                              f"solver.max_intervals = {lim}", 1.0, "segments")
 
     return refine_to_accuracy(scene, METHOD, scene.solver.intervals, solve_at, estimate, finer,
-                              warm_start)
+                              warm_start, label=lambda n: f"{n} segments")
 
 
 register("huang_semianalytic", solve)

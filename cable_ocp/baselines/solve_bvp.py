@@ -177,7 +177,8 @@ def solve(scene: Scene, warm_start: StaticsSolution | None = None) -> StaticsSol
         return out
 
     sol = refine_to_accuracy(scene, "solve_bvp", max(scene.solver.tolerance, TOL_FLOOR),
-                             solve_at, estimate, finer, warm_start=None, describe=describe)
+                             solve_at, estimate, finer, warm_start=None, describe=describe,
+                             label=lambda tol: f"tol = {tol:.0e}")
     return seabed_check(scene, sol, "solve_bvp")
 
 

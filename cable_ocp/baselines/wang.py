@@ -633,7 +633,7 @@ def solve(scene: Scene, warm_start: StaticsSolution | None = None) -> StaticsSol
         return double_within(n, est, scene.solver.accuracy, lim, text, 4.0, "RK4 steps")
 
     return refine_to_accuracy(scene, METHOD, scene.solver.intervals, solve_at, estimate, finer,
-                              warm_start)
+                              warm_start, label=lambda n: f"{n} RK4 steps")
 
 
 register("wang_shooting_optimization", solve)
