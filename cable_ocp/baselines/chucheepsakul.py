@@ -78,6 +78,10 @@ Length given instead of tension (001 cannot: "known top tension and unknown leng
 an outer secant iteration on the top tension T_H until the FEM length matches (relative
 ``max(solver.tolerance, 1e-10)``), each inner solve warm-started from the previous one.
 
+Accuracy (the registry entry :func:`solve`): a Richardson error estimate from N/2 and N/4
+elements with the observed order, refinement towards ``solver.accuracy`` up to
+``solver.max_intervals`` and ``"inaccurate"`` above it, like every method.
+
 Representable scenes (else :class:`~cable_ocp.errors.CableOCPError` naming
 ``solver.method``): both ends fully fixed, end_b strictly above end_a, and the length or
 one end tension given. A cable that would need to turn back in z, touch down or dip below
@@ -457,7 +461,10 @@ def solve(scene: Scene, warm_start: StaticsSolution | None = None) -> StaticsSol
     N and N/2), plus the relative
     residual of (20) at the last iterate. While it exceeds ``solver.accuracy`` (and
     ``solver.refine``), N is doubled up to ``solver.max_intervals``; refinement stops
-    earlier when order 4 predicts that ``solver.max_intervals`` cannot reach the accuracy.
+    earlier when order 4 predicts that ``solver.max_intervals`` cannot reach the accuracy,
+    or when a refined solve fails (not retried cold: a failing FEM solve runs its 40
+    tension updates of up to 200 iterations, minutes at 80 elements, and a cold start is
+    no better placed than the previous level's profile).
     A result above the accuracy is ``"inaccurate"``
     (:func:`cable_ocp.baselines.common.refine_to_accuracy`). A solved result then passes
     the independent equilibrium check (:func:`cable_ocp.baselines.common.equilibrium_check`).
@@ -492,7 +499,7 @@ def solve(scene: Scene, warm_start: StaticsSolution | None = None) -> StaticsSol
                              f"solver.max_intervals = {lim}", ORDER_RANGE[1], "elements")
 
     sol = refine_to_accuracy(scene, METHOD, scene.solver.intervals, solve_at, estimate, finer,
-                             warm_start, label=lambda n: f"{n} elements")
+                             warm_start, label=lambda n: f"{n} elements", retry_cold=False)
     return equilibrium_check(scene, sol, METHOD)
 
 

@@ -77,6 +77,12 @@ Huang's z-down frame (004 (2.3), (2.42)) exists only inside this module (``_FLIP
 There is no seabed contact (004 ch. 2 has none): a profile that goes below z = 0 comes
 back with status ``"seabed_contact"``, not ``"solved"``.
 
+Accuracy (the registry entry :func:`solve`): a Richardson error estimate from N/2 and N/4
+segments, refinement towards ``solver.accuracy`` and ``"inaccurate"`` above it, like every
+method. The end lumping's first order makes 1e-6 unreachable in practice (the estimate is
+~7e-3 at 40 segments on De Zoysa and Berteaux): at the default accuracy the result is
+``"inaccurate"`` and says how many segments the accuracy would need.
+
 The returned profile lists each piece's start and end, so at a loaded point s appears
 twice, with the tension just before and just after the load (T jumps by -F there).
 """
@@ -1077,6 +1083,8 @@ def solve(scene: Scene, warm_start: StaticsSolution | None = None) -> StaticsSol
         return double_within(n, est, scene.solver.accuracy, lim,
                              f"solver.max_intervals = {lim}", 1.0, "segments")
 
+    # no equilibrium_check: shooting the cable equations from a first-order answer
+    # amplifies its ~1e-2 lumping error past the check's threshold on ordinary scenes
     return refine_to_accuracy(scene, METHOD, scene.solver.intervals, solve_at, estimate, finer,
                               warm_start, label=lambda n: f"{n} segments")
 

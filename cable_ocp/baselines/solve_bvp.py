@@ -4,6 +4,9 @@ The outside reference a user would reach for: the same right-hand side (the scen
 :class:`~cable_ocp.statics.formulation.Formulation`, evaluated column-wise), the same end
 conditions, scaled variables, the scaled length as an unknown parameter when it is free.
 solve_bvp uses 4th-order Lobatto IIIA collocation with residual-based mesh refinement.
+Its ``tol`` bounds that residual, not the error of the answer: the registry entry
+(:func:`solve`) estimates the error by a second solve at tol/10 and refines the tolerance
+to ``solver.accuracy``.
 """
 
 from __future__ import annotations

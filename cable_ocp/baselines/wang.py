@@ -85,28 +85,36 @@ touch down or turn back in z), Phi stays non-zero and the status is a failure.
 
 Status
 ------
-``"solved"`` only when the physical end mismatch, ``constraint_violation`` = the largest
-of |x(L) - x_b| / chord, |y(L) - y_b| / chord and |T - T_given| / T_given (or
-|L - L_given| / L_given), is below ``max(solver.tolerance, TOLERANCE)`` with
-``TOLERANCE = 1e-8``, *and* the RK4 solution is resolved; otherwise ``"not_converged"``
-(the mismatch is finite but too large), ``"infeasible"`` (the best trial leaves the
-z-monotone domain) or ``"unresolved"``.
+A Nelder-Mead result is converged when the physical end mismatch,
+``constraint_violation`` = the largest of |x(L) - x_b| / chord, |y(L) - y_b| / chord and
+|T - T_given| / T_given (or |L - L_given| / L_given), is below
+``max(solver.tolerance, TOLERANCE)`` with ``TOLERANCE = 1e-8``; otherwise the status is
+``"not_converged"`` (the mismatch is finite but too large) or ``"infeasible"`` (the best
+trial leaves the z-monotone domain). A converged result then follows the accuracy contract
+shared by every method (:func:`cable_ocp.baselines.common.refine_to_accuracy`): it is
+``"solved"`` only when its error estimate is <= ``solver.accuracy``; otherwise N is
+doubled (up to ``MAX_STEPS`` = 320, see :func:`solve`) and a result still above the
+accuracy is ``"inaccurate"``, with the estimate, the accuracy and the limit in the
+message.
 
-``error_estimate`` (-) compares the solution with the h/2 one (one Newton step on the h/2
-shooting problem from the converged initial values): the larger of the bottom-force
-difference over the largest tension and the largest position difference over the length,
-about 15/16 of the true error for RK4. On resolved problems it falls ~16x per halving of
-h: 5e-8 for Berteaux and 5e-5 for De Zoysa (psi0 = 90 deg) at h = 0.05.
+``error_estimate`` (-) compares the solution with the roots of the 2N- and 4N-step
+shooting problems (Newton from the converged initial values, :func:`_estimate`): the
+larger of the end-force difference over the largest tension and the position and length
+differences over the length, with the observed order (clipped to [1, 4]) in Richardson's
+factor. It tracks the true error to within a few per cent where RK4 is in its asymptotic
+range (true/estimate 0.96-1.00 on De Zoysa at 45-135 deg and Berteaux, 0.37-1.05 on the
+extreme scenes; docs/baselines.md): 4.7e-5 for De Zoysa (psi0 = 90 deg) at h = 0.05, and
+1e-7 for Berteaux.
 
 Where the exact profile would touch down or dip below end_a (De Zoysa at psi0 >= 148 deg
 with the componentwise law; the 5000 N top-tension variant at psi0 = 0), the discrete
 shooting problem still has a root, but with phi(0) -> 0 as h -> 0: its first RK4 step
-stands in for a horizontal run along the seabed, the end mismatch at h/2 stays large and
-the estimate stays above 1e-2 (or is infinite, the h/2 integration leaving the domain)
-whatever h. Above ``ERROR_LIMIT = 1e-2`` the status is ``"unresolved"``: reporting such a
-root as "solved" would be a wrong answer reported as success. This is how "phi hitting 0"
+stands in for a horizontal run along the seabed, the mismatch with the finer roots stays
+large and the estimate stays above 1e-2 (or does not exist, the finer integrations
+leaving the domain) whatever h, so the result is ``"inaccurate"``: reporting such a root
+as "solved" would be a wrong answer reported as success. This is how "phi hitting 0"
 shows at a finite step. (Near but before touchdown, e.g. psi0 = 145 deg, the profile is
-legitimate but so poorly resolved in z that it is also "unresolved" up to N ~ 80.)
+legitimate but so poorly resolved in z that it stays "inaccurate" up to the step limit.)
 
 Representable scenes (else :class:`~cable_ocp.errors.CableOCPError`): end_a fully fixed
 (position), end_b fully fixed strictly above it, and either the length or one end tension
