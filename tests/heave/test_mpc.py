@@ -315,6 +315,47 @@ def test_speed_limit_alone_holds_on_an_independent_plant_with_the_true_delay() -
     assert np.sqrt(np.mean(np.square(heave[100:]))) < 0.3 * 0.237
 
 
+def test_tension_limit_alone_holds_on_an_independent_plant() -> None:
+    # The soft tension limit alone (no other limit), exact when feasible (L1 penalty): the
+    # regulator plant (6.6) of 6.3.6 with the 6.2.6 unit's mass (125 t, static tension 50 kN:
+    # cable stiffness m/a = 139.5 kN/m), 0.2 s delay, T >= 45 kN. The unit starts 0.5 m
+    # high at rest in equilibrium (winch paid in 0.5 m, all buffered commands 0.5 m) in
+    # still water; lowering it quickly needs slack in the cable, which the limit bounds.
+    # The plant is written here (unit a x'' + b x' + x = u, winch u' = K (u0_{k-4} - u),
+    # solve_ivp) and the tension T = T0 + (m/a)(x0 + u - x) checked at the samples: the
+    # limit must hold to 1e-9 relative and be reached (else this proves nothing). A stretch
+    # row with the wrong sign of x, or a limit turned into a floor above T0, fails here.
+    from scipy.integrate import solve_ivp
+
+    from cable_ocp.heave import lqr
+    from cable_ocp.heave.thesis import A_636, B_636
+
+    a, b, K, h, d, mass, t0, tmin = A_636, B_636, 1.0, 0.05, 4, 125000.0, 50000.0, 45000.0
+    m = mpc.LinearMPC(lqr.regulator_plant(a, b, K), d * h, mpc.MPCSettings(
+        horizon=30, sample_time=h, tension_min=tmin, unit_mass=mass, static_tension=t0))
+
+    def rhs(_t: float, y: np.ndarray, v: float) -> list[float]:
+        x, xd, u = y
+        return [xd, (u - x - b * xd) / a, K * (v - u)]
+
+    y = np.array([0.5, 0.0, 0.5])
+    sent = [0.5] * d
+    tension, heave = [], []
+    for k in range(200):
+        z = np.concatenate([y, sent])
+        r = m.step(z, 0.0, np.zeros(30))
+        assert r.success
+        tension.append(t0 + mass / a * (y[2] - y[0]))
+        v = sent[0]
+        sent = sent[1:] + [r.u0]
+        y = solve_ivp(rhs, (k * h, (k + 1) * h), y, args=(v,), method="DOP853", rtol=1e-12,
+                      atol=1e-13).y[:, -1]
+        heave.append(y[0])
+    assert min(tension) >= tmin * (1 - 1e-9)
+    assert min(tension) <= tmin * (1 + 1e-6)  # the limit was reached
+    assert abs(heave[-1]) < 0.05  # and the unit was brought down
+
+
 def _sampled_regulator(a: float, b: float, K: float, h: float, d: int, q: float, r: float
                        ) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
     """Independent exact sampling of the delayed regulator plant (6.6) and of its LQR cost.

@@ -63,7 +63,7 @@ STATICS = ("tests/test_physics.py", "tests/test_statics_closed_form.py", EXTREME
 SEABED = ("tests/test_seabed.py", EXTREME_REF, "tests/test_segments.py",
           "tests/test_statics_seeds.py")
 TOWED = ("tests/test_towed.py",)
-HEAVE = ("tests/heave/test_plant.py", "tests/heave/test_sea.py",
+HEAVE = ("tests/heave/test_plant.py", "tests/heave/test_discrete.py", "tests/heave/test_sea.py",
          "tests/heave/test_stochastic.py", "tests/heave/test_lqr.py",
          "tests/heave/test_mpc.py", "tests/heave/test_simulate.py")
 HEAVE_SIM = ("tests/heave/test_simulate.py", "tests/heave/test_examples.py")
