@@ -24,15 +24,18 @@ in its velocity components between knots and constant outside them.
 
 End conditions per component: a prescribed position, or a prescribed external load ``F`` on
 the attachment, i.e. ``T(0) = -F`` at end_a and ``T(L) = +F`` at end_b; ``tension`` at an end
-makes L an unknown. Seabed contact (flat seabed only): the cable lies straight and
-horizontal from the anchor (end_a) for a grounded length g, with axial friction
-``mu w`` per metre reducing the tension from the touchdown point towards the anchor (zero
-where it would go negative), and lifts off tangentially; the suspended part is shot from the
-touchdown point.
+makes L an unknown. Seabed contact (a plane ``z = tan(alpha) (x cos beta + y sin beta)``
+through the origin, rising towards the heading beta): the cable lies straight on it from the
+anchor (end_a) for a grounded length g, along a direction e in the plane; the tension drops
+by ``k = w e_z + mu w n_z`` per metre (the weight's component along the line plus axial
+friction on the normal reaction) from the touchdown point towards the anchor (zero where it
+would go negative); it lifts off tangentially (T parallel to e); the suspended part is shot
+from the touchdown point.
 """
 
 from __future__ import annotations
 
+import copy
 import math
 import tomllib
 from dataclasses import dataclass
@@ -60,6 +63,7 @@ class RawProblem:
     rho: float
     current: tuple[np.ndarray, np.ndarray, np.ndarray] | None  # knots z, ux, uy
     friction: float | None  # None: no seabed contact modelled
+    slope: tuple[float, float]  # seabed slope and the heading it rises towards, rad
     length: float | None  # None: free length
     diameter: float
     w: float
@@ -78,7 +82,12 @@ class RawProblem:
 def read_problem(path: Path | str, overrides: dict | None = None) -> RawProblem:
     """Read a problem file. ``overrides`` maps dotted keys (``"layout.psi0_deg"``) to values."""
     with open(path, "rb") as fh:
-        data = tomllib.load(fh)
+        return problem_from_dict(tomllib.load(fh), overrides)
+
+
+def problem_from_dict(data: dict, overrides: dict | None = None) -> RawProblem:
+    """The same from the problem's tables as a dict (TOML layout)."""
+    data = copy.deepcopy(data)
     for key, val in (overrides or {}).items():
         node = data
         *head, last = key.split(".")
@@ -97,9 +106,12 @@ def read_problem(path: Path | str, overrides: dict | None = None) -> RawProblem:
         current = (z, ux, uy)
     seabed = env.get("seabed")
     friction = None
+    slope = (0.0, 0.0)
     if seabed is not None:
-        assert seabed.get("slope_deg", 0.0) == 0.0 and seabed.get("depth_offset", 0.0) == 0.0
+        assert seabed.get("depth_offset", 0.0) == 0.0
         friction = float(seabed.get("friction", 0.0))
+        slope = (math.radians(seabed.get("slope_deg", 0.0)),
+                 math.radians(seabed.get("slope_heading_deg", 0.0)))
     cab = data["cable"]
     length = None if cab["length"] == FREE else float(cab["length"])
     ea = cab.get("axial_stiffness", math.inf)
@@ -113,7 +125,8 @@ def read_problem(path: Path | str, overrides: dict | None = None) -> RawProblem:
         pos_b = [pos_a[0] + rad * math.cos(math.radians(psi)),
                  pos_a[1] + rad * math.sin(math.radians(psi)), pos_b[2]]
     return RawProblem(
-        rho=float(env["water_density"]), current=current, friction=friction, length=length,
+        rho=float(env["water_density"]), current=current, friction=friction, slope=slope,
+        length=length,
         diameter=float(cab.get("diameter", 0.0)), w=float(cab["weight_in_water"]), ea=ea,
         cn=float(cab.get("normal_drag", 0.0)), ct=float(cab.get("tangential_drag", 0.0)),
         law=cab.get("drag_law", "vector"), pos_a=pos_a, frc_a=_vec(a.get("force")),
@@ -196,10 +209,22 @@ def _integrate(p: RawProblem, y0: np.ndarray, length: float, dense: bool = False
                      atol=RTOL * max(1.0, float(np.max(np.abs(y0)))), dense_output=dense)
 
 
-def _grounded(p: RawProblem, g: float, h: float) -> tuple[float, float]:
+def _seabed_line(p: RawProblem, heading: float) -> tuple[np.ndarray, float]:
+    """Unit vector in the seabed plane whose horizontal part points at ``heading`` (rad), and
+    the tension drop per metre k (N/m) along it."""
+    alpha, beta = p.slope
+    tan_a = math.tan(alpha)
+    e = np.array([math.cos(heading), math.sin(heading),
+                  tan_a * (math.cos(heading) * math.cos(beta)
+                           + math.sin(heading) * math.sin(beta))])
+    e /= np.linalg.norm(e)
+    n_z = 1.0 / math.sqrt(1.0 + tan_a**2)  # vertical component of the plane's unit normal
+    return e, p.w * e[2] + p.friction * p.w * n_z
+
+
+def _grounded(p: RawProblem, g: float, h: float, k: float) -> tuple[float, float]:
     """Stretched distance anchor -> touchdown and the anchor tension of a grounded length g
-    (m) with touchdown tension h (N): T(s') = max(h - mu w (g - s'), 0)."""
-    k = p.friction * p.w
+    (m) with touchdown tension h (N) and drop k (N/m): T(s') = max(h - k (g - s'), 0)."""
     g_t = g if k <= 0 else min(g, h / k)  # length that carries tension
     integral = h * g_t - 0.5 * k * g_t**2
     dist = g + (0.0 if math.isinf(p.ea) else integral / p.ea)
@@ -227,8 +252,8 @@ def shoot(p: RawProblem, t0_guess: np.ndarray, *, r0_guess: np.ndarray | None = 
         x = list(x)
         if grounded:
             g, h, head = x[0] * lscale, x[1] * fscale, x[2]
-            e = np.array([math.cos(head), math.sin(head), 0.0])
-            dist, _ = _grounded(p, g, h)
+            e, k = _seabed_line(p, head)
+            dist, _ = _grounded(p, g, h, k)
             r0 = np.array(p.pos_a) + dist * e
             t0 = h * e
             x = x[3:]
@@ -278,7 +303,8 @@ def shoot(p: RawProblem, t0_guess: np.ndarray, *, r0_guess: np.ndarray | None = 
     ys = ivp.sol(ss)
     t_anchor = t0
     if grounded:
-        _, ta = _grounded(p, g, float(np.linalg.norm(t0)))
+        e, k = _seabed_line(p, math.atan2(t0[1], t0[0]))
+        _, ta = _grounded(p, g, float(np.linalg.norm(t0)), k)
         t_anchor = ta * t0 / np.linalg.norm(t0)
     return Reference(tension_a=t_anchor, tension_b=ys[3:, -1], length=length,
                      grounded_length=g, s=g + ss, r=ys[:3].T, t=ys[3:].T, residual=res,
