@@ -315,6 +315,43 @@ def test_speed_limit_alone_holds_on_an_independent_plant_with_the_true_delay() -
     assert np.sqrt(np.mean(np.square(heave[100:]))) < 0.3 * 0.237
 
 
+def test_stroke_limit_alone_holds_for_an_undelayed_second_order_winch() -> None:
+    # Second-order winch u'' + 2 zeta w u' + w^2 u = w^2 u0 (w = 1.4 rad/s, zeta = 0.7), no
+    # delay, so the stroke at the very next sample already depends on the command being
+    # chosen (unlike the first-order winch, whose output between held commands never leaves
+    # the commands' range, and unlike a delayed winch, where that row is fixed by commands
+    # already sent). Stroke 0.3 m alone, boom tip 0.5 sin(0.6 t) m known over the horizon,
+    # plant integrated here by solve_ivp: |u| <= 0.3 m at every sample to 1e-9 relative,
+    # and reached.
+    from scipy.integrate import solve_ivp
+
+    from cable_ocp.heave import lqr
+    from cable_ocp.heave.thesis import A_636, B_636
+
+    a, b, w, zeta, h, N, umax = A_636, B_636, 1.4, 0.7, 0.05, 30, 0.3
+    m = mpc.LinearMPC(lqr.regulator_plant(a, b, winch=pl.winch_second(w, zeta)), 0.0,
+                      mpc.MPCSettings(horizon=N, sample_time=h, stroke_max=umax))
+
+    def tip(t: np.ndarray | float) -> np.ndarray | float:
+        return 0.5 * np.sin(0.6 * t)
+
+    def rhs(t: float, y: np.ndarray, v: float) -> list[float]:
+        x, xd, u, ud = y
+        return [xd, (tip(t) + u - x - b * xd) / a, ud, w**2 * (v - u) - 2 * zeta * w * ud]
+
+    y = np.zeros(4)
+    stroke = []
+    for k in range(120):
+        t = k * h
+        r = m.step(y, 0.0, m.preview_correction(y, tip(t + h * np.arange(N))))
+        assert r.success
+        y = solve_ivp(rhs, (t, t + h), y, args=(r.u0,), method="DOP853", rtol=1e-12,
+                      atol=1e-13).y[:, -1]
+        stroke.append(abs(y[2]))
+    assert max(stroke) <= umax * (1 + 1e-9)
+    assert max(stroke) >= umax * (1 - 1e-6)
+
+
 def test_tension_limit_alone_holds_on_an_independent_plant() -> None:
     # The soft tension limit alone (no other limit), exact when feasible (L1 penalty): the
     # regulator plant (6.6) of 6.3.6 with the 6.2.6 unit's mass (125 t, static tension 50 kN:
@@ -405,7 +442,7 @@ def _opti_nmpc(a: float, bq: float, K: float, h: float, d: int, N: int, Qz: np.n
     d samples earlier; the boom tip x0 = D_k held over sample k. RK4 with 2 substeps per
     sample. Limits: winch speed K (v_k - u_k) for k >= d (the first row a decision can
     change), stroke |u_k| for k >= d + 1 and |u0| <= umax on the commands.
-    Returns a function (z0, D) -> (first command, largest planned |speed|).
+    Returns a function (z0, D) -> (planned commands, largest planned |speed|).
     """
     import casadi as cs
 
@@ -449,7 +486,7 @@ def _opti_nmpc(a: float, bq: float, K: float, h: float, d: int, N: int, Qz: np.n
         opti.set_value(Dp, D)
         sol = opti.solve()
         speed = [sol.value(K * (buf[k] - X[2, k])) for k in range(d, N)]
-        return float(sol.value(U[0])), float(np.max(np.abs(speed)))
+        return np.asarray(sol.value(U)).ravel(), float(np.max(np.abs(speed)))
 
     return solve
 
@@ -460,10 +497,12 @@ def test_nonlinear_unit_mpc_matches_an_independent_nlp_and_closes_the_loop() -> 
     # 1.5 sin(0.45 t) m known over the horizon, speed limit 0.5 m/s (the boom tip moves at up
     # to 0.675 m/s) and stroke 3 m. The cost is the exactly sampled LQR cost of the linear
     # design model (6.2) with b = 0.1906759 s, as the MPC documents.
-    # (1) At the first 6 closed-loop states, where the speed limit is active in the plan, its
-    # first move equals that of the same NLP written separately with casadi.Opti (cost
-    # matrices computed here by quadrature and scipy's DARE): both IPOPT on the same smooth
-    # problem, measured agreement ~1e-9 m (tol 1e-10); 1e-6 m.
+    # (1) At the first 6 closed-loop states, where the speed limit is active in the plan, and
+    # at 4 random states with the unit moving fast, its planned moves equal those of the same
+    # NLP written separately with casadi.Opti (cost matrices computed here by quadrature and
+    # scipy's DARE): both IPOPT on the same smooth problem, measured agreement ~1e-9 m
+    # (tol 1e-10); 1e-6 m. The whole plan is compared: where the speed limit is active on the
+    # first decidable row, the first move is fixed by the limit alone, whatever the unit.
     # (2) The loop closed on the true (6.3) unit (exact |x'| x', solve_ivp) with the true
     # delayed command keeps the speed limit at the samples to 1e-6 relative (IPOPT relaxes
     # bounds by 1e-8 relative, bound_relax_factor; its RK4 winch prediction errs by ~1e-10)
@@ -500,7 +539,7 @@ def test_nonlinear_unit_mpc_matches_an_independent_nlp_and_closes_the_loop() -> 
         assert r.success
         if k < 6:
             u_ref, speed_ref = ref(z, D)
-            assert r.u0 == pytest.approx(u_ref, abs=1e-6)
+            np.testing.assert_allclose(r.plan, u_ref, rtol=0, atol=1e-6)
             assert speed_ref >= vmax * (1 - 1e-6)  # the speed limit is active in the plan
         v = sent[0]
         speeds.append(K * (v - y[2]))
@@ -509,6 +548,15 @@ def test_nonlinear_unit_mpc_matches_an_independent_nlp_and_closes_the_loop() -> 
                       atol=1e-13).y[:, -1]
         heave.append(y[0])
     assert np.max(np.abs(speeds)) <= vmax * (1 + 1e-6)
+    # (1') ... and at states where the unit moves fast (x' up to 0.8 m/s), where the damping
+    # term b_q |x'| x' matters (the first closed-loop states start from rest).
+    rng = np.random.default_rng(3)
+    for _ in range(4):
+        z = np.concatenate([rng.uniform(-1, 1, 3) * [1.0, 0.8, 1.0], rng.uniform(-1, 1, d)])
+        D = tip(rng.uniform(0, 20) + h * np.arange(N))
+        r = m.step(z, 0.0, D)
+        assert r.success
+        np.testing.assert_allclose(r.plan, ref(z, D)[0], rtol=0, atol=1e-6)
     passive = solve_ivp(rhs, (0.0, 100 * h), np.zeros(3), args=(0.0,), method="DOP853",
                         rtol=1e-12, atol=1e-13, t_eval=h * np.arange(1, 101)).y[0]
     assert np.sqrt(np.mean(np.square(heave[50:]))) < 0.25 * np.sqrt(np.mean(passive[50:] ** 2))
