@@ -8,10 +8,12 @@ Two comparisons, of different strength:
   scipy ``solve_ivp`` (DOP853) and ``root`` on a right-hand side written separately from the
   package (numpy loads from the raw TOML tables, exact moduli, the stretch factor, the
   current profile, the seabed's friction-grounded part). This is the independent check of
-  the physics: end forces, length, grounded length and the profile to 1e-5 relative (the
-  collocation's estimated error is <= 1e-6 = ``solver.accuracy``, the shooting's ~1e-10;
-  the smooth modulus, delta = 1e-5 m/s, changes the loads by ~1e-10 relative; measured
-  worst 3.7e-7, on reversing_current). Dropping the drag's stretch factor (1 + T/EA) moves
+  the physics: end forces, length and grounded length to 1e-5 relative (the collocation's
+  estimated error is <= 1e-6 = ``solver.accuracy``, the shooting's ~1e-10; the smooth
+  modulus, delta = 1e-5 m/s, changes the loads by ~1e-10 relative; measured worst 3.7e-7,
+  on reversing_current), and positions and tensions at every node to 1e-4 (interior
+  collocation points converge only at the stage order d + 1; measured worst 1.3e-5, the
+  tension on drag_dominated). Dropping the drag's stretch factor (1 + T/EA) moves
   deep_water's end force by 2.6e-4 relative.
 * against the package's own multiple shooting (RK4, refined by its own error estimate):
   the **same** ``Formulation.rhs``, so only a cross-check of the discretisation (mesh,
@@ -63,9 +65,8 @@ def test_extreme_scene_against_independent_shooting(path):
     assert abs(g - ref.grounded_length) < 1e-5 * sol.length
     susp = sol.s >= g
     r_ref, t_ref = ref.at(sol.s[susp])
-    dr = np.max(np.abs(sol.position[susp] - r_ref)) / sol.length
-    dt = np.max(np.abs(sol.tension_vector[susp] - t_ref)) / scale
-    assert dr < 1e-4 and dt < 1e-4
+    assert np.max(np.abs(sol.position[susp] - r_ref)) < 1e-4 * sol.length
+    assert np.max(np.abs(sol.tension_vector[susp] - t_ref)) < 1e-4 * scale
 
 
 @pytest.mark.parametrize("path", EXTREME, ids=IDS)

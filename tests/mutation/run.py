@@ -337,7 +337,8 @@ def main(argv: list[str] | None = None) -> int:
         if args.baseline:
             for tests in dict.fromkeys(m.tests for m in muts):
                 st, who, dt = _pytest(tree, tests, args.timeout)
-                print(f"baseline {' '.join(tests)}: {st} {who} ({dt:.0f} s)", flush=True)
+                ok = "passes" if st == "survived" else f"FAILS ({st} {who})"
+                print(f"baseline {' '.join(tests)}: {ok} ({dt:.0f} s)", flush=True)
                 if st != "survived":
                     raise SystemExit("the unmutated code fails its subset: fix that first")
         for m in muts:
