@@ -205,8 +205,8 @@ def test_lqg_sigma_against_an_independent_riccati_and_lyapunov_solution(
     # intensity pi, the one-sided unit spectral density; 1 cm sensor sampled every 0.05 s =
     # continuous measurement noise of intensity 1e-4 * 0.05 m^2 s), and the heave variance from
     # the Lyapunov equation of the closed loop [x; x_hat] written here. Both sides are direct
-    # solves of the same equations: rtol 1e-6 (measured ~1e-10). Replacing pi by 1 in the
-    # filter's process-noise intensity moves the library's sigma by ~20 %.
+    # solves of the same equations: rtol 1e-6 (measured 3e-12; sigma = 0.01297 m). Replacing
+    # pi by 1 in the filter's process-noise intensity moves the library's sigma by 22 %.
     from scipy import linalg
 
     p = plant_636
