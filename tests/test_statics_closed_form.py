@@ -159,8 +159,10 @@ def test_free_length_when_the_tension_is_not_the_force_scale():
 
     data = {"environment": {"water_depth": 200.0, "water_density": 1025.0},
             "cable": {"length": "free", "weight_in_water": 150.0, "axial_stiffness": 1e8},
-            "end_a": {"position": [0.0, 0.0, 0.0], "tension": 10000.0},
-            "end_b": {"position": [100.0, 0.0, 60.0]}}
+            "end_a": {"position": [0.0, 0.0, 50.0], "tension": 10000.0},
+            "end_b": {"position": [100.0, 0.0, 110.0]}}
+    # the cable leaves the anchor downwards: the anchor sits 50 m above the seabed plane so
+    # that the profile stays in the water (else it is status below_seabed)
     sol = solve(scene_from_dict(data))
     assert sol.success, sol.message
     ref = sref.shoot(sref.problem_from_dict(data), np.array([9000.0, 0.0, -2000.0]),
