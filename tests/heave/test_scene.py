@@ -19,7 +19,7 @@ def test_problem_files_load(name: str) -> None:
 
 
 @pytest.mark.parametrize("doc,match", [
-    ({"sea": {"modal_frequency": 0.7, "colour": "blue"}}, "unknown key \\[sea\\] 'colour'"),
+    ({"sea": {"modal_frequency": 0.7, "colour": "blue"}}, "unknown key sea.colour"),
     ({"bogus": {}}, "unknown top-level table \\[bogus\\]"),
     ({"sea": {"modal_frequency": 0.7, "spectrum": "foo"}}, "spectrum = 'foo'"),
     ({"sea": {}}, "exactly one of modal_frequency"),
@@ -51,7 +51,7 @@ def test_bad_scenes_raise(doc: dict, match: str) -> None:
 def test_bad_values_raise_naming_the_key(table: str, key: str, val: float) -> None:
     doc: dict = {"sea": {"modal_frequency": 0.7}}
     doc.setdefault(table, {})[key] = val
-    with pytest.raises(CableOCPError, match=f"\\[{table}\\] {key} = "):
+    with pytest.raises(CableOCPError, match=f"^{table}\\.{key} = "):
         scene_from_dict(doc)
 
 
@@ -60,7 +60,7 @@ def test_problem_file_with_bad_value_raises_before_simulating(tmp_path: Path) ->
     src = (ROOT / "problems" / "heave" / "ex_6_3_6.toml").read_text()
     bad = tmp_path / "bad.toml"
     bad.write_text(src.replace("stroke_max = 2.0", "stroke_max = -1.0"))
-    with pytest.raises(CableOCPError, match="stroke_max = -1.0 must be finite and > 0"):
+    with pytest.raises(CableOCPError, match=r"^winch\.stroke_max = -1\.0: must be > 0 \(m\)$"):
         load_scene(bad)
 
 
