@@ -317,8 +317,10 @@ def compare(sc: HeaveScene, controllers: tuple | None = None,
                 metrics[name] = Metrics(None, None, None, None, None, None, None, None)
             continue
         tr, cmds, stop = _run(sc, ctrl, p, t, x0, xs_sea, meas_noise, n_ctrl, bound, report)
-        if stop is not None:
+        if stop is not None and status == "solved":
             status, message = stop
+        elif stop is not None:  # the design said so already; the run confirms it
+            message += f"; in the run, {stop[1]}"
         if name == "mpc":
             solve_times = np.array(ctrl.times)
             failures = ctrl.failures
