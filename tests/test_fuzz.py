@@ -59,9 +59,9 @@ TARGETS: list[tuple[str, tuple[str, ...], tuple[str, ...]]] = [
      ("--duration", "2", "--set", "simulation.warmup=0.5")),
 ]
 
-#: how often each command is drawn (per ten cases): heave and footprint have a file or two
+#: how often each command is drawn (per 18 cases): heave and footprint have a file or two
 #: each but as many keys as the statics files together
-WEIGHTS = {"solve": 6, "heave": 3, "footprint": 1}
+WEIGHTS = {"solve": 12, "heave": 5, "footprint": 1}
 
 #: exit-0 statuses of each command (everything else exits 1)
 SUCCESS = {"solve": {"solved"}, "footprint": {"solved"}, "heave": {"solved"}}
@@ -543,3 +543,35 @@ def test_fuzz_every_shipped_problem(tmp_path_factory: Any) -> None:
     print("\nfuzz counts:", json.dumps(summary))
     assert counts["tracebacks"] == 0
     assert counts["cases"] >= 300
+
+
+def test_physics_checks_catch_wrong_answers(tmp_path: Path) -> None:
+    """The checks above pass on a solved answer and fail on slightly wrong ones: an end force
+    off by 1e-5 of the largest tension, the vector drag law where the scene says
+    componentwise (2 % apart in 3D), a node below the seabed, an end moved by 1 mm."""
+    src = ROOT / "problems" / "dezoysa_sea_buggy.toml"
+    jpath, cpath = tmp_path / "d.json", tmp_path / "d.csv"
+    with contextlib.redirect_stdout(io.StringIO()):
+        assert main(["solve", str(src), "--json", str(jpath), "--csv", str(cpath),
+                     "--quiet"]) == 0
+    scene = load_scene(src)
+    data, table = json.loads(jpath.read_text()), read_csv(cpath)
+    check_statics_physics(scene, data, table)
+
+    def fails(d: dict, sc: Any = scene) -> None:
+        try:
+            check_statics_physics(sc, d, table)
+        except AssertionError:
+            return
+        raise AssertionError("a wrong answer passed the physics checks")
+
+    bad = copy.deepcopy(data)
+    bad["end_a"]["force"][0] += 1e-5 * data["max_tension"]
+    fails(bad)
+    fails(data, load_scene(src, {"cable.drag_law": "vector"}))
+    bad = copy.deepcopy(data)
+    bad["profile"]["z"][len(bad["profile"]["z"]) // 2] = -0.01
+    fails(bad)
+    bad = copy.deepcopy(data)
+    bad["end_b"]["position"][1] += 1e-3
+    fails(bad)

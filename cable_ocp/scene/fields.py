@@ -93,6 +93,8 @@ def choice(value: Any, key: str, options: Iterable[str]) -> str:
 def require(table: dict[str, Any], key: str, where: str) -> Any:
     """``table[key]``, or an error naming ``where.key`` as missing."""
     if key not in table:
+        if where == "problem":
+            raise CableOCPError(f"the [{key}] table is missing (required)")
         raise CableOCPError(f"{where}.{key} is missing (required, SI units)")
     return table[key]
 

@@ -218,8 +218,9 @@ _RATIO = ("below 0.01 a resonance amplifies by more than 50x; above 10 the two p
 #: Optional keys (None = not given) are only checked when given.
 RULES: dict[tuple[str, str], _Num | _Int] = {
     ("sea", "significant_wave_height"): _Num(
-        "m", positive=True, high=30.0,
-        why="the largest significant wave heights measured are about 20 m"),
+        "m", low=1e-3, high=30.0,
+        why="the largest significant wave heights measured are about 20 m; below 1 mm "
+            "there is no sea to compensate"),
     ("sea", "modal_frequency"): _Num("rad/s", low=0.15, high=16.0, why=_WAVES),
     ("sea", "zero_crossing_period"): _Num("s", low=0.3, high=28.0, why=_WAVES),
     ("sea", "peak_period"): _Num("s", low=0.4, high=40.0, why=_WAVES),

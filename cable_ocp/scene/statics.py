@@ -354,8 +354,8 @@ def scene_from_dict(data: dict[str, Any]) -> Scene:
         if chord >= length:
             raise CableOCPError(
                 f"cable.length = {length} m is not longer than the chord between the fixed ends "
-                f"({chord:.6g} m); an inextensible cable needs length > chord "
-                "(or give cable.axial_stiffness)"
+                f"end_a.position and end_b.position ({chord:.6g} m); an inextensible cable "
+                "needs length > chord (or give cable.axial_stiffness)"
             )
 
     sol_t = check_keys(data.get("solver", {}), _SCHEMA["solver"], "solver")
