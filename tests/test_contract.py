@@ -16,6 +16,9 @@ from typing import Any
 import numpy as np
 import pytest
 
+# imported (their own imports bound) before any test patches cable_ocp.statics.solver.solve
+import cable_ocp.heave.simulate
+import cable_ocp.statics.footprint  # noqa: F401
 from cable_ocp.cli import main
 
 ROOT = Path(__file__).resolve().parents[1]
