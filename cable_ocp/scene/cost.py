@@ -106,6 +106,18 @@ def check_cost(cost: Cost, force: bool = False) -> None:
         "to run it anyway")
 
 
+def _mesh_total(scene: Any, n: int) -> int:
+    """Intervals in all on a mesh of ``n``: a multi-segment line gives each segment its own
+    ``intervals`` or a share of ``solver.intervals`` (at least 2), scaled by
+    ``n / solver.intervals`` on other meshes (as the collocation does)."""
+    if not scene.segments:
+        return n
+    total = sum(c.length for c in scene.segments)
+    base = [iv if iv is not None else max(2, round(scene.solver.intervals * c.length / total))
+            for c, iv in zip(scene.segments, scene.segment_intervals, strict=True)]
+    return max(round(sum(base) * n / scene.solver.intervals), len(base))
+
+
 def statics_cost(scene: Any, directions: int | None = None) -> Cost:
     """Estimate of the largest statics solve a scene allows (its mesh, or the refinement's
     ``max_intervals``), with its error estimate; with ``directions``, of a footprint."""
@@ -115,6 +127,7 @@ def statics_cost(scene: Any, directions: int | None = None) -> Cost:
         n = max(n, opts.max_intervals)
     cost = Cost()
     method = opts.method
+    n = _mesh_total(scene, n)
     if method == "collocation":
         units = n * (opts.degree + 1) ** 2
         sec = COLLOCATION_S_PER_UNIT * units
@@ -124,8 +137,10 @@ def statics_cost(scene: Any, directions: int | None = None) -> Cost:
         sec = METHOD_S_PER_INTERVAL.get(method, 1e-3) * n
         nbytes = 2e4 * n
         what = f"a {method} solve on {n} intervals"
-    keys = (f"solver.intervals = {opts.intervals}" if n == opts.intervals else
-            f"solver.max_intervals = {opts.max_intervals} (refinement)")
+    keys = (f"solver.intervals = {opts.intervals}" if n == _mesh_total(scene, opts.intervals)
+            else f"solver.max_intervals = {opts.max_intervals} (refinement)")
+    if any(iv is not None for iv in scene.segment_intervals):
+        keys += " and the segments' intervals"
     if method == "collocation":
         keys += f" with solver.degree = {opts.degree}"
     if directions is not None:
