@@ -17,7 +17,7 @@ from pathlib import Path
 PKG = Path(__file__).resolve().parents[1] / "cable_ocp"
 FACE = ("cable_ocp.cli", "cable_ocp.report", "cable_ocp.plots", "cable_ocp.bench",
         "cable_ocp.__main__")
-LIBRARY = ("physics", "scene", "statics", "baselines", "heave", "dynamics")
+LIBRARY = ("physics", "scene", "statics", "baselines", "heave", "dynamics", "batch")
 
 
 def _modules() -> dict[str, Path]:
@@ -39,11 +39,17 @@ def _is_face(name: str) -> bool:
 
 
 def _imports(name: str, path: Path) -> set[str]:
-    """Every cable_ocp module ``name`` imports, at module level or inside functions."""
+    """Every cable_ocp module ``name`` imports, at module level or inside functions (not
+    the ``if TYPE_CHECKING:`` imports, which exist for annotations only)."""
     tree = ast.parse(path.read_text(encoding="utf-8"))
     pkg = name if path.name == "__init__.py" else name.rpartition(".")[0]
     found: set[str] = set()
+    typing_only = {id(n) for block in ast.walk(tree) if isinstance(block, ast.If)
+                   and "TYPE_CHECKING" in ast.unparse(block.test)
+                   for stmt in block.body for n in ast.walk(stmt)}
     for node in ast.walk(tree):
+        if id(node) in typing_only:  # `if TYPE_CHECKING:` imports never run
+            continue
         if isinstance(node, ast.Import):
             targets = [a.name for a in node.names]
         elif isinstance(node, ast.ImportFrom):

@@ -70,6 +70,19 @@ def register(sub: argparse._SubParsersAction, parent: argparse.ArgumentParser) -
     out.add_csv_option(r, "one row per cell")
     r.set_defaults(func=cmd_robustness)
 
+    bb = which.add_parser(
+        "batch", parents=[parent],
+        help="load-case batch: per-case overhead and parallel speed-up",
+        description="De Zoysa's cable over psi0 x current speed (200 cases by default): the "
+                    "cases solved bare in this process, then as batches on 1 and 2 local "
+                    "workers, in one run: per-case overhead of the batch machinery and the "
+                    "parallel speed-up.")
+    bb.add_argument("--angles", type=int, default=20, metavar="N", help="psi0 values (20)")
+    bb.add_argument("--speeds", type=int, default=10, metavar="N",
+                    help="current speeds (10)")
+    out.add_json_option(bb, "the rows and the summary")
+    bb.set_defaults(func=cmd_bench_batch)
+
     h = sub.add_parser(
         "bench-heave", parents=[parent],
         help="MPC solve time per closed-loop step, every solver and do-mpc",
@@ -81,8 +94,9 @@ def register(sub: argparse._SubParsersAction, parent: argparse.ArgumentParser) -
                    help="MPC horizons in samples (default 20 50 100)")
     h.add_argument("--steps", type=int, default=300, metavar="N",
                    help="closed-loop steps per case (default 300; IPOPT and do-mpc: N/5)")
-    h.add_argument("--solvers", nargs="+", default=["qpoases", "osqp", "qrqp", "ipopt"],
-                   metavar="NAME", help="solvers to time (default qpoases osqp qrqp ipopt)")
+    h.add_argument("--solvers", nargs="+", default=["daqp", "qpoases", "osqp", "qrqp", "ipopt"],
+                   metavar="NAME",
+                   help="solvers to time (default daqp qpoases osqp qrqp ipopt)")
     h.add_argument("--no-do-mpc", action="store_true", help="skip do-mpc even if installed")
     out.add_json_option(h, "the timing rows")
     h.set_defaults(func=cmd_bench_heave)
@@ -117,8 +131,8 @@ def cmd_sweep(args: argparse.Namespace) -> int:
         from cable_ocp.plots.statics import plot_sweep
 
         out.emit_plot(args, lambda path: plot_sweep(
-            res["angles"], res["forces"], path, "psi0 [deg]", "De Zoysa: force at the buggy",
-            overlays={"solve_bvp": res["forces_bvp"]}))
+            res["angles"], res["forces"], path, "psi0 (deg)", "De Zoysa: force at the buggy",
+            overlays={"solve_bvp": res["forces_bvp"]}, name="collocation"))
     return out.EXIT_OK
 
 
@@ -251,9 +265,7 @@ def cmd_robustness(args: argparse.Namespace) -> int:
 
 def cmd_bench_heave(args: argparse.Namespace) -> int:
     """``cable-ocp bench-heave``."""
-    import dataclasses
-
-    from cable_ocp.bench.heave_mpc import format_table, run
+    from cable_ocp.bench.heave_mpc import format_table, json_data, run
 
     out.check_outputs(args)
     for n in args.horizons:
@@ -262,10 +274,40 @@ def cmd_bench_heave(args: argparse.Namespace) -> int:
                             "as N^2 in memory and N^3 in time)")
     if not 1 <= args.steps <= 100000:
         raise out_error(f"--steps {args.steps}: give 1..100000")
-    out.note(args, "bench-heave: timing every solver at every horizon (about 2 minutes) ...")
-    rows = run(horizons=args.horizons, steps=args.steps, solvers=args.solvers,
-               with_do_mpc=not args.no_do_mpc)
+    from cable_ocp.heave.mpc import SOLVERS
+
+    for s in args.solvers:
+        if s not in SOLVERS:
+            raise out_error(f"--solvers {s}: valid are {', '.join(SOLVERS)}")
+    total = len(args.horizons) * (len(args.solvers) + (0 if args.no_do_mpc else 1))
+    with out.progress(args, total, "bench-heave", "case") as bar:
+        rows = run(horizons=args.horizons, steps=args.steps, solvers=args.solvers,
+                   with_do_mpc=not args.no_do_mpc,
+                   progress=lambda done, tot, row: bar(done, tot, postfix=f"{row.solver} "
+                                                                           f"N={row.horizon}"))
     out.say(args, format_table(rows))
-    out.emit_json(args, out.envelope("ok", "benchmark completed", {
-        "rows": [dataclasses.asdict(r) for r in rows]}))
+    out.emit_json(args, out.envelope("ok", "benchmark completed", json_data(rows)))
+    return out.EXIT_OK
+
+
+def cmd_bench_batch(args: argparse.Namespace) -> int:
+    """``cable-ocp bench batch``."""
+    from cable_ocp import report
+    from cable_ocp.bench import batch
+
+    out.check_outputs(args)
+    if not (1 <= args.angles <= 1000 and 1 <= args.speeds <= 1000):
+        raise out_error("--angles and --speeds: give 1..1000")
+    res = batch.run(args.angles, args.speeds, progress=lambda what: out.note(args, what))
+    keys = ["run", "wall_s", "per_case_ms", "overhead_ms", "speedup", "solved"]
+    out.say(args, report.table(["run", "wall [s]", "per case [ms]", "overhead/case [ms]",
+                                "speed-up [-]", "solved"],
+                               [["-" if r[k] is None else r[k] for k in keys]
+                                for r in res["rows"]]))
+    sm = res["summary"]
+    out.say(args, f"\n{sm['cases']} cases: overhead of the batch on one worker "
+                  f"{sm['overhead_per_case_ms']:.2f} ms per case "
+                  f"({100 * sm['overhead_fraction']:.1f} % of a bare solve, target < 10 %); "
+                  f"speed-up on 2 workers {sm['speedup_2_workers']:.2f}x (target >= 1.8x)")
+    out.emit_json(args, out.envelope("ok", "benchmark completed", res))
     return out.EXIT_OK
