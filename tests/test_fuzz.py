@@ -51,9 +51,9 @@ ROOT = Path(__file__).resolve().parents[1]
 
 #: (command, file globs, extra arguments). The extra arguments only lower the cost and
 #: hide no check: ``solver.refine=false`` keeps the error estimate (so "inaccurate" is still
-#: reported when it exceeds solver.accuracy) but skips the mesh doublings; the heave runs
-#: are 2 s long (every controller is still designed, built and run; the status rules do not
-#: depend on the duration); the footprint takes 3 directions. A new scene kind (dynamics)
+#: reported when it exceeds solver.accuracy) but skips the mesh doublings; the heave and
+#: dynamics runs are 2 s long (every controller or model is still built and run; the status
+#: rules do not depend on the duration); the footprint takes 3 directions. A new scene kind
 #: adds one line here.
 TARGETS: list[tuple[str, tuple[str, ...], tuple[str, ...]]] = [
     ("solve", ("problems/*.toml", "problems/extreme/*.toml"),
@@ -61,14 +61,17 @@ TARGETS: list[tuple[str, tuple[str, ...], tuple[str, ...]]] = [
     ("footprint", ("problems/footprint_*.toml",), ("--directions", "3")),
     ("heave", ("problems/heave/*.toml",),
      ("--duration", "2", "--set", "simulation.warmup=0.5")),
+    ("simulate", ("problems/dynamics/*.toml",), ("--set", "simulation.duration=2")),
+    ("modes", ("problems/dynamics/*.toml",), ()),
 ]
 
-#: how often each command is drawn (per 18 cases): heave and footprint have a file or two
+#: how often each command is drawn (per 24 cases): heave and footprint have a file or two
 #: each but as many keys as the statics files together
-WEIGHTS = {"solve": 12, "heave": 5, "footprint": 1}
+WEIGHTS = {"solve": 12, "heave": 5, "footprint": 1, "simulate": 4, "modes": 2}
 
 #: exit-0 statuses of each command (everything else exits 1)
-SUCCESS = {"solve": {"solved"}, "footprint": {"solved"}, "heave": {"solved"}}
+SUCCESS = {"solve": {"solved"}, "footprint": {"solved"}, "heave": {"solved"},
+           "simulate": {"solved"}, "modes": {"solved"}}
 
 N_CASES = 330
 
@@ -526,6 +529,10 @@ def run_case(case: dict, work: Path, counts: Counter, balance: list) -> tuple[in
                         "max_constraint_violation", "winch_speed_rms"):
                 assert isinstance(ctrl[key], (int, float)) and math.isfinite(ctrl[key]), \
                     (what, name, key)
+    elif case["command"] == "simulate":
+        # a solved run: every sample of the time series is a number
+        for key in ("t", "length", "top_tension"):
+            assert all(isinstance(v, (int, float)) for v in data[key]), (what, key)
     elif case["command"] == "footprint":
         scene = load_scene(src)
         fp = scene.footprint

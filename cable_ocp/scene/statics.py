@@ -294,8 +294,9 @@ def scene_from_dict(data: dict[str, Any]) -> Scene:
     depth = number(require(env_t, "water_depth", "environment"), "environment.water_depth",
                    positive=True, high=DEPTH_MAX, unit="m", why=DEPTH_WHY)
     rho = number(require(env_t, "water_density", "environment"), "environment.water_density",
-                 low=500.0, high=2000.0, unit="kg/m^3",
-                 why="fresh water is 1000, sea water 1020-1030, dense brines ~1300")
+                 low=0.1, high=2000.0, unit="kg/m^3",
+                 why="air is 1.2 (a cable tested in air), fresh water 1000, sea water "
+                     "1020-1030, dense brines ~1300")
     g = number(env_t.get("gravity", 9.81), "environment.gravity", low=0.1, high=30.0,
                unit="m/s^2", why="9.81 on Earth; 1.35 on Titan to 24.8 on Jupiter")
     current = parse_current(env_t["current"]) if "current" in env_t else None
