@@ -391,10 +391,10 @@ def test_mpc_fallbacks_in_the_json(monkeypatch: pytest.MonkeyPatch, capsys: Any,
     assert rc == 0  # the closed loop itself ran and stayed bounded
 
 
-def test_simulate_that_fails_before_its_first_sample(capsys: Any, tmp_path: Path) -> None:
-    """Found by the fuzz: a dynamic scene whose static state fails (the top 2000 m below the
-    seabed) gave an IndexError in the text summary; now exit 1, the JSON says why, and no
-    CSV or figure is claimed."""
+def test_dynamics_that_fail_before_their_first_sample(capsys: Any, tmp_path: Path) -> None:
+    """Found by the fuzz: a dynamic scene whose static state fails (the top below the
+    seabed) gave an IndexError (simulate) or a TypeError (modes) in the text summary; now
+    exit 1, the JSON says why, and no CSV is claimed."""
     out, csv = tmp_path / "d.json", tmp_path / "d.csv"
     rc, text, err = run(capsys, "simulate", ROOT / "problems" / "dynamics" / "huang_4_5_3.toml",
                         "--set", "simulation.duration=2", "--set",
@@ -403,6 +403,9 @@ def test_simulate_that_fails_before_its_first_sample(capsys: Any, tmp_path: Path
     assert rc == 1 and data["status"] == "failed" and "below the seabed" in data["message"]
     assert data["t"] == [] and not csv.exists()
     assert "simulated      nothing" in text
+    rc, text, err = run(capsys, "modes", ROOT / "problems" / "dynamics" / "huang_4_5_3.toml",
+                        "--set", "end_b.position=[0.0, 0.0, -1000.0]", "--json", out)
+    assert rc == 1 and strict_json(out)["status"] == "failed" and "no modes" in text
 
 
 # --------------------------------------------------------------------------------------

@@ -207,7 +207,8 @@ def cmd_modes(args: argparse.Namespace) -> int:
                 for k, (w, p) in enumerate(zip(res.frequencies, res.periods, strict=True))]
         out.say(args, f"{title}: {res.model} model, {res.status}"
                       + (f" ({res.message})" if res.message else ""))
-        out.say(args, report.table(["mode", "omega [rad/s]", "f [Hz]", "period [s]"], rows))
+        out.say(args, report.table(["mode", "omega [rad/s]", "f [Hz]", "period [s]"], rows)
+                if rows else "no modes")
         out.emit_csv(args, ["mode", "frequency [rad/s]", "frequency [Hz]", "period [s]"],
                      [[k + 1, w, w / (2 * np.pi), p] for k, (w, p) in
                       enumerate(zip(res.frequencies, res.periods, strict=True))])
