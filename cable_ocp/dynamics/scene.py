@@ -101,6 +101,7 @@ from dataclasses import dataclass, field, replace
 from pathlib import Path
 from typing import Any
 
+from cable_ocp.dynamics.motion import length_numeric
 from cable_ocp.errors import CableOCPError
 from cable_ocp.scene import Current, End, Scene, apply_overrides, scene_from_dict
 from cable_ocp.scene.fields import check_keys as _check_keys
@@ -731,8 +732,6 @@ def _parse_modes(t: Any) -> ModesOptions:
 
 def _length_history_min(tm: TopMotion, length0: float, duration: float) -> tuple[float, float]:
     """(smallest unstretched length over [0, duration], its time) of the pay-out law."""
-    from cable_ocp.dynamics.motion import length_numeric  # local: motion imports this module
-
     n = 20001
     ts = [duration * k / (n - 1) for k in range(n)]
     ls = length_numeric(tm, length0, ts)[0]

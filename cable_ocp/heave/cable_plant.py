@@ -30,7 +30,8 @@ design model. The delay buffer (the controller's own past commands) is known exa
 
 Every controller also runs, with the same estimator, sensors, noise and sea, against the
 design model as the plant: the reduction that model predicts sits beside the one the cable
-achieves (:class:`CableMetrics`).
+achieves (:class:`CableMetrics`). The comparison itself, with the identification and the
+deployment, is :mod:`cable_ocp.heave.cable_compare`.
 """
 
 from __future__ import annotations
@@ -60,7 +61,6 @@ __all__ = [
     "CableTrace",
     "DesignTable",
     "KalmanEstimator",
-    "compare_cable",
     "design_scene",
     "run_loop",
 ]
@@ -723,6 +723,22 @@ class LoopRun:
     failures: int
     plant_failed_at: float | None
     max_residual: float
+    stop: tuple[str, str] | None = None
+
+
+def run_status(run: LoopRun, plant: str = "cable") -> tuple[str, str]:
+    """``(status, message)`` of a run, in the statuses of :mod:`cable_ocp.heave.simulate`:
+    ``"unstable"`` / ``"non_finite"`` where the run left its bound or turned non-finite,
+    ``"failed"`` where a step of the cable plant did not converge (the axial model cannot
+    follow the line from there: a diverging loop or a slack line), else ``"solved"``."""
+    if run.stop is not None:
+        return run.stop
+    if run.plant_failed_at is not None:
+        return ("failed", f"the {plant} plant's Newton step did not converge at t = "
+                f"{run.plant_failed_at:.2f} s (scaled residual {run.max_residual:.3g}); the "
+                "run stops there (a diverging loop or a slack line, which the axial model "
+                "cannot follow)")
+    return "solved", "ran to the end with finite, bounded states"
 
 
 @dataclass(frozen=True)
@@ -776,12 +792,22 @@ def _winch_maps(sc: HeaveScene, dt: float) -> tuple[np.ndarray, np.ndarray, np.n
 
 
 def run_loop(sc: HeaveScene, plant: Any, ctrl: _Ctrl, wave: Wave, noise: np.ndarray,
-             n_ctrl: int, progress: Callable[[int], None] | None = None) -> LoopRun:
+             n_ctrl: int, progress: Callable[[int], None] | None = None,
+             bound: float | None = None) -> LoopRun:
     """Simulate one controller on one plant (``_CableLoopPlant`` or ``_ModelLoopPlant``).
 
     ``noise``: shape (n_ctrl + 1, 3), the measurement noise of depth, winch and boom tip
-    (m) per sample (the same for every controller and plant).
+    (m) per sample (the same for every controller and plant). The run stops (the rest of
+    the trace NaN) where the plant's step fails, a state or command turns non-finite, or
+    the unit heave or winch output leaves ``bound`` (m; default
+    :data:`cable_ocp.heave.simulate.UNSTABLE_FACTOR` times the largest boom-tip heave, as
+    :func:`cable_ocp.heave.simulate.compare`).
     """
+    if bound is None:
+        from cable_ocp.heave.simulate import UNSTABLE_FACTOR
+
+        bound = UNSTABLE_FACTOR * max(float(np.max(np.abs(wave.x0))), 1e-3)
+    stop = None
     c = sc.controller
     h = c.sample_time
     d = int(round(sc.winch.delay / h))
@@ -832,7 +858,18 @@ def run_loop(sc: HeaveScene, plant: Any, ctrl: _Ctrl, wave: Wave, noise: np.ndar
         tmin[k] = t_mn
         if plant.failed_at is not None:
             break
-    if plant.failed_at is None:
+        last = np.concatenate([heave, upts, [u0]])
+        if not np.all(np.isfinite(last)):
+            stop = ("non_finite", f"a state or command became non-finite at t = "
+                    f"{(k + 1) * h:.2f} s; the run stops there")
+        elif float(np.max(np.abs(last[:-1]))) > bound:
+            stop = ("unstable", f"the unit heave or winch output left {bound:.4g} m "
+                    f"(1000 times the largest boom-tip heave) at t = {(k + 1) * h:.2f} s: "
+                    "the closed loop is unstable; the run stops there")
+        if stop is not None:
+            xs[i + 1: i + m + 1] = np.nan
+            break
+    if plant.failed_at is None and stop is None:
         # the last point: the command applied over the last step (as simulate.compare)
         us[nfine] = float(Cw[0] @ w)
         uds[nfine] = float(Cw[1] @ w + Dw[1] * vs[nfine - 1])
@@ -841,7 +878,7 @@ def run_loop(sc: HeaveScene, plant: Any, ctrl: _Ctrl, wave: Wave, noise: np.ndar
                     tension_top=tt, length=wave.ldep, min_element_tension=tmin)
     failed = None if plant.failed_at is None else float(plant.failed_at * h)
     return LoopRun(trace=tr, commands=cmds, times=np.array(ctrl.times), failures=ctrl.failures,
-                   plant_failed_at=failed, max_residual=plant.max_residual)
+                   plant_failed_at=failed, max_residual=plant.max_residual, stop=stop)
 
 
 # ------------------------------------------------------------------------------------------
@@ -855,6 +892,14 @@ class CableComparison:
 
     Attributes
     ----------
+    statuses, messages : dict
+        Controller name -> status (:data:`cable_ocp.heave.simulate.STATUSES`) of its run on
+        the plant, and its explanation.
+    passive_heave_rms : float or None
+        Heave RMS of the passive run on the same plant and sea (the baseline of
+        ``reduction_pct``), m.
+    warnings : list of str
+        Remarks that do not change a status.
     json_extra : dict
         Top-level JSON fields: ``plant``, ``design_model`` (a, b used and where from),
         ``identified`` (see :func:`cable_ocp.heave.identify_cable.identified_json`).
@@ -862,14 +907,24 @@ class CableComparison:
         The runs on the design model (same estimator, sensors, noise, sea).
     """
 
-    sigma_uncontrolled: float
+    sigma_uncontrolled: float | None
     metrics: dict
     traces: dict
     models: Any
     mpc_solve_times: np.ndarray | None
     mpc_failures: int
+    statuses: dict = field(default_factory=dict)
+    messages: dict = field(default_factory=dict)
+    passive_heave_rms: float | None = None
+    warnings: list = field(default_factory=list)
     json_extra: dict = field(default_factory=dict)
     predicted_traces: dict = field(default_factory=dict)
+
+    @property
+    def status(self) -> str:
+        """``"solved"`` when every controller is, else the first other status."""
+        bad = [s for s in self.statuses.values() if s != "solved"]
+        return bad[0] if bad else "solved"
 
 
 def design_scene(sc: HeaveScene, identification: Any | None, dyn: DynamicScene
@@ -895,11 +950,29 @@ def design_scene(sc: HeaveScene, identification: Any | None, dyn: DynamicScene
                    simulation=replace(sc.simulation, plant="model")), source
 
 
-def _metrics_cable(sc: HeaveScene, run: LoopRun, name: str, G: np.ndarray) -> dict:
+#: the cable-plant fields of a controller's metrics (None where the run is not solved)
+CABLE_FIELDS = ("tension_unit_min", "tension_unit_max", "tension_top_min", "tension_top_max",
+                "slack_samples", "slack_first_time_s", "plant_failed_at_s")
+
+
+def _metrics_cable(sc: HeaveScene, run: LoopRun, name: str, G: np.ndarray | None) -> dict:
+    """The metrics of :func:`cable_ocp.heave.simulate.compare` and the cable's; every value
+    None (JSON null) but ``energy_index``, the solve time and ``plant_failed_at_s`` when
+    the run is not solved."""
     from cable_ocp.heave.simulate import _metrics
 
-    base = _metrics(sc, run.trace, run.commands, name, G,
-                    run.times if name == "mpc" else None, sc.controller.sample_time)
+    energy = (float(np.sqrt(np.sum(G**2))) if name in ("lqr", "lqg") and G is not None
+              else None)
+    times = run.times if name == "mpc" else None
+    if run_status(run)[0] != "solved":
+        d = dict.fromkeys(("heave_rms", "reduction_pct", "peak_winch_speed", "max_stroke",
+                           "max_constraint_violation", "winch_speed_rms") + CABLE_FIELDS)
+        d["energy_index"] = energy
+        d["solve_time_median_s"] = (float(np.median(times)) if times is not None
+                                    and times.size else None)
+        d["plant_failed_at_s"] = run.plant_failed_at
+        return d
+    base = _metrics(sc, run.trace, run.commands, energy, times, sc.controller.sample_time)
     tr = run.trace
     keep = tr.t >= sc.simulation.warmup - 1e-12
     h = sc.controller.sample_time
@@ -939,119 +1012,6 @@ class CableMetrics:
             return self.__dict__["values"][key]
         except KeyError as exc:
             raise AttributeError(key) from exc
-
-
-def compare_cable(sc: HeaveScene, controllers: tuple | None = None,
-                  progress: Callable[[int, int, Any], None] | None = None) -> Any:
-    """:func:`cable_ocp.heave.simulate.compare` for a scene with ``[unit] cable_scene``.
-
-    The design model is identified from the cable scene (004 6.2.3,
-    :func:`cable_ocp.heave.identify_cable.identify_from_cable`) unless ``[unit] a, b`` are
-    given. With ``[simulation] plant = "model"`` the usual comparison runs on that model;
-    with ``"cable"`` every controller runs against the cable (module docstring), and against
-    the design model with the same estimator for the prediction.
-    """
-    from cable_ocp.heave import identify_cable as idc
-    from cable_ocp.heave import simulate as sm
-    from cable_ocp.scene.heave import load_cable_scene
-
-    dyn = load_cable_scene(sc)
-    ident = idc.identify_from_cable(sc, dyn)
-    sd, source = design_scene(sc, ident, dyn)
-    extra = {"plant": sc.simulation.plant,
-             "design_model": {"a": sd.unit.a, "b": sd.unit.b,
-                              "b_quadratic": sd.unit.b_quadratic, "source": source,
-                              "mass": sd.unit.mass, "static_tension": sd.unit.static_tension},
-             "identified": idc.identified_json(ident)}
-    if sc.deployment is not None:
-        from cable_ocp.heave.deployment import deploy
-
-        return deploy(sc, sd, dyn, ident, extra, progress)
-    if sc.simulation.plant == "model":
-        res = sm.compare(sd, controllers, progress)
-        return CableComparison(res.sigma_uncontrolled, res.metrics, res.traces, res.models,
-                               res.mpc_solve_times, res.mpc_failures, json_extra=extra)
-    return _compare_on_cable(sc, sd, dyn, controllers, progress, extra)
-
-
-def _compare_on_cable(sc: HeaveScene, sd: HeaveScene, dyn: DynamicScene,
-                      controllers: tuple | None, progress: Callable | None, extra: dict
-                      ) -> CableComparison:
-    from cable_ocp.heave import simulate as sm
-
-    c = sc.controller
-    h = c.sample_time
-    T = sc.simulation.duration
-    n_ctrl = int(round(T / h))
-    controllers = tuple(controllers or c.controllers)
-    models = sm.build_models(sd)
-    plant_c = AxialCablePlant(dyn, h)
-    m = plant_c.substeps
-    hs = h / sc.simulation.substeps
-    t_f, x0_f, _ = sm.wave_realisation(models.plant, T + c.preview_time + 2 * h, hs,
-                                       sc.simulation.seed)
-    L0 = dyn.length
-    wave = make_wave(t_f, x0_f, h, m, n_ctrl, lambda t: np.full_like(t, L0),
-                     0.5 * sc.simulation.warmup)
-    rng = np.random.default_rng(sc.simulation.seed + 1000)
-    noise = rng.standard_normal((n_ctrl + 1, 3)) * np.array(
-        [c.measurement_noise, c.winch_noise, c.boom_tip_noise])
-    table, p = design_table(sd, np.array([L0]), np.array([sd.unit.a]), np.array([sd.unit.b]))
-    G = table.G[0]
-    settings = _mpc_settings(sd)
-    t_u0, t_t0 = plant_c.static_tensions()
-    quad = sd.unit.model == "quadratic"
-    total = 2 * n_ctrl * len(controllers)
-    metrics, traces, predicted = {}, {}, {}
-    solve_times, failures = None, 0
-    for idx, name in enumerate(controllers):
-        if name not in ("passive", "lqr", "lqg", "mpc"):
-            raise CableOCPError(f"controller {name!r} is unknown; valid: passive, lqr, lqg, "
-                                "mpc")
-        runs = {}
-        for j, kind in enumerate(("model", "cable")):
-            base = (2 * idx + j) * n_ctrl
-
-            def prog(k: int, base: int = base) -> None:
-                if progress is not None:
-                    progress(base + k, total, None)
-
-            mpc = (mpc_mod.LinearMPC(p, sc.winch.delay, settings) if name == "mpc" else None)
-            ctrl = _Ctrl(name, None if name == "passive" else table, mpc)
-            if kind == "model":
-                plant: Any = _ModelLoopPlant(sd.unit.a, sd.unit.b, sd.unit.b_quadratic, quad, m,
-                                             h / m, sd.unit.mass, t_u0, t_t0)
-            else:
-                plant = _CableLoopPlant(plant_c)
-            runs[kind] = run_loop(sc, plant, ctrl, wave, noise, n_ctrl, prog)
-        traces[name] = runs["cable"].trace
-        predicted[name] = runs["model"].trace
-        mc = _metrics_cable(sd, runs["cable"], name, G)
-        mm = _metrics_cable(sd, runs["model"], name, G)
-        metrics[name] = (mc, mm)
-        if name == "mpc":
-            solve_times = runs["cable"].times
-            failures = runs["cable"].failures
-    if progress is not None:
-        progress(total, total, None)
-    out = {}
-    base_c = metrics["passive"][0]["heave_rms"] if "passive" in metrics else None
-    base_m = metrics["passive"][1]["heave_rms"] if "passive" in metrics else None
-    for name, (mc, mm) in metrics.items():
-        d = dict(mc)
-        d["reduction_pct"] = (100.0 * (1.0 - mc["heave_rms"] / base_c)) if base_c else 0.0
-        d["heave_rms_predicted"] = mm["heave_rms"]
-        d["reduction_predicted_pct"] = (100.0 * (1.0 - mm["heave_rms"] / base_m)) if base_m \
-            else 0.0
-        d["tension_unit_min_predicted"] = mm["tension_unit_min"]
-        d["tension_unit_max_predicted"] = mm["tension_unit_max"]
-        out[name] = CableMetrics(d)
-    extra = dict(extra)
-    extra["cable_plant"] = {"segments": plant_c.model.n, "time_step": plant_c.dt,
-                            "substeps": m, "length": L0,
-                            "static_tension_unit": t_u0, "static_tension_top": t_t0}
-    return CableComparison(models.sigma_uncontrolled, out, traces, models, solve_times,
-                           failures, json_extra=extra, predicted_traces=predicted)
 
 
 def _mpc_settings(sd: HeaveScene) -> mpc_mod.MPCSettings:

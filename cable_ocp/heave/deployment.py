@@ -133,14 +133,16 @@ def deploy(sc: HeaveScene, sd: HeaveScene, dyn: DynamicScene, ident0: CableIdent
     if progress is not None:
         progress(total, total, None)
 
-    metrics = {}
+    metrics, statuses, messages = {}, {}, {}
     base = None
     for name, run in runs.items():
+        statuses[name], messages[name] = cp.run_status(run)
         d = cp._metrics_cable(sd, run, "lqr" if name != "passive" else "passive",
                               fixed.G[0] if name == "lqr_fixed" else sched.G[0])
         if name == "passive":
             base = d["heave_rms"]
-        d["reduction_pct"] = 100.0 * (1.0 - d["heave_rms"] / base) if base else 0.0
+        ok = d["heave_rms"] is not None and base is not None and base > 0
+        d["reduction_pct"] = float(100.0 * (1.0 - d["heave_rms"] / base)) if ok else None
         if name == "lqr_scheduled":
             d["energy_index"] = None  # the gain changes with the length
         metrics[name] = cp.CableMetrics(d)
@@ -162,7 +164,7 @@ def deploy(sc: HeaveScene, sd: HeaveScene, dyn: DynamicScene, ident0: CableIdent
     extra["cable_plant"] = {"segments": plant.model.n, "time_step": plant.dt, "substeps": m}
     traces = {k: r.trace for k, r in runs.items()}
     return cp.CableComparison(models.sigma_uncontrolled, metrics, traces, models, None, 0,
-                              json_extra=extra)
+                              statuses, messages, base, [], json_extra=extra)
 
 
 def _per_length(runs: dict[str, cp.LoopRun], sc: HeaveScene, lo: float, hi: float,
@@ -183,7 +185,7 @@ def _per_length(runs: dict[str, cp.LoopRun], sc: HeaveScene, lo: float, hi: floa
     warm = sc.simulation.warmup
     for name, run in runs.items():
         tr = run.trace
-        ok = tr.t >= warm - 1e-12
+        ok = (tr.t >= warm - 1e-12) & np.isfinite(tr.x)  # NaN after a run that stopped
         idx = np.clip(np.searchsorted(edges, tr.length, side="right") - 1, 0, centres.size - 1)
         ks = np.arange(tr.min_element_tension.size)
         lk = tr.length[ks * (tr.t.size - 1) // max(1, tr.min_element_tension.size)]

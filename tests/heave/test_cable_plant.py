@@ -27,6 +27,7 @@ from cable_ocp.cli import main
 from cable_ocp.dynamics import dynamic_scene_from_dict, simulate
 from cable_ocp.dynamics.axial import AxialModel
 from cable_ocp.errors import CableOCPError
+from cable_ocp.heave import cable_compare as cc
 from cable_ocp.heave import cable_plant as cp
 from cable_ocp.heave.identify_cable import identify_line
 from cable_ocp.scene.heave import load_cable_scene, load_scene, scene_from_dict
@@ -222,7 +223,7 @@ def long_run() -> tuple:
 
     ident = identify_from_cable(sc, dyn)
     sd, _ = cp.design_scene(sc, ident, dyn)
-    res = cp._compare_on_cable(sc, sd, dyn, None, None, {})
+    res = cc._compare_on_cable(sc, sd, dyn, None, None, {})
     return sc, dyn, ident, res
 
 
@@ -285,9 +286,13 @@ def test_long_line_plant_replayed_by_idas(long_run: tuple) -> None:
 # ------------------------------------------------------------------------------------------
 
 @pytest.mark.parametrize("doc,match", [
-    ({"simulation": {"plant": "cable"}}, "plant = 'cable' needs \\[unit\\] cable_scene"),
-    ({"simulation": {"plant": "rope"}}, "plant = 'rope'"),
-    ({"unit": {"cable_scene": "no_such_file.toml"}}, "\\[unit\\] cable_scene = .*not found"),
+    ({"simulation": {"plant": "cable"}}, 'simulation.plant = "cable": needs unit.cable_scene'),
+    ({"simulation": {"plant": "rope"}}, "simulation.plant = 'rope'"),
+    ({"unit": {"cable_scene": "no_such_file.toml"}}, "unit.cable_scene = .*not found"),
+    ({"unit": {"cable_scene": "../berteaux_mooring.toml"}}, "unit.cable_scene = .*statics"),
+    ({"controller": {"winch_noise": -0.01}}, "controller.winch_noise = -0.01"),
+    ({"controller": {"measurement_noise": -0.01}}, "controller.measurement_noise = -0.01"),
+    ({"identification": {"noise": -1.0}}, "identification.noise = -1.0: must be >= 0"),
     ({"unit": {"cable_scene": "huang_3_3_5.toml"}, "deployment": {"payout_speed": 1.0}},
      "final_length"),
     ({"unit": {"cable_scene": "huang_5_7.toml"}}, "axial"),
