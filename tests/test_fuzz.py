@@ -55,7 +55,8 @@ ROOT = Path(__file__).resolve().parents[1]
 #: reported when it exceeds solver.accuracy) but skips the mesh doublings; the heave and
 #: dynamics runs are 2 s long (every controller or model is still built and run; the status
 #: rules do not depend on the duration); the footprint takes 3 directions. The heave scenes
-#: on a cable also shorten the identification experiment to 5 s and lower the unit at 10 m/s.
+#: on a cable also shorten the identification experiment to 30 s (its multi-sine needs
+#: harmonics of 2 pi / 10 s inside the band) and lower the unit at 10 m/s.
 #: A new scene kind adds one line here; a file matched by two lines of one command takes the
 #: first.
 TARGETS: list[tuple[str, tuple[str, ...], tuple[str, ...]]] = [
@@ -64,9 +65,9 @@ TARGETS: list[tuple[str, tuple[str, ...], tuple[str, ...]]] = [
     ("footprint", ("problems/footprint_*.toml",), ("--directions", "3")),
     ("heave", ("problems/heave/*_cable.toml",),
      ("--duration", "2", "--set", "simulation.warmup=0.5", "--set",
-      "identification.duration=5")),
+      "identification.duration=30")),
     ("heave", ("problems/heave/deployment_*.toml",),
-     ("--set", "simulation.warmup=0.5", "--set", "identification.duration=5", "--set",
+     ("--set", "simulation.warmup=0.5", "--set", "identification.duration=30", "--set",
       "deployment.payout_speed=10")),
     ("heave", ("problems/heave/*.toml",),
      ("--duration", "2", "--set", "simulation.warmup=0.5")),

@@ -31,6 +31,7 @@ from cable_ocp.heave.cable_plant import (
     _metrics_cable,
     _ModelLoopPlant,
     _mpc_settings,
+    design_damping,
     design_scene,
     design_table,
     make_wave,
@@ -70,20 +71,24 @@ def compare_cable(sc: HeaveScene, controllers: tuple | None = None,
     dyn = load_cable_scene(sc)
     ident = idc.identify_from_cable(sc, dyn)
     sd, source = design_scene(sc, ident, dyn)
+    warn = design_damping(ident.linear.b, "design model")[1] if source == "identified" else None
     extra = {"plant": sc.simulation.plant,
              "design_model": {"a": sd.unit.a, "b": sd.unit.b,
                               "b_quadratic": sd.unit.b_quadratic, "source": source,
                               "mass": sd.unit.mass, "static_tension": sd.unit.static_tension},
              "identified": idc.identified_json(ident)}
     if sc.deployment is not None:
-        return deploy(sc, sd, dyn, ident, extra, progress)
-    if sc.simulation.plant == "model":
-        res = sm.compare(sd, controllers, progress)
-        return CableComparison(res.sigma_uncontrolled, res.metrics, res.traces, res.models,
-                               res.mpc_solve_times, res.mpc_failures, res.statuses,
-                               res.messages, res.passive_heave_rms, res.warnings,
-                               json_extra=extra)
-    return _compare_on_cable(sc, sd, dyn, controllers, progress, extra)
+        res = deploy(sc, sd, dyn, ident, extra, progress)
+    elif sc.simulation.plant == "model":
+        r = sm.compare(sd, controllers, progress)
+        res = CableComparison(r.sigma_uncontrolled, r.metrics, r.traces, r.models,
+                              r.mpc_solve_times, r.mpc_failures, r.statuses, r.messages,
+                              r.passive_heave_rms, r.warnings, json_extra=extra)
+    else:
+        res = _compare_on_cable(sc, sd, dyn, controllers, progress, extra)
+    if warn is not None and warn not in res.warnings:
+        res.warnings.insert(0, warn)
+    return res
 
 
 def _compare_on_cable(sc: HeaveScene, sd: HeaveScene, dyn: DynamicScene,

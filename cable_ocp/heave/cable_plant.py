@@ -927,6 +927,22 @@ class CableComparison:
         return bad[0] if bad else "solved"
 
 
+#: the smallest damping b (s) a design takes: an identified b below it (a line without drag
+#: gives b ~ -1e-4 s, the fit's RK4 dissipating a little where the plant's midpoint rule
+#: dissipates nothing) is raised to it, with a warning
+B_MIN = 1e-6
+
+
+def design_damping(b: float, where: str) -> tuple[float, str | None]:
+    """``(b used by the design, warning or None)``: an identified ``b`` below :data:`B_MIN`
+    is raised to it (the unit model (6.2) needs b >= 0)."""
+    if b >= B_MIN:
+        return float(b), None
+    return B_MIN, (f"{where}: the identified b = {b:.3g} s is below {B_MIN:g} s (a line with "
+                   "almost no damping, or an experiment too short for its resonance); the "
+                   f"design uses b = {B_MIN:g} s")
+
+
 def design_scene(sc: HeaveScene, identification: Any | None, dyn: DynamicScene
                  ) -> tuple[HeaveScene, str]:
     """The heave scene with its design model: identified ``a, b`` (and ``b_quadratic``)
@@ -939,7 +955,8 @@ def design_scene(sc: HeaveScene, identification: Any | None, dyn: DynamicScene
     if not given:
         if identification is None:
             raise CableOCPError("[unit] a and b are not given and nothing was identified")
-        kw.update(a=identification.linear.a, b=identification.linear.b)
+        kw.update(a=identification.linear.a,
+                  b=design_damping(identification.linear.b, "design model")[0])
         if identification.quadratic is not None and "b_quadratic" not in sc.raw["unit"]:
             kw["b_quadratic"] = identification.quadratic.b
         source = "identified"

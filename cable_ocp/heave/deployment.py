@@ -98,12 +98,20 @@ def deploy(sc: HeaveScene, sd: HeaveScene, dyn: DynamicScene, ident0: CableIdent
     lf = dep.fixed_length if dep.fixed_length is not None else L0
     idents = _schedule(sc, dyn, ident0, lengths)
     a_tab = np.array([i.linear.a for i in idents])
-    b_tab = np.array([i.linear.b for i in idents])
+    warnings: list[str] = []
+    b_tab = np.empty(len(idents))
+    for j, (i, L) in enumerate(zip(idents, lengths, strict=True)):
+        b_tab[j], w = cp.design_damping(i.linear.b, f"schedule at {L:g} m")
+        if w:
+            warnings.append(w)
     fixed_ident = next((i for i, L in zip(idents, lengths, strict=True) if abs(L - lf) < 1e-9),
                        None) or identify_from_cable(sc, dyn, length=lf)
     sched, p = cp.design_table(sd, lengths, a_tab, b_tab)
+    b_fixed, w = cp.design_damping(fixed_ident.linear.b, f"fixed design at {lf:g} m")
+    if w and w not in warnings:
+        warnings.append(w)
     fixed, _ = cp.design_table(sd, np.array([lf]), np.array([fixed_ident.linear.a]),
-                               np.array([fixed_ident.linear.b]))
+                               np.array([b_fixed]))
 
     warm = sc.simulation.warmup
     T = warm + abs(L1 - L0) / dep.payout_speed + dep.ramp_time + 20.0
@@ -156,6 +164,7 @@ def deploy(sc: HeaveScene, sd: HeaveScene, dyn: DynamicScene, ident0: CableIdent
         "start_length": L0, "final_length": L1, "payout_speed": dep.payout_speed,
         "duration": n_ctrl * h, "sample_time": h, "fixed_length": lf,
         "schedule": {"lengths": lengths.tolist(), "a": a_tab.tolist(), "b": b_tab.tolist(),
+                     "b_identified": [i.linear.b for i in idents],
                      "omega_1": w1.tolist(), "a_modal": (1.0 / w1**2).tolist(),
                      "fit_pct": [i.linear.fit_pct for i in idents]},
         "fixed_identified": identified_json(fixed_ident),
@@ -164,7 +173,7 @@ def deploy(sc: HeaveScene, sd: HeaveScene, dyn: DynamicScene, ident0: CableIdent
     extra["cable_plant"] = {"segments": plant.model.n, "time_step": plant.dt, "substeps": m}
     traces = {k: r.trace for k, r in runs.items()}
     return cp.CableComparison(models.sigma_uncontrolled, metrics, traces, models, None, 0,
-                              statuses, messages, base, [], json_extra=extra)
+                              statuses, messages, base, warnings, json_extra=extra)
 
 
 def _per_length(runs: dict[str, cp.LoopRun], sc: HeaveScene, lo: float, hi: float,

@@ -114,9 +114,10 @@ def excitation_signal(kind: str, t: np.ndarray, amplitude: float, band: tuple[fl
         ks = np.arange(max(1, math.ceil(band[0] / w0 - 1e-9)),
                        math.floor(band[1] / w0 + 1e-9) + 1)
         if ks.size == 0:
-            raise CableOCPError(f"[identification] band = {list(band)} rad/s holds no harmonic "
-                                f"of 2 pi / (duration / 3) = {w0:.4g} rad/s: widen it or "
-                                "lengthen the duration")
+            raise CableOCPError(f"identification.band = {list(band)}: holds no harmonic of "
+                                f"2 pi / (identification.duration / 3) = {w0:.4g} rad/s; "
+                                "widen identification.band (rad/s; default from the sea) or "
+                                "lengthen identification.duration (s)")
         kk = np.arange(ks.size)
         phases = -math.pi * kk * (kk + 1) / ks.size  # Schroeder
         x = np.sin(np.outer(t, ks * w0) + phases).sum(axis=1)
@@ -132,7 +133,7 @@ def excitation_signal(kind: str, t: np.ndarray, amplitude: float, band: tuple[fl
             raise CableOCPError("excitation 'sea' needs the boom-tip record")
         x = np.asarray(sea, dtype=float)
     else:
-        raise CableOCPError(f"[identification] excitation = {kind!r}; valid: multisine, "
+        raise CableOCPError(f"identification.excitation = {kind!r}: valid are multisine, "
                             "chirp, step, sea")
     x = x * fade
     keep = t >= min(FADE_IN, duration / 4)
