@@ -1,0 +1,363 @@
+"""Benchmark of the 3D lumped-mass dynamics on the system of Huang (1992) 5.7.
+
+The 300 m cable and 3 t unit of Huang (1992) 5.7 (``problems/dynamics/huang_5_7.toml``),
+its top moved by x = y = z = sin(1.256 t) m (the faster case of 5.7.1), ramped in over 5 s.
+For 20, 40 and 80 segments :func:`run` returns, in one run, the wall time per simulated
+second of cable_ocp's implicit midpoint scheme at a few time steps, and optionally of
+MoorDyn (``pip install moordyn``; benchmark only, never needed by the tests) at its
+stable time steps, each with its error against a converged reference of the same model
+and discretisation (the same number of segments, a time step 8-16 times smaller), and
+the amplitude of the top tension of each, so that the two models can be compared on the
+same line (the issue asks for amplitudes within 2 %).
+
+To make the two models the same line: the unit's drag is isotropic (MoorDyn's point drag
+1/2 rho CdA |u| u), its added mass the same in every direction (MoorDyn's point
+Ca rho V), and both carry the same internal damping T = EA e + c de/dt with c = 3.4e4 N s
+(MoorDyn's BA; MoorDyn's explicit RK2 needs some: without it its undamped axial modes
+grow), about half of critical for the shortest segment's axial mode at 40 segments and
+0.3 % for the first axial mode. Remaining differences of formulation: MoorDyn takes the
+cable's drag and added mass at the nodes with node tangents, Huang's ch. 5 (and
+cable_ocp) on the segments.
+
+Nothing here prints (MoorDyn writes to stdout and stderr on every call: both are silenced
+at the file-descriptor level). Timings are wall-clock and noisy on a shared machine:
+compare ratios from one run.
+"""
+
+from __future__ import annotations
+
+import math
+import os
+import sys
+import tempfile
+import time
+from collections.abc import Callable, Sequence
+from contextlib import contextmanager
+from dataclasses import asdict, dataclass
+from pathlib import Path
+from typing import Any
+
+import numpy as np
+
+from cable_ocp.dynamics.scene import DynamicScene, load_dynamic_scene
+
+__all__ = ["BenchRow", "format_table", "moordyn_available", "run", "scene"]
+
+PROBLEM = Path(__file__).resolve().parents[2] / "problems" / "dynamics" / "huang_5_7.toml"
+FREQUENCY = 1.256  # rad/s, Huang 5.7.1 (Figure 5.5)
+RAMP = 5.0  # s
+DAMPING = 3.4e4  # N s, internal damping of both models (MoorDyn's BA)
+OUTPUT_STEP = 0.05  # s, the sampling of both models' top tension
+DURATION = 30.0  # s
+WINDOW = 10.0  # s: errors and amplitudes over the last WINDOW seconds
+
+
+@dataclass
+class BenchRow:
+    """One line of the benchmark table.
+
+    Attributes
+    ----------
+    model : str
+        ``"cable_ocp midpoint"`` or ``"MoorDyn <scheme>"``.
+    segments : int
+    time_step : float
+        Integration step, s.
+    wall_per_simulated_s : float
+        Wall time per simulated second, s (stepping only, fastest of the repeats).
+    realtime_factor : float
+        Simulated seconds per wall second.
+    top_tension_amplitude_N : float
+        Half the peak-to-peak top tension over the last 10 s, N.
+    error : float
+        Largest top-tension difference from the converged reference of the same model and
+        segments over the last 10 s, over the reference's amplitude (-).
+    amplitude_vs_other : float or None
+        Relative difference of the top-tension amplitude from the other model at the same
+        segments and converged time step (-); None without MoorDyn.
+    status : str
+        ``"ok"`` or why not.
+    """
+
+    model: str
+    segments: int
+    time_step: float
+    wall_per_simulated_s: float
+    realtime_factor: float
+    top_tension_amplitude_N: float
+    error: float
+    amplitude_vs_other: float | None
+    status: str
+
+
+def scene(segments: int, time_step: float, duration: float = DURATION) -> DynamicScene:
+    """The benchmark scene (see the module docstring) with ``segments`` and ``time_step``."""
+    return load_dynamic_scene(PROBLEM, {
+        "top_motion.heave_frequency": FREQUENCY, "top_motion.horizontal_frequency": FREQUENCY,
+        "top_motion.ramp_time": RAMP, "unit.drag_area": 0.5, "unit.drag_coefficient": 1.5,
+        "unit.added_mass": 3000.0, "cable.axial_damping": DAMPING,
+        "simulation.segments": segments, "simulation.time_step": time_step,
+        "simulation.output_step": time_step, "simulation.duration": duration})
+
+
+def _cable_ocp(segments: int, time_step: float, compile_mode: str | bool,
+               duration: float) -> tuple[np.ndarray, np.ndarray, float, str]:
+    from cable_ocp.dynamics.lumped import LumpedMassModel, run
+    from cable_ocp.dynamics.lumped_scene import lumped_params, lumped_start
+
+    sc = scene(segments, time_step, duration)
+    model = LumpedMassModel(lumped_params(sc))
+    x0, info = lumped_start(sc, model)
+    if x0 is None:
+        return np.zeros(0), np.zeros(0), math.nan, info["message"]
+    every = max(1, int(round(OUTPUT_STEP / time_step)))
+    out = run(model, x0, None, duration, time_step, record_every=every,
+              chunk_records=max(1, int(round(duration / OUTPUT_STEP)) // 10),
+              compile=compile_mode, tol=sc.simulation.tolerance)
+    status = "ok" if out.success else out.status
+    return out.t, np.linalg.norm(out.top_force, axis=1), out.wall_time_s, status
+
+
+def moordyn_available() -> bool:
+    """True when the optional ``moordyn`` package imports."""
+    try:
+        import moordyn  # noqa: F401
+    except Exception:  # noqa: BLE001 - optional
+        return False
+    return True
+
+
+@contextmanager
+def _silenced() -> Any:
+    """Redirect the C-level stdout and stderr to /dev/null (MoorDyn writes there)."""
+    sys.stdout.flush()
+    sys.stderr.flush()
+    saved = [os.dup(1), os.dup(2)]
+    null = os.open(os.devnull, os.O_WRONLY)
+    try:
+        os.dup2(null, 1)
+        os.dup2(null, 2)
+        yield
+    finally:
+        os.dup2(saved[0], 1)
+        os.dup2(saved[1], 2)
+        for fd in (*saved, null):
+            os.close(fd)
+
+
+def _moordyn_input(sc: DynamicScene, segments: int, dtm: float) -> str:
+    """MoorDyn v2 input file of the benchmark scene (z = 0 at the surface, end_b there)."""
+    st = sc.statics
+    cab = st.cable
+    dyn = sc.cable[0]
+    unit = sc.unit
+    rho = st.environment.water_density
+    depth = st.environment.water_depth
+    top = sc.top_position
+    z_top = top[2] - depth
+    volume = unit.volume if unit.volume is not None else (
+        unit.mass - unit.weight_in_water / st.environment.gravity) / rho
+    ca_point = unit.added_mass[0] / (rho * volume)
+    cda = unit.drag_area[0] * unit.drag_coefficient[0]
+    return f"""--------------------- MoorDyn Input File ------------------------------------
+cable_ocp benchmark: Huang (1992) 5.7 system
+---------------------- LINE TYPES ----------------------------------------------------------
+TypeName Diam MassDen EA BA EI Cd Ca CdAx CaAx
+(name) (m) (kg/m) (N) (N-s) (N-m^2) (-) (-) (-) (-)
+cable {cab.diameter} {dyn.mass_per_length} {cab.axial_stiffness} {dyn.axial_damping} 0 \
+{cab.normal_drag} {dyn.added_mass_coefficient} {cab.tangential_drag} \
+{dyn.tangential_added_mass_coefficient}
+---------------------- POINTS ---------------------------------------
+ID Attachment X Y Z Mass Volume CdA Ca
+(#) (word) (m) (m) (m) (kg) (m^3) (m^2) (-)
+1 Free {top[0]} {top[1]} {z_top - cab.length} {unit.mass} {volume} {cda} {ca_point}
+2 Coupled {top[0]} {top[1]} {z_top} 0 0 0 0
+---------------------- LINES ----------------------------------------
+ID LineType AttachA AttachB UnstrLen NumSegs LineOutputs
+(#) (name) (ID) (ID) (m) (-) (-)
+1 cable 1 2 {cab.length} {segments} -
+---------------------- OPTIONS -----------------------------------------
+{dtm} dtM
+{depth} WtrDpth
+{rho} rho
+{st.environment.gravity} g
+120 TmaxIC
+1e-6 threshIC
+0 writeLog
+------------------------- need this line -------------------------------------
+"""
+
+
+def _moordyn(segments: int, dtm: float, duration: float, scheme: str = "RK2"
+             ) -> tuple[np.ndarray, np.ndarray, float, str]:
+    import casadi as ca
+    import moordyn
+
+    from cable_ocp.dynamics.motion import top_offset_expr
+
+    sc = scene(segments, OUTPUT_STEP, duration)
+    ts = ca.SX.sym("t")
+    off = top_offset_expr(sc.top_motion, ts)
+    motion = ca.Function("m", [ts], [off, ca.jacobian(off, ts)])
+    top = np.asarray(sc.top_position, float)
+    z_shift = np.array([0.0, 0.0, -sc.statics.environment.water_depth])
+    with tempfile.TemporaryDirectory() as tmp:
+        path = os.path.join(tmp, "huang_5_7.txt")
+        with open(path, "w") as fh:
+            fh.write(_moordyn_input(sc, segments, dtm))
+        times, tens, unit_z = [], [], []
+        status = "ok"
+        with _silenced():
+            try:
+                system = moordyn.Create(path)
+                if scheme != "RK2":
+                    moordyn.SetTimeScheme(system, scheme)
+                p, v = (np.asarray(a).ravel() for a in motion(0.0))
+                moordyn.Init(system, top + z_shift + p, v)
+                point = moordyn.GetPoint(system, 1)
+                t = 0.0
+                n_out = int(round(duration / OUTPUT_STEP))
+                t0 = time.perf_counter()
+                for k in range(n_out):
+                    t1 = (k + 1) * OUTPUT_STEP
+                    p, v = (np.asarray(a).ravel() for a in motion(t1))
+                    f = moordyn.Step(system, top + z_shift + p, v, t, OUTPUT_STEP)
+                    t = t1
+                    times.append(t)
+                    tens.append(float(np.linalg.norm(f)))
+                    unit_z.append(float(moordyn.GetPointPos(point)[2]) - z_shift[2])
+                wall = time.perf_counter() - t0
+                moordyn.Close(system)
+            except Exception as exc:  # noqa: BLE001 - MoorDyn's failure is a result
+                wall = math.nan
+                status = f"failed: {exc}"
+    tens_a = np.asarray(tens)
+    if status == "ok" and (not np.all(np.isfinite(tens_a)) or tens_a.max() > 1e7):
+        status = "unstable"
+    _moordyn.last_unit_z = np.asarray(unit_z)  # type: ignore[attr-defined]
+    return np.asarray(times), tens_a, wall, status
+
+
+def _window(t: np.ndarray, y: np.ndarray, duration: float) -> tuple[np.ndarray, np.ndarray]:
+    keep = t >= duration - WINDOW - 1e-9
+    return t[keep], y[keep]
+
+
+def _amplitude(t: np.ndarray, y: np.ndarray, duration: float) -> float:
+    _, yw = _window(t, y, duration)
+    return 0.5 * float(np.ptp(yw)) if yw.size else math.nan
+
+
+def _error(t: np.ndarray, y: np.ndarray, tr: np.ndarray, yr: np.ndarray,
+           duration: float) -> float:
+    tw, yw = _window(t, y, duration)
+    if yw.size == 0 or tr.size == 0:
+        return math.nan
+    ref = np.interp(tw, tr, yr)
+    return float(np.max(np.abs(yw - ref)) / _amplitude(tr, yr, duration))
+
+
+def run(segments: Sequence[int] = (20, 40, 80),
+        time_steps: Sequence[float] = (0.1, 0.05, 0.025),
+        moordyn_steps: dict[int, Sequence[float]] | None = None, *,
+        with_moordyn: bool = True, compile_mode: str | bool = "step", repeats: int = 2,
+        duration: float = DURATION,
+        progress: Callable[[str], None] | None = None) -> list[BenchRow]:
+    """Run the benchmark and return its rows (prints nothing).
+
+    Parameters
+    ----------
+    segments : sequence of int
+        Numbers of lumped segments.
+    time_steps : sequence of float
+        cable_ocp's time steps, s (multiples or divisors of the 0.05 s sampling).
+    moordyn_steps : dict, optional
+        MoorDyn's dtM per number of segments, s; default: its largest stable step
+        (4 ms at 20 and 40 segments, 2 ms at 80, found by halving from 8 ms) and half of it.
+    with_moordyn : bool
+        Include MoorDyn when it is installed.
+    compile_mode : {"step", "kernel", False}
+        See :func:`cable_ocp.dynamics.lumped.run` (``"step"``: a few seconds of C
+        compilation per new scene and step, cached, not counted in the wall time).
+    repeats : int
+        Timed runs per row; the fastest is kept.
+    duration : float
+        Simulated time, s (the errors and amplitudes use its last 10 s).
+    progress : callable, optional
+        Called with a short label before each row.
+    """
+    if moordyn_steps is None:
+        moordyn_steps = {20: (4e-3, 2e-3), 40: (4e-3, 2e-3), 80: (2e-3, 1e-3)}
+    use_md = with_moordyn and moordyn_available()
+    rows: list[BenchRow] = []
+    for n in segments:
+        if progress:
+            progress(f"cable_ocp reference, {n} segments")
+        dt_ref = min(time_steps) / 8.0
+        tr, yr, _, st_ref = _cable_ocp(n, dt_ref, compile_mode, duration)
+        amp_ref = _amplitude(tr, yr, duration)
+        md_ref = None
+        if use_md:
+            if progress:
+                progress(f"MoorDyn reference, {n} segments")
+            mdr = _moordyn(n, min(moordyn_steps.get(n, (1e-3,))) / 8.0, duration)
+            md_ref = mdr if mdr[3] == "ok" else None
+        amp_md = _amplitude(md_ref[0], md_ref[1], duration) if md_ref else None
+        for dt in time_steps:
+            if progress:
+                progress(f"cable_ocp, {n} segments, dt = {dt} s")
+            best = None
+            for _ in range(max(1, repeats)):
+                res = _cable_ocp(n, dt, compile_mode, duration)
+                if best is None or res[2] < best[2]:
+                    best = res
+            t, y, wall, status = best  # type: ignore[misc]
+            rows.append(BenchRow(
+                model="cable_ocp midpoint", segments=n, time_step=dt,
+                wall_per_simulated_s=wall / duration, realtime_factor=duration / wall,
+                top_tension_amplitude_N=_amplitude(t, y, duration),
+                error=_error(t, y, tr, yr, duration),
+                amplitude_vs_other=(amp_ref / amp_md - 1.0) if amp_md else None,
+                status=status if st_ref == "ok" else f"{status} (reference {st_ref})"))
+        if not use_md:
+            continue
+        for dtm in moordyn_steps.get(n, ()):
+            if progress:
+                progress(f"MoorDyn, {n} segments, dtM = {dtm} s")
+            best = None
+            for _ in range(max(1, repeats)):
+                res = _moordyn(n, dtm, duration)
+                if best is None or not (res[2] >= best[2]):
+                    best = res
+            t, y, wall, status = best  # type: ignore[misc]
+            ok = status == "ok"
+            rows.append(BenchRow(
+                model="MoorDyn RK2", segments=n, time_step=dtm,
+                wall_per_simulated_s=wall / duration if ok else math.nan,
+                realtime_factor=duration / wall if ok else math.nan,
+                top_tension_amplitude_N=_amplitude(t, y, duration) if ok else math.nan,
+                error=_error(t, y, md_ref[0], md_ref[1], duration) if (ok and md_ref)
+                else math.nan,
+                amplitude_vs_other=(amp_md / amp_ref - 1.0) if amp_md else None,
+                status=status))
+    return rows
+
+
+def format_table(rows: Sequence[BenchRow]) -> str:
+    """The rows as a plain-text table (for the CLI; this module prints nothing)."""
+    head = (f"{'model':<20} {'N':>3} {'dt (s)':>8} {'wall/sim s':>11} {'x real time':>11} "
+            f"{'T amp (kN)':>10} {'error':>9} {'amp vs other':>12}  status")
+    lines = [head, "-" * len(head)]
+    for r in rows:
+        other = "" if r.amplitude_vs_other is None else f"{100 * r.amplitude_vs_other:+.2f} %"
+        lines.append(
+            f"{r.model:<20} {r.segments:>3} {r.time_step:>8.4g} "
+            f"{r.wall_per_simulated_s * 1e3:>8.2f} ms {r.realtime_factor:>11.0f} "
+            f"{r.top_tension_amplitude_N / 1e3:>10.3f} {r.error:>9.2e} {other:>12}  "
+            f"{r.status}")
+    return "\n".join(lines)
+
+
+def as_dicts(rows: Sequence[BenchRow]) -> list[dict[str, Any]]:
+    """The rows as JSON-ready dictionaries."""
+    return [asdict(r) for r in rows]
