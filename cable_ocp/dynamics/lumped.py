@@ -452,6 +452,7 @@ class LumpedMassModel:
                                   [lam * fd for fd in self._drag(r, still)]))
         self._static_fj = ca.Function("static_fj", [x, t, lam], [fs, ca.jacobian(fs, x)])
         self._steps: dict[tuple, ca.Function] = {}
+        self._residuals: dict[tuple, ca.Function] = {}
 
     # -- parameters ---------------------------------------------------------------------
     @staticmethod
@@ -934,7 +935,7 @@ class LumpedMassModel:
         return ca.Function("ends", [t], [ra, va, ca.vec(p.top_position(t)),
                                          ca.vec(self._top_vel(t))])
 
-    def _point_terms(self, r: Any, v: Any, gamma: Any) -> tuple[Any, Any]:
+    def _point_terms(self, r: Any, v: Any, gamma: Any, sym: Any = ca.MX) -> tuple[Any, Any]:
         """Drag (N, 3 x (N+1)) and its Newton blocks (9 x (N+1)) of the unit and the bodies
         at node positions r and velocities v (MX, 3 x (N+1))."""
         p = self.params
@@ -946,8 +947,8 @@ class LumpedMassModel:
         items += [(b.node, [b.drag_area * b.drag_coefficient] * 3, "vector")
                   for b in p.bodies]
         items = [it for it in items if any(it[1]) and p.water_density > 0]
-        fcols = [ca.MX.zeros(3, 1) for _ in range(n + 1)]
-        ccols = [ca.MX.zeros(9, 1) for _ in range(n + 1)]
+        fcols = [sym.zeros(3, 1) for _ in range(n + 1)]
+        ccols = [sym.zeros(9, 1) for _ in range(n + 1)]
         if not items:
             return ca.horzcat(*fcols), ca.horzcat(*ccols)
         rs, vs, gs = ca.SX.sym("r", 3), ca.SX.sym("v", 3), ca.SX.sym("g")
@@ -975,20 +976,25 @@ class LumpedMassModel:
             ccols[node] = ccols[node] + ck
         return ca.horzcat(*fcols), ca.horzcat(*ccols)
 
-    def _core_step(self, dt: float, scheme: str, tol: float, max_iter: int,
-                   linear_solver: str, compile_kernel: bool, force_scale: float | None
-                   ) -> ca.Function:
-        """One Newton-solved step ``(z, t0) -> (z1, residual, iterations, converged)``."""
+    def _residual_function(self, scheme: str, compile_kernel: bool, fscale: float
+                           ) -> ca.Function:
+        """``gj(x1, z, t0, dt)``: the step's scaled residual and, for the MX path, the
+        Newton matrix and force residual (``(res, J, f)``), or, for the SX path, the
+        Newton update by block elimination (``(res, dx)``). Cached: one function for
+        every step size (the step halving reuses it)."""
+        key = (scheme, compile_kernel, fscale)
+        if key in self._residuals:
+            return self._residuals[key]
         p = self.params
         n = p.segments
         nf = self.n_free
         nf3 = 3 * nf
         first = 1 if p.fixed_a else 0
         kern = _segment_kernel(p.drag_law, compile_kernel).map(n, "serial")
+        if not compile_kernel:
+            kern = _segment_kernel_expr(p.drag_law).map(n, "unroll")
         par = ca.DM(self._segment_parameters())
         ends = self._ends_function()
-        fscale = self.force_scale() if force_scale is None else float(force_scale)
-        x_scale = p.length + float(np.max(np.abs(np.asarray(p.top_position(0.0)))))
         node_m = ca.DM(np.vstack([np.diag(m).T.reshape(-1) for m in self._node_mass]).T)
         static = np.zeros((3, n + 1))
         static[2] = -self._node_weight
@@ -1031,9 +1037,13 @@ class LumpedMassModel:
         order = np.lexsort((np.asarray(rows), np.asarray(cols)))
         src_sorted = [src[k] for k in order]
 
-        x1 = ca.MX.sym("x1", nf3)
-        zsym = ca.MX.sym("z", self.state_size(scheme))
-        t0 = ca.MX.sym("t0")
+        # the residual and Newton matrix: MX around the compiled kernel, or one SX
+        # function with the kernel inlined (compiled with the whole step: no overhead)
+        sym = ca.MX if compile_kernel else ca.SX
+        x1 = sym.sym("x1", nf3)
+        zsym = sym.sym("z", self.state_size(scheme))
+        t0 = sym.sym("t0")
+        dt = sym.sym("dt")
         x0 = zsym[0:nf3]
         v0 = zsym[nf3:2 * nf3]
         ra0, va0, rb0, vb0 = ends(t0)
@@ -1068,12 +1078,12 @@ class LumpedMassModel:
         if cur is not None:
             ucur = cur(0.5 * (rm[2, 0:n] + rm[2, 1:n + 1]))
         else:
-            ucur = ca.MX.zeros(3, n)
+            ucur = sym.zeros(3, n)
         fa, fb, madd, kb, cb = kern(r0[:, 0:n], r0[:, 1:n + 1], r1[:, 0:n], r1[:, 1:n + 1],
                                     vel[:, 0:n], vel[:, 1:n + 1], ucur, par, scv)
-        z3 = ca.MX.zeros(3, 1)
-        z9 = ca.MX.zeros(9, 1)
-        fpt, cpt = self._point_terms(rm, vel, gamma)
+        z3 = sym.zeros(3, 1)
+        z9 = sym.zeros(9, 1)
+        fpt, cpt = self._point_terms(rm, vel, gamma, sym)
         force = ca.horzcat(fa, z3) + ca.horzcat(z3, fb) + static + fpt
         mass = node_m + ca.horzcat(madd, z9) + ca.horzcat(z9, madd)
         free = slice(first, n)
@@ -1088,9 +1098,35 @@ class LumpedMassModel:
         diag_b = alpha * mass[:, free] + kc[:, free]
         off_b = -kb[:, first:n - 1] + cb[:, first:n - 1]
         vals = ca.vertcat(ca.vec(diag_b), ca.vec(off_b))
-        jac = ca.MX(sp, 0)
-        jac.nz[:] = vals[src_sorted]
-        gj = ca.Function("gj", [x1, zsym, t0], [res, jac, fres])
+        if compile_kernel:
+            jac = ca.MX(sp, 0)
+            jac.nz[:] = vals[src_sorted]
+            gj = ca.Function("gj", [x1, zsym, t0, dt], [res, jac, fres])
+        else:
+            # the Newton update by block-tridiagonal elimination (3x3 blocks, no pivoting:
+            # the matrix is close to symmetric positive definite), inlined in SX
+            dx_sx = _block_thomas(diag_b, off_b, ca.reshape(fres, 3, nf))
+            gj = ca.Function("gj", [x1, zsym, t0, dt], [res, dx_sx])
+        self._residuals[key] = gj
+        return gj
+
+    def _core_step(self, dt: float, scheme: str, tol: float, max_iter: int,
+                   linear_solver: str, compile_kernel: bool, force_scale: float | None
+                   ) -> ca.Function:
+        """One Newton-solved step ``(z, t0) -> (z1, residual, iterations, converged)``."""
+        p = self.params
+        nf3 = 3 * self.n_free
+        fscale = self.force_scale() if force_scale is None else float(force_scale)
+        x_scale = p.length + float(np.max(np.abs(np.asarray(p.top_position(0.0)))))
+        gj4 = self._residual_function(scheme, compile_kernel, fscale)
+        zsym = ca.MX.sym("z", self.state_size(scheme))
+        t0 = ca.MX.sym("t0")
+        x0 = zsym[0:nf3]
+        v0 = zsym[nf3:2 * nf3]
+
+        def gj(x: Any, z: Any, t: Any) -> Any:
+            return gj4(x, z, t, dt)
+
         # Newton with backtracking, skipped once converged: an iteration evaluates the
         # residual at x; if it did not decrease (2-norm) from the last accepted point, x
         # moves back along the last step (halving it, down to 1/16); else a Newton step.
@@ -1099,7 +1135,10 @@ class LumpedMassModel:
         dl = ca.MX.sym("dl", nf3)
         rno = ca.MX.sym("rno")
         lam = ca.MX.sym("lam")
-        rk, jk, fk = gj(xk, zsym, t0)
+        if compile_kernel:
+            rk, jk, fk = gj(xk, zsym, t0)
+        else:
+            rk, dxk = gj(xk, zsym, t0)
         rn = ca.norm_inf(rk)
         rn2 = ca.norm_2(rk)
         # converged: the residual below tol, or (rounding floor: the residual of a heavy
@@ -1111,10 +1150,17 @@ class LumpedMassModel:
         conv = ca.logic_or(rn <= tol, stalled)
         worse = ca.logic_and(ca.logic_and(rn2 > rno, lam > 1.0 / 16.0),
                              ca.logic_not(conv))
-        newton_dx = ca.Function("newton_dx", [xk, zsym, t0], [ca.solve(jk, fk, linear_solver)])
         x_back = xo - 0.5 * lam * dl
-        dx = ca.if_else(ca.logic_or(conv, worse), ca.MX.zeros(nf3), newton_dx(xk, zsym, t0),
-                        True)
+        skip = ca.logic_or(conv, worse)
+        if compile_kernel:
+            # the sparse solve only when a Newton step is taken (on the values computed
+            # above: the solve's function takes J and f, not x)
+            jm = ca.MX.sym("J", jk.sparsity())
+            fm = ca.MX.sym("f", nf3)
+            solve = ca.Function("newton_solve", [jm, fm], [ca.solve(jm, fm, linear_solver)])
+            dx = ca.if_else(skip, ca.MX.zeros(nf3), solve(jk, fk), True)
+        else:
+            dx = ca.if_else(skip, ca.MX.zeros(nf3), dxk)
         x_new = ca.if_else(conv, xk, ca.if_else(worse, x_back, xk - dx))
         xo_new = ca.if_else(ca.logic_or(conv, worse), xo, xk)
         dl_new = ca.if_else(ca.logic_or(conv, worse), dl, dx)
@@ -1487,7 +1533,7 @@ def run(model: LumpedMassModel, x0: np.ndarray, v0: np.ndarray | None, duration:
             model.params.drag_law, True).class_name() == "External":
         compiled = "kernel"
     if compile == "step":
-        cc = _compile(chunk)
+        cc = _compile(chunk, "-O1")  # -O2: 4x the compile time, the same speed here
         compiled = "step" if cc is not chunk else "none"
         chunk = cc
     build = time.perf_counter() - tb
@@ -1657,6 +1703,28 @@ def _segment_kernel_expr(drag_law: str) -> ca.Function:
 _KERNELS: dict[str, ca.Function] = {}
 
 
+def _block_thomas(diag: Any, off: Any, rhs: Any) -> Any:
+    """Solve the block-tridiagonal system with 3x3 diagonal blocks ``diag`` (9 x n,
+    row-major) and equal upper and lower blocks ``off`` (9 x (n-1)) for ``rhs`` (3 x n), by
+    block elimination without pivoting (SX). Returns the solution as a (3 n,) vector."""
+    n = rhs.shape[1]
+
+    def blk(m: Any, k: int) -> Any:
+        return ca.reshape(m[:, k], 3, 3).T
+
+    d_p = [blk(diag, 0)]
+    y = [rhs[:, 0]]
+    for i in range(1, n):
+        w = ca.mtimes(blk(off, i - 1), ca.inv(d_p[i - 1]))
+        d_p.append(blk(diag, i) - ca.mtimes(w, blk(off, i - 1)))
+        y.append(rhs[:, i] - ca.mtimes(w, y[i - 1]))
+    x = [None] * n
+    x[n - 1] = ca.solve(d_p[n - 1], y[n - 1])
+    for i in range(n - 2, -1, -1):
+        x[i] = ca.solve(d_p[i], y[i] - ca.mtimes(blk(off, i), x[i + 1]))
+    return ca.vertcat(*x)
+
+
 def _segment_kernel(drag_law: str, compile_kernel: bool = True) -> ca.Function:
     """The segment kernel of ``drag_law``, compiled to C once and cached on disk when a C
     compiler is available (see :func:`_compile`), else interpreted."""
@@ -1676,8 +1744,8 @@ def _cache_dir() -> str:
     return base
 
 
-def _compile(fn: ca.Function) -> ca.Function:
-    """Compile a small CasADi Function to a shared library (C code generation, ``cc -O2``)
+def _compile(fn: ca.Function, opt: str = "-O2") -> ca.Function:
+    """Compile a CasADi Function to a shared library (C code generation, ``cc`` with ``opt``)
     cached by the hash of its code in ``$CABLE_OCP_CACHE`` (default ~/.cache/cable_ocp);
     return it as ``casadi.external``. Returns ``fn`` unchanged when no compiler is found or
     anything fails (the interpreted function computes the same numbers, slower)."""
@@ -1698,13 +1766,14 @@ def _compile(fn: ca.Function) -> ca.Function:
         cg.generate(tmp + os.sep)
         src = os.path.join(tmp, f"{name}.c")
         with open(src, "rb") as fh:
-            digest = hashlib.sha256(fh.read() + ca.__version__.encode()).hexdigest()[:16]
+            digest = hashlib.sha256(fh.read() + ca.__version__.encode()
+                                    + opt.encode()).hexdigest()[:16]
         cache = _cache_dir()
         os.makedirs(cache, exist_ok=True)
         lib = os.path.join(cache, f"{name}_{digest}.so")
         if not os.path.exists(lib):
             part = lib + f".{os.getpid()}.tmp"
-            subprocess.run([cc, "-O2", "-fPIC", "-shared", src, "-o", part, "-lm"],
+            subprocess.run([cc, opt, "-fPIC", "-shared", src, "-o", part, "-lm"],
                            check=True, capture_output=True, timeout=300)
             os.replace(part, lib)
         shutil.rmtree(tmp, ignore_errors=True)
