@@ -62,9 +62,7 @@ __all__ = [
     "LumpedRun",
     "PointBody",
     "UnitParams",
-    "modes_lumped",
     "run",
-    "simulate_lumped",
     "uniform_params",
 ]
 
@@ -1780,19 +1778,3 @@ def _compile(fn: ca.Function, opt: str = "-O2") -> ca.Function:
         return ca.external(name, lib)
     except Exception:  # noqa: BLE001 - any failure: fall back to the interpreted function
         return fn
-
-
-def simulate_lumped(scene: Any, progress: Callable[[int, int], None] | None = None) -> Any:
-    """Entry point of :func:`cable_ocp.dynamics.simulate` for ``model = "lumped3d"``
-    (see :func:`cable_ocp.dynamics.lumped_scene.simulate_lumped`)."""
-    from cable_ocp.dynamics.lumped_scene import simulate_lumped as _simulate
-
-    return _simulate(scene, progress)
-
-
-def modes_lumped(scene: Any, count: int) -> Any:
-    """Entry point of :func:`cable_ocp.dynamics.modes` for ``model = "lumped3d"``
-    (see :func:`cable_ocp.dynamics.lumped_scene.modes_lumped`)."""
-    from cable_ocp.dynamics.lumped_scene import modes_lumped as _modes
-
-    return _modes(scene, count)

@@ -25,7 +25,7 @@ Progress = Callable[[int, int], None]
 #: model name -> "module:function" of its simulator
 SIMULATORS: dict[str, str] = {
     "axial": "cable_ocp.dynamics.axial:simulate_axial",
-    "lumped3d": "cable_ocp.dynamics.lumped:simulate_lumped",
+    "lumped3d": "cable_ocp.dynamics.lumped_scene:simulate_lumped",
 }
 
 
