@@ -19,7 +19,10 @@ from cable_ocp.scene import Scene, load_scene, scene_from_dict
 from cable_ocp.statics.solution import StaticsSolution
 from cable_ocp.statics.solver import StaticsSolver, solve, sweep
 
-__version__ = "0.1.0"
+# the baseline methods register themselves (statics.registry) when imported
+from cable_ocp import baselines  # noqa: E402, F401  isort: skip
+
+__version__ = "0.2.0"
 
 __all__ = [
     "CableOCPError",

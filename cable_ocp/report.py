@@ -10,45 +10,112 @@ import numpy as np
 
 from cable_ocp.statics.solution import StaticsSolution
 
+#: decimals of each unit in the summary (one way for every row: value, space, unit)
+_DECIMALS = {"m": 4, "N": 2, "deg": 3, "ms": 2}
+MISSING = "-"
 
-def _vec(v: np.ndarray, unit: str) -> str:
-    return "(" + ", ".join(f"{x:12.4f}" for x in v) + f") {unit}"
+
+def _fmt(v: Any, decimals: int) -> str:
+    """Fixed-point number, ``-`` when missing (None, NaN, inf); no negative zero."""
+    if v is None or not np.isfinite(v):
+        return MISSING
+    text = f"{float(v):.{decimals}f}"
+    return text.lstrip("-") if float(text) == 0.0 else text
+
+
+def _qty(v: Any, unit: str, decimals: int | None = None) -> str:
+    """A scalar with its unit (``36.289 deg``, ``1579.90 N``), ``-`` when missing."""
+    text = _fmt(v, _DECIMALS[unit] if decimals is None else decimals)
+    return text if text == MISSING else f"{text} {unit}"
+
+
+def _sci(v: Any, unit: str = "") -> str:
+    """A small number in scientific notation, with its unit if any; ``-`` when missing."""
+    if v is None or not np.isfinite(v):
+        return MISSING
+    return f"{float(v):.2e}" + (f" {unit}" if unit else "")
+
+
+def _vec(v: Any, unit: str, decimals: int | None = None, width: int = 12) -> str:
+    """A vector ``(x, y, z) unit``; missing components as ``-``."""
+    d = _DECIMALS.get(unit, 4) if decimals is None else decimals
+    return "(" + ", ".join(f"{_fmt(x, d):>{width}}" for x in v) + f") {unit}"
 
 
 def _mesh(m: dict | None) -> str:
     if not m:
         return ""
+    if "scheme" not in m:  # the baselines: intervals (and solve_bvp's tolerance) only
+        parts = [f"tol {m['tolerance']:.0e}"] if "tolerance" in m else []
+        if "intervals" in m:
+            parts.append(f"{m['intervals']} intervals")
+        return f" ({', '.join(parts)})" if parts else ""
     return (f" ({m['scheme']} degree {m['degree']}, {m['intervals']} intervals, "
             f"order {m['order']})")
 
 
+def _stiffness_rows(sol: StaticsSolution, end: str) -> list[tuple[str, str]]:
+    """The 3x3 stiffness at one end, one row per force component, decimals chosen for
+    four significant digits in the largest entry; or ``-`` and the reason."""
+    k = sol.stiffness(end)
+    if k is None:
+        return [(f"end_{end} stiffness", f"{MISSING} ({sol.stiffness_note(end)})")]
+    big = float(np.nanmax(np.abs(k))) if np.any(np.isfinite(k)) else 0.0
+    # round-off level (e.g. a line that moves with a free end): zeros, not 15 decimals
+    tiny = 1e-9 * sol.max_tension / max(sol.length, 1e-300)
+    decimals = max(0, 3 - int(np.floor(np.log10(big)))) if big > tiny else 2
+    width = max(len(_fmt(v, decimals)) for v in k.ravel())
+    rows = [(f"end_{end} stiffness dF{c}/d(x, y, z)", _vec(k[i], "N/m", decimals, width))
+            for i, c in enumerate("xyz")]
+    rows.append((f"end_{end} stiffness holds", sol.stiffness_note(end)))
+    return rows
+
+
 def statics_summary(sol: StaticsSolution, title: str = "") -> str:
-    """Summary table of one solve: length, end forces, max tension, solver diagnostics."""
+    """Summary table of one solve: length, grounded length, the ends (position, force,
+    tension, angle, stiffness), max tension, solver diagnostics. Every value carries its
+    unit; a missing value is ``-``."""
     d = sol.diagnostics
     est = d.get("error_estimate_detail", {})
     rows = [
         ("status", f"{sol.status}: {sol.message}"),
-        ("length L", f"{sol.length:.6f} m"),
-        ("end_a position", _vec(sol.position[0], "m")),
-        ("end_a force (cable on attachment)", _vec(sol.force_a, "N")),
-        ("end_b position", _vec(sol.position[-1], "m")),
-        ("end_b force (cable on attachment)", _vec(sol.force_b, "N")),
-        ("max tension", f"{sol.max_tension:.4f} N"),
-        ("solver", f"{d.get('method')}{_mesh(d.get('mesh'))} via {d.get('solver')}"),
-        ("start", str(d.get("start"))),
-        ("iterations", str(sol.iterations)),
-        ("wall time (solve)", f"{sol.wall_time_s * 1e3:.2f} ms"),
-        ("build time", f"{d.get('build_time_s', float('nan')) * 1e3:.1f} ms"),
-        ("max scaled residual", f"{sol.constraint_violation:.2e}"),
-        ("error estimate (relative)", "n/a" if sol.error_estimate is None
-         else f"{sol.error_estimate:.2e}  ({est.get('force_N', 0):.2e} N, "
-              f"{est.get('position_m', 0):.2e} m; {est.get('method', '')})"),
-        ("smoothing bound on drag", f"{d.get('smoothing_force_bound_N', 0):.2e} N over the cable"),
+        ("length L", _qty(sol.length, "m")),
+        ("grounded length", _qty(sol.grounded_length, "m")),
     ]
+    for end in ("a", "b"):
+        pos = sol.position[0 if end == "a" else -1]
+        force = sol.force_a if end == "a" else sol.force_b
+        rows += [
+            (f"end_{end} position", _vec(pos, "m")),
+            (f"end_{end} force (cable on attachment)", _vec(force, "N")),
+            (f"end_{end} tension", _qty(sol.end_tension(end), "N")),
+            (f"end_{end} angle to horizontal", _qty(sol.angle_to_horizontal_deg(end), "deg")),
+        ]
+        rows += _stiffness_rows(sol, end)
+    if sol.stiffness("a") is not None or sol.stiffness("b") is not None:
+        rows.append(("stiffness convention",
+                     "K[i][j] = dF_i/dx_j, F the force on the attachment, x its position: "
+                     "a restoring line has a negative diagonal (MoorPy's matrices are -K)"))
     td = d.get("touchdown")
     if td:
-        rows.insert(6, ("touchdown (on the seabed)", _vec(np.asarray(td["position"]), "m")
-                        + f", grounded length {td['grounded_length']:.4f} m"))
+        rows.append(("touchdown (on the seabed)", _vec(np.asarray(td["position"]), "m")))
+    build = d.get("build_time_s")
+    rows += [
+        ("max tension", _qty(sol.max_tension, "N")),
+        ("solver", f"{d.get('method', MISSING)}{_mesh(d.get('mesh'))}"
+                   + (f" via {d['solver']}" if d.get("solver") else "")),
+        ("start", str(d.get("start", MISSING))),
+        ("iterations", str(sol.iterations)),
+        ("wall time (solve)", _qty(sol.wall_time_s * 1e3, "ms")),
+        ("build time", _qty(None if build is None else build * 1e3, "ms")),
+        ("max scaled residual", _sci(sol.constraint_violation, "(scaled, -)")),
+        ("error estimate (relative)", _sci(sol.error_estimate, "(-)") + (
+            f"  ({_sci(est.get('force_N'), 'N')}, {_sci(est.get('position_m'), 'm')}; "
+            f"{est['method']})" if sol.error_estimate is not None and "method" in est
+            else "")),
+        ("smoothing bound on drag", _sci(d.get("smoothing_force_bound_N"), "N")
+         + (" over the cable" if d.get("smoothing_force_bound_N") is not None else "")),
+    ]
     for b in d.get("bodies") or []:
         rows.append((f"body at joint {b['joint']} ({b['kind']})",
                      _vec(np.asarray(b["position"]), "m") + "; load "

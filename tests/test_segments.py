@@ -242,15 +242,16 @@ def test_free_length_with_segments_rejected():
 
 def test_buoy_lifting_line_out_of_water_fails():
     """A 20 kN buoy on a 10 N/m line in 60 m of water would float above the surface: the
-    solve must say so (status "failed"), never report a profile above z = water_depth."""
+    solve must say so (status "above_surface"), never report a profile above z =
+    water_depth."""
     env = {"water_depth": 60.0, "water_density": 1025.0}
     data = _multi([dict(SEG, length=80.0), dict(SEG, length=80.0)],
                   [{"joint": 1, "kind": "buoy", "net_buoyancy": 20000.0}], env=env,
                   a=[0.0, 0.0, 0.0], b=[100.0, 0.0, 60.0])
     sol = solve(scene_from_dict(data))
     depth = env["water_depth"]
-    assert sol.status == "failed" or np.all(sol.position[:, 2] <= depth + 1e-9)
-    assert sol.status == "failed"
+    assert sol.status == "above_surface" or np.all(sol.position[:, 2] <= depth + 1e-9)
+    assert sol.status == "above_surface"
     assert "surface" in sol.message and "water_depth" in sol.message
 
 

@@ -331,12 +331,15 @@ def test_set_index_errors(problems, capsys):
 def test_still_water_tow_hangs_down():
     """Without current the towed line hangs straight down from the tow point (the stable
     branch; an upward start would land on an inverted column in compression), and the
-    stiff object carries no compression."""
+    stiff object carries no compression. The 1800 m line needs deeper water than the
+    scene's 1000 m (it would pass below the seabed: status below_seabed)."""
     from cable_ocp.scene import load_scene
     from cable_ocp.statics.solver import solve
 
     path = Path(__file__).resolve().parents[1] / "problems" / "bielanski_tow.toml"
-    sol = solve(load_scene(path, {"environment.current.speed": 0.0}))
+    sol = solve(load_scene(path, {"environment.current.speed": 0.0,
+                                  "environment.water_depth": 2000.0,
+                                  "end_a.position": [0.0, 0.0, 2000.0]}))
     assert sol.success, sol.message
     assert sol.position[-1, 2] < sol.position[0, 2] - 0.99 * sol.length
     assert sol.diagnostics["bending"]["min_axial_force_N"] >= -1e-6 * sol.max_tension

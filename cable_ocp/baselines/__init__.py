@@ -1,14 +1,25 @@
 """Other statics methods for the same scenes, each returning a StaticsSolution.
 
-Every method has the signature ``solve(scene, warm_start=None) -> StaticsSolution`` and is
-selected with ``[solver] method = NAME`` (or ``--set solver.method=NAME``). Its accuracy knob
-is ``solver.intervals`` (RK4 steps, elements, segments or shooting intervals; see each
-module), except ``solve_bvp``, which refines its own mesh to ``solver.tolerance``.
+Every method has the signature ``solve(scene, warm_start=None) -> StaticsSolution``, registers
+itself in :mod:`cable_ocp.statics.registry` when its module is imported, and is selected with
+``[solver] method = NAME`` (or ``--set solver.method=NAME``). Its resolution is
+``solver.intervals`` (RK4 steps, elements or segments; see each module), except
+``solve_bvp``, whose resolution is its tolerance (``solver.tolerance``; it places its own
+mesh).
 
-Contract, shared with the main solver:
+Contract, shared with the main solver (docs/baselines.md):
 
-* ``status == "solved"`` only when the method's own convergence test passed *and* the end
-  conditions hold to the method's tolerance; otherwise a failure status with a message.
+* ``status == "solved"`` only when the method's own convergence test passed, the end
+  conditions hold to the method's tolerance, *and* its error estimate is <=
+  ``solver.accuracy`` (relative: the larger of the end-force error over the largest
+  tension and the position error over the length). The estimate is honest (true error
+  within 3x on the benchmark scenes, tests/test_baseline_accuracy.py). Above the accuracy
+  the resolution is refined (``solver.refine``) up to the method's limit
+  (``solver.max_intervals``, or a smaller one stated by the method), and a result still
+  above it is ``"inaccurate"``, with the estimate, the accuracy and the limit in the
+  message (:func:`cable_ocp.baselines.common.refine_to_accuracy`). With
+  ``solver.error_estimate = false`` there is no estimate and no refinement.
+* Other failures have a failure status with a message.
 * A scene the method cannot represent (e.g. Wang's z-formulation needs a cable that rises
   monotonically from end_a to end_b) raises :class:`~cable_ocp.errors.CableOCPError` naming
   ``solver.method`` and the reason: that is a user choice, not a numerical failure.
@@ -16,143 +27,6 @@ Contract, shared with the main solver:
   ``constraint_violation`` is the largest end-condition mismatch, relative (-).
 """
 
-from __future__ import annotations
+from cable_ocp.baselines import chucheepsakul, huang, solve_bvp, wang
 
-import importlib
-from collections.abc import Callable
-from typing import TYPE_CHECKING, Any
-
-import numpy as np
-
-from cable_ocp.errors import CableOCPError
-
-if TYPE_CHECKING:
-    from cable_ocp.scene import Scene
-
-# name -> "module:function"; imported on first use
-METHODS: dict[str, str] = {
-    "collocation": "cable_ocp.statics.solver:solve_collocation",
-    "multiple_shooting": "cable_ocp.statics.shooting:solve",
-    "solve_bvp": "cable_ocp.baselines.solve_bvp:solve",
-    "wang_shooting_optimization": "cable_ocp.baselines.wang:solve",
-    "huang_semianalytic": "cable_ocp.baselines.huang:solve",
-    "chucheepsakul_fem": "cable_ocp.baselines.chucheepsakul:solve",
-}
-
-
-def unsupported(method: str, reason: str) -> CableOCPError:
-    """The error a method raises for a scene it cannot represent (names solver.method)."""
-    return CableOCPError(f"solver.method = {method!r} cannot represent this scene: {reason}")
-
-
-def rising_fixed_ends(scene: Scene, method: str, why: str) -> tuple[float, float]:
-    """Heights (m) of end_a and end_b for the z-parametrised methods (000, 001), which
-    need both ends fixed and end_b above end_a; ``why`` cites the method's equations."""
-    ea, eb = scene.end_a, scene.end_b
-    if not all(ea.fixed_mask) or not all(eb.fixed_mask):
-        raise unsupported(method, f"both end_a and end_b need a fully fixed position ({why})")
-    za, zb = float(ea.position[2]), float(eb.position[2])  # type: ignore[arg-type]
-    if not zb > za:
-        raise unsupported(method, f"end_b (z = {zb} m) must lie above end_a (z = {za} m): z "
-                                  "is the independent variable and the cable must rise "
-                                  "monotonically from end_a to end_b")
-    return za, zb
-
-
-UNRESOLVED_LIMIT = 1e-2  # the robustness matrix calls 1 % off a wrong answer
-
-
-def with_resolution_check(scene: Scene, solve_fn: Callable, warm_start: Any, order: float,
-                          method: str) -> Any:
-    """Solve at N = ``solver.intervals`` and N/2 and attach a Richardson error estimate.
-
-    est = max(end-force change / largest tension, length change / L) / (2^order - 1).
-    A converged solution whose estimate exceeds 1 % is reported as ``"unresolved"``: the
-    method's equations are solved but its discretisation is too coarse for the scene, and
-    calling that a solution would put a wrong answer in a table. Used by the baselines that
-    carry no estimate of their own (Wang's has one built in).
-    """
-    sol = solve_fn(scene, warm_start)
-    n = scene.solver.intervals
-    if not sol.success or n < 4:
-        return sol
-    half = solve_fn(scene.with_overrides({"solver.intervals": n // 2}), sol)
-    if not half.success:
-        sol.diagnostics["error_estimate_note"] = f"N/2 solve failed: {half.message}"
-        return sol
-    dforce = max(np.max(np.abs(sol.force_a - half.force_a)),
-                 np.max(np.abs(sol.force_b - half.force_b))) / sol.max_tension
-    diff = max(float(dforce), abs(sol.length - half.length) / sol.length)
-    sol.error_estimate = diff / (2.0**order - 1.0)
-    sol.diagnostics["error_estimate_detail"] = {
-        "method": f"Richardson, N={n} vs N={n // 2}, assumed order {order}"}
-    if sol.error_estimate > UNRESOLVED_LIMIT:
-        sol.status = "unresolved"
-        sol.message = (f"{method}: converged, but the N/2 comparison estimates a "
-                       f"{sol.error_estimate:.1e} relative error (> 1 %): increase "
-                       "solver.intervals")
-    return sol
-
-
-def equilibrium_check(scene: Scene, sol: Any, method: str) -> Any:
-    """Independent a-posteriori check of a baseline's answer: integrate the cable
-    equations (:class:`~cable_ocp.statics.formulation.Formulation`, scipy's DOP853 at
-    rtol 1e-10) from end_a with the method's own r(0), T(0) and L, and compare where the
-    shot lands with the method's end_b. A method whose parametrisation cannot represent the
-    true equilibrium (e.g. x(z) for a cable that dips below its anchor) can converge to a
-    profile that is no equilibrium at all; a landing error over 1 % of L (or of the largest
-    tension) marks it ``"not_equilibrium"``."""
-    if not sol.success:
-        return sol
-    from scipy.integrate import solve_ivp
-
-    from cable_ocp.statics.formulation import Formulation
-
-    form = Formulation(scene)
-    sc = form.scales
-    lam = sol.length / sc.length
-    y0 = np.concatenate([sol.position[0] / sc.length, sol.tension_vector[0] / sc.force])
-
-    def rhs(_s: float, y: np.ndarray) -> np.ndarray:
-        return np.asarray(form.rhs(y, lam, 1.0)).ravel()
-
-    shot = solve_ivp(rhs, (0.0, 1.0), y0, method="DOP853", rtol=1e-10, atol=1e-12)
-    if not shot.success:
-        return sol
-    yb = shot.y[:, -1]
-    miss = max(float(np.max(np.abs(yb[:3] * sc.length - sol.position[-1]))) / sol.length,
-               float(np.max(np.abs(yb[3:] * sc.force - sol.tension_vector[-1])))
-               / sol.max_tension)
-    sol.diagnostics["equilibrium_check"] = miss
-    if miss > UNRESOLVED_LIMIT:
-        sol.status = "not_equilibrium"
-        sol.message = (f"{method}: converged, but integrating the cable equations from its "
-                       f"end_a state misses its end_b by {miss:.1e} (relative): the profile is "
-                       "not an equilibrium (the method's parametrisation cannot represent it)")
-    return sol
-
-
-def seabed_check(scene: Scene, sol: Any, method: str) -> Any:
-    """Mark a method's solution that passes below a modelled seabed as a failure."""
-    sb = scene.environment.seabed
-    if sb is None or not sol.success:
-        return sol
-    from cable_ocp.physics.seabed import gap
-
-    depth = float(-np.min(gap(sb, sol.position)))
-    if depth > 1e-6 * sol.length:
-        sol.status = "seabed_contact"
-        sol.message = (f"{method}: the profile passes {depth:.3g} m below the seabed and this "
-                       "method has no contact model")
-    return sol
-
-
-def get_method(name: str) -> Callable:
-    """Return the solve function registered under ``name``."""
-    if name not in METHODS:
-        raise CableOCPError(f"solver.method = {name!r}: valid are {', '.join(METHODS)}")
-    module, func = METHODS[name].split(":")
-    try:
-        return getattr(importlib.import_module(module), func)
-    except (ImportError, AttributeError) as exc:  # pragma: no cover - a broken install
-        raise CableOCPError(f"solver.method = {name!r} is not available: {exc}") from None
+__all__ = ["chucheepsakul", "huang", "solve_bvp", "wang"]

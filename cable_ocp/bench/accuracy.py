@@ -16,6 +16,7 @@ from __future__ import annotations
 
 import csv
 import time
+from collections.abc import Callable
 from pathlib import Path
 from typing import Any
 
@@ -64,8 +65,11 @@ def default_scenes() -> list[tuple[str, Path, dict[str, Any]]]:
 
 
 def run_scene(label: str, scene: Scene, methods: list[str] | None = None,
-              repeats: int = 3) -> dict[str, Any]:
-    """All methods on one scene; rows of (method, resolution, time, errors, ratio)."""
+              repeats: int = 3, progress: Callable[[dict[str, Any]], None] | None = None
+              ) -> dict[str, Any]:
+    """All methods on one scene; rows of (method, resolution, time, errors, ratio).
+
+    ``progress(row)`` is called after each row."""
     ref = reference_solution(scene)
     rows: list[dict[str, Any]] = []
     notes: dict[str, str] = {}
@@ -93,8 +97,13 @@ def run_scene(label: str, scene: Scene, methods: list[str] | None = None,
                     if est.error_estimate is not None and true > 1e-9:
                         row["estimate_ratio"] = est.error_estimate / true
             rows.append(row)
+            if progress is not None:
+                progress(row)
     if methods is None or REUSED in methods:
-        rows += _reused_rows(label, scene, ref.solution, repeats)
+        for row in _reused_rows(label, scene, ref.solution, repeats):
+            rows.append(row)
+            if progress is not None:
+                progress(row)
     return {"scene": label, "reference": ref.how, "reference_check": ref.agreement,
             "rows": rows, "notes": notes, "dominance": dominance(rows)}
 
@@ -147,10 +156,17 @@ def dominance(rows: list[dict[str, Any]]) -> dict[str, str]:
     return out
 
 
+def planned_rows(methods: list[str] | None = None) -> int:
+    """Number of rows one scene gives (for a progress bar)."""
+    n = sum(len(PLAN[m][1]) for m in (methods or list(PLAN)) if m in PLAN)
+    return n + (5 if methods is None or REUSED in methods else 0)
+
+
 def run(scenes: list[tuple[str, Path, dict[str, Any]]] | None = None,
-        methods: list[str] | None = None, repeats: int = 3) -> list[dict[str, Any]]:
-    """Run every scene."""
-    return [run_scene(label, load_scene(path, over), methods, repeats)
+        methods: list[str] | None = None, repeats: int = 3,
+        progress: Callable[[dict[str, Any]], None] | None = None) -> list[dict[str, Any]]:
+    """Run every scene; ``progress(row)`` is called after each row."""
+    return [run_scene(label, load_scene(path, over), methods, repeats, progress)
             for label, path, over in (scenes or default_scenes())]
 
 
@@ -167,30 +183,9 @@ def write_csv(results: list[dict[str, Any]], path: str | Path) -> None:
 
 
 def plot(results: list[dict[str, Any]], path: str | Path) -> Path:
-    """Log-log error (the larger of force and profile error) against wall time."""
-    import matplotlib
+    """Log-log error (the larger of force and profile error) against wall time
+    (:func:`cable_ocp.plots.bench.plot_work_precision`)."""
+    from cable_ocp.plots.bench import plot_work_precision
 
-    matplotlib.use("Agg")
-    import matplotlib.pyplot as plt
-
-    fig, axes = plt.subplots(1, len(results), figsize=(6.5 * len(results), 5), squeeze=False)
-    for ax, res in zip(axes[0], results, strict=True):
-        methods = list(dict.fromkeys(r["method"] for r in res["rows"]))
-        for k, m in enumerate(methods):
-            pts = [(r["time_s"], max(r["force_error"], r["profile_error"]))
-                   for r in res["rows"] if r["method"] == m and r["force_error"] is not None]
-            if not pts:
-                continue
-            t, e = np.array(pts).T
-            style = "-o" if (m in OURS or m == REUSED) else "--s"
-            ax.loglog(t * 1e3, np.maximum(e, 1e-16), style, ms=4, color=f"C{k % 10}", label=m)
-        ax.set_xlabel("wall time per solve [ms] (cold calls include the CasADi build)")
-        ax.set_ylabel("relative error (end forces, profile)")
-        ax.set_title(res["scene"])
-        ax.grid(True, which="both", alpha=0.3)
-        ax.legend(fontsize=7)
-    fig.tight_layout()
-    path = Path(path)
-    fig.savefig(path, dpi=120)
-    plt.close(fig)
-    return path
+    plot_work_precision(results, path)
+    return Path(path)

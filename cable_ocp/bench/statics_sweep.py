@@ -105,4 +105,10 @@ def run(scene_path: str | Path = DEFAULT_SCENE, angles: np.ndarray | None = None
     return {"headers": headers, "rows": rows, "angles": angles, "forces": fa,
             "forces_bvp": fb, "agreement": agree,
             "targets": {"warm_median_ms": 5.0, "sweep_total_ms": 300.0},
-            "measured": {"warm_median_ms": rows[0][4], "sweep_total_ms": rows[0][2]}}
+            "measured": {"warm_median_ms": rows[0][4], "sweep_total_ms": rows[0][2]},
+            "summary": {
+                "warm_median_ms": rows[0][4],
+                "warm_iterations_median": float(np.median([s.iterations for s in sols[1:]])),
+                "sweep_total_ms": rows[0][2],
+                "solve_bvp_median_ms": float(np.median(cold[1:])) * 1e3,
+                "max_rel_difference": agree}}

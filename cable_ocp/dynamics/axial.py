@@ -549,12 +549,8 @@ class AxialModel:
 def simulate_axial(scene: DynamicScene, progress: Callable[[int, int], None] | None = None
                    ) -> SimulationResult:
     """Time-domain simulation of the axial model (dispatched by
-    :func:`cable_ocp.dynamics.simulate`). ``simulation.scheme = "thesis"`` runs Huang's
-    finite-difference scheme (:mod:`cable_ocp.dynamics.axial_thesis`)."""
-    if scene.simulation.scheme == "thesis":
-        from cable_ocp.dynamics.axial_thesis import simulate_thesis
-
-        return simulate_thesis(scene, progress=progress)
+    :func:`cable_ocp.dynamics.simulate`; ``simulation.scheme = "thesis"`` dispatches to
+    Huang's finite-difference scheme, :mod:`cable_ocp.dynamics.axial_thesis`, instead)."""
     return AxialModel(scene).simulate(progress)
 
 

@@ -26,6 +26,7 @@ __all__ = ["MODE_SOLVERS", "modes"]
 #: model name -> "module:function" of its modal analysis
 MODE_SOLVERS: dict[str, str] = {
     "axial": "cable_ocp.dynamics.axial:modes_axial",
+    "planar": "cable_ocp.dynamics.planar:modes_planar",
     "lumped3d": "cable_ocp.dynamics.lumped_scene:modes_lumped",
 }
 

@@ -23,11 +23,14 @@ from __future__ import annotations
 
 import math
 from collections.abc import Sequence
+from typing import TYPE_CHECKING
 
 import casadi as ca
 import numpy as np
 
-from cable_ocp.dynamics.scene import DynamicScene, TopMotion, Tow
+if TYPE_CHECKING:  # types only: the scene module uses this one at run time
+    from cable_ocp.dynamics.scene import DynamicScene, TopMotion, Tow
+
 
 __all__ = ["length_expr", "length_numeric", "motion_function", "top_offset_expr"]
 

@@ -97,22 +97,17 @@ from __future__ import annotations
 
 import copy
 import math
-import tomllib
 from dataclasses import dataclass, field, replace
 from pathlib import Path
 from typing import Any
 
+from cable_ocp.dynamics.motion import length_numeric
 from cable_ocp.errors import CableOCPError
-from cable_ocp.scene import (
-    Current,
-    End,
-    Scene,
-    _check_keys,
-    _number,
-    _require,
-    apply_overrides,
-    scene_from_dict,
-)
+from cable_ocp.scene import Current, End, Scene, apply_overrides, scene_from_dict
+from cable_ocp.scene.fields import check_keys as _check_keys
+from cable_ocp.scene.fields import number as _number
+from cable_ocp.scene.fields import require as _require
+from cable_ocp.scene.files import check_kind, read_problem
 
 __all__ = [
     "DEFAULT_SCHEME",
@@ -737,8 +732,6 @@ def _parse_modes(t: Any) -> ModesOptions:
 
 def _length_history_min(tm: TopMotion, length0: float, duration: float) -> tuple[float, float]:
     """(smallest unstretched length over [0, duration], its time) of the pay-out law."""
-    from cable_ocp.dynamics.motion import length_numeric  # local: motion imports this module
-
     n = 20001
     ts = [duration * k / (n - 1) for k in range(n)]
     ls = length_numeric(tm, length0, ts)[0]
@@ -930,17 +923,8 @@ def load_dynamic_scene(path: str | Path,
     CableOCPError
         Missing file, invalid TOML, a statics scene, or any invalid key (named).
     """
-    path = Path(path)
-    try:
-        with path.open("rb") as fh:
-            data = tomllib.load(fh)
-    except FileNotFoundError:
-        raise CableOCPError(f"problem file {str(path)!r} not found") from None
-    except tomllib.TOMLDecodeError as exc:
-        raise CableOCPError(f"problem file {str(path)!r} is not valid TOML: {exc}") from None
+    data = read_problem(path)
+    check_kind(data, "dynamics", path)
     if overrides:
         data = apply_overrides(data, overrides)
-    if "simulation" not in data and not is_dynamic_dict(data):
-        raise CableOCPError(f"{str(path)!r} is a statics scene (no [simulation] table): use "
-                            "`cable-ocp solve`")
     return dynamic_scene_from_dict(data)

@@ -25,6 +25,8 @@ Progress = Callable[[int, int], None]
 #: model name -> "module:function" of its simulator
 SIMULATORS: dict[str, str] = {
     "axial": "cable_ocp.dynamics.axial:simulate_axial",
+    "axial:thesis": "cable_ocp.dynamics.axial_thesis:simulate_thesis",
+    "planar": "cable_ocp.dynamics.planar:simulate_planar",
     "lumped3d": "cable_ocp.dynamics.lumped_scene:simulate_lumped",
 }
 
@@ -70,12 +72,14 @@ def simulate(scene: DynamicScene | str | Path, progress: Progress | None = None,
     Raises
     ------
     CableOCPError
-        An invalid scene (the key is named), or a model that is not built yet
-        (``"planar"``).
+        An invalid scene (the key is named), or a model that is not built yet.
     """
     if not isinstance(scene, DynamicScene):
         scene = load_dynamic_scene(scene, overrides)
     elif overrides:
         scene = scene.with_overrides(overrides)
-    fn = _resolve(SIMULATORS, scene.simulation.model, "time-domain simulation")
+    model = scene.simulation.model
+    if scene.simulation.scheme == "thesis" and f"{model}:thesis" in SIMULATORS:
+        model = f"{model}:thesis"  # the thesis' own scheme, a separate implementation
+    fn = _resolve(SIMULATORS, model, "time-domain simulation")
     return fn(scene, progress=progress)

@@ -130,8 +130,8 @@ def exact_delay_dlqr(A: np.ndarray, B: np.ndarray, Q: np.ndarray, R: float, h: f
     d_real = tau / h
     if abs(d_real - round(d_real)) > 1e-9:
         raise CableOCPError(
-            f"[winch] delay = {tau} s must be an integer multiple of [controller] "
-            f"sample_time = {h} s for the exact discrete design"
+            f"winch.delay = {tau!r}: must be an integer multiple of controller.sample_time "
+            f"= {h} s for the exact discrete design"
         )
     mdl = discretize_delayed(A, B, h, tau)
     Qz, Rz, Nz = discretize_cost(A, B, Q, R, h, mdl.d)
@@ -547,4 +547,24 @@ def tradeoff_curve(a: float, b: float, q_values: np.ndarray, t: np.ndarray, x0: 
         des = design_lqr(a, b, np.diag([q, 0.0, 0.0]), 1.0, tau=tau, method=method, K=K,
                          pade_order=pade_order)
         out.append((float(q), indices(des, tau, t, x0)))
+    return out
+
+
+def tradeoff_data(a: float, b: float, K: float, tau: float, t: np.ndarray, x0: np.ndarray,
+                  q_values: np.ndarray | None = None) -> dict:
+    """Trade-off data of 004 Figs. 6.18-6.19 for ``Q = diag(q, 0, 0)``, ``R = 1``.
+
+    The undelayed design on the undelayed plant and the Taylor and Pade designs on the true
+    delayed plant. Returns ``{label: array of rows [J_w, J_d, J_v, J_c]}`` over the stable
+    designs (:class:`cable_ocp.heave.lqr.Indices`). The effort axis is ``J_w = int u'^2 dt``
+    (m^2/s), not the thesis' ``J_c = sum G_i^2`` (6.18): ``J_c`` of the Pade design depends on
+    the arbitrary state realisation of the Pade filter, ``J_w`` on nothing but the loop.
+    """
+    q_values = np.logspace(1, 5, 7) if q_values is None else q_values
+    out = {}
+    for label, tt, meth in [("tau = 0", 0.0, "none"), (f"Taylor, tau = {tau:g} s", tau, "taylor"),
+                            (f"Pade(2), tau = {tau:g} s", tau, "pade")]:
+        cur = tradeoff_curve(a, b, q_values, t, x0, tau=tt, method=meth, K=K)
+        out[label] = np.array([[c[1].J_w, c[1].J_d, c[1].J_v, c[1].J_c] for c in cur
+                               if c[1].stable]).reshape(-1, 4)
     return out

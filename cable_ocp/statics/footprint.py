@@ -19,7 +19,9 @@ status (e.g. ``Infeasible_Problem_Detected``), never as a reach.
 from __future__ import annotations
 
 import time
+from collections.abc import Callable
 from dataclasses import dataclass
+from typing import Any
 
 import casadi as ca
 import numpy as np
@@ -64,8 +66,22 @@ class FootprintResult:
     ship: np.ndarray
 
 
-def footprint(scene: Scene, directions: int = 72) -> FootprintResult:
-    """Compute the footprint of ``scene`` (which needs a ``[footprint]`` table)."""
+def footprint(scene: Scene, directions: int = 72,
+              progress: Callable[[int, int, dict[str, Any]], None] | None = None
+              ) -> FootprintResult:
+    """Compute the footprint of ``scene`` (which needs a ``[footprint]`` table).
+
+    Parameters
+    ----------
+    scene : Scene
+        A scene with a ``[footprint]`` table.
+    directions : int
+        Number of equally spaced directions (>= 3).
+    progress : callable, optional
+        Called after each direction as ``progress(done, total, row)`` with that direction's
+        result (``theta_deg``, ``reach``, ``x``, ``y`` in m, ``thrust_x``, ``thrust_y`` in N,
+        ``length`` in m, ``status``).
+    """
     fp = scene.footprint
     if fp is None:
         raise CableOCPError("the scene has no [footprint] table (max_length, thrust limits)")
@@ -146,33 +162,11 @@ def footprint(scene: Scene, directions: int = 72) -> FootprintResult:
             thrust[k] = [res.variables["end_a.force.x"], res.variables["end_a.force.y"]]
             lengths[k] = res.variables["cable.length"]
             prev = res
+        if progress is not None:
+            progress(k + 1, directions, {
+                "theta_deg": float(th), "reach": reach[k], "x": points[k, 0], "y": points[k, 1],
+                "thrust_x": thrust[k, 0], "thrust_y": thrust[k, 1], "length": lengths[k],
+                "status": res.status})
     return FootprintResult(theta_deg=thetas, reach=reach, points=points, thrust=thrust,
                            length=lengths, status=status, wall_time_s=time.perf_counter() - t0,
                            ship=ship)
-
-
-def plot_footprint(res: FootprintResult, path: str, title: str = "") -> None:
-    """Draw the footprint polygon (unit positions) around the ship."""
-    import matplotlib
-
-    matplotlib.use("Agg")
-    import matplotlib.pyplot as plt
-
-    fig, ax = plt.subplots(figsize=(6, 6))
-    ok = np.isfinite(res.reach)
-    pts = res.points[ok]
-    if len(pts):
-        closed = np.vstack([pts, pts[:1]])
-        ax.plot(closed[:, 0], closed[:, 1], "-o", ms=3, label="footprint (unit on seabed)")
-    if (~ok).any():
-        ax.plot([], [], "x", color="r", label=f"{int((~ok).sum())} unreachable directions")
-    ax.plot(*res.ship, "r^", ms=10, label="ship")
-    ax.set_aspect("equal")
-    ax.set_xlabel("x [m]")
-    ax.set_ylabel("y [m]")
-    ax.grid(True, alpha=0.3)
-    ax.legend(loc="best", fontsize=8)
-    ax.set_title(title or "footprint")
-    fig.tight_layout()
-    fig.savefig(path, dpi=120)
-    plt.close(fig)

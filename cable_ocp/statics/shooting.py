@@ -21,14 +21,12 @@ from dataclasses import dataclass
 import casadi as ca
 import numpy as np
 
-from cable_ocp.scene import Scene
 from cable_ocp.statics.collocation import Collocation
 from cable_ocp.statics.formulation import (
     NX,
     P_CURRENT,
     Formulation,
 )
-from cable_ocp.statics.solution import StaticsSolution
 
 
 @dataclass(frozen=True)
@@ -96,11 +94,3 @@ class MultipleShooting(Collocation):
         cont = ca.vec(xf - xs[:, 1:]) / h
         bc = self._boundary(xs[:, 0], xs[:, -1], g_len, p)
         return ca.Function("G", [w, p], [ca.vertcat(cont, *bc)], ["w", "p"], ["g"])
-
-
-def solve(scene: Scene, warm_start: StaticsSolution | None = None) -> StaticsSolution:
-    """Registry entry (``solver.method = "multiple_shooting"``): N = ``solver.intervals``,
-    refined like the collocation (:func:`cable_ocp.statics.solver.solve_collocation`)."""
-    from cable_ocp.statics.solver import solve_collocation
-
-    return solve_collocation(scene, warm_start)

@@ -8,10 +8,14 @@ the CLI exits non-zero.
 from __future__ import annotations
 
 import math
+from collections.abc import Callable
 from dataclasses import dataclass, field
 from typing import Any
 
 import numpy as np
+
+#: statuses whose iterate solves the discretised equations (see :attr:`StaticsSolution.converged`)
+CONVERGED = ("solved", "inaccurate", "below_seabed", "above_surface")
 
 
 @dataclass
@@ -57,6 +61,11 @@ class StaticsSolution:
     error_estimate: float | None = None
     diagnostics: dict[str, Any] = field(default_factory=dict)
     node_offset: int = 0  # nodes of an analytic grounded part before the computed ones
+    #: computes the end stiffness on first use (set by the collocation/shooting solver)
+    _stiffness_source: Callable[[], dict[str, dict[str, Any]]] | None = field(
+        default=None, repr=False, compare=False)
+    _stiffness_cache: dict[str, dict[str, Any]] | None = field(
+        default=None, repr=False, compare=False)
 
     @property
     def grounded_length(self) -> float:
@@ -67,6 +76,13 @@ class StaticsSolution:
     def success(self) -> bool:
         """True when the solve converged and the result may be used."""
         return self.status == "solved"
+
+    @property
+    def converged(self) -> bool:
+        """True when the discretised equations were solved, whether or not the result is a
+        success (``"inaccurate"``, or a profile that leaves the water column): such a
+        result is a valid warm start for a neighbouring solve."""
+        return self.status in CONVERGED
 
     @property
     def tension(self) -> np.ndarray:
@@ -88,15 +104,117 @@ class StaticsSolution:
         """Force the cable exerts on the end_b attachment, N (= -T(L))."""
         return -self.tension_vector[-1]
 
+    def end_tension(self, end: str) -> float:
+        """Tension magnitude at ``end`` ("a" or "b"), N: the magnitude of the end force."""
+        return float(np.linalg.norm(self.tension_vector[_end_index(end)]))
+
+    def end_tangent(self, end: str) -> np.ndarray:
+        """Unit tangent dr/ds of the cable at ``end`` ("a" or "b"), pointing towards
+        increasing s (from end_a towards end_b along the cable), (3,).
+
+        T/|T| on a flexible cable; from the bending angle where the end segment has bending
+        stiffness (T carries shear there); along the first distinct nodes where the
+        tension vanishes (a slack grounded part at an anchor)."""
+        i = _end_index(end)
+        stiff = (self.diagnostics.get("end_tangents") or {}).get(end)
+        if stiff is not None:
+            return np.asarray(stiff, dtype=float)
+        t = self.tension_vector[i]
+        tmag = float(np.linalg.norm(t))
+        if tmag > 1e-12 * max(self.max_tension, 1e-300):
+            return t / tmag
+        r = self.position
+        others = r[1:] if end == "a" else r[-2::-1]
+        step = others - r[i]
+        dist = np.linalg.norm(step, axis=1)
+        k = int(np.argmax(dist > 0)) if np.any(dist > 0) else 0
+        if dist[k] == 0.0:
+            return np.full(3, math.nan)
+        d = step[k] / dist[k]
+        return d if end == "a" else -d
+
     def angle_to_horizontal_deg(self, end: str) -> float:
-        """Angle of the cable tangent above the horizontal at ``end`` ("a" or "b"), deg."""
-        t = self.tension_vector[0 if end == "a" else -1]
-        return math.degrees(math.atan2(t[2], math.hypot(t[0], t[1])))
+        """Angle of the cable at ``end`` ("a" or "b") to the horizontal, deg.
+
+        The elevation of the tangent :meth:`end_tangent` (pointing from end_a towards end_b
+        along the cable) above the horizontal plane, measured from the horizontal
+        direction of the chord end_a -> end_b: in [-90, 90] when the tangent's horizontal
+        part points along that direction (or is zero), 180 deg minus the elevation when it
+        points back, i.e. above 90 deg where the cable leans back past vertical and below
+        -90 deg where it descends backwards. This is phi of Wang, Cheong &
+        Chucheepsakul (1993), Table 1 (36.3 deg at Berteaux's anchor, 90.2 deg at the
+        buoy). Negative where the cable descends from end_a or arrives at end_b from
+        above. With a vertical chord the elevation itself, in [-90, 90].
+        """
+        t = self.end_tangent(end)
+        if not np.all(np.isfinite(t)):
+            return math.nan
+        horiz = math.hypot(t[0], t[1])
+        chord = self.position[-1] - self.position[0]
+        along = t[0] * chord[0] + t[1] * chord[1]
+        if along < 0.0 and math.hypot(chord[0], chord[1]) > 1e-12 * np.linalg.norm(chord):
+            horiz = -horiz
+        return math.degrees(math.atan2(t[2], horiz))
+
+    def _stiffness(self) -> dict[str, dict[str, Any]]:
+        """Stiffness at both ends (computed once, see :meth:`stiffness`)."""
+        if not self.converged:
+            note = f"not computed: the solve did not converge (status {self.status})"
+            return {k: {"matrix": None, "note": note} for k in ("a", "b")}
+        if self._stiffness_source is None:
+            method = self.diagnostics.get("method", "this method")
+            note = (f"not available for method {method}: the stiffness comes from the "
+                    "sensitivities of the collocation and multiple-shooting solvers")
+            return {k: {"matrix": None, "note": note} for k in ("a", "b")}
+        if self._stiffness_cache is None:
+            self._stiffness_cache = self._stiffness_source()
+        return self._stiffness_cache
+
+    def stiffness(self, end: str) -> np.ndarray | None:
+        """The line's stiffness at ``end`` ("a" or "b"), N/m: K[i, j] = dF_i/dx_j.
+
+        F is the force the cable exerts on that end's attachment (:attr:`force_a`,
+        :attr:`force_b`) and x that end's position, the other end held as the scene says
+        and the unstretched length held. A restoring line has a negative diagonal: moving
+        a fairlead away from the anchor (+x) makes its force, which points back towards
+        the anchor, more negative in x. MoorPy's end stiffness matrices are -K.
+
+        Exact for the discretised equations (implicit-function theorem on the solver's
+        equations, :meth:`StaticsSolver.end_stiffness`). NaN entries where a derivative
+        does not exist (the z column at an anchor with the cable grounded on a flat
+        seabed). None when not available: an end that is not fully fixed, a baseline
+        method, a failed solve; :meth:`stiffness_note` says why.
+        """
+        mat = self._stiffness()[_end_key(end)]["matrix"]
+        if mat is None:
+            return None
+        return np.array([[math.nan if v is None else v for v in row] for row in mat])
+
+    def stiffness_note(self, end: str) -> str:
+        """What :meth:`stiffness` holds fixed at ``end``, or why it is None."""
+        return str(self._stiffness()[_end_key(end)]["note"])
+
+    def _end_dict(self, end: str) -> dict[str, Any]:
+        """JSON-ready results at one end (see :meth:`to_dict`)."""
+        i = _end_index(end)
+        force = self.force_a if end == "a" else self.force_b
+        st = self._stiffness()[end]
+        return {
+            "position": [_num(v) for v in self.position[i]],
+            "force": [_num(v) for v in force],
+            "tension_N": _num(self.end_tension(end)),
+            "angle_to_horizontal_deg": _num(self.angle_to_horizontal_deg(end)),
+            "stiffness_N_per_m": st["matrix"],
+            "stiffness_note": st["note"],
+        }
 
     def to_dict(self) -> dict[str, Any]:
-        """JSON-ready dictionary (SI units; see the README for the fields)."""
-        def lst(a: np.ndarray) -> list[float]:
-            return [float(v) for v in a]
+        """JSON-ready dictionary (SI units; see docs/statics.md, "Outputs", for the fields).
+
+        Strict-JSON-ready: a number that does not exist is None (null), never NaN.
+        """
+        def lst(a: np.ndarray) -> list[float | None]:
+            return [_num(v) for v in a]
 
         est = self.diagnostics.get("error_estimate_detail", {})
         # Radau's last collocation point is the next interval's start: list it once
@@ -104,10 +222,11 @@ class StaticsSolution:
         out = {
             "status": self.status,
             "message": self.message,
-            "length": float(self.length),
-            "end_a": {"position": lst(self.position[0]), "force": lst(self.force_a)},
-            "end_b": {"position": lst(self.position[-1]), "force": lst(self.force_b)},
-            "max_tension": self.max_tension,
+            "length": _num(self.length),
+            "end_a": self._end_dict("a"),
+            "end_b": self._end_dict("b"),
+            "max_tension": _num(self.max_tension),
+            "grounded_length": self.grounded_length,
             "touchdown": self.diagnostics.get("touchdown"),
             "profile": {
                 "s": lst(self.s[keep]),
@@ -115,12 +234,19 @@ class StaticsSolution:
                 "y": lst(self.position[keep, 1]),
                 "z": lst(self.position[keep, 2]),
                 "tension": lst(self.tension[keep]),
+                "tension_x": lst(self.tension_vector[keep, 0]),
+                "tension_y": lst(self.tension_vector[keep, 1]),
+                "tension_z": lst(self.tension_vector[keep, 2]),
             },
+            "warnings": list(self.diagnostics.get("warnings", [])),
             "solver": {
                 "method": self.diagnostics.get("method"),
+                "intervals": (self.diagnostics.get("mesh") or {}).get("intervals"),
+                "degree": (self.diagnostics.get("mesh") or {}).get("degree"),
+                "refinements": self.diagnostics.get("refinement", []),
                 "iterations": int(self.iterations),
-                "wall_time_s": float(self.wall_time_s),
-                "constraint_violation": float(self.constraint_violation),
+                "wall_time_s": _num(self.wall_time_s),
+                "constraint_violation": _num(self.constraint_violation),
                 "error_estimate": self.error_estimate,
                 "error_estimate_force_N": est.get("force_N"),
                 "error_estimate_position_m": est.get("position_m"),
@@ -143,3 +269,19 @@ class StaticsSolution:
             items += [(k, out[k]) for k in keys[keys.index("touchdown") + 1:]]
             out = dict(items)
         return out
+
+
+def _num(v: Any) -> float | None:
+    """A float for JSON, None for NaN or infinity."""
+    v = float(v)
+    return v if math.isfinite(v) else None
+
+
+def _end_key(end: str) -> str:
+    if end not in ("a", "b"):
+        raise ValueError(f"end = {end!r}: give 'a' (end_a) or 'b' (end_b)")
+    return end
+
+
+def _end_index(end: str) -> int:
+    return 0 if _end_key(end) == "a" else -1

@@ -21,27 +21,32 @@ fine solution) and applies Richardson's formula with the observed order (see
 
 from __future__ import annotations
 
+import functools
 import math
 import time
 from collections.abc import Callable, Iterable
 from dataclasses import replace
+from pathlib import Path
 from typing import Any
 
 import casadi as ca
 import numpy as np
 
-from cable_ocp.baselines import get_method
 from cable_ocp.errors import CableOCPError
 from cable_ocp.physics import seabed
-from cable_ocp.scene import Scene, load_scene
+from cable_ocp.scene import Scene, apply_overrides, load_scene, scene_from_dict
+from cable_ocp.statics.checks import check_physical
 from cable_ocp.statics.collocation import Collocation
 from cable_ocp.statics.formulation import (
     P_CURRENT,
+    P_END_A,
+    P_END_B,
     Formulation,
     _structure_key,
     reference_length,
 )
 from cable_ocp.statics.initial_guess import initial_guess, touchdown_guess
+from cable_ocp.statics.registry import get_method, register
 from cable_ocp.statics.shooting import MultipleShooting
 from cable_ocp.statics.solution import StaticsSolution
 
@@ -123,6 +128,8 @@ class StaticsSolver:
             "ipopt.mumps_scaling": 0,
         })
         self._newton: ca.Function | None = None
+        self._jacobian: ca.Function | None = None
+        self._sensitivity: tuple[ca.Function, ca.Function] | None = None
         # solvers of the same scene on other meshes (by number of intervals), shared by the
         # error estimate and the mesh refinement so that no mesh is built twice
         self._cache = {} if cache is None else cache
@@ -154,9 +161,17 @@ class StaticsSolver:
         Returns
         -------
         StaticsSolution
-            Check ``success`` before use.
+            Check ``success`` before use: a profile above the surface or below an
+            unmodelled seabed is not a success (:func:`cable_ocp.statics.checks.check_physical`).
         """
         scene = self.scene if scene is None else scene
+        sol = self._solve(scene, warm_start, error_estimate, current_scale)
+        return check_physical(scene, sol)
+
+    def _solve(self, scene: Scene, warm_start: StaticsSolution | None = None,
+               error_estimate: bool | None = None, current_scale: float = 1.0
+               ) -> StaticsSolution:
+        """:meth:`solve` without the physical check (used for the coarse meshes too)."""
         if scene is not self.scene and _structure_key(scene) != self.form.key:
             raise CableOCPError(
                 "this solver was built for another scene structure; build a new StaticsSolver "
@@ -189,12 +204,26 @@ class StaticsSolver:
         if sol.success and (scene.solver.error_estimate if error_estimate is None
                             else error_estimate):
             self._estimate_error(sol, scene, current_scale)
+            if sol.error_estimate is not None:
+                # the iterate's own (algebraic) error, from one Newton correction: the
+                # estimate stays true whatever solver.tolerance allowed
+                alg = self._algebraic_error(w, p, sol)
+                sol.error_estimate += alg
+                sol.diagnostics["error_estimate_detail"]["algebraic"] = alg
             if sol.error_estimate is not None and sol.error_estimate > scene.solver.accuracy:
+                alg = sol.diagnostics["error_estimate_detail"].get("algebraic", 0.0)
                 sol.status = "inaccurate"
-                sol.message = (
-                    f"converged, but the discretisation error estimate "
-                    f"{sol.error_estimate:.1e} exceeds solver.accuracy = "
-                    f"{scene.solver.accuracy:.0e}; increase solver.intervals")
+                if alg > 0.5 * sol.error_estimate:
+                    sol.diagnostics["algebraic_error_dominates"] = True
+                    sol.message = (
+                        f"the iterate's algebraic error {alg:.1e} (one more Newton correction) "
+                        f"exceeds solver.accuracy = {scene.solver.accuracy:.0e}: lower "
+                        f"solver.tolerance = {scene.solver.tolerance:.0e}")
+                else:
+                    sol.message = (
+                        f"converged, but the discretisation error estimate "
+                        f"{sol.error_estimate:.1e} exceeds solver.accuracy = "
+                        f"{scene.solver.accuracy:.0e}; increase solver.intervals")
         return sol
 
     # -- internals ----------------------------------------------------------------------
@@ -274,6 +303,179 @@ class StaticsSolver:
             ok = False
         return w, int(st.get("iter_count", st.get("n_iter", 0))), ok, "newton"
 
+    def _algebraic_error(self, w: np.ndarray, p: np.ndarray, sol: StaticsSolution) -> float:
+        """Relative change of the end forces, positions and length under one more Newton
+        correction -J(w)^-1 g(w) at the returned iterate (0 for a converged one): the
+        algebraic part of the error, which the mesh comparison cannot see."""
+        if self._jacobian is None:
+            fn = self.coll.residual.expand()
+            ws, ps = ca.SX.sym("w", self.coll.n_w), ca.SX.sym("p", fn.size1_in(1))
+            g = fn(ws, ps)
+            self._jacobian = ca.Function("statics_jac", [ws, ps], [g, ca.jacobian(g, ws)])
+        g, jac = self._jacobian(w, p)
+        try:
+            dw = np.asarray(ca.solve(jac, -g, "csparse")).reshape(-1)
+        except RuntimeError:
+            return math.inf
+        if not np.all(np.isfinite(dw)):
+            return math.inf
+        r0, t0, l0, _ = self.coll.unpack(w, p)
+        r1, t1, l1, _ = self.coll.unpack(w + dw, p)
+        tmax, length = max(sol.max_tension, 1e-300), max(sol.length, 1e-300)
+        return float(max(np.max(np.abs(t1 - t0)) / tmax, np.max(np.abs(r1 - r0)) / length,
+                         abs(l1 - l0) / length))
+
+    # -- sensitivities: the line's stiffness at its fixed ends -----------------------------
+    def _end_forces(self, ws: ca.MX) -> ca.MX:
+        """Forces (N) the cable exerts on the end_a and end_b attachments, (6,), from the
+        scaled unknowns: +T(0) and -T(L); with a grounded part, the anchor force is the
+        touchdown tension less the seabed's axial gradient over the grounded length, along
+        the grounded line (:func:`cable_ocp.physics.seabed.grounded_nodes` at s' = 0)."""
+        coll, sc = self.coll, self.form.scales
+        nx, last = coll.nx, self.mesh.n_nodes - 1
+        tau0, tau_n = ws[3:6], ws[last * nx + 3: last * nx + 6]
+        if self.grounded:
+            tmag = ca.sqrt(ca.dot(tau0, tau0))
+            e = tau0 / tmag
+            k = seabed.axial_gradient(self.scene.environment.seabed,
+                                      self.scene.cable.weight_in_water, e) * sc.length / sc.force
+            fa = sc.force * ca.fmax(tmag - k * ws[coll.i_g], 0.0) * e
+        else:
+            fa = sc.force * tau0
+        return ca.vertcat(fa, -sc.force * tau_n)
+
+    def _sensitivity_functions(self) -> tuple[ca.Function, ca.Function]:
+        """``(w, p) -> (G_e, F_w)`` and ``(w, p) -> G_w``: the Jacobians of the collocated
+        residual in the end values p[P_END_A], p[P_END_B] (n_w x 6) and of the end forces
+        (N) in the unknowns (6 x n_w); and of the residual in the unknowns (n_w x n_w).
+
+        On the MX graph of the residual (a map over per-interval functions), whose sparse
+        Jacobian CasADi colours: ~0.05 s to build, ~0.02 s to evaluate G_w on a
+        40-interval mesh (linear in N). The SX Jacobian of the algebraic error, when the
+        error estimate has built it, evaluates G_w in ~1 ms instead."""
+        if self._sensitivity is None:
+            n_p = len(self.form.params())
+            w = ca.MX.sym("w", self.coll.n_w)
+            head = ca.MX.sym("p_head", P_END_A.start)
+            ends = ca.MX.sym("p_ends", P_END_B.stop - P_END_A.start)
+            tail = ca.MX.sym("p_tail", n_p - P_END_B.stop)
+            g = self.coll.residual(w, ca.vertcat(head, ends, tail))
+            # two functions: a call of one evaluates all its outputs
+            cheap = ca.Function("statics_sensitivity_parts", [w, head, ends, tail],
+                                [ca.jacobian(g, ends), ca.jacobian(self._end_forces(w), w)])
+            full = ca.Function("statics_jacobian_parts", [w, head, ends, tail],
+                               [ca.jacobian(g, w)])
+            wp, pp = ca.MX.sym("w", self.coll.n_w), ca.MX.sym("p", n_p)
+            args = (wp, pp[: P_END_A.start], pp[P_END_A.start: P_END_B.stop],
+                    pp[P_END_B.stop:])
+            self._sensitivity = (
+                ca.Function("statics_sensitivity", [wp, pp], cheap(*args), ["w", "p"],
+                            ["G_e", "F_w"]),
+                ca.Function("statics_jacobian_mx", [wp, pp], [full(*args)], ["w", "p"],
+                            ["G_w"]))
+        return self._sensitivity
+
+    def end_stiffness(self, w: np.ndarray, p: np.ndarray) -> dict[str, dict[str, Any]]:
+        """The line's stiffness at each end whose position is fully fixed, from the
+        solver's own sensitivities.
+
+        K[i][j] = dF_i/dx_j (N/m), F the force the cable exerts on that end's attachment
+        (as :attr:`StaticsSolution.force_a`/``force_b`` report it) and x that end's
+        position, the other end held as the scene says (fixed position or prescribed
+        force) and the unstretched length held (a free-length scene holds the length it
+        solved for, not the prescribed tension). Exact for the discretised equations:
+        the implicit-function theorem on G(w, p) = 0 gives dw/dp = -G_w^-1 G_p, with the
+        end positions among the parameters p (one sparse LU factorisation of G_w, one
+        column per fixed end coordinate), then dF/dx = F_w dw/dp / ell.
+
+        Parameters
+        ----------
+        w : ndarray
+            Converged scaled unknowns of this solver.
+        p : ndarray
+            Parameter vector of the solve (:meth:`Formulation.params`).
+
+        Returns
+        -------
+        dict
+            ``{"a": {...}, "b": {...}}``, each with ``matrix`` (3x3 nested list of floats,
+            N/m, with None entries where a derivative does not exist; or None) and ``note``
+            (what is held, or why there is no matrix).
+        """
+        from scipy.sparse import csr_matrix
+        from scipy.sparse.linalg import splu
+
+        scene, ell = self.scene, self.form.scales.length
+        held = "the unstretched length held"
+        if self.coll.free_length:
+            held += " (the length the prescribed tension gave; the tension is not held)"
+        out: dict[str, dict[str, Any]] = {}
+        fixed: list[str] = []  # ends with a fully fixed position, in the order a, b
+        for key, end, other in (("a", scene.end_a, scene.end_b), ("b", scene.end_b,
+                                                                  scene.end_a)):
+            if not all(end.fixed_mask):
+                free = ", ".join("xyz"[i] for i, f in enumerate(end.fixed_mask) if not f)
+                out[key] = {"matrix": None, "note": (
+                    f"end_{key}'s position is not fully fixed (free in {free}, where a force "
+                    "is prescribed): no stiffness at a free end")}
+                continue
+            how = "fixed" if all(other.fixed_mask) else \
+                "as the scene says (its prescribed force components held)"
+            out[key] = {"matrix": None,
+                        "note": f"end_{'b' if key == 'a' else 'a'} held {how}, {held}"}
+            fixed.append(key)
+        if not fixed:
+            return out
+        # parameter columns of the fixed ends among p[P_END_A], p[P_END_B] (scaled m)
+        cols = [c for key in fixed for c in ((0, 1, 2) if key == "a" else (3, 4, 5))]
+        sens, jac_mx = self._sensitivity_functions()
+        g_p, f_w = sens(w, p)
+        g_w = jac_mx(w, p) if self._jacobian is None else self._jacobian(w, p)[1]
+        h_w = g_w.sparse().tocsr()
+        h_p = np.asarray(g_p.sparse().todense())[:, cols]
+        if self.coll.free_length:
+            # hold the unstretched length (the line as installed), not the tension: the
+            # tension condition, the last residual (Collocation._boundary), becomes
+            # "lam (+ g) keeps its value", with no dependence on the end positions
+            n, last = self.coll.n_w, self.coll.n_w - 1
+            h_w.data[h_w.indptr[last]: h_w.indptr[last + 1]] = 0.0
+            hold = np.zeros(n)
+            hold[self.coll.i_lam] = 1.0
+            if self.coll.grounded:
+                hold[self.coll.i_g] = 1.0
+            h_w = h_w + csr_matrix((hold, (np.full(n, last), np.arange(n))), shape=(n, n))
+            h_p[last] = 0.0
+        try:
+            dw = splu(h_w.tocsc()).solve(-h_p)  # one factorisation, one column per coordinate
+        except RuntimeError as exc:  # "Factor is exactly singular"
+            dfdx, why = None, f"the Jacobian is singular ({exc})"
+        else:
+            dfdx = np.asarray(f_w.sparse() @ dw) / ell  # (6, len(cols)), N/m
+            why = "the sensitivity is not finite (ill-conditioned Jacobian)"
+        if dfdx is None or not np.all(np.isfinite(dfdx)):
+            for key in fixed:
+                out[key]["note"] = f"not computed: {why}"
+            return out
+        for j, key in enumerate(fixed):
+            rows = slice(0, 3) if key == "a" else slice(3, 6)  # F_a, F_b in the outputs
+            mat = dfdx[rows, 3 * j: 3 * j + 3]
+            k_list: list[list[float | None]] = [[float(v) for v in row] for row in mat]
+            if key == "a" and self.grounded:
+                if scene.environment.seabed.slope_deg != 0.0:  # type: ignore[union-attr]
+                    out[key] = {"matrix": None, "note": (
+                        "the anchor lies on a sloping seabed with the cable grounded: any "
+                        "displacement off the seabed plane lifts the grounded part, where "
+                        "the anchor force is not differentiable (one-sided contact)")}
+                    continue
+                for row in k_list:
+                    row[2] = None
+                out[key]["note"] += (
+                    "; the z column is null: the cable lies on the seabed at the anchor, where "
+                    "lifting the anchor changes the force at an unbounded rate (one-sided "
+                    "contact), so dF/dz does not exist")
+            out[key]["matrix"] = k_list
+        return out
+
     def _ipopt_solve(self, w0: np.ndarray, p: np.ndarray) -> tuple[np.ndarray, int, bool, str]:
         res = self._ipopt(x0=np.clip(w0, self._lbx, self._ubx), p=p, lbx=self._lbx,
                           ubx=self._ubx, lbg=0, ubg=0)
@@ -338,16 +540,14 @@ class StaticsSolver:
         sol = StaticsSolution(status=status, message=msg, s=s, position=r, tension_vector=t,
                               length=length, iterations=it, wall_time_s=wall,
                               constraint_violation=viol, diagnostics=diag, node_offset=offset)
+        if finite:
+            # the end stiffness, computed on first use (StaticsSolution.stiffness)
+            sol._stiffness_source = functools.partial(self.end_stiffness, w.copy(), p.copy())
         tmax = float(np.max(np.linalg.norm(t, axis=1))) if finite else math.nan
         diag["smoothing_force_bound_N"] = self.form.smoothing_force_bound(length, tmax)
         diag["min_z"] = float(np.min(r[:, 2])) if finite else math.nan
         warnings = []
         sb = self.scene.environment.seabed
-        if finite and sb is None and diag["min_z"] < -1e-6 * self.form.scales.length:
-            warnings.append(
-                f"the profile goes {-diag['min_z']:.3g} m below the seabed plane z = 0; the "
-                "scene has no [environment.seabed] (no contact model), so that part is not "
-                "physical")
         if finite and sb is not None:
             diag["min_gap"] = float(np.min(seabed.gap(sb, r)))
         if finite and np.min(np.linalg.norm(t, axis=1)) <= 0.0:
@@ -371,6 +571,11 @@ class StaticsSolver:
             for k, stiff in enumerate(self.form.stiff):
                 if stiff:
                     on_stiff[offset + offs[k]: offset + offs[k + 1]] = True
+            # tangent at an end on a stiff segment (T carries shear there, so T/|T| is not
+            # the tangent): from theta (StaticsSolution.end_tangent)
+            diag["end_tangents"] = {
+                key: [math.cos(ang[i]), 0.0, math.sin(ang[i])] if on_stiff[i] else None
+                for key, i in (("a", 0), ("b", len(ang) - 1))}
             worst = float(np.min(axial[on_stiff])) if on_stiff.any() else 0.0
             diag["bending"]["min_axial_force_N"] = worst
             if worst < -1e-6 * max(tmax, 1.0):
@@ -402,14 +607,6 @@ class StaticsSolver:
                 f"the grounded length {sol.grounded_length:.6g} m reaches beyond the first "
                 f"segment (cable.segments[0].length = {first:g} m); contact of later "
                 "segments and bodies with the seabed is not modelled")
-        depth = scene.environment.water_depth
-        above = float(np.max(r[:, 2])) - depth
-        if sol.status in ("solved", "inaccurate") and above > 1e-6 * self.form.scales.length:
-            sol.status = "failed"
-            sol.message = (
-                f"the line would rise {above:.3g} m above the free surface "
-                f"(environment.water_depth = {depth:g} m): a buoy lifts it out of the water; "
-                "reduce the buoyancy or lengthen the line")
 
     def _coarse_solver(self, level: int) -> StaticsSolver:
         """Solver on N / 2**level intervals, built on first use (shared cache)."""
@@ -437,8 +634,9 @@ class StaticsSolver:
         levels = 2 if n >= 4 else 1
         sols = [sol]
         for lev in range(1, levels + 1):
-            c = self._coarse_solver(lev).solve(scene, warm_start=sols[-1], error_estimate=False,
-                                               current_scale=current_scale)
+            c = self._coarse_solver(lev)._solve(scene, warm_start=sols[-1],
+                                                error_estimate=False,
+                                                current_scale=current_scale)
             if not c.success:
                 if lev == 1:
                     sol.diagnostics["error_estimate_detail"] = {
@@ -597,7 +795,7 @@ def _solve_with_contact(scene: Scene, get: Callable[[bool], StaticsSolver],
                    if _can_ground(scene) else
                    "; end_a is not anchored on the seabed, and contact elsewhere is not "
                    "modelled yet")
-        sol.status = "failed"
+        sol.status = "below_seabed"
         sol.message = f"the cable passes {depth:.3g} m below the seabed" + why
     return sol
 
@@ -626,11 +824,17 @@ def solve_collocation(scene: Scene, warm_start: StaticsSolution | None = None
     sol = _solve_with_contact(scene, getter(n), warm_start)
     history = [(n, sol.error_estimate)]
     opts = scene.solver
-    while sol.status == "inaccurate" and opts.refine and 2 * n <= opts.max_intervals:
+    while (sol.status == "inaccurate" and opts.refine and 2 * n <= opts.max_intervals
+           and not sol.diagnostics.get("algebraic_error_dominates")):
         n *= 2
         sol = _solve_with_contact(scene, getter(n), sol)
         history.append((n, sol.error_estimate))
     build = sum(sv.build_time_s for sv in cache.values())
+    if sol.status == "inaccurate" and opts.refine and 2 * n > opts.max_intervals:
+        sol.diagnostics.setdefault("warnings", []).append(
+            f"mesh refinement stopped at solver.max_intervals = {opts.max_intervals} with "
+            f"the error estimate {sol.error_estimate:.1e} above solver.accuracy = "
+            f"{opts.accuracy:.0e}")
     if len(history) > 1:
         sol.diagnostics["refinement"] = [
             {"intervals": k, "error_estimate": e} for k, e in history]
@@ -639,24 +843,88 @@ def solve_collocation(scene: Scene, warm_start: StaticsSolution | None = None
     return sol
 
 
-def solve(scene: Scene | str, overrides: dict[str, Any] | None = None,
+def solve(scene: Scene | str | Path | dict[str, Any], overrides: dict[str, Any] | None = None,
           warm_start: StaticsSolution | None = None) -> StaticsSolution:
-    """Solve a scene (or a problem file path) with the method its ``[solver]`` names.
+    """Solve a scene with the method its ``[solver]`` names.
 
     Parameters
     ----------
-    scene : Scene or path
-        Validated scene, or a TOML problem file.
+    scene : Scene, path or dict
+        A validated scene, a TOML problem file, or a problem as a dictionary (the TOML
+        tables as nested dicts, validated by :func:`cable_ocp.scene.scene_from_dict`).
     overrides : dict, optional
         Dotted-key overrides, e.g. ``{"layout.psi0_deg": 90}``.
     warm_start : StaticsSolution, optional
         A neighbouring solution to start from.
+
+    Returns
+    -------
+    StaticsSolution
+        Check ``status`` (``"solved"`` or why not) before using the numbers.
+
+    Raises
+    ------
+    CableOCPError
+        When the scene is invalid (the message names the key).
     """
-    if not isinstance(scene, Scene):
+    if isinstance(scene, dict):
+        scene = scene_from_dict(apply_overrides(scene, overrides or {}))
+    elif isinstance(scene, (str, Path)):
         scene = load_scene(scene, overrides)
-    elif overrides:
-        scene = scene.with_overrides(overrides)
-    return get_method(scene.solver.method)(scene, warm_start=warm_start)
+    elif isinstance(scene, Scene):
+        if overrides:
+            scene = scene.with_overrides(overrides)
+    else:
+        raise CableOCPError(f"solve(scene): expected a Scene, a problem file path or a dict, "
+                            f"got {type(scene).__name__}")
+    return check_physical(scene, get_method(scene.solver.method)(scene, warm_start=warm_start))
+
+
+class SolveSession:
+    """Solve many scenes in a row, as a load-case batch does: each solver is built once per
+    scene structure and kept, and each solve starts from the previous converged solution of
+    the same structure, falling back to a cold start when the warm start fails.
+
+    Parameters
+    ----------
+    error_estimate : bool, optional
+        Override ``solver.error_estimate`` of every scene.
+    """
+
+    def __init__(self, error_estimate: bool | None = None) -> None:
+        self.error_estimate = error_estimate
+        self._caches: dict[tuple, dict[tuple, StaticsSolver]] = {}
+        self._prev: dict[tuple, StaticsSolution] = {}
+
+    def solve(self, scene: Scene) -> StaticsSolution:
+        """Solve ``scene`` (any method; collocation and shooting reuse their solvers)."""
+        key = (_structure_key(scene) if scene.solver.method in ("collocation",
+                                                                 "multiple_shooting")
+               else ("method", scene.solver.method))
+        prev = self._prev.get(key)
+        if key[0] == "method":
+            sol = solve(scene, warm_start=prev)
+            if prev is not None and not sol.converged:
+                sol = solve(scene)
+        else:
+            cache = self._caches.setdefault(key, {})
+
+            def get(grounded: bool) -> StaticsSolver:
+                n = scene.solver.intervals
+                if (n, grounded) not in cache:
+                    StaticsSolver(scene, cache=cache, grounded=grounded)
+                return cache[(n, grounded)]
+
+            sol = _solve_with_contact(scene, get, prev, self.error_estimate)
+            if prev is not None and not sol.converged:
+                sol = _solve_with_contact(scene, get, None, self.error_estimate)
+                sol.diagnostics["start"] = "cold (the warm start failed)"
+            if (sol.status == "inaccurate" and scene.solver.refine
+                    and not sol.diagnostics.get("algebraic_error_dominates")):
+                sol = solve_collocation(scene, warm_start=sol)
+        if sol.converged:
+            self._prev[key] = sol
+        return sol
 
 
 def _extrapolate(a: StaticsSolution, b: StaticsSolution, factor: float) -> StaticsSolution:
@@ -689,8 +957,9 @@ def sweep(scene: Scene, key: str, values: Iterable[Any],
         method = get_method(scene.solver.method)
         out: list[StaticsSolution] = []
         for v in values:
-            prev = out[-1] if out and out[-1].success else None
-            sol = method(scene.with_overrides({key: v}), warm_start=prev)
+            prev = out[-1] if out and out[-1].converged else None
+            sc = scene.with_overrides({key: v})
+            sol = check_physical(sc, method(sc, warm_start=prev))
             sol.diagnostics["sweep"] = {"key": key, "value": v}
             out.append(sol)
         return out
@@ -708,9 +977,9 @@ def sweep(scene: Scene, key: str, values: Iterable[Any],
                 StaticsSolver(sc, cache=cache, grounded=grounded)
             return cache[(n, grounded)]
 
-        prev = done[-1][2] if done and done[-1][2].success else None
+        prev = done[-1][2] if done and done[-1][2].converged else None
         start = prev
-        if (len(done) >= 2 and prev is not None and done[-2][2].success
+        if (len(done) >= 2 and prev is not None and done[-2][2].converged
                 and done[-1][1] == k and done[-2][1] == k
                 and all(isinstance(x, (int, float)) for x in (v, done[-1][0], done[-2][0]))
                 and done[-1][0] != done[-2][0]
@@ -718,7 +987,7 @@ def sweep(scene: Scene, key: str, values: Iterable[Any],
             factor = (v - done[-1][0]) / (done[-1][0] - done[-2][0])
             start = _extrapolate(done[-2][2], prev, factor)
         sol = _solve_with_contact(sc, get, start, error_estimate)
-        if start is not prev and not sol.success and sol.status != "inaccurate":
+        if start is not prev and not sol.converged:
             sol = _solve_with_contact(sc, get, prev, error_estimate)
         if sol.status == "inaccurate" and sc.solver.refine:
             # this point needs a finer mesh than the sweep's: refine it on its own (the
@@ -728,3 +997,8 @@ def sweep(scene: Scene, key: str, values: Iterable[Any],
         out.append(sol)
         done.append((v, k, sol))
     return out
+
+
+# both transcriptions are solved by solve_collocation (the scene's solver.method picks one)
+register("collocation", solve_collocation)
+register("multiple_shooting", solve_collocation)

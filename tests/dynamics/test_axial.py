@@ -492,7 +492,7 @@ def test_axial_rejects_what_it_cannot_model(key: str, value, needle: str) -> Non
         simulate(dynamic_scene_from_dict(d))
 
 
-def test_thesis_scheme_limits_and_planar_not_built() -> None:
+def test_thesis_scheme_limits() -> None:
     d = air_scene(scheme="thesis")
     d["top_motion"] = {"payout_law": "quadratic", "payout_speed": 0.1,
                        "payout_acceleration": 0.01}
@@ -501,9 +501,3 @@ def test_thesis_scheme_limits_and_planar_not_built() -> None:
     d = air_scene(scheme="thesis", segments=2)
     with pytest.raises(CableOCPError, match="simulation.segments"):
         simulate(dynamic_scene_from_dict(d))
-    d = air_scene()
-    d["simulation"]["model"] = "planar"
-    with pytest.raises(CableOCPError, match="not built yet"):
-        simulate(dynamic_scene_from_dict(d))
-    with pytest.raises(CableOCPError, match="not built yet"):
-        modes(dynamic_scene_from_dict(d), 2)

@@ -1,0 +1,210 @@
+"""Load-case studies: one problem file, a matrix of cases (grids, ranges, seeded random
+samples of any dotted key), run on every local core by default or on a dask.distributed
+cluster, with every case ending as a row and nothing lost when a case or a worker fails.
+
+Modules
+-------
+cases      the case matrix (grid in snake order, ranges, random samples, per-case seeds)
+kinds      what a case of each scene kind computes, and its row
+executors  in-process, local worker processes, dask
+store      CSV + JSON lines written as rows arrive; resume
+
+Example
+-------
+>>> from cable_ocp.batch import run_batch, parse_range
+>>> res = run_batch("problems/dezoysa_sea_buggy.toml",
+...                 ranges=[parse_range("layout.psi0_deg=0:180:7")])  # doctest: +SKIP
+>>> res.column("max_tension [N]")                                     # doctest: +SKIP
+"""
+
+from __future__ import annotations
+
+import math
+import os
+import time
+from collections.abc import Callable, Sequence
+from dataclasses import dataclass, field
+from pathlib import Path
+from typing import Any
+
+import numpy as np
+
+from cable_ocp.batch.cases import Case, build_cases, parse_grid, parse_random, parse_range
+from cable_ocp.batch.executors import RunnerSpec, run_dask, run_local, run_serial
+from cable_ocp.batch.kinds import SUCCESS, runner_kind
+from cable_ocp.batch.store import FIXED, TAIL, Store
+from cable_ocp.scene.files import read_problem
+
+__all__ = ["BatchResult", "Case", "build_cases", "parse_grid", "parse_random", "parse_range",
+           "run_batch"]
+
+
+@dataclass
+class BatchResult:
+    """The rows of a batch, one per case, in case order.
+
+    Attributes
+    ----------
+    kind : str
+        ``"statics"``, ``"footprint"``, ``"heave"``.
+    inputs : list of str
+        The swept dotted keys (problem-file units).
+    outputs : list of str
+        Output columns, ``name [unit]``.
+    rows : list of dict
+        One dict per case: ``case``, ``case_id``, ``status``, ``message``, ``wall_time_s``,
+        the inputs and the outputs.
+    paths : tuple of Path, optional
+        (CSV, JSON lines, meta) when written to disk.
+    wall_time_s : float
+        Wall time of this run, s.
+    """
+
+    kind: str
+    inputs: list[str]
+    outputs: list[str]
+    rows: list[dict[str, Any]]
+    paths: tuple[Path, Path, Path] | None = None
+    wall_time_s: float = 0.0
+    skipped: int = field(default=0)
+
+    def column(self, name: str) -> np.ndarray:
+        """One input or output column as a float array (NaN where missing)."""
+        return np.array([np.nan if r.get(name) is None else float(r[name]) for r in self.rows])
+
+    def statuses(self) -> dict[str, int]:
+        """Number of cases per status."""
+        out: dict[str, int] = {}
+        for r in self.rows:
+            out[r["status"]] = out.get(r["status"], 0) + 1
+        return out
+
+    @property
+    def failures(self) -> int:
+        """Cases that are not a success."""
+        ok = SUCCESS.get(self.kind, ("solved",))
+        return sum(r["status"] not in ok for r in self.rows)
+
+    def to_pandas(self) -> Any:
+        """The rows as a pandas DataFrame (pandas is optional: ``pip install pandas``)."""
+        import pandas as pd
+
+        return pd.DataFrame(self.rows)
+
+
+def _chunks(cases: Sequence[Case], workers: int, chunk_size: int | None) -> list[list[Case]]:
+    """Runs of consecutive cases: about 4 chunks per worker (load balance) unless given."""
+    n = len(cases)
+    size = chunk_size or max(1, math.ceil(n / max(1, 4 * max(workers, 1))))
+    return [list(cases[i:i + size]) for i in range(0, n, size)]
+
+
+def run_batch(problem: str | Path | dict[str, Any], grids: Sequence[tuple[str, list]] = (),
+              ranges: Sequence[tuple[str, list]] = (), samples: int = 0,
+              randoms: Sequence[tuple[str, str, tuple[float, float]]] = (), seed: int = 0,
+              *, command: str | None = None, options: dict[str, Any] | None = None,
+              out: str | Path | None = None, resume: bool = False, overwrite: bool = False,
+              workers: int | None = None, scheduler: Any = None, chunk_size: int | None = None,
+              max_attempts: int = 2, spec: RunnerSpec | None = None,
+              progress: Callable[[int, int, dict[str, Any]], None] | None = None,
+              ) -> BatchResult:
+    """Run a load-case study.
+
+    Parameters
+    ----------
+    problem : path or dict
+        The base problem file (any scene kind with a runner) or its dictionary.
+    grids, ranges : list of (key, values)
+        Swept keys (:func:`parse_grid`, :func:`parse_range`); their full product.
+    samples, randoms, seed :
+        ``samples`` seeded random draws of the ``randoms`` keys (:func:`parse_random`),
+        combined with every grid point; ``seed`` also gives every case its own seed.
+    command : str, optional
+        ``"statics"`` (default for a statics scene) or ``"footprint"``.
+    options : dict, optional
+        Runner options (footprint ``directions``, heave ``controllers``).
+    out : path, optional
+        Write ``OUT.csv``, ``OUT.jsonl`` and ``OUT.meta.json`` as rows arrive.
+    resume, overwrite : bool
+        Continue the batch stored at ``out`` (skipping finished cases), or replace it.
+    workers : int, optional
+        Local worker processes (default: every core, ``os.cpu_count()``); 0 runs in this
+        process.
+    scheduler : str or distributed.Client, optional
+        Run on a dask.distributed cluster instead.
+    chunk_size : int, optional
+        Consecutive cases per task (default: about 4 tasks per worker).
+    max_attempts : int
+        How often a case may kill its worker process before it is given up (local pool).
+    spec : RunnerSpec, optional
+        Replaces the runner (for fault-injection tests and custom studies).
+    progress : callable, optional
+        ``progress(done, total, row)`` after each row.
+
+    Returns
+    -------
+    BatchResult
+    """
+    t0 = time.perf_counter()
+    data = problem if isinstance(problem, dict) else read_problem(problem)
+    kind = runner_kind(data, command)
+    cases = build_cases(list(grids) + list(ranges), samples, list(randoms), seed)
+    _check_base(data, kind)
+    spec = spec or RunnerSpec(kind, data, dict(options or {}))
+    columns_out = spec.make().columns() if kind != "heave" else _heave_columns(spec)
+    inputs = [k for k, _ in list(grids) + list(ranges)] + [k for k, _, _ in randoms]
+    store = None
+    if out is not None:
+        meta = {"problem": str(problem) if not isinstance(problem, dict) else "<dict>",
+                "kind": kind, "cases": [c.overrides for c in cases], "seed": seed,
+                "columns": FIXED + inputs + columns_out + TAIL,
+                "units": {"inputs": "as in the problem file (SI; see docs/problem_files.md)",
+                          "outputs": "in brackets in each column name"}}
+        store = Store(out, meta, resume=resume, overwrite=overwrite)
+    done_ids = set(store.done) if store else set()
+    todo = [c for c in cases if c.case_id not in done_ids]
+    rows: dict[int, dict[str, Any]] = {}
+    count = len(cases) - len(todo)
+
+    def on_row(row: dict[str, Any]) -> None:
+        nonlocal count
+        rows[row["case"]] = row
+        if store is not None:
+            store.add(row)
+        count += 1
+        if progress is not None:
+            progress(count, len(cases), row)
+
+    n_workers = (os.cpu_count() or 1) if workers is None else workers
+    chunks = _chunks(todo, n_workers, chunk_size)
+    try:
+        if scheduler is not None:
+            run_dask(spec, chunks, on_row, scheduler, max_attempts)
+        elif n_workers == 0 or len(todo) <= 1:
+            run_serial(spec, chunks, on_row)
+        else:
+            run_local(spec, chunks, on_row, n_workers, max_attempts)
+    finally:
+        if store is not None:
+            all_rows = store.finish()
+    if store is not None:
+        final = all_rows
+    else:
+        final = [rows[k] for k in sorted(rows)]
+    return BatchResult(kind, inputs, columns_out, final,
+                       paths=(store.csv_path, store.jsonl_path, store.meta_path)
+                       if store else None,
+                       wall_time_s=time.perf_counter() - t0, skipped=len(cases) - len(todo))
+
+
+def _heave_columns(spec: RunnerSpec) -> list[str]:
+    return spec.make().columns()
+
+
+def _check_base(data: dict[str, Any], kind: str) -> None:
+    """Validate the base problem before any work (exit 2 for the CLI); a case whose own
+    overrides make it invalid becomes a row with status ``"invalid_input"``."""
+    from cable_ocp.scene import scene_from_dict
+    from cable_ocp.scene.heave import scene_from_dict as heave_from_dict
+
+    (heave_from_dict if kind == "heave" else scene_from_dict)(data)

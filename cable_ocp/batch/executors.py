@@ -1,0 +1,291 @@
+"""Where the cases of a batch run: in this process, on a pool of local worker processes, or
+on a dask.distributed cluster. Every executor calls ``on_row(row)`` once per case, in the
+order rows complete, and never loses or duplicates a case.
+
+Local pool
+    One worker process per core by default. Each worker builds its runner (solvers) once and
+    receives *chunks*: runs of consecutive cases, so that each case warm-starts from its
+    neighbour. Each worker has its own pipe, and reports which case it starts before it
+    runs it. A worker that dies (a crash in native code, an out-of-memory kill, SIGKILL) is
+    replaced; the rest of its chunk is queued again, and the case it was running is retried
+    on its own, up to ``max_attempts`` times, after which it becomes a row with status
+    ``"worker_lost"``. Rows that arrived before the death are kept, so nothing is run twice
+    to completion and no row is written twice.
+Dask
+    Chunks are submitted as tasks to a running scheduler (``--scheduler ADDRESS``); each
+    dask worker keeps its runners between tasks. The scheduler retries a task whose worker
+    died; a chunk that still fails (``KilledWorker``) is split into single cases, and a
+    single case that fails that way becomes a ``"worker_lost"`` row.
+"""
+
+from __future__ import annotations
+
+import hashlib
+import json
+import multiprocessing as mp
+import os
+import pickle
+import sys
+import traceback
+from collections import deque
+from collections.abc import Callable, Sequence
+from dataclasses import asdict, dataclass, field
+from multiprocessing.connection import Connection, wait
+from typing import Any
+
+from cable_ocp.batch.cases import Case
+from cable_ocp.batch.kinds import RUNNERS, Runner
+
+OnRow = Callable[[dict[str, Any]], None]
+
+
+@dataclass
+class RunnerSpec:
+    """What a worker needs to build its runner: the kind, the base problem and options.
+
+    Picklable (it travels to worker processes and dask workers). :meth:`make` builds the
+    runner; subclasses may wrap it (the tests inject faults this way).
+    """
+
+    kind: str
+    data: dict[str, Any]
+    options: dict[str, Any] = field(default_factory=dict)
+
+    def key(self) -> str:
+        """A key under which a worker caches the runner between tasks."""
+        text = json.dumps([type(self).__module__, type(self).__qualname__, asdict(self)],
+                          sort_keys=True, default=str)
+        return hashlib.sha1(text.encode()).hexdigest()
+
+    def make(self) -> Runner:
+        """A fresh runner."""
+        return RUNNERS[self.kind](self.data, self.options)
+
+
+def error_row(case: Case, status: str, message: str) -> dict[str, Any]:
+    """The row of a case that produced no result of its own."""
+    return {"case": case.index, "case_id": case.case_id, "status": status,
+            "message": message, "wall_time_s": None, **case.overrides}
+
+
+def _safe_run(runner: Runner, case: Case) -> dict[str, Any]:
+    """``runner.run(case)``, with an unexpected exception turned into an ``"error"`` row."""
+    try:
+        return runner.run(case)
+    except Exception as exc:  # noqa: BLE001 - one case's bug must not stop the batch
+        last = traceback.extract_tb(exc.__traceback__)[-1]
+        return error_row(case, "error", f"{type(exc).__name__}: {exc} "
+                                        f"({os.path.basename(last.filename)}:{last.lineno})")
+
+
+# --------------------------------------------------------------------------------------
+# In this process
+# --------------------------------------------------------------------------------------
+
+def run_serial(spec: RunnerSpec, chunks: Sequence[Sequence[Case]], on_row: OnRow) -> None:
+    """Run every chunk here, in order (``workers = 0``)."""
+    runner = spec.make()
+    for chunk in chunks:
+        for case in chunk:
+            on_row(_safe_run(runner, case))
+
+
+# --------------------------------------------------------------------------------------
+# Local worker processes
+# --------------------------------------------------------------------------------------
+
+def _worker_main(conn: Connection, spec: RunnerSpec) -> None:
+    """A worker: build the runner once, then run chunks until told to stop (None)."""
+    try:
+        runner: Runner | None = spec.make()
+        why = ""
+    except Exception as exc:  # noqa: BLE001 - reported per case below
+        runner, why = None, f"{type(exc).__name__}: {exc}"
+    while True:
+        try:
+            chunk = conn.recv()
+        except (EOFError, OSError):
+            return
+        if chunk is None:
+            return
+        for case in chunk:
+            conn.send(("start", case.index))
+            conn.send(("row", _safe_run(runner, case) if runner is not None
+                       else error_row(case, "error", f"building the runner failed: {why}")))
+
+
+class _Worker:
+    def __init__(self, ctx: Any, spec: RunnerSpec) -> None:
+        self.conn, child = ctx.Pipe(duplex=True)
+        self.proc = ctx.Process(target=_worker_main, args=(child, spec), daemon=True)
+        self.proc.start()
+        child.close()
+        self.chunk: list[Case] = []      # cases sent and not yet reported as rows
+        self.running: int | None = None  # the case it reported starting
+
+    @property
+    def idle(self) -> bool:
+        return not self.chunk
+
+    def stop(self) -> None:
+        try:
+            self.conn.send(None)
+        except (OSError, BrokenPipeError):
+            pass
+
+    def kill(self) -> None:
+        if self.proc.is_alive():
+            self.proc.kill()
+        self.proc.join(timeout=5)
+        self.conn.close()
+
+
+def run_local(spec: RunnerSpec, chunks: Sequence[Sequence[Case]], on_row: OnRow,
+              workers: int, max_attempts: int = 2, start_method: str | None = None) -> None:
+    """Run the chunks on ``workers`` local processes (see the module docstring).
+
+    Parameters
+    ----------
+    start_method : str, optional
+        ``"fork"`` (default where available: workers inherit the loaded modules, no
+        re-import) or ``"spawn"``.
+    """
+    method = start_method or ("fork" if "fork" in mp.get_all_start_methods()
+                              and sys.platform != "darwin" else "spawn")
+    ctx = mp.get_context(method)
+    queue: deque[list[Case]] = deque(list(c) for c in chunks if c)
+    attempts: dict[int, int] = {}
+    pool = [_Worker(ctx, spec) for _ in range(max(1, min(workers, len(queue))))]
+    try:
+        while queue or any(not w.idle for w in pool):
+            for w in pool:
+                if w.idle and queue:
+                    w.chunk = queue.popleft()
+                    w.running = None
+                    w.conn.send(w.chunk)
+            ready = wait([w.conn for w in pool if not w.idle]
+                         + [w.proc.sentinel for w in pool if not w.idle])
+            for w in list(pool):
+                if w.idle:
+                    continue
+                died = w.proc.sentinel in ready and not w.proc.is_alive()
+                # read everything the worker sent before it (maybe) died
+                try:
+                    while w.conn.poll():
+                        kind, payload = w.conn.recv()
+                        if kind == "start":
+                            w.running = payload
+                        else:  # "row": the chunk shrinks; empty = idle
+                            w.chunk = [c for c in w.chunk if c.index != payload["case"]]
+                            w.running = None
+                            on_row(payload)
+                except (EOFError, OSError, pickle.UnpicklingError, ValueError):
+                    died = True  # EOF or a message cut short by the death
+                if died:
+                    w.kill()
+                    _recover(w, queue, attempts, max_attempts, on_row)
+                    pool[pool.index(w)] = _Worker(ctx, spec)
+    finally:
+        for w in pool:
+            w.stop()
+        for w in pool:
+            w.proc.join(timeout=2)
+            w.kill()
+
+
+def _recover(w: _Worker, queue: deque[list[Case]], attempts: dict[int, int],
+             max_attempts: int, on_row: OnRow) -> None:
+    """A worker died: retry the case it was running on its own (or give it up), and queue
+    the rest of its chunk again."""
+    code = w.proc.exitcode
+    rest = list(w.chunk)
+    crashed = next((c for c in rest if c.index == w.running), None)
+    if crashed is None and rest:  # died before reporting a start: the first case
+        crashed = rest[0]
+    if crashed is not None:
+        rest.remove(crashed)
+        attempts[crashed.index] = attempts.get(crashed.index, 0) + 1
+        if attempts[crashed.index] >= max_attempts:
+            on_row(error_row(crashed, "worker_lost",
+                             f"the worker process died {attempts[crashed.index]} times while "
+                             f"running this case (last exit code {code}); given up"))
+        else:
+            queue.appendleft([crashed])
+    if rest:
+        queue.append(rest)
+    w.chunk = []
+
+
+# --------------------------------------------------------------------------------------
+# dask.distributed
+# --------------------------------------------------------------------------------------
+
+_DASK_RUNNERS: dict[str, Runner] = {}
+
+
+def _dask_chunk(spec: RunnerSpec, chunk: list[Case]) -> list[dict[str, Any]]:
+    """A dask task: run a chunk with the worker's cached runner."""
+    key = spec.key()
+    if key not in _DASK_RUNNERS:
+        _DASK_RUNNERS[key] = spec.make()
+    runner = _DASK_RUNNERS[key]
+    return [_safe_run(runner, case) for case in chunk]
+
+
+def run_dask(spec: RunnerSpec, chunks: Sequence[Sequence[Case]], on_row: OnRow,
+             scheduler: Any, max_attempts: int = 2) -> None:
+    """Run the chunks on a dask.distributed cluster.
+
+    Two phases. First every chunk runs as a task (dask itself retries a task whose worker
+    died, up to its ``distributed.scheduler.allowed-failures``). A chunk that still failed
+    that way (``KilledWorker``) goes to the second phase, where its cases run one at a
+    time, alone on the cluster: a case that then kills its worker ``max_attempts`` times is
+    certainly the culprit and becomes a ``"worker_lost"`` row, while the innocent cases that
+    shared its chunk or its worker are solved.
+
+    Parameters
+    ----------
+    scheduler : str or distributed.Client
+        The scheduler's address (``tcp://host:8786``) or a connected client.
+    """
+    try:
+        from distributed import Client, as_completed
+        from distributed.scheduler import KilledWorker
+    except ImportError:  # pragma: no cover - depends on the installation
+        from cable_ocp.errors import CableOCPError
+
+        raise CableOCPError("--scheduler needs dask.distributed: pip install -e '.[cluster]'"
+                            ) from None
+    own = not hasattr(scheduler, "submit")
+    client = Client(scheduler, timeout="20s") if own else scheduler
+    suspects: list[Case] = []
+    try:
+        futures = {client.submit(_dask_chunk, spec, list(c), pure=False): list(c)
+                   for c in chunks if c}
+        for fut in as_completed(list(futures)):
+            chunk = futures.pop(fut)
+            try:
+                rows = fut.result()
+            except KilledWorker:
+                suspects += chunk
+                continue
+            except Exception as exc:  # noqa: BLE001 - a task error is a row, not a stop
+                rows = [error_row(c, "error", f"{type(exc).__name__}: {exc}") for c in chunk]
+            for row in rows:
+                on_row(row)
+        for case in suspects:  # alone on the cluster, one after the other
+            for attempt in range(1, max_attempts + 1):
+                try:
+                    row = client.submit(_dask_chunk, spec, [case], pure=False).result()[0]
+                    break
+                except KilledWorker as exc:
+                    row = error_row(case, "worker_lost",
+                                    f"dask workers died {attempt} times running this case "
+                                    f"alone: {exc}")
+                except Exception as exc:  # noqa: BLE001
+                    row = error_row(case, "error", f"{type(exc).__name__}: {exc}")
+                    break
+            on_row(row)
+    finally:
+        if own:
+            client.close()

@@ -1,0 +1,197 @@
+"""What one case of each scene kind computes, and the row it gives.
+
+A *runner* is built once per worker from the base problem (a dict, as read from TOML) and
+then called per case; it keeps what can be reused between cases (built solvers, the last
+solution for a warm start). Every case ends as a row, solved or not: a scene error of the
+case itself (an override that makes the scene invalid) is a row with status
+``"invalid_input"`` and the message, never an exception.
+
+Row keys: ``case`` (index), ``case_id``, ``status``, ``message``, ``wall_time_s``, the
+inputs (the case's dotted keys, in the problem file's units), then the kind's outputs,
+named with their unit in brackets (:data:`OUTPUTS`).
+"""
+
+from __future__ import annotations
+
+import math
+import time
+from collections.abc import Callable
+from typing import Any
+
+import numpy as np
+
+from cable_ocp.batch.cases import Case
+from cable_ocp.errors import CableOCPError
+from cable_ocp.scene.files import apply_overrides, scene_kind
+
+#: kind -> output columns (name with unit), in table order
+OUTPUTS: dict[str, list[str]] = {
+    "statics": ["length [m]", "max_tension [N]", "end_a_tension [N]", "end_b_tension [N]",
+                "end_a_angle [deg]", "end_b_angle [deg]", "end_a_force_x [N]",
+                "end_a_force_y [N]", "end_a_force_z [N]", "end_b_force_x [N]",
+                "end_b_force_y [N]", "end_b_force_z [N]", "grounded_length [m]",
+                "error_estimate [-]", "iterations [-]"],
+    "footprint": ["directions [-]", "solved_directions [-]", "min_reach [m]", "max_reach [m]",
+                  "mean_reach [m]"],
+    "heave": ["sigma_uncontrolled [m]"],  # + per controller, see HeaveRunner.columns
+}
+SUCCESS = {"statics": ("solved",), "footprint": ("solved",), "heave": ("solved",),
+           "dynamics": ("solved",)}
+
+
+def _num(x: Any) -> float | None:
+    try:
+        v = float(x)
+    except (TypeError, ValueError):
+        return None
+    return v if math.isfinite(v) else None
+
+
+class Runner:
+    """Base class: ``run(case) -> row``; subclasses implement :meth:`_run`."""
+
+    kind = ""
+
+    def __init__(self, data: dict[str, Any], options: dict[str, Any] | None = None) -> None:
+        self.data = data
+        self.options = dict(options or {})
+
+    def columns(self) -> list[str]:
+        """Output columns (name [unit])."""
+        return list(OUTPUTS.get(self.kind, []))
+
+    def run(self, case: Case) -> dict[str, Any]:
+        """The row of ``case`` (never raises for a problem of the case itself)."""
+        t0 = time.perf_counter()
+        row: dict[str, Any] = {"case": case.index, "case_id": case.case_id}
+        try:
+            status, message, out = self._run(case)
+        except CableOCPError as exc:
+            status, message, out = "invalid_input", str(exc), {}
+        row.update(status=status, message=message,
+                   wall_time_s=time.perf_counter() - t0)
+        row.update({k: v for k, v in case.overrides.items()})
+        row.update({c: _num(out.get(c)) for c in self.columns()})
+        return row
+
+    def _data(self, case: Case) -> dict[str, Any]:
+        return apply_overrides(self.data, case.overrides)
+
+    def _run(self, case: Case) -> tuple[str, str, dict[str, Any]]:  # pragma: no cover
+        raise NotImplementedError
+
+
+class StaticsRunner(Runner):
+    """``cable-ocp solve`` per case; solvers built once per structure, warm starts along
+    the batch order (:class:`cable_ocp.statics.solver.SolveSession`)."""
+
+    kind = "statics"
+
+    def __init__(self, data: dict[str, Any], options: dict[str, Any] | None = None) -> None:
+        super().__init__(data, options)
+        from cable_ocp.statics.solver import SolveSession
+
+        self.session = SolveSession()
+
+    def _run(self, case: Case) -> tuple[str, str, dict[str, Any]]:
+        from cable_ocp.scene import scene_from_dict
+
+        sol = self.session.solve(scene_from_dict(self._data(case)))
+        if not np.all(np.isfinite(sol.tension_vector)):
+            return sol.status, sol.message, {}
+        ta, tb = sol.tension_vector[0], sol.tension_vector[-1]
+        out = {"length [m]": sol.length, "max_tension [N]": sol.max_tension,
+               "end_a_tension [N]": np.linalg.norm(ta), "end_b_tension [N]": np.linalg.norm(tb),
+               "end_a_angle [deg]": sol.angle_to_horizontal_deg("a"),
+               "end_b_angle [deg]": sol.angle_to_horizontal_deg("b"),
+               "grounded_length [m]": sol.grounded_length,
+               "error_estimate [-]": sol.error_estimate, "iterations [-]": sol.iterations}
+        for end, f in (("a", sol.force_a), ("b", sol.force_b)):
+            for c, v in zip("xyz", f, strict=True):
+                out[f"end_{end}_force_{c} [N]"] = v
+        return sol.status, sol.message, out
+
+
+class FootprintRunner(Runner):
+    """``cable-ocp footprint`` per case (``options["directions"]``, default 36)."""
+
+    kind = "footprint"
+
+    def _run(self, case: Case) -> tuple[str, str, dict[str, Any]]:
+        from cable_ocp.scene import scene_from_dict
+        from cable_ocp.statics.footprint import footprint
+
+        n = int(self.options.get("directions", 36))
+        res = footprint(scene_from_dict(self._data(case)), n)
+        ok = np.isfinite(res.reach)
+        solved = sum(s == "solved" for s in res.status)
+        out = {"directions [-]": n, "solved_directions [-]": solved}
+        if ok.any():
+            out.update({"min_reach [m]": float(np.min(res.reach[ok])),
+                        "max_reach [m]": float(np.max(res.reach[ok])),
+                        "mean_reach [m]": float(np.mean(res.reach[ok]))})
+        status = "solved" if solved == n else "partial"
+        return status, f"{solved} of {n} directions solved", out
+
+
+class HeaveRunner(Runner):
+    """``cable-ocp heave`` per case; the sea realisation's seed is the case seed unless the
+    case sets ``simulation.seed``."""
+
+    kind = "heave"
+    METRICS = (("heave_rms", "m"), ("reduction_pct", "%"), ("peak_winch_speed", "m/s"),
+               ("max_stroke", "m"), ("max_constraint_violation", "-"))
+
+    def __init__(self, data: dict[str, Any], options: dict[str, Any] | None = None) -> None:
+        super().__init__(data, options)
+        ctrl = (data.get("controller") or {}).get("controllers") or [
+            "passive", "lqr", "lqg", "mpc"]
+        self.controllers = list(self.options.get("controllers") or ctrl)
+
+    def columns(self) -> list[str]:
+        cols = ["sigma_uncontrolled [m]"]
+        for c in self.controllers:
+            cols += [f"{c}_{m} [{u}]" for m, u in self.METRICS]
+        return cols
+
+    def _run(self, case: Case) -> tuple[str, str, dict[str, Any]]:
+        from cable_ocp.heave.simulate import compare
+        from cable_ocp.scene.heave import scene_from_dict
+
+        over = dict(case.overrides)
+        over.setdefault("simulation.seed", case.seed % (2**31))
+        sc = scene_from_dict(apply_overrides(self.data, over))
+        res = compare(sc, tuple(self.controllers))
+        out: dict[str, Any] = {"sigma_uncontrolled [m]": res.sigma_uncontrolled}
+        bad = []
+        for c, m in res.metrics.items():
+            d = m.as_dict()
+            for name, unit in self.METRICS:
+                out[f"{c}_{name} [{unit}]"] = d.get(name)
+            st = d.get("status", "solved")
+            if st != "solved" or not all(_num(d.get(n)) is not None for n, _ in
+                                          self.METRICS[:1]):
+                bad.append(f"{c}: {st if st != 'solved' else 'non_finite'}")
+        if bad:
+            return bad[0].split(": ")[1], "; ".join(bad), out
+        return "solved", "every controller ran", out
+
+
+RUNNERS: dict[str, Callable[..., Runner]] = {
+    "statics": StaticsRunner, "footprint": FootprintRunner, "heave": HeaveRunner,
+}
+
+
+def runner_kind(data: dict[str, Any], command: str | None = None) -> str:
+    """The runner for a problem: ``footprint`` when asked (or the scene has a [footprint]
+    table and no command is given), else the scene kind."""
+    kind = scene_kind(data)
+    if command is not None:
+        if command not in RUNNERS:
+            raise CableOCPError(f"--command {command}: valid are {', '.join(RUNNERS)}")
+        if (command in ("statics", "footprint")) != (kind == "statics"):
+            raise CableOCPError(f"--command {command} does not fit a {kind} scene")
+        return command
+    if kind not in RUNNERS:
+        raise CableOCPError(f"batch runs of {kind} scenes are not available")
+    return kind

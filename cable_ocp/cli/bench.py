@@ -1,0 +1,313 @@
+"""``cable-ocp bench {sweep,accuracy,robustness}`` and ``cable-ocp bench-heave``.
+
+Benchmarks print tables (and write JSON/CSV/plots when asked); nothing here is asserted by
+the tests. Each compares methods side by side in one run, so ratios stay meaningful on a
+noisy machine.
+"""
+
+from __future__ import annotations
+
+import argparse
+from pathlib import Path
+from typing import Any
+
+from cable_ocp.cli import output as out
+
+
+def register(sub: argparse._SubParsersAction, parent: argparse.ArgumentParser) -> None:
+    """Add ``bench`` (with its three benchmarks) and ``bench-heave``."""
+    b = sub.add_parser(
+        "bench", parents=[parent], help="statics benchmarks that print a table",
+        description="Statics benchmarks (tables; nothing is asserted). Without a benchmark "
+                    "name: sweep.")
+    b.set_defaults(func=cmd_sweep, scene=None, intervals=40, json=None, csv=None, plot=None)
+    which = b.add_subparsers(dest="which", metavar="BENCHMARK")
+
+    s = which.add_parser(
+        "sweep", parents=[parent],
+        help="De Zoysa psi0 sweep timing: collocation (built once, warm) vs scipy solve_bvp",
+        description="Time the 19-angle De Zoysa psi0 sweep: collocation built once and "
+                    "warm-started, with and without error estimates, against scipy's "
+                    "solve_bvp from the catenary and from the previous point, in one run.")
+    s.add_argument("--scene", metavar="FILE", help="problem file with layout.psi0_deg "
+                                                   "(default problems/dezoysa_sea_buggy.toml)")
+    s.add_argument("--intervals", type=int, default=40, metavar="N",
+                   help="collocation intervals (default 40)")
+    out.add_json_option(s, "the summary (warm median, iterations, totals, agreement)")
+    out.add_csv_option(s, "the timing table")
+    out.add_plot_option(s, "the end_a force against psi0, collocation and solve_bvp")
+    s.set_defaults(func=cmd_sweep)
+
+    a = which.add_parser(
+        "accuracy", parents=[parent],
+        help="work-precision: error against run time of every statics method",
+        description="For each scene a converged reference, then every method over a range "
+                    "of resolutions: error (end forces and profile) against wall time.")
+    a.add_argument("--scene", action="append", metavar="FILE",
+                   help="problem file (repeatable; default De Zoysa at 90 deg and Berteaux)")
+    a.add_argument("--method", action="append", metavar="LABEL",
+                   help="restrict to these series (repeatable; labels as in the table)")
+    a.add_argument("--repeats", type=int, default=3, metavar="N",
+                   help="timing repeats, fastest kept (default 3)")
+    out.add_json_option(a, "every row")
+    out.add_csv_option(a, "every row")
+    out.add_plot_option(a, "the work-precision diagram")
+    a.set_defaults(func=cmd_accuracy)
+
+    r = which.add_parser(
+        "robustness", parents=[parent],
+        help="every statics method on every extreme scene",
+        description="Each method at its default resolution on each extreme scene: ok "
+                    "(converged, within 1 %% of the reference), FAIL (honest failure), n/a "
+                    "(cannot represent the scene), WRONG (converged but off). Exit 1 when "
+                    "collocation is WRONG anywhere.")
+    r.add_argument("--scene", action="append", metavar="FILE",
+                   help="problem file (repeatable; default problems/extreme/*.toml and the "
+                        "published examples)")
+    r.add_argument("--method", action="append", metavar="NAME",
+                   help="restrict to these methods (repeatable)")
+    out.add_json_option(r, "the matrix and every cell's detail")
+    out.add_csv_option(r, "one row per cell")
+    r.set_defaults(func=cmd_robustness)
+
+    bb = which.add_parser(
+        "batch", parents=[parent],
+        help="load-case batch: per-case overhead and parallel speed-up",
+        description="De Zoysa's cable over psi0 x current speed (200 cases by default): the "
+                    "cases solved bare in this process, then as batches on 1 and 2 local "
+                    "workers, in one run: per-case overhead of the batch machinery and the "
+                    "parallel speed-up.")
+    bb.add_argument("--angles", type=int, default=20, metavar="N", help="psi0 values (20)")
+    bb.add_argument("--speeds", type=int, default=10, metavar="N",
+                    help="current speeds (10)")
+    out.add_json_option(bb, "the rows and the summary")
+    bb.set_defaults(func=cmd_bench_batch)
+
+    h = sub.add_parser(
+        "bench-heave", parents=[parent],
+        help="MPC solve time per closed-loop step, every solver and do-mpc",
+        description="Median and p99 time per closed-loop MPC step on "
+                    "problems/heave/ex_6_3_6.toml (0.2 s delay, hard limits, soft tension "
+                    "limit) for every QP/NLP solver and, when installed, do-mpc, at each "
+                    "horizon, in one run.")
+    h.add_argument("--horizons", type=int, nargs="+", default=[20, 50, 100], metavar="N",
+                   help="MPC horizons in samples (default 20 50 100)")
+    h.add_argument("--steps", type=int, default=300, metavar="N",
+                   help="closed-loop steps per case (default 300; IPOPT and do-mpc: N/5)")
+    h.add_argument("--solvers", nargs="+", default=["daqp", "qpoases", "osqp", "qrqp", "ipopt"],
+                   metavar="NAME",
+                   help="solvers to time (default daqp qpoases osqp qrqp ipopt)")
+    h.add_argument("--no-do-mpc", action="store_true", help="skip do-mpc even if installed")
+    out.add_json_option(h, "the timing rows")
+    h.set_defaults(func=cmd_bench_heave)
+
+
+def cmd_sweep(args: argparse.Namespace) -> int:
+    """``cable-ocp bench sweep``."""
+    from cable_ocp import report
+    from cable_ocp.bench import statics_sweep
+
+    out.check_outputs(args)
+    if not 2 <= args.intervals <= 2560:
+        raise out_error(f"--intervals {args.intervals}: give 2..2560")
+    kw: dict[str, Any] = {"intervals": args.intervals}
+    if args.scene:
+        kw["scene_path"] = args.scene
+    out.note(args, "bench sweep: timing the collocation and solve_bvp sweeps (~5 s) ...")
+    res = statics_sweep.run(**kw)
+    m, t = res["measured"], res["targets"]
+    out.say(args, f"De Zoysa psi0 sweep, {len(res['angles'])} angles, {args.intervals} "
+                  "intervals (fastest of 3 repeats for the collocation sweep)")
+    out.say(args, report.table(res["headers"], res["rows"]))
+    out.say(args, f"\nwarm solve median {m['warm_median_ms']:.2f} ms (target < "
+                  f"{t['warm_median_ms']} ms); sweep incl. build {m['sweep_total_ms']:.0f} ms "
+                  f"(target < {t['sweep_total_ms']:.0f} ms)")
+    out.say(args, "collocation vs solve_bvp end_a force: max relative difference "
+                  f"{res['agreement']:.1e}")
+    out.emit_json(args, out.envelope("ok", "benchmark completed", {
+        **res["summary"], "headers": res["headers"], "rows": res["rows"]}))
+    out.emit_csv(args, res["headers"], res["rows"])
+    if args.plot:
+        from cable_ocp.plots.statics import plot_sweep
+
+        out.emit_plot(args, lambda path: plot_sweep(
+            res["angles"], res["forces"], path, "psi0 (deg)", "De Zoysa: force at the buggy",
+            overlays={"solve_bvp": res["forces_bvp"]}, name="collocation"))
+    return out.EXIT_OK
+
+
+def out_error(msg: str) -> Exception:
+    """The user-input error (exit 2)."""
+    from cable_ocp.errors import CableOCPError
+
+    return CableOCPError(msg)
+
+
+ACCURACY_KEYS = ["scene", "method", "resolution", "time_s", "status", "force_error",
+                 "profile_error", "estimate_ratio"]
+ACCURACY_HEADER = ["scene", "method", "resolution", "time [s]", "status", "force error [-]",
+                   "profile error [-]", "estimate/true [-]"]
+
+
+def cmd_accuracy(args: argparse.Namespace) -> int:
+    """``cable-ocp bench accuracy``."""
+    from cable_ocp import report
+    from cable_ocp.bench import accuracy
+    from cable_ocp.bench.common import fmt_sci
+
+    out.check_outputs(args)
+    if not 1 <= args.repeats <= 100:
+        raise out_error(f"--repeats {args.repeats}: give 1..100 (the fastest is kept)")
+    labels = [*accuracy.PLAN, accuracy.REUSED]
+    for m in args.method or []:
+        if m not in labels:
+            raise out_error(f"--method {m!r}: valid are " + ", ".join(f'"{x}"' for x in labels))
+    scenes = [(Path(f).stem, Path(f), {}) for f in args.scene] if args.scene else None
+    if scenes:
+        from cable_ocp.scene import load_scene
+
+        for _, path, _ in scenes:
+            load_scene(path)  # input errors before any solve
+    n_scenes = len(scenes) if scenes else len(accuracy.default_scenes())
+    total = n_scenes * accuracy.planned_rows(args.method)
+    rows: list[dict[str, Any]] = []
+    try:
+        with out.progress(args, total, "bench accuracy", "row") as bar:
+            def step(row: dict[str, Any]) -> None:
+                rows.append(row)
+                bar(len(rows), postfix=f"{row['scene']}: {row['method']}")
+
+            results = accuracy.run(scenes, args.method, repeats=args.repeats, progress=step)
+    except KeyboardInterrupt:
+        _write_partial(args, rows, ACCURACY_KEYS, ACCURACY_HEADER)
+        raise
+    for res in results:
+        out.say(args, f"\n{res['scene']}: reference = {res['reference']} "
+                      f"(agreement {res['reference_check']:.1e})")
+        table = [[r["method"], r["resolution"], f"{r['time_s'] * 1e3:.2f}", r["status"],
+                  fmt_sci(r["force_error"]), fmt_sci(r["profile_error"]),
+                  fmt_sci(r["estimate_ratio"])] for r in res["rows"]]
+        out.say(args, report.table(["method", "resolution", "time [ms]", "status",
+                                    "force error [-]", "profile error [-]", "est/true [-]"],
+                                   table))
+        for name, note in res["notes"].items():
+            out.say(args, f"  {name}: {note}")
+        for name, d in sorted(res["dominance"].items()):
+            out.say(args, f"  {name}: {d}")
+    low = [(res["scene"], r["method"], r["resolution"], r["estimate_ratio"])
+           for res in results for r in res["rows"]
+           if r["estimate_ratio"] is not None and r["estimate_ratio"] < 0.1]
+    out.say(args, "\nerror estimates under-estimating by more than 10x: "
+            + (", ".join(f"{a} {b} {c} ({d:.2f})" for a, b, c, d in low) if low else "none"))
+    out.emit_json(args, out.envelope("ok", "benchmark completed", {"scenes": results}))
+    out.emit_csv(args, ACCURACY_HEADER, [[r[k] for k in ACCURACY_KEYS]
+                                         for res in results for r in res["rows"]])
+    if args.plot:
+        out.emit_plot(args, lambda path: accuracy.plot(results, path))
+    return out.EXIT_OK
+
+
+def _write_partial(args: argparse.Namespace, rows: list[dict[str, Any]], keys: list[str],
+                   header: list[str]) -> None:
+    """On Ctrl-C: write the rows finished so far (JSON status "interrupted")."""
+    out.emit_json(args, out.envelope("interrupted", f"interrupted after {len(rows)} rows",
+                                     {"rows": rows}))
+    out.emit_csv(args, header, [[r.get(k) for k in keys] for r in rows])
+    if out.stdout_free(args) and rows:
+        from cable_ocp import report
+
+        print(report.table(header, [[r.get(k) for k in keys] for r in rows]))
+
+
+ROBUST_KEYS = ["scene", "method", "category", "error", "time_s", "message"]
+ROBUST_HEADER = ["scene", "method", "category", "error [-]", "time [s]", "message"]
+
+
+def cmd_robustness(args: argparse.Namespace) -> int:
+    """``cable-ocp bench robustness``."""
+    from cable_ocp import report
+    from cable_ocp.bench import robustness
+    from cable_ocp.scene import METHODS, load_scene
+
+    out.check_outputs(args)
+    scenes = [Path(f) for f in args.scene] if args.scene else None
+    for path in scenes or []:
+        load_scene(path)
+    for m in args.method or []:
+        if m not in METHODS:
+            raise out_error(f"--method {m}: valid are {', '.join(METHODS)}")
+    details: list[dict[str, Any]] = []
+    n = len(scenes or robustness.default_scenes()) * len(args.method or METHODS)
+    try:
+        with out.progress(args, n, "bench robustness", "cell") as bar:
+            res = robustness.run(scenes, args.method, details=details, progress=lambda d, t, c:
+                                 bar(d, postfix=f"{c['scene']}: {c['method']}"))
+    except KeyboardInterrupt:
+        _write_partial(args, details, ROBUST_KEYS, ROBUST_HEADER)
+        raise
+    out.say(args, "Robustness matrix (ok: converged and within 1 % of the reference; FAIL: "
+                  "honest failure; n/a: method cannot represent the scene; WRONG: converged "
+                  "but off by more than 1 %)")
+    out.say(args, report.table(res["headers"], res["rows"]))
+    out.say(args, "\nnot ok:")
+    for d in res["details"]:
+        if d["category"] != "ok":
+            out.say(args, f"  {d['scene']:<26} {d['method']:<28} {d['category']:<6} "
+                          f"{d['message'][:110]}")
+    wrong = [d["scene"] for d in res["wrong_ours"]]
+    out.say(args, "\ncollocation reported as success but wrong: " + (", ".join(wrong) or "none"))
+    status = "ok" if not wrong else "wrong"
+    out.emit_json(args, out.envelope(status, "collocation wrong on: " + ", ".join(wrong)
+                                     if wrong else "benchmark completed", res))
+    out.emit_csv(args, ROBUST_HEADER, [[d[k] for k in ROBUST_KEYS] for d in res["details"]])
+    return out.EXIT_NOT_SUCCESS if wrong else out.EXIT_OK
+
+
+def cmd_bench_heave(args: argparse.Namespace) -> int:
+    """``cable-ocp bench-heave``."""
+    from cable_ocp.bench.heave_mpc import format_table, json_data, run
+
+    out.check_outputs(args)
+    for n in args.horizons:
+        if not 1 <= n <= 400:
+            raise out_error(f"--horizons {n}: give 1..400 samples (the condensed QP grows "
+                            "as N^2 in memory and N^3 in time)")
+    if not 1 <= args.steps <= 100000:
+        raise out_error(f"--steps {args.steps}: give 1..100000")
+    from cable_ocp.heave.mpc import SOLVERS
+
+    for s in args.solvers:
+        if s not in SOLVERS:
+            raise out_error(f"--solvers {s}: valid are {', '.join(SOLVERS)}")
+    total = len(args.horizons) * (len(args.solvers) + (0 if args.no_do_mpc else 1))
+    with out.progress(args, total, "bench-heave", "case") as bar:
+        rows = run(horizons=args.horizons, steps=args.steps, solvers=args.solvers,
+                   with_do_mpc=not args.no_do_mpc,
+                   progress=lambda done, tot, row: bar(done, tot, postfix=f"{row.solver} "
+                                                                           f"N={row.horizon}"))
+    out.say(args, format_table(rows))
+    out.emit_json(args, out.envelope("ok", "benchmark completed", json_data(rows)))
+    return out.EXIT_OK
+
+
+def cmd_bench_batch(args: argparse.Namespace) -> int:
+    """``cable-ocp bench batch``."""
+    from cable_ocp import report
+    from cable_ocp.bench import batch
+
+    out.check_outputs(args)
+    if not (1 <= args.angles <= 1000 and 1 <= args.speeds <= 1000):
+        raise out_error("--angles and --speeds: give 1..1000")
+    res = batch.run(args.angles, args.speeds, progress=lambda what: out.note(args, what))
+    keys = ["run", "wall_s", "per_case_ms", "overhead_ms", "speedup", "solved"]
+    out.say(args, report.table(["run", "wall [s]", "per case [ms]", "overhead/case [ms]",
+                                "speed-up [-]", "solved"],
+                               [["-" if r[k] is None else r[k] for k in keys]
+                                for r in res["rows"]]))
+    sm = res["summary"]
+    out.say(args, f"\n{sm['cases']} cases: overhead of the batch on one worker "
+                  f"{sm['overhead_per_case_ms']:.2f} ms per case "
+                  f"({100 * sm['overhead_fraction']:.1f} % of a bare solve, target < 10 %); "
+                  f"speed-up on 2 workers {sm['speedup_2_workers']:.2f}x (target >= 1.8x)")
+    out.emit_json(args, out.envelope("ok", "benchmark completed", res))
+    return out.EXIT_OK

@@ -1,0 +1,149 @@
+"""``cable-ocp heave``: the heave-compensation comparison (parse, call, format)."""
+
+from __future__ import annotations
+
+import argparse
+import math
+from pathlib import Path
+from typing import Any
+
+import numpy as np
+
+from cable_ocp.cli import output as out
+
+CONTROLLERS = ("passive", "lqr", "lqg", "mpc")
+
+
+def register(sub: argparse._SubParsersAction, parent: argparse.ArgumentParser) -> None:
+    """Add ``heave``."""
+    p = sub.add_parser(
+        "heave", parents=[parent],
+        help="heave compensation: passive, LQR, LQG and MPC compared on one seeded sea "
+             "(Huang 1992, ch. 6)",
+        description="Simulate the scene's controllers on one seeded wave realisation and "
+                    "compare them: unit heave RMS and its reduction, winch speed and stroke, "
+                    "limit violations, MPC solve times. Exit 0 when every controller ran "
+                    "and stayed finite and stable, 1 otherwise (per-controller status in the "
+                    "JSON), 2 invalid input.")
+    p.add_argument("file", help="heave scene (UTF-8 TOML), e.g. problems/heave/ex_6_3_6.toml")
+    out.add_set_option(p)
+    p.add_argument("--duration", type=float, metavar="S",
+                   help="simulated time, s (same as --set simulation.duration=S)")
+    p.add_argument("--seed", type=int, metavar="N",
+                   help="seed of the wave realisation (same as --set simulation.seed=N)")
+    p.add_argument("--controllers", nargs="+", choices=CONTROLLERS, metavar="NAME",
+                   help="controllers to run, any of: " + ", ".join(CONTROLLERS)
+                        + " (default: [controller] controllers of the file)")
+    out.add_json_option(p, "the metrics of every controller")
+    out.add_csv_option(p, "the closed-loop time series of every controller")
+    out.add_plot_option(p, "spectra, time series and the trade-off curves")
+    out.add_force_option(p)
+    p.set_defaults(func=cmd_heave)
+
+
+def _overrides(args: argparse.Namespace) -> dict[str, Any]:
+    over = out.overrides(args)
+    if args.duration is not None:
+        over["simulation.duration"] = args.duration
+    if args.seed is not None:
+        over["simulation.seed"] = args.seed
+    if args.controllers:
+        over["controller.controllers"] = list(args.controllers)
+    return over
+
+
+def cmd_heave(args: argparse.Namespace) -> int:
+    """``cable-ocp heave FILE``."""
+    from cable_ocp.heave.simulate import compare
+    from cable_ocp.scene.cost import heave_cost
+    from cable_ocp.scene.heave import load_scene
+
+    out.check_outputs(args)
+    sc = load_scene(args.file, _overrides(args))
+    out.check_cost(args, heave_cost(sc))
+    with out.progress(args, 1, "heave simulation", "sample") as bar:
+        res = compare(sc, progress=lambda done, total, _: bar(done, total))
+    bad = [k for k, s in res.statuses.items() if s != "solved"]
+    message = ("every controller ran to the end with finite, bounded states" if not bad
+               else "; ".join(f"{k}: {res.statuses[k]}: {res.messages[k]}" for k in bad))
+    if out.stdout_free(args):
+        _print_table(sc, args, res)
+    ctrl = {k: {"status": res.statuses[k], "message": res.messages[k], **v.as_dict()}
+            for k, v in res.metrics.items()}
+    if "mpc" in ctrl:
+        ctrl["mpc"]["solver_failures"] = res.mpc_failures
+    out.emit_json(args, out.envelope(res.status, message, {
+        "sigma_uncontrolled": res.sigma_uncontrolled,
+        "passive_heave_rms": res.passive_heave_rms, "controllers": ctrl}, res.warnings))
+    if args.csv and res.traces:
+        names = list(res.traces)
+        t = next(iter(res.traces.values())).t
+        header = ["t [s]", "boom_tip_heave [m]"]
+        cols: list[np.ndarray] = [t, next(iter(res.traces.values())).x0]
+        for k in names:
+            tr = res.traces[k]
+            header += [f"{k}_unit_heave [m]", f"{k}_winch_output [m]", f"{k}_winch_speed [m/s]",
+                       f"{k}_command [m]"]
+            cols += [tr.x, tr.u, tr.u_dot, tr.u0]
+        out.emit_csv(args, header, np.column_stack(cols).tolist())
+    if args.plot:
+        if res.traces:
+            out.emit_plot(args, lambda path: _plot(sc, args, res, path))
+        else:
+            out.note(args, f"--plot {args.plot}: no controller ran; no figure written")
+    if bad:
+        out.note(args, f"cable-ocp: not solved ({res.status}): {message}")
+    return out.EXIT_OK if not bad else out.EXIT_NOT_SUCCESS
+
+
+def _print_table(sc: Any, args: argparse.Namespace, res: Any) -> None:
+    """The comparison table (what ``cable-ocp heave`` prints)."""
+    fit = res.models.filter_fit
+    print(f"{sc.title or Path(args.file).stem}")
+    sig = res.sigma_uncontrolled
+    print("sigma_uncontrolled (Lyapunov, sigma^2 = pi P11): "
+          + (f"{sig:.4f} m" if sig is not None else "- (no valid variance)"))
+    print(f"shaping filter: spectral error {fit.spectral_error:.3f}, variance error "
+          f"{100 * fit.variance_error:+.2f} %")
+    hdr = ("controller", "status", "heave rms [m]", "reduction [%]", "peak u' [m/s]", "max |u| [m]",
+           "u' rms [m/s]", "energy [-]", "violation [-]", "solve median [s]")
+    print("{:<10} {:<10} {:>13} {:>13} {:>13} {:>11} {:>12} {:>10} {:>13} {:>16}".format(
+        *hdr))
+
+    def f(v: float | None, spec: str) -> str:
+        return "-" if v is None or not math.isfinite(v) else format(v, spec)
+
+    for name, m in res.metrics.items():
+        print(f"{name:<10} {res.statuses[name]:<10} {f(m.heave_rms, '13.4e')} "
+              f"{f(m.reduction_pct, '13.3f')} "
+              f"{f(m.peak_winch_speed, '13.3f')} {f(m.max_stroke, '11.3f')} "
+              f"{f(m.winch_speed_rms, '12.3f')} {f(m.energy_index, '10.2f')} "
+              f"{f(m.max_constraint_violation, '13.3f')} {f(m.solve_time_median_s, '16.2e')}")
+    if "mpc" in res.metrics:
+        print(f"MPC solver failures (fell back on the shifted plan): {res.mpc_failures}")
+    if "passive" not in res.metrics and res.passive_heave_rms is not None:
+        print(f"reduction relative to a passive run on the same sea: heave rms "
+              f"{res.passive_heave_rms:.4e} m")
+    for name, st in res.statuses.items():
+        if st != "solved":
+            print(f"{name}: {st}: {res.messages[name]}")
+
+
+def _plot(sc: Any, args: argparse.Namespace, res: Any, path: str) -> None:
+    """Spectra, time series and the trade-off curves (``--plot``)."""
+    from cable_ocp.heave.lqr import tradeoff_data
+    from cable_ocp.plots.heave import plot_comparison
+
+    tr = next(iter(res.traces.values()))
+    step = 0.01
+    t = np.arange(0.0, min(tr.t[-1], 200.0), step)
+    x0 = np.interp(t, tr.t, tr.x0)
+    tau = sc.winch.delay
+    if tau <= 0:
+        tau = 0.2
+        out.note(args, "trade-off plot: the scene has no delay; its delayed curves use 0.2 s, "
+                       "the delay of the thesis' study (Fig. 6.17)")
+    td = tradeoff_data(sc.unit.a, sc.unit.b, sc.winch.gain, tau, t, x0)
+    plot_comparison(res, path, td, scene=sc)
+
+

@@ -1,0 +1,330 @@
+"""The output contract that every ``cable-ocp`` command shares.
+
+Exit codes (the same for every subcommand)
+------------------------------------------
+0    success
+1    computed, but not a success: the JSON ``status`` says which and ``message`` why
+2    the user's input is wrong (file, key, value, option, output path); one line names it
+     and says what would be valid; found before any solve
+3    an internal error: one line, plus "rerun with --debug for the traceback"
+130  interrupted (Ctrl-C), after writing the rows and results already finished
+
+Outputs
+-------
+* ``--json PATH`` writes strict JSON (no NaN or Infinity: ``null`` where a number does not
+  exist) whose top level always has ``status``, ``message``, ``warnings`` and the package
+  ``version``; ``--json -`` prints the JSON alone on stdout (no table, no progress there).
+* ``--csv PATH`` writes a table with the unit of every column in its header; ``-`` is stdout.
+* ``--plot PATH`` saves a figure in the format of its suffix (png, pdf, svg, ...).
+* Output paths and plot formats are checked before any computation; every file written is
+  confirmed on stderr (``wrote PATH``).
+* Anything that runs longer than about two seconds shows a progress bar on stderr when
+  stderr is a terminal; ``--quiet`` turns the bar and the confirmations off.
+* A run whose estimated cost is above 10 min of CPU or 4 GB of memory
+  (:mod:`cable_ocp.scene.cost`) is refused with exit 2 and the estimate, unless ``--force``.
+"""
+
+from __future__ import annotations
+
+import argparse
+import contextlib
+import csv
+import io
+import json
+import math
+import os
+import sys
+from collections.abc import Callable, Iterator, Sequence
+from pathlib import Path
+from typing import Any
+
+import numpy as np
+
+from cable_ocp.errors import CableOCPError
+
+EXIT_OK = 0
+EXIT_NOT_SUCCESS = 1
+EXIT_INPUT = 2
+EXIT_INTERNAL = 3
+EXIT_INTERRUPTED = 130
+
+STDOUT = "-"
+
+
+def version() -> str:
+    """The package version (also ``cable-ocp --version``)."""
+    from cable_ocp import __version__
+
+    return __version__
+
+
+# --------------------------------------------------------------------------------------
+# Options shared by the subcommands
+# --------------------------------------------------------------------------------------
+
+def common_parent() -> argparse.ArgumentParser:
+    """Options every subcommand takes (``--quiet``, ``--debug``)."""
+    p = argparse.ArgumentParser(add_help=False)
+    g = p.add_argument_group("common options")
+    g.add_argument("--quiet", action="store_true",
+                   help="no progress bar and no 'wrote PATH' confirmations on stderr")
+    g.add_argument("--debug", action="store_true",
+                   help="print the full traceback of an internal error")
+    return p
+
+
+def add_set_option(p: argparse.ArgumentParser) -> None:
+    """``--set KEY=VALUE`` (repeatable), the dotted-key overrides of a problem file."""
+    p.add_argument("--set", dest="overrides", action="append", default=[], metavar="KEY=VALUE",
+                   help="override a key of the problem file with a dotted name and a TOML "
+                        "value, e.g. --set end_b.position=[0,229,183] (repeatable)")
+
+
+def add_json_option(p: argparse.ArgumentParser, what: str) -> None:
+    """``--json PATH`` ('-' = stdout)."""
+    p.add_argument("--json", metavar="PATH",
+                   help=f"write {what} as JSON; '-' prints the JSON alone on stdout")
+
+
+def add_csv_option(p: argparse.ArgumentParser, what: str) -> None:
+    """``--csv PATH`` ('-' = stdout)."""
+    p.add_argument("--csv", metavar="PATH",
+                   help=f"write {what} as CSV (units in the header); '-' = stdout")
+
+
+def add_plot_option(p: argparse.ArgumentParser, what: str) -> None:
+    """``--plot PATH`` (format from the suffix)."""
+    p.add_argument("--plot", metavar="PATH",
+                   help=f"save {what}; the format follows the suffix (png, pdf, svg, ...)")
+
+
+def add_force_option(p: argparse.ArgumentParser) -> None:
+    """``--force``: run even when the estimated cost is above the limits."""
+    p.add_argument("--force", action="store_true",
+                   help="run even when the estimated cost is above the limits (10 min of "
+                        "CPU, 4 GB of memory; see docs/cli.md)")
+
+
+def check_cost(args: argparse.Namespace, cost: Any) -> None:
+    """Exit 2 before any work when ``cost`` (:class:`cable_ocp.scene.cost.Cost`) is above
+    the limits, unless ``--force``."""
+    from cable_ocp.scene.cost import check_cost as check
+
+    check(cost, force=getattr(args, "force", False))
+
+
+def overrides(args: argparse.Namespace) -> dict[str, Any]:
+    """The ``--set`` overrides as a dict (parsed like TOML values)."""
+    from cable_ocp.scene import parse_override
+
+    return dict(parse_override(s) for s in getattr(args, "overrides", None) or [])
+
+
+# --------------------------------------------------------------------------------------
+# Output paths, checked before any computation
+# --------------------------------------------------------------------------------------
+
+def plot_formats() -> list[str]:
+    """File suffixes matplotlib can save (png, pdf, svg, ...)."""
+    from matplotlib.backends.backend_agg import FigureCanvasAgg
+    from matplotlib.figure import Figure
+
+    return sorted(FigureCanvasAgg(Figure()).get_supported_filetypes())
+
+
+def check_output_path(path: str | None, option: str, *, allow_stdout: bool = True,
+                      formats: Sequence[str] | None = None) -> None:
+    """Raise :class:`CableOCPError` unless ``path`` can be written.
+
+    ``-`` (stdout) is accepted where ``allow_stdout``; otherwise the parent directory must
+    exist and be writable, the path must not be a directory, and, with ``formats``, the
+    suffix must be one of them.
+    """
+    if path is None:
+        return
+    if path == STDOUT:
+        if not allow_stdout:
+            raise CableOCPError(f"{option} -: this output cannot go to stdout; give a file name")
+        return
+    p = Path(path)
+    if not path or p.is_dir() or path.endswith(("/", os.sep)):
+        raise CableOCPError(f"{option} {path}: is a directory; give a file name")
+    parent = p.parent if str(p.parent) else Path(".")
+    if not parent.is_dir():
+        raise CableOCPError(f"{option} {path}: the directory {str(parent)!r} does not exist")
+    if not os.access(parent, os.W_OK) or (p.exists() and not os.access(p, os.W_OK)):
+        raise CableOCPError(f"{option} {path}: not writable")
+    if formats is not None:
+        suffix = p.suffix.lower().lstrip(".")
+        if suffix not in formats:
+            raise CableOCPError(
+                f"{option} {path}: format {suffix or '(none)'!r} is not supported; give a "
+                f"file name ending in one of: {', '.join('.' + f for f in formats)}")
+
+
+def check_outputs(args: argparse.Namespace) -> None:
+    """Check every output option the command has (``json``, ``csv``, ``plot``)."""
+    check_output_path(getattr(args, "json", None), "--json")
+    check_output_path(getattr(args, "csv", None), "--csv")
+    if getattr(args, "plot", None) is not None:
+        check_output_path(args.plot, "--plot", allow_stdout=False, formats=plot_formats())
+    if getattr(args, "json", None) == STDOUT and getattr(args, "csv", None) == STDOUT:
+        raise CableOCPError("--json - and --csv -: only one output can go to stdout")
+
+
+def reject_options(args: argparse.Namespace, names: Sequence[str], why: str) -> None:
+    """Exit 2 when one of ``names`` was given to a (sub)command that cannot honour it."""
+    for name in names:
+        if getattr(args, name, None) not in (None, False, []):
+            raise CableOCPError(f"--{name.replace('_', '-')}: {why}")
+
+
+def stdout_free(args: argparse.Namespace) -> bool:
+    """True when stdout may carry text (no ``--json -`` / ``--csv -``)."""
+    return STDOUT not in (getattr(args, "json", None), getattr(args, "csv", None))
+
+
+# --------------------------------------------------------------------------------------
+# Writing
+# --------------------------------------------------------------------------------------
+
+def strict(obj: Any) -> Any:
+    """A copy of ``obj`` that strict JSON can hold: numpy scalars and arrays as Python
+    numbers and lists, NaN and infinities as None, tuples as lists."""
+    if isinstance(obj, dict):
+        return {str(k): strict(v) for k, v in obj.items()}
+    if isinstance(obj, (list, tuple)):
+        return [strict(v) for v in obj]
+    if isinstance(obj, np.ndarray):
+        return strict(obj.tolist())
+    if isinstance(obj, (bool, np.bool_)):
+        return bool(obj)
+    if isinstance(obj, (int, np.integer)):
+        return int(obj)
+    if isinstance(obj, (float, np.floating)):
+        return float(obj) if math.isfinite(obj) else None
+    return obj
+
+
+def envelope(status: str, message: str, data: dict[str, Any] | None = None,
+             warnings: Sequence[str] = ()) -> dict[str, Any]:
+    """The top level of every JSON output: status, message, warnings, version, then
+    ``data`` (whose own ``status``/``message``/``warnings`` keys, if any, are replaced)."""
+    out: dict[str, Any] = {"status": status, "message": message,
+                           "warnings": list(warnings), "version": version()}
+    for key, value in (data or {}).items():
+        if key not in out:
+            out[key] = value
+    return out
+
+
+def json_text(obj: Any) -> str:
+    """Strict JSON text (``allow_nan=False`` after :func:`strict`)."""
+    return json.dumps(strict(obj), indent=2, allow_nan=False)
+
+
+def confirm(args: argparse.Namespace, path: str, what: str = "") -> None:
+    """``wrote PATH`` on stderr (not with ``--quiet``)."""
+    if not getattr(args, "quiet", False):
+        print(f"wrote {path}" + (f" ({what})" if what else ""), file=sys.stderr)
+
+
+def emit_json(args: argparse.Namespace, obj: dict[str, Any], path: str | None = None) -> None:
+    """Write ``obj`` as strict JSON to ``path`` (default ``args.json``); '-' = stdout."""
+    path = path or args.json
+    if not path:
+        return
+    text = json_text(obj)
+    if path == STDOUT:
+        sys.stdout.write(text + "\n")
+        sys.stdout.flush()
+    else:
+        Path(path).write_text(text + "\n", encoding="utf-8")
+        confirm(args, path, "JSON")
+
+
+def csv_text(header: Sequence[str], rows: Sequence[Sequence[Any]]) -> str:
+    """CSV text; non-finite numbers are written as empty cells."""
+    buf = io.StringIO()
+    w = csv.writer(buf, lineterminator="\n")
+    w.writerow(header)
+    for row in rows:
+        w.writerow(["" if v is None else (repr(float(v)) if isinstance(v, (float, np.floating))
+                                           and math.isfinite(v) else
+                                           "" if isinstance(v, (float, np.floating)) else v)
+                    for v in row])
+    return buf.getvalue()
+
+
+def emit_csv(args: argparse.Namespace, header: Sequence[str], rows: Sequence[Sequence[Any]],
+             path: str | None = None) -> None:
+    """Write a CSV table to ``path`` (default ``args.csv``); '-' = stdout."""
+    path = path or args.csv
+    if not path:
+        return
+    text = csv_text(header, rows)
+    if path == STDOUT:
+        sys.stdout.write(text)
+        sys.stdout.flush()
+    else:
+        Path(path).write_text(text, encoding="utf-8")
+        confirm(args, path, "CSV")
+
+
+def emit_plot(args: argparse.Namespace, draw: Callable[[str], Any],
+              path: str | None = None) -> None:
+    """Call ``draw(path)`` (which saves the figure) and confirm it."""
+    path = path or args.plot
+    if not path:
+        return
+    draw(path)
+    confirm(args, path, "figure")
+
+
+def say(args: argparse.Namespace, text: str) -> None:
+    """Human-readable text on stdout, unless stdout carries JSON or CSV."""
+    if stdout_free(args):
+        print(text)
+
+
+def note(args: argparse.Namespace, text: str) -> None:
+    """A remark on stderr (not with ``--quiet``)."""
+    if not getattr(args, "quiet", False):
+        print(text, file=sys.stderr)
+
+
+# --------------------------------------------------------------------------------------
+# Progress
+# --------------------------------------------------------------------------------------
+
+@contextlib.contextmanager
+def progress(args: argparse.Namespace, total: int, desc: str, unit: str = "it"
+             ) -> Iterator[Callable[..., None]]:
+    """A progress bar on stderr (tqdm) for ``total`` steps, as a callback.
+
+    The callback takes ``(done, total=None, postfix=None)``: the number of steps finished,
+    optionally a new total, and a short text shown after the bar (e.g. failures). The bar
+    shows what runs, done/total, elapsed and remaining time. It is silent when stderr is
+    not a terminal or with ``--quiet``.
+    """
+    enabled = sys.stderr.isatty() and not getattr(args, "quiet", False)
+    if not enabled:
+        yield lambda done, total=None, postfix=None: None
+        return
+    from tqdm import tqdm
+
+    bar = tqdm(total=total, desc=desc, unit=unit, file=sys.stderr, leave=False,
+               dynamic_ncols=True, smoothing=0.1)
+
+    def update(done: int, new_total: int | None = None, postfix: str | None = None) -> None:
+        if new_total is not None and new_total != bar.total:
+            bar.total = new_total
+        bar.n = done
+        if postfix is not None:
+            bar.set_postfix_str(postfix, refresh=False)
+        bar.refresh()
+
+    try:
+        yield update
+    finally:
+        bar.close()

@@ -1,0 +1,48 @@
+"""Problem files (TOML, SI units) -> validated scenes (frozen dataclasses).
+
+The only place that reads user input. Everything it returns is validated: downstream code
+may assume finite numbers, consistent end conditions and SI units. Every user error raises
+:class:`~cable_ocp.errors.CableOCPError` with a message that names the offending key and
+says what would be valid.
+
+Modules
+-------
+files    reading a file (UTF-8 TOML), ``--set`` overrides, telling scene kinds apart
+fields   validation of single values (numbers with ranges, integers, choices, vectors)
+parts    what the scene kinds share: environment, current, seabed, cable, segments,
+         bodies, end conditions
+statics  the statics scene (:class:`Scene`), its schema and :func:`load_scene`
+heave    the heave-compensation scene (:class:`HeaveScene`)
+"""
+
+from cable_ocp.scene.fields import FREE
+from cable_ocp.scene.files import apply_overrides, parse_override, read_problem, scene_kind
+from cable_ocp.scene.parts import Body, Cable, Current, End, Environment, Seabed
+from cable_ocp.scene.statics import (
+    METHODS,
+    Footprint,
+    Scene,
+    SolverOptions,
+    load_scene,
+    scene_from_dict,
+)
+
+__all__ = [
+    "FREE",
+    "METHODS",
+    "Body",
+    "Cable",
+    "Current",
+    "End",
+    "Environment",
+    "Footprint",
+    "Scene",
+    "Seabed",
+    "SolverOptions",
+    "apply_overrides",
+    "load_scene",
+    "parse_override",
+    "read_problem",
+    "scene_from_dict",
+    "scene_kind",
+]

@@ -1,0 +1,68 @@
+"""Checks of a statics answer that do not depend on how it was computed.
+
+Every statics method's result passes through :func:`check_physical` before it is returned:
+a profile that leaves the water (above the free surface) or passes below the seabed where
+no contact is modelled is not an answer to the scene's physics, so it gets a non-success
+status (``"above_surface"``, ``"below_seabed"``) with where and by how much, never
+``"solved"``.
+"""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+
+from cable_ocp.scene import Scene
+from cable_ocp.statics.solution import StaticsSolution
+
+#: relative tolerance on the water column (times the cable length), m/m: about the
+#: solver's own position accuracy, so that an end fixed exactly at z = 0 or at the surface
+#: is never flagged
+REL_TOL = 1e-6
+
+
+def _where(sol: StaticsSolution, i: int) -> str:
+    x, y, z = (float(v) for v in sol.position[i])
+    return f"at s = {float(sol.s[i]):.4g} m from end_a, (x, y, z) = ({x:.4g}, {y:.4g}, {z:.4g}) m"
+
+
+def check_physical(scene: Scene, sol: StaticsSolution) -> StaticsSolution:
+    """Mark ``sol`` (in place, and return it) when its profile leaves the water column.
+
+    * above the surface z = ``environment.water_depth``: status ``"above_surface"``;
+    * below the seabed plane z = 0 when the scene has no ``[environment.seabed]`` (no
+      contact model): status ``"below_seabed"``. With a seabed table, contact is modelled
+      and penetration is judged by the solver's contact logic.
+
+    Only results that would otherwise be used (``"solved"``, ``"inaccurate"``) are marked.
+    """
+    if sol.status not in ("solved", "inaccurate") or not np.all(np.isfinite(sol.position)):
+        return sol
+    tol = REL_TOL * max(float(sol.length), 1.0)
+    z = sol.position[:, 2]
+    depth = scene.environment.water_depth
+    i_top = int(np.argmax(z))
+    if z[i_top] > depth + tol:
+        sol.status = "above_surface"
+        sol.message = (
+            f"the profile rises {z[i_top] - depth:.4g} m above the free surface "
+            f"(environment.water_depth = {depth:g} m) {_where(sol, i_top)}; the model holds "
+            "for a line in the water only: check water_depth and the end positions, or the "
+            "buoyancy")
+        return sol
+    if scene.environment.seabed is None:
+        i_low = int(np.argmin(z))
+        if z[i_low] < -tol:
+            sol.status = "below_seabed"
+            sol.message = (
+                f"the profile passes {-z[i_low]:.4g} m below the seabed plane z = 0 "
+                f"{_where(sol, i_low)}; the scene has no [environment.seabed] table, so "
+                "contact is not modelled: add one (depth_offset, friction) to model contact")
+    return sol
+
+
+def is_finite_solution(sol: StaticsSolution) -> bool:
+    """True when every array of ``sol`` is finite."""
+    return bool(np.all(np.isfinite(sol.position)) and np.all(np.isfinite(sol.tension_vector))
+                and math.isfinite(sol.length))

@@ -1,0 +1,222 @@
+"""Load-case batches: rows equal single solves, failures are rows, nothing is lost or
+duplicated when the batch is interrupted or a worker process dies, local pool and dask."""
+
+from __future__ import annotations
+
+import json
+import os
+import signal
+import subprocess
+import sys
+import time
+from dataclasses import dataclass
+from pathlib import Path
+from typing import Any
+
+import numpy as np
+import pytest
+
+from cable_ocp.batch import build_cases, parse_grid, parse_random, parse_range, run_batch
+from cable_ocp.batch.cases import Case
+from cable_ocp.batch.executors import RunnerSpec
+from cable_ocp.cli import main
+from cable_ocp.scene import read_problem
+from cable_ocp.statics.solver import solve
+
+ROOT = Path(__file__).resolve().parents[1]
+DEZOYSA = ROOT / "problems" / "dezoysa_sea_buggy.toml"
+BERTEAUX = ROOT / "problems" / "berteaux_mooring.toml"
+
+
+def test_grid_is_snake_ordered_and_seeded() -> None:
+    """Neighbouring cases differ in one key by one step (warm starts), every grid point
+    appears once, and the per-case seeds are reproducible and distinct."""
+    cases = build_cases([parse_grid("a=1,2,3"), parse_grid("b=10,20")], seed=7)
+    pts = [(c.overrides["a"], c.overrides["b"]) for c in cases]
+    assert sorted(pts) == sorted((a, b) for a in (1, 2, 3) for b in (10, 20))
+    for p, q in zip(pts, pts[1:], strict=False):
+        assert sum(x != y for x, y in zip(p, q, strict=True)) == 1
+    again = build_cases([parse_grid("a=1,2,3"), parse_grid("b=10,20")], seed=7)
+    assert [c.seed for c in cases] == [c.seed for c in again]
+    assert len({c.seed for c in cases}) == len(cases)
+    assert parse_range("k=0:180:19")[1][1] == pytest.approx(10.0)
+    rnd = build_cases([], 50, [parse_random("k=uniform(2,3)")], seed=1)
+    vals = [c.overrides["k"] for c in rnd]
+    assert len(vals) == 50 and 2 <= min(vals) and max(vals) <= 3
+
+
+def test_rows_equal_single_solves(tmp_path: Path) -> None:
+    """A 3 x 2 grid over two local workers: every row equals a separate `solve` of the same
+    case (end forces to 1e-7 relative: both converge to the 1e-10 residual tolerance, the
+    batch from a warm start and the single solve cold), and statuses agree."""
+    res = run_batch(DEZOYSA, [parse_grid("environment.current.speed=0.6,1.0")],
+                    [parse_range("layout.psi0_deg=30:150:3")], workers=2,
+                    out=tmp_path / "r")
+    assert len(res.rows) == 6 and [r["case"] for r in res.rows] == list(range(6))
+    for row in res.rows:
+        over = {"environment.current.speed": row["environment.current.speed"],
+                "layout.psi0_deg": row["layout.psi0_deg"]}
+        sol = solve(DEZOYSA, over)
+        assert row["status"] == sol.status
+        got = [row[f"end_a_force_{c} [N]"] for c in "xyz"]
+        np.testing.assert_allclose(got, sol.force_a, rtol=0, atol=1e-7 * sol.max_tension)
+        assert row["max_tension [N]"] == pytest.approx(sol.max_tension, rel=1e-7)
+    csv_lines = (tmp_path / "r.csv").read_text().splitlines()
+    assert len(csv_lines) == 7 and "max_tension [N]" in csv_lines[0]
+    assert len((tmp_path / "r.jsonl").read_text().splitlines()) == 6
+
+
+def test_impossible_case_is_a_row_and_the_batch_finishes(tmp_path: Path) -> None:
+    """Berteaux's buoy with 1 kN top tension has no equilibrium (the cable alone weighs
+    3.8 kN in water): that case fails honestly, the other cases are solved."""
+    res = run_batch(BERTEAUX, [parse_grid("end_b.tension=1000,11146.6,12000")], workers=2)
+    st = {r["end_b.tension"]: r["status"] for r in res.rows}
+    assert st[11146.6] == "solved" and st[12000] == "solved"
+    assert st[1000] not in ("solved",)
+    assert res.failures == 1
+    bad = next(r for r in res.rows if r["end_b.tension"] == 1000)
+    assert bad["message"] and bad["max_tension [N]"] is None or bad["status"] != "solved"
+
+
+def test_invalid_case_value_is_a_row(tmp_path: Path) -> None:
+    """A case whose own value is invalid (a negative length) is a row with status
+    invalid_input naming the key; the rest are solved."""
+    res = run_batch(BERTEAUX, [parse_grid("environment.water_depth=-5,2600")], workers=0)
+    by = {r["environment.water_depth"]: r for r in res.rows}
+    assert by[-5]["status"] == "invalid_input" and "water_depth" in by[-5]["message"]
+    assert by[2600]["status"] == "solved"
+
+
+def _cli_batch(out: Path, *extra: str) -> list[str]:
+    return ["batch", str(DEZOYSA), "--range", "layout.psi0_deg=0:140:15", "--out", str(out),
+            "--workers", "1", "--chunk-size", "1", "--quiet", *extra]
+
+
+def test_killed_batch_resumes_with_one_row_per_case(tmp_path: Path) -> None:
+    """The CLI is SIGKILLed after a few rows; --resume finishes the batch with exactly one
+    row per case (the JSON lines are flushed per row; a line cut short is dropped)."""
+    out = tmp_path / "k"
+    proc = subprocess.Popen([sys.executable, "-m", "cable_ocp", *_cli_batch(out)],
+                            cwd=ROOT, stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL,
+                            start_new_session=True)
+    jsonl = tmp_path / "k.jsonl"
+    deadline = time.time() + 120
+    while time.time() < deadline:
+        if jsonl.exists() and len(jsonl.read_text().splitlines()) >= 3:
+            break
+        time.sleep(0.05)
+    os.killpg(proc.pid, signal.SIGKILL)
+    proc.wait()
+    done_before = len(jsonl.read_text().splitlines())
+    assert 3 <= done_before < 15
+    assert main(_cli_batch(out, "--resume")) == 0
+    rows = [json.loads(line) for line in jsonl.read_text().splitlines()]
+    assert sorted(r["case"] for r in rows) == list(range(15))
+    assert len((tmp_path / "k.csv").read_text().splitlines()) == 16
+
+
+def test_output_exists_needs_resume_or_overwrite(tmp_path: Path, capsys) -> None:
+    out = tmp_path / "e"
+    (tmp_path / "e.csv").write_text("x\n")
+    assert main(_cli_batch(out)) == 2
+    assert "--resume" in capsys.readouterr().err
+
+
+# -- worker deaths -------------------------------------------------------------------------
+
+@dataclass
+class KillingSpec(RunnerSpec):
+    """Runs the real runner, but the worker process SIGKILLs itself on ``kill_cases``:
+    always (``marker_dir`` empty) or only the first time (a marker file per case)."""
+
+    kill_cases: tuple[int, ...] = ()
+    marker_dir: str = ""
+
+    def make(self) -> Any:
+        return _Killing(super().make(), self.kill_cases, self.marker_dir)
+
+
+class _Killing:
+    def __init__(self, inner: Any, kill: tuple[int, ...], marker_dir: str) -> None:
+        self.inner, self.kill, self.marker_dir = inner, kill, marker_dir
+
+    def columns(self) -> list[str]:
+        return self.inner.columns()
+
+    def run(self, case: Case) -> dict[str, Any]:
+        if case.index in self.kill:
+            marker = Path(self.marker_dir) / str(case.index) if self.marker_dir else None
+            if marker is None or not marker.exists():
+                if marker is not None:
+                    marker.touch()
+                os.kill(os.getpid(), signal.SIGKILL)
+        return self.inner.run(case)
+
+
+def _spec(**kw: Any) -> KillingSpec:
+    return KillingSpec("statics", read_problem(DEZOYSA), {}, **kw)
+
+
+RANGE = [parse_range("layout.psi0_deg=0:140:8")]
+
+
+def test_local_worker_killed_once_loses_nothing(tmp_path: Path) -> None:
+    """Cases 2 and 5 kill their worker the first time: both are retried on a new worker,
+    every case ends as exactly one solved row."""
+    res = run_batch(DEZOYSA, ranges=RANGE, workers=2, chunk_size=3,
+                    spec=_spec(kill_cases=(2, 5), marker_dir=str(tmp_path)))
+    assert [r["case"] for r in res.rows] == list(range(8))
+    assert all(r["status"] == "solved" for r in res.rows)
+
+
+def test_local_case_that_always_kills_is_worker_lost() -> None:
+    """Case 3 kills every worker it touches: after max_attempts it is a worker_lost row;
+    every other case is solved, once."""
+    res = run_batch(DEZOYSA, ranges=RANGE, workers=2, chunk_size=4, max_attempts=2,
+                    spec=_spec(kill_cases=(3,)))
+    assert [r["case"] for r in res.rows] == list(range(8))
+    st = {r["case"]: r["status"] for r in res.rows}
+    assert st.pop(3) == "worker_lost"
+    assert set(st.values()) == {"solved"}
+
+
+@pytest.fixture(scope="module")
+def dask_client():
+    distributed = pytest.importorskip("distributed")
+    import cloudpickle
+    import dask
+
+    cloudpickle.register_pickle_by_value(sys.modules[__name__])
+    # a task whose worker dies fails at once (KilledWorker): the batch itself splits it
+    with dask.config.set({"distributed.scheduler.allowed-failures": 0,
+                          "distributed.worker.daemon": False}):
+        cluster = distributed.LocalCluster(n_workers=2, threads_per_worker=1,
+                                           processes=True, dashboard_address=None,
+                                           silence_logs=50)
+        client = distributed.Client(cluster)
+        yield client
+        client.close()
+        cluster.close()
+
+
+@pytest.mark.slow
+def test_dask_equals_local_and_survives_worker_deaths(dask_client, tmp_path: Path) -> None:
+    """On a dask LocalCluster: the same table as the local pool (end forces to 1e-9
+    relative: the same warm-start chains when the chunks are the same), a worker killed
+    once loses no case, and a case that kills every worker is a worker_lost row."""
+    local = run_batch(DEZOYSA, ranges=RANGE, workers=2, chunk_size=4)
+    dask = run_batch(DEZOYSA, ranges=RANGE, scheduler=dask_client, chunk_size=4)
+    assert [r["case"] for r in dask.rows] == list(range(8))
+    for a, b in zip(local.rows, dask.rows, strict=True):
+        assert a["status"] == b["status"]
+        assert b["end_a_force_x [N]"] == pytest.approx(a["end_a_force_x [N]"], rel=1e-9,
+                                                       abs=1e-6)
+    once = run_batch(DEZOYSA, ranges=RANGE, scheduler=dask_client, chunk_size=4,
+                     spec=_spec(kill_cases=(1,), marker_dir=str(tmp_path)))
+    assert [r["case"] for r in once.rows] == list(range(8))
+    assert all(r["status"] == "solved" for r in once.rows)
+    lost = run_batch(DEZOYSA, ranges=RANGE, scheduler=dask_client, chunk_size=4,
+                     spec=_spec(kill_cases=(6,)))
+    st = {r["case"]: r["status"] for r in lost.rows}
+    assert sorted(st) == list(range(8)) and st.pop(6) == "worker_lost"
+    assert set(st.values()) == {"solved"}
