@@ -735,10 +735,14 @@ class LumpedMassModel:
         a = np.zeros_like(x)
         if scheme == "trapezoidal":
             from scipy.sparse import csc_matrix
-            from scipy.sparse.linalg import spsolve
+
+            from cable_ocp.dynamics.linalg import solve_sparse
 
             mm = csc_matrix(self.mass_matrix(x, t).sparse())
-            a = np.asarray(spsolve(mm, np.asarray(self.forces(x, v, t)).reshape(-1)))
+            sol = solve_sparse(mm, np.asarray(self.forces(x, v, t)).reshape(-1))
+            # a singular mass matrix (a massless free node) leaves a = 0: the trapezoidal
+            # rule's first step then solves for it (its Newton reports a failure if it can't)
+            a = np.zeros_like(x) if sol is None else sol
         return np.concatenate([x, v, a])
 
     def step_function(self, dt: float, scheme: str = "midpoint", *, tol: float = 1e-10,
@@ -1286,8 +1290,9 @@ class LumpedMassModel:
 
     def _static_newton(self, x: np.ndarray, t: float, lam_drag: float, tol: float,
                        max_iter: int, fscale: float) -> tuple[np.ndarray, dict[str, Any]]:
-        from scipy.sparse import csc_matrix
-        from scipy.sparse.linalg import spsolve
+        from scipy.sparse import csc_matrix, identity
+
+        from cable_ocp.dynamics.linalg import solve_sparse
 
         def resid(xx: np.ndarray) -> tuple[np.ndarray, Any]:
             fv, jv = self._static_fj(xx, t, lam_drag)
@@ -1297,6 +1302,17 @@ class LumpedMassModel:
         f, jac = resid(x)
         it = 0
         stalled = False
+        singular = False
+        # Levenberg-Marquardt fallback: where the Newton matrix is singular or gives no
+        # descent (a start with slack segments: no transverse stiffness, e.g. the chords of
+        # a sagging catenary interpolated from the statics are shorter than the stretched
+        # segments), solve (K + mu I) dx = F, mu raised tenfold from 1e-8 of the force
+        # scale per segment length until the force norm decreases, relaxed after success
+        n_dof = x.size
+        eye = identity(n_dof, format="csc")
+        mu0 = 1e-8 * fscale / float(np.min(self.params.segment_length))
+        mu_max = 1e12 * mu0
+        mu = 0.0
         for it in range(1, max_iter + 1):  # noqa: B007 - reported
             if not np.all(np.isfinite(f)):
                 break
@@ -1304,20 +1320,32 @@ class LumpedMassModel:
                 it -= 1
                 break
             jd = csc_matrix(jac.sparse())
-            try:
-                dx = -spsolve(jd, f)
-            except Exception:  # noqa: BLE001 - singular Jacobian: report, never raise
-                break
-            if not np.all(np.isfinite(dx)):
-                break
-            # backtracking on the force norm
             n0 = np.linalg.norm(f)
-            lam = 1.0
-            while lam > 1e-4:
-                fn, jn = resid(x + lam * dx)
-                if np.all(np.isfinite(fn)) and np.linalg.norm(fn) < (1 - 1e-4 * lam) * n0:
+            m = mu
+            accepted = False
+            sol = None
+            while True:
+                sol = solve_sparse(jd if m == 0.0 else jd - m * eye, f)
+                if sol is not None:
+                    dx = -sol
+                    lam = 1.0  # backtracking on the force norm
+                    while lam > 1e-4:
+                        fn, jn = resid(x + lam * dx)
+                        if (np.all(np.isfinite(fn))
+                                and np.linalg.norm(fn) < (1 - 1e-4 * lam) * n0):
+                            accepted = True
+                            break
+                        lam *= 0.5
+                    if accepted or np.abs(f).max() <= 1e-6 * fscale:
+                        break  # descent, or the rounding floor of a converged iterate
+                if m >= mu_max:
                     break
-                lam *= 0.5
+                m = mu0 if m == 0.0 else 10.0 * m
+            if not accepted:
+                singular = sol is None
+                stalled = np.abs(f).max() <= 1e-6 * fscale
+                break
+            mu = 0.0 if m <= mu0 else m / 100.0
             x = x + lam * dx
             f, jac = fn, jn
             stalled = lam * np.abs(dx).max() <= 1e-12 * self.params.length
@@ -1326,7 +1354,7 @@ class LumpedMassModel:
         rmax = float(np.abs(f).max()) if np.all(np.isfinite(f)) else math.inf
         ok = rmax <= tol * fscale or (stalled and rmax <= 1e-6 * fscale)
         return x, {"converged": bool(ok), "iterations": it, "residual_N": rmax,
-                   "relative_residual": rmax / fscale}
+                   "relative_residual": rmax / fscale, "singular_jacobian": singular}
 
     def linearize(self, x: np.ndarray, t: float = 0.0) -> tuple[np.ndarray, np.ndarray]:
         """Stiffness and mass matrices about a rest state, dense (3 n_free square).

@@ -197,8 +197,13 @@ def lumped_start(scene: DynamicScene, model: LumpedMassModel
                 relative_residual=newton["relative_residual"], max_node_shift_m=shift,
                 statics_wall_time_s=sol.wall_time_s)
     if not newton["converged"]:
+        why = ("; its Newton matrix is singular (segments with no tension carry no "
+               "transverse stiffness: a slack or compressed line between fixed ends)"
+               if newton.get("singular_jacobian") else "")
         info["message"] = (f"the lumped-mass equilibrium did not converge from the statics "
-                           f"solution (relative residual {newton['relative_residual']:.3g})")
+                           f"solution (relative residual {newton['relative_residual']:.3g})"
+                           f"{why}; try more simulation.segments, or start = \"unstrained\" "
+                           "for a line hanging from end_b")
         return None, info
     info["message"] = (f"statics solution refined to the discrete equilibrium (largest node "
                        f"shift {shift:.3g} m)")
