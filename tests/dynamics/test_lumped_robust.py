@@ -101,3 +101,65 @@ def test_anchored_sagging_line_starts_static_and_is_silent(tmp_path: Path) -> No
     # carry half of the total weight (to the same tolerance)
     assert vertical[-1] == pytest.approx(0.5 * w * 120.0 - 0.5 * w * ell, abs=1e-6 * scale)
 
+
+# --------------------------------------------------------------------------------------
+# compiling to C: every missing piece falls back to the interpreted function
+# --------------------------------------------------------------------------------------
+
+def _small_function():  # noqa: ANN202 - a casadi Function
+    import casadi as ca
+
+    x = ca.SX.sym("x", 2)
+    return ca.Function("robust_probe", [x], [ca.sin(x) * x[0]])
+
+
+@pytest.mark.parametrize("case", ["missing_cc", "no_cc_on_path", "unwritable_dir",
+                                  "cache_off"])
+def test_compile_falls_back_to_interpreted(case: str, tmp_path: Path,
+                                           monkeypatch: pytest.MonkeyPatch) -> None:
+    """No C compiler (``CC`` names a missing program, or none on the PATH), a cache
+    directory that cannot be created (below a regular file: fails for root too), or
+    ``CABLE_OCP_CACHE=0``: ``_compile`` returns the function itself, silently."""
+    from cable_ocp.dynamics import lumped
+
+    fn = _small_function()
+    monkeypatch.delenv("CABLE_OCP_CACHE", raising=False)
+    monkeypatch.setenv("CABLE_OCP_CACHE_DIR", str(tmp_path / "cache"))
+    if case == "missing_cc":
+        monkeypatch.setenv("CC", str(tmp_path / "nonexistent-cc"))
+    elif case == "no_cc_on_path":
+        monkeypatch.delenv("CC", raising=False)
+        monkeypatch.setenv("PATH", str(tmp_path / "empty-bin"))
+    elif case == "unwritable_dir":
+        blocker = tmp_path / "a_file"
+        blocker.write_text("not a directory", encoding="utf-8")
+        monkeypatch.setenv("CABLE_OCP_CACHE_DIR", str(blocker / "cache"))
+    else:
+        monkeypatch.setenv("CABLE_OCP_CACHE", "0")
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")
+        out = lumped._compile(fn)
+    assert out is fn
+    assert not (tmp_path / "cache").exists() or not any((tmp_path / "cache").iterdir())
+
+
+def test_run_without_compiler_gives_the_same_numbers(tmp_path: Path,
+                                                     monkeypatch: pytest.MonkeyPatch) -> None:
+    """``run(compile="step")`` with no compiler reports ``compiled == "none"`` and gives the
+    interpreted run's numbers (the same CasADi graph: equal to 1e-12 m, rounding only)."""
+    from cable_ocp.dynamics.lumped import LumpedMassModel, UnitParams, run, uniform_params
+
+    monkeypatch.setenv("CC", str(tmp_path / "nonexistent-cc"))
+    monkeypatch.setenv("CABLE_OCP_CACHE_DIR", str(tmp_path / "cache"))
+    p = uniform_params(40.0, 4, axial_stiffness=1.0e6, diameter=0.02, mass_per_length=1.0,
+                       weight_in_water=8.0, top_position=[0.0, 0.0, 100.0],
+                       unit=UnitParams(mass=50.0, weight_in_water=400.0))
+    m = LumpedMassModel(p)
+    xg = np.zeros((4, 3))
+    xg[:, 0] = 0.5  # off the vertical: a pendulum swing
+    xg[:, 2] = 60.0 + p.node_arc_length[:-1]
+    a = run(m, xg.reshape(-1), None, 1.0, 0.05, compile="step")
+    b = run(m, xg.reshape(-1), None, 1.0, 0.05, compile=False)
+    assert a.compiled == "none" and a.success and b.success
+    np.testing.assert_allclose(a.positions, b.positions, rtol=0, atol=1e-12)
+    assert float(np.ptp(a.positions[:, 0, 0])) > 1e-3  # it moved: the check is not vacuous
