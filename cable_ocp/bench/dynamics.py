@@ -41,8 +41,8 @@ import numpy as np
 
 from cable_ocp.dynamics.scene import DynamicScene, load_dynamic_scene
 
-__all__ = ["BenchRow", "as_dicts", "format_table", "linear_check", "moordyn_available", "run",
-           "scene"]
+__all__ = ["QUICK", "BenchRow", "as_dicts", "format_summary", "format_table", "linear_check",
+           "moordyn_available", "plot", "planned_rows", "run", "scene", "summary"]
 
 PROBLEM = Path(__file__).resolve().parents[2] / "problems" / "dynamics" / "huang_5_7.toml"
 FREQUENCY = 1.256  # rad/s, Huang 5.7.1 (Figure 5.5)
@@ -52,6 +52,17 @@ OUTPUT_STEP = 0.05  # s, the sampling of both models' top tension
 DURATION = 60.0  # s
 WINDOW = 10.0  # s: errors and amplitudes over the last WINDOW seconds
 LINEAR_DAMPING = 2.0e6  # N s, internal damping of the closed-form check
+#: the issue's targets: simulated seconds per wall second at 40 segments, and the accuracy
+#: (top-tension error over its amplitude) at which the two models' speeds are compared
+TARGET_REALTIME = 100.0
+TARGET_SEGMENTS = 40
+EQUAL_ACCURACY = 0.01
+#: a seconds-long configuration (a smoke run for the tests; its numbers mean little)
+QUICK: dict[str, Any] = {"segments": (6,), "time_steps": (0.1,), "duration": 20.0,
+                         "repeats": 1, "compile_mode": "kernel",
+                         "moordyn_steps": {6: (4e-3,)}}
+DEFAULT_MOORDYN_STEPS: dict[int, tuple[float, ...]] = {20: (4e-3, 2e-3), 40: (4e-3, 2e-3),
+                                                       80: (2e-3, 1e-3)}
 
 
 @dataclass
@@ -297,7 +308,7 @@ def run(segments: Sequence[int] = (20, 40, 80),
         Called with a short label before each row.
     """
     if moordyn_steps is None:
-        moordyn_steps = {20: (4e-3, 2e-3), 40: (4e-3, 2e-3), 80: (2e-3, 1e-3)}
+        moordyn_steps = {n: DEFAULT_MOORDYN_STEPS.get(n, (1e-3,)) for n in segments}
     use_md = with_moordyn and moordyn_available()
     rows: list[BenchRow] = []
     for n in segments:
@@ -330,6 +341,14 @@ def run(segments: Sequence[int] = (20, 40, 80),
                 amplitude_vs_other=(amp_ref / amp_md - 1.0) if amp_md else None,
                 status=status if st_ref == "ok" else f"{status} (reference {st_ref})"))
         if not use_md:
+            if with_moordyn:  # asked for but absent: say so in the table
+                for dtm in moordyn_steps.get(n, ()):
+                    rows.append(BenchRow(
+                        model="MoorDyn RK2", segments=n, time_step=dtm,
+                        wall_per_simulated_s=math.nan, realtime_factor=math.nan,
+                        top_tension_amplitude_N=math.nan, error=math.nan,
+                        amplitude_vs_other=None,
+                        status="not installed (pip install moordyn)"))
             continue
         for dtm in moordyn_steps.get(n, ()):
             if progress:
@@ -416,3 +435,130 @@ def linear_check(segments: int = 20, duration: float = 60.0, with_moordyn: bool 
         out["moordyn"] = _first_harmonic(tm[keep], ym[keep], w) if st_md == "ok" else None
         out["moordyn_status"] = st_md
     return out
+
+
+def planned_rows(segments: Sequence[int], time_steps: Sequence[float],
+                 moordyn_steps: dict[int, Sequence[float]] | None, with_moordyn: bool
+                 ) -> int:
+    """How many ``progress`` calls :func:`run` makes (references included)."""
+    use_md = with_moordyn and moordyn_available()
+    md = moordyn_steps or {n: DEFAULT_MOORDYN_STEPS.get(n, (1e-3,)) for n in segments}
+    return sum(1 + len(time_steps) + ((1 + len(md.get(n, ()))) if use_md else 0)
+               for n in segments)
+
+
+def _ok(r: BenchRow) -> bool:
+    return r.status == "ok" and math.isfinite(r.wall_per_simulated_s) and math.isfinite(r.error)
+
+
+def summary(rows: Sequence[BenchRow], accuracy: float = EQUAL_ACCURACY) -> dict[str, Any]:
+    """The issue's two targets from the rows of :func:`run`.
+
+    * ``realtime``: at :data:`TARGET_SEGMENTS` segments, cable_ocp's fastest row whose
+      top-tension error is within ``accuracy`` of the amplitude: its real-time factor
+      against :data:`TARGET_REALTIME`.
+    * ``versus_moordyn``: per number of segments, the fastest row of each model within
+      ``accuracy`` (each against its own converged reference) and the ratio of MoorDyn's
+      wall time to cable_ocp's (>= 1: cable_ocp no slower at equal accuracy); plus the
+      relative difference of the two models' converged top-tension amplitudes (the issue
+      asks for 2 %).
+    """
+    out: dict[str, Any] = {"accuracy": accuracy, "target_realtime": TARGET_REALTIME,
+                           "target_segments": TARGET_SEGMENTS, "realtime": None,
+                           "versus_moordyn": []}
+
+    def fastest(model_prefix: str, n: int) -> BenchRow | None:
+        cand = [r for r in rows if r.model.startswith(model_prefix) and r.segments == n
+                and _ok(r) and r.error <= accuracy]
+        return min(cand, key=lambda r: r.wall_per_simulated_s) if cand else None
+
+    ours40 = fastest("cable_ocp", TARGET_SEGMENTS)
+    if ours40 is not None:
+        out["realtime"] = {"time_step": ours40.time_step,
+                           "realtime_factor": ours40.realtime_factor,
+                           "error": ours40.error,
+                           "met": ours40.realtime_factor >= TARGET_REALTIME}
+    for n in dict.fromkeys(r.segments for r in rows):
+        ours = fastest("cable_ocp", n)
+        md = fastest("MoorDyn", n)
+        md_rows = [r for r in rows if r.model.startswith("MoorDyn") and r.segments == n]
+        entry: dict[str, Any] = {
+            "segments": n,
+            "cable_ocp": None if ours is None else {
+                "time_step": ours.time_step, "wall_per_simulated_s": ours.wall_per_simulated_s,
+                "error": ours.error},
+            "moordyn": None if md is None else {
+                "time_step": md.time_step, "wall_per_simulated_s": md.wall_per_simulated_s,
+                "error": md.error},
+            "moordyn_status": ("not run" if not md_rows else "ok" if md is not None else
+                               md_rows[0].status if not md_rows[0].status == "ok" else
+                               f"has no row within {accuracy:.0%}"),
+            "speed_ratio": None, "met": None, "amplitude_difference": None}
+        if ours is not None and md is not None:
+            ratio = md.wall_per_simulated_s / ours.wall_per_simulated_s
+            entry.update(speed_ratio=ratio, met=ratio >= 1.0)
+        amp = [r.amplitude_vs_other for r in rows if r.model.startswith("cable_ocp")
+               and r.segments == n and r.amplitude_vs_other is not None]
+        if amp:
+            entry["amplitude_difference"] = amp[0]
+        out["versus_moordyn"].append(entry)
+    return out
+
+
+def format_summary(sm: dict[str, Any]) -> str:
+    """The targets of :func:`summary` as text lines."""
+    acc = sm["accuracy"]
+    lines = []
+    rt = sm["realtime"]
+    if rt is None:
+        lines.append(f"target {sm['target_realtime']:.0f}x real time at "
+                     f"{sm['target_segments']} segments: no cable_ocp row at that many "
+                     f"segments within {acc:.0%} (not run or not accurate enough)")
+    else:
+        lines.append(f"target {sm['target_realtime']:.0f}x real time at "
+                     f"{sm['target_segments']} segments (error <= {acc:.0%}): "
+                     f"{rt['realtime_factor']:.0f}x at dt = {rt['time_step']:g} s -> "
+                     f"{'met' if rt['met'] else 'NOT met'}")
+    for e in sm["versus_moordyn"]:
+        head = f"{e['segments']} segments vs MoorDyn at equal accuracy (error <= {acc:.0%}): "
+        if e["cable_ocp"] is None or e["moordyn"] is None:
+            why = ("MoorDyn " + e["moordyn_status"]) if e["moordyn"] is None else \
+                "no cable_ocp row within the accuracy"
+            lines.append(head + why)
+        else:
+            lines.append(head + f"cable_ocp {e['cable_ocp']['wall_per_simulated_s'] * 1e3:.2f}"
+                         f" ms (dt {e['cable_ocp']['time_step']:g} s) vs MoorDyn "
+                         f"{e['moordyn']['wall_per_simulated_s'] * 1e3:.2f} ms (dtM "
+                         f"{e['moordyn']['time_step']:g} s): MoorDyn/cable_ocp = "
+                         f"{e['speed_ratio']:.2f} -> {'met' if e['met'] else 'NOT met'}")
+        if e["amplitude_difference"] is not None:
+            lines.append(f"    converged top-tension amplitudes differ by "
+                         f"{100 * e['amplitude_difference']:+.2f} % (target within 2 %)")
+    return "\n".join(lines)
+
+
+def plot(rows: Sequence[BenchRow], path: str | Path) -> Path:
+    """Work-precision figure: top-tension error against wall time per simulated second,
+    one colour per number of segments, solid cable_ocp, dashed MoorDyn."""
+    from cable_ocp.plots.common import new_figure, save
+
+    fig = new_figure(7.5, 5.2)
+    ax = fig.add_subplot(1, 1, 1)
+    for j, n in enumerate(dict.fromkeys(r.segments for r in rows)):
+        for model, style in (("cable_ocp", {"ls": "-", "marker": "o"}),
+                             ("MoorDyn", {"ls": "--", "marker": "s"})):
+            pts = sorted((r.wall_per_simulated_s, r.error) for r in rows
+                         if r.segments == n and r.model.startswith(model) and _ok(r))
+            if pts:
+                w, e = np.array(pts).T
+                ax.loglog(w * 1e3, np.maximum(e, 1e-16), color=f"C{j % 10}",
+                          label=f"{model}, {n} segments", **style)
+    ax.axhline(EQUAL_ACCURACY, color="0.5", lw=0.8, ls=":")
+    ax.axvline(1e3 / TARGET_REALTIME, color="0.5", lw=0.8, ls=":")
+    ax.set_xlabel("wall time per simulated second (ms)")
+    ax.set_ylabel("top-tension error / amplitude (-)")
+    ax.set_title("Huang (1992) 5.7 system at 1.256 rad/s: work-precision", fontsize=10.5)
+    ax.grid(True, which="major", alpha=0.35)
+    ax.legend(fontsize=8)
+    save(fig, path)
+    return Path(path)
