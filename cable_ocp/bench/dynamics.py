@@ -8,7 +8,7 @@ MoorDyn (``pip install moordyn``; benchmark only, never needed by the tests) at 
 stable time steps, each with its error against a converged reference of the same model
 and discretisation (the same number of segments, a time step 8-16 times smaller), and
 the amplitude of the top tension of each, so that the two models can be compared on the
-same line (the issue asks for amplitudes within 2 %).
+same line (the target: amplitudes within 2 %).
 
 To make the two models the same line: the unit's drag is isotropic (MoorDyn's point drag
 1/2 rho CdA |u| u), its added mass the same in every direction (MoorDyn's point
@@ -52,7 +52,7 @@ OUTPUT_STEP = 0.05  # s, the sampling of both models' top tension
 DURATION = 60.0  # s
 WINDOW = 10.0  # s: errors and amplitudes over the last WINDOW seconds
 LINEAR_DAMPING = 2.0e6  # N s, internal damping of the closed-form check
-#: the issue's targets: simulated seconds per wall second at 40 segments, and the accuracy
+#: the project's targets: simulated seconds per wall second at 40 segments, and the accuracy
 #: (top-tension error over its amplitude) at which the two models' speeds are compared
 TARGET_REALTIME = 100.0
 TARGET_SEGMENTS = 40
@@ -452,7 +452,7 @@ def _ok(r: BenchRow) -> bool:
 
 
 def summary(rows: Sequence[BenchRow], accuracy: float = EQUAL_ACCURACY) -> dict[str, Any]:
-    """The issue's two targets from the rows of :func:`run`.
+    """The project's two speed targets from the rows of :func:`run`.
 
     * ``realtime``: at :data:`TARGET_SEGMENTS` segments, cable_ocp's fastest row whose
       top-tension error is within ``accuracy`` of the amplitude: its real-time factor
@@ -460,8 +460,8 @@ def summary(rows: Sequence[BenchRow], accuracy: float = EQUAL_ACCURACY) -> dict[
     * ``versus_moordyn``: per number of segments, the fastest row of each model within
       ``accuracy`` (each against its own converged reference) and the ratio of MoorDyn's
       wall time to cable_ocp's (>= 1: cable_ocp no slower at equal accuracy); plus the
-      relative difference of the two models' converged top-tension amplitudes (the issue
-      asks for 2 %).
+      relative difference of the two models' converged top-tension amplitudes (the target
+      is 2 %).
     """
     out: dict[str, Any] = {"accuracy": accuracy, "target_realtime": TARGET_REALTIME,
                            "target_segments": TARGET_SEGMENTS, "realtime": None,

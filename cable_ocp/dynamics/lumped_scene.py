@@ -202,8 +202,8 @@ def lumped_start(scene: DynamicScene, model: LumpedMassModel
                if newton.get("singular_jacobian") else "")
         info["message"] = (f"the lumped-mass equilibrium did not converge from the statics "
                            f"solution (relative residual {newton['relative_residual']:.3g})"
-                           f"{why}; try more simulation.segments, or start = \"unstrained\" "
-                           "for a line hanging from end_b")
+                           f"{why}; try another simulation.segments, or (a line with a "
+                           "[unit]) start = \"unstrained\"")
         return None, info
     info["message"] = (f"statics solution refined to the discrete equilibrium (largest node "
                        f"shift {shift:.3g} m)")
