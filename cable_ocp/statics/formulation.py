@@ -49,6 +49,7 @@ prescribed tension magnitude adds |T|^2 = T0^2 at its end and makes L an unknown
 
 from __future__ import annotations
 
+import functools
 import math
 from dataclasses import dataclass
 
@@ -162,27 +163,45 @@ class Formulation:
             else 1.0
         self.terms = self._build_terms()
 
-        x = ca.SX.sym("x", self.nx)
-        lam = ca.SX.sym("lam")
-        cs = ca.SX.sym("cscale")
-        self.rhs_list = tuple(
-            ca.Function("rhs", [x, lam, cs], [self._segment_rhs(x, lam, cs, c)],
-                        ["x", "lam", "cscale"], ["dx"]) for c in self.lines)
-        self.rhs = self.rhs_list[0]
         total = sum(c.length for c in self.lines) if self.segmented else 1.0
         #: share L_k / L of each segment in the unstretched length (-)
         self.fractions = (tuple(c.length / total for c in self.lines)  # type: ignore[operator]
                           if self.segmented else (1.0,))
-        #: ``load(x[6], cscale) -> P / F`` (scaled external load) of each body and of the
-        #: bodies at each joint (x the joint state)
-        x = ca.SX.sym("x", NX)
-        self.body_loads = tuple(
+
+    # the CasADi functions are built on first use: a solver whose collocated functions
+    # come from the on-disk cache never needs them
+    @functools.cached_property
+    def rhs_list(self) -> tuple[ca.Function, ...]:
+        """``rhs(x, lam, cscale) -> dx/dsigma`` of each segment (scaled)."""
+        x = ca.SX.sym("x", self.nx)
+        lam = ca.SX.sym("lam")
+        cs = ca.SX.sym("cscale")
+        return tuple(
+            ca.Function("rhs", [x, lam, cs], [self._segment_rhs(x, lam, cs, c)],
+                        ["x", "lam", "cscale"], ["dx"]) for c in self.lines)
+
+    @property
+    def rhs(self) -> ca.Function:
+        """The first (or only) segment's right-hand side."""
+        return self.rhs_list[0]
+
+    @functools.cached_property
+    def body_loads(self) -> tuple[ca.Function, ...]:
+        """``load(x[6], cscale) -> P / F`` (scaled external load) of each body."""
+        x, cs = ca.SX.sym("x", NX), ca.SX.sym("cscale")
+        return tuple(
             ca.Function(f"body_load_{i}", [x, cs], [self._body_load_expr(b, x, cs)],
-                        ["x", "cscale"], ["load"]) for i, b in enumerate(scene.bodies))
-        self.joint_loads = tuple(
+                        ["x", "cscale"], ["load"]) for i, b in enumerate(self.scene.bodies))
+
+    @functools.cached_property
+    def joint_loads(self) -> tuple[ca.Function, ...]:
+        """The summed scaled load of the bodies at each joint k = 1 .. (x the joint state)."""
+        x, cs = ca.SX.sym("x", NX), ca.SX.sym("cscale")
+        return tuple(
             ca.Function(f"joint_load_{k}", [x, cs], [sum(
-                (self.body_loads[i](x, cs) for i, b in enumerate(scene.bodies) if b.joint == k),
-                ca.SX.zeros(3))], ["x", "cscale"], ["load"]) for k in range(1, len(self.lines)))
+                (self.body_loads[i](x, cs) for i, b in enumerate(self.scene.bodies)
+                 if b.joint == k), ca.SX.zeros(3))], ["x", "cscale"], ["load"])
+            for k in range(1, len(self.lines)))
 
     # -- physics ------------------------------------------------------------------------
     def _build_terms(self) -> tuple[str, ...]:

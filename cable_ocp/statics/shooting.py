@@ -94,3 +94,13 @@ class MultipleShooting(Collocation):
         cont = ca.vec(xf - xs[:, 1:]) / h
         bc = self._boundary(xs[:, 0], xs[:, -1], g_len, p)
         return ca.Function("G", [w, p], [ca.vertcat(cont, *bc)], ["w", "p"], ["g"])
+
+    def _make_blocks(self, fns: list[ca.Function] | None = None) -> None:
+        """No block description (the RK4 step is an integrator): the solver expands the
+        residual instead (:func:`cable_ocp.statics.newton.expanded_functions`)."""
+        return None
+
+    @property
+    def has_blocks(self) -> bool:
+        """False: see :meth:`_make_blocks`."""
+        return False
