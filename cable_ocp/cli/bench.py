@@ -27,12 +27,18 @@ def register(sub: argparse._SubParsersAction, parent: argparse.ArgumentParser) -
         "sweep", parents=[parent],
         help="De Zoysa psi0 sweep timing: collocation (built once, warm) vs scipy solve_bvp",
         description="Time the 19-angle De Zoysa psi0 sweep: collocation built once and "
-                    "warm-started, with and without error estimates, against scipy's "
-                    "solve_bvp from the catenary and from the previous point, in one run.")
+                    "warm-started (as a first process: functions built; and in a second "
+                    "process: functions from the disk cache), with and without error "
+                    "estimates, against scipy's solve_bvp from the catenary and from the "
+                    "previous point, in one run; wall-clock and CPU times.")
     s.add_argument("--scene", metavar="FILE", help="problem file with layout.psi0_deg "
                                                    "(default problems/dezoysa_sea_buggy.toml)")
     s.add_argument("--intervals", type=int, default=40, metavar="N",
                    help="collocation intervals (default 40)")
+    s.add_argument("--repeats", type=int, default=3, metavar="N",
+                   help="collocation sweep repeats, the least disturbed kept (default 3)")
+    s.add_argument("--no-subprocess", action="store_true",
+                   help="skip the second-process run (functions from the disk cache)")
     out.add_json_option(s, "the summary (warm median, iterations, totals, agreement)")
     out.add_csv_option(s, "the timing table")
     out.add_plot_option(s, "the end_a force against psi0, collocation and solve_bvp")
@@ -109,18 +115,30 @@ def cmd_sweep(args: argparse.Namespace) -> int:
     out.check_outputs(args)
     if not 2 <= args.intervals <= 2560:
         raise out_error(f"--intervals {args.intervals}: give 2..2560")
-    kw: dict[str, Any] = {"intervals": args.intervals}
+    if not 1 <= getattr(args, "repeats", 3) <= 100:
+        raise out_error(f"--repeats {args.repeats}: give 1..100")
+    kw: dict[str, Any] = {"intervals": args.intervals, "repeats": getattr(args, "repeats", 3),
+                          "subprocess_run": not getattr(args, "no_subprocess", False)}
     if args.scene:
         kw["scene_path"] = args.scene
-    out.note(args, "bench sweep: timing the collocation and solve_bvp sweeps (~5 s) ...")
+    out.note(args, "bench sweep: timing the collocation and solve_bvp sweeps (~10 s) ...")
     res = statics_sweep.run(**kw)
-    m, t = res["measured"], res["targets"]
+    m, t, sm = res["measured"], res["targets"], res["summary"]
     out.say(args, f"De Zoysa psi0 sweep, {len(res['angles'])} angles, {args.intervals} "
-                  "intervals (fastest of 3 repeats for the collocation sweep)")
+                  f"intervals (least disturbed of {kw['repeats']} repeats for the collocation "
+                  f"sweeps; load average {sm['load_average_1min']:.1f})")
     out.say(args, report.table(res["headers"], res["rows"]))
-    out.say(args, f"\nwarm solve median {m['warm_median_ms']:.2f} ms (target < "
-                  f"{t['warm_median_ms']} ms); sweep incl. build {m['sweep_total_ms']:.0f} ms "
-                  f"(target < {t['sweep_total_ms']:.0f} ms)")
+    out.say(args, f"\nwarm solve median {m['warm_median_ms']:.2f} ms wall, "
+                  f"{sm['warm_median_cpu_ms']:.2f} ms CPU, {sm['warm_iterations_median']:g} "
+                  f"Newton steps (target <= {t['warm_median_ms']:g} ms); each point all in "
+                  f"{sm['warm_point_all_in_ms']:.2f} ms; solve_bvp/collocation per point "
+                  f"{sm['warm_ratio_solve_bvp_over_collocation']:.1f}x")
+    second = ("" if sm["sweep_total_second_process_ms"] is None else
+              f"; 2nd process {sm['sweep_total_second_process_ms']:.0f} ms wall, "
+              f"{sm['sweep_total_second_process_cpu_ms']:.0f} ms CPU")
+    out.say(args, f"sweep incl. build: 1st process {m['sweep_total_ms']:.0f} ms wall, "
+                  f"{sm['sweep_total_cpu_ms']:.0f} ms CPU{second} "
+                  f"(target <= {t['sweep_total_ms']:.0f} ms)")
     out.say(args, "collocation vs solve_bvp end_a force: max relative difference "
                   f"{res['agreement']:.1e}")
     out.emit_json(args, out.envelope("ok", "benchmark completed", {

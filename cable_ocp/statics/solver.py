@@ -1102,9 +1102,13 @@ def sweep(scene: Scene, key: str, values: Iterable[Any],
                 pts.pop(0)
             if len(pts) >= 2:
                 start = _extrapolate(pts, v)
+        known = {id(x) for x in cache.values()}
         sol = _solve_with_contact(sc, get, start, error_estimate)
         if start is not prev and not sol.converged:
             sol = _solve_with_contact(sc, get, prev, error_estimate)
+        built = [x.build_time_s for x in cache.values() if id(x) not in known]
+        if built:  # this point built solvers (the first point of each structure)
+            sol.diagnostics["build_time_s"] = float(sum(built))
         if sol.status == "inaccurate" and sc.solver.refine:
             # this point needs a finer mesh than the sweep's: refine it on its own (the
             # next points keep the sweep's solver and warm-start from this solution)
