@@ -14,20 +14,19 @@ functions are loaded, not built.
 from __future__ import annotations
 
 import argparse
-import contextlib
 import json
 import os
 import subprocess
 import sys
 import tempfile
 import time
-from collections.abc import Iterator
 from pathlib import Path
 from typing import Any
 
 import numpy as np
 
 from cable_ocp.baselines.solve_bvp import solve_bvp
+from cable_ocp.bench.common import cache_folder
 from cable_ocp.scene import Scene, load_scene
 from cable_ocp.statics.formulation import Formulation
 from cable_ocp.statics.solver import StaticsSolver, sweep
@@ -36,25 +35,6 @@ DEFAULT_SCENE = Path(__file__).resolve().parents[2] / "problems" / "dezoysa_sea_
 
 #: the issue's targets: warm solve median (ms) and the whole sweep with build (ms)
 TARGETS = {"warm_median_ms": 1.0, "sweep_total_ms": 60.0}
-
-
-@contextlib.contextmanager
-def cache_folder(folder: str | Path | None) -> Iterator[None]:
-    """Point the statics function cache at ``folder`` (None: switch it off) for a while."""
-    old = {k: os.environ.get(k) for k in ("CABLE_OCP_CACHE_DIR", "CABLE_OCP_CACHE")}
-    if folder is None:
-        os.environ["CABLE_OCP_CACHE"] = "0"
-    else:
-        os.environ["CABLE_OCP_CACHE_DIR"] = str(folder)
-        os.environ.pop("CABLE_OCP_CACHE", None)
-    try:
-        yield
-    finally:
-        for k, v in old.items():
-            if v is None:
-                os.environ.pop(k, None)
-            else:
-                os.environ[k] = v
 
 
 def _timed_sweep(base: Scene, angles: np.ndarray, error_estimate: bool = False

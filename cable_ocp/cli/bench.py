@@ -55,6 +55,8 @@ def register(sub: argparse._SubParsersAction, parent: argparse.ArgumentParser) -
                    help="restrict to these series (repeatable; labels as in the table)")
     a.add_argument("--repeats", type=int, default=3, metavar="N",
                    help="timing repeats, fastest kept (default 3)")
+    a.add_argument("--no-subprocess", action="store_true",
+                   help="skip the second-process timings (functions from the disk cache)")
     out.add_json_option(a, "every row")
     out.add_csv_option(a, "every row")
     out.add_plot_option(a, "the work-precision diagram")
@@ -160,10 +162,10 @@ def out_error(msg: str) -> Exception:
     return CableOCPError(msg)
 
 
-ACCURACY_KEYS = ["scene", "method", "resolution", "time_s", "status", "force_error",
+ACCURACY_KEYS = ["scene", "method", "resolution", "time_s", "cpu_s", "status", "force_error",
                  "profile_error", "estimate_ratio"]
-ACCURACY_HEADER = ["scene", "method", "resolution", "time [s]", "status", "force error [-]",
-                   "profile error [-]", "estimate/true [-]"]
+ACCURACY_HEADER = ["scene", "method", "resolution", "time [s]", "CPU [s]", "status",
+                   "force error [-]", "profile error [-]", "estimate/true [-]"]
 
 
 def cmd_accuracy(args: argparse.Namespace) -> int:
@@ -188,30 +190,47 @@ def cmd_accuracy(args: argparse.Namespace) -> int:
                 rows.append(row)
                 bar(len(rows), postfix=f"{row['scene']}: {row['method']}")
 
-            results = accuracy.run(scenes, args.method, repeats=args.repeats, progress=step)
+            results = accuracy.run(scenes, args.method, repeats=args.repeats, progress=step,
+                                   second_process=not args.no_subprocess)
     except KeyboardInterrupt:
         _write_partial(args, rows, ACCURACY_KEYS, ACCURACY_HEADER)
         raise
     for res in results:
         out.say(args, f"\n{res['scene']}: reference = {res['reference']} "
                       f"(agreement {res['reference_check']:.1e})")
-        table = [[r["method"], r["resolution"], f"{r['time_s'] * 1e3:.2f}", r["status"],
+        table = [[r["method"], r["resolution"], f"{r['time_s'] * 1e3:.2f}",
+                  f"{r.get('cpu_s', float('nan')) * 1e3:.2f}", r["status"],
                   fmt_sci(r["force_error"]), fmt_sci(r["profile_error"]),
                   fmt_sci(r["estimate_ratio"])] for r in res["rows"]]
-        out.say(args, report.table(["method", "resolution", "time [ms]", "status",
+        out.say(args, report.table(["method", "resolution", "time [ms]", "CPU [ms]", "status",
                                     "force error [-]", "profile error [-]", "est/true [-]"],
                                    table))
         for name, note in res["notes"].items():
             out.say(args, f"  {name}: {note}")
         for name, d in sorted(res["dominance"].items()):
             out.say(args, f"  {name}: {d}")
+        vs = res.get("versus_solve_bvp") or []
+        if any(e["solve_bvp_s"] is not None for e in vs):
+            def ms(x: float | None) -> str:
+                return "-" if x is None else f"{x * 1e3:.2f}"
+
+            out.say(args, "\n  least time to reach each error, cold collocation (any scheme) "
+                          "vs solve_bvp [ms], wall / CPU:")
+            out.say(args, report.table(
+                ["error <=", "solve_bvp", "collocation 1st process", "ahead",
+                 "collocation 2nd process", "ahead"],
+                [[f"{e['error']:.0e}", f"{ms(e['solve_bvp_s'])} / {ms(e['solve_bvp_cpu_s'])}",
+                  f"{ms(e['first_s'])} / {ms(e['first_cpu_s'])}",
+                  f"{e['first_ahead_s']} / {e['first_ahead_cpu_s']}",
+                  f"{ms(e['second_s'])} / {ms(e['second_cpu_s'])}",
+                  f"{e['second_ahead_s']} / {e['second_ahead_cpu_s']}"] for e in vs]))
     low = [(res["scene"], r["method"], r["resolution"], r["estimate_ratio"])
            for res in results for r in res["rows"]
            if r["estimate_ratio"] is not None and r["estimate_ratio"] < 0.1]
     out.say(args, "\nerror estimates under-estimating by more than 10x: "
             + (", ".join(f"{a} {b} {c} ({d:.2f})" for a, b, c, d in low) if low else "none"))
     out.emit_json(args, out.envelope("ok", "benchmark completed", {"scenes": results}))
-    out.emit_csv(args, ACCURACY_HEADER, [[r[k] for k in ACCURACY_KEYS]
+    out.emit_csv(args, ACCURACY_HEADER, [[r.get(k) for k in ACCURACY_KEYS]
                                          for res in results for r in res["rows"]])
     if args.plot:
         out.emit_plot(args, lambda path: accuracy.plot(results, path))

@@ -89,6 +89,28 @@ def _lagrange_matrices(tau: tuple[float, ...]) -> tuple[np.ndarray, np.ndarray]:
     return cmat, dvec
 
 
+@functools.lru_cache(maxsize=64)
+def _mesh_sigma(mesh: Mesh) -> np.ndarray:
+    """:meth:`Mesh.sigma`, cached per mesh (read-only)."""
+    if mesh.segments:
+        parts = []
+        for k, n in enumerate(mesh.segments):
+            lo, hi = mesh.bounds[k], mesh.bounds[k + 1]
+            local = _mesh_sigma(replace(mesh, intervals=n, segments=(), bounds=()))
+            parts.append(lo + (hi - lo) * local)
+        out = np.concatenate(parts)
+    else:
+        h = 1.0 / mesh.intervals
+        pts: list[float] = []
+        for k in range(mesh.intervals):
+            pts.append(k * h)
+            pts.extend(k * h + h * t for t in mesh.tau)
+        pts.append(1.0)
+        out = np.asarray(pts)
+    out.setflags(write=False)
+    return out
+
+
 @dataclass(frozen=True)
 class Mesh:
     """Node locations of a collocation mesh on sigma in [0, 1]."""
@@ -119,21 +141,8 @@ class Mesh:
     def sigma(self) -> np.ndarray:
         """sigma of every state node, in unknown order (not sorted for Radau: the last
         collocation point of an interval coincides with the next interval start; a joint
-        between segments appears twice)."""
-        if self.segments:
-            parts = []
-            for k, n in enumerate(self.segments):
-                lo, hi = self.bounds[k], self.bounds[k + 1]
-                local = replace(self, intervals=n, segments=(), bounds=()).sigma()
-                parts.append(lo + (hi - lo) * local)
-            return np.concatenate(parts)
-        h = 1.0 / self.intervals
-        out = []
-        for k in range(self.intervals):
-            out.append(k * h)
-            out.extend(k * h + h * t for t in self.tau)
-        out.append(1.0)
-        return np.asarray(out)
+        between segments appears twice). A new array (computed once per mesh)."""
+        return _mesh_sigma(self).copy()
 
     def mesh_index(self) -> np.ndarray:
         """Indices of the mesh points (interval ends) among the state nodes."""
