@@ -288,31 +288,39 @@ class Collocation:
             fj, jj = rhs_jac(xcols[:, j], lam, p[P_CURRENT])
             fx.append(fj)
             jx.append(jj)
-        coll = [fx[j - 1] - ca.mtimes(xcols, ca.DM(cmat[:, j])) / h for j in range(1, d + 1)]
-        x_end = ca.mtimes(xcols, ca.DM(dvec))
+        coll = [fx[j - 1] - ca.mtimes(xcols, ca.DM(cmat[:, j].tolist())) / h
+                for j in range(1, d + 1)]
+        x_end = ca.mtimes(xcols, ca.DM(dvec.tolist()))
         r = ca.vertcat(*coll, x_end - x_next)
         fn = ca.Function("interval", [z, p], [r])
-        # constant part: -C[i, j]/h on the collocation rows, D_i and -1 on the last rows
-        eye = np.eye(nx)
-        lin = np.zeros((nx * (d + 1), n_z))
+        # constant part of dr/dz: -C[i, j]/h on the collocation rows, D_i and -1 on the
+        # last rows (sparse DMs built from lists: numpy-to-DM conversion is slow)
+        nr = nx * (d + 1)
+        rows, cols, vals = [], [], []
         for j in range(1, d + 1):
             for i in range(d + 1):
-                lin[(j - 1) * nx: j * nx, i * nx: (i + 1) * nx] = -cmat[i, j] / h * eye
+                rows += range((j - 1) * nx, j * nx)
+                cols += range(i * nx, (i + 1) * nx)
+                vals += [float(-cmat[i, j] / h)] * nx
         for i in range(d + 1):
-            lin[d * nx:, i * nx: (i + 1) * nx] = dvec[i] * eye
-        lin[d * nx:, nx * (d + 1): nx * (d + 2)] = -eye
-        lin_dm = ca.sparsify(ca.DM(lin))
-        jac = ca.SX(lin_dm.sparsity(), ca.SX(lin_dm.nonzeros()))
+            rows += range(d * nx, (d + 1) * nx)
+            cols += range(i * nx, (i + 1) * nx)
+            vals += [float(dvec[i])] * nx
+        rows += range(d * nx, (d + 1) * nx)
+        cols += range((d + 1) * nx, (d + 2) * nx)
+        vals += [-1.0] * nx
+        order = sorted(range(len(rows)), key=lambda k: (cols[k], rows[k]))  # CCS order
+        jac = ca.SX(ca.DM(ca.Sparsity.triplet(nr, n_z, rows, cols), [vals[k] for k in order]))
+        tail_col = has_tail and dlam != 0.0
         for j in range(1, d + 1):
             # rows of coll_j; columns of x_k^j and of the tail
-            sel = np.zeros((nx + 1, n_z))
-            sel[:nx, j * nx: (j + 1) * nx] = eye
-            if has_tail and dlam != 0.0:
-                sel[nx, -1] = dlam
-            put = np.zeros((nx * (d + 1), nx))
-            put[(j - 1) * nx: j * nx, :] = eye
-            jac = jac + ca.mtimes(ca.mtimes(ca.sparsify(ca.DM(put)), jx[j - 1]),
-                                  ca.sparsify(ca.DM(sel)))
+            put = ca.DM(ca.Sparsity.triplet(nr, nx, list(range((j - 1) * nx, j * nx)),
+                                            list(range(nx))), [1.0] * nx)
+            sel = ca.DM(ca.Sparsity.triplet(
+                nx + 1, n_z, list(range(nx)) + ([nx] if tail_col else []),
+                list(range(j * nx, (j + 1) * nx)) + ([n_z - 1] if tail_col else [])),
+                [1.0] * nx + ([dlam] if tail_col else []))
+            jac = jac + ca.mtimes(ca.mtimes(put, jx[j - 1]), sel)
         jac_fn = ca.Function("interval_jac", [z, p], [r, jac])
         return fn, jac_fn
 
