@@ -319,7 +319,7 @@ def plot(results: list[dict[str, Any]], path: str | Path) -> Path:
             if m.endswith(SECOND):
                 style = ":^"
             ax.loglog(t * 1e3, np.maximum(e, 1e-16), style, ms=4, color=color, label=m)
-        ax.set_xlabel("wall time per solve [ms] (cold calls include the CasADi build; "
+        ax.set_xlabel("wall time per solve [ms]\n(cold calls include the CasADi build; "
                       "2nd process: functions from the disk cache)")
         ax.set_ylabel("relative error (end forces, profile)")
         ax.set_title(res["scene"])
