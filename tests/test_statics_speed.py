@@ -47,19 +47,22 @@ def cache_folder(tmp_path: Path, monkeypatch: pytest.MonkeyPatch) -> Path:
     return folder
 
 
-@pytest.mark.parametrize("name, grounded", [
-    ("dezoysa_sea_buggy.toml", False),       # componentwise drag, fixed length
-    ("berteaux_mooring.toml", False),        # free length (tension prescribed)
-    ("mooring_clump_buoy.toml", True),       # three segments, two bodies, seabed contact
-    ("bielanski_tow.toml", False),           # bending stiffness (8 states per node)
-    ("extreme/slack_touchdown.toml", True),  # touchdown with a fixed length
+@pytest.mark.parametrize("name, grounded, method", [
+    ("dezoysa_sea_buggy.toml", False, "collocation"),    # componentwise drag, fixed length
+    ("berteaux_mooring.toml", False, "collocation"),     # free length (tension prescribed)
+    ("mooring_clump_buoy.toml", True, "collocation"),    # 3 segments, 2 bodies, seabed
+    ("bielanski_tow.toml", False, "collocation"),        # bending stiffness (8 states/node)
+    ("extreme/slack_touchdown.toml", True, "collocation"),  # touchdown, fixed length
+    ("berteaux_mooring.toml", False, "multiple_shooting"),  # RK4 steps as blocks
+    ("extreme/slack_touchdown.toml", True, "multiple_shooting"),
 ])
-def test_block_jacobian_equals_the_expanded_residuals(name: str, grounded: bool) -> None:
-    """The Jacobian assembled from the intervals' own small Jacobians (chain rule through
-    the right-hand side's Jacobian) equals CasADi's differentiation of the whole residual
-    expanded to SX, entry by entry and in sparsity, at a random point (1e-13 relative:
-    the same derivatives, summed in another order)."""
-    scene = load_scene(PROBLEMS / name)
+def test_block_jacobian_equals_the_expanded_residuals(name: str, grounded: bool,
+                                                      method: str) -> None:
+    """The Jacobian assembled from the intervals' own small Jacobians (for collocation by
+    the chain rule through the right-hand side's Jacobian) equals CasADi's
+    differentiation of the whole residual expanded to SX, entry by entry and in sparsity,
+    at a random point (1e-13 relative: the same derivatives, summed in another order)."""
+    scene = load_scene(PROBLEMS / name, {"solver.method": method})
     solver = StaticsSolver(scene, intervals=4, grounded=grounded)
     coll = solver.coll
     n_p = len(solver.form.params())

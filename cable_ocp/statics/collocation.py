@@ -196,17 +196,11 @@ class Collocation:
         self._residual = fn
 
     @property
-    def blocks(self) -> list[Block] | None:
-        """The residual as blocks (:mod:`cable_ocp.statics.newton`), None when the
-        transcription has no block description."""
+    def blocks(self) -> list[Block]:
+        """The residual as blocks (:mod:`cable_ocp.statics.newton`)."""
         if self._blocks is None:
             self._blocks = self._make_blocks()
         return self._blocks
-
-    @property
-    def has_blocks(self) -> bool:
-        """True when the transcription describes its residual as blocks."""
-        return True
 
     def _setup(self, grounded: bool) -> None:
         """Unknown layout: node states, then lam (free length), then g (grounded)."""
@@ -241,9 +235,7 @@ class Collocation:
         return bc
 
     def _build(self) -> ca.Function:
-        blocks = self.blocks
-        assert blocks is not None
-        return residual_function(blocks, self.n_w, len(self.form.params()))
+        return residual_function(self.blocks, self.n_w, len(self.form.params()))
 
     def _interval_block(self, rhs: ca.Function, h: float, fraction: float | None,
                         with_g: bool) -> tuple[ca.Function, ca.Function]:
@@ -347,9 +339,7 @@ class Collocation:
         """The blocks' SX functions, ``[f_0, jac_0, f_1, jac_1, ...]`` in block order
         (what the on-disk cache stores: their size does not grow with the mesh)."""
         if self._block_fns is None:
-            blocks = self.blocks
-            assert blocks is not None
-            self._block_fns = [f for b in blocks for f in (b.fn, b.jac)]
+            self._block_fns = [f for b in self.blocks for f in (b.fn, b.jac)]
         return self._block_fns
 
     def set_block_functions(self, fns: list[ca.Function]) -> bool:

@@ -137,22 +137,6 @@ def jacobian_functions(blocks: list[Block], n_w: int, n_p: int,
     return gj, step
 
 
-def expanded_functions(residual: ca.Function, linear_solver: str = LINEAR_SOLVER
-                       ) -> tuple[ca.Function, ca.Function, ca.Function]:
-    """``(G, GJ, step)`` of a residual without a block description: the residual expanded
-    to SX and its Jacobian by CasADi's colouring (slower to build, as fast to evaluate)."""
-    fn = residual.expand()
-    n_w, n_p = fn.size1_in(0), fn.size1_in(1)
-    ws, ps = ca.SX.sym("w", n_w), ca.SX.sym("p", n_p)
-    g = fn(ws, ps)
-    gj = ca.Function("GJ", [ws, ps], [g, ca.jacobian(g, ws)], ["w", "p"], ["g", "J"])
-    w, p = ca.MX.sym("w", n_w), ca.MX.sym("p", n_p)
-    gm, jm = gj(w, p)
-    step = ca.Function("newton_step", [w, p], [gm, -ca.solve(jm, gm, linear_solver)],
-                       ["w", "p"], ["g", "dw"])
-    return fn, gj, step
-
-
 class Kernel:
     """Buffered evaluation of ``G`` and the Newton step (not thread-safe: one set of
     buffers per kernel).

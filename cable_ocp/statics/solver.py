@@ -54,7 +54,6 @@ from cable_ocp.statics.newton import (
     LINEAR_SOLVER,
     Kernel,
     NewtonResult,
-    expanded_functions,
     jacobian_functions,
     newton,
 )
@@ -153,34 +152,20 @@ class StaticsSolver:
                      self.coll.mesh, self.grounded, self.coll.n_w, LINEAR_SOLVER, *extra))
 
     def _newton_functions(self) -> tuple[ca.Function, Kernel]:
-        """``GJ`` and the buffered Newton kernel. A collocation's block functions (the SX
-        parts, whose size does not grow with the mesh) come from the on-disk cache or are
-        built, and the residual, its Jacobian and the Newton step are assembled from them;
-        multiple shooting stores the expanded functions themselves."""
+        """``GJ`` and the buffered Newton kernel. The transcription's block functions (the
+        SX parts, whose size does not grow with the mesh) come from the on-disk cache or
+        are built; the residual, its Jacobian and the Newton step are assembled from them."""
         n_w, n_p = self.coll.n_w, len(self.form.params())
         structure = self._cache_structure()
-        if self.coll.has_blocks:
-            stored = disk_cache.load(structure, "blocks")
-            if stored is not None and self.coll.set_block_functions(
-                    [stored[f"f{i}"] for i in range(len(stored))]):
-                self.build_source = "disk cache"
-            else:
-                fns = self.coll.block_functions()
-                disk_cache.save(structure, "blocks", {f"f{i}": f for i, f in enumerate(fns)})
-            blocks = self.coll.blocks
-            assert blocks is not None
-            g_fn = self.coll.residual
-            gj, step = jacobian_functions(blocks, n_w, n_p)
-            return gj, Kernel(g_fn, step)
-        stored = disk_cache.load(structure, "newton")
-        if stored is not None and all(k in stored for k in ("G", "GJ", "step")) and all(
-                f.size1_in(0) == n_w and f.size1_in(1) == n_p for f in stored.values()):
+        stored = disk_cache.load(structure, "blocks")
+        if stored is not None and self.coll.set_block_functions(
+                [stored[f"f{i}"] for i in range(len(stored))]):
             self.build_source = "disk cache"
-            g_fn, gj, step = stored["G"], stored["GJ"], stored["step"]
         else:
-            g_fn, gj, step = expanded_functions(self.coll.residual)
-            disk_cache.save(structure, "newton", {"G": g_fn, "GJ": gj, "step": step})
-        self.coll.residual = g_fn
+            fns = self.coll.block_functions()
+            disk_cache.save(structure, "blocks", {f"f{i}": f for i, f in enumerate(fns)})
+        g_fn = self.coll.residual
+        gj, step = jacobian_functions(self.coll.blocks, n_w, n_p)
         return gj, Kernel(g_fn, step)
 
     @property
