@@ -120,16 +120,16 @@ def jacobian_functions(blocks: list[Block], n_w: int, n_p: int,
         # the per-instance nonzeros in compressed-column order of (nr, nz)
         order = np.lexsort((jr, jc))
         jr, jc = jr[order], jc[order]
-        for k in range(b.count):
-            rows.append(b.rows[jr, k])
-            cols.append(b.z_index[jc, k])
+        rows.append(b.rows[jr, :].ravel(order="F"))  # instance by instance
+        cols.append(b.z_index[jc, :].ravel(order="F"))
     g = ca.vertcat(*g_parts)[_scatter_order(blocks, n_w)]
     rows_a, cols_a = np.concatenate(rows), np.concatenate(cols)
     key = np.sort(cols_a.astype(np.int64) * n_w + rows_a)
     if key.size > 1 and np.any(key[1:] == key[:-1]):
         raise ValueError("two blocks write the same Jacobian entry")
     ccs = np.lexsort((rows_a, cols_a))
-    sp = ca.Sparsity.triplet(n_w, n_w, rows_a[ccs].tolist(), cols_a[ccs].tolist())
+    colind = np.searchsorted(cols_a[ccs], np.arange(n_w + 1))
+    sp = ca.Sparsity(n_w, n_w, colind.tolist(), rows_a[ccs].tolist())
     jac_mx = ca.sparsity_cast(ca.vertcat(*values)[ccs.tolist()], sp)
     gj = ca.Function("GJ", [w, p], [g, jac_mx], ["w", "p"], ["g", "J"])
     dw = -ca.solve(jac_mx, g, linear_solver)
