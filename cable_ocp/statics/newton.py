@@ -14,9 +14,10 @@ conditions, a joint), mapped over its instances. From the blocks this module bui
 
 :class:`Kernel` evaluates them through CasADi's ``FunctionBuffer`` on preallocated numpy
 arrays (converting a 1000-entry numpy vector to a CasADi matrix costs about as much as
-evaluating the residual), and :func:`newton` runs the iteration: full Newton steps for a
-warm start, a backtracking line search on |g|_2 (Armijo) within the bounds for a cold
-start.
+evaluating the residual), and :func:`newton` runs the iteration: Newton steps with a
+backtracking line search within bounds, as CasADi's ``rootfinder`` does, but the full
+step's residual comes from the next step's call, so an undamped step costs no extra
+evaluation.
 """
 
 from __future__ import annotations
@@ -31,8 +32,6 @@ import numpy as np
 #: ``rootfinder`` used before; its set-up costs a tenth of the sparse QR's ("qr") and its
 #: solves about as much on the collocated systems
 LINEAR_SOLVER = "csparse"
-#: full steps stop as diverged when the residual exceeds this multiple of the first one
-DIVERGED = 1e8
 
 
 @dataclass(frozen=True)
@@ -216,10 +215,26 @@ def _max_step(w: np.ndarray, dw: np.ndarray, lb: np.ndarray | None, ub: np.ndarr
     return alpha
 
 
+def _decrease(g_new: np.ndarray, g_max: float, alpha: float) -> bool:
+    """Sufficient decrease for a step of length alpha: max|G| falls to (1 - alpha/2) of
+    its value (the test of CasADi's ``rootfinder`` "newton")."""
+    new = float(np.max(np.abs(g_new))) if g_new.size else 0.0
+    return math.isfinite(new) and new <= (1.0 - 0.5 * alpha) * g_max
+
+
 def newton(kernel: Kernel, w0: np.ndarray, p: np.ndarray, tol: float, max_iter: int = 30,
-           damped: bool = False, lb: np.ndarray | None = None, ub: np.ndarray | None = None,
+           lb: np.ndarray | None = None, ub: np.ndarray | None = None,
            step_tol: float = 1e-14) -> NewtonResult:
-    """Solve G(w, p) = 0 from ``w0`` to max|G| <= ``tol``.
+    """Solve G(w, p) = 0 from ``w0`` to max|G| <= ``tol`` by Newton's method with a
+    backtracking line search within [lb, ub]: the step length is halved until max|G| falls
+    to (1 - alpha/2) of its value, as in CasADi's ``rootfinder`` "newton" (its default).
+
+    The full step is tried first, and its residual comes from the next Newton-step call
+    (the Jacobian there is used if the step is accepted), so a step that needs no damping
+    costs no extra evaluation; only a rejected full step costs residual evaluations (and
+    the Jacobian computed at the rejected point). When quadratic convergence predicts
+    that the full step lands within the tolerance, its residual is checked first, without
+    a Jacobian.
 
     Parameters
     ----------
@@ -231,9 +246,8 @@ def newton(kernel: Kernel, w0: np.ndarray, p: np.ndarray, tol: float, max_iter: 
         Tolerance on the largest absolute residual (scaled).
     max_iter : int
         Most Newton steps.
-    damped : bool
-        Backtracking line search on |G|_2 (Armijo, halving down to 2^-20) with steps
-        kept inside [lb, ub]; else full steps (a warm start close to the solution).
+    lb, ub : ndarray, optional
+        Bounds kept by every step (99 % of the way to a bound at most).
     step_tol : float
         A step shorter than this (max norm) ends the iteration as converged (CasADi
         ``rootfinder``'s ``abstolStep``); the caller checks the residual.
@@ -241,63 +255,46 @@ def newton(kernel: Kernel, w0: np.ndarray, p: np.ndarray, tol: float, max_iter: 
     Returns
     -------
     NewtonResult
-        ``iterations`` counts the Newton steps (one Jacobian and one sparse factorisation
-        each); a residual check without a step is not counted.
+        ``iterations`` counts the accepted Newton steps (one Jacobian and one sparse
+        factorisation each).
     """
     w = np.array(w0, dtype=float)
     if lb is not None or ub is not None:
         w = np.clip(w, lb if lb is not None else -np.inf, ub if ub is not None else np.inf)
+    g, dw = kernel.step(w, p)
+    steps = 0
     kappa = math.nan  # |g_{k+1}| / |dw_k|^2: the quadratic-convergence constant
-    last_dw = math.nan
-    g_known: np.ndarray | None = None
-    g_first = math.nan
-    for it in range(max_iter + 1):
-        g, dw = kernel.step(w, p) if it < max_iter else (kernel.g(w, p), None)
+    while True:
         gmax = float(np.max(np.abs(g))) if g.size else 0.0
         if not math.isfinite(gmax):
-            return NewtonResult(w, g, it, False, "non-finite residual")
+            return NewtonResult(w, g, steps, False, "non-finite residual")
         if gmax <= tol:
-            return NewtonResult(w, g, it, True, "converged")
-        if it == 0:
-            g_first = gmax
-        elif gmax > DIVERGED * max(g_first, 1.0):
-            return NewtonResult(w, g, it, False, f"diverged (max residual {gmax:.1e})")
+            return NewtonResult(w, g, steps, True, "converged")
+        if steps >= max_iter:
+            return NewtonResult(w, g, steps, False, f"no convergence in {max_iter} steps")
         if dw is None:
-            break
+            g, dw = kernel.step(w, p)
+            continue
         if not np.all(np.isfinite(dw)):
-            return NewtonResult(w, g, it, False, "singular Jacobian (non-finite step)")
-        if math.isfinite(last_dw) and last_dw > 0:
-            kappa = gmax / last_dw**2
-        alpha = 1.0
-        g_known = None
-        if damped:
-            alpha = _max_step(w, dw, lb, ub)
-            f0 = float(np.dot(g, g))
-            while True:
-                trial = w + alpha * dw
-                gt = kernel.g(trial, p)
-                ft = float(np.dot(gt, gt))
-                if math.isfinite(ft) and ft <= (1.0 - 1e-4 * alpha) ** 2 * f0:
-                    g_known = gt
-                    break
-                alpha *= 0.5
-                if alpha < 2.0**-20:
-                    return NewtonResult(w, g, it, False,
-                                        "line search failed (no decrease of the residual)")
-            w = trial
+            return NewtonResult(w, g, steps, False, "singular Jacobian (non-finite step)")
+        alpha = _max_step(w, dw, lb, ub)
+        dnorm = float(np.max(np.abs(dw))) if dw.size else 0.0
+        trial = w + alpha * dw
+        if alpha == 1.0 and math.isfinite(kappa) and kappa * dnorm**2 <= 10.0 * tol:
+            g_new, dw_new = kernel.g(trial, p), None  # probably converged: no Jacobian
         else:
-            w = w + dw
-        dmax = float(np.max(np.abs(alpha * dw))) if dw.size else 0.0
-        last_dw = dmax
-        if dmax <= step_tol:
-            gw = g_known if g_known is not None else kernel.g(w, p)
-            return NewtonResult(w, gw, it + 1, True, "step below tolerance")
-        # quadratic convergence predicts the next residual: check it without a Jacobian
-        # when it should already be within the tolerance
-        if g_known is None and alpha == 1.0 and math.isfinite(kappa) \
-                and kappa * dmax**2 <= 10.0 * tol:
-            g_known = kernel.g(w, p)
-        if g_known is not None and float(np.max(np.abs(g_known))) <= tol:
-            return NewtonResult(w, g_known, it + 1, True, "converged")
-    return NewtonResult(w, None, max_iter, False,
-                        f"no convergence in {max_iter} Newton steps")
+            g_new, dw_new = kernel.step(trial, p)
+        while not _decrease(g_new, gmax, alpha):
+            alpha *= 0.5
+            if alpha * dnorm <= step_tol or alpha < 2.0**-60:
+                return NewtonResult(w, g, steps, False,
+                                    "line search failed (no decrease of the residual)")
+            trial = w + alpha * dw
+            g_new, dw_new = kernel.g(trial, p), None
+        new_max = float(np.max(np.abs(g_new))) if g_new.size else 0.0
+        if alpha == 1.0 and dnorm > 0.0:
+            kappa = new_max / dnorm**2
+        w, g, dw = trial, g_new, dw_new
+        steps += 1
+        if alpha * dnorm <= step_tol and new_max > tol:
+            return NewtonResult(w, g, steps, True, "step below tolerance")

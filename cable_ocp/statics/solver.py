@@ -2,14 +2,15 @@
 
 A :class:`StaticsSolver` builds the collocated residual G(w, p) = 0 once, with its sparse
 Jacobian and the Newton step assembled per collocation interval
-(:mod:`cable_ocp.statics.newton`), and solves it by Newton's method:
+(:mod:`cable_ocp.statics.newton`), and solves it by Newton's method with a backtracking
+line search on |G| (one CasADi call per step, on preallocated buffers):
 
-* warm start (a neighbouring solution, e.g. the previous point of a sweep): full Newton
-  steps, two CasADi calls per step evaluated on preallocated buffers;
-* cold start (the drag-free catenary or another guess): Newton with a backtracking line
-  search on |G|; only if that fails, IPOPT (``nlpsol``, a square system with zero
-  objective, built on first use) from the same guess, then a ramp of the current from 0
-  to its value (Huang (1992), section 2.5), and the diagnostics say which did it.
+* warm start (a neighbouring solution, e.g. the previous point of a sweep, or a
+  prediction from the last points): Newton; if it fails, IPOPT from the same start;
+* cold start (the drag-free catenary or another guess): Newton; only if that fails, IPOPT
+  (``nlpsol``, a square system with zero objective, built on first use) from the same
+  guess, then a ramp of the current from 0 to its value (Huang (1992), section 2.5), and
+  the diagnostics say which did it.
 
 The built functions are kept on disk (:mod:`cable_ocp.statics.cache`) so that another
 process solving a scene of the same structure loads them instead of building them.
@@ -260,7 +261,7 @@ class StaticsSolver:
         g_end: np.ndarray | None = None
         if warm_start is not None:
             w0 = self._from_solution(warm_start)
-            res = self._newton(w0, p, damped=False)
+            res = self._newton(w0, p)
             w, it, ok, how, g_end = res.w, res.iterations, res.success, "newton", res.g
             if not ok:
                 w, it, ok, how = self._ipopt_solve(w0, p)
@@ -271,7 +272,7 @@ class StaticsSolver:
             w0, guess = self._guess(scene)
             diag["start"] = f"cold ({guess} guess)"
             if self.cold == "newton":
-                res = self._newton(w0, p, damped=True)
+                res = self._newton(w0, p)
                 w, it, ok, how, g_end = res.w, res.iterations, res.success, \
                     "newton (line search)", res.g
                 if not ok:
@@ -374,18 +375,19 @@ class StaticsSolver:
             t = np.stack([np.interp(sig, src, t_src[:, k]) for k in range(3)], axis=1)
         return self.coll.pack(r, t, sol.length, g)
 
-    def _newton(self, w0: np.ndarray, p: np.ndarray, damped: bool) -> NewtonResult:
-        """Newton from w0: full steps (warm) or with a line search within the bounds
-        (cold); a free length that comes out non-positive is a failure."""
-        res = newton(self._kernel, w0, p, self.tol, NEWTON_MAX_STEPS, damped=damped,
-                     lb=self._lbx if damped else None, ub=self._ubx if damped else None)
+    def _newton(self, w0: np.ndarray, p: np.ndarray) -> NewtonResult:
+        """Newton with a line search from w0, within the bounds (a positive free length, a
+        grounded part on the first segment); a free length that comes out non-positive is
+        a failure."""
+        res = newton(self._kernel, w0, p, self.tol, NEWTON_MAX_STEPS, lb=self._lbx,
+                     ub=self._ubx)
         if res.success and self.coll.free_length and res.w[self.coll.i_lam] <= 0:
             res.success, res.message = False, "non-positive free length"
         return res
 
     def _newton_solve(self, w0: np.ndarray, p: np.ndarray) -> tuple[np.ndarray, int, bool, str]:
-        """Full-step Newton from w0: (w, steps, success, "newton")."""
-        res = self._newton(w0, p, damped=False)
+        """Newton from w0: (w, steps, success, "newton")."""
+        res = self._newton(w0, p)
         return res.w, res.iterations, res.success, "newton"
 
     def _algebraic_error(self, w: np.ndarray, p: np.ndarray, sol: StaticsSolution) -> float:
