@@ -45,6 +45,11 @@ def _vec(v: Any, unit: str, decimals: int | None = None, width: int = 12) -> str
 def _mesh(m: dict | None) -> str:
     if not m:
         return ""
+    if "scheme" not in m:  # the baselines: intervals (and solve_bvp's tolerance) only
+        parts = [f"tol {m['tolerance']:.0e}"] if "tolerance" in m else []
+        if "intervals" in m:
+            parts.append(f"{m['intervals']} intervals")
+        return f" ({', '.join(parts)})" if parts else ""
     return (f" ({m['scheme']} degree {m['degree']}, {m['intervals']} intervals, "
             f"order {m['order']})")
 

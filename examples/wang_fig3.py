@@ -1,14 +1,15 @@
 """Reproduce Wang, Cheong & Chucheepsakul (1993), Fig. 3: the force at De Zoysa's buggy.
 
-Source: ../shared/seeds/000_2b3c74cf924aa082.txt, "De Zoysa's Three-Dimensional Cable
-Problem" and Fig. 3 (bottom tension components Tx, Ty, Tz versus the angle psi0 between the
-current and the ship-to-buggy line; "Tx ~ 1.580" kN at psi0 = 90 deg). The figure itself is
-lost in the OCR; this script draws it from our solution with Wang's componentwise drag law
-(000 eqs (4)-(6)), with the vector law dashed for comparison.
+Source: Wang, Cheong & Chucheepsakul (1993), "Static analysis of marine cables via
+shooting-optimization technique", section "De Zoysa's Three-Dimensional Cable Problem" and
+Fig. 3 (bottom tension components Tx, Ty, Tz against the angle psi0 between the current and
+the ship-to-buggy line; Tx ~ 1.580 kN at psi0 = 90 deg). This script draws the figure from
+our solutions with Wang et al.'s componentwise drag law (their eqs (4)-(6)), with the vector
+law for comparison.
 
 Beyond psi0 ~ 147.9 deg (componentwise) the free-hanging cable would pass below the seabed
-near the buggy (seeds README, CONVENTIONS "Seabed"); Wang's z-formulation cannot represent
-that, and neither can this contact-free scene: that range is shaded and flagged.
+near the buggy; Wang et al.'s z-formulation cannot represent that, and neither can this
+contact-free scene: that range is shaded and flagged.
 
 Run:  python examples/wang_fig3.py [--out wang_fig3.png] [--step 5]
 """
@@ -16,6 +17,7 @@ Run:  python examples/wang_fig3.py [--out wang_fig3.png] [--step 5]
 from __future__ import annotations
 
 import argparse
+import sys
 from pathlib import Path
 
 import numpy as np
@@ -45,49 +47,58 @@ def compute(step: float = 5.0) -> dict[str, np.ndarray]:
 
 
 def plot(data: dict[str, np.ndarray], path: str | Path) -> Path:
-    """Draw the figure to ``path``."""
-    import matplotlib
+    """Draw the figure to ``path`` (the format follows the suffix)."""
+    from cable_ocp.plots.common import legend_below, new_figure, save
 
-    matplotlib.use("Agg")
-    import matplotlib.pyplot as plt
-
-    fig, ax = plt.subplots(figsize=(7.5, 5))
+    fig = new_figure(8.5, 6.2)
+    ax = fig.add_subplot()
     psi = data["psi0"]
-    for k, lab in enumerate(("Tx", "Ty", "Tz")):
-        ax.plot(psi, data["componentwise"][:, k] / 1e3, "o-", ms=3, color=f"C{k}",
-                label=f"{lab} (componentwise, 000)")
-        ax.plot(psi, data["vector"][:, k] / 1e3, "--", lw=1, color=f"C{k}",
-                label=f"{lab} (vector law)")
+    handles = []
+    for k, lab in enumerate(("T_x", "T_y", "T_z")):
+        handles += ax.plot(psi, data["componentwise"][:, k] / 1e3, "o-", ms=3, color=f"C{k}",
+                           label=f"{lab}, componentwise law (Wang et al.)")
+        handles += ax.plot(psi, data["vector"][:, k] / 1e3, "--", lw=1.2, color=f"C{k}",
+                           label=f"{lab}, vector law")
     below = psi[data["componentwise_below_seabed"]]
     if below.size:
-        ax.axvspan(below.min() - 0.5 * (psi[1] - psi[0]), psi.max(), color="0.9", zorder=0,
-                   label="cable below seabed (no contact model)")
-    ax.axhline(0.0, color="k", lw=0.5)
-    ax.annotate("Tx ~ 1.580 kN (000)", xy=(90, 1.58), xytext=(100, 2.6),
-                arrowprops={"arrowstyle": "->"})
-    ax.set_xlabel("psi0 [deg]")
-    ax.set_ylabel("force at the buggy [kN]")
-    ax.set_title("De Zoysa's sea buggy (000 Fig. 3)")
+        handles.append(ax.axvspan(below.min() - 0.5 * (psi[1] - psi[0]), psi.max(),
+                                  color="0.9", zorder=0,
+                                  label="componentwise cable below the seabed (no contact "
+                                        "modelled)"))
+    ax.axhline(0.0, color="k", lw=0.6)
+    handles += ax.plot([90.0], [1.58], "*", color="k", ms=12, ls="none",
+                       label="Wang et al. (1993): T_x ~ 1.580 kN at psi0 = 90 deg")
+    ax.set_xlim(psi.min() - 3, psi.max() + 3)
+    ax.set_xticks(np.arange(0, 181, 30))
+    ax.set_xlabel("angle between the current and the ship-to-buggy line, psi0 (deg)")
+    ax.set_ylabel("force of the cable on the buggy (kN)")
+    ax.set_title("De Zoysa's sea buggy: force at the buggy against the current's angle\n"
+                 "(cf. Wang, Cheong & Chucheepsakul 1993, Fig. 3)", fontsize=10.5)
     ax.grid(True, alpha=0.3)
-    ax.legend(fontsize=7, ncol=2)
-    fig.tight_layout()
+    legend_below(fig, handles, ncols=2)
     path = Path(path)
-    fig.savefig(path, dpi=130)
-    plt.close(fig)
+    save(fig, path)
     return path
 
 
 def main(argv: list[str] | None = None) -> int:
     """Command-line entry point."""
-    ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
-    ap.add_argument("--out", default="wang_fig3.png")
-    ap.add_argument("--step", type=float, default=5.0, help="psi0 step, deg")
+    ap = argparse.ArgumentParser(
+        description="Reproduce Wang, Cheong & Chucheepsakul (1993), Fig. 3: the force of the "
+                    "cable on De Zoysa's sea buggy against the current's angle psi0, with "
+                    "the componentwise and the vector drag laws. Prints the force at "
+                    "psi0 = 90 deg and writes the figure.")
+    ap.add_argument("--out", default="wang_fig3.png", metavar="PATH",
+                    help="figure file; PNG, PDF or SVG by its suffix (default %(default)s)")
+    ap.add_argument("--step", type=float, default=5.0, metavar="DEG",
+                    help="psi0 step, deg, from 0 to 180 (default %(default)s)")
     args = ap.parse_args(argv)
     data = compute(args.step)
-    plot(data, args.out)
     i90 = int(np.argmin(np.abs(data["psi0"] - 90.0)))
-    print(f"psi0 = 90 deg: force at buggy = {np.round(data['componentwise'][i90], 1)} N "
-          f"(000: Tx ~ 1580 N); figure: {args.out}")
+    print(f"psi0 = {data['psi0'][i90]:g} deg: force at buggy = "
+          f"{np.round(data['componentwise'][i90], 1)} N (Wang et al. 1993: Tx ~ 1580 N)")
+    plot(data, args.out)
+    print(f"wrote {args.out}", file=sys.stderr)
     return 0
 
 

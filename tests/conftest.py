@@ -1,14 +1,19 @@
-"""Shared fixtures: paths to the shipped problem files; a private function cache."""
+"""Shared fixtures: paths to the shipped problem files; the test helpers' folder on sys.path;
+a private statics function cache."""
 
 from __future__ import annotations
 
 import os
+import sys
 from collections.abc import Iterator
 from pathlib import Path
 
 import pytest
 
 ROOT = Path(__file__).resolve().parents[1]
+# Test helpers written independently of the package (shooting_reference): importable by name
+# from the test modules (pytest runs with --import-mode=importlib, which adds no test folder).
+sys.path.insert(0, str(Path(__file__).resolve().parent))
 PROBLEMS = ROOT / "problems"
 
 

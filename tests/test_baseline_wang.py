@@ -62,7 +62,7 @@ def test_berteaux_table1(problems, berteaux_ref):
     assert sol.success, sol.message
     assert sol.diagnostics["h"] == 0.05
     phi_bottom = sol.angle_to_horizontal_deg("a")
-    phi_top = 180.0 - sol.angle_to_horizontal_deg("b")  # past vertical: x' < 0 at the buoy
+    phi_top = sol.angle_to_horizontal_deg("b")  # past vertical (x' < 0 at the buoy): > 90
     assert abs(sol.length - 3013.0) <= 0.5
     assert abs(phi_top - 90.2) <= 0.05
     assert abs(phi_bottom - 36.3) <= 0.05
@@ -82,7 +82,8 @@ def test_dezoysa_psi90_componentwise(problems, dezoysa_ref):
     are off CONVENTIONS' converged values by the RK4 step error (0.36 N, 7e-5 of the top
     tension), which the step-doubling estimate (5e-5) reports.
     """
-    sol = wang.solve(load_scene(problems / "dezoysa_sea_buggy.toml", {"solver.intervals": 20}))
+    sol = wang.solve(load_scene(problems / "dezoysa_sea_buggy.toml", {"solver.intervals": 20,
+                                                                      "solver.accuracy": 1e-3}))
     assert sol.success, sol.message
     assert round(sol.force_a[0] / 1000.0, 3) == 1.580
     assert np.allclose(sol.force_a, [1579.9, 3388.9, 1140.1], atol=0.5)
@@ -101,7 +102,8 @@ def test_dezoysa_convergence_rk4_order(problems, dezoysa_ref):
     """
     errs = []
     for n in (20, 40, 80):
-        sol = wang.solve(load_scene(problems / "dezoysa_sea_buggy.toml", {"solver.intervals": n}))
+        sol = wang.solve(load_scene(problems / "dezoysa_sea_buggy.toml",
+                                    {"solver.intervals": n, "solver.accuracy": 1e-3}))
         assert sol.success, sol.message
         errs.append(float(np.linalg.norm(sol.force_a - dezoysa_ref.force_a)))
     ratios = [errs[0] / errs[1], errs[1] / errs[2]]
@@ -157,7 +159,7 @@ def test_touchdown_profiles_are_not_solved(problems, name, overrides):
     discrete root has phi(0) -> 0 as h -> 0 and is reported as a failure, never "solved"."""
     sol = wang.solve(load_scene(problems / name, {**overrides, "solver.intervals": 20}))
     assert sol.status != "solved"
-    assert sol.status in ("unresolved", "not_converged", "infeasible")
+    assert sol.status in ("inaccurate", "not_converged", "infeasible")
     assert sol.message
 
 

@@ -39,11 +39,17 @@ def _is_face(name: str) -> bool:
 
 
 def _imports(name: str, path: Path) -> set[str]:
-    """Every cable_ocp module ``name`` imports, at module level or inside functions."""
+    """Every cable_ocp module ``name`` imports, at module level or inside functions (not
+    the ``if TYPE_CHECKING:`` imports, which exist for annotations only)."""
     tree = ast.parse(path.read_text(encoding="utf-8"))
     pkg = name if path.name == "__init__.py" else name.rpartition(".")[0]
     found: set[str] = set()
+    typing_only = {id(n) for block in ast.walk(tree) if isinstance(block, ast.If)
+                   and "TYPE_CHECKING" in ast.unparse(block.test)
+                   for stmt in block.body for n in ast.walk(stmt)}
     for node in ast.walk(tree):
+        if id(node) in typing_only:  # `if TYPE_CHECKING:` imports never run
+            continue
         if isinstance(node, ast.Import):
             targets = [a.name for a in node.names]
         elif isinstance(node, ast.ImportFrom):

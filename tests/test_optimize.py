@@ -21,7 +21,7 @@ def _example():
     return mod
 
 
-def test_min_top_tension_matches_brute_force():
+def test_min_top_tension_matches_brute_force(tmp_path):
     """The NLP optimum is no worse than any feasible length of a scan, and sits at the
     feasibility boundary (touchdown at the buggy), which bisection on ordinary statics
     solves locates to 1e-4 m; agreement to 1e-3 m (the NLP tolerance is far tighter)."""
@@ -42,7 +42,7 @@ def test_min_top_tension_matches_brute_force():
         lo, hi = (mid, hi) if ok else (lo, mid)
     assert l_opt == pytest.approx(0.5 * (lo + hi), abs=1e-3)
     assert res.solution.force_a[2] == pytest.approx(0.0, abs=1e-6 * t_opt)
-    assert mod.main(["--scan", "5"]) == 0
+    assert mod.main(["--scan", "5", "--out", str(tmp_path / "d.png")]) == 0
 
 
 def test_bad_variable_names(problems):

@@ -88,6 +88,38 @@ def test_slope_across_the_cable_changes_nothing():
     assert sloped.grounded_length == pytest.approx(flat.grounded_length, rel=1e-9)
 
 
+@pytest.mark.parametrize("heading", [0.0, 180.0])
+def test_slope_along_the_cable_against_independent_shooting(heading):
+    """A seabed rising (heading 0) or falling (180) 3 deg along the cable, friction 0.5,
+    EA 5e8 N:
+    the grounded part lies on the slope, its tension dropping by w sin(alpha) + mu w
+    cos(alpha) per metre towards the anchor, and the cable lifts off tangent to the slope.
+    Against the independent shooting (tests/shooting_reference.py, grounded part written
+    separately): grounded length, end forces and length to 1e-6 relative (the solution is
+    smooth on both parts, as above)."""
+    import shooting_reference as sref
+
+    x_fair, h, *_ = catenary_with_touchdown(600.0, 5.0e8, 0.5)
+    data = {"environment": {"water_depth": h + 60.0, "water_density": 1025.0,
+                            "seabed": {"friction": 0.5, "slope_deg": 3.0,
+                                       "slope_heading_deg": heading}},
+            "cable": {"length": L, "weight_in_water": W, "axial_stiffness": 5.0e8},
+            "end_a": {"position": [0.0, 0.0, 0.0]}, "end_b": {"position": [x_fair, 0.0, h]}}
+    sol = solve(scene_from_dict(data))
+    assert sol.success, sol.message
+    g = sol.grounded_length
+    assert g > 50.0
+    ref = sref.shoot(sref.problem_from_dict(data), 1.05 * sol.tension_vector[sol.node_offset],
+                     grounded_guess=1.05 * g)
+    assert ref.residual < 1e-10
+    assert g == pytest.approx(ref.grounded_length, rel=1e-6)
+    np.testing.assert_allclose(sol.force_a, ref.tension_a, rtol=0, atol=1e-6 * H)
+    np.testing.assert_allclose(sol.force_b, -ref.tension_b, rtol=0, atol=1e-6 * H)
+    e = sol.tension_vector[sol.node_offset] / np.linalg.norm(sol.tension_vector[sol.node_offset])
+    slope = 3.0 if heading == 0.0 else -3.0
+    assert math.degrees(math.atan2(e[2], e[0])) == pytest.approx(slope, abs=1e-6)
+
+
 def test_dezoysa_with_seabed_stays_above(problems):
     """The issue: De Zoysa at psi0 = 150..180 deg with a seabed nowhere goes below it;
     below 147.9 deg (componentwise) nothing touches, so the answer is unchanged."""

@@ -149,6 +149,29 @@ def test_free_length_with_tension(at):
     assert sol.length == pytest.approx(L, rel=1e-8)
 
 
+def test_free_length_when_the_tension_is_not_the_force_scale():
+    """The equations are solved in scaled units, forces divided by the largest of w x chord,
+    the end loads and the prescribed tension. Above, that scale is the prescribed tension
+    itself, and in scaled units |T|^2 = T0^2 and |T| = T0 coincide at 1. Here the tension
+    (10 kN at the anchor) is below w x chord (17.5 kN): the length against the independent
+    shooting (tests/shooting_reference.py; both converged to ~1e-10), 1e-8 relative."""
+    import shooting_reference as sref
+
+    data = {"environment": {"water_depth": 200.0, "water_density": 1025.0},
+            "cable": {"length": "free", "weight_in_water": 150.0, "axial_stiffness": 1e8},
+            "end_a": {"position": [0.0, 0.0, 50.0], "tension": 10000.0},
+            "end_b": {"position": [100.0, 0.0, 110.0]}}
+    # the cable leaves the anchor downwards: the anchor sits 50 m above the seabed plane so
+    # that the profile stays in the water (else it is status below_seabed)
+    sol = solve(scene_from_dict(data))
+    assert sol.success, sol.message
+    ref = sref.shoot(sref.problem_from_dict(data), np.array([9000.0, 0.0, -2000.0]),
+                     length_guess=130.0)
+    assert ref.residual < 1e-10
+    assert sol.length == pytest.approx(ref.length, rel=1e-8)
+    np.testing.assert_allclose(sol.force_a, ref.tension_a, rtol=0, atol=1e-8 * 1e4)
+
+
 def test_vertical_hanging_cable_exact():
     """A cable hanging straight down under a clump weight (no current): tension grows
     linearly with height, the profile is a vertical line. Exact for any mesh."""

@@ -1,19 +1,25 @@
 """Helpers shared by the baseline methods: the unsupported-scene error, the end checks of
-the z-parametrised methods, the resolution (Richardson) estimate, and independent checks of
-an answer (equilibrium by shooting, seabed penetration)."""
+the z-parametrised methods, the accuracy contract (error estimates, refinement up to a
+limit, ``"inaccurate"`` above ``solver.accuracy``: :func:`refine_to_accuracy`), and
+independent checks of an answer (equilibrium by shooting, seabed penetration)."""
 
 
 from __future__ import annotations
 
+import math
+import time
 from collections.abc import Callable
+from dataclasses import dataclass, field
 from typing import TYPE_CHECKING, Any
 
 import numpy as np
+from scipy.interpolate import CubicSpline
 
 from cable_ocp.errors import CableOCPError
 
 if TYPE_CHECKING:
     from cable_ocp.scene import Scene
+    from cable_ocp.statics.solution import StaticsSolution
 
 def unsupported(method: str, reason: str) -> CableOCPError:
     """The error a method raises for a scene it cannot represent (names solver.method)."""
@@ -34,39 +40,220 @@ def rising_fixed_ends(scene: Scene, method: str, why: str) -> tuple[float, float
     return za, zb
 
 
-UNRESOLVED_LIMIT = 1e-2  # the robustness matrix calls 1 % off a wrong answer
+#: the independent shooting check's threshold (relative landing error): a gross-error
+#: detector, not the accuracy test (that is the error estimate against ``solver.accuracy``).
+#: Shooting the cable equations from a method's end_a state carries that state's error
+#: along the line (1-2x the estimate on the benchmark scenes, more on long taut lines,
+#: where shooting is ill-conditioned), so a threshold at ``solver.accuracy`` would reject
+#: right answers; an answer that is no equilibrium at all misses by far more.
+EQUILIBRIUM_LIMIT = 1e-2
 
 
-def with_resolution_check(scene: Scene, solve_fn: Callable, warm_start: Any, order: float,
-                          method: str) -> Any:
-    """Solve at N = ``solver.intervals`` and N/2 and attach a Richardson error estimate.
+@dataclass
+class Estimate:
+    """A method's a-posteriori error estimate at one resolution.
 
-    est = max(end-force change / largest tension, length change / L) / (2^order - 1).
-    A converged solution whose estimate exceeds 1 % is reported as ``"unresolved"``: the
-    method's equations are solved but its discretisation is too coarse for the scene, and
-    calling that a solution would put a wrong answer in a table. Used by the baselines that
-    carry no estimate of their own (Wang's has one built in).
+    Attributes
+    ----------
+    value : float
+        Relative error estimate (-): the larger of the end-force error over the largest
+        tension and the position (and length) error over the length; ``inf`` when no
+        estimate could be formed (``detail["note"]`` says why).
+    detail : dict
+        ``method`` (how), ``observed_order``, ``force_N``, ``position_m``, ``algebraic``
+        and any notes; goes to ``diagnostics["error_estimate_detail"]``.
+    order : float
+        The order used in the Richardson factor (observed, clipped), or nan.
     """
-    sol = solve_fn(scene, warm_start)
-    n = scene.solver.intervals
-    if not sol.success or n < 4:
+
+    value: float
+    detail: dict[str, Any] = field(default_factory=dict)
+    order: float = math.nan
+
+
+def compare(fine: StaticsSolution, coarse: StaticsSolution, param: str = "s"
+            ) -> tuple[float, float, float]:
+    """Differences between two solutions of one scene at different resolutions.
+
+    Returns (end-force difference, N; position difference, m; largest tension, N): the
+    largest component difference of the forces at both ends, and the largest position
+    difference at the coarse solution's nodes (the fine solution interpolated there by a
+    cubic spline: exact where the nodes are shared) or of the lengths. ``param`` says how nodes are
+    matched: ``"s"`` by s/L (methods discretised in arc length), ``"z"`` by the height
+    above end_a (methods discretised in z: Wang's RK4 steps, the FEM's elements).
+    """
+    dforce = max(float(np.max(np.abs(fine.force_a - coarse.force_a))),
+                 float(np.max(np.abs(fine.force_b - coarse.force_b))))
+
+    def par(sol: StaticsSolution) -> np.ndarray:
+        if param == "z":
+            return sol.position[:, 2] - sol.position[0, 2]
+        return sol.s / sol.length
+
+    pf, pc = par(fine), par(coarse)
+    u, idx = np.unique(pf, return_index=True)
+    if u.size >= 4:
+        # a cubic spline: exact at shared nodes (nested meshes), and O(h^4) between them
+        # where the meshes are not nested (solve_bvp's adaptive meshes)
+        at = CubicSpline(u, fine.position[idx], axis=0)(np.clip(pc, u[0], u[-1]))
+    else:
+        at = np.stack([np.interp(pc, u, fine.position[idx, k]) for k in range(3)], axis=1)
+    dpos = max(float(np.max(np.abs(at - coarse.position))), abs(fine.length - coarse.length))
+    return dforce, dpos, float(fine.max_tension)
+
+
+def observed_order(rel_fine: float, rel_coarse: float, low: float, high: float,
+                   fallback: float) -> float:
+    """log2(rel_coarse / rel_fine) clipped to [low, high]; ``fallback`` when either
+    difference is zero or not finite (nothing to observe: e.g. an exact method)."""
+    if rel_fine > 0 and rel_coarse > 0 and math.isfinite(rel_fine) and math.isfinite(rel_coarse):
+        return float(np.clip(math.log2(rel_coarse / rel_fine), low, high))
+    return fallback
+
+
+def richardson_coarser(n: int, sol: StaticsSolution, get: Callable[[int], StaticsSolution | None],
+                       param: str, low: float, high: float, unit: str,
+                       min_coarse: int = 4) -> Estimate:
+    """Richardson estimate of the N solution from the N/2 and N/4 solutions of the method.
+
+    With d1 = |x_N - x_{N/2}| and d2 = |x_{N/2} - x_{N/4}| (end forces over the largest
+    tension, positions and length over the length, :func:`compare`), the observed order is
+    q = log2(d2/d1) clipped to [``low``, ``high``], and the estimate is d1 / (2^q - 1), as
+    the collocation solver does (:meth:`cable_ocp.statics.solver.StaticsSolver._estimate_error`).
+    With 2 <= N < 4, or when the N/4 solve fails, q = ``high`` (the nominal order) from two
+    solutions; below N = 2, or when the N/2 solve fails, no estimate (``inf``). When N/4
+    is below ``min_coarse`` units (too coarse to show the order: on 10/5/2 elements the
+    FEM's order looked like 1.6 and the estimate was 2.8x too small, Huang's method on the
+    high-speed tow 3.8x), q = ``low`` from two solutions, the conservative end of the range.
+    ``get(m)`` returns the method's (success) solution on m units, or None.
+    """
+    if n < 2:
+        return Estimate(math.inf, {"note": f"no estimate below 2 {unit}"})
+    half = get(n // 2)
+    if half is None:
+        return Estimate(math.inf, {"note": f"the solve on N/2 = {n // 2} {unit} failed"})
+    f1, p1, tmax = compare(sol, half, param)
+    rel1 = max(f1 / tmax, p1 / sol.length)
+    coarse_ok = n // 4 >= min_coarse
+    quarter = get(n // 4) if n >= 4 and coarse_ok else None
+    how = f"Richardson, N = {n}/{n // 2}"
+    if n >= 4 and not coarse_ok:
+        q = low
+        how += (f" {unit}, order {q:g} (N/4 = {n // 4} {unit} is below {min_coarse}: too "
+                "coarse to observe the order)")
+    elif quarter is not None:
+        f2, p2, _ = compare(half, quarter, param)
+        q = observed_order(rel1, max(f2 / tmax, p2 / sol.length), low, high, high)
+        how += f"/{n // 4} {unit}, observed order {q:.2f} (clipped to [{low:g}, {high:g}])"
+    else:
+        q = high
+        how += f" {unit}, assumed order {q:g} (no N/4 solution)"
+    factor = 1.0 / (2.0**q - 1.0)
+    return Estimate(factor * rel1, {"method": how, "observed_order": q,
+                                    "force_N": factor * f1, "position_m": factor * p1}, q)
+
+
+def refine_to_accuracy(scene: Scene, method: str, start: Any,
+                       solve_at: Callable[[Any, StaticsSolution | None], StaticsSolution],
+                       estimate: Callable[[Any, StaticsSolution], Estimate],
+                       finer: Callable[[Any, Estimate], tuple[Any, str]],
+                       warm_start: StaticsSolution | None = None,
+                       describe: Callable[[Any], dict[str, Any]] | None = None,
+                       label: Callable[[Any], str] = str,
+                       retry_cold: bool = True) -> StaticsSolution:
+    """The accuracy contract of ``solver.accuracy``, shared by every baseline method.
+
+    Solve at the resolution ``start``; unless ``solver.error_estimate`` is false, attach
+    the method's error estimate and, while it exceeds ``solver.accuracy`` and
+    ``solver.refine`` is true, solve again at ``finer(level, estimate)`` (warm-started
+    from the previous level) until the estimate meets the accuracy or ``finer`` returns
+    ``(None, why)`` (the method's limit). Refinement also stops when a refined solve fails
+    (retried once cold if ``retry_cold``) or when refining did not lower the estimate (the
+    discretisation is not converging on this scene). A result whose estimate still exceeds
+    the accuracy (or that has no estimate) is reported as ``"inaccurate"``, with the
+    estimate, the accuracy and what stopped the refinement in the message and in
+    ``diagnostics["warnings"]``;
+    ``"solved"`` means estimate <= ``solver.accuracy``. ``diagnostics["refinement"]``
+    lists the levels tried (``wall_time_s`` then covers all of them and their estimates),
+    ``describe(level)`` gives the ``diagnostics["mesh"]`` entry and ``label(level)`` names
+    a level in messages (e.g. "40 segments").
+    """
+    opts = scene.solver
+    describe = describe or (lambda level: {"intervals": level})
+    t0 = time.perf_counter()
+    level = start
+    sol = solve_at(level, warm_start)
+    sol.diagnostics["mesh"] = describe(level)
+    if not sol.success or not opts.error_estimate:
         return sol
-    half = solve_fn(scene.with_overrides({"solver.intervals": n // 2}), sol)
-    if not half.success:
-        sol.diagnostics["error_estimate_note"] = f"N/2 solve failed: {half.message}"
-        return sol
-    dforce = max(np.max(np.abs(sol.force_a - half.force_a)),
-                 np.max(np.abs(sol.force_b - half.force_b))) / sol.max_tension
-    diff = max(float(dforce), abs(sol.length - half.length) / sol.length)
-    sol.error_estimate = diff / (2.0**order - 1.0)
-    sol.diagnostics["error_estimate_detail"] = {
-        "method": f"Richardson, N={n} vs N={n // 2}, assumed order {order}"}
-    if sol.error_estimate > UNRESOLVED_LIMIT:
-        sol.status = "unresolved"
-        sol.message = (f"{method}: converged, but the N/2 comparison estimates a "
-                       f"{sol.error_estimate:.1e} relative error (> 1 %): increase "
-                       "solver.intervals")
+    est = estimate(level, sol)
+    history = [{**describe(level), "error_estimate": est.value}]
+    why = ""
+    while not est.value <= opts.accuracy:
+        if not opts.refine:
+            why = "solver.refine = false"
+            break
+        nxt, why = finer(level, est)
+        if nxt is None:
+            break
+        new = solve_at(nxt, sol)
+        if not new.success and retry_cold:
+            cold = solve_at(nxt, None)
+            new = cold if cold.success else new
+        if not new.success:
+            why = (f"the refined solve at {label(nxt)} did not succeed "
+                   f"({new.status}: {new.message})")
+            break
+        new_est = estimate(nxt, new)
+        history.append({**describe(nxt), "error_estimate": new_est.value})
+        better = new_est.value < est.value
+        level, sol, est = nxt, new, new_est
+        sol.diagnostics["mesh"] = describe(level)
+        if not better and not est.value <= opts.accuracy:
+            why = (f"refining to {label(level)} did not lower the estimate "
+                   f"({history[-2]['error_estimate']:.1e} -> {est.value:.1e}): the "
+                   "discretisation does not converge on this scene")
+            break
+    sol.error_estimate = est.value
+    sol.diagnostics["error_estimate_detail"] = est.detail
+    if len(history) > 1:
+        sol.diagnostics["refinement"] = history
+        sol.wall_time_s = time.perf_counter() - t0  # every level and estimate
+    if not est.value <= opts.accuracy:
+        if math.isfinite(est.value):
+            what = (f"the error estimate {est.value:.1e} exceeds solver.accuracy = "
+                    f"{opts.accuracy:.0e}")
+        else:
+            what = (f"there is no error estimate ({est.detail.get('note', 'not available')}),"
+                    f" so solver.accuracy = {opts.accuracy:.0e} is not established")
+        sol.status = "inaccurate"
+        sol.message = (f"{method}: converged on {label(level)}, but {what}; refinement "
+                       f"stopped: {why}")
+        sol.diagnostics.setdefault("warnings", []).append(
+            f"refinement stopped on {label(level)} ({why}): {what}")
+    else:
+        sol.message += f"; error estimate {est.value:.1e} <= solver.accuracy"
     return sol
+
+
+def double_within(n: int, est: Estimate, accuracy: float, limit: int, limit_text: str,
+                  top_order: float, unit: str) -> tuple[int | None, str]:
+    """Next resolution 2N for :func:`refine_to_accuracy`, or None and why.
+
+    None when 2N exceeds ``limit`` (``limit_text`` names it), or when even the method's
+    highest order ``top_order`` predicts that ``limit`` cannot reach the accuracy:
+    N (estimate / accuracy)^(1/top_order) > limit (doubling towards it would only cost
+    time; the message gives the predicted N).
+    """
+    if 2 * n > limit:
+        return None, f"N = {n} {unit}, and 2N would exceed {limit_text}"
+    if math.isfinite(est.value) and est.value > 0:
+        need = n * (est.value / accuracy) ** (1.0 / top_order)
+        if need > limit:
+            return None, (f"even at this method's highest order {top_order:g} (observed "
+                          f"{est.order:.2f}) reaching it needs about N = {need:.2g} {unit}, "
+                          f"beyond {limit_text}")
+    return 2 * n, ""
 
 
 def equilibrium_check(scene: Scene, sol: Any, method: str) -> Any:
@@ -75,8 +262,8 @@ def equilibrium_check(scene: Scene, sol: Any, method: str) -> Any:
     rtol 1e-10) from end_a with the method's own r(0), T(0) and L, and compare where the
     shot lands with the method's end_b. A method whose parametrisation cannot represent the
     true equilibrium (e.g. x(z) for a cable that dips below its anchor) can converge to a
-    profile that is no equilibrium at all; a landing error over 1 % of L (or of the largest
-    tension) marks it ``"not_equilibrium"``."""
+    profile that is no equilibrium at all; a landing error over ``EQUILIBRIUM_LIMIT`` (1 %)
+    of L (or of the largest tension) marks it ``"not_equilibrium"``."""
     if not sol.success:
         return sol
     from scipy.integrate import solve_ivp
@@ -99,7 +286,7 @@ def equilibrium_check(scene: Scene, sol: Any, method: str) -> Any:
                float(np.max(np.abs(yb[3:] * sc.force - sol.tension_vector[-1])))
                / sol.max_tension)
     sol.diagnostics["equilibrium_check"] = miss
-    if miss > UNRESOLVED_LIMIT:
+    if miss > EQUILIBRIUM_LIMIT:
         sol.status = "not_equilibrium"
         sol.message = (f"{method}: converged, but integrating the cable equations from its "
                        f"end_a state misses its end_b by {miss:.1e} (relative): the profile is "

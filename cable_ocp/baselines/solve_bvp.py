@@ -4,16 +4,21 @@ The outside reference a user would reach for: the same right-hand side (the scen
 :class:`~cable_ocp.statics.formulation.Formulation`, evaluated column-wise), the same end
 conditions, scaled variables, the scaled length as an unknown parameter when it is free.
 solve_bvp uses 4th-order Lobatto IIIA collocation with residual-based mesh refinement.
+Its ``tol`` bounds that residual, not the error of the answer: the registry entry
+(:func:`solve`) estimates the error by a second solve at tol/10 and refines the tolerance
+to ``solver.accuracy``.
 """
 
 from __future__ import annotations
 
+import math
 import time
+from typing import Any
 
 import numpy as np
 from scipy.integrate import solve_bvp as _scipy_solve_bvp
 
-from cable_ocp.baselines.common import seabed_check
+from cable_ocp.baselines.common import Estimate, compare, refine_to_accuracy, seabed_check
 from cable_ocp.scene import Scene
 from cable_ocp.statics.formulation import (
     P_CURRENT,
@@ -30,7 +35,7 @@ from cable_ocp.statics.solution import StaticsSolution
 
 def solve_bvp(scene: Scene, nodes: int = 41, tol: float = 1e-8, max_nodes: int = 100000,
               warm_start: StaticsSolution | None = None,
-              form: Formulation | None = None) -> StaticsSolution:
+              form: Formulation | None = None, own_mesh: bool = False) -> StaticsSolution:
     """Solve a scene with :func:`scipy.integrate.solve_bvp`.
 
     Parameters
@@ -48,6 +53,9 @@ def solve_bvp(scene: Scene, nodes: int = 41, tol: float = 1e-8, max_nodes: int =
         drag-free guess.
     form : Formulation, optional
         Reuse an already built formulation (same scene structure).
+    own_mesh : bool
+        Start from ``warm_start`` on its own nodes (s/L) instead of ``nodes`` uniform ones
+        (solve_bvp only inserts nodes, so the new mesh contains the old one).
     """
     form = Formulation(scene) if form is None else form
     p = form.params(scene)
@@ -56,7 +64,7 @@ def solve_bvp(scene: Scene, nodes: int = 41, tol: float = 1e-8, max_nodes: int =
     t0 = time.perf_counter()
     if warm_start is not None:
         src, idx = np.unique(warm_start.s / warm_start.length, return_index=True)
-        sig = np.linspace(0.0, 1.0, nodes)
+        sig = src if own_mesh else np.linspace(0.0, 1.0, nodes)
         r, t = (np.stack([np.interp(sig, src, a[idx, k]) for k in range(3)], axis=1)
                 for a in (warm_start.position, warm_start.tension_vector))
         length = warm_start.length
@@ -107,15 +115,73 @@ def solve_bvp(scene: Scene, nodes: int = 41, tol: float = 1e-8, max_nodes: int =
     )
 
 
-def solve(scene: Scene, warm_start: StaticsSolution | None = None) -> StaticsSolution:
-    """Registry entry (``solver.method = "solve_bvp"``): ``solver.intervals + 1`` initial
-    nodes, solve_bvp's tolerance = ``solver.tolerance`` but not below 1e-9 (tighter
-    requests stall its mesh refinement). It has no seabed contact: a profile through a
-    modelled seabed is reported as ``"seabed_contact"``."""
+#: solve_bvp's tolerance is refined down to TOL_FLOOR at most: the estimate of a solution
+#: at tol needs a solve at tol/10, and below 1e-10 its residual-based mesh refinement
+#: chases rounding (scaled variables of order 1) and stalls until max_nodes
+TOL_FLOOR = 1e-9
+#: solve_bvp's mesh-size limit (nodes); 1e-10 needs up to ~2800 on the benchmark scenes
+MAX_NODES = 10000
 
-    sol = solve_bvp(scene, nodes=scene.solver.intervals + 1,
-                    tol=max(scene.solver.tolerance, 1e-9), max_nodes=10000,
-                    warm_start=warm_start)
+
+def solve(scene: Scene, warm_start: StaticsSolution | None = None) -> StaticsSolution:
+    """Registry entry (``solver.method = "solve_bvp"``), with the accuracy contract.
+
+    ``solver.intervals + 1`` initial nodes; solve_bvp's tolerance starts at
+    ``max(solver.tolerance, TOL_FLOOR)`` (1e-9: tighter requests stall its mesh
+    refinement). solve_bvp's ``tol`` bounds its collocation residual, not the error of
+    the end forces, so it is no error estimate. The estimate is the difference between
+    this solution and a second solve at tol/10 started on this solution's own mesh (the
+    larger of the end-force difference over the largest tension and the position and
+    length differences over the length; positions compared at this solution's nodes): the
+    error of the tol solution, up to the tol/10 solution's own error. While it exceeds
+    ``solver.accuracy`` (and ``solver.refine``), the tolerance is divided by 10 (the
+    comparison solve becomes the solution) down to ``TOL_FLOOR``, with at most
+    ``MAX_NODES`` = 10000 nodes (solve_bvp's status ``"max_nodes"`` beyond). A result
+    above the accuracy is ``"inaccurate"``
+    (:func:`cable_ocp.baselines.common.refine_to_accuracy`). It has no seabed contact: a
+    profile through a modelled seabed is reported as ``"seabed_contact"``.
+    """
+    form = Formulation(scene)
+    cache: dict[float, StaticsSolution] = {}
+    first = {"warm": warm_start}
+
+    def solve_at(tol: float, warm: StaticsSolution | None) -> StaticsSolution:
+        if warm is not None and tol in cache:
+            return cache[tol]  # the previous level's comparison solve
+        start = first.pop("warm", None) if warm is None else warm
+        sol = solve_bvp(scene, nodes=scene.solver.intervals + 1, tol=tol, max_nodes=MAX_NODES,
+                        warm_start=start, form=form)
+        cache[tol] = sol
+        return sol
+
+    def estimate(tol: float, sol: StaticsSolution) -> Estimate:
+        fine = solve_bvp(scene, tol=tol / 10.0, max_nodes=MAX_NODES, warm_start=sol, form=form,
+                         own_mesh=True)
+        if fine.status != "solved":
+            return Estimate(math.inf, {"note": f"the comparison solve at tol = {tol / 10:.0e} "
+                                               f"did not succeed ({fine.status})"})
+        cache[tol / 10.0] = fine
+        dforce, dpos, tmax = compare(fine, sol, "s")
+        return Estimate(max(dforce / tmax, dpos / sol.length), {
+            "method": f"difference from a solve at tol = {tol / 10:.0e} started on this "
+                      f"solution's mesh ({sol.s.size} -> {fine.s.size} nodes)",
+            "force_N": dforce, "position_m": dpos})
+
+    def finer(tol: float, est: Estimate) -> tuple[float | None, str]:
+        if tol / 10.0 < TOL_FLOOR * (1.0 - 1e-9):
+            return None, (f"tol = {tol:.0e} is solve_bvp's floor here (TOL_FLOOR = "
+                          f"{TOL_FLOOR:.0e}: tighter requests stall its mesh refinement)")
+        return tol / 10.0, ""
+
+    def describe(tol: float) -> dict[str, Any]:
+        out: dict[str, Any] = {"tolerance": tol}
+        if tol in cache:
+            out["intervals"] = int(cache[tol].s.size - 1)
+        return out
+
+    sol = refine_to_accuracy(scene, "solve_bvp", max(scene.solver.tolerance, TOL_FLOOR),
+                             solve_at, estimate, finer, warm_start=None, describe=describe,
+                             label=lambda tol: f"tol = {tol:.0e}")
     return seabed_check(scene, sol, "solve_bvp")
 
 

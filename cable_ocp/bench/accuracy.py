@@ -298,38 +298,12 @@ def write_csv(results: list[dict[str, Any]], path: str | Path) -> None:
 
 
 def plot(results: list[dict[str, Any]], path: str | Path) -> Path:
-    """Log-log error (the larger of force and profile error) against wall time."""
-    import matplotlib
+    """Log-log error (the larger of force and profile error) against wall time
+    (:func:`cable_ocp.plots.bench.plot_work_precision`)."""
+    from cable_ocp.plots.bench import plot_work_precision
 
-    matplotlib.use("Agg")
-    import matplotlib.pyplot as plt
-
-    fig, axes = plt.subplots(1, len(results), figsize=(6.5 * len(results), 5), squeeze=False)
-    for ax, res in zip(axes[0], results, strict=True):
-        methods = list(dict.fromkeys(r["method"] for r in res["rows"]))
-        for k, m in enumerate(methods):
-            pts = [(r["time_s"], max(r["force_error"], r["profile_error"]))
-                   for r in res["rows"] if r["method"] == m and r["force_error"] is not None]
-            if not pts:
-                continue
-            t, e = np.array(pts).T
-            style = "-o" if (m in OURS or m == REUSED) else "--s"
-            base = m[: -len(SECOND)] if m.endswith(SECOND) else m
-            color = f"C{methods.index(base) % 10}" if base in methods else f"C{k % 10}"
-            if m.endswith(SECOND):
-                style = ":^"
-            ax.loglog(t * 1e3, np.maximum(e, 1e-16), style, ms=4, color=color, label=m)
-        ax.set_xlabel("wall time per solve [ms]\n(cold calls include the CasADi build; "
-                      "2nd process: functions from the disk cache)")
-        ax.set_ylabel("relative error (end forces, profile)")
-        ax.set_title(res["scene"])
-        ax.grid(True, which="both", alpha=0.3)
-        ax.legend(fontsize=7)
-    fig.tight_layout()
-    path = Path(path)
-    fig.savefig(path, dpi=120)
-    plt.close(fig)
-    return path
+    plot_work_precision(results, path)
+    return Path(path)
 
 
 if __name__ == "__main__":  # the second process of :func:`_second_process`

@@ -1,10 +1,14 @@
-"""MPC timing benchmark (issue 4): solve time per step, median and p99, with the delay.
+"""MPC timing benchmark: solve time per step, median and p99, with the delay.
 
-Problem: example 6.3.6 as in ``problems/heave/ex_6_3_6.toml`` (plant (6.28) with 11 states,
-first-order winch, 0.2 s delay = 4 samples at 0.05 s, weights q, r, stroke/speed/command-rate
-limits and the soft tension limit, all read from that file), closed loop on the exactly sampled
-plant driven by the seeded sea. Each solver's problem is built once and warm-started; the timing
-covers the whole ``step`` (gradient/bound assembly + solve). do-mpc (optional, never a test
+Problem: example 6.3.6 of Huang (1992) as in ``problems/heave/ex_6_3_6.toml`` (plant (6.28) with
+11 states, first-order winch, 0.2 s delay = 4 samples at 0.05 s, weights q, r,
+stroke/speed/command-rate limits and the soft tension limit, all read from that file), closed
+loop on the exactly sampled plant driven by the seeded sea. Each solver's problem is built once
+and warm-started; the timing covers the whole ``step`` (gradient/bound assembly + solve), the
+first step (one-off set-up) excluded. With the file's limits and sea no limit is active after the
+first steps (not even under a 12x sea in the 15 s of a 300-step run); :data:`ACTIVE_LIMITS` with
+``sea_scale = 3`` makes every limit active on many steps (:func:`profile_daqp` counts the steps
+that change the working set). do-mpc (optional, never a test
 dependency) is given the same problem when installed: the same sampled model and stage cost
 (state, cross and input terms), DARE terminal cost, command bounds, stroke, speed and
 command-rate limits and the soft tension limit (do-mpc's soft constraints have a linear penalty
@@ -13,7 +17,10 @@ only; ours add a quadratic one).
 
 from __future__ import annotations
 
+import dataclasses
 import time
+import warnings
+from collections.abc import Callable
 from dataclasses import dataclass
 from pathlib import Path
 
@@ -45,7 +52,14 @@ def bench_settings(sc: HeaveScene, horizon: int, solver: str) -> mpc_mod.MPCSett
 
 @dataclass(frozen=True)
 class BenchRow:
-    """One timing row: solver, horizon, median and p99 step time (s), steps, failures."""
+    """One timing row: solver, horizon, median and p99 step time (s), steps, failures.
+
+    ``median_s``/``p99_s`` are wall time per step. ``cpu_median_s``/``cpu_p99_s`` are the
+    CPU time of the calling thread over the same steps (the solvers run in it; the process
+    CPU time would also count idle-spinning BLAS threads): on a shared machine a step that is
+    preempted by another process keeps its CPU time while its wall time grows by a scheduler
+    slice (milliseconds), so the CPU p99 shows the solver's own tail.
+    """
 
     solver: str
     horizon: int
@@ -54,6 +68,8 @@ class BenchRow:
     steps: int
     failures: int
     note: str = ""
+    cpu_median_s: float = float("nan")
+    cpu_p99_s: float = float("nan")
 
 
 def bench_plant(sc: HeaveScene | None = None) -> pl.HeavePlant:
@@ -67,17 +83,38 @@ def _noise(p: pl.HeavePlant, h: float, steps: int, seed: int) -> np.ndarray:
     return np.random.default_rng(seed).standard_normal((steps, p.n)) @ L.T
 
 
-def time_cas(solver: str, horizon: int, steps: int, seed: int = 0) -> BenchRow:
-    """Closed-loop timing of :class:`cable_ocp.heave.mpc.LinearMPC` with ``solver``."""
+# Limits that the 3x sea makes active (stroke via the command bounds, speed, command rate and the
+# soft tension limit), as in the equality test of the DAQP and qpOASES moves.
+ACTIVE_LIMITS = {"stroke_max": 0.2, "speed_max": 0.15, "command_rate_max": 0.01,
+                 "tension_min": 40000.0}
+
+NOTES = {"daqp": "condensed dense QP, persistent DAQP workspace",
+         "qpoases": "condensed dense QP via CasADi conic",
+         "osqp": "condensed dense QP via CasADi conic",
+         "qrqp": "condensed dense QP via CasADi conic",
+         "ipopt": "multiple shooting NLP"}
+
+
+def time_cas(solver: str, horizon: int, steps: int, seed: int = 0, sea_scale: float = 1.0,
+             overrides: dict | None = None) -> BenchRow:
+    """Closed-loop timing of :class:`cable_ocp.heave.mpc.LinearMPC` with ``solver``.
+
+    ``steps`` closed-loop steps are run; the first (one-off set-up) is left out of the median
+    and p99. ``sea_scale`` multiplies the sea's process noise (1: the scene's sea);
+    ``overrides`` replaces MPC settings (e.g. :data:`ACTIVE_LIMITS`).
+    """
     sc = bench_scene()
     p = bench_plant(sc)
-    m = mpc_mod.LinearMPC(p, sc.winch.delay, bench_settings(sc, horizon, solver))
-    w = _noise(p, sc.controller.sample_time, steps, seed)
+    st = dataclasses.replace(bench_settings(sc, horizon, solver), **(overrides or {}))
+    m = mpc_mod.LinearMPC(p, sc.winch.delay, st)
+    w = sea_scale * _noise(p, sc.controller.sample_time, steps, seed)
     z = np.zeros(m.nz)
     up = 0.0
-    ts, fails = [], 0
+    ts, cpu, fails = [], [], 0
     for k in range(steps):
+        c0 = time.thread_time()
         r = m.step(z, up)
+        cpu.append(time.thread_time() - c0)
         ts.append(r.solve_time)
         fails += not r.success
         up = r.u0
@@ -85,18 +122,113 @@ def time_cas(solver: str, horizon: int, steps: int, seed: int = 0) -> BenchRow:
         z[: p.n] += w[k]
     ts = np.array(ts[1:])  # the first call includes one-off set-up
     return BenchRow(solver, horizon, float(np.median(ts)), float(np.percentile(ts, 99)),
-                    steps, fails,
-                    "condensed dense QP" if solver != "ipopt" else "multiple shooting NLP")
+                    steps, fails, NOTES.get(solver, ""), float(np.median(cpu[1:])),
+                    float(np.percentile(cpu[1:], 99)))
+
+
+def profile_daqp(horizon: int = 50, steps: int = 300, seed: int = 0, sea_scale: float = 1.0,
+                 overrides: dict | None = None) -> dict:
+    """Where the time of a ``"daqp"`` step goes (medians over the closed loop, s).
+
+    Two runs of the same closed loop (same states: the moves agree to round-off). The first
+    times the real :meth:`LinearMPC.step` (``step``, ``step_p99``, as :func:`time_cas`). The
+    second repeats the phases of a step one by one, as ``step`` does them, and times each:
+    ``assembly`` (the one matrix-vector product with the precomputed parametric maps that gives
+    the gradient and the row offsets), then for the QP without the tension rows ``bounds`` (its
+    row bounds), ``update`` (DAQP's update of the gradient and bounds in its factored problem),
+    ``solve`` (DAQP's iterations from the previous working set) and ``check`` (the tension rows
+    at that solution); ``full`` is the whole QP with the slacks (bounds, update and solve),
+    timed over the ``full_steps`` steps that need it (a tension row binds). ``phases`` is the
+    median of the per-step sum of the phases and ``other`` = ``step`` - ``phases`` (argument
+    handling, the plan copy, the result object). Also: DAQP iterations of the reduced QP per
+    step (median, max) and the steps that changed its working set (more than one iteration).
+    """
+    sc = bench_scene()
+    p = bench_plant(sc)
+    st = dataclasses.replace(bench_settings(sc, horizon, "daqp"), **(overrides or {}))
+    ref = time_cas("daqp", horizon, steps, seed, sea_scale, overrides)
+    m = mpc_mod.LinearMPC(p, sc.winch.delay, st)
+    qp = m._daqp
+    assert qp is not None
+    two_stage = qp.reduced is not None
+    red = qp.reduced if two_stage else qp.full
+    w = sea_scale * _noise(p, sc.controller.sample_time, steps, seed)
+    nv, N = m._nv, m.N
+    mh = qp.mh if two_stage else m.Ac.shape[0]
+    nr = red.nv
+    z = np.zeros(m.nz)
+    up = 0.0
+    keys = ("assembly", "bounds", "update", "solve", "check", "full", "phases")
+    rec: dict[str, list[float]] = {k: [] for k in keys}
+    its = []
+    binding = False
+    pc = time.perf_counter
+    for k in range(steps):
+        t0 = pc()
+        v = m._Pz @ z
+        v += m._p0
+        v += up * m._Pu
+        g, c = v[:nv], v[nv:]
+        t1 = pc()
+        times = {"assembly": t1 - t0}
+        need_full = binding
+        if not binding:
+            np.subtract(red.ub0, c[:mh], out=red.bu[nr:])
+            np.subtract(red.lb0, c[:mh], out=red.bl[nr:])
+            t2 = pc()
+            red.model.update(f=g[:nr], bupper=red.bu, blower=red.bl)
+            t3 = pc()
+            x, _, _, info = red.model.solve()
+            t4 = pc()
+            if two_stage:
+                tt = qp.A_soft @ x[:N]
+                tt += c[mh:]
+                need_full = not (tt >= qp.lb_soft).all()
+            t5 = pc()
+            times.update(bounds=t2 - t1, update=t3 - t2, solve=t4 - t3, check=t5 - t4)
+            its.append(int(info["iterations"]))
+        if need_full:
+            t5 = pc()
+            x, _ = qp.full.solve(g, c)
+            times["full"] = pc() - t5
+            binding = float(np.max(x[N:])) > qp.tol
+        if k > 0:
+            for key, dt in times.items():
+                rec[key].append(dt)
+            rec["phases"].append(sum(times.values()))
+        up = float(x[0])
+        z = m.model.Ad @ z + m.model.Bd[:, 0] * up
+        z[: p.n] += w[k]
+    out = {key: float(np.median(v)) if v else 0.0 for key, v in rec.items()}
+    out["full_steps"] = len(rec["full"])
+    out["step"], out["step_p99"] = ref.median_s, ref.p99_s
+    out["other"] = out["step"] - out["phases"]
+    out["iterations_median"] = float(np.median(its[1:]))
+    out["iterations_max"] = int(np.max(its[1:]))
+    out["working_set_changes"] = int(np.sum(np.array(its[1:]) > 1))
+    out["n_variables"], out["n_rows"] = int(nv), int(m.Ac.shape[0])
+    out["n_variables_reduced"], out["n_rows_reduced"] = int(nr), int(mh)
+    return out
 
 
 def time_do_mpc(horizon: int, steps: int, seed: int = 0) -> BenchRow:
-    """The same problem in do-mpc (discrete model with the shift register, IPOPT)."""
+    """The same problem in do-mpc (discrete model with the shift register, IPOPT).
+
+    do-mpc's own warnings (optional features not installed, CasADi's notice about numpy
+    functions on CasADi values inside do-mpc) are silenced: they are not about this problem.
+    """
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore")
+        return _time_do_mpc(horizon, steps, seed)
+
+
+def _time_do_mpc(horizon: int, steps: int, seed: int) -> BenchRow:
     import casadi as cs
     import do_mpc  # optional benchmark dependency
 
     sc = bench_scene()
     p = bench_plant(sc)
-    st = bench_settings(sc, horizon, "qpoases")
+    st = bench_settings(sc, horizon, "daqp")
     ref = mpc_mod.LinearMPC(p, sc.winch.delay, st)  # sampled model, cost and terminal cost
     Ad, Bd, nz, n, d = ref.model.Ad, ref.model.Bd, ref.nz, p.n, ref.model.d
     model = do_mpc.model.Model("discrete")
@@ -139,11 +271,13 @@ def time_do_mpc(horizon: int, steps: int, seed: int = 0) -> BenchRow:
     x = np.zeros((nz, 1))
     ctl.x0 = x
     ctl.set_initial_guess()
-    ts, fails = [], 0
+    ts, cpu, fails = [], [], 0
     for k in range(steps):
+        c0 = time.thread_time()
         t0 = time.perf_counter()
         u0 = ctl.make_step(x)
         ts.append(time.perf_counter() - t0)
+        cpu.append(time.thread_time() - c0)
         fails += not bool(ctl.solver_stats.get("success", True))
         x = Ad @ x + Bd * float(u0[0, 0])
         x[:n, 0] += w[k]
@@ -151,30 +285,47 @@ def time_do_mpc(horizon: int, steps: int, seed: int = 0) -> BenchRow:
     return BenchRow("do-mpc (ipopt)", horizon, float(np.median(ts)),
                     float(np.percentile(ts, 99)), steps, fails,
                     f"do-mpc {do_mpc.__version__}, discrete model, same cost and limits "
-                    "(tension: linear penalty)")
+                    "(tension: linear penalty)", float(np.median(cpu[1:])),
+                    float(np.percentile(cpu[1:], 99)))
 
 
 def run(horizons: list[int] | tuple = (20, 50, 100), steps: int = 300,
-        solvers: list[str] | tuple = ("qpoases", "osqp", "qrqp", "ipopt"),
-        with_do_mpc: bool = True) -> list[BenchRow]:
-    """Timing rows for every solver and horizon (IPOPT and do-mpc with steps/5 steps)."""
-    rows = []
+        solvers: list[str] | tuple = mpc_mod.SOLVERS,
+        with_do_mpc: bool = True, sea_scale: float = 1.0,
+        overrides: dict | None = None,
+        progress: Callable[[int, int, BenchRow], None] | None = None) -> list[BenchRow]:
+    """Timing rows for every solver and horizon (IPOPT and do-mpc with steps/5 steps).
+
+    do-mpc's row has ``steps = 0`` and NaN times when it is not installed; it runs only on the
+    scene as it is (``sea_scale = 1``, no ``overrides``). ``progress(done, total, row)`` is
+    called after each row.
+    """
+    rows: list[BenchRow] = []
+    dompc = with_do_mpc and sea_scale == 1.0 and not overrides
+    total = len(horizons) * (len(solvers) + int(dompc))
+
+    def add(row: BenchRow) -> None:
+        rows.append(row)
+        if progress is not None:
+            progress(len(rows), total, row)
+
     for N in horizons:
         for s in solvers:
-            rows.append(time_cas(s, N, steps if s != "ipopt" else max(20, steps // 5)))
-        if with_do_mpc:
+            add(time_cas(s, N, steps if s != "ipopt" else max(20, steps // 5),
+                         sea_scale=sea_scale, overrides=overrides))
+        if dompc:
             try:
-                rows.append(time_do_mpc(N, max(20, steps // 5)))
+                add(time_do_mpc(N, max(20, steps // 5)))
             except ImportError:
-                rows.append(BenchRow("do-mpc", N, float("nan"), float("nan"), 0, 0,
-                                     "not installed (pip install do-mpc)"))
+                add(BenchRow("do-mpc", N, float("nan"), float("nan"), 0, 0,
+                             "not installed (pip install do-mpc)"))
     return rows
 
 
 def format_table(rows: list[BenchRow]) -> str:
     """Plain-text table of :func:`run`'s rows, with the speed-up over do-mpc per horizon."""
-    lines = [f"{'solver':<16} {'N':>4} {'median ms':>10} {'p99 ms':>9} {'steps':>6} "
-             f"{'fails':>6}  note"]
+    lines = [f"{'solver':<16} {'N':>4} {'median ms':>10} {'p99 ms':>9} {'cpu med':>8} "
+             f"{'cpu p99':>8} {'steps':>6} {'fails':>6}  note"]
     dom = {r.horizon: r.median_s for r in rows if r.solver.startswith("do-mpc")}
     for r in rows:
         note = r.note
@@ -183,5 +334,27 @@ def format_table(rows: list[BenchRow]) -> str:
             note += (f"; {ratio:.1f}x faster than do-mpc" if ratio >= 1
                      else f"; {1 / ratio:.1f}x slower than do-mpc")
         lines.append(f"{r.solver:<16} {r.horizon:>4} {1e3 * r.median_s:10.3f} "
-                     f"{1e3 * r.p99_s:9.3f} {r.steps:>6} {r.failures:>6}  {note}")
+                     f"{1e3 * r.p99_s:9.3f} {1e3 * r.cpu_median_s:8.3f} "
+                     f"{1e3 * r.cpu_p99_s:8.3f} {r.steps:>6} {r.failures:>6}  {note}")
+    lines.append("(ms per closed-loop step: wall time, and CPU time of the calling thread, "
+                 "which a preemption by another process does not inflate)")
     return "\n".join(lines)
+
+
+def json_data(rows: list[BenchRow]) -> dict:
+    """``{"rows": [{"solver", "horizon", "median_ms", "p99_ms", "steps", "failures"}]}``.
+
+    ``steps`` is the number of closed-loop steps run (the first, with the one-off set-up, is
+    not in the median and p99); times in ms. do-mpc is included when it is installed (its
+    placeholder row without steps is left out).
+    """
+    return {"rows": [{"solver": r.solver, "horizon": r.horizon,
+                      "median_ms": 1e3 * r.median_s, "p99_ms": 1e3 * r.p99_s,
+                      "steps": r.steps, "failures": r.failures}
+                     for r in rows if r.steps > 0]}
+
+
+def bench_json(horizons: list[int] | tuple = (20, 50, 100), steps: int = 300,
+               solvers: list[str] | tuple = mpc_mod.SOLVERS, with_do_mpc: bool = True) -> dict:
+    """Run the benchmark (:func:`run`) and return :func:`json_data` of its rows."""
+    return json_data(run(horizons, steps, solvers, with_do_mpc))

@@ -26,6 +26,7 @@ from cable_ocp.errors import CableOCPError
 _COMMAND_MODULES = [
     "cable_ocp.cli.statics",
     "cable_ocp.cli.heave",
+    "cable_ocp.cli.dynamics",
     "cable_ocp.cli.batch",
     "cable_ocp.cli.bench",
 ]

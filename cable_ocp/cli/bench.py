@@ -102,8 +102,9 @@ def register(sub: argparse._SubParsersAction, parent: argparse.ArgumentParser) -
                    help="MPC horizons in samples (default 20 50 100)")
     h.add_argument("--steps", type=int, default=300, metavar="N",
                    help="closed-loop steps per case (default 300; IPOPT and do-mpc: N/5)")
-    h.add_argument("--solvers", nargs="+", default=["qpoases", "osqp", "qrqp", "ipopt"],
-                   metavar="NAME", help="solvers to time (default qpoases osqp qrqp ipopt)")
+    h.add_argument("--solvers", nargs="+", default=["daqp", "qpoases", "osqp", "qrqp", "ipopt"],
+                   metavar="NAME",
+                   help="solvers to time (default daqp qpoases osqp qrqp ipopt)")
     h.add_argument("--no-do-mpc", action="store_true", help="skip do-mpc even if installed")
     out.add_json_option(h, "the timing rows")
     h.set_defaults(func=cmd_bench_heave)
@@ -150,8 +151,8 @@ def cmd_sweep(args: argparse.Namespace) -> int:
         from cable_ocp.plots.statics import plot_sweep
 
         out.emit_plot(args, lambda path: plot_sweep(
-            res["angles"], res["forces"], path, "psi0 [deg]", "De Zoysa: force at the buggy",
-            overlays={"solve_bvp": res["forces_bvp"]}))
+            res["angles"], res["forces"], path, "psi0 (deg)", "De Zoysa: force at the buggy",
+            overlays={"solve_bvp": res["forces_bvp"]}, name="collocation"))
     return out.EXIT_OK
 
 
@@ -295,9 +296,7 @@ def cmd_robustness(args: argparse.Namespace) -> int:
 
 def cmd_bench_heave(args: argparse.Namespace) -> int:
     """``cable-ocp bench-heave``."""
-    import dataclasses
-
-    from cable_ocp.bench.heave_mpc import format_table, run
+    from cable_ocp.bench.heave_mpc import format_table, json_data, run
 
     out.check_outputs(args)
     for n in args.horizons:
@@ -306,12 +305,19 @@ def cmd_bench_heave(args: argparse.Namespace) -> int:
                             "as N^2 in memory and N^3 in time)")
     if not 1 <= args.steps <= 100000:
         raise out_error(f"--steps {args.steps}: give 1..100000")
-    out.note(args, "bench-heave: timing every solver at every horizon (about 2 minutes) ...")
-    rows = run(horizons=args.horizons, steps=args.steps, solvers=args.solvers,
-               with_do_mpc=not args.no_do_mpc)
+    from cable_ocp.heave.mpc import SOLVERS
+
+    for s in args.solvers:
+        if s not in SOLVERS:
+            raise out_error(f"--solvers {s}: valid are {', '.join(SOLVERS)}")
+    total = len(args.horizons) * (len(args.solvers) + (0 if args.no_do_mpc else 1))
+    with out.progress(args, total, "bench-heave", "case") as bar:
+        rows = run(horizons=args.horizons, steps=args.steps, solvers=args.solvers,
+                   with_do_mpc=not args.no_do_mpc,
+                   progress=lambda done, tot, row: bar(done, tot, postfix=f"{row.solver} "
+                                                                           f"N={row.horizon}"))
     out.say(args, format_table(rows))
-    out.emit_json(args, out.envelope("ok", "benchmark completed", {
-        "rows": [dataclasses.asdict(r) for r in rows]}))
+    out.emit_json(args, out.envelope("ok", "benchmark completed", json_data(rows)))
     return out.EXIT_OK
 
 

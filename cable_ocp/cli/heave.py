@@ -131,6 +131,6 @@ def _plot(sc: Any, args: argparse.Namespace, res: Any, path: str) -> None:
         out.note(args, "trade-off plot: the scene has no delay; its delayed curves use 0.2 s, "
                        "the delay of the thesis' study (Fig. 6.17)")
     td = tradeoff_data(sc.unit.a, sc.unit.b, sc.winch.gain, tau, t, x0)
-    plot_comparison(res, path, td)
+    plot_comparison(res, path, td, scene=sc)
 
 

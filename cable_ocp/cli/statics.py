@@ -133,7 +133,8 @@ def cmd_footprint(args: argparse.Namespace) -> int:
     if args.plot and not interrupted:
         from cable_ocp.plots.statics import plot_footprint
 
-        out.emit_plot(args, lambda path: plot_footprint(res, path, _title(scene, args.file)))
+        out.emit_plot(args, lambda path: plot_footprint(res, path, _title(scene, args.file),
+                                                        scene=scene))
     if interrupted:
         raise KeyboardInterrupt
     return out.EXIT_OK if n_bad == 0 else out.EXIT_NOT_SUCCESS

@@ -1,6 +1,18 @@
 """Heave compensation of a tethered subsea unit (Huang 1992, chapter 6).
 
-Seed: ``/work/shared/seeds/004_7da4a1ee8042db40.txt`` (cited below as *004*), eqs. (6.1)-(6.35).
+Huang, S. (1992), *Analysis and control of marine cable systems*, PhD thesis, University of
+Strathclyde, chapter 6, eqs. (6.1)-(6.35) (cited as *004* in older docstrings).
+
+In a few lines::
+
+    import cable_ocp.heave as hv
+    sc = hv.load_scene("problems/heave/ex_6_3_6.toml")
+    res = hv.compare(sc, ("passive", "lqr", "mpc"))      # closed loop on one seeded sea
+    print(res.metrics["mpc"].heave_rms)
+
+    models = hv.build_models(sc)                           # spectrum, filter, plant (6.28)
+    mpc = hv.LinearMPC(models.plant, sc.winch.delay, hv.settings_from_scene(sc))
+    step = mpc.step(z0)                                    # z0: plant state + buffered commands
 
 Modules
 -------
@@ -11,5 +23,30 @@ lqr         LQR designs with the delay handled three ways, delay margins, indice
 stochastic  Lyapunov (6.31) and spectral (6.33)-(6.35) variances, LQG, winch-gain study (6.3.5)
 mpc         condensed linear MPC (CasADi ``conic``) and nonlinear MPC (IPOPT), built once
 simulate    closed-loop simulation on one seeded wave realisation, metrics
-scene       heave TOML schema -> frozen dataclasses
+(the scene schema lives in :mod:`cable_ocp.scene.heave`)
 """
+
+from cable_ocp.heave.lqr import LQRDesign, design_lqr, regulator_plant
+from cable_ocp.heave.mpc import LinearMPC, MPCSettings, MPCStep, settings_from_scene
+from cable_ocp.heave.plant import HeavePlant, assemble_plant
+from cable_ocp.heave.simulate import Comparison, Metrics, build_models, compare
+from cable_ocp.scene.heave import HeaveScene, load_scene, scene_from_dict
+
+__all__ = [
+    "Comparison",
+    "HeavePlant",
+    "HeaveScene",
+    "LQRDesign",
+    "LinearMPC",
+    "MPCSettings",
+    "MPCStep",
+    "Metrics",
+    "assemble_plant",
+    "build_models",
+    "compare",
+    "design_lqr",
+    "load_scene",
+    "regulator_plant",
+    "scene_from_dict",
+    "settings_from_scene",
+]

@@ -6,14 +6,13 @@ from __future__ import annotations
 from pathlib import Path
 from typing import Any
 
-import matplotlib
+import numpy as np
+from matplotlib.figure import Figure
 
-matplotlib.use("Agg")
-import matplotlib.pyplot as plt  # noqa: E402
-import numpy as np  # noqa: E402
+from cable_ocp.plots.common import legend_below, new_figure, save
 
 
-def plot_batch(res: Any, column: str, path: str | Path, title: str = "") -> plt.Figure:
+def plot_batch(res: Any, column: str, path: str | Path, title: str = "") -> Figure:
     """Plot ``column`` of a :class:`cable_ocp.batch.BatchResult` against its swept keys.
 
     One swept key: the output against it, with the cases that are not a success marked by
@@ -23,7 +22,8 @@ def plot_batch(res: Any, column: str, path: str | Path, title: str = "") -> plt.
     keys = [k for k in res.inputs if len({r.get(k) for r in res.rows}) > 1] or res.inputs
     ok = np.array([r["status"] == "solved" for r in res.rows])
     y = res.column(column)
-    fig, ax = plt.subplots(figsize=(7.5, 4.8))
+    fig = new_figure(7.5, 5.0)
+    ax = fig.subplots()
     if len(keys) == 1:
         x = res.column(keys[0])
         order = np.argsort(x)
@@ -32,8 +32,8 @@ def plot_batch(res: Any, column: str, path: str | Path, title: str = "") -> plt.
             m = np.array([r["status"] == st for r in res.rows])
             ax.plot(x[m], y[m], "x", ms=7, label=st)
         ax.set_xlabel(keys[0])
-        ax.set_ylabel(column)
-        ax.legend(loc="upper left", bbox_to_anchor=(1.01, 1.0), fontsize=8, frameon=False)
+        ax.set_ylabel(_label(column))
+        legend_below(fig, ax.get_lines())
     else:
         kx, ky = keys[0], keys[1]
         xs = sorted({r[kx] for r in res.rows})
@@ -44,7 +44,7 @@ def plot_batch(res: Any, column: str, path: str | Path, title: str = "") -> plt.
                 grid[ys.index(r[ky]), xs.index(r[kx])] = v
         mesh = ax.pcolormesh(_edges(np.asarray(xs, float)), _edges(np.asarray(ys, float)),
                              np.ma.masked_invalid(grid), shading="flat")
-        fig.colorbar(mesh, ax=ax, label=column)
+        fig.colorbar(mesh, ax=ax, label=_label(column))
         ax.set_xlabel(kx)
         ax.set_ylabel(ky)
         if (~ok).any():
@@ -54,10 +54,13 @@ def plot_batch(res: Any, column: str, path: str | Path, title: str = "") -> plt.
     extra = f" (only the first two of {len(keys)} swept keys)" if len(keys) > 2 else ""
     ax.set_title(f"{title}: {column}{extra}" if title else column + extra, fontsize=10)
     ax.grid(True, alpha=0.3)
-    fig.tight_layout()
-    fig.savefig(path, dpi=110)
-    plt.close(fig)
+    save(fig, path)
     return fig
+
+
+def _label(column: str) -> str:
+    """``name [unit]`` -> ``name (unit)``, the figures' way of writing units."""
+    return column.replace(" [", " (").replace("]", ")") if column.endswith("]") else column
 
 
 def _edges(v: np.ndarray) -> np.ndarray:

@@ -1,55 +1,288 @@
-"""Figures for heave results: spectra (Fig. 6.21), time series (Figs. 6.22-6.24), trade-off
-curves (Figs. 6.18-6.19). Returns/saves matplotlib figures; no computation beyond plotting."""
+"""Figures for heave-compensation results (Huang 1992, ch. 6).
+
+:func:`plot_comparison` draws one closed-loop comparison: the sea spectrum and its shaping
+filter, the boom-tip and passive unit heave, the controlled unit heave (one strip per
+controller, each on its own scale: the controlled heave is three orders of magnitude below
+the passive one), the running RMS of the unit heave on a log scale, the winch stroke and
+speed against their limits, and the trade-off curves. The simulation's warm-up, which the
+metrics leave out, is shaded. Panel titles say what is drawn in words and cite the thesis
+figure it corresponds to, when the scene is one of the thesis' examples.
+"""
 
 from __future__ import annotations
 
+import math
+import re
 from pathlib import Path
+from typing import Any
 
-import matplotlib
+import numpy as np
+from matplotlib.axes import Axes
+from matplotlib.figure import Figure
 
-matplotlib.use("Agg")
-import matplotlib.pyplot as plt  # noqa: E402
-import numpy as np  # noqa: E402
+from cable_ocp.heave.sea import filter_spectrum
+from cable_ocp.heave.simulate import Comparison
+from cable_ocp.plots.common import (
+    legend_below,
+    new_figure,
+    plain_log_ticks,
+    save,
+    shade,
+    wrap,
+)
 
-from cable_ocp.heave.sea import filter_spectrum  # noqa: E402
-from cable_ocp.heave.simulate import Comparison  # noqa: E402
+#: thesis figures that correspond to the panels, by section of Huang (1992), ch. 6
+THESIS_FIGURES: dict[str, dict[str, str]] = {
+    "6.2.6": {
+        "spectrum": "cf. Huang 1992, Fig. 6.10",
+        "passive": "cf. Huang 1992, Figs. 6.14 and 6.17",
+        "controlled": "cf. Huang 1992, Figs. 6.15-6.17",
+        "tradeoff_d": "cf. Huang 1992, Fig. 6.18",
+        "tradeoff_v": "cf. Huang 1992, Fig. 6.19",
+    },
+    "6.3.6": {
+        "spectrum": "cf. Huang 1992, Fig. 6.21",
+        "passive": "cf. Huang 1992, Figs. 6.22-6.23",
+        "controlled": "cf. Huang 1992, Fig. 6.24",
+        "tradeoff_d": "method of Huang 1992, Fig. 6.18",
+        "tradeoff_v": "method of Huang 1992, Fig. 6.19",
+    },
+}
+
+CONTROLLER_STYLE: dict[str, dict[str, Any]] = {
+    "passive": {"color": "0.35", "ls": "-"},
+    "lqr": {"color": "#1f77b4", "ls": "-"},
+    "lqg": {"color": "#ff7f0e", "ls": "-"},
+    "mpc": {"color": "#2ca02c", "ls": "--"},
+}
+BOOM_STYLE = {"color": "#9ecae1", "ls": "-"}
+LIMIT_STYLE = {"color": "#d62728", "ls": "--", "lw": 1.2, "gid": "limit"}
 
 
-def plot_comparison(res: Comparison, path: str | Path, tradeoff: dict | None = None) -> None:
-    """Save a 2x3 figure: spectrum and fit (Fig. 6.21), boom tip and unit heave, winch output
-    and winch speed (Figs. 6.22-6.24), and, if ``tradeoff`` (from :func:`tradeoff_data`), J_d
-    and J_v against the winch-speed energy J_w (Figs. 6.18 and 6.19)."""
-    fig, ax = plt.subplots(2, 3, figsize=(16, 8))
+def references_for(scene: Any) -> dict[str, str]:
+    """The thesis figures of :data:`THESIS_FIGURES` for a heave scene whose ``[meta]``
+    (title or source) names section 6.2.6 or 6.3.6; empty otherwise."""
+    meta = getattr(scene, "meta", None) or {}
+    text = " ".join(str(meta.get(k, "")) for k in ("title", "source"))
+    text += " " + str(getattr(scene, "title", "") or "")
+    for section, refs in THESIS_FIGURES.items():
+        if re.search(re.escape(section) + r"(?!\d)", text):
+            return dict(refs)
+    return {}
+
+
+def _title(words: str, refs: dict[str, str], key: str) -> str:
+    """A panel title in words, with the thesis figure when there is one (wrapped)."""
+    return wrap(f"{words} ({refs[key]})" if key in refs else words, 6.6, 10)
+
+
+def _name(name: str) -> str:
+    return "passive" if name == "passive" else name.upper()
+
+
+def running_rms(t: np.ndarray, x: np.ndarray, window: float) -> tuple[np.ndarray, np.ndarray]:
+    """RMS of ``x`` over the trailing ``window`` seconds, from ``t[0] + window`` on."""
+    t, x = np.asarray(t, float), np.asarray(x, float)
+    dt = float(np.median(np.diff(t)))
+    n = max(1, int(round(window / dt)))
+    if n >= len(x):
+        return t[-1:], np.array([math.sqrt(float(np.mean(x * x)))])
+    c = np.concatenate([[0.0], np.cumsum(x * x)])
+    ms = (c[n:] - c[:-n]) / n
+    return t[n - 1:], np.sqrt(np.maximum(ms, 0.0))
+
+
+def _time_axes(ax: Axes, t: np.ndarray, warmup: float, handles: list[Any]) -> None:
+    if warmup > 0:
+        handles.append(shade(ax, float(t[0]), min(warmup, float(t[-1])),
+                             f"warm-up, first {warmup:g} s (left out of the metrics)"))
+    ax.set_xlim(float(t[0]), float(t[-1]))
+    ax.grid(True, alpha=0.3)
+
+
+def _limit_lines(ax: Axes, value: float | None, label: str, handles: list[Any]) -> None:
+    if value is None or not math.isfinite(value):
+        return
+    h = ax.axhline(value, label=label, **LIMIT_STYLE)
+    ax.axhline(-value, **LIMIT_STYLE)
+    handles.append(h)
+
+
+def comparison_figure(res: Comparison, tradeoff: dict | None = None, scene: Any = None,
+                      references: dict[str, str] | None = None) -> Figure:
+    """Build (without saving) the figure of :func:`plot_comparison`.
+
+    Its axes are labelled ``"spectrum"``, ``"passive"``, ``"controlled <name>"`` (one per
+    controller), ``"rms"``, ``"stroke"``, ``"speed"`` and, with ``tradeoff``,
+    ``"tradeoff_d"`` and ``"tradeoff_v"``.
+    """
+    refs = references_for(scene) if references is None else references
+    warmup = float(scene.simulation.warmup) if scene is not None else 0.0
+    winch = scene.winch if scene is not None else None
+    traces = res.traces
+    controlled = [k for k in traces if k != "passive"]
+    first = next(iter(traces.values()))
+    t = first.t
+    rows = 4 if tradeoff else 3
+    fig = new_figure(13.5, 4.0 * rows + 1.6)
+    gs = fig.add_gridspec(rows, 2)
+    handles: list[Any] = []
+
+    # sea spectrum and its shaping filter
+    ax = fig.add_subplot(gs[0, 0], label="spectrum")
     spec = res.models.spectrum
     w = np.linspace(0.02, 5 * spec.omega_m, 600)
-    ax[0, 0].plot(w, spec(w), label=f"{spec.kind} (Hs = {spec.hs:g} m)")
-    ax[0, 0].plot(w, filter_spectrum(res.models.filter_fit.filter, w),
-                  label=f"shaping filter (L2 err {res.models.filter_fit.spectral_error:.2f})")
-    ax[0, 0].set(xlabel="omega (rad/s)", ylabel="S (m^2 s/rad)", title="Sea spectrum (6.20)-(6.21)")
-    ax[0, 0].legend()
-    for name, tr in res.traces.items():
-        if name == "passive":
-            ax[0, 1].plot(tr.t, tr.x0, color="0.6", lw=0.8, label="boom tip x0")
-        ax[0, 1].plot(tr.t, tr.x, lw=0.8, label=f"unit x, {name}")
-        if name != "passive":
-            ax[1, 0].plot(tr.t, tr.u, lw=0.8, label=f"winch u, {name}")
-            ax[0, 2].plot(tr.t, tr.u_dot, lw=0.8, label=f"winch u', {name}")
-    ax[0, 1].set(xlabel="t (s)", ylabel="heave (m)", title="Time series")
-    ax[0, 1].legend(fontsize=7)
-    ax[1, 0].set(xlabel="t (s)", ylabel="u (m)", title="Winch output")
-    ax[1, 0].legend(fontsize=7)
-    ax[0, 2].set(xlabel="t (s)", ylabel="u' (m/s)", title="Winch speed")
-    ax[0, 2].legend(fontsize=7)
+    kind = spec.kind.replace("_", "-").title()
+    handles += ax.plot(w, spec(w), color="k", lw=1.8,
+                       label=f"sea spectrum: {kind}, Hs = {spec.hs:g} m, "
+                             f"omega_m = {spec.omega_m:.3g} rad/s")
+    fit = res.models.filter_fit
+    handles += ax.plot(w, filter_spectrum(fit.filter, w), color="#9467bd", lw=1.5, ls="--",
+                       label=f"shaping filter (spectral error {fit.spectral_error:.2f}, "
+                             f"variance error {100 * fit.variance_error:+.1f} %)")
+    ax.set_xlim(0.0, float(w[-1]))
+    ax.set_ylim(bottom=0.0)
+    ax.set(xlabel="wave frequency omega (rad/s)", ylabel="spectral density S (m² s/rad)")
+    ax.grid(True, alpha=0.3)
+    ax.set_title(_title("Sea spectrum and its shaping filter", refs, "spectrum"), fontsize=10)
+
+    # boom tip and passive unit heave
+    ax = fig.add_subplot(gs[0, 1], label="passive")
+    _time_axes(ax, t, warmup, handles)
+    handles += ax.plot(t, first.x0, lw=0.9, label="boom-tip heave x0", **BOOM_STYLE)
+    if "passive" in traces:
+        m = res.metrics["passive"]
+        handles += ax.plot(t, traces["passive"].x, lw=0.9,
+                           label=f"unit heave, passive (rms {m.heave_rms:.3g} m)",
+                           **CONTROLLER_STYLE["passive"])
+    ax.set(xlabel="time t (s)", ylabel="heave (m)")
+    ax.set_title(_title("Boom-tip heave and unit heave without control", refs, "passive"),
+                 fontsize=10)
+
+    # controlled unit heave: one strip per controller, each on its own scale (mm)
+    if not controlled:
+        ax = fig.add_subplot(gs[1, 0], label="controlled")
+        ax.axis("off")
+        ax.text(0.5, 0.5, "no controller ran (passive only)", ha="center", va="center",
+                fontsize=11, transform=ax.transAxes)
+    strips = gs[1, 0].subgridspec(max(len(controlled), 1), 1, hspace=0.0)
+    for i, name in enumerate(controlled):
+        ax = fig.add_subplot(strips[i, 0], label=f"controlled {name}")
+        _time_axes(ax, t, warmup, handles)
+        m = res.metrics[name]
+        handles += ax.plot(t, traces[name].x * 1e3, lw=0.8,
+                           label=f"unit heave, {_name(name)} (rms {m.heave_rms:.3g} m)",
+                           **CONTROLLER_STYLE.get(name, {}))
+        after = t >= warmup
+        if warmup > 0 and after.sum() > 1:  # fit the scale to the measured part
+            peak = float(np.max(np.abs(traces[name].x[after]))) * 1e3
+            if math.isfinite(peak) and peak > 0:
+                ax.set_ylim(-1.15 * peak, 1.15 * peak)
+        ax.set_ylabel(f"{_name(name)} (mm)", fontsize=9)
+        ax.tick_params(labelsize=8)
+        if i == 0:
+            ax.set_title(_title("Unit heave with control, each on its own scale (fitted "
+                                "after the warm-up)", refs, "controlled"), fontsize=10)
+        if i < len(controlled) - 1:
+            ax.tick_params(labelbottom=False)
+        else:
+            ax.set_xlabel("time t (s)")
+
+    # running RMS, log scale: every controller on one axis
+    ax = fig.add_subplot(gs[1, 1], label="rms")
+    _time_axes(ax, t, warmup, handles)
+    window = min(30.0, 0.2 * float(t[-1] - t[0]))
+    for name, tr in traces.items():
+        tt, rms = running_rms(tr.t, tr.x, window)
+        ax.semilogy(tt, rms, lw=1.4, **CONTROLLER_STYLE.get(name, {}))
+    tt, rms = running_rms(t, first.x0, window)
+    ax.semilogy(tt, rms, lw=1.2, **BOOM_STYLE)
+    sig = float(res.sigma_uncontrolled)
+    if math.isfinite(sig) and sig > 0:
+        handles.append(ax.axhline(sig, color="k", ls=":", lw=1.2,
+                                  label=f"unit heave std without control, Lyapunov "
+                                        f"({sig:.3g} m)"))
+    ax.set(xlabel="time t (s)", ylabel=f"running RMS over {window:g} s (m)")
+    ax.grid(True, which="both", alpha=0.25)
+    ax.set_title("Running RMS of the unit heave (log scale)", fontsize=10)
+
+    # winch stroke and speed against their limits
+    ax_u = fig.add_subplot(gs[2, 0], label="stroke")
+    ax_v = fig.add_subplot(gs[2, 1], label="speed")
+    for a in (ax_u, ax_v):
+        _time_axes(a, t, warmup, handles)
+    for name in controlled:
+        tr = traces[name]
+        style = CONTROLLER_STYLE.get(name, {})
+        ax_u.plot(t, tr.u, lw=0.8, **style)
+        ax_v.plot(t, tr.u_dot, lw=0.8, **style)
+    _limit_lines(ax_u, getattr(winch, "stroke_max", None), "winch limits (stroke, speed)",
+                 handles)
+    _limit_lines(ax_v, getattr(winch, "speed_max", None), "winch limits (stroke, speed)",
+                 handles)
+    ax_u.set(xlabel="time t (s)", ylabel="winch output u (m)")
+    ax_v.set(xlabel="time t (s)", ylabel="winch speed u' (m/s)")
+    su = getattr(winch, "stroke_max", None)
+    sv = getattr(winch, "speed_max", None)
+    ax_u.set_title("Winch stroke" + (f" (limit ±{su:g} m)" if su else ""), fontsize=10)
+    ax_v.set_title("Winch speed" + (f" (limit ±{sv:g} m/s)" if sv else ""), fontsize=10)
+
+    # trade-off curves
     if tradeoff:
-        for label, arr in tradeoff.items():
+        ax_d = fig.add_subplot(gs[3, 0], label="tradeoff_d")
+        ax_j = fig.add_subplot(gs[3, 1], label="tradeoff_v")
+        markers = ["o", "s", "^", "D", "v"]
+        for k, (label, arr) in enumerate(tradeoff.items()):
+            arr = np.asarray(arr)
             if arr.size:
-                ax[1, 1].loglog(arr[:, 0], arr[:, 1], "o-", label=label)
-                ax[1, 2].loglog(arr[:, 0], arr[:, 2], "o-", label=label)
-        ax[1, 1].set(xlabel="J_w = int u'^2 dt (m^2/s)", ylabel="J_d (m^2 s) (6.16)",
-                     title="Trade-off (Fig. 6.18)")
-        ax[1, 2].set(xlabel="J_w = int u'^2 dt (m^2/s)", ylabel="J_v (m^2/s) (6.17)",
-                     title="Trade-off (Fig. 6.19)")
-        ax[1, 1].legend(fontsize=7)
-    fig.tight_layout()
-    fig.savefig(path, dpi=110)
-    plt.close(fig)
+                style = {"marker": markers[k % len(markers)], "ms": 5, "color": f"C{k + 3}"}
+                handles += ax_d.loglog(arr[:, 0], arr[:, 1], "-", label=f"LQR design, {label}",
+                                       **style)
+                ax_j.loglog(arr[:, 0], arr[:, 2], "-", **style)
+        xl = "winch-speed energy J_w = ∫ u'² dt (m²/s)"
+        ax_d.set(xlabel=xl, ylabel="displacement index J_d = ∫ x² dt (m² s)")
+        ax_j.set(xlabel=xl, ylabel="velocity index J_v = ∫ x'² dt (m²/s)")
+        for a in (ax_d, ax_j):
+            a.grid(True, which="both", alpha=0.25)
+            plain_log_ticks(a, "x")
+        ax_d.set_title(_title("Trade-off: unit displacement against winch effort", refs,
+                              "tradeoff_d"), fontsize=10)
+        ax_j.set_title(_title("Trade-off: unit velocity against winch effort", refs,
+                              "tradeoff_v"), fontsize=10)
+
+    title = getattr(scene, "title", "") if scene is not None else ""
+    if scene is not None and not title:
+        title = (getattr(scene, "meta", None) or {}).get("title", "")
+    sub = ("unit heave rms: " + ", ".join(f"{_name(k)} {m.heave_rms:.3g} m"
+                                          for k, m in res.metrics.items()))
+    fig.suptitle((f"{title}\n" if title else "") + sub, fontsize=11)
+    legend_below(fig, handles, ncols=3)
+    return fig
+
+
+def plot_comparison(res: Comparison, path: str | Path, tradeoff: dict | None = None,
+                    scene: Any = None, references: dict[str, str] | None = None) -> Figure:
+    """Save the comparison figure of one heave simulation to ``path``.
+
+    Parameters
+    ----------
+    res : Comparison
+        The result of :func:`cable_ocp.heave.simulate.compare`.
+    path : str or Path
+        Output file; the format follows the suffix.
+    tradeoff : dict, optional
+        Trade-off data from :func:`cable_ocp.heave.lqr.tradeoff_data` (two more panels).
+    scene : HeaveScene, optional
+        The scene: its title, warm-up (shaded) and winch limits (drawn as lines).
+    references : dict, optional
+        Thesis figure per panel (keys as in :data:`THESIS_FIGURES`); by default those of
+        the thesis section the scene's ``[meta]`` names, if any.
+
+    Returns
+    -------
+    matplotlib.figure.Figure
+        The saved figure (see :func:`comparison_figure` for its axes' labels).
+    """
+    fig = comparison_figure(res, tradeoff, scene, references)
+    save(fig, path)
+    return fig

@@ -20,7 +20,7 @@ from cable_ocp.errors import CableOCPError
 COMMANDS = {"statics": "cable-ocp solve", "heave": "cable-ocp heave",
             "dynamics": "cable-ocp simulate"}
 _HEAVE_TABLES = {"sea", "vessel", "winch", "controller"}
-_DYNAMICS_TABLES = {"top_motion", "simulation", "unit"}
+_DYNAMICS_TABLES = {"top_motion", "simulation", "unit", "modes"}
 
 
 def read_problem(path: str | Path) -> dict[str, Any]:

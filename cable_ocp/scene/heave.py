@@ -45,7 +45,7 @@ Schema (SI units; see ``problems/heave/*.toml`` for commented examples)::
     r = 1.0                              # 1/m^2, weight on the command
     horizon = 50
     sample_time = 0.05                   # s
-    solver = "qpoases" | "osqp" | "qrqp" | "ipopt"
+    solver = "daqp" | "qpoases" | "osqp" | "qrqp" | "ipopt"
     preview_time = 0.0                   # s
     measurement_noise = 0.01             # m, std of the sampled position sensor (LQG)
     controllers = ["passive", "lqr", "lqg", "mpc"]
@@ -131,7 +131,7 @@ class ControllerSpec:
     r: float = 1.0
     horizon: int = 50
     sample_time: float = 0.05
-    solver: str = "qpoases"
+    solver: str = "daqp"
     terminal: str = "dare"
     preview_time: float = 0.0
     measurement_noise: float = 0.01
@@ -178,7 +178,7 @@ _CHOICES = {
     ("vessel", "model"): ("second_order", "none"),
     ("winch", "model"): ("first_order", "second_order"),
     ("unit", "model"): ("linear", "quadratic"),
-    ("controller", "solver"): ("qpoases", "osqp", "qrqp", "ipopt"),
+    ("controller", "solver"): ("daqp", "qpoases", "osqp", "qrqp", "ipopt"),
     ("controller", "terminal"): ("dare", "none"),
 }
 _CONTROLLERS = ("passive", "lqr", "lqg", "mpc")

@@ -1,0 +1,219 @@
+"""``cable-ocp simulate`` and ``cable-ocp modes``: cable dynamics (parse, call, format)."""
+
+from __future__ import annotations
+
+import argparse
+import re
+from pathlib import Path
+from typing import Any
+
+import numpy as np
+
+from cable_ocp.cli import output as out
+from cable_ocp.errors import CableOCPError
+
+
+def register(sub: argparse._SubParsersAction, parent: argparse.ArgumentParser) -> None:
+    """Add ``simulate`` and ``modes``."""
+    s = sub.add_parser(
+        "simulate", parents=[parent],
+        help="cable dynamics in the time domain: axial, planar or 3D lumped-mass "
+             "(Huang 1992, ch. 3-5)",
+        description="Simulate a dynamic scene from its static state: top heave, horizontal or "
+                    "circular motion, a towing path, pay-out or haul-in; report the top "
+                    "tension, the unit's motion, the smallest tension and slack (where and "
+                    "when). Exit 0 solved, 1 slack or a numerical failure (the JSON status "
+                    "says which), 2 invalid input.")
+    s.add_argument("file", help="dynamic scene (UTF-8 TOML), e.g. "
+                                "problems/dynamics/huang_3_3_5.toml")
+    out.add_set_option(s)
+    out.add_json_option(s, "the time series (t, length, top and unit positions, top "
+                           "tension) and the slack report")
+    out.add_csv_option(s, "the node positions and element tensions over time")
+    out.add_plot_option(s, "the unit trajectory, the tension envelope along the cable and "
+                           "top against unit heave")
+    s.add_argument("--netcdf", metavar="PATH",
+                   help="write the full time series as netCDF (needs xarray and netCDF4 or "
+                        "scipy's netCDF3 writer)")
+    s.set_defaults(func=cmd_simulate)
+
+    m = sub.add_parser(
+        "modes", parents=[parent],
+        help="natural frequencies and mode shapes about the static state",
+        description="Linearise the scene's model ([simulation] model: axial or lumped3d) "
+                    "about its static state and solve for the natural frequencies and mode "
+                    "shapes. With --lengths, the frequencies against paid-out length: a "
+                    "deployment resonance chart with the wave band shaded.")
+    m.add_argument("file", help="dynamic scene (UTF-8 TOML)")
+    m.add_argument("--count", type=int, metavar="N",
+                   help="number of modes (default [modes] count of the file)")
+    m.add_argument("--lengths", metavar="START:STOP:N",
+                   help="unstretched lengths in m, N of them evenly spaced, for the "
+                        "deployment chart")
+    out.add_set_option(m)
+    out.add_json_option(m, "the modes ({\"modes\": [{\"frequency_rad_s\", \"period_s\", "
+                           "\"shape\"}]}) or the chart")
+    out.add_csv_option(m, "the frequencies (and the chart's rows with --lengths)")
+    out.add_plot_option(m, "the mode shapes, or the deployment chart with --lengths")
+    m.set_defaults(func=cmd_modes)
+
+
+def _load(args: argparse.Namespace) -> Any:
+    from cable_ocp.dynamics.scene import load_dynamic_scene
+
+    return load_dynamic_scene(args.file, out.overrides(args))
+
+
+def cmd_simulate(args: argparse.Namespace) -> int:
+    """``cable-ocp simulate FILE``."""
+    from cable_ocp.dynamics.simulate import simulate
+
+    out.check_outputs(args)
+    out.check_output_path(args.netcdf, "--netcdf", allow_stdout=False)
+    if args.netcdf:
+        try:
+            import xarray  # noqa: F401
+        except ImportError:
+            raise CableOCPError("--netcdf needs xarray: pip install xarray") from None
+    scene = _load(args)
+    with out.progress(args, 1, f"simulate ({scene.simulation.model})", "step") as bar:
+        res = simulate(scene, progress=lambda done, total: bar(done, total))
+    title = scene.statics.meta.get("title", Path(args.file).stem)
+    data = res.to_dict()
+    if out.stdout_free(args):
+        t = res.t
+        rows = [
+            ("status", f"{res.status}: {res.message}"),
+            ("model, scheme", f"{res.model}, {res.scheme}"),
+            ("simulated", f"{t[-1] - t[0]:.4g} s in {len(t)} samples"),
+            ("wall time", f"{res.wall_time_s:.3g} s "
+                          f"({res.wall_time_s / max(t[-1] - t[0], 1e-12):.3g} s per simulated s)"),
+            ("length", f"{res.length[0]:.4f} -> {res.length[-1]:.4f} m (unstretched)"),
+            ("top tension", f"{np.nanmin(res.top_tension):.6g} .. "
+                            f"{np.nanmax(res.top_tension):.6g} N"),
+            ("smallest tension", f"{res.min_tension:.6g} N"),
+            ("unit heave", f"{np.nanmin(res.unit_position[:, 2]):.6g} .. "
+                           f"{np.nanmax(res.unit_position[:, 2]):.6g} m (z)"),
+            ("slack", _slack_text(res.slack)),
+        ]
+        rows += [("WARNING", w) for w in res.warnings]
+        width = max(len(k) for k, _ in rows)
+        print(title)
+        print("\n".join(f"{k:<{width}}  {v}" for k, v in rows))
+    out.emit_json(args, out.envelope(res.status, res.message, data, res.warnings))
+    if args.csv:
+        out.emit_csv(args, *_series_table(res))
+    if args.netcdf:
+        _write_netcdf(res, args.netcdf)
+        out.confirm(args, args.netcdf, "netCDF")
+    if args.plot:
+        from cable_ocp.plots.dynamics import plot_simulation
+
+        out.emit_plot(args, lambda path: plot_simulation(res, path, title=title, scene=scene))
+    return out.EXIT_OK if res.success else out.EXIT_NOT_SUCCESS
+
+
+def _slack_text(slack: dict[str, Any]) -> str:
+    if not slack.get("occurred"):
+        return "none"
+    loc = slack.get("location")
+    where = (f", at s = {loc:.4g} m from end_a" if isinstance(loc, (int, float))
+             else f", {loc}" if loc is not None else "")
+    return f"first at t = {slack.get('first_time'):.4g} s{where}"
+
+
+def _series_table(res: Any) -> tuple[list[str], list[list[float]]]:
+    """One row per sample: t, length, top and unit positions, top tension, then every node's
+    x, y, z and every element's tension."""
+    n_nodes = res.node_positions.shape[1]
+    header = ["t [s]", "length [m]", "top_x [m]", "top_y [m]", "top_z [m]", "unit_x [m]",
+              "unit_y [m]", "unit_z [m]", "top_tension [N]"]
+    header += [f"node{i}_{c} [m]" for i in range(n_nodes) for c in "xyz"]
+    header += [f"element{i}_tension [N]" for i in range(res.segment_tensions.shape[1])]
+    cols = [res.t[:, None], res.length[:, None], res.top_position, res.unit_position,
+            res.top_tension[:, None], res.node_positions.reshape(len(res.t), -1),
+            res.segment_tensions]
+    return header, np.hstack(cols).tolist()
+
+
+def _write_netcdf(res: Any, path: str) -> None:
+    import xarray as xr
+
+    n_nodes = res.node_positions.shape[1]
+    ds = xr.Dataset(
+        {"length": ("time", res.length, {"units": "m", "long_name": "unstretched length"}),
+         "top_position": (("time", "xyz"), res.top_position, {"units": "m"}),
+         "unit_position": (("time", "xyz"), res.unit_position, {"units": "m"}),
+         "top_tension": ("time", res.top_tension, {"units": "N"}),
+         "node_position": (("time", "node", "xyz"), res.node_positions, {"units": "m"}),
+         "element_tension": (("time", "element"), res.segment_tensions, {"units": "N"})},
+        coords={"time": ("time", res.t, {"units": "s"}), "xyz": ["x", "y", "z"],
+                "node": np.arange(n_nodes), "element": np.arange(n_nodes - 1)},
+        attrs={"model": res.model, "status": res.status, "message": res.message,
+               "conventions": "z up; end_a = node 0 (unit), end_b = last node (ship)"})
+    ds.to_netcdf(path)
+
+
+def _parse_lengths(text: str) -> np.ndarray:
+    m = re.fullmatch(r"\s*([^:]+):([^:]+):([^:]+)\s*", text)
+    try:
+        start, stop, n = (float(m.group(1)), float(m.group(2)),  # type: ignore[union-attr]
+                          int(m.group(3)))  # type: ignore[union-attr]
+    except (AttributeError, ValueError):
+        raise CableOCPError(f"--lengths {text!r}: expected START:STOP:N, e.g. 100:1000:46"
+                            ) from None
+    if not (np.isfinite(start) and np.isfinite(stop) and 0 < start and 0 < stop
+            and 1 <= n <= 2000):
+        raise CableOCPError(f"--lengths {text!r}: lengths > 0 m and N in 1..2000")
+    return np.linspace(start, stop, n)
+
+
+def cmd_modes(args: argparse.Namespace) -> int:
+    """``cable-ocp modes FILE``."""
+    from cable_ocp import report
+    from cable_ocp.dynamics.modes import modes
+
+    out.check_outputs(args)
+    if args.count is not None and not 1 <= args.count <= 200:
+        raise CableOCPError(f"--count {args.count}: give 1..200")
+    lengths = _parse_lengths(args.lengths) if args.lengths else None
+    scene = _load(args)
+    title = scene.statics.meta.get("title", Path(args.file).stem)
+    if lengths is not None:
+        out.note(args, f"modes: {len(lengths)} lengths, one static solve and eigenproblem "
+                       "each ...")
+    res = modes(scene, args.count, lengths)
+    data = res.to_dict()
+    if lengths is None:
+        rows = [[k + 1, f"{w:.6g}", f"{w / (2 * np.pi):.6g}", f"{p:.6g}"]
+                for k, (w, p) in enumerate(zip(res.frequencies, res.periods, strict=True))]
+        out.say(args, f"{title}: {res.model} model, {res.status}"
+                      + (f" ({res.message})" if res.message else ""))
+        out.say(args, report.table(["mode", "omega [rad/s]", "f [Hz]", "period [s]"], rows))
+        out.emit_csv(args, ["mode", "frequency [rad/s]", "frequency [Hz]", "period [s]"],
+                     [[k + 1, w, w / (2 * np.pi), p] for k, (w, p) in
+                      enumerate(zip(res.frequencies, res.periods, strict=True))])
+    else:
+        n = res.frequencies.shape[1]
+        out.say(args, f"{title}: {res.model} model, natural frequencies (rad/s) against "
+                      f"length; wave band {res.wave_band[0]:.4g}..{res.wave_band[1]:.4g} rad/s")
+        out.say(args, report.table(["length [m]"] + [f"mode {k + 1} [rad/s]" for k in range(n)],
+                                   [[f"{L:.4g}"] + ["-" if not np.isfinite(w) else f"{w:.5g}"
+                                                    for w in row]
+                                    for L, row in zip(res.lengths, res.frequencies,
+                                                      strict=True)]))
+        cross = res.crossings()
+        out.say(args, "crossings of the wave band: " + (", ".join(
+            f"mode {c['mode'] + 1} at {c['length_m']:.1f} m ({c['edge']:.3g} rad/s)"
+            for c in cross) if cross else "none"))
+        out.emit_csv(args, ["length [m]"] + [f"mode{k + 1} [rad/s]" for k in range(n)],
+                     [[L, *row] for L, row in zip(res.lengths, res.frequencies, strict=True)])
+    out.emit_json(args, out.envelope(res.status, res.message or res.status, data))
+    if args.plot:
+        from cable_ocp.plots.dynamics import plot_deployment, plot_modes
+
+        if lengths is None:
+            out.emit_plot(args, lambda path: plot_modes(res, path, title=title))
+        else:
+            out.emit_plot(args, lambda path: plot_deployment(res, path, title=title))
+    return out.EXIT_OK if res.status == "solved" else out.EXIT_NOT_SUCCESS

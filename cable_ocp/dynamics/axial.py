@@ -1,0 +1,559 @@
+"""Axial (one-dimensional) dynamics of a vertical cable with a varying length.
+
+Huang (1992), ch. 3: a cable hangs vertically from a sheave that heaves with the ship,
+cable is paid out or hauled in at the sheave, and a subsea unit hangs at the lower end.
+
+Equations (z up; s the unstretched arc length from the unit, end_a, s = 0, to the sheave,
+s = L(t); z(s, t) the height of material point s; e = z_s - 1 the strain)::
+
+    (m + m_at) z_tt = T_s - w - k (1 + e) |z_t| z_t,      T = EA e + c e_t
+    (M + M_a) z_tt(0, t) = T(0, t) - W - 1/2 rho C_D S |z_t| z_t    (the unit)
+    z(L(t), t) = z_b(t)                                   (the sheave)
+
+with m the mass and m_at the tangential added mass per length, w the weight in water per
+length, k = 1/2 rho C_t pi d the tangential drag factor, c the internal damping, EA the
+axial stiffness, M, M_a, W, C_D S the unit's mass, added mass (z), weight in water and drag
+area. This is Huang's eq. (3.1) with boundary conditions (3.2)-(3.3) written for material
+points: Huang differentiates in time at a fixed distance below the sheave, which is a
+material point only when the strain is neglected; the two differ by terms of order
+(strain x pay-out speed). The drag is taken per stretched length (the factor 1 + e) as in
+Huang's (2.46); Huang's (3.1) omits it (a relative change of order the strain).
+
+Fixed-domain transformation (Huang's (3.4)-(3.7), measured here from the unit): with
+y = s / L(t) in [0, 1] and the unknowns Z(y, t) = z(yL, t) and the material velocity
+V(y, t) = z_t(yL, t), the chain rule gives the first-order system::
+
+    Z_t = V + (y L_t / L) Z_y
+    (m + m_at) (V_t - (y L_t / L) V_y) = T_y / L - w - k (1 + e) |V| V,   e = Z_y / L - 1
+
+on the fixed interval; at y = 1, Z = z_b(t) and V = z_b'(t) - L_t Z_y / L (the material
+passing over the sheave).
+
+Space: finite differences on the uniform grid y_i = i / N (as Huang's 3.2.6), written in
+the conservative lumped-mass form: node i carries the cable between the mid-points of its
+elements (mass (m + m_at) L / N, half of it at the two ends), element tensions come from
+the node differences, and the unit's node adds its own mass. Why: (i) at fixed length it
+is exactly the mass-spring chain, so the undamped semi-discrete system is Hamiltonian
+(the energy-conserving integrators conserve it to round-off) and its modes are a
+symmetric generalised eigenproblem; (ii) the static profile of a uniform line is exact at
+the nodes (the tension is linear in s); (iii) the tip-mass boundary is second-order
+accurate without one-sided stencils; (iv) a vertical line of the 3D lumped-mass model
+(Huang ch. 5) is the same discrete system. The advection terms (pay-out) use central
+differences (second order); at the sheave a one-sided second-order difference.
+Frequencies converge as (beta L / N)^2 / 24 (lumped-mass dispersion).
+
+Time: implicit, A-stable schemes written as a CasADi Newton ``rootfinder`` step and stepped
+with ``fold``/``mapaccum`` (no Python per step; a Python call per chunk of steps for the
+progress hook):
+
+* ``midpoint`` (default): implicit midpoint rule, second order, symplectic; conserves the
+  energy of the undamped linear system exactly (quadratic invariant);
+* ``gauss4``: two-stage Gauss-Legendre, fourth order, symplectic;
+* ``trapezoidal``: second order, A-stable, non-dissipative;
+* ``bdf2``: second-order backward differentiation, L-stable (damps unresolved high
+  modes), started with one trapezoidal step;
+* ``thesis``: Huang's own second-order implicit finite-difference scheme (3.8)-(3.10), a
+  separate baseline in :mod:`cable_ocp.dynamics.axial_thesis`.
+"""
+
+from __future__ import annotations
+
+import math
+import time
+from collections.abc import Callable
+from typing import Any
+
+import casadi as ca
+import numpy as np
+import scipy.linalg
+
+from cable_ocp.dynamics.motion import motion_function
+from cable_ocp.dynamics.result import ModesResult, SimulationResult
+from cable_ocp.dynamics.scene import DynamicScene
+from cable_ocp.errors import CableOCPError
+
+__all__ = ["AxialModel", "check_axial", "modes_axial", "simulate_axial", "static_profile"]
+
+_GAUSS_C = (0.5 - math.sqrt(3.0) / 6.0, 0.5 + math.sqrt(3.0) / 6.0)
+_GAUSS_A = ((0.25, 0.25 - math.sqrt(3.0) / 6.0), (0.25 + math.sqrt(3.0) / 6.0, 0.25))
+#: at most this many progress calls (chunks) per run
+MAX_CHUNKS = 200
+
+
+def check_axial(scene: DynamicScene) -> None:
+    """Raise :class:`CableOCPError` (naming the key) when the scene is not a vertical line
+    with a unit that the axial model can represent."""
+    st = scene.statics
+    tm = scene.top_motion
+    why = 'simulation.model = "axial" is a vertical line: '
+    if scene.unit is None:
+        raise CableOCPError(why + "it needs a [unit] at end_a (an anchored end_a is a "
+                            'lumped3d scene)')
+    if st.segments or st.bodies:
+        raise CableOCPError(why + "[[cable.segments]] and [[bodies]] are not supported; give a "
+                            'single [cable] (or use model = "lumped3d")')
+    if st.environment.current is not None:
+        raise CableOCPError(why + "remove [environment.current] (or use model = \"lumped3d\")")
+    for key in ("horizontal_amplitude", "circular_radius"):
+        if getattr(tm, key) != 0.0:
+            raise CableOCPError(why + f"top_motion.{key} must be 0 (only heave and pay-out)")
+    if tm.tow is not None:
+        raise CableOCPError(why + "remove [top_motion.tow] (or use model = \"lumped3d\")")
+    if any(r[1] != 0.0 or r[2] != 0.0 for r in tm.series):
+        raise CableOCPError(why + "top_motion.series: the horizontal offsets dx, dy must be 0")
+    unit = scene.unit
+    if unit.weight_in_water <= 0.0 and st.cable.weight_in_water <= 0.0:
+        raise CableOCPError(why + f"unit.weight_in_water = {unit.weight_in_water} N and "
+                            f"cable.weight_in_water = {st.cable.weight_in_water} N/m: nothing "
+                            "keeps the line taut")
+    if unit.weight_in_water <= 0.0:
+        raise CableOCPError(why + f"unit.weight_in_water = {unit.weight_in_water} N: the line "
+                            "is slack at the unit in its static state (it needs a weight > 0)")
+    if st.cable.weight_in_water < 0.0:
+        low = unit.weight_in_water + st.cable.weight_in_water * scene.length
+        if low <= 0.0:
+            raise CableOCPError(why + f"cable.weight_in_water = {st.cable.weight_in_water} "
+                                "N/m: the buoyant cable is slack at the top in its static state")
+
+
+def static_profile(scene: DynamicScene, s: np.ndarray, length: float | None = None
+                   ) -> tuple[np.ndarray, np.ndarray]:
+    """Closed-form static state of the vertical line: (height z (m), tension T (N)) at the
+    unstretched arc lengths ``s`` (m, from the unit).
+
+    T(s) = W + w s and z(s) = z_b - (L - s) - (W (L - s) + w (L^2 - s^2) / 2) / EA.
+    """
+    length = scene.length if length is None else length
+    w = scene.statics.cable.weight_in_water
+    big_w = scene.unit.weight_in_water  # type: ignore[union-attr]
+    ea = scene.statics.cable.axial_stiffness
+    s = np.asarray(s, dtype=float)
+    tension = big_w + w * s
+    z = (scene.top_position[2] - (length - s)
+         - (big_w * (length - s) + 0.5 * w * (length**2 - s**2)) / ea)
+    return z, tension
+
+
+class AxialModel:
+    """The discretised axial model of one scene (see the module docstring).
+
+    Parameters
+    ----------
+    scene : DynamicScene
+        A vertical-line scene (:func:`check_axial`).
+    segments : int, optional
+        Number of elements N (default ``simulation.segments``).
+
+    Attributes
+    ----------
+    n : int
+        Number of elements; the state is (zeta_0..zeta_{N-1}, V_0..V_{N-1})
+        (:meth:`_fields`).
+    """
+
+    def __init__(self, scene: DynamicScene, segments: int | None = None) -> None:
+        check_axial(scene)
+        self.scene = scene
+        st = scene.statics
+        cab = st.cable
+        dyn = scene.cable[0]
+        unit = scene.unit
+        assert unit is not None
+        rho = st.environment.water_density
+        self.n = int(segments or scene.simulation.segments)
+        self.ea = float(cab.axial_stiffness)
+        self.mu = dyn.mass_per_length + dyn.tangential_added_mass_per_length(cab.diameter, rho)
+        self.w = float(cab.weight_in_water)
+        self.c = float(dyn.axial_damping)
+        self.k_drag = 0.5 * rho * cab.tangential_drag * math.pi * cab.diameter
+        self.unit_mass = unit.mass + unit.added_mass[2]
+        self.unit_weight = unit.weight_in_water
+        self.unit_drag = 0.5 * rho * unit.drag_coefficient[2] * unit.drag_area[2]
+        self.z_top0 = float(scene.top_position[2])
+        self.length0 = scene.length
+        self.motion = motion_function(scene)
+        #: a tension below -slack_tolerance (N) is slack: 1e-9 of the static top tension,
+        #: clear of round-off where a line released unstretched carries no load yet
+        self.slack_tolerance = 1e-9 * (self.unit_weight + abs(self.w) * self.length0)
+        self.gravity = st.environment.gravity
+        #: static elongation of the line, m (floored at 1e-9 L): the position scale of the
+        #: Newton residual
+        self.elongation = max((self.unit_weight * self.length0
+                               + 0.5 * abs(self.w) * self.length0**2) / self.ea,
+                              1e-9 * self.length0)
+        self._rhs_fn: ca.Function | None = None
+
+    # ------------------------------------------------------------------ equations
+    def _fields(self, t: Any, x: Any) -> dict[str, Any]:
+        """Symbolic nodal fields at time t for state x (shared by rhs and outputs).
+
+        The state holds zeta_i = Z_i - Z_ref(y_i, t), the height relative to the
+        unstretched line hanging from the current top, Z_ref = z_b(t) - L(t) (1 - y):
+        zeta is of the size of the elongation, so the strains (zeta_{i+1} - zeta_i) / h
+        carry no round-off from the absolute heights; zeta_N = 0 at the sheave.
+        """
+        n = self.n
+        zeta, vel = x[:n], x[n:]
+        length, dl, ddl, xb, vb, ab = self.motion(t)
+        dy = 1.0 / n
+        h = length * dy
+        z_full = ca.vertcat(zeta, 0.0)
+        eps = (z_full[1:] - z_full[:-1]) / h
+        if n >= 2:
+            zeta_y_top = (3 * z_full[n] - 4 * z_full[n - 1] + z_full[n - 2]) / (2 * dy)
+        else:
+            zeta_y_top = (z_full[n] - z_full[n - 1]) / dy
+        v_top = vb[2] - dl * (1.0 + zeta_y_top / length)
+        v_full = ca.vertcat(vel, v_top)
+        eps_dot = (v_full[1:] - v_full[:-1]) / h
+        tension = self.ea * eps + self.c * eps_dot
+        y = ca.DM(np.arange(n + 1) / n)
+        heights = z_full + xb[2] - length * (1.0 - y)
+        return dict(zeta=zeta, vel=vel, length=length, dl=dl, ddl=ddl, vb=vb, ab=ab, h=h,
+                    dy=dy, z_full=z_full, v_full=v_full, eps=eps, tension=tension,
+                    heights=heights)
+
+    def rhs(self, t: Any, x: Any) -> Any:
+        """Time derivative of the state (CasADi expression)."""
+        f = self._fields(t, x)
+        n, h, dy = self.n, f["h"], f["dy"]
+        vel, eps, ten = f["vel"], f["eps"], f["tension"]
+        z_full, v_full = f["z_full"], f["v_full"]
+        y = np.arange(n) * (1.0 / n)
+        adv = ca.DM(y) * f["dl"] / f["length"]  # y L_t / L at the nodes
+        ref_rate = f["dl"] - f["vb"][2]  # L_t - z_b': zeta_t = V + L_t - z_b' + adv zeta_y
+        # strain at the nodes (mean of the neighbouring elements; the end element at node 0)
+        eps_node = ca.vertcat(eps[0], 0.5 * (eps[:-1] + eps[1:])) if n >= 2 else eps[0]
+        drag = self.k_drag * (1.0 + eps_node) * ca.fabs(vel) * vel
+        # node 0: the unit plus half an element
+        m0 = self.unit_mass + 0.5 * self.mu * h
+        f0 = (ten[0] - self.unit_weight - 0.5 * h * (self.w + drag[0])
+              - self.unit_drag * ca.fabs(vel[0]) * vel[0])
+        acc = [f0 / m0]
+        dz = [vel[0] + ref_rate]
+        for i in range(1, n):
+            zy = (z_full[i + 1] - z_full[i - 1]) / (2 * dy)
+            vy = (v_full[i + 1] - v_full[i - 1]) / (2 * dy)
+            acc.append((ten[i] - ten[i - 1] - h * (self.w + drag[i])) / (self.mu * h)
+                       + adv[i] * vy)
+            dz.append(vel[i] + ref_rate + adv[i] * zy)
+        return ca.vertcat(*dz, *acc)
+
+    def outputs(self, t: Any, x: Any) -> tuple[Any, Any, Any, Any, Any]:
+        """(node heights z_0..z_N (m), element tensions (N), top tension (N), L (m),
+        node material velocities V_0..V_N (m/s))."""
+        f = self._fields(t, x)
+        eps_top = f["eps"][self.n - 1]
+        v_top = f["v_full"][self.n]
+        a_top = f["ab"][2] - f["ddl"] * (1.0 + eps_top)
+        drag_top = self.k_drag * (1.0 + eps_top) * ca.fabs(v_top) * v_top
+        top = f["tension"][self.n - 1] + 0.5 * f["h"] * (self.w + self.mu * a_top + drag_top)
+        return f["heights"], f["tension"], top, f["length"], f["v_full"]
+
+    # ------------------------------------------------------------------ initial state
+    def initial_state(self) -> np.ndarray:
+        """State at t = 0: the closed-form static profile ("static") or the unstretched
+        line hanging straight down from end_b ("unstrained", zeta = 0), at rest."""
+        n = self.n
+        s = np.arange(n) * self.length0 / n
+        if self.scene.simulation.start == "unstrained":
+            zeta = np.zeros(n)
+        else:
+            z, _ = static_profile(self.scene, s)
+            zeta = z - (self.z_top0 - (self.length0 - s))
+        return np.concatenate([zeta, np.zeros(n)])
+
+    # ------------------------------------------------------------------ time stepping
+    def _rhs_function(self) -> ca.Function:
+        if self._rhs_fn is None:
+            t = ca.SX.sym("t")
+            x = ca.SX.sym("x", 2 * self.n)
+            self._rhs_fn = ca.Function("rhs", [t, x], [self.rhs(t, x)])
+        return self._rhs_fn
+
+    def step_function(self, scheme: str, dt: float, tol: float, max_iter: int) -> ca.Function:
+        """One step as a CasADi function ``(acc, t0) -> acc``.
+
+        ``acc`` stacks the state (2N), the previous state (2N) and a first-step flag (bdf2
+        only: its first step is trapezoidal), the largest scaled Newton residual so far,
+        the smallest element tension so far (N), the time of the first tension <= 0 (s,
+        inf if none) and that element's index.
+        """
+        n2 = 2 * self.n
+        f = self._rhs_function()
+        # residual scales: positions in units of the static elongation of the line (the
+        # displacement scale of the motion), accelerations in units of g, so that the
+        # tolerance bounds the force balance of every node relative to its weight
+        scale_x = ca.DM([1.0 / self.elongation] * self.n + [1.0 / (dt * self.gravity)] * self.n)
+        x0 = ca.SX.sym("x0", n2)
+        t0 = ca.SX.sym("t0")
+        params = [x0, t0]
+        if scheme in ("midpoint", "trapezoidal", "bdf2"):
+            x1 = ca.SX.sym("x1", n2)
+            unknown = x1
+            trap = x1 - x0 - 0.5 * dt * (f(t0, x0) + f(t0 + dt, x1))
+            if scheme == "midpoint":
+                res = x1 - x0 - dt * f(t0 + 0.5 * dt, 0.5 * (x0 + x1))
+            elif scheme == "trapezoidal":
+                res = trap
+            else:
+                xm1 = ca.SX.sym("xm1", n2)
+                first = ca.SX.sym("first")
+                bdf = x1 - 4.0 / 3.0 * x0 + xm1 / 3.0 - 2.0 / 3.0 * dt * f(t0 + dt, x1)
+                res = first * trap + (1.0 - first) * bdf
+                params += [xm1, first]
+            res = res * scale_x
+            x_new = x1
+        elif scheme == "gauss4":
+            k = ca.SX.sym("k", n2, 2)
+            unknown = ca.vec(k)
+            rows = []
+            for i in range(2):
+                xi = x0 + dt * (_GAUSS_A[i][0] * k[:, 0] + _GAUSS_A[i][1] * k[:, 1])
+                rows.append((k[:, i] - f(t0 + _GAUSS_C[i] * dt, xi)) * dt * scale_x)  # dt k ~ x
+            res = ca.vertcat(*rows)
+            x_new = x0 + 0.5 * dt * (k[:, 0] + k[:, 1])
+        else:
+            raise CableOCPError(f'simulation.scheme = "{scheme}": not an axial scheme of this '
+                                "module (valid: midpoint, gauss4, trapezoidal, bdf2)")
+        p = ca.vertcat(*params)
+        rf = ca.rootfinder("rf", "newton", {"x": unknown, "p": p, "g": res},
+                           {"abstol": tol, "abstolStep": 1e-14 * tol, "max_iter": max_iter,
+                            "error_on_fail": False})
+        res_fn = ca.Function("res", [unknown, p], [ca.norm_inf(res)])
+        xnew_fn = ca.Function("xnew", [unknown, p], [x_new])
+        t_sym = ca.SX.sym("t")
+        x_sym = ca.SX.sym("x", n2)
+        ten = self.outputs(t_sym, x_sym)[1]
+        ten_fn = ca.Function("ten", [t_sym, x_sym], [ten])
+
+        # the step in MX (the rootfinder is an MX-level call)
+        bdf = scheme == "bdf2"
+        off = 2 * n2 + 1 if bdf else n2
+        acc = ca.MX.sym("acc", off + 4)
+        tm = ca.MX.sym("t")
+        xa = acc[:n2]
+        pv = ca.vertcat(xa, tm, acc[n2:off]) if bdf else ca.vertcat(xa, tm)
+        if scheme == "gauss4":  # stage derivatives: start from the current slope
+            guess = ca.repmat(f(tm, xa), 2, 1)
+        else:
+            guess = xa
+        sol = rf(guess, pv)
+        xn = xnew_fn(sol, pv)
+        r = res_fn(sol, pv)
+        tens = ten_fn(tm + dt, xn)
+        tmin_step = ca.mmin(tens)
+        rmax, tmin, t_slack, e_slack = (acc[off + k] for k in range(4))
+        idx = ca.DM(np.arange(self.n, dtype=float))
+        is_min = tens <= tmin_step
+        e_now = ca.dot(idx, is_min) / ca.sum1(is_min)
+        first_slack = ca.logic_and(tmin_step <= -self.slack_tolerance, t_slack > 1e300)
+        new = [xn] + ([xa, ca.MX(0.0)] if bdf else []) + [
+            ca.fmax(rmax, ca.if_else(r <= 1e300, r, ca.inf)),  # a NaN residual -> inf
+            ca.fmin(tmin, tmin_step),
+            ca.if_else(first_slack, tm + dt, t_slack),
+            ca.if_else(first_slack, e_now, e_slack),
+        ]
+        return ca.Function("step", [acc, tm], [ca.vertcat(*new)])
+
+    # ------------------------------------------------------------------ simulate
+    def simulate(self, progress: Callable[[int, int], None] | None = None) -> SimulationResult:
+        """Integrate over ``simulation.duration`` (see :func:`simulate_axial`)."""
+        sc = self.scene
+        sim = sc.simulation
+        scheme = sim.scheme
+        dt = sim.time_step
+        n_steps = sim.steps
+        every = sim.output_every
+        n_out = n_steps // every
+        n2 = 2 * self.n
+        t_build = time.perf_counter()
+        step = self.step_function(scheme, dt, sim.tolerance, sim.max_iterations)
+        macro = step.fold(every)
+        per_chunk = max(1, math.ceil(n_out / MAX_CHUNKS))
+        chunks: dict[int, ca.Function] = {}
+
+        def chunk_fn(m: int) -> ca.Function:
+            if m not in chunks:
+                chunks[m] = macro.mapaccum("chunk", m)
+            return chunks[m]
+
+        tt = ca.SX.sym("t")
+        xx = ca.SX.sym("x", n2)
+        post = ca.Function("post", [tt, xx], list(self.outputs(tt, xx)))
+        build_time = time.perf_counter() - t_build
+
+        x0 = self.initial_state()
+        # the initial state is given (static or unstrained), not checked for slack
+        ten0 = float(np.min(np.asarray(post(0.0, x0)[1])))
+        bdf = scheme == "bdf2"
+        off = 2 * n2 + 1 if bdf else n2
+        acc = np.concatenate([x0] + ([x0, [1.0]] if bdf else [])
+                             + [[0.0, ten0, np.inf, -1.0]])
+        states = [x0]
+        times = [0.0]
+        done = 0
+        status, message = "solved", ""
+        tol_fail = max(1e3 * sim.tolerance, 1e-6)
+        t0 = time.perf_counter()
+        while done < n_out:
+            m = min(per_chunk, n_out - done)
+            tgrid = (done * every + np.arange(m * every)) * dt
+            res = np.asarray(chunk_fn(m)(acc, tgrid.reshape(1, -1)))
+            rcol = res[off, :]
+            bad = np.where(~(rcol <= tol_fail))[0]
+            k_good = int(bad[0]) if bad.size else m
+            for j in range(k_good):
+                states.append(res[:n2, j].copy())
+                times.append((done + j + 1) * every * dt)
+            if bad.size:
+                status = "failed"
+                message = (f"the implicit step did not converge before t = "
+                           f"{(done + k_good + 1) * every * dt:.6g} s (scaled residual "
+                           f"{rcol[k_good]:.3g} > {tol_fail:.3g}); the history stops at the "
+                           "last good sample: try a smaller simulation.time_step")
+                if k_good > 0:
+                    acc = res[:, k_good - 1].copy()
+                break
+            acc = res[:, -1].copy()
+            done += m
+            if progress is not None:
+                progress(done * every, n_out * every)
+            if sim.on_slack == "stop" and np.isfinite(acc[off + 2]):
+                break
+        wall = time.perf_counter() - t0
+        return self._result(np.asarray(times), np.stack(states, axis=1), acc[off:off + 4],
+                            post, status, message, wall, build_time)
+
+    def _result(self, ts: np.ndarray, xs: np.ndarray, tail: np.ndarray, post: ca.Function,
+                status: str, message: str, wall: float, build_time: float
+                ) -> SimulationResult:
+        sc = self.scene
+        sim = sc.simulation
+        dt = sim.time_step
+        rmax, tmin, t_slack, e_slack = (float(v) for v in tail)
+        z_nodes, tens, top, length, vel = (np.asarray(v) for v in
+                                           post.map(xs.shape[1])(ts.reshape(1, -1), xs))
+        if sim.on_slack == "stop" and np.isfinite(t_slack):
+            keep = ts <= t_slack + sim.output_every * dt * (1.0 + 1e-9)
+            ts, z_nodes, tens, top, length, vel = (ts[keep], z_nodes[:, keep], tens[:, keep],
+                                                   top[:, keep], length[:, keep], vel[:, keep])
+        n_t = ts.size
+        top = top.reshape(n_t)
+        length = length.reshape(n_t)
+        tens = tens.T
+        nodes = np.empty((n_t, self.n + 1, 3))
+        nodes[:, :, 0] = sc.top_position[0]
+        nodes[:, :, 1] = sc.top_position[1]
+        nodes[:, :, 2] = z_nodes.T
+        velocities = np.zeros_like(nodes)
+        velocities[:, :, 2] = vel.T
+        min_t = float(min(tmin, np.min(tens)))
+        slack: dict[str, Any] = {"occurred": bool(np.isfinite(t_slack)), "first_time": None,
+                                 "location": None, "segment": None}
+        if np.isfinite(t_slack):
+            e = int(round(e_slack))
+            lt = float(np.interp(t_slack, ts, length))
+            slack.update(first_time=t_slack, segment=e, location=(e + 0.5) * lt / self.n)
+            if status == "solved":
+                status = "slack"
+                action = ("the run stopped there" if sim.on_slack == "stop" else
+                          "the run continued with the linear model (tensions < 0 after that "
+                          "are not physical)")
+                message = (f"slack: tension <= 0 first at t = {t_slack:.6g} s in element {e} "
+                           f"(s = {slack['location']:.4g} m from the unit); the axial model "
+                           f"cannot follow slack (Huang (1992) 4.5.1): {action}")
+        if status == "solved":
+            message = f"{sim.steps} steps of {dt:g} s ({sim.scheme}), {self.n} elements"
+        warnings = []
+        tm_ = sc.top_motion
+        if tm_.ramp_time == 0.0:
+            # a velocity jump dv at the top sends a tension step mu c dv down the line
+            jump = abs(tm_.payout_speed) + abs(tm_.heave_amplitude * tm_.heave_frequency)
+            step = self.mu * math.sqrt(self.ea / self.mu) * jump
+            static_top = self.unit_weight + self.w * self.length0
+            if step > 0.1 * static_top:
+                warnings.append(
+                    f"the top starts at full speed ({jump:.3g} m/s at t = 0): a tension step "
+                    f"of about {step:.3g} N (mu c dv) runs down the line, "
+                    f"{step / static_top:.0%} of the static top tension; set "
+                    "top_motion.ramp_time for a smooth start")
+        for name, w_ in (("heave_frequency", tm_.heave_frequency),
+                         ("payout_frequency", tm_.payout_frequency)):
+            if w_ > 0.0 and w_ * dt > 2.0 * math.pi / 20.0:
+                warnings.append(f"simulation.time_step = {dt} s gives fewer than 20 steps per "
+                                f"period of top_motion.{name} = {w_} rad/s")
+        diagnostics = {
+            "build_time_s": build_time,
+            "steps": sim.steps,
+            "elements": self.n,
+            "max_scaled_residual": rmax,
+            "tolerance": sim.tolerance,
+            "start": sim.start,
+            "static_top_tension_N": self.unit_weight + self.w * self.length0,
+            "wall_time_per_simulated_second": wall / ts[-1] if n_t > 1 else None,
+        }
+        return SimulationResult(
+            t=ts, length=length, top_position=nodes[:, -1, :].copy(),
+            unit_position=nodes[:, 0, :].copy(), top_tension=top, node_positions=nodes,
+            segment_tensions=tens, min_tension=min_t, slack=slack, status=status,
+            message=message, warnings=warnings, wall_time_s=wall, model="axial",
+            scheme=sim.scheme, diagnostics=diagnostics, node_velocities=velocities)
+
+    # ------------------------------------------------------------------ modes
+    def matrices(self, length: float | None = None) -> tuple[np.ndarray, np.ndarray]:
+        """Lumped mass matrix M (kg, diagonal) and stiffness K (N/m) of the free nodes
+        0..N-1 about the static state at ``length`` (m), top node fixed. Drag is quadratic
+        in the velocity, so it adds no linear damping about rest; the internal damping
+        is left out (undamped modes)."""
+        length = self.length0 if length is None else length
+        n = self.n
+        h = length / n
+        k = self.ea / h
+        mass = np.full(n, self.mu * h)
+        mass[0] = self.unit_mass + 0.5 * self.mu * h
+        stiff = np.zeros((n, n))
+        for e in range(n):  # element e joins nodes e and e+1 (node n is fixed)
+            stiff[e, e] += k
+            if e + 1 < n:
+                stiff[e + 1, e + 1] += k
+                stiff[e, e + 1] -= k
+                stiff[e + 1, e] -= k
+        return np.diag(mass), stiff
+
+    def modes(self, count: int) -> ModesResult:
+        """Undamped axial modes about the static state: K v = omega^2 M v."""
+        m, k = self.matrices()
+        count = min(count, self.n)
+        vals, vecs = scipy.linalg.eigh(k, m, subset_by_index=[0, count - 1])
+        freqs = np.sqrt(np.clip(vals, 0.0, None))
+        shapes = np.zeros((count, self.n + 1, 3))
+        for j in range(count):
+            v = vecs[:, j]
+            big = v[np.argmax(np.abs(v))]
+            shapes[j, :-1, 2] = v / big
+        s = np.arange(self.n + 1) * self.length0 / self.n
+        z, _ = static_profile(self.scene, s)
+        nodes = np.zeros((self.n + 1, 3))
+        nodes[:, 0] = self.scene.top_position[0]
+        nodes[:, 1] = self.scene.top_position[1]
+        nodes[:, 2] = z
+        return ModesResult(frequencies=freqs, shapes=shapes, node_positions=nodes,
+                           length=self.length0, model="axial",
+                           message=f"{count} axial modes, {self.n} elements",
+                           diagnostics={"elements": self.n,
+                                        "unit_virtual_mass_kg": self.unit_mass,
+                                        "cable_virtual_mass_per_length_kg_m": self.mu})
+
+
+def simulate_axial(scene: DynamicScene, progress: Callable[[int, int], None] | None = None
+                   ) -> SimulationResult:
+    """Time-domain simulation of the axial model (dispatched by
+    :func:`cable_ocp.dynamics.simulate`; ``simulation.scheme = "thesis"`` dispatches to
+    Huang's finite-difference scheme, :mod:`cable_ocp.dynamics.axial_thesis`, instead)."""
+    return AxialModel(scene).simulate(progress)
+
+
+def modes_axial(scene: DynamicScene, count: int) -> ModesResult:
+    """Axial modes of the scene's line (dispatched by :func:`cable_ocp.dynamics.modes`)."""
+    return AxialModel(scene).modes(count)

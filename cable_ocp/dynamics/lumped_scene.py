@@ -1,0 +1,341 @@
+"""The lumped-mass model (Huang (1992) ch. 5) driven by a dynamic scene.
+
+* :func:`lumped_params`: a :class:`~cable_ocp.dynamics.scene.DynamicScene` ->
+  :class:`~cable_ocp.dynamics.lumped.LumpedParams` (segments shared among the
+  ``[[cable.segments]]`` by length, bodies at the joints, the unit, current, top motion);
+* :func:`lumped_start`: the initial state (Huang (1992) 5.6.1): the statics solver's
+  solution interpolated onto the nodes at their unstretched arc lengths, then the discrete
+  model's own equilibrium F(x, 0, 0) = 0 by Newton from there, so that the run starts
+  exactly at rest; or ``start = "unstrained"``: hanging straight down from end_b at its
+  unstretched length, at rest (Huang's 5.7.1 start);
+* :func:`simulate_lumped` and :func:`modes_lumped`: the dispatched entry points of
+  :func:`cable_ocp.dynamics.simulate` and :func:`cable_ocp.dynamics.modes`.
+"""
+
+from __future__ import annotations
+
+import math
+from collections.abc import Callable
+from typing import Any
+
+import casadi as ca
+import numpy as np
+
+from cable_ocp.dynamics.lumped import (
+    LumpedMassModel,
+    LumpedParams,
+    LumpedRun,
+    PointBody,
+    UnitParams,
+    run,
+)
+from cable_ocp.dynamics.motion import top_offset_expr
+from cable_ocp.dynamics.result import ModesResult, SimulationResult
+from cable_ocp.dynamics.scene import DynamicScene
+from cable_ocp.errors import CableOCPError
+from cable_ocp.physics.current import current_velocity
+
+__all__ = ["lumped_params", "lumped_start", "modes_lumped", "segment_counts",
+           "simulate_lumped"]
+
+#: at most this many progress calls (chunks) per run
+MAX_CHUNKS = 200
+
+
+def segment_counts(lengths: list[float], total: int) -> list[int]:
+    """Share ``total`` lumped segments among line segments of the given lengths (m):
+    proportional to length, at least one each (largest remainders first)."""
+    n = len(lengths)
+    if total < n:
+        raise CableOCPError(f"simulation.segments = {total}: the line has {n} segments "
+                            f"([[cable.segments]]); give at least {n}")
+    big_l = float(sum(lengths))
+    raw = [total * v / big_l for v in lengths]
+    out = [max(1, int(math.floor(r))) for r in raw]
+    while sum(out) < total:
+        k = max(range(n), key=lambda i: raw[i] - out[i])
+        out[k] += 1
+    while sum(out) > total:
+        k = max((i for i in range(n) if out[i] > 1), key=lambda i: out[i] - raw[i])
+        out[k] -= 1
+    return out
+
+
+def _check(scene: DynamicScene) -> None:
+    tm = scene.top_motion
+    if tm.varying_length:
+        key = "payout_amplitude" if tm.payout_law == "periodic" else "payout_speed"
+        raise CableOCPError(f'top_motion.{key}: simulation.model = "lumped3d" has a fixed '
+                            'length (Huang (1992) ch. 5); pay-out needs model = "axial" or '
+                            '"planar"')
+    if scene.statics.environment.seabed is not None:
+        raise CableOCPError('[environment.seabed]: simulation.model = "lumped3d" has no '
+                            "seabed contact; remove the table (the seabed is then only "
+                            "checked in the static start)")
+    if any(c.bending_stiffness > 0 for c in scene.statics.lines):
+        raise CableOCPError('cable.segments[].bending_stiffness: simulation.model = '
+                            '"lumped3d" is a flexible cable (no bending stiffness)')
+
+
+def lumped_params(scene: DynamicScene, segments: int | None = None) -> LumpedParams:
+    """Parameters of the lumped-mass model of a scene with ``segments`` lumped segments
+    (default ``simulation.segments``), shared among ``[[cable.segments]]`` by length."""
+    _check(scene)
+    st = scene.statics
+    env = st.environment
+    lines = st.lines
+    n = scene.simulation.segments if segments is None else int(segments)
+    counts = segment_counts([float(c.length) for c in lines], n)  # type: ignore[arg-type]
+    cols: dict[str, list[float]] = {k: [] for k in (
+        "segment_length", "axial_stiffness", "diameter", "mass_per_length", "weight_in_water",
+        "normal_drag", "tangential_drag", "added_mass_coefficient",
+        "tangential_added_mass_coefficient", "axial_damping")}
+    for c, dyn, k in zip(lines, scene.cable, counts, strict=True):
+        vals = {"segment_length": float(c.length) / k, "axial_stiffness": c.axial_stiffness,  # type: ignore[arg-type]
+                "diameter": c.diameter, "mass_per_length": dyn.mass_per_length,
+                "weight_in_water": c.weight_in_water, "normal_drag": c.normal_drag,
+                "tangential_drag": c.tangential_drag,
+                "added_mass_coefficient": dyn.added_mass_coefficient,
+                "tangential_added_mass_coefficient": dyn.tangential_added_mass_coefficient,
+                "axial_damping": dyn.axial_damping}
+        for key, v in vals.items():
+            cols[key] += [float(v)] * k
+    joints = np.concatenate([[0], np.cumsum(counts)])
+    bodies = []
+    for sb, db in zip(st.bodies, scene.bodies, strict=True):
+        bodies.append(PointBody(
+            node=int(joints[sb.joint]), mass=db.mass, added_mass=db.added_mass,
+            weight_in_water=sb.weight_in_water - sb.net_buoyancy, drag_area=sb.drag_area,
+            drag_coefficient=sb.drag_coefficient, force=sb.thrust))
+    unit = None
+    end_a = None
+    if scene.unit is not None:
+        u = scene.unit
+        unit = UnitParams(mass=u.mass, added_mass=u.added_mass,
+                          weight_in_water=u.weight_in_water, drag_area=u.drag_area,
+                          drag_coefficient=u.drag_coefficient,
+                          drag_law="per_axis" if u.drag_per_axis else "vector")
+    else:
+        pa = [float(v) for v in st.end_a.position]  # type: ignore[arg-type]
+
+        def end_a(t: Any, pa: list[float] = pa) -> Any:  # noqa: ARG001 - constant
+            return ca.DM(pa)
+
+    current = None
+    if env.current is not None:
+        cur = env.current
+
+        def current(z: Any) -> Any:
+            return current_velocity(cur, z)
+
+    tm = scene.top_motion
+    top0 = ca.DM([float(v) for v in scene.top_position])
+    ts = ca.SX.sym("t")
+    pos = top0 + top_offset_expr(tm, ts)
+    top_fn = ca.Function("top_position", [ts], [pos])
+    vel_fn = ca.Function("top_velocity", [ts], [ca.jacobian(pos, ts)])
+    return LumpedParams(
+        **{k: np.asarray(v) for k, v in cols.items()},
+        top_position=lambda t: top_fn(t), top_velocity=lambda t: vel_fn(t),
+        water_density=env.water_density, gravity=env.gravity, unit=unit,
+        end_a_position=end_a, bodies=tuple(bodies), current=current,
+        drag_law=st.cable.drag_law, smoothing=st.solver.smoothing,
+        vertical_blend=st.solver.vertical_blend)
+
+
+def lumped_start(scene: DynamicScene, model: LumpedMassModel
+                 ) -> tuple[np.ndarray | None, dict[str, Any]]:
+    """Initial free-node positions (m) of ``model`` for ``simulation.start``.
+
+    ``"static"``: the statics solver's solution of the scene
+    (:func:`cable_ocp.dynamics.static.static_state`) interpolated at the nodes' unstretched
+    arc lengths (cubic in s per coordinate), then refined to the lumped-mass equilibrium
+    by Newton. ``"unstrained"``: straight down from end_b, unstretched.
+
+    Returns
+    -------
+    x : ndarray (3 n_free,) or None
+        None when the start could not be computed (see ``info["message"]``).
+    info : dict
+        ``source``, ``statics_status``, ``converged``, ``relative_residual``,
+        ``max_node_shift_m`` (largest move from the interpolated statics solution to the
+        discrete equilibrium: the lumped model's discretisation error), ``message``.
+    """
+    p = model.params
+    s_nodes = p.node_arc_length
+    info: dict[str, Any] = {"source": scene.simulation.start}
+    if scene.simulation.start == "unstrained":
+        top = np.asarray(scene.top_position, float)
+        pos = np.tile(top, (p.segments + 1, 1))
+        pos[:, 2] -= p.length - s_nodes
+        info.update(converged=True, message="hanging straight down, unstretched, at rest")
+        return pos[model.free_nodes].reshape(-1), info
+    from scipy.interpolate import CubicSpline
+
+    from cable_ocp.dynamics.static import static_state
+
+    sol = static_state(scene)
+    info["statics_status"] = sol.status
+    if not sol.success:
+        info.update(converged=False, message=f"the statics solve failed: {sol.message}")
+        return None, info
+    if sol.grounded_length > 0:
+        info.update(converged=False, message="the static cable lies on the seabed; the "
+                    "lumped-mass model has no seabed contact")
+        return None, info
+    s = np.asarray(sol.s, float)
+    keep = np.concatenate([[True], np.diff(s) > 1e-12 * max(sol.length, 1.0)])
+    spline = CubicSpline(s[keep], np.asarray(sol.position, float)[keep], axis=0)
+    guess = spline(np.clip(s_nodes, s[keep][0], s[keep][-1]))
+    x0 = guess[model.free_nodes].reshape(-1)
+    x, newton = model.static_equilibrium(x0)
+    shift = float(np.max(np.abs(x - x0))) if x0.size else 0.0
+    info.update(converged=newton["converged"], iterations=newton["iterations"],
+                relative_residual=newton["relative_residual"], max_node_shift_m=shift,
+                statics_wall_time_s=sol.wall_time_s)
+    if not newton["converged"]:
+        info["message"] = (f"the lumped-mass equilibrium did not converge from the statics "
+                           f"solution (relative residual {newton['relative_residual']:.3g})")
+        return None, info
+    info["message"] = (f"statics solution refined to the discrete equilibrium (largest node "
+                       f"shift {shift:.3g} m)")
+    return x, info
+
+
+def _failed_result(scene: DynamicScene, model: LumpedMassModel, message: str,
+                   info: dict[str, Any]) -> SimulationResult:
+    n = model.params.segments
+    empty = np.zeros((0, 3))
+    return SimulationResult(
+        t=np.zeros(0), length=np.zeros(0), top_position=empty, unit_position=empty,
+        top_tension=np.zeros(0), node_positions=np.zeros((0, n + 1, 3)),
+        segment_tensions=np.zeros((0, n)), min_tension=math.nan,
+        slack={"occurred": False, "first_time": None, "location": None, "segment": None},
+        status="failed", message=message, model="lumped3d", scheme=scene.simulation.scheme,
+        diagnostics={"start": info})
+
+
+def simulate_lumped(scene: DynamicScene, progress: Callable[[int, int], None] | None = None
+                    ) -> SimulationResult:
+    """Time-domain simulation of the lumped-mass model (dispatched by
+    :func:`cable_ocp.dynamics.simulate`).
+
+    ``simulation.scheme``: ``"midpoint"`` (default), ``"trapezoidal"``, ``"bdf2"``
+    (:meth:`~cable_ocp.dynamics.lumped.LumpedMassModel.step_function`) or ``"thesis"``
+    (Huang's (5.21), :mod:`cable_ocp.dynamics.lumped_thesis`). ``simulation.tolerance``
+    is the Newton tolerance on the nodal force residual over the force scale (the largest
+    of the total weight in water and the largest static tension).
+    """
+    sim = scene.simulation
+    model = LumpedMassModel(lumped_params(scene))
+    x0, info = lumped_start(scene, model)
+    if x0 is None:
+        return _failed_result(scene, model, info["message"], info)
+    total = sim.steps
+
+    def prog(t_done: float, duration: float) -> None:
+        if progress is not None:
+            progress(min(total, int(round(t_done / sim.time_step))), total)
+
+    every = sim.output_every
+    n_out = sim.steps // every
+    if sim.scheme == "thesis":
+        from cable_ocp.dynamics.lumped_thesis import run_thesis
+
+        out = run_thesis(model, x0, None, sim.duration, sim.time_step, record_every=every,
+                         progress=prog)
+    else:
+        out = run(model, x0, None, sim.duration, sim.time_step, scheme=sim.scheme,
+                  record_every=every, chunk_records=max(1, math.ceil(n_out / MAX_CHUNKS)),
+                  tol=sim.tolerance, max_iter=sim.max_iterations, progress=prog)
+    return _result(scene, model, out, info)
+
+
+def _result(scene: DynamicScene, model: LumpedMassModel, out: LumpedRun,
+            info: dict[str, Any]) -> SimulationResult:
+    sim = scene.simulation
+    p = model.params
+    ts = out.t
+    status, message = out.status, out.message
+    tens = out.tension
+    top = np.linalg.norm(out.top_force, axis=1)
+    s_mid = 0.5 * (p.node_arc_length[:-1] + p.node_arc_length[1:])
+    slack: dict[str, Any] = {"occurred": out.slack is not None, "first_time": None,
+                             "location": None, "segment": None}
+    if out.slack is not None:
+        t_slack, seg = out.slack
+        slack.update(first_time=t_slack, segment=seg, location=float(s_mid[seg]))
+        if sim.on_slack == "stop":
+            keep = ts <= t_slack + sim.output_step * (1.0 + 1e-9)
+            ts, tens, top = ts[keep], tens[keep], top[keep]
+        if status == "solved":
+            status = "slack"
+            action = ("the run stopped there" if sim.on_slack == "stop" else
+                      "the run continued: a slack segment carries no tension (the smooth "
+                      "no-compression law) and the line may fold there, which the model "
+                      "follows only approximately")
+            message = (f"slack: segment {seg} (s = {slack['location']:.4g} m from end_a) first "
+                       f"went slack at t = {t_slack:.6g} s; Huang (1992) ch. 5 excludes "
+                       f"slack cable: {action}")
+    positions = out.positions[:ts.size]
+    velocities = out.velocities[:ts.size] if out.velocities is not None else None
+    warnings = []
+    tm = scene.top_motion
+    for name, w in (("heave_frequency", tm.heave_frequency),
+                    ("horizontal_frequency", tm.horizontal_frequency),
+                    ("circular_frequency", tm.circular_frequency)):
+        if w > 0.0 and w * sim.time_step > 2.0 * math.pi / 20.0:
+            warnings.append(f"simulation.time_step = {sim.time_step} s gives fewer than 20 "
+                            f"steps per period of top_motion.{name} = {w} rad/s")
+    sim_time = float(ts[-1] - ts[0]) if ts.size > 1 else 0.0
+    diagnostics = {
+        "build_time_s": out.build_time_s,
+        "steps": out.steps,
+        "segments": p.segments,
+        "mean_newton_iterations": out.mean_iterations,
+        "max_scaled_residual": float(np.max(out.residual)) if out.residual.size else None,
+        "tolerance": sim.tolerance,
+        "compiled": out.compiled,
+        "start": info,
+        "min_strain": out.min_strain,
+        "wall_time_per_simulated_second": out.wall_time_s / sim_time if sim_time else None,
+    }
+    return SimulationResult(
+        t=ts, length=np.full(ts.size, p.length), top_position=positions[:, -1, :].copy(),
+        unit_position=positions[:, 0, :].copy(), top_tension=top,
+        node_positions=positions, segment_tensions=tens, node_velocities=velocities,
+        min_tension=float(np.min(tens)) if tens.size else math.nan, slack=slack,
+        status=status, message=message, warnings=warnings, wall_time_s=out.wall_time_s,
+        model="lumped3d", scheme=sim.scheme, diagnostics=diagnostics)
+
+
+def modes_lumped(scene: DynamicScene, count: int) -> ModesResult:
+    """Natural frequencies and mode shapes of the lumped-mass model about its static
+    state (dispatched by :func:`cable_ocp.dynamics.modes`).
+
+    K = -dF/dx of the tension, weight and body loads at the static state (the current
+    shapes that state but its drag is left out of K), M with the direction-dependent added
+    mass (5.2): K phi = omega^2 M phi. A fixed end_b (and an anchored end_a) has zero
+    displacement in every shape.
+    """
+    model = LumpedMassModel(lumped_params(scene))
+    x0, info = lumped_start(scene, model)
+    n = model.params.segments
+    if x0 is None:
+        return ModesResult(frequencies=np.zeros(0), shapes=np.zeros((0, n + 1, 3)),
+                           node_positions=np.zeros((n + 1, 3)), length=model.params.length,
+                           model="lumped3d", status="failed", message=info["message"],
+                           diagnostics={"start": info})
+    omega, shapes, lam = model.modes(x0, count)
+    nodes = np.asarray(model.nodes(x0, 0.0)).T
+    msg = f"{omega.size} modes, {n} segments"
+    status = "solved"
+    if np.any(lam < 0):
+        status = "failed"
+        msg = (f"the static state is unstable: {int(np.sum(lam < 0))} negative eigenvalues "
+               "of K (a compressed or slack line)")
+    return ModesResult(frequencies=omega, shapes=shapes, node_positions=nodes,
+                       length=model.params.length, model="lumped3d", status=status,
+                       message=msg, diagnostics={"segments": n, "start": info,
+                                                 "stiffness": "tension, weight and body "
+                                                 "loads; drag neglected"})

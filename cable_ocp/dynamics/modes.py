@@ -1,0 +1,106 @@
+"""``modes(scene, count, lengths) -> ModesResult | DeploymentChart``: natural frequencies
+and mode shapes linearised about the static state, dispatched on ``[simulation] model``.
+
+Each model registers ``"module:function"`` in :data:`MODE_SOLVERS`; the function is called
+as ``fn(scene, count)`` and returns a :class:`~cable_ocp.dynamics.result.ModesResult` for
+the scene's length. With ``lengths`` the scene is re-solved at each length (overriding
+``cable.length``, or the top segment's length of a multi-segment line) and the frequencies
+are collected into a :class:`~cable_ocp.dynamics.result.DeploymentChart`.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Sequence
+from pathlib import Path
+from typing import Any
+
+import numpy as np
+
+from cable_ocp.dynamics.result import DeploymentChart, ModesResult
+from cable_ocp.dynamics.scene import DynamicScene, load_dynamic_scene
+from cable_ocp.dynamics.simulate import _resolve
+from cable_ocp.errors import CableOCPError
+
+__all__ = ["MODE_SOLVERS", "modes"]
+
+#: model name -> "module:function" of its modal analysis
+MODE_SOLVERS: dict[str, str] = {
+    "axial": "cable_ocp.dynamics.axial:modes_axial",
+    "planar": "cable_ocp.dynamics.planar:modes_planar",
+    "lumped3d": "cable_ocp.dynamics.lumped:modes_lumped",
+}
+
+
+def _at_length(scene: DynamicScene, length: float) -> DynamicScene:
+    """The scene with the unstretched length set to ``length`` (m); a multi-segment line
+    changes its top segment (where pay-out happens)."""
+    st = scene.statics
+    if st.segments:
+        top = len(st.segments) - 1
+        rest = sum(c.length for c in st.segments[:-1])  # type: ignore[misc]
+        if length <= rest:
+            raise CableOCPError(f"--lengths: {length} m is not longer than the segments below "
+                                f"the top one ({rest} m); pay-out changes the top segment only")
+        return scene.with_overrides({f"cable.segments.{top}.length": length - rest})
+    return scene.with_overrides({"cable.length": length})
+
+
+def modes(scene: DynamicScene | str | Path, count: int | None = None,
+          lengths: Sequence[float] | np.ndarray | None = None,
+          overrides: dict[str, Any] | None = None) -> ModesResult | DeploymentChart:
+    """Natural frequencies and mode shapes about the static state.
+
+    Parameters
+    ----------
+    scene : DynamicScene or path
+        A validated scene or a TOML dynamic problem file; ``[simulation] model`` picks
+        the model and ``segments`` its discretisation.
+    count : int, optional
+        Number of modes (default ``[modes] count``).
+    lengths : sequence of float, optional
+        Unstretched lengths, m: return a :class:`DeploymentChart` of the frequencies
+        against length, with ``[modes] wave_band`` as the band.
+    overrides : dict, optional
+        Dotted-key overrides applied before validation.
+
+    Returns
+    -------
+    ModesResult or DeploymentChart
+        A failed static state comes back as a status, never raised.
+
+    Raises
+    ------
+    CableOCPError
+        An invalid scene, count or length (named), or a model not built yet.
+    """
+    if not isinstance(scene, DynamicScene):
+        scene = load_dynamic_scene(scene, overrides)
+    elif overrides:
+        scene = scene.with_overrides(overrides)
+    if count is None:
+        count = scene.modes.count
+    if isinstance(count, bool) or not isinstance(count, (int, np.integer)) or count < 1:
+        raise CableOCPError(f"--count = {count!r}: expected a positive integer")
+    fn = _resolve(MODE_SOLVERS, scene.simulation.model, "modal analysis")
+    if lengths is None:
+        return fn(scene, int(count))
+    lengths = np.asarray(lengths, dtype=float).ravel()
+    if lengths.size == 0 or not np.all(np.isfinite(lengths)) or np.any(lengths <= 0.0):
+        raise CableOCPError(f"--lengths: expected positive finite lengths (m), got "
+                            f"{lengths.tolist()}")
+    freqs = np.full((lengths.size, int(count)), np.nan)
+    failed = []
+    for i, length in enumerate(lengths):
+        res = fn(_at_length(scene, float(length)), int(count))
+        if res.status != "solved":
+            failed.append((float(length), res.message))
+            continue
+        n = min(int(count), res.frequencies.size)
+        freqs[i, :n] = res.frequencies[:n]
+    status = "solved" if not failed else "failed"
+    msg = (f"{lengths.size} lengths" if not failed else
+           f"{len(failed)} of {lengths.size} lengths failed (first at {failed[0][0]} m: "
+           f"{failed[0][1]})")
+    return DeploymentChart(lengths=lengths, frequencies=freqs, wave_band=scene.modes.wave_band,
+                           model=scene.simulation.model, status=status, message=msg,
+                           diagnostics={"failed_lengths": [f[0] for f in failed]})

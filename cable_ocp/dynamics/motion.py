@@ -1,0 +1,159 @@
+"""Prescribed top motion and pay-out law as CasADi expressions of time.
+
+The same expressions serve every model: they are built once on a symbolic time and
+differentiated by CasADi, so velocities and accelerations are exact derivatives of the
+positions (no finite differences), and a time-stepper written as a CasADi function can
+evaluate them inside ``mapaccum`` without Python per step.
+
+Formulas (t in s; offsets in m from ``end_b.position``; ``r(t)`` the ramp, 1 without
+``ramp_time``, else 10x^3 - 15x^4 + 6x^5 with x = min(t / ramp_time, 1), twice
+continuously differentiable, so the ramp adds no force step; ``R(t)`` its integral,
+t - ramp_time/2 after the ramp):
+
+* heave: dz = r A sin(w t)
+* horizontal: (dx, dy) = r A sin(w t) (cos psi, sin psi)
+* circular: dz = r a sin(w t), (dx, dy) = r a (1 - cos(w t)) (cos psi, sin psi)
+* tow: the path point at distance d = v R(t) along straight - arc - straight
+* series: linear interpolation of the rows, held after the last one
+* pay-out (Huang (1992) 3.1): L = L0 + v R(t) (linear), L0 + v R(t) + a t^2 / 2
+  (quadratic), L0 + r p sin(w t) (periodic)
+"""
+
+from __future__ import annotations
+
+import math
+from collections.abc import Sequence
+from typing import TYPE_CHECKING
+
+import casadi as ca
+import numpy as np
+
+if TYPE_CHECKING:  # types only: the scene module uses this one at run time
+    from cable_ocp.dynamics.scene import DynamicScene, TopMotion, Tow
+
+
+__all__ = ["length_expr", "length_numeric", "motion_function", "top_offset_expr"]
+
+
+def _ramp(tm: TopMotion, t: ca.SX) -> tuple[ca.SX, ca.SX]:
+    """(r(t), R(t) = integral of r from 0 to t)."""
+    tau = tm.ramp_time
+    if tau <= 0.0:
+        return ca.SX(1.0), t
+    x = ca.fmin(ca.fmax(t / tau, 0.0), 1.0)
+    r = x**3 * (10.0 - 15.0 * x + 6.0 * x**2)
+    big_r = ca.if_else(t < tau, tau * x**4 * (2.5 - 3.0 * x + x**2), t - 0.5 * tau)
+    return r, big_r
+
+
+def _tow_offset(tow: Tow, d: ca.SX) -> tuple[ca.SX, ca.SX]:
+    """Horizontal offset (x, y) at distance d (m) along the towing path."""
+    psi = math.radians(tow.heading_deg)
+    e = (math.cos(psi), math.sin(psi))
+    if not math.isfinite(tow.straight_length) or tow.turn_angle_deg == 0.0:
+        return d * e[0], d * e[1]
+    s0 = tow.straight_length
+    rad = 0.5 * tow.turn_diameter
+    sign = 1.0 if tow.turn_direction == "left" else -1.0
+    n = (-sign * e[1], sign * e[0])  # towards the centre of the turn
+    theta = math.radians(tow.turn_angle_deg)
+    c = (s0 * e[0] + rad * n[0], s0 * e[1] + rad * n[1])
+    phi = ca.fmin(ca.fmax((d - s0) / rad, 0.0), theta)
+    arc = (c[0] - rad * n[0] * ca.cos(phi) + rad * e[0] * ca.sin(phi),
+           c[1] - rad * n[1] * ca.cos(phi) + rad * e[1] * ca.sin(phi))
+    end = (c[0] - rad * n[0] * math.cos(theta) + rad * e[0] * math.sin(theta),
+           c[1] - rad * n[1] * math.cos(theta) + rad * e[1] * math.sin(theta))
+    psi_end = psi + sign * theta
+    e_end = (math.cos(psi_end), math.sin(psi_end))
+    s1 = s0 + rad * theta
+    after = (end[0] + (d - s1) * e_end[0], end[1] + (d - s1) * e_end[1])
+    out = []
+    for k in range(2):
+        out.append(ca.if_else(d <= s0, d * e[k], ca.if_else(d <= s1, arc[k], after[k])))
+    return out[0], out[1]
+
+
+def top_offset_expr(tm: TopMotion, t: ca.SX) -> ca.SX:
+    """Offset of end_b from its static position, m, as a 3-vector expression of t (s)."""
+    r, big_r = _ramp(tm, t)
+    dx = ca.SX(0.0)
+    dy = ca.SX(0.0)
+    dz = ca.SX(0.0)
+    if tm.heave_amplitude != 0.0:
+        dz = dz + r * tm.heave_amplitude * ca.sin(tm.heave_frequency * t)
+    if tm.horizontal_amplitude != 0.0:
+        psi = math.radians(tm.horizontal_heading_deg)
+        h = r * tm.horizontal_amplitude * ca.sin(tm.horizontal_frequency * t)
+        dx = dx + h * math.cos(psi)
+        dy = dy + h * math.sin(psi)
+    if tm.circular_radius != 0.0:
+        psi = math.radians(tm.circular_heading_deg)
+        w = tm.circular_frequency
+        h = r * tm.circular_radius * (1.0 - ca.cos(w * t))
+        dx = dx + h * math.cos(psi)
+        dy = dy + h * math.sin(psi)
+        dz = dz + r * tm.circular_radius * ca.sin(w * t)
+    if tm.tow is not None:
+        tx, ty = _tow_offset(tm.tow, tm.tow.speed * big_r)
+        dx = dx + tx
+        dy = dy + ty
+    if tm.series:
+        rows = np.asarray(tm.series, dtype=float)
+        ts = rows[:, 0]
+        for k, comp in enumerate((0, 1, 2)):
+            vals = rows[:, 1 + comp]
+            if not np.any(vals):
+                continue
+            expr = ca.SX(float(vals[-1]))
+            # piecewise linear, held after the last row: nested if_else from the end
+            for j in range(len(ts) - 2, -1, -1):
+                seg = vals[j] + (vals[j + 1] - vals[j]) * (t - ts[j]) / (ts[j + 1] - ts[j])
+                expr = ca.if_else(t < ts[j + 1], seg, expr)
+            if k == 0:
+                dx = dx + expr
+            elif k == 1:
+                dy = dy + expr
+            else:
+                dz = dz + expr
+    return ca.vertcat(dx, dy, dz)
+
+
+def length_expr(tm: TopMotion, length0: float, t: ca.SX) -> ca.SX:
+    """Unstretched length L(t), m, of the pay-out law (Huang (1992) 3.1)."""
+    r, big_r = _ramp(tm, t)
+    if tm.payout_law == "periodic":
+        return length0 + r * tm.payout_amplitude * ca.sin(tm.payout_frequency * t)
+    out = length0 + tm.payout_speed * big_r
+    if tm.payout_law == "quadratic":
+        out = out + 0.5 * tm.payout_acceleration * t**2
+    return out
+
+
+def motion_function(scene: DynamicScene) -> ca.Function:
+    """CasADi function ``t -> (L, L_t, L_tt, x_b, v_b, a_b)``.
+
+    L (m), L_t (m/s), L_tt (m/s^2): the unstretched length and its derivatives;
+    x_b (m), v_b (m/s), a_b (m/s^2): end_b's position (3-vectors) and derivatives.
+    """
+    t = ca.SX.sym("t")
+    tm = scene.top_motion
+    length = length_expr(tm, scene.length, t)
+    dl = ca.jacobian(length, t)
+    ddl = ca.jacobian(dl, t)
+    pos = ca.DM(scene.top_position) + top_offset_expr(tm, t)
+    vel = ca.jacobian(pos, t)
+    acc = ca.jacobian(vel, t)
+    return ca.Function("motion", [t], [length, dl, ddl, pos, vel, acc],
+                       ["t"], ["L", "L_t", "L_tt", "x_b", "v_b", "a_b"])
+
+
+def length_numeric(tm: TopMotion, length0: float, times: Sequence[float] | np.ndarray
+                   ) -> tuple[np.ndarray, np.ndarray]:
+    """(L(t), L_t(t)) on a grid of times (s), as numpy arrays (m, m/s)."""
+    t = ca.SX.sym("t")
+    length = length_expr(tm, length0, t)
+    f = ca.Function("L", [t], [length, ca.jacobian(length, t)])
+    ts = np.asarray(times, dtype=float).reshape(1, -1)
+    fm = f.map(ts.shape[1])
+    a, b = fm(ts)
+    return np.asarray(a).ravel(), np.asarray(b).ravel()

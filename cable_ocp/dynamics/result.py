@@ -1,0 +1,255 @@
+"""Results of the dynamics: time histories, modes and the deployment chart.
+
+Every model returns these types. A numerical failure comes back as a result whose
+``status`` is not ``"solved"`` (with what was computed up to the failure and diagnostics),
+never as an exception. ``to_dict()`` gives strict JSON (no NaN or infinity: ``null``).
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass, field
+from typing import Any
+
+import numpy as np
+
+__all__ = ["DeploymentChart", "ModesResult", "SimulationResult", "json_safe"]
+
+
+def json_safe(value: Any) -> Any:
+    """Convert numpy arrays and scalars to lists and floats, NaN and +-inf to None."""
+    if isinstance(value, dict):
+        return {str(k): json_safe(v) for k, v in value.items()}
+    if isinstance(value, (list, tuple)):
+        return [json_safe(v) for v in value]
+    if isinstance(value, np.ndarray):
+        return json_safe(value.tolist())
+    if isinstance(value, (bool, np.bool_)):
+        return bool(value)
+    if isinstance(value, (int, np.integer)):
+        return int(value)
+    if isinstance(value, (float, np.floating)):
+        x = float(value)
+        return x if math.isfinite(x) else None
+    return value
+
+
+@dataclass(frozen=True)
+class SimulationResult:
+    """Time history of a dynamics simulation.
+
+    Attributes
+    ----------
+    t : ndarray, shape (n_t,)
+        Sample times, s.
+    length : ndarray, shape (n_t,)
+        Unstretched paid-out length, m.
+    top_position : ndarray, shape (n_t, 3)
+        Position of end_b (the ship's attachment), m.
+    unit_position : ndarray, shape (n_t, 3)
+        Position of end_a (the unit, or the anchor), m.
+    top_tension : ndarray, shape (n_t,)
+        Tension at end_b, N.
+    node_positions : ndarray, shape (n_t, n_nodes, 3)
+        Node positions from end_a to end_b, m.
+    segment_tensions : ndarray, shape (n_t, n_nodes - 1)
+        Tension in each element from end_a to end_b, N (negative = compression of a model
+        that cannot go slack).
+    min_tension : float
+        Smallest element tension over the run, N.
+    slack : dict
+        ``occurred`` (bool), ``first_time`` (s or None), ``location`` (unstretched arc
+        length from end_a of the middle of the first slack element, m, or None),
+        ``segment`` (its index from end_a or None).
+    status : str
+        ``"solved"``; ``"slack"`` (a tension <= 0 occurred: the model cannot follow
+        slack, Huang (1992) 4.5.1); ``"failed"`` (an implicit step did not converge: the
+        history stops at the last good sample); ``"interrupted"``.
+    message : str
+        Human-readable detail of the status.
+    warnings : list of str
+        Things the user should know (e.g. a coarse time step).
+    wall_time_s : float
+        Wall-clock time of the time integration, s (without building the model).
+    model : str
+        ``"axial"``, ``"planar"`` or ``"lumped3d"``.
+    scheme : str
+        The time-integration scheme.
+    diagnostics : dict
+        Everything else: build time, steps, Newton residuals, the static start, ...
+    node_velocities : ndarray, shape (n_t, n_nodes, 3), or None
+        Material velocities of the nodes, m/s (None when a model does not provide them).
+    """
+
+    t: np.ndarray
+    length: np.ndarray
+    top_position: np.ndarray
+    unit_position: np.ndarray
+    top_tension: np.ndarray
+    node_positions: np.ndarray
+    segment_tensions: np.ndarray
+    min_tension: float
+    slack: dict[str, Any]
+    status: str
+    message: str
+    warnings: list[str] = field(default_factory=list)
+    wall_time_s: float = 0.0
+    model: str = ""
+    scheme: str = ""
+    diagnostics: dict[str, Any] = field(default_factory=dict)
+    node_velocities: np.ndarray | None = None
+
+    @property
+    def success(self) -> bool:
+        """True when the run finished without slack or failure."""
+        return self.status == "solved"
+
+    def to_dict(self, full: bool = False) -> dict[str, Any]:
+        """JSON-ready dictionary (strict JSON; SI units).
+
+        Fields: ``status``, ``message``, ``model``, ``scheme``, ``t`` (s), ``length`` (m,
+        unstretched), ``top_position`` ([[x, y, z], ...], m), ``unit_position``,
+        ``top_tension`` (N), ``min_tension`` (N), ``slack``, ``wall_time_s``, ``warnings``,
+        ``diagnostics``; with ``full`` also ``node_positions`` (m), ``segment_tensions``
+        (N) and ``node_velocities`` (m/s, when the model gives them).
+        """
+        out: dict[str, Any] = {
+            "status": self.status,
+            "message": self.message,
+            "model": self.model,
+            "scheme": self.scheme,
+            "t": self.t,
+            "length": self.length,
+            "top_position": self.top_position,
+            "unit_position": self.unit_position,
+            "top_tension": self.top_tension,
+            "min_tension": self.min_tension,
+            "slack": self.slack,
+            "wall_time_s": self.wall_time_s,
+            "warnings": list(self.warnings),
+            "diagnostics": self.diagnostics,
+        }
+        if full:
+            out["node_positions"] = self.node_positions
+            out["segment_tensions"] = self.segment_tensions
+            if self.node_velocities is not None:
+                out["node_velocities"] = self.node_velocities
+        return json_safe(out)
+
+
+@dataclass(frozen=True)
+class ModesResult:
+    """Natural frequencies and mode shapes, linearised about the static state.
+
+    Attributes
+    ----------
+    frequencies : ndarray, shape (n_modes,)
+        Natural frequencies omega, rad/s, ascending.
+    shapes : ndarray, shape (n_modes, n_nodes, 3)
+        Mode shapes (displacements dx, dy, dz per node, from end_a to end_b), scaled so
+        that the largest |component| is 1 and positive.
+    node_positions : ndarray, shape (n_nodes, 3)
+        Static node positions, m.
+    length : float
+        Unstretched length of the line, m.
+    model : str
+        The model that was linearised.
+    status : str
+        ``"solved"`` or a failure code (e.g. the static state did not converge).
+    message : str
+        Detail of the status.
+    diagnostics : dict
+        Everything else (segments, the static state's source, ...).
+    """
+
+    frequencies: np.ndarray
+    shapes: np.ndarray
+    node_positions: np.ndarray
+    length: float
+    model: str
+    status: str = "solved"
+    message: str = ""
+    diagnostics: dict[str, Any] = field(default_factory=dict)
+
+    @property
+    def periods(self) -> np.ndarray:
+        """Natural periods 2 pi / omega, s (inf for a zero frequency)."""
+        with np.errstate(divide="ignore"):
+            return np.where(self.frequencies > 0.0, 2.0 * np.pi / self.frequencies, np.inf)
+
+    def to_dict(self) -> dict[str, Any]:
+        """JSON-ready dictionary: ``{"modes": [{"frequency_rad_s", "period_s", "shape"}],
+        ...}`` in ascending frequency, ``shape`` one [dx, dy, dz] row per node from end_a
+        to end_b; plus ``status``, ``message``, ``model``, ``length``,
+        ``node_positions`` and ``diagnostics``."""
+        modes = [{"frequency_rad_s": float(w), "frequency_hz": float(w) / (2.0 * math.pi),
+                  "period_s": float(p), "shape": s}
+                 for w, p, s in zip(self.frequencies, self.periods, self.shapes, strict=True)]
+        return json_safe({"status": self.status, "message": self.message,
+                          "model": self.model, "length": self.length, "modes": modes,
+                          "node_positions": self.node_positions,
+                          "diagnostics": self.diagnostics})
+
+
+@dataclass(frozen=True)
+class DeploymentChart:
+    """Natural frequencies against paid-out length (a deployment resonance chart).
+
+    Attributes
+    ----------
+    lengths : ndarray, shape (n_L,)
+        Unstretched lengths, m.
+    frequencies : ndarray, shape (n_L, n_modes)
+        Natural frequencies at each length, rad/s, ascending per row (NaN where the
+        static state failed).
+    wave_band : tuple of float
+        Wave-frequency band (low, high), rad/s.
+    model : str
+        The model that was linearised.
+    status : str
+        ``"solved"`` or ``"failed"`` (some lengths failed: their rows are NaN).
+    message : str
+        Detail of the status.
+    diagnostics : dict
+        Everything else.
+    """
+
+    lengths: np.ndarray
+    frequencies: np.ndarray
+    wave_band: tuple[float, float]
+    model: str
+    status: str = "solved"
+    message: str = ""
+    diagnostics: dict[str, Any] = field(default_factory=dict)
+
+    @property
+    def in_band(self) -> np.ndarray:
+        """(n_L, n_modes) bool: the frequency lies in the wave band."""
+        lo, hi = self.wave_band
+        f = np.nan_to_num(self.frequencies, nan=-1.0)
+        return (f >= lo) & (f <= hi)
+
+    def crossings(self) -> list[dict[str, Any]]:
+        """Lengths where a mode's frequency crosses a band edge (linear interpolation).
+
+        Each entry: ``mode`` (0-based), ``edge`` (rad/s), ``length_m``.
+        """
+        out = []
+        for k in range(self.frequencies.shape[1]):
+            f = self.frequencies[:, k]
+            for edge in self.wave_band:
+                d = f - edge
+                for i in range(len(d) - 1):
+                    if np.isfinite(d[i]) and np.isfinite(d[i + 1]) and d[i] * d[i + 1] < 0:
+                        a = d[i] / (d[i] - d[i + 1])
+                        length = self.lengths[i] + a * (self.lengths[i + 1] - self.lengths[i])
+                        out.append({"mode": k, "edge": float(edge), "length_m": float(length)})
+        return sorted(out, key=lambda c: c["length_m"])
+
+    def to_dict(self) -> dict[str, Any]:
+        """JSON-ready dictionary: ``lengths`` (m), ``frequencies_rad_s`` (rows per length),
+        ``wave_band_rad_s``, ``crossings``, ``status``, ``message``, ``model``."""
+        return json_safe({"status": self.status, "message": self.message, "model": self.model,
+                          "lengths": self.lengths, "frequencies_rad_s": self.frequencies,
+                          "wave_band_rad_s": list(self.wave_band),
+                          "crossings": self.crossings(), "diagnostics": self.diagnostics})

@@ -1,0 +1,930 @@
+"""Dynamic problem files (TOML, SI units) -> validated :class:`DynamicScene`.
+
+A dynamic scene is a statics scene (:mod:`cable_ocp.scene`: ``[meta]``, ``[environment]``,
+``[cable]`` / ``[[cable.segments]]``, ``[[bodies]]``, ``[end_b]``, ``[solver]``) plus the
+dynamic keys below. The statics part is parsed by :func:`cable_ocp.scene.scene_from_dict`
+(the dynamic keys are stripped first) and kept in :attr:`DynamicScene.statics`: it is the
+problem whose solution is the initial state (Huang (1992), section 5.6.1).
+
+Schema of the dynamic keys (all SI; units in brackets)::
+
+    [cable]                      (or per segment in [[cable.segments]])
+    mass_per_length = 7.2        kg/m, mass in air per unstretched length (required)
+    added_mass_coefficient = 1.0 C_a (-), normal to the cable: added mass per length
+                                 C_a rho pi d^2 / 4 (default 1.0, a circular cylinder in
+                                 potential flow; 0 = none, e.g. in air)
+    tangential_added_mass_coefficient = 0.0
+                                 (-), along the cable (default 0: Huang (1992) section 5.2.1
+                                 "if it is accelerated longitudinally no hydrodynamic
+                                 reaction due to inertia occurs")
+    axial_damping = 0.0          N s, internal (material) damping c: T = EA e + c de/dt
+    [unit]                       the subsea unit at end_a (replaces [end_a])
+    mass = 5000.0                kg (in air), >= 0
+    added_mass = 8000.0          kg, >= 0; a number or [x, y, z] per axis (default 0)
+    weight_in_water = 42600.0    N (negative = buoyant); or give volume instead
+    volume = 0.354               m^3, optional: weight_in_water = (mass - rho volume) g
+    drag_area = 0.5              m^2, projected area S (default 0); a number or [x, y, z]
+    drag_coefficient = 1.5       C_D (-) (default 0); a number or [x, y, z]
+                                 Numbers: D = -1/2 rho C_D S |u| u (u the velocity relative
+                                 to the water). Per-axis lists: each component on its own,
+                                 D_k = -1/2 rho C_Dk S_k |u_k| u_k (Huang (1992) section 5.2.2)
+    [end_a]                      instead of [unit]: an anchored lower end, position only
+    [[bodies]]                   as in statics, plus mass (kg, required) and
+                                 added_mass (kg, number or [x, y, z], default 0)
+    [end_b]
+    position = [x, y, z]         m, the ship attachment's position at t = 0 (static position)
+    [top_motion]                 prescribed motion of end_b, offsets from end_b.position
+    heave_amplitude = 0.0        m;  z += A sin(w t)
+    heave_frequency = 0.628      rad/s (required when heave_amplitude != 0)
+    horizontal_amplitude = 0.0   m;  (x, y) += A sin(w t) (cos psi, sin psi)
+    horizontal_frequency         rad/s
+    horizontal_heading_deg = 0.0 psi, deg from +x towards +y
+    circular_radius = 0.0        m;  z += r sin(w t), (x, y) += r (1 - cos(w t)) (cos psi,
+                                 sin psi): a circle in a vertical plane, started at rest
+                                 position (Huang (1992) section 4.5.5: P = sin t, Q = 1 - cos t)
+    circular_frequency           rad/s
+    circular_heading_deg = 0.0   deg
+    series = [[t, dx, dy, dz], ...]   s, m: a measured vessel motion, linear in t between
+                                 rows, held after the last row (rows from t = 0, increasing)
+    ramp_time = 0.0              s; > 0 ramps the oscillation amplitudes and the pay-out /
+                                 tow speeds smoothly (10x^3 - 15x^4 + 6x^5, x = t/ramp_time:
+                                 no jump in velocity or acceleration) from 0 (Huang (1992)
+                                 5.6.1: avoid impulsive loading); 0 = start at once
+    payout_law = "linear"        "linear" | "quadratic" | "periodic" (Huang (1992) 3.1):
+                                 L = L0 + v t  |  L0 + v t + a t^2/2  |  L0 + p sin(w t)
+    payout_speed = 0.0           v, m/s of unstretched cable; > 0 pays out (lowers the unit)
+    payout_acceleration = 0.0    a, m/s^2 (quadratic)
+    payout_amplitude = 0.0       p, m (periodic)
+    payout_frequency             w, rad/s (periodic)
+    [top_motion.tow]             a towing path (Huang (1992) 5.7.4): straight, turn, straight
+    speed = 4.0                  m/s along the path
+    heading_deg = 0.0            deg, initial direction from +x towards +y
+    straight_length = 800.0      m before the turn
+    turn_diameter = 300.0        m
+    turn_angle_deg = 360.0       deg turned (then straight again)
+    turn_direction = "left"      "left" (counter-clockwise seen from above) | "right"
+    [simulation]
+    model = "axial"              "axial" | "planar" | "lumped3d" (required)
+    duration = 100.0             s (required)
+    time_step = 0.01             s (required)
+    output_step = 0.1            s, a multiple of time_step (default time_step)
+    segments = 20                number of elements along the line (default 20)
+    start = "static"             "static" (the statics solution, default) | "unstrained"
+                                 (at rest, unstretched, hanging straight down from end_b,
+                                 as Huang (1992) 5.7.1)
+    scheme = "midpoint"          time integration; valid values per model in SCHEMES
+    tolerance = 1e-10            Newton tolerance of an implicit step (scaled residual:
+                                 positions over the static elongation, accelerations over g)
+    max_iterations = 20          Newton iterations per step
+    on_slack = "continue"        "continue" | "stop": what to do when a tension <= 0 is
+                                 found (Huang (1992) 4.5.1: the model predicts slack but
+                                 cannot follow it); either way the result says so
+    [modes]                      modal analysis and the deployment chart
+    count = 6                    number of modes (default 6)
+    wave_band = [0.314, 1.571]   rad/s, the wave-frequency band shaded on the chart
+                                 (default periods 4-20 s)
+
+The static start: end_a of :attr:`DynamicScene.statics` is a free end whose external load
+is the unit's weight in water plus its drag in the current at rest,
+1/2 rho C_D S |U| U (the current at the unit's estimated depth: see
+:func:`cable_ocp.dynamics.static.static_state`); end_b is fixed at ``end_b.position``.
+
+In air: set ``added_mass_coefficient = 0``, the drag coefficients to 0 (or leave them out
+without a current) and ``weight_in_water`` to the weight in air.
+"""
+
+from __future__ import annotations
+
+import copy
+import math
+from dataclasses import dataclass, field, replace
+from pathlib import Path
+from typing import Any
+
+from cable_ocp.dynamics.motion import length_numeric
+from cable_ocp.errors import CableOCPError
+from cable_ocp.scene import Current, End, Scene, apply_overrides, scene_from_dict
+from cable_ocp.scene.fields import check_keys as _check_keys
+from cable_ocp.scene.fields import number as _number
+from cable_ocp.scene.fields import require as _require
+from cable_ocp.scene.files import check_kind, read_problem
+
+__all__ = [
+    "DEFAULT_SCHEME",
+    "MODELS",
+    "SCHEMES",
+    "BodyDynamics",
+    "DynamicScene",
+    "ModesOptions",
+    "SegmentDynamics",
+    "Simulation",
+    "TopMotion",
+    "Tow",
+    "Unit",
+    "current_at",
+    "dynamic_scene_from_dict",
+    "is_dynamic_dict",
+    "load_dynamic_scene",
+]
+
+MODELS = ("axial", "planar", "lumped3d")
+#: Time-integration schemes offered by each model (the first is the default).
+SCHEMES: dict[str, tuple[str, ...]] = {
+    "axial": ("midpoint", "gauss4", "trapezoidal", "bdf2", "thesis"),
+    "planar": ("midpoint",),
+    "lumped3d": ("midpoint", "trapezoidal", "bdf2", "thesis"),
+}
+DEFAULT_SCHEME = {m: s[0] for m, s in SCHEMES.items()}
+
+#: Top-level tables that only dynamic scenes have (their presence marks a dynamic scene).
+DYNAMIC_TABLES = ("unit", "top_motion", "simulation", "modes")
+_CABLE_DYN_KEYS = {"mass_per_length", "added_mass_coefficient",
+                   "tangential_added_mass_coefficient", "axial_damping"}
+_UNIT_KEYS = {"mass", "added_mass", "weight_in_water", "volume", "drag_area",
+              "drag_coefficient"}
+_BODY_DYN_KEYS = {"mass", "added_mass"}
+_TOP_KEYS = {"heave_amplitude", "heave_frequency", "horizontal_amplitude",
+             "horizontal_frequency", "horizontal_heading_deg", "circular_radius",
+             "circular_frequency", "circular_heading_deg", "series", "ramp_time",
+             "payout_law", "payout_speed", "payout_acceleration", "payout_amplitude",
+             "payout_frequency", "tow"}
+_LAW_KEYS = {"linear": {"payout_speed"},
+             "quadratic": {"payout_speed", "payout_acceleration"},
+             "periodic": {"payout_amplitude", "payout_frequency"}}
+_TOW_KEYS = {"speed", "heading_deg", "straight_length", "turn_diameter", "turn_angle_deg",
+             "turn_direction"}
+_SIM_KEYS = {"model", "duration", "time_step", "output_step", "segments", "start", "scheme",
+             "tolerance", "max_iterations", "on_slack"}
+_MODES_KEYS = {"count", "wave_band"}
+#: Relative slack allowed for rounded inputs when a weight in water is checked against
+#: the weight in air (the buoyancy must not be negative).
+_ROUNDING = 1e-3
+#: The largest number of time steps a scene may ask for (memory of the outputs).
+MAX_STEPS = 20_000_000
+
+Vec3 = tuple[float, float, float]
+
+
+# --------------------------------------------------------------------------------------
+# Dataclasses
+# --------------------------------------------------------------------------------------
+
+@dataclass(frozen=True)
+class SegmentDynamics:
+    """Dynamic properties of one cable segment (``[cable]`` or ``[[cable.segments]]``).
+
+    Attributes
+    ----------
+    mass_per_length : float
+        Mass in air per unstretched length, kg/m.
+    added_mass_coefficient : float
+        Normal added-mass coefficient C_a (-): added mass C_a rho pi d^2/4 per length
+        for acceleration normal to the cable.
+    tangential_added_mass_coefficient : float
+        Tangential added-mass coefficient (-), same form, for acceleration along the cable.
+    axial_damping : float
+        Internal damping coefficient c, N s: the tension is EA e + c de/dt (e the strain).
+    """
+
+    mass_per_length: float
+    added_mass_coefficient: float = 1.0
+    tangential_added_mass_coefficient: float = 0.0
+    axial_damping: float = 0.0
+
+    def added_mass_per_length(self, diameter: float, rho: float) -> float:
+        """Normal added mass per unstretched length, kg/m."""
+        return self.added_mass_coefficient * rho * math.pi * diameter**2 / 4.0
+
+    def tangential_added_mass_per_length(self, diameter: float, rho: float) -> float:
+        """Tangential added mass per unstretched length, kg/m."""
+        return self.tangential_added_mass_coefficient * rho * math.pi * diameter**2 / 4.0
+
+
+@dataclass(frozen=True)
+class Unit:
+    """The subsea unit hanging at end_a (``[unit]``).
+
+    Attributes
+    ----------
+    mass : float
+        Mass in air, kg.
+    added_mass : tuple of float
+        Added masses along x, y, z, kg (Huang (1992) 5.2.2: M_ax, M_ay, M_az).
+    weight_in_water : float
+        Weight minus buoyancy, N (negative = buoyant).
+    volume : float or None
+        Displaced volume, m^3, when given.
+    drag_area : tuple of float
+        Projected areas S_x, S_y, S_z, m^2.
+    drag_coefficient : tuple of float
+        Drag coefficients C_Dx, C_Dy, C_Dz (-).
+    drag_per_axis : bool
+        True: each velocity component has its own quadratic drag (Huang (1992) 5.2.2);
+        False (scalar keys): the vector law -1/2 rho C_D S |u| u.
+    """
+
+    mass: float
+    added_mass: Vec3 = (0.0, 0.0, 0.0)
+    weight_in_water: float = 0.0
+    volume: float | None = None
+    drag_area: Vec3 = (0.0, 0.0, 0.0)
+    drag_coefficient: Vec3 = (0.0, 0.0, 0.0)
+    drag_per_axis: bool = False
+
+    def drag(self, relative_velocity: Any, rho: float) -> list[float]:
+        """Drag force on the unit, N, for its velocity relative to the water (m/s).
+
+        ``relative_velocity`` is the unit's velocity minus the current's (3 numbers).
+        """
+        u = [float(c) for c in relative_velocity]
+        cs = [self.drag_area[k] * self.drag_coefficient[k] for k in range(3)]
+        if self.drag_per_axis:
+            return [-0.5 * rho * cs[k] * abs(u[k]) * u[k] for k in range(3)]
+        speed = math.sqrt(sum(c * c for c in u))
+        return [-0.5 * rho * cs[0] * speed * u[k] for k in range(3)]
+
+    def static_load(self, current: Vec3, rho: float) -> Vec3:
+        """External load on end_a at rest in a current (m/s): weight in water plus drag, N."""
+        d = self.drag([-c for c in current], rho)
+        return (d[0], d[1], d[2] - self.weight_in_water)
+
+    @property
+    def virtual_mass(self) -> Vec3:
+        """Mass plus added mass per axis, kg."""
+        return tuple(self.mass + a for a in self.added_mass)  # type: ignore[return-value]
+
+
+@dataclass(frozen=True)
+class BodyDynamics:
+    """Mass data of one ``[[bodies]]`` entry (same order as ``statics.bodies``).
+
+    Attributes
+    ----------
+    mass : float
+        Mass in air, kg.
+    added_mass : tuple of float
+        Added masses along x, y, z, kg.
+    """
+
+    mass: float
+    added_mass: Vec3 = (0.0, 0.0, 0.0)
+
+
+@dataclass(frozen=True)
+class Tow:
+    """A towing path for end_b (``[top_motion.tow]``): straight, a turn, straight again
+    (Huang (1992) section 5.7.4).
+
+    Attributes
+    ----------
+    speed : float
+        Speed along the path, m/s.
+    heading_deg : float
+        Initial direction, deg from +x towards +y.
+    straight_length : float
+        Distance before the turn, m (``math.inf``: never turns).
+    turn_diameter : float
+        Diameter of the turning circle, m.
+    turn_angle_deg : float
+        Angle turned, deg; then straight on along the new heading.
+    turn_direction : str
+        ``"left"`` (counter-clockwise seen from above) or ``"right"``.
+    """
+
+    speed: float
+    heading_deg: float = 0.0
+    straight_length: float = math.inf
+    turn_diameter: float = 0.0
+    turn_angle_deg: float = 360.0
+    turn_direction: str = "left"
+
+
+@dataclass(frozen=True)
+class TopMotion:
+    """Prescribed motion of end_b and the pay-out law (``[top_motion]``).
+
+    Offsets are from ``end_b.position`` (m); see the module docstring for the formulas and
+    :mod:`cable_ocp.dynamics.motion` for their CasADi expressions.
+
+    Attributes
+    ----------
+    heave_amplitude, heave_frequency : float
+        m, rad/s: z offset A sin(w t).
+    horizontal_amplitude, horizontal_frequency, horizontal_heading_deg : float
+        m, rad/s, deg: horizontal offset A sin(w t) along the heading.
+    circular_radius, circular_frequency, circular_heading_deg : float
+        m, rad/s, deg: a vertical circle, z += r sin(w t), horizontal r (1 - cos(w t)).
+    series : tuple of (t, dx, dy, dz)
+        s, m: tabulated offsets (linear interpolation, held after the last row).
+    ramp_time : float
+        s, smooth start of amplitudes and speeds (0 = none).
+    payout_law : str
+        ``"linear"``, ``"quadratic"`` or ``"periodic"`` (Huang (1992) 3.1).
+    payout_speed : float
+        v, m/s of unstretched cable (> 0 lowers the unit).
+    payout_acceleration : float
+        a, m/s^2 (quadratic law).
+    payout_amplitude, payout_frequency : float
+        p (m), w (rad/s) of the periodic law.
+    tow : Tow or None
+        Towing path.
+    """
+
+    heave_amplitude: float = 0.0
+    heave_frequency: float = 0.0
+    horizontal_amplitude: float = 0.0
+    horizontal_frequency: float = 0.0
+    horizontal_heading_deg: float = 0.0
+    circular_radius: float = 0.0
+    circular_frequency: float = 0.0
+    circular_heading_deg: float = 0.0
+    series: tuple[tuple[float, float, float, float], ...] = ()
+    ramp_time: float = 0.0
+    payout_law: str = "linear"
+    payout_speed: float = 0.0
+    payout_acceleration: float = 0.0
+    payout_amplitude: float = 0.0
+    payout_frequency: float = 0.0
+    tow: Tow | None = None
+
+    @property
+    def varying_length(self) -> bool:
+        """True when the unstretched length changes with time."""
+        return (self.payout_speed != 0.0 or self.payout_acceleration != 0.0
+                or self.payout_amplitude != 0.0)
+
+    @property
+    def horizontal(self) -> bool:
+        """True when end_b moves horizontally (horizontal, circular, tow or series)."""
+        return (self.horizontal_amplitude != 0.0 or self.circular_radius != 0.0
+                or self.tow is not None
+                or any(r[1] != 0.0 or r[2] != 0.0 for r in self.series))
+
+    @property
+    def moves(self) -> bool:
+        """True when end_b moves at all."""
+        return (self.horizontal or self.heave_amplitude != 0.0
+                or any(r[3] != 0.0 for r in self.series))
+
+
+@dataclass(frozen=True)
+class Simulation:
+    """Time-domain settings (``[simulation]``).
+
+    Attributes
+    ----------
+    model : str
+        ``"axial"``, ``"planar"`` or ``"lumped3d"``.
+    duration : float
+        Simulated time, s.
+    time_step : float
+        Integration step, s.
+    output_step : float
+        Interval between stored samples, s (a multiple of ``time_step``).
+    segments : int
+        Elements along the line.
+    start : str
+        ``"static"`` or ``"unstrained"``.
+    scheme : str
+        Time-integration scheme (:data:`SCHEMES`).
+    tolerance : float
+        Newton tolerance of an implicit step (scaled residual, -).
+    max_iterations : int
+        Newton iterations per step.
+    on_slack : str
+        ``"continue"`` or ``"stop"``.
+    """
+
+    model: str
+    duration: float
+    time_step: float
+    output_step: float
+    segments: int = 20
+    start: str = "static"
+    scheme: str = "midpoint"
+    tolerance: float = 1e-10
+    max_iterations: int = 20
+    on_slack: str = "continue"
+
+    @property
+    def steps(self) -> int:
+        """Number of integration steps."""
+        return int(round(self.duration / self.time_step))
+
+    @property
+    def output_every(self) -> int:
+        """Integration steps per stored sample."""
+        return int(round(self.output_step / self.time_step))
+
+
+@dataclass(frozen=True)
+class ModesOptions:
+    """Modal-analysis settings (``[modes]``).
+
+    Attributes
+    ----------
+    count : int
+        Number of modes.
+    wave_band : tuple of float
+        Wave-frequency band (low, high), rad/s, shaded on the deployment chart.
+    """
+
+    count: int = 6
+    wave_band: tuple[float, float] = (2.0 * math.pi / 20.0, 2.0 * math.pi / 4.0)
+
+
+@dataclass(frozen=True)
+class DynamicScene:
+    """A validated dynamics problem.
+
+    Attributes
+    ----------
+    statics : Scene
+        The statics problem of the initial state (end_a free with the unit's load, or the
+        anchor; end_b fixed at its static position).
+    cable : tuple of SegmentDynamics
+        Dynamic properties per segment, from end_a to end_b (one for a single cable).
+    unit : Unit or None
+        The subsea unit at end_a; None for an anchored end_a.
+    bodies : tuple of BodyDynamics
+        Masses of the point bodies, in the order of ``statics.bodies``.
+    top_motion : TopMotion
+        Motion of end_b and pay-out.
+    simulation : Simulation
+        Time-domain settings.
+    modes : ModesOptions
+        Modal-analysis settings.
+    """
+
+    statics: Scene
+    cable: tuple[SegmentDynamics, ...]
+    unit: Unit | None
+    bodies: tuple[BodyDynamics, ...]
+    top_motion: TopMotion
+    simulation: Simulation
+    modes: ModesOptions = field(default_factory=ModesOptions)
+    meta: dict[str, str] = field(default_factory=dict, compare=False, hash=False)
+    raw: dict[str, Any] = field(default_factory=dict, compare=False, hash=False, repr=False)
+
+    @property
+    def length(self) -> float:
+        """Unstretched length at t = 0, m."""
+        return float(self.statics.cable.length)  # type: ignore[arg-type]
+
+    @property
+    def top_position(self) -> Vec3:
+        """Static position of end_b (the ship's attachment), m."""
+        return self.statics.end_b.position  # type: ignore[return-value]
+
+    @property
+    def anchored(self) -> bool:
+        """True when end_a is an anchor (no unit)."""
+        return self.unit is None
+
+    def with_overrides(self, overrides: dict[str, Any]) -> DynamicScene:
+        """Return a new scene with dotted-key overrides applied to the source dict."""
+        return dynamic_scene_from_dict(apply_overrides(self.raw, overrides))
+
+
+# --------------------------------------------------------------------------------------
+# Parsing
+# --------------------------------------------------------------------------------------
+
+def is_dynamic_dict(data: dict[str, Any]) -> bool:
+    """True when a problem dictionary has any dynamic table ([unit], [top_motion],
+    [simulation], [modes])."""
+    return isinstance(data, dict) and any(k in data for k in DYNAMIC_TABLES)
+
+
+def current_at(current: Current | None, z: float) -> Vec3:
+    """Current velocity (m/s) at height z (m): linear in the components between knots,
+    constant beyond the first and last knot (CONVENTIONS, "Frame and scene files")."""
+    if current is None:
+        return (0.0, 0.0, 0.0)
+    zs = current.z
+    if len(zs) == 1 or z <= zs[0]:
+        return (current.ux[0], current.uy[0], 0.0)
+    if z >= zs[-1]:
+        return (current.ux[-1], current.uy[-1], 0.0)
+    for k in range(len(zs) - 1):
+        if zs[k] <= z <= zs[k + 1]:
+            f = (z - zs[k]) / (zs[k + 1] - zs[k])
+            return (current.ux[k] + f * (current.ux[k + 1] - current.ux[k]),
+                    current.uy[k] + f * (current.uy[k + 1] - current.uy[k]), 0.0)
+    raise AssertionError("unreachable")
+
+
+def _int(value: Any, key: str, lo: int, hi: int | None = None) -> int:
+    if isinstance(value, bool) or not isinstance(value, int) or value < lo or (
+            hi is not None and value > hi):
+        rng = f"{lo}..{hi}" if hi is not None else f">= {lo}"
+        raise CableOCPError(f"{key} = {value!r}: expected an integer {rng}")
+    return value
+
+
+def _choice(value: Any, key: str, valid: tuple[str, ...]) -> str:
+    if value not in valid:
+        raise CableOCPError(f"{key} = {value!r}: valid are "
+                            + ", ".join(f'"{v}"' for v in valid))
+    return value
+
+
+def _vec_or_scalar(value: Any, key: str) -> tuple[Vec3, bool]:
+    """A nonnegative number or [x, y, z] -> (triple, given per axis)."""
+    if isinstance(value, list):
+        if len(value) != 3:
+            raise CableOCPError(f"{key} = {value!r}: expected a number or [x, y, z]")
+        return tuple(_number(v, f"{key}[{i}]", nonneg=True)  # type: ignore[return-value]
+                     for i, v in enumerate(value)), True
+    x = _number(value, key, nonneg=True)
+    return (x, x, x), False
+
+
+def _parse_segment_dynamics(t: dict[str, Any], where: str, diameter: float,
+                            need_diameter: bool) -> SegmentDynamics:
+    mass = _number(_require(t, "mass_per_length", where), f"{where}.mass_per_length",
+                   positive=True)
+    ca_n = _number(t.get("added_mass_coefficient", 1.0), f"{where}.added_mass_coefficient",
+                   nonneg=True)
+    ca_t = _number(t.get("tangential_added_mass_coefficient", 0.0),
+                   f"{where}.tangential_added_mass_coefficient", nonneg=True)
+    damping = _number(t.get("axial_damping", 0.0), f"{where}.axial_damping", nonneg=True)
+    if (ca_n > 0.0 or ca_t > 0.0) and diameter <= 0.0 and need_diameter:
+        key = "added_mass_coefficient" if ca_n > 0.0 else "tangential_added_mass_coefficient"
+        default = " (default 1.0)" if ca_n > 0.0 and "added_mass_coefficient" not in t else ""
+        raise CableOCPError(
+            f"{where}.diameter is missing: the added mass ({where}.{key} = {ca_n if ca_n else ca_t}"
+            f"{default}) is C_a rho pi d^2 / 4 per metre; give {where}.diameter (m) or set "
+            f"{where}.{key} = 0 (e.g. in air)")
+    return SegmentDynamics(mass_per_length=mass, added_mass_coefficient=ca_n,
+                           tangential_added_mass_coefficient=ca_t, axial_damping=damping)
+
+
+def _parse_unit(t: Any, rho: float, g: float) -> Unit:
+    t = _check_keys(t, _UNIT_KEYS, "unit")
+    mass = _number(_require(t, "mass", "unit"), "unit.mass", nonneg=True)
+    added, _ = _vec_or_scalar(t.get("added_mass", 0.0), "unit.added_mass")
+    volume = None
+    if "volume" in t:
+        volume = _number(t["volume"], "unit.volume", nonneg=True)
+    if "weight_in_water" in t:
+        w = _number(t["weight_in_water"], "unit.weight_in_water")
+        if volume is not None:
+            w_v = (mass - rho * volume) * g
+            if abs(w - w_v) > 1e-3 * max(abs(w), mass * g, 1e-12):
+                raise CableOCPError(
+                    f"unit.weight_in_water = {w} N disagrees with unit.volume = {volume} m^3: "
+                    f"(mass - rho volume) g = {w_v:.6g} N; give one of them")
+    elif volume is not None:
+        w = (mass - rho * volume) * g
+    else:
+        raise CableOCPError("unit.weight_in_water is missing (N; or give unit.volume, m^3)")
+    if w > mass * g * (1.0 + _ROUNDING) + 1e-12:
+        raise CableOCPError(
+            f"unit.weight_in_water = {w} N exceeds the weight in air mass g = {mass * g:.6g} N "
+            "(buoyancy cannot be negative): check unit.mass and unit.weight_in_water")
+    area, area_axes = _vec_or_scalar(t.get("drag_area", 0.0), "unit.drag_area")
+    cd, cd_axes = _vec_or_scalar(t.get("drag_coefficient", 0.0), "unit.drag_coefficient")
+    for k in range(3):
+        if (area[k] > 0.0) != (cd[k] > 0.0):
+            raise CableOCPError("unit: give both drag_area (m^2) and drag_coefficient (-) "
+                                "for every axis that has drag, or neither")
+    return Unit(mass=mass, added_mass=added, weight_in_water=w, volume=volume,
+                drag_area=area, drag_coefficient=cd, drag_per_axis=area_axes or cd_axes)
+
+
+def _parse_tow(t: Any) -> Tow:
+    where = "top_motion.tow"
+    t = _check_keys(t, _TOW_KEYS, where)
+    speed = _number(_require(t, "speed", where), f"{where}.speed", positive=True)
+    straight = _number(t.get("straight_length", math.inf), f"{where}.straight_length",
+                       nonneg=True, allow_inf=True)
+    diameter = _number(t.get("turn_diameter", 0.0), f"{where}.turn_diameter", nonneg=True)
+    angle = _number(t.get("turn_angle_deg", 360.0), f"{where}.turn_angle_deg", nonneg=True)
+    direction = _choice(t.get("turn_direction", "left"), f"{where}.turn_direction",
+                        ("left", "right"))
+    if math.isfinite(straight) and diameter <= 0.0 and angle > 0.0:
+        raise CableOCPError(f"{where}.turn_diameter is missing: a turn after straight_length "
+                            f"= {straight} m needs turn_diameter > 0 (m)")
+    return Tow(speed=speed, heading_deg=_number(t.get("heading_deg", 0.0),
+                                                f"{where}.heading_deg"),
+               straight_length=straight, turn_diameter=diameter, turn_angle_deg=angle,
+               turn_direction=direction)
+
+
+def _parse_top_motion(t: Any) -> TopMotion:
+    where = "top_motion"
+    t = _check_keys(t, _TOP_KEYS, where)
+    kw: dict[str, Any] = {}
+    for amp, freq in (("heave_amplitude", "heave_frequency"),
+                      ("horizontal_amplitude", "horizontal_frequency"),
+                      ("circular_radius", "circular_frequency")):
+        a = _number(t.get(amp, 0.0), f"{where}.{amp}",
+                    nonneg=amp == "circular_radius")
+        kw[amp] = a
+        if freq in t:
+            kw[freq] = _number(t[freq], f"{where}.{freq}", positive=True)
+        elif a != 0.0:
+            raise CableOCPError(f"{where}.{freq} is missing: {where}.{amp} = {a} needs a "
+                                "frequency (rad/s)")
+    for key in ("horizontal_heading_deg", "circular_heading_deg"):
+        kw[key] = _number(t.get(key, 0.0), f"{where}.{key}")
+    kw["ramp_time"] = _number(t.get("ramp_time", 0.0), f"{where}.ramp_time", nonneg=True)
+    if "series" in t:
+        rows = t["series"]
+        if not isinstance(rows, list) or len(rows) < 2:
+            raise CableOCPError(f"{where}.series: expected at least two rows [t, dx, dy, dz] "
+                                "(s, m)")
+        out = []
+        for i, r in enumerate(rows):
+            if not isinstance(r, list) or len(r) != 4:
+                raise CableOCPError(f"{where}.series[{i}] = {r!r}: expected [t, dx, dy, dz] "
+                                    "(s, m)")
+            out.append(tuple(_number(v, f"{where}.series[{i}][{k}]") for k, v in enumerate(r)))
+        if out[0][0] != 0.0:
+            raise CableOCPError(f"{where}.series[0][0] = {out[0][0]}: the series starts at "
+                                "t = 0 s")
+        if any(b[0] <= a[0] for a, b in zip(out, out[1:], strict=False)):
+            raise CableOCPError(f"{where}.series: times must increase strictly")
+        if any(v != 0.0 for v in out[0][1:]):
+            raise CableOCPError(f"{where}.series[0]: the offsets at t = 0 must be 0 (end_b "
+                                "starts at end_b.position)")
+        kw["series"] = tuple(out)
+    law = _choice(t.get("payout_law", "linear"), f"{where}.payout_law",
+                  ("linear", "quadratic", "periodic"))
+    kw["payout_law"] = law
+    all_law_keys = set().union(*_LAW_KEYS.values())
+    for key in sorted(all_law_keys & set(t)):
+        if key not in _LAW_KEYS[law]:
+            raise CableOCPError(
+                f"{where}.{key} does not belong to payout_law = \"{law}\"; its keys are "
+                f"{', '.join(sorted(_LAW_KEYS[law]))}")
+    kw["payout_speed"] = _number(t.get("payout_speed", 0.0), f"{where}.payout_speed")
+    kw["payout_acceleration"] = _number(t.get("payout_acceleration", 0.0),
+                                        f"{where}.payout_acceleration")
+    kw["payout_amplitude"] = _number(t.get("payout_amplitude", 0.0),
+                                     f"{where}.payout_amplitude")
+    if law == "periodic":
+        if "payout_frequency" not in t:
+            raise CableOCPError(f"{where}.payout_frequency is missing (rad/s; payout_law = "
+                                "\"periodic\": L = L0 + p sin(w t))")
+        kw["payout_frequency"] = _number(t["payout_frequency"], f"{where}.payout_frequency",
+                                         positive=True)
+    if "tow" in t:
+        kw["tow"] = _parse_tow(t["tow"])
+    return TopMotion(**kw)
+
+
+def _parse_simulation(t: Any) -> Simulation:
+    where = "simulation"
+    t = _check_keys(t, _SIM_KEYS, where)
+    model = _choice(_require(t, "model", where), f"{where}.model", MODELS)
+    duration = _number(_require(t, "duration", where), f"{where}.duration", positive=True)
+    dt = _number(_require(t, "time_step", where), f"{where}.time_step", positive=True)
+    if dt > duration:
+        raise CableOCPError(f"{where}.time_step = {dt} s exceeds {where}.duration = "
+                            f"{duration} s")
+    steps = duration / dt
+    if abs(steps - round(steps)) > 1e-6 * steps:
+        raise CableOCPError(f"{where}.duration = {duration} s is not a whole number of "
+                            f"time steps ({where}.time_step = {dt} s, {steps:.6g} steps)")
+    if steps > MAX_STEPS:
+        raise CableOCPError(f"{where}.time_step = {dt} s: {steps:.3g} steps over {duration} s "
+                            f"exceed the limit {MAX_STEPS:.0e}; take a larger time step")
+    out = _number(t.get("output_step", dt), f"{where}.output_step", positive=True)
+    ratio = out / dt
+    if ratio < 1.0 - 1e-9 or abs(ratio - round(ratio)) > 1e-6 * ratio:
+        raise CableOCPError(f"{where}.output_step = {out} s: must be a whole multiple of "
+                            f"{where}.time_step = {dt} s")
+    if round(steps) % round(ratio) != 0:
+        raise CableOCPError(f"{where}.output_step = {out} s: duration = {duration} s must be "
+                            "a whole number of output steps")
+    scheme = _choice(t.get("scheme", DEFAULT_SCHEME[model]), f"{where}.scheme "
+                     f"(model \"{model}\")", SCHEMES[model])
+    return Simulation(
+        model=model, duration=duration, time_step=dt, output_step=out,
+        segments=_int(t.get("segments", 20), f"{where}.segments", 1, 100_000),
+        start=_choice(t.get("start", "static"), f"{where}.start", ("static", "unstrained")),
+        scheme=scheme,
+        tolerance=_number(t.get("tolerance", 1e-10), f"{where}.tolerance", positive=True),
+        max_iterations=_int(t.get("max_iterations", 20), f"{where}.max_iterations", 1, 1000),
+        on_slack=_choice(t.get("on_slack", "continue"), f"{where}.on_slack",
+                         ("continue", "stop")),
+    )
+
+
+def _parse_modes(t: Any) -> ModesOptions:
+    t = _check_keys(t, _MODES_KEYS, "modes")
+    d = ModesOptions()
+    band = d.wave_band
+    if "wave_band" in t:
+        v = t["wave_band"]
+        if not isinstance(v, list) or len(v) != 2:
+            raise CableOCPError(f"modes.wave_band = {v!r}: expected [low, high] (rad/s)")
+        lo = _number(v[0], "modes.wave_band[0]", positive=True)
+        hi = _number(v[1], "modes.wave_band[1]", positive=True)
+        if hi <= lo:
+            raise CableOCPError(f"modes.wave_band = {v!r}: expected low < high (rad/s)")
+        band = (lo, hi)
+    return ModesOptions(count=_int(t.get("count", d.count), "modes.count", 1, 10_000),
+                        wave_band=band)
+
+
+def _length_history_min(tm: TopMotion, length0: float, duration: float) -> tuple[float, float]:
+    """(smallest unstretched length over [0, duration], its time) of the pay-out law."""
+    n = 20001
+    ts = [duration * k / (n - 1) for k in range(n)]
+    ls = length_numeric(tm, length0, ts)[0]
+    k = min(range(n), key=lambda i: ls[i])
+    return float(ls[k]), ts[k]
+
+
+def _strip_dynamic(data: dict[str, Any]) -> tuple[dict[str, Any], dict[str, Any]]:
+    """Split a dynamic problem dict into (statics dict, dynamic parts)."""
+    stat = copy.deepcopy(data)
+    dyn: dict[str, Any] = {k: stat.pop(k) for k in DYNAMIC_TABLES if k in stat}
+    cab = stat.get("cable")
+    if isinstance(cab, dict):
+        dyn["cable"] = {k: cab.pop(k) for k in list(cab) if k in _CABLE_DYN_KEYS}
+        segs = cab.get("segments")
+        if isinstance(segs, list):
+            dyn["segments"] = [
+                {k: s.pop(k) for k in list(s) if k in _CABLE_DYN_KEYS} if isinstance(s, dict)
+                else {} for s in segs]
+    bodies = stat.get("bodies")
+    if isinstance(bodies, list):
+        dyn["bodies"] = [{k: b.pop(k) for k in list(b) if k in _BODY_DYN_KEYS}
+                         if isinstance(b, dict) else {} for b in bodies]
+    return stat, dyn
+
+
+def dynamic_scene_from_dict(data: dict[str, Any]) -> DynamicScene:
+    """Validate a dynamic problem dictionary (as read from TOML).
+
+    Raises
+    ------
+    CableOCPError
+        On a statics scene (no [simulation]), unknown keys, missing required fields,
+        non-finite or out-of-range numbers, or inconsistent settings; the message names
+        the key.
+    """
+    if not isinstance(data, dict):
+        raise CableOCPError("a problem must be a table")
+    raw = copy.deepcopy(data)
+    if "simulation" not in data:
+        if is_dynamic_dict(data):
+            raise CableOCPError("[simulation] is missing: a dynamic scene needs model, "
+                                "duration and time_step")
+        raise CableOCPError("this is a statics scene (no [simulation] table): use "
+                            "`cable-ocp solve`, or add [simulation] and [unit] for dynamics")
+    if "footprint" in data:
+        raise CableOCPError("[footprint] is a statics problem: use `cable-ocp footprint`; "
+                            "remove [footprint] from a dynamic scene")
+    if "layout" in data:
+        raise CableOCPError("[layout] is not supported in a dynamic scene: give "
+                            "end_b.position directly")
+    stat, dyn = _strip_dynamic(data)
+    for name in ("environment", "cable"):
+        if name not in stat:
+            raise CableOCPError(f"[{name}] is missing")
+    env_t = stat["environment"] if isinstance(stat["environment"], dict) else {}
+    rho = _number(_require(env_t, "water_density", "environment"),
+                  "environment.water_density", positive=True)
+    g = _number(env_t.get("gravity", 9.81), "environment.gravity", positive=True)
+
+    # the lower end: a unit (free end with its load) or an anchor
+    unit = None
+    if "unit" in dyn:
+        if "end_a" in stat:
+            raise CableOCPError("[end_a] and [unit] both given: in a dynamic scene [unit] "
+                                "replaces end_a (the unit hangs at end_a); remove [end_a], or "
+                                "remove [unit] for an anchored end_a")
+        unit = _parse_unit(dyn["unit"], rho, g)
+        stat["end_a"] = {"force": [0.0, 0.0, -unit.weight_in_water]}  # current added below
+    elif "end_a" in stat:
+        ea = stat["end_a"]
+        if not isinstance(ea, dict) or set(ea) != {"position"}:
+            raise CableOCPError(
+                "end_a: in a dynamic scene end_a is either an anchor (only position = "
+                "[x, y, z], all numbers) or a subsea unit ([unit] instead of [end_a])")
+    else:
+        raise CableOCPError("[unit] is missing: give the subsea unit at end_a ([unit] with "
+                            "mass, weight_in_water, ...) or an anchored [end_a] position")
+    eb = stat.get("end_b")
+    if not isinstance(eb, dict) or set(eb) != {"position"}:
+        raise CableOCPError("end_b: in a dynamic scene end_b is the ship's attachment: give "
+                            "only position = [x, y, z] (m, its static position); its motion "
+                            "goes in [top_motion]")
+    cab = stat.get("cable")
+    if isinstance(cab, dict):
+        lv = cab.get("length")
+        if isinstance(lv, str):
+            raise CableOCPError(f"cable.length = {lv!r}: a dynamic scene needs the unstretched "
+                                "length at t = 0 (m); a free length is a statics problem")
+    statics = scene_from_dict(stat)
+    if not all(statics.end_b.fixed_mask):
+        raise CableOCPError("end_b.position: every component must be a number (m) in a "
+                            "dynamic scene")
+    if statics.end_a.tension is not None or statics.end_b.tension is not None:
+        raise CableOCPError("end tensions are a statics input; remove them")
+
+    # unit: its drag in the current at rest joins the static load
+    if unit is not None and statics.environment.current is not None:
+        z_est = statics.end_b.position[2] - statics.cable.length  # type: ignore[operator]
+        load = unit.static_load(current_at(statics.environment.current, z_est), rho)
+        statics = replace(statics, end_a=End(position=(None, None, None), force=load))
+
+    # cable dynamics, per segment
+    lines = statics.lines
+    if statics.segments:
+        seg_t = dyn.get("segments", [{} for _ in lines])
+        extra = sorted(dyn.get("cable", {}))
+        if extra:
+            raise CableOCPError(f"cable.{extra[0]}: with [[cable.segments]] every segment "
+                                f"gives its own {extra[0]}")
+        cable = tuple(_parse_segment_dynamics(seg_t[i], f"cable.segments[{i}]",
+                                              lines[i].diameter, True)
+                      for i in range(len(lines)))
+    else:
+        cable = (_parse_segment_dynamics(dyn.get("cable", {}), "cable", lines[0].diameter,
+                                         True),)
+    for i, (c, d) in enumerate(zip(lines, cable, strict=True)):
+        where = f"cable.segments[{i}]" if statics.segments else "cable"
+        if c.weight_in_water > d.mass_per_length * g * (1.0 + _ROUNDING):
+            raise CableOCPError(
+                f"{where}.weight_in_water = {c.weight_in_water} N/m exceeds the weight in air "
+                f"mass_per_length g = {d.mass_per_length * g:.6g} N/m (buoyancy cannot be "
+                f"negative): check {where}.mass_per_length")
+        if not c.elastic:
+            raise CableOCPError(f"{where}.axial_stiffness is missing: dynamics needs an "
+                                "elastic cable (EA, N)")
+        if c.tangential_drag > 0.0 and c.diameter <= 0.0:
+            raise CableOCPError(f"{where}.diameter is missing: tangential_drag acts on pi d")
+        if c.normal_drag > 0.0 and c.diameter <= 0.0:
+            raise CableOCPError(f"{where}.diameter is missing: normal_drag acts on d")
+
+    bodies_t = dyn.get("bodies", [])
+    bodies = []
+    for i, b in enumerate(bodies_t):
+        if "mass" not in b:
+            raise CableOCPError(f"bodies[{i}].mass is missing (kg, mass in air; a dynamic "
+                                "scene needs the mass of every body)")
+        mass = _number(b["mass"], f"bodies[{i}].mass", nonneg=True)
+        added, _ = _vec_or_scalar(b.get("added_mass", 0.0), f"bodies[{i}].added_mass")
+        sb = statics.bodies[i]
+        w = sb.weight_in_water - sb.net_buoyancy
+        if w > mass * g * (1.0 + _ROUNDING) + 1e-12:
+            raise CableOCPError(f"bodies[{i}].mass = {mass} kg: the weight in water {w} N "
+                                f"exceeds the weight in air {mass * g:.6g} N")
+        bodies.append(BodyDynamics(mass=mass, added_mass=added))
+
+    top = _parse_top_motion(dyn.get("top_motion", {}))
+    sim = _parse_simulation(dyn["simulation"])
+    modes = _parse_modes(dyn.get("modes", {}))
+
+    if top.varying_length:
+        lmin, tmin = _length_history_min(top, statics.cable.length, sim.duration)  # type: ignore[arg-type]
+        if lmin <= 0.0:
+            key = ("payout_amplitude" if top.payout_law == "periodic" else "payout_speed")
+            raise CableOCPError(
+                f"top_motion.{key}: the unstretched length reaches {lmin:.4g} m at t = "
+                f"{tmin:.4g} s (within simulation.duration = {sim.duration} s); it must stay "
+                "> 0: haul in less or shorten the duration")
+        if statics.segments and statics.cable.length is not None:
+            top_seg = statics.segments[-1].length
+            shrink = statics.cable.length - lmin  # type: ignore[operator]
+            if shrink >= top_seg:  # type: ignore[operator]
+                raise CableOCPError(
+                    f"top_motion: hauling in {shrink:.4g} m would remove the whole top segment "
+                    f"(cable.segments[{len(statics.segments) - 1}].length = {top_seg} m); "
+                    "pay-out changes the top segment only")
+    if unit is None and sim.start == "unstrained":
+        raise CableOCPError('simulation.start = "unstrained" needs a unit at end_a: an '
+                            "anchored line cannot hang straight and unstretched")
+    meta = {str(k): str(v) for k, v in (data.get("meta") or {}).items()}
+    return DynamicScene(statics=statics, cable=cable, unit=unit, bodies=tuple(bodies),
+                        top_motion=top, simulation=sim, modes=modes, meta=meta, raw=raw)
+
+
+def load_dynamic_scene(path: str | Path,
+                       overrides: dict[str, Any] | None = None) -> DynamicScene:
+    """Read a TOML dynamic problem file, apply dotted-key ``overrides`` and validate it.
+
+    Parameters
+    ----------
+    path : str or Path
+        The problem file.
+    overrides : dict, optional
+        Dotted keys, e.g. ``{"top_motion.payout_speed": 1.0, "simulation.segments": 40}``
+        (values as parsed by :func:`cable_ocp.scene.parse_override`).
+
+    Raises
+    ------
+    CableOCPError
+        Missing file, invalid TOML, a statics scene, or any invalid key (named).
+    """
+    data = read_problem(path)
+    check_kind(data, "dynamics", path)
+    if overrides:
+        data = apply_overrides(data, overrides)
+    return dynamic_scene_from_dict(data)

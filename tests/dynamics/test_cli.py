@@ -1,0 +1,75 @@
+"""``cable-ocp simulate`` and ``cable-ocp modes``: the output contract on dynamic scenes."""
+
+from __future__ import annotations
+
+import csv
+import json
+import math
+from pathlib import Path
+
+import pytest
+
+from cable_ocp.cli import main
+
+ROOT = Path(__file__).resolve().parents[2]
+AIR = ROOT / "problems" / "dynamics" / "vertical_in_air.toml"
+
+
+def test_simulate_json_fields_and_csv(tmp_path: Path) -> None:
+    """The JSON has the issue's fields (strict JSON, envelope), the CSV one row per sample
+    with node positions and element tensions; a clean run exits 0."""
+    js, cs = tmp_path / "s.json", tmp_path / "s.csv"
+    rc = main(["simulate", str(AIR), "--set", "simulation.duration=1.0", "--json", str(js),
+               "--csv", str(cs), "--quiet"])
+    assert rc == 0
+    d = json.loads(js.read_text())
+    for key in ("status", "message", "warnings", "version", "t", "length", "top_position",
+                "unit_position", "top_tension", "min_tension", "slack", "wall_time_s"):
+        assert key in d, key
+    assert d["status"] == "solved" and d["slack"]["occurred"] is False
+    n = len(d["t"])
+    assert len(d["top_position"]) == n and len(d["top_position"][0]) == 3
+    rows = list(csv.reader(cs.open()))
+    assert len(rows) == n + 1
+    assert rows[0][:2] == ["t [s]", "length [m]"] and "element0_tension [N]" in rows[0]
+    assert math.isclose(float(rows[-1][0]), d["t"][-1])
+
+
+def test_simulate_slack_exits_1(tmp_path: Path) -> None:
+    """Huang's 3.3.1 rope at 2 Hz goes slack: status "slack", where and when, exit 1."""
+    js = tmp_path / "s.json"
+    rc = main(["simulate", str(ROOT / "problems" / "dynamics" / "huang_3_3_1.toml"),
+               "--set", "simulation.duration=1.0", "--json", str(js), "--quiet"])
+    d = json.loads(js.read_text())
+    assert rc == 1 and d["status"] == "slack"
+    assert d["slack"]["occurred"] and d["slack"]["first_time"] > 0
+
+
+def test_modes_json_and_deployment_chart(tmp_path: Path, capsys: pytest.CaptureFixture) -> None:
+    """modes --json: ascending frequencies, one shape row per node; --lengths: a chart whose
+    first frequency falls with length."""
+    assert main(["modes", str(AIR), "--count", "3", "--json", "-"]) == 0
+    d = json.loads(capsys.readouterr().out)
+    w = [m["frequency_rad_s"] for m in d["modes"]]
+    assert w == sorted(w) and len(w) == 3
+    assert all(len(row) == 3 for row in d["modes"][0]["shape"])
+    assert d["modes"][0]["period_s"] == pytest.approx(2 * math.pi / w[0])
+    assert main(["modes", str(AIR), "--count", "2", "--lengths", "50:150:3", "--json",
+                 "-", "--quiet"]) == 0
+    chart = json.loads(capsys.readouterr().out)
+    first = [row[0] for row in chart["frequencies_rad_s"]]
+    assert first[0] > first[1] > first[2]
+
+
+@pytest.mark.parametrize("args,needle", [
+    (["simulate", "problems/dezoysa_sea_buggy.toml"], "cable-ocp solve"),
+    (["solve", "problems/dynamics/vertical_in_air.toml"], "cable-ocp simulate"),
+    (["modes", "problems/dynamics/vertical_in_air.toml", "--lengths", "1:2"], "START:STOP:N"),
+    (["simulate", "problems/dynamics/vertical_in_air.toml", "--set",
+      "simulation.time_step=-1"], "simulation.time_step"),
+])
+def test_input_errors_exit_2(args: list[str], needle: str, capsys: pytest.CaptureFixture,
+                             monkeypatch: pytest.MonkeyPatch) -> None:
+    monkeypatch.chdir(ROOT)
+    assert main(args) == 2
+    assert needle in capsys.readouterr().err
