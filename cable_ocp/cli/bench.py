@@ -176,6 +176,12 @@ def cmd_accuracy(args: argparse.Namespace) -> int:
     from cable_ocp.bench.common import fmt_sci
 
     out.check_outputs(args)
+    if not 1 <= args.repeats <= 100:
+        raise out_error(f"--repeats {args.repeats}: give 1..100 (the fastest is kept)")
+    labels = [*accuracy.PLAN, accuracy.REUSED]
+    for m in args.method or []:
+        if m not in labels:
+            raise out_error(f"--method {m!r}: valid are " + ", ".join(f'"{x}"' for x in labels))
     scenes = [(Path(f).stem, Path(f), {}) for f in args.scene] if args.scene else None
     if scenes:
         from cable_ocp.scene import load_scene

@@ -85,32 +85,50 @@ def cmd_simulate(args: argparse.Namespace) -> int:
         rows = [
             ("status", f"{res.status}: {res.message}"),
             ("model, scheme", f"{res.model}, {res.scheme}"),
-            ("simulated", f"{t[-1] - t[0]:.4g} s in {len(t)} samples"),
-            ("wall time", f"{res.wall_time_s:.3g} s "
-                          f"({res.wall_time_s / max(t[-1] - t[0], 1e-12):.3g} s per simulated s)"),
-            ("length", f"{res.length[0]:.4f} -> {res.length[-1]:.4f} m (unstretched)"),
-            ("top tension", f"{np.nanmin(res.top_tension):.6g} .. "
-                            f"{np.nanmax(res.top_tension):.6g} N"),
-            ("smallest tension", f"{res.min_tension:.6g} N"),
-            ("unit heave", f"{np.nanmin(res.unit_position[:, 2]):.6g} .. "
-                           f"{np.nanmax(res.unit_position[:, 2]):.6g} m (z)"),
-            ("slack", _slack_text(res.slack)),
         ]
+        if len(t) == 0:  # failed before the first sample (e.g. the static state)
+            rows += [("simulated", "nothing")]
+        else:
+            rows += _series_rows(res, t)
         rows += [("WARNING", w) for w in res.warnings]
         width = max(len(k) for k, _ in rows)
         print(title)
         print("\n".join(f"{k:<{width}}  {v}" for k, v in rows))
     out.emit_json(args, out.envelope(res.status, res.message, data, res.warnings))
-    if args.csv:
+    empty = len(res.t) == 0
+    if empty and (args.csv or args.netcdf or args.plot):
+        out.note(args, "no time series (the run failed before its first sample): no CSV, "
+                       "netCDF or figure written")
+    if args.csv and not empty:
         out.emit_csv(args, *_series_table(res))
-    if args.netcdf:
+    if args.netcdf and not empty:
         _write_netcdf(res, args.netcdf)
         out.confirm(args, args.netcdf, "netCDF")
-    if args.plot:
+    if args.plot and not empty:
         from cable_ocp.plots.dynamics import plot_simulation
 
         out.emit_plot(args, lambda path: plot_simulation(res, path, title=title, scene=scene))
     return out.EXIT_OK if res.success else out.EXIT_NOT_SUCCESS
+
+
+def _series_rows(res: Any, t: Any) -> list[tuple[str, str]]:
+    """The summary rows of a non-empty time series ('-' where a number does not exist)."""
+    def g(v: Any) -> str:
+        return "-" if v is None or not np.isfinite(v) else f"{v:.6g}"
+
+    span = t[-1] - t[0]
+    return [
+        ("simulated", f"{span:.4g} s in {len(t)} samples"),
+        ("wall time", f"{res.wall_time_s:.3g} s "
+                      f"({res.wall_time_s / max(span, 1e-12):.3g} s per simulated s)"),
+        ("length", f"{res.length[0]:.4f} -> {res.length[-1]:.4f} m (unstretched)"),
+        ("top tension", f"{g(np.nanmin(res.top_tension))} .. "
+                        f"{g(np.nanmax(res.top_tension))} N"),
+        ("smallest tension", f"{g(res.min_tension)} N"),
+        ("unit heave", f"{g(np.nanmin(res.unit_position[:, 2]))} .. "
+                       f"{g(np.nanmax(res.unit_position[:, 2]))} m (z)"),
+        ("slack", _slack_text(res.slack)),
+    ]
 
 
 def _slack_text(slack: dict[str, Any]) -> str:
@@ -189,7 +207,8 @@ def cmd_modes(args: argparse.Namespace) -> int:
                 for k, (w, p) in enumerate(zip(res.frequencies, res.periods, strict=True))]
         out.say(args, f"{title}: {res.model} model, {res.status}"
                       + (f" ({res.message})" if res.message else ""))
-        out.say(args, report.table(["mode", "omega [rad/s]", "f [Hz]", "period [s]"], rows))
+        out.say(args, report.table(["mode", "omega [rad/s]", "f [Hz]", "period [s]"], rows)
+                if rows else "no modes")
         out.emit_csv(args, ["mode", "frequency [rad/s]", "frequency [Hz]", "period [s]"],
                      [[k + 1, w, w / (2 * np.pi), p] for k, (w, p) in
                       enumerate(zip(res.frequencies, res.periods, strict=True))])

@@ -37,6 +37,7 @@ def register(sub: argparse._SubParsersAction, parent: argparse.ArgumentParser) -
     out.add_json_option(p, "the metrics of every controller")
     out.add_csv_option(p, "the closed-loop time series of every controller")
     out.add_plot_option(p, "spectra, time series and the trade-off curves")
+    out.add_force_option(p)
     p.set_defaults(func=cmd_heave)
 
 
@@ -51,33 +52,30 @@ def _overrides(args: argparse.Namespace) -> dict[str, Any]:
     return over
 
 
-def _status(metrics: Any) -> str:
-    vals = [v for v in metrics.as_dict().values() if isinstance(v, float)]
-    return "solved" if all(math.isfinite(v) for v in vals) else "non_finite"
-
-
 def cmd_heave(args: argparse.Namespace) -> int:
     """``cable-ocp heave FILE``."""
     from cable_ocp.heave.simulate import compare
+    from cable_ocp.scene.cost import heave_cost
     from cable_ocp.scene.heave import load_scene
 
     out.check_outputs(args)
     sc = load_scene(args.file, _overrides(args))
+    out.check_cost(args, heave_cost(sc))
     with out.progress(args, 1, "heave simulation", "sample") as bar:
         res = compare(sc, progress=lambda done, total, _: bar(done, total))
-    statuses = {k: _status(v) for k, v in res.metrics.items()}
-    bad = [k for k, s in statuses.items() if s != "solved"]
-    status = "solved" if not bad else statuses[bad[0]]
-    message = ("every controller ran and stayed finite" if not bad
-               else f"{', '.join(bad)}: {status}")
+    bad = [k for k, s in res.statuses.items() if s != "solved"]
+    message = ("every controller ran to the end with finite, bounded states" if not bad
+               else "; ".join(f"{k}: {res.statuses[k]}: {res.messages[k]}" for k in bad))
     if out.stdout_free(args):
         _print_table(sc, args, res)
-    ctrl = {k: {"status": statuses[k], **v.as_dict()} for k, v in res.metrics.items()}
+    ctrl = {k: {"status": res.statuses[k], "message": res.messages[k], **v.as_dict()}
+            for k, v in res.metrics.items()}
     if "mpc" in ctrl:
         ctrl["mpc"]["solver_failures"] = res.mpc_failures
-    out.emit_json(args, out.envelope(status, message, {
-        "sigma_uncontrolled": res.sigma_uncontrolled, "controllers": ctrl}))
-    if args.csv:
+    out.emit_json(args, out.envelope(res.status, message, {
+        "sigma_uncontrolled": res.sigma_uncontrolled,
+        "passive_heave_rms": res.passive_heave_rms, "controllers": ctrl}, res.warnings))
+    if args.csv and res.traces:
         names = list(res.traces)
         t = next(iter(res.traces.values())).t
         header = ["t [s]", "boom_tip_heave [m]"]
@@ -89,7 +87,12 @@ def cmd_heave(args: argparse.Namespace) -> int:
             cols += [tr.x, tr.u, tr.u_dot, tr.u0]
         out.emit_csv(args, header, np.column_stack(cols).tolist())
     if args.plot:
-        out.emit_plot(args, lambda path: _plot(sc, args, res, path))
+        if res.traces:
+            out.emit_plot(args, lambda path: _plot(sc, args, res, path))
+        else:
+            out.note(args, f"--plot {args.plot}: no controller ran; no figure written")
+    if bad:
+        out.note(args, f"cable-ocp: not solved ({res.status}): {message}")
     return out.EXIT_OK if not bad else out.EXIT_NOT_SUCCESS
 
 
@@ -97,23 +100,33 @@ def _print_table(sc: Any, args: argparse.Namespace, res: Any) -> None:
     """The comparison table (what ``cable-ocp heave`` prints)."""
     fit = res.models.filter_fit
     print(f"{sc.title or Path(args.file).stem}")
-    print(f"sigma_uncontrolled (Lyapunov, sigma^2 = pi P11): {res.sigma_uncontrolled:.4f} m")
+    sig = res.sigma_uncontrolled
+    print("sigma_uncontrolled (Lyapunov, sigma^2 = pi P11): "
+          + (f"{sig:.4f} m" if sig is not None else "- (no valid variance)"))
     print(f"shaping filter: spectral error {fit.spectral_error:.3f}, variance error "
           f"{100 * fit.variance_error:+.2f} %")
-    hdr = ("controller", "heave rms [m]", "reduction [%]", "peak u' [m/s]", "max |u| [m]",
+    hdr = ("controller", "status", "heave rms [m]", "reduction [%]", "peak u' [m/s]", "max |u| [m]",
            "u' rms [m/s]", "energy [-]", "violation [-]", "solve median [s]")
-    print("{:<10} {:>13} {:>13} {:>13} {:>11} {:>12} {:>10} {:>13} {:>16}".format(*hdr))
+    print("{:<10} {:<10} {:>13} {:>13} {:>13} {:>11} {:>12} {:>10} {:>13} {:>16}".format(
+        *hdr))
 
     def f(v: float | None, spec: str) -> str:
         return "-" if v is None or not math.isfinite(v) else format(v, spec)
 
     for name, m in res.metrics.items():
-        print(f"{name:<10} {f(m.heave_rms, '13.4e')} {f(m.reduction_pct, '13.3f')} "
+        print(f"{name:<10} {res.statuses[name]:<10} {f(m.heave_rms, '13.4e')} "
+              f"{f(m.reduction_pct, '13.3f')} "
               f"{f(m.peak_winch_speed, '13.3f')} {f(m.max_stroke, '11.3f')} "
               f"{f(m.winch_speed_rms, '12.3f')} {f(m.energy_index, '10.2f')} "
               f"{f(m.max_constraint_violation, '13.3f')} {f(m.solve_time_median_s, '16.2e')}")
     if "mpc" in res.metrics:
         print(f"MPC solver failures (fell back on the shifted plan): {res.mpc_failures}")
+    if "passive" not in res.metrics and res.passive_heave_rms is not None:
+        print(f"reduction relative to a passive run on the same sea: heave rms "
+              f"{res.passive_heave_rms:.4e} m")
+    for name, st in res.statuses.items():
+        if st != "solved":
+            print(f"{name}: {st}: {res.messages[name]}")
 
 
 def _plot(sc: Any, args: argparse.Namespace, res: Any, path: str) -> None:

@@ -20,6 +20,8 @@ Outputs
   confirmed on stderr (``wrote PATH``).
 * Anything that runs longer than about two seconds shows a progress bar on stderr when
   stderr is a terminal; ``--quiet`` turns the bar and the confirmations off.
+* A run whose estimated cost is above 10 min of CPU or 4 GB of memory
+  (:mod:`cable_ocp.scene.cost`) is refused with exit 2 and the estimate, unless ``--force``.
 """
 
 from __future__ import annotations
@@ -94,6 +96,21 @@ def add_plot_option(p: argparse.ArgumentParser, what: str) -> None:
     """``--plot PATH`` (format from the suffix)."""
     p.add_argument("--plot", metavar="PATH",
                    help=f"save {what}; the format follows the suffix (png, pdf, svg, ...)")
+
+
+def add_force_option(p: argparse.ArgumentParser) -> None:
+    """``--force``: run even when the estimated cost is above the limits."""
+    p.add_argument("--force", action="store_true",
+                   help="run even when the estimated cost is above the limits (10 min of "
+                        "CPU, 4 GB of memory; see docs/cli.md)")
+
+
+def check_cost(args: argparse.Namespace, cost: Any) -> None:
+    """Exit 2 before any work when ``cost`` (:class:`cable_ocp.scene.cost.Cost`) is above
+    the limits, unless ``--force``."""
+    from cable_ocp.scene.cost import check_cost as check
+
+    check(cost, force=getattr(args, "force", False))
 
 
 def overrides(args: argparse.Namespace) -> dict[str, Any]:

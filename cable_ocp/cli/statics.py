@@ -27,6 +27,7 @@ def register(sub: argparse._SubParsersAction, parent: argparse.ArgumentParser) -
     out.add_json_option(p, "the solution (status, ends, profile, solver diagnostics)")
     out.add_csv_option(p, "the profile, one row per node")
     out.add_plot_option(p, "the profile and the tension along the cable")
+    out.add_force_option(p)
     p.set_defaults(func=cmd_solve)
 
     f = sub.add_parser(
@@ -44,6 +45,7 @@ def register(sub: argparse._SubParsersAction, parent: argparse.ArgumentParser) -
     out.add_json_option(f, "the polygon and the per-direction results")
     out.add_csv_option(f, "one row per direction")
     out.add_plot_option(f, "the footprint polygon around the ship")
+    out.add_force_option(f)
     f.set_defaults(func=cmd_footprint)
 
 
@@ -71,10 +73,12 @@ def cmd_solve(args: argparse.Namespace) -> int:
     """``cable-ocp solve FILE``."""
     from cable_ocp import report
     from cable_ocp.scene import load_scene
+    from cable_ocp.scene.cost import statics_cost
     from cable_ocp.statics.solver import solve
 
     out.check_outputs(args)
     scene = load_scene(args.file, out.overrides(args))
+    out.check_cost(args, statics_cost(scene))
     sol = solve(scene)
     out.say(args, report.statics_summary(sol, title=_title(scene, args.file)))
     out.emit_json(args, solution_json(sol))
@@ -99,12 +103,14 @@ def cmd_footprint(args: argparse.Namespace) -> int:
     """``cable-ocp footprint FILE``."""
     from cable_ocp import report
     from cable_ocp.scene import load_scene
+    from cable_ocp.scene.cost import statics_cost
     from cable_ocp.statics.footprint import footprint
 
     out.check_outputs(args)
     if args.directions < 3 or args.directions > 3600:
         raise CableOCPError(f"--directions {args.directions}: give 3..3600")
     scene = load_scene(args.file, out.overrides(args))
+    out.check_cost(args, statics_cost(scene, directions=args.directions))
     rows: list[dict[str, Any]] = []
     interrupted = False
     with out.progress(args, args.directions, "footprint", "dir") as bar:

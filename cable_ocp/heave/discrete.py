@@ -28,9 +28,9 @@ def _phi_gamma(A: np.ndarray, B: np.ndarray, t: float) -> tuple[np.ndarray, np.n
 def delay_steps(tau: float, h: float) -> int:
     """Number of buffered past commands needed for a delay ``tau`` at sample time ``h``."""
     if h <= 0:
-        raise CableOCPError(f"[controller] sample_time = {h} must be > 0 s")
+        raise CableOCPError(f"controller.sample_time = {h!r}: must be > 0 (s)")
     if tau < 0:
-        raise CableOCPError(f"[winch] delay = {tau} must be >= 0 s")
+        raise CableOCPError(f"winch.delay = {tau!r}: must be >= 0 (s)")
     return int(np.ceil(tau / h - 1e-9))
 
 

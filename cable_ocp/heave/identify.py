@@ -75,7 +75,7 @@ def simulator(model: str, n_samples: int, dt: float) -> cs.Function:
         Sample interval, s.
     """
     if model not in ("linear", "quadratic"):
-        raise CableOCPError(f"[unit] model = {model!r} is unknown; valid: 'linear', 'quadratic'")
+        raise CableOCPError(f'unit.model = {model!r}: valid are "linear", "quadratic"')
     f = _rhs(model)
     s = cs.MX.sym("s", 2)
     p = cs.MX.sym("p", 2)

@@ -130,8 +130,8 @@ def exact_delay_dlqr(A: np.ndarray, B: np.ndarray, Q: np.ndarray, R: float, h: f
     d_real = tau / h
     if abs(d_real - round(d_real)) > 1e-9:
         raise CableOCPError(
-            f"[winch] delay = {tau} s must be an integer multiple of [controller] "
-            f"sample_time = {h} s for the exact discrete design"
+            f"winch.delay = {tau!r}: must be an integer multiple of controller.sample_time "
+            f"= {h} s for the exact discrete design"
         )
     mdl = discretize_delayed(A, B, h, tau)
     Qz, Rz, Nz = discretize_cost(A, B, Q, R, h, mdl.d)

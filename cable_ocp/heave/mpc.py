@@ -191,23 +191,25 @@ class LinearMPC:
     def __init__(self, plant: HeavePlant, tau: float, settings: MPCSettings) -> None:
         s = settings
         if s.solver not in SOLVERS:
-            raise CableOCPError(f"[controller] solver = {s.solver!r} is unknown; valid: {SOLVERS}")
+            raise CableOCPError(f"controller.solver = {s.solver!r}: valid are "
+                                + ", ".join(f'"{v}"' for v in SOLVERS))
         if not (isinstance(s.horizon, int) and s.horizon >= 1):
-            raise CableOCPError(f"[controller] horizon = {s.horizon!r} must be an integer >= 1")
+            raise CableOCPError(f"controller.horizon = {s.horizon!r}: expected an integer >= 1")
         _check_settings(s)
         h = s.sample_time
         if abs(tau / h - round(tau / h)) > 1e-9:
             raise CableOCPError(
-                f"[winch] delay = {tau} s must be an integer multiple of [controller] "
-                f"sample_time = {h} s (exact shift register)"
+                f"winch.delay = {tau!r}: must be an integer multiple of "
+                f"controller.sample_time = {h} s (exact shift register)"
             )
         if s.accel_max is not None and plant.winch_model != "second_order":
             raise CableOCPError(
-                "[winch] accel_max needs model = 'second_order'; for the first-order winch limit "
-                "command_rate_max (m per sample) instead"
+                'winch.accel_max: needs winch.model = "second_order"; for the first-order '
+                "winch limit winch.command_rate_max (m per sample) instead"
             )
         if s.tension_min is not None and not (s.unit_mass > 0):
-            raise CableOCPError("[winch] tension_min needs [unit] mass > 0 (and static_tension)")
+            raise CableOCPError("winch.tension_min: needs unit.mass > 0 (kg) and "
+                                "unit.static_tension (N)")
         self.plant = plant
         self.settings = s
         self.tau = float(tau)
@@ -232,7 +234,7 @@ class LinearMPC:
         elif s.terminal == "none":
             P = np.zeros((nz, nz))
         else:
-            raise CableOCPError(f"[controller] terminal = {s.terminal!r}; valid: 'dare', 'none'")
+            raise CableOCPError(f'controller.terminal = {s.terminal!r}: valid are "dare", "none"')
         self.P = 0.5 * (P + P.T)
         self.K_lqr = np.linalg.solve(Rz + B.T @ self.P @ B, B.T @ self.P @ A + Nz.T)
         # Prediction: z_k = S[k] z0 + T[k] U + W[k] D, k = 0..N.
@@ -660,7 +662,7 @@ def _check_settings(s: MPCSettings) -> None:
         if val is None:
             continue
         if not (np.isfinite(val) and (val > 0 if strict else val >= 0)):
-            raise CableOCPError(f"[{table}] {key} = {val!r} must be finite and "
+            raise CableOCPError(f"{table}.{key} = {val!r}: expected a finite number "
                                 f"{'> 0' if strict else '>= 0'}")
 
 

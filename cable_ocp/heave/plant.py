@@ -52,7 +52,8 @@ def unit_block(a: float, b: float) -> ct.StateSpace:
         States ``[x, x_dot]``; inputs ``[x0, u]``; outputs ``[x, x_dot, stretch]``.
     """
     if not a > 0 or b < 0:
-        raise CableOCPError(f"[unit] a = {a} must be > 0 and b = {b} must be >= 0 (eq. (6.2))")
+        raise CableOCPError(f"unit.a = {a!r}, unit.b = {b!r}: a must be > 0 (s^2) and b >= 0 (s), "
+                            "eq. (6.2)")
     A = np.array([[0.0, 1.0], [-1.0 / a, -b / a]])
     B = np.array([[0.0, 0.0], [1.0 / a, 1.0 / a]])
     C = np.array([[1.0, 0.0], [0.0, 1.0], [-1.0, 0.0]])
@@ -75,7 +76,7 @@ def winch_first(K: float) -> ct.StateSpace:
         State ``[u]``; input ``u0d``; outputs ``[u, u_dot]``.
     """
     if not K > 0:
-        raise CableOCPError(f"[winch] gain = {K} must be > 0 (1/s, eq. (6.1))")
+        raise CableOCPError(f"winch.gain = {K!r}: must be > 0 (1/s), eq. (6.1)")
     return ct.ss([[-K]], [[K]], [[1.0], [-K]], [[0.0], [K]], inputs=["u0d"],
                  outputs=["u", "u_dot"], states=["u"], name="winch")
 
@@ -100,7 +101,8 @@ def winch_second(omega: float, zeta: float) -> ct.StateSpace:
     """
     if not (omega > 0 and zeta > 0):
         raise CableOCPError(
-            f"[winch] natural_frequency = {omega} and damping_ratio = {zeta} must be > 0"
+            f"winch.natural_frequency = {omega!r}, winch.damping_ratio = {zeta!r}: both "
+            "must be > 0 (rad/s, -)"
         )
     A = np.array([[0.0, 1.0], [-(omega**2), -2.0 * zeta * omega]])
     B = np.array([[0.0], [omega**2]])
@@ -131,7 +133,7 @@ def delay_block(kind: str, tau: float, order: int = 2) -> ct.StateSpace:
         Input ``u0``, output ``u0d``.
     """
     if tau < 0:
-        raise CableOCPError(f"[winch] delay = {tau} must be >= 0 s")
+        raise CableOCPError(f"winch.delay = {tau!r}: must be >= 0 (s)")
     if kind == "none" or tau == 0:
         return ct.ss(np.zeros((0, 0)), np.zeros((0, 1)), np.zeros((1, 0)), [[1.0]],
                      inputs=["u0"], outputs=["u0d"], name="delay")
@@ -168,7 +170,8 @@ def vessel_block(omega_v: float, zeta_v: float, gain: float) -> ct.StateSpace:
     """
     if not (omega_v > 0 and zeta_v > 0):
         raise CableOCPError(
-            f"[vessel] natural_frequency = {omega_v} and damping_ratio = {zeta_v} must be > 0"
+            f"vessel.natural_frequency = {omega_v!r}, vessel.damping_ratio = {zeta_v!r}: "
+            "both must be > 0 (rad/s, -)"
         )
     A = np.array([[0.0, 1.0], [-(omega_v**2), -2.0 * zeta_v * omega_v]])
     B = np.array([[0.0], [1.0]])

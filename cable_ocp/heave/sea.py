@@ -131,8 +131,8 @@ class SeaSpectrum:
         if self.kind == "jonswap":
             return jonswap(omega, self.hs, self.omega_m, self.gamma)
         raise CableOCPError(
-            f"[sea] spectrum = {self.kind!r} is unknown; valid: 'bretschneider', "
-            "'pierson_moskowitz', 'jonswap'"
+            f'sea.spectrum = {self.kind!r}: valid are "bretschneider", '
+            '"pierson_moskowitz", "jonswap"'
         )
 
     def m0(self) -> float:
@@ -201,7 +201,8 @@ def thesis_shaping_filter(hs: float, omega_m: float) -> ct.StateSpace:
     """
     if hs <= 0 or omega_m <= 0:
         raise CableOCPError(
-            f"[sea] significant_wave_height = {hs} and modal_frequency = {omega_m} must be > 0"
+            f"sea.significant_wave_height = {hs!r}, sea.modal_frequency = {omega_m!r}: both "
+            "must be > 0 (m, rad/s)"
         )
     s0 = 1.25 / (4.0 * omega_m) * hs**2 * THESIS_S0_FACTOR
     w0 = THESIS_W0_FACTOR * omega_m
@@ -295,7 +296,7 @@ def fit_shaping_filter(spectrum: SeaSpectrum, n_sections: int = 3) -> FilterFit:
     """
     if not (isinstance(n_sections, int) and 2 <= n_sections <= 6):
         raise CableOCPError(
-            f"[sea] filter_order = {n_sections!r} is invalid; give an integer from 2 to 6"
+            f"sea.filter_order = {n_sections!r}: expected an integer 2..6"
         )
     wm = spectrum.omega_m
     w = _grid(wm)
@@ -346,4 +347,4 @@ def make_shaping_filter(spectrum: SeaSpectrum, kind: str = "thesis",
         return thesis_fit(spectrum)
     if kind == "fit":
         return fit_shaping_filter(spectrum, n_sections)
-    raise CableOCPError(f"[sea] shaping_filter = {kind!r} is unknown; valid: 'thesis', 'fit'")
+    raise CableOCPError(f'sea.shaping_filter = {kind!r}: valid are "thesis", "fit"')

@@ -16,12 +16,31 @@ delayed by exactly ``tau`` (a buffer of fine steps). Controllers act every ``h``
 The unit and winch start at rest in a sea that starts in its stationary state; that start is
 artificial, so **every** metric is taken over the same window ``t >= [simulation] warmup``
 (see :func:`_metrics`).
+
+Per-controller status (:data:`STATUSES`), never a NaN reported as a number:
+
+* ``"solved"``: the run finished with finite, bounded states; every metric is a number.
+* ``"unstable"``: the closed loop is unstable. Detected two ways: for the linear controllers
+  (``lqr``, ``lqg``) by the design's closed-loop eigenvalues on the exact sampled model
+  (spectral radius of ``Ad - Bd G``, and for ``lqg`` also of the estimator error dynamics
+  ``Ad (I - M C)``, >= 1); for every controller by the simulated unit heave or winch output
+  leaving :data:`UNSTABLE_FACTOR` times the largest boom-tip heave of the realisation (a stable
+  loop moves them by at most its resonance amplification times the boom tip, ~1/(2 zeta) = 14
+  for the shipped units). The run stops there.
+* ``"non_finite"``: a state or command became NaN or infinite (the run stops there).
+* ``"failed"``: the controller could not be designed or built (a Riccati equation without a
+  stabilising solution, a QP that cannot be set up); the message gives the solver's error.
+
+For every status but ``"solved"`` the metrics of the run are None (JSON null), except
+``energy_index`` (a property of the design) and the MPC solve times. ``reduction_pct`` is
+always relative to a passive run on the same realisation, run as a baseline when ``passive``
+is not among the controllers.
 """
 
 from __future__ import annotations
 
 from collections.abc import Callable
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 from typing import Any
 
 import numpy as np
@@ -31,7 +50,7 @@ from cable_ocp.errors import CableOCPError
 from cable_ocp.heave import mpc as mpc_mod
 from cable_ocp.heave import plant as pl
 from cable_ocp.heave import sea as sea_mod
-from cable_ocp.heave.discrete import discretize_delayed, discretize_noise
+from cable_ocp.heave.discrete import delay_steps, discretize_delayed, discretize_noise
 from cable_ocp.heave.stochastic import (
     WHITE_NOISE_INTENSITY,
     discrete_delay_lqr,
@@ -50,8 +69,22 @@ class Models:
     sigma_uncontrolled: float
 
 
+#: per-controller statuses (see the module docstring)
+STATUSES = ("solved", "unstable", "non_finite", "failed")
+
+#: bound on the simulated unit heave and winch output, times the largest boom-tip heave of
+#: the realisation (at least 1 mm): beyond it the loop is declared unstable
+UNSTABLE_FACTOR = 1000.0
+
+#: exceptions of the numerical libraries that mean "this design cannot be computed"
+_DESIGN_ERRORS = (ArithmeticError, ValueError, TypeError, RuntimeError, np.linalg.LinAlgError)
+
+
 def build_models(sc: HeaveScene) -> Models:
-    """Spectrum, shaping filter and the full plant (6.28) of a scene."""
+    """Spectrum, shaping filter and the full plant (6.28) of a scene.
+
+    ``sigma_uncontrolled`` is None when the Lyapunov equation gives no valid variance (a
+    negative or non-finite value, from an ill-conditioned filter)."""
     s = sc.sea
     if s.modal_frequency is not None:
         wm = s.modal_frequency
@@ -68,7 +101,9 @@ def build_models(sc: HeaveScene) -> Models:
     winch = (pl.winch_first(w.gain) if w.model == "first_order"
              else pl.winch_second(w.natural_frequency, w.damping_ratio))
     plant = pl.assemble_plant(sc.unit.a, sc.unit.b, winch, vessel=vessel, sea=fit.filter)
-    sig = float(np.sqrt(output_variance_lyapunov(plant.A, plant.B2, plant.e("x"))))
+    with np.errstate(all="ignore"):
+        var = output_variance_lyapunov(plant.A, plant.B2, plant.e("x"))
+    sig = float(np.sqrt(var)) if np.isfinite(var) and var >= 0 else None
     return Models(spec, fit, plant, sig)
 
 
@@ -95,16 +130,21 @@ class Trace:
 
 @dataclass(frozen=True)
 class Metrics:
-    """JSON metrics of one controller (field names as in issue 4 and CONVENTIONS)."""
+    """JSON metrics of one controller (field names as in CONVENTIONS, "Heave compensation").
 
-    heave_rms: float
-    reduction_pct: float
-    peak_winch_speed: float
-    max_stroke: float
+    Every field is None (JSON null) where the number does not exist: all but
+    ``energy_index`` and ``solve_time_median_s`` for a controller whose status is not
+    ``"solved"``; ``reduction_pct`` when the passive baseline has no heave.
+    """
+
+    heave_rms: float | None
+    reduction_pct: float | None
+    peak_winch_speed: float | None
+    max_stroke: float | None
     energy_index: float | None
-    max_constraint_violation: float
+    max_constraint_violation: float | None
     solve_time_median_s: float | None
-    winch_speed_rms: float
+    winch_speed_rms: float | None
 
     def as_dict(self) -> dict:
         """Plain dict for JSON."""
@@ -113,14 +153,44 @@ class Metrics:
 
 @dataclass(frozen=True)
 class Comparison:
-    """Result of :func:`compare`."""
+    """Result of :func:`compare`.
 
-    sigma_uncontrolled: float
+    Attributes
+    ----------
+    sigma_uncontrolled : float or None
+        Lyapunov standard deviation of the uncontrolled unit heave, m (None if it does not
+        exist).
+    metrics : dict
+        Controller name -> :class:`Metrics`.
+    traces : dict
+        Controller name -> :class:`Trace` (NaN after the sample where a run was stopped).
+    statuses, messages : dict
+        Controller name -> status (:data:`STATUSES`) and its explanation.
+    passive_heave_rms : float
+        Heave RMS of the passive run on the same realisation (the baseline of
+        ``reduction_pct``), m.
+    mpc_failures : int
+        MPC samples at which the QP failed and the shifted previous plan was applied.
+    warnings : list of str
+        Remarks that do not change a status (MPC fallbacks, a missing sigma_uncontrolled).
+    """
+
+    sigma_uncontrolled: float | None
     metrics: dict
     traces: dict
     models: Models
     mpc_solve_times: np.ndarray | None
     mpc_failures: int
+    statuses: dict = field(default_factory=dict)
+    messages: dict = field(default_factory=dict)
+    passive_heave_rms: float | None = None
+    warnings: list = field(default_factory=list)
+
+    @property
+    def status(self) -> str:
+        """``"solved"`` when every controller is, else the first other status."""
+        bad = [s for s in self.statuses.values() if s != "solved"]
+        return bad[0] if bad else "solved"
 
 
 def wave_realisation(plant: pl.HeavePlant, t_end: float, h_sim: float, seed: int
@@ -186,8 +256,10 @@ def compare(sc: HeaveScene, controllers: tuple | None = None,
             progress: Callable[[int, int, Any], None] | None = None) -> Comparison:
     """Simulate the scene's controllers on one wave realisation and compute the metrics.
 
+    Each controller gets a status (:data:`STATUSES`, see the module docstring); a controller
+    that cannot be designed, or whose loop is unstable or non-finite, never stops the others.
     ``progress``, if given, is called as ``progress(done, total, None)`` every 100 control
-    samples (``total`` = samples x controllers).
+    samples (``total`` = samples x runs, the passive baseline included).
     """
     models = build_models(sc)
     p = models.plant
@@ -195,26 +267,29 @@ def compare(sc: HeaveScene, controllers: tuple | None = None,
     h = c.sample_time
     m = sc.simulation.substeps
     if m < 1:
-        raise CableOCPError(f"[simulation] substeps = {m} must be >= 1")
+        raise CableOCPError(f"simulation.substeps = {m}: must be >= 1")
     hs = h / m
     tau = sc.winch.delay
-    nd_fine = int(round(tau / hs))
     T = sc.simulation.duration
     n_ctrl = int(round(T / h))
     preview = c.preview_time
     t, x0, xs_sea = wave_realisation(p, T + preview + h, hs, sc.simulation.seed)
-    nfine = n_ctrl * m
-    f = _unit_winch_rhs(sc)
-    first = sc.winch.model == "first_order"
-    nuw = 3 if first else 4
-    n = p.n
-    lo = p.blocks["vessel"].start
-    controllers = controllers or c.controllers
+    controllers = tuple(controllers or c.controllers)
+    runs = controllers if "passive" in controllers else controllers + ("passive",)
+    bound = UNSTABLE_FACTOR * max(float(np.max(np.abs(x0[: n_ctrl * m + 1]))), 1e-3)
 
-    # Designs on the linear plant.
-    G = discrete_delay_lqr(p.A, p.B1, p.e("x"), c.q, c.r, h, tau)
+    # Designs on the linear plant; a failure is the status of the controllers that need it.
     mdl = discretize_delayed(p.A, p.B1, h, tau)
-    d = mdl.d
+    try:
+        with np.errstate(all="ignore"):
+            G = discrete_delay_lqr(p.A, p.B1, p.e("x"), c.q, c.r, h, tau)
+        if not np.all(np.isfinite(G)):
+            raise ArithmeticError("the LQR gain is not finite")
+        design_error = None
+    except CableOCPError:
+        raise
+    except _DESIGN_ERRORS as exc:
+        G, design_error = None, f"{type(exc).__name__}: {exc}"
     settings = mpc_mod.MPCSettings(
         horizon=c.horizon, sample_time=h, q=c.q, r=c.r, solver=c.solver,
         stroke_max=sc.winch.stroke_max, speed_max=sc.winch.speed_max,
@@ -224,41 +299,142 @@ def compare(sc: HeaveScene, controllers: tuple | None = None,
         preview_time=preview, terminal=c.terminal,
         nonlinear_b=sc.unit.b_quadratic if sc.unit.model == "quadratic" else 0.0)
 
-    traces, metrics = {}, {}
+    traces, metrics, statuses, messages = {}, {}, {}, {}
     solve_times = None
     failures = 0
+    warnings: list[str] = []
     rng_meas = np.random.default_rng(sc.simulation.seed + 1000)
     meas_noise = rng_meas.standard_normal(n_ctrl + 1) * c.measurement_noise
-    total = n_ctrl * len(controllers)
-    for n_done, name in enumerate(controllers):
-        ctrl = _make_controller(name, p, mdl, G, settings, tau, c, h)
-        s = np.zeros(nuw)
-        buf = np.zeros(nd_fine + 1)  # fine-step command history for the exact delay
-        xs_out = np.empty(nfine + 1)
-        u_out = np.empty(nfine + 1)
-        ud_out = np.empty(nfine + 1)
-        v_out = np.empty(nfine + 1)
-        cmds = np.zeros(n_ctrl)
-        u_prev = 0.0
-        cmd_hist = np.zeros(d)
+    total = n_ctrl * len(runs)
+    passive_rms = None
+    for n_done, name in enumerate(runs):
+        report = None if progress is None else (
+            lambda k, n_done=n_done: progress(n_done * n_ctrl + k, total, None))
+        status, message, ctrl = _design(name, p, mdl, G, design_error, settings, tau, c, h)
+        if status == "failed":
+            if name in controllers:
+                statuses[name], messages[name] = status, message
+                metrics[name] = Metrics(None, None, None, None, None, None, None, None)
+            continue
+        tr, cmds, stop = _run(sc, ctrl, p, t, x0, xs_sea, meas_noise, n_ctrl, bound, report)
+        if stop is not None and status == "solved":
+            status, message = stop
+        elif stop is not None:  # the design said so already; the run confirms it
+            message += f"; in the run, {stop[1]}"
+        if name == "mpc":
+            solve_times = np.array(ctrl.times)
+            failures = ctrl.failures
+            if failures:
+                warnings.append(f"mpc: the QP failed at {failures} of {len(ctrl.times)} "
+                                "samples; the shifted previous plan was applied there")
+        energy = float(np.sqrt(np.sum(G**2))) if name in ("lqr", "lqg") else None
+        times = np.array(ctrl.times) if name == "mpc" else None
+        if status == "solved":
+            mt = _metrics(sc, tr, cmds, energy, times, h)
+        else:
+            mt = Metrics(None, None, None, None, energy, None,
+                         float(np.median(times)) if times is not None and times.size else None,
+                         None)
+        if name == "passive":
+            passive_rms = mt.heave_rms
+        if name in controllers:
+            traces[name], metrics[name] = tr, mt
+            statuses[name], messages[name] = status, message
+    if progress is not None:
+        progress(total, total, None)
+    metrics = {k: _with_reduction(v, passive_rms) for k, v in metrics.items()}
+    if models.sigma_uncontrolled is None:
+        warnings.append("sigma_uncontrolled: the Lyapunov equation of the sea and vessel "
+                        "filters gives no valid variance (ill-conditioned); reported as null")
+    return Comparison(models.sigma_uncontrolled, metrics, traces, models, solve_times,
+                      failures, statuses, messages, passive_rms, warnings)
+
+
+def _spectral_radius(A: np.ndarray) -> float:  # noqa: N803
+    return float(np.max(np.abs(np.linalg.eigvals(A)))) if A.size else 0.0
+
+
+def _design(name: str, p: pl.HeavePlant, mdl, G: np.ndarray | None,  # noqa: ANN001
+            design_error: str | None, settings: mpc_mod.MPCSettings, tau: float, c,  # noqa: ANN001
+            h: float) -> tuple[str, str, Any]:
+    """(status, message, controller) before the run: "failed" when the controller cannot be
+    built, "unstable" when its linear design's closed loop is (see the module docstring)."""
+    if name in ("lqr", "lqg") and G is None:
+        return "failed", f"the LQR design failed: {design_error}", None
+    try:
+        with np.errstate(all="ignore"):
+            ctrl = _make_controller(name, p, mdl, G, settings, tau, c, h)
+    except CableOCPError:
+        raise
+    except _DESIGN_ERRORS as exc:
+        return "failed", f"the {name} design failed: {type(exc).__name__}: {exc}", None
+    if name in ("lqr", "lqg"):
+        with np.errstate(all="ignore"):
+            rho = _spectral_radius(mdl.Ad - mdl.Bd @ G)
+            if name == "lqg":
+                rho_e = _spectral_radius(ctrl.A @ (np.eye(ctrl.A.shape[0]) - ctrl.M @ ctrl.C))
+                if not rho_e < 1.0:
+                    return ("unstable", f"the Kalman filter's error dynamics are unstable "
+                            f"(spectral radius {rho_e:.6g} >= 1)", ctrl)
+        if not rho < 1.0:
+            return ("unstable", f"the closed loop of the design is unstable (spectral radius "
+                    f"{rho:.6g} >= 1 on the exact sampled model)", ctrl)
+    return "solved", "ran to the end with finite, bounded states", ctrl
+
+
+def _run(sc: HeaveScene, ctrl: Any, p: pl.HeavePlant, t: np.ndarray, x0: np.ndarray,
+         xs_sea: np.ndarray, meas_noise: np.ndarray, n_ctrl: int, bound: float,
+         report: Callable[[int], None] | None
+         ) -> tuple[Trace, np.ndarray, tuple[str, str] | None]:
+    """One closed-loop run; stops (rest of the trace NaN) when it leaves ``bound`` or turns
+    non-finite, and says so as ``(status, message)``."""
+    c = sc.controller
+    h = c.sample_time
+    m = sc.simulation.substeps
+    hs = h / m
+    nd_fine = int(round(sc.winch.delay / hs))
+    preview = c.preview_time
+    nfine = n_ctrl * m
+    f = _unit_winch_rhs(sc)
+    first = sc.winch.model == "first_order"
+    nuw = 3 if first else 4
+    n = p.n
+    lo = p.blocks["vessel"].start
+    d = delay_steps(sc.winch.delay, h)
+    s = np.zeros(nuw)
+    ring = np.zeros(nd_fine + 1)  # fine-step command history for the exact delay (a ring)
+    nring = nd_fine + 1
+    xs_out = np.full(nfine + 1, np.nan)
+    u_out = np.full(nfine + 1, np.nan)
+    ud_out = np.full(nfine + 1, np.nan)
+    v_out = np.full(nfine + 1, np.nan)
+    cmds = np.zeros(n_ctrl)
+    u_prev = 0.0
+    cmd_hist = np.zeros(d)
+    stop = None
+    v = 0.0
+    with np.errstate(all="ignore"):
         for k in range(n_ctrl):
-            if progress is not None and k % 100 == 0:
-                progress(n_done * n_ctrl + k, total, None)
+            if report is not None and k % 100 == 0:
+                report(k)
             i = k * m
             z = np.empty(n)
-            z[: nuw] = s
+            z[:nuw] = s
             z[lo:] = xs_sea[i]
             zaug = np.concatenate([z, cmd_hist])
-            x0_fore = x0[i : i + int(round(preview / hs)) + 1 : m] if preview > 0 else None
+            x0_fore = x0[i: i + int(round(preview / hs)) + 1: m] if preview > 0 else None
             u0 = ctrl(zaug, u_prev, s[0] + meas_noise[k], x0_fore)
+            if not np.isfinite(u0):
+                stop = ("non_finite", f"the command became {u0} at t = {i * hs:.6g} s")
+                break
             cmds[k] = u0
             u_prev = u0
             if d:
                 cmd_hist = np.concatenate([cmd_hist[1:], [u0]])
             for j in range(m):
                 ii = i + j
-                buf = np.concatenate([buf[1:], [u0]])
-                v = buf[0]
+                ring[ii % nring] = u0
+                v = ring[(ii + 1) % nring]  # the command issued nd_fine steps ago
                 xs_out[ii], u_out[ii], v_out[ii] = s[0], s[2], v
                 ud_out[ii] = sc.winch.gain * (v - s[2]) if first else s[3]
                 xa, xb = x0[ii], x0[ii + 1]
@@ -268,33 +444,34 @@ def compare(sc: HeaveScene, controllers: tuple | None = None,
                 k3 = f(s + hs / 2 * k2, xm, v)
                 k4 = f(s + hs * k3, xb, v)
                 s = s + hs / 6 * (k1 + 2 * k2 + 2 * k3 + k4)
-        # t = T: the command applied over the last fine step is buf[0] (buf[-1] is the newest
-        # command, still inside the delay line), so u'(T) is the left limit K (buf[0] - u(T)).
-        v_last = buf[0]
-        xs_out[nfine], u_out[nfine], v_out[nfine] = s[0], s[2], v_last
-        ud_out[nfine] = sc.winch.gain * (v_last - s[2]) if first else s[3]
-        tr = Trace(t[: nfine + 1], xs_out, x0[: nfine + 1], u_out, ud_out, v_out)
-        traces[name] = tr
-        if name == "mpc":
-            solve_times = np.array(ctrl.times)
-            failures = ctrl.failures
-        metrics[name] = _metrics(sc, tr, cmds, name, G,
-                                 np.array(ctrl.times) if name == "mpc" else None, h)
-    if progress is not None:
-        progress(total, total, None)
-    if "passive" in metrics:
-        base = metrics["passive"].heave_rms
-        metrics = {k: _with_reduction(v, base) for k, v in metrics.items()}
-    return Comparison(models.sigma_uncontrolled, metrics, traces, models, solve_times, failures)
+            if not np.all(np.isfinite(s)):
+                stop = ("non_finite", f"the unit or winch state became non-finite by "
+                        f"t = {(i + m) * hs:.6g} s")
+                break
+            if abs(s[0]) > bound or abs(s[2]) > bound:
+                stop = ("unstable", f"the unit heave or winch output reached "
+                        f"{max(abs(s[0]), abs(s[2])):.4g} m by t = {(i + m) * hs:.6g} s, "
+                        f"{UNSTABLE_FACTOR:g} times the largest boom-tip heave: the closed "
+                        "loop is unstable")
+                break
+    if stop is None:
+        # t = T: the command applied over the last fine step is the delayed one (the newest
+        # command is still inside the delay line), so u'(T) is the left limit K (v - u(T)).
+        xs_out[nfine], u_out[nfine], v_out[nfine] = s[0], s[2], v
+        ud_out[nfine] = sc.winch.gain * (v - s[2]) if first else s[3]
+    tr = Trace(t[: nfine + 1], xs_out, x0[: nfine + 1], u_out, ud_out, v_out)
+    return tr, cmds, stop
 
 
-def _with_reduction(mt: Metrics, base: float) -> Metrics:
+def _with_reduction(mt: Metrics, base: float | None) -> Metrics:
+    """``reduction_pct`` = 100 (1 - rms / passive rms); None where either does not exist."""
     d = mt.as_dict()
-    d["reduction_pct"] = float(100.0 * (1.0 - mt.heave_rms / base)) if base > 0 else 0.0
+    ok = mt.heave_rms is not None and base is not None and base > 0
+    d["reduction_pct"] = float(100.0 * (1.0 - mt.heave_rms / base)) if ok else None
     return Metrics(**d)
 
 
-def _metrics(sc: HeaveScene, tr: Trace, cmds: np.ndarray, name: str, G: np.ndarray,
+def _metrics(sc: HeaveScene, tr: Trace, cmds: np.ndarray, energy: float | None,
              times: np.ndarray | None, h: float) -> Metrics:
     """Metrics of one run, all over the same window ``t >= [simulation] warmup``.
 
@@ -323,10 +500,9 @@ def _metrics(sc: HeaveScene, tr: Trace, cmds: np.ndarray, name: str, G: np.ndarr
     if w.accel_max is not None and w.model == "second_order":
         acc = np.gradient(tr.u_dot, tr.t)[keep]
         viol = max(viol, max(0.0, float(np.max(np.abs(acc))) - w.accel_max) / w.accel_max)
-    energy = float(np.sqrt(np.sum(G**2))) if name in ("lqr", "lqg") else None
     return Metrics(
         heave_rms=float(np.sqrt(np.mean(tr.x[keep] ** 2))),
-        reduction_pct=0.0,
+        reduction_pct=None,
         peak_winch_speed=float(np.max(np.abs(ud))),
         max_stroke=float(np.max(np.abs(u))),
         energy_index=energy,
@@ -373,7 +549,7 @@ class _LQG(_Controller):
     def __init__(self, p: pl.HeavePlant, mdl, G: np.ndarray, std: float, h: float) -> None:  # noqa: ANN001
         super().__init__()
         if std <= 0:
-            raise CableOCPError(f"[controller] measurement_noise = {std} must be > 0 m")
+            raise CableOCPError(f"controller.measurement_noise = {std!r}: must be > 0 (m)")
         self.A, self.B, self.G = mdl.Ad, mdl.Bd, G
         nz = mdl.Ad.shape[0]
         n = p.n

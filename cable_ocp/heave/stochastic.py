@@ -144,7 +144,8 @@ def stochastic_lqr(A: np.ndarray, B1: np.ndarray, B2: np.ndarray, c_x: np.ndarra
         Weight on the command ``u0``, 1/m^2.
     """
     if q < 0 or r <= 0:
-        raise CableOCPError(f"[controller] q = {q} must be >= 0 and r = {r} > 0")
+        raise CableOCPError(f"controller.q = {q!r}, controller.r = {r!r}: q must be >= 0 and r > 0 "
+                            "(1/m^2)")
     c_x = np.asarray(c_x, dtype=float).reshape(1, -1)
     Q = q * c_x.T @ c_x
     G = lqr_continuous(A, B1, Q, np.array([[r]]))
@@ -195,8 +196,8 @@ def lqg_kalman(A: np.ndarray, B2: np.ndarray, c_meas: np.ndarray,  # noqa: N803
     """
     if noise_std <= 0 or sample_time <= 0:
         raise CableOCPError(
-            f"[controller] measurement_noise = {noise_std} m and sample_time = {sample_time} s "
-            "must be > 0"
+            f"controller.measurement_noise = {noise_std!r}, controller.sample_time = "
+            f"{sample_time!r}: both must be > 0 (m, s)"
         )
     c = np.asarray(c_meas, dtype=float).reshape(1, -1)
     QN = np.array([[WHITE_NOISE_INTENSITY]])

@@ -93,6 +93,8 @@ def choice(value: Any, key: str, options: Iterable[str]) -> str:
 def require(table: dict[str, Any], key: str, where: str) -> Any:
     """``table[key]``, or an error naming ``where.key`` as missing."""
     if key not in table:
+        if where == "problem":
+            raise CableOCPError(f"the [{key}] table is missing (required)")
         raise CableOCPError(f"{where}.{key} is missing (required, SI units)")
     return table[key]
 
@@ -110,8 +112,10 @@ def check_keys(table: Any, allowed: set[str], where: str) -> dict[str, Any]:
     return table
 
 
-def vector3(value: Any, key: str) -> tuple[float | None, float | None, float | None]:
-    """``[x, y, z]`` numbers, each entry a number or ``"free"`` (returned as None)."""
+def vector3(value: Any, key: str, *, bound: float | None = None, unit: str = "",
+            why: str = "") -> tuple[float | None, float | None, float | None]:
+    """``[x, y, z]`` numbers, each entry a number in ``[-bound, bound]`` or ``"free"``
+    (returned as None)."""
     if not isinstance(value, (list, tuple)) or len(value) != 3:
         raise CableOCPError(f"{key} = {value!r}: expected a list of 3 entries [x, y, z]")
     out: list[float | None] = []
@@ -119,5 +123,6 @@ def vector3(value: Any, key: str) -> tuple[float | None, float | None, float | N
         if isinstance(v, str) and v.strip().lower() == FREE:
             out.append(None)
         else:
-            out.append(number(v, f"{key}[{i}]"))
+            out.append(number(v, f"{key}[{i}]", low=None if bound is None else -bound,
+                              high=bound, unit=unit, why=why))
     return tuple(out)  # type: ignore[return-value]

@@ -65,7 +65,10 @@ from dataclasses import dataclass, field, fields
 from pathlib import Path
 from typing import Any
 
+import numpy as np
+
 from cable_ocp.errors import CableOCPError
+from cable_ocp.scene.fields import check_keys, choice, integer, number
 from cable_ocp.scene.files import apply_overrides, check_kind, read_problem
 from cable_ocp.scene.parts import parse_meta
 
@@ -184,40 +187,144 @@ _CHOICES = {
 _CONTROLLERS = ("passive", "lqr", "lqg", "mpc")
 
 
-def _build(cls: type, table: str, data: dict[str, Any]) -> Any:
-    if not isinstance(data, dict):
-        raise CableOCPError(f"[{table}] must be a table")
-    known = {f.name: f for f in fields(cls)}
-    kwargs: dict[str, Any] = {}
-    for key, val in data.items():
-        if key not in known:
-            raise CableOCPError(
-                f"unknown key [{table}] {key!r}; valid keys: {', '.join(sorted(known))}"
-            )
-        default = known[key].default
-        if (table, key) in _CHOICES and val not in _CHOICES[(table, key)]:
-            raise CableOCPError(
-                f"[{table}] {key} = {val!r} is invalid; valid: {_CHOICES[(table, key)]}"
-            )
-        if key == "controllers":
-            if not isinstance(val, list) or any(v not in _CONTROLLERS for v in val):
-                raise CableOCPError(
-                    f"[controller] controllers = {val!r} is invalid; give a list of {_CONTROLLERS}"
-                )
-            val = tuple(val)
-        elif isinstance(default, bool):
-            pass
-        elif isinstance(default, int) and not isinstance(val, int):
-            raise CableOCPError(f"[{table}] {key} = {val!r} must be an integer")
-        elif key == "cable_scene":
-            if not isinstance(val, str):
-                raise CableOCPError(f"[{table}] {key} = {val!r} must be a file path (string)")
-        elif isinstance(default, float) or default is None:
-            if isinstance(val, bool) or not isinstance(val, (int, float)):
-                raise CableOCPError(f"[{table}] {key} = {val!r} must be a number")
-            val = float(val)
-        kwargs[key] = val
-    return cls(**kwargs)
+@dataclass(frozen=True)
+class _Num:
+    """A number in a range: ``low``/``high`` inclusive, ``positive`` = > 0; ``why`` says
+    where the bound comes from."""
+
+    unit: str
+    low: float | None = None
+    high: float | None = None
+    positive: bool = False
+    why: str = ""
+
+
+@dataclass(frozen=True)
+class _Int:
+    """An integer in ``[low, high]``."""
+
+    low: int
+    high: int
+    why: str = ""
+
+
+_WAVES = ("ocean wind seas and swell have peak periods of about 3-25 s; the bounds add "
+          "model-basin waves and the longest swell")
+_SHIP = "ship heave natural periods are 5-25 s (0.25-1.3 rad/s)"
+_RATIO = ("below 0.01 a resonance amplifies by more than 50x; above 10 the two poles are more "
+          "than 400x apart and the block is a first-order lag")
+
+#: Every numeric key of a heave scene: its range, unit and the reason for the bounds.
+#: Optional keys (None = not given) are only checked when given.
+RULES: dict[tuple[str, str], _Num | _Int] = {
+    ("sea", "significant_wave_height"): _Num(
+        "m", low=1e-3, high=30.0,
+        why="the largest significant wave heights measured are about 20 m; below 1 mm "
+            "there is no sea to compensate"),
+    ("sea", "modal_frequency"): _Num("rad/s", low=0.15, high=16.0, why=_WAVES),
+    ("sea", "zero_crossing_period"): _Num("s", low=0.3, high=28.0, why=_WAVES),
+    ("sea", "peak_period"): _Num("s", low=0.4, high=40.0, why=_WAVES),
+    ("sea", "peak_enhancement"): _Num(
+        "-", low=1.0, high=10.0,
+        why="JONSWAP gamma: 1 is Pierson-Moskowitz, 3.3 the JONSWAP mean, up to ~7 in "
+            "fetch-limited seas"),
+    ("sea", "filter_order"): _Int(2, 6, why="second-order sections of the least-squares fit"),
+    ("vessel", "natural_frequency"): _Num("rad/s", low=0.05, high=10.0, why=_SHIP),
+    ("vessel", "damping_ratio"): _Num("-", low=0.01, high=10.0, why=_RATIO),
+    ("vessel", "gain"): _Num("-", positive=True, high=10.0,
+                             why="the boom tip moves gain x the vessel's heave response "
+                                 "(0.5 in Huang 1992, 6.3.6)"),
+    ("winch", "gain"): _Num("1/s", low=0.01, high=1000.0,
+                            why="winch bandwidths are 0.1-20 1/s (1 in Huang 1992, 6.3.6)"),
+    ("winch", "natural_frequency"): _Num("rad/s", low=0.01, high=1000.0,
+                                         why="winch bandwidths are 0.1-20 rad/s"),
+    ("winch", "damping_ratio"): _Num("-", low=0.01, high=10.0, why=_RATIO),
+    ("winch", "delay"): _Num("s", low=0.0, high=60.0,
+                             why="command delays are tenths of a second (0.2 s in Huang "
+                                 "1992, Fig. 6.17); 60 s is longer than any wave period"),
+    ("winch", "stroke_max"): _Num("m", positive=True, high=1000.0,
+                                  why="heave-compensator strokes are a few metres"),
+    ("winch", "speed_max"): _Num("m/s", positive=True, high=100.0,
+                                 why="winch line speeds are 1-3 m/s"),
+    ("winch", "command_rate_max"): _Num("m per sample", positive=True, high=100.0,
+                                        why="0.1 m per 0.05 s sample is a fast winch"),
+    ("winch", "accel_max"): _Num("m/s^2", positive=True, high=1000.0,
+                                 why="winch accelerations are a few m/s^2"),
+    ("winch", "tension_min"): _Num("N", low=0.0, high=1e10,
+                                   why="above any cable's breaking load"),
+    ("unit", "a"): _Num("s^2", low=1e-3, high=1e4,
+                        why="the unit's natural period 2 pi sqrt(a) from 0.2 s to 10 min"),
+    ("unit", "b"): _Num("s", positive=True, high=1e4,
+                        why="damping time b/a of the unit; b = 0.1658 s in Huang 1992, 6.3.6"),
+    ("unit", "b_quadratic"): _Num("s^2/m", low=0.0, high=1e4,
+                                  why="0.07-0.42 s^2/m in Huang 1992, 6.2.6 and 6.3.6"),
+    ("unit", "mass"): _Num("kg", low=0.0, high=1e8,
+                           why="more than any crane vessel lifts (~2e7 kg)"),
+    ("unit", "static_tension"): _Num("N", low=0.0, high=1e10,
+                                     why="above any cable's breaking load"),
+    ("controller", "q"): _Num("1/m^2", low=0.0, high=1e10,
+                              why="q/r up to 1e10 keeps the Riccati equation well posed"),
+    ("controller", "r"): _Num("1/m^2", low=1e-10, high=1e10,
+                              why="q/r up to 1e10 keeps the Riccati equation well posed"),
+    ("controller", "horizon"): _Int(1, 100000, why="samples; see the cost limits"),
+    ("controller", "sample_time"): _Num("s", low=1e-3, high=10.0,
+                                        why="a control sample of 1 ms to 10 s"),
+    ("controller", "preview_time"): _Num("s", low=0.0, high=600.0,
+                                         why="wave forecasts reach tens of seconds"),
+    ("controller", "measurement_noise"): _Num(
+        "m", low=1e-6, high=10.0,
+        why="a noise-free sensor makes the Kalman filter singular; depth sensors give "
+            "~1 cm"),
+    ("controller", "tension_penalty"): _Num("1/m^2", low=1e-6, high=1e12,
+                                            why="the soft tension limit's weight"),
+    ("simulation", "duration"): _Num("s", positive=True, high=1e6,
+                                     why="about 12 days; see the cost limits"),
+    ("simulation", "seed"): _Int(0, 2**32 - 1, why="a 32-bit seed"),
+    ("simulation", "substeps"): _Int(1, 100000, why="plant steps per control sample"),
+    ("simulation", "warmup"): _Num("s", low=0.0, high=1e6, why="less than the duration"),
+}
+
+
+def _key(table: str, key: str) -> str:
+    return f"{table}.{key}"
+
+
+def _value(table: str, key: str, val: Any) -> Any:
+    """One value of ``[table]``, checked (type, range, choice) and converted."""
+    name = _key(table, key)
+    if (table, key) in _CHOICES:
+        return choice(val, name, _CHOICES[(table, key)])
+    if key == "controllers":
+        if (not isinstance(val, list) or not val
+                or any(not isinstance(v, str) or v not in _CONTROLLERS for v in val)
+                or len(set(val)) != len(val)):
+            raise CableOCPError(f"{name} = {val!r}: give a list of distinct names from "
+                                + ", ".join(f'"{c}"' for c in _CONTROLLERS))
+        return tuple(val)
+    if key == "cable_scene":
+        if not isinstance(val, str):
+            raise CableOCPError(f"{name} = {val!r}: expected a file path (string)")
+        return val
+    return _checked(RULES[(table, key)], val, name)
+
+
+def _checked(rule: _Num | _Int, val: Any, name: str) -> Any:
+    if isinstance(rule, _Int):
+        return integer(val, name, rule.low, rule.high, rule.why)
+    nonneg = rule.low == 0.0  # "must be >= 0 (unit)" for a negative value
+    return number(val, name, positive=rule.positive, nonneg=nonneg,
+                  low=None if nonneg else rule.low, high=rule.high, unit=rule.unit,
+                  why=rule.why)
+
+
+def _build(cls: type, table: str, data: Any) -> Any:
+    known = {f.name for f in fields(cls)}
+    data = check_keys(data, known, table)
+    return cls(**{key: _value(table, key, val) for key, val in data.items()})
+
+
+_TABLES = {"sea": SeaSpec, "vessel": VesselSpec, "winch": WinchSpec, "unit": UnitSpec,
+           "controller": ControllerSpec, "simulation": SimulationSpec}
 
 
 def scene_from_dict(data: dict[str, Any]) -> HeaveScene:
@@ -226,14 +333,15 @@ def scene_from_dict(data: dict[str, Any]) -> HeaveScene:
     Raises
     ------
     CableOCPError
-        On unknown tables or keys, wrong types, invalid choices or inconsistent values.
+        On unknown tables or keys, wrong types, out-of-range values (:data:`RULES`),
+        invalid choices or inconsistent values; the message names the key.
     """
-    tables = {"sea": SeaSpec, "vessel": VesselSpec, "winch": WinchSpec, "unit": UnitSpec,
-              "controller": ControllerSpec, "simulation": SimulationSpec}
+    if not isinstance(data, dict):
+        raise CableOCPError("a heave scene must be a table")
     kwargs: dict[str, Any] = {"raw": copy.deepcopy(data)}
     for key, val in data.items():
-        if key in tables:
-            kwargs[key] = _build(tables[key], key, val)
+        if key in _TABLES:
+            kwargs[key] = _build(_TABLES[key], key, val)
         elif key == "meta":
             kwargs["meta"] = parse_meta(val)
         elif key in ("title", "source"):
@@ -241,62 +349,47 @@ def scene_from_dict(data: dict[str, Any]) -> HeaveScene:
                                 "\"...\"), as in every scene kind")
         else:
             raise CableOCPError(
-                f"unknown top-level table [{key}]; valid: meta, {', '.join(tables)}"
+                f"unknown top-level table [{key}]; valid: meta, {', '.join(_TABLES)}"
             )
     scene = HeaveScene(**kwargs)
     check(scene)
     return scene
 
 
-#: Sign rules for numeric keys: (table, key) -> (rule, unit); rule ">0" or ">=0". Optional keys
-#: (None = not given) are only checked when given.
-_SIGN_RULES: dict[tuple[str, str], tuple[str, str]] = {
-    ("sea", "significant_wave_height"): (">0", "m"),
-    ("sea", "modal_frequency"): (">0", "rad/s"),
-    ("sea", "zero_crossing_period"): (">0", "s"),
-    ("sea", "peak_period"): (">0", "s"),
-    ("sea", "peak_enhancement"): (">0", "JONSWAP gamma, usually 1-7"),
-    ("sea", "filter_order"): (">0", "second-order sections"),
-    ("vessel", "natural_frequency"): (">0", "rad/s"),
-    ("vessel", "damping_ratio"): (">0", "-"),
-    ("vessel", "gain"): (">0", "-"),
-    ("winch", "gain"): (">0", "1/s"),
-    ("winch", "natural_frequency"): (">0", "rad/s"),
-    ("winch", "damping_ratio"): (">0", "-"),
-    ("winch", "delay"): (">=0", "s"),
-    ("winch", "stroke_max"): (">0", "m"),
-    ("winch", "speed_max"): (">0", "m/s"),
-    ("winch", "command_rate_max"): (">0", "m per sample"),
-    ("winch", "accel_max"): (">0", "m/s^2"),
-    ("winch", "tension_min"): (">=0", "N"),
-    ("unit", "a"): (">0", "s^2"),
-    ("unit", "b"): (">0", "s"),
-    ("unit", "b_quadratic"): (">=0", "s^2/m"),
-    ("unit", "mass"): (">=0", "kg"),
-    ("unit", "static_tension"): (">=0", "N"),
-    ("controller", "q"): (">=0", "1/m^2"),
-    ("controller", "r"): (">0", "1/m^2"),
-    ("controller", "horizon"): (">0", "samples"),
-    ("controller", "sample_time"): (">0", "s"),
-    ("controller", "preview_time"): (">=0", "s"),
-    ("controller", "measurement_noise"): (">0", "m"),
-    ("controller", "tension_penalty"): (">0", "1/m^2"),
-    ("simulation", "duration"): (">0", "s"),
-    ("simulation", "seed"): (">=0", "-"),
-    ("simulation", "substeps"): (">0", "-"),
-    ("simulation", "warmup"): (">=0", "s"),
-}
+def _rk4_gain(z: complex) -> float:
+    """|R(z)| of the classical RK4 step, R(z) = 1 + z + z^2/2 + z^3/6 + z^4/24."""
+    return abs(1 + z + z**2 / 2 + z**3 / 6 + z**4 / 24)
 
 
-def _check_signs(sc: HeaveScene) -> None:
-    for (table, key), (rule, unit) in _SIGN_RULES.items():
-        val = getattr(getattr(sc, table), key)
-        if val is None:
-            continue
-        ok = math.isfinite(val) and (val > 0 if rule == ">0" else val >= 0)
-        if not ok:
-            bound = "> 0" if rule == ">0" else ">= 0"
-            raise CableOCPError(f"[{table}] {key} = {val!r} must be finite and {bound} ({unit})")
+#: |lambda| h_sim allowed for the RK4 plant integration: within it the step's amplification
+#: is within 2 % of exp(lambda h_sim) (1.9 % at lambda h_sim = -1), and far inside RK4's
+#: stability limit (2.79 on the negative real axis)
+RK4_MAX_STEP = 1.0
+
+
+def _check_integration(sc: HeaveScene) -> None:
+    """The unit and winch are integrated with RK4 at ``h_sim = sample_time / substeps``:
+    refuse a step too long for their fastest linear mode (``|lambda| h_sim > 1``)."""
+    h = sc.controller.sample_time / sc.simulation.substeps
+    a, b = sc.unit.a, sc.unit.b
+    modes = [(complex(v), "unit.a and unit.b")
+             for v in np.roots([a, b, 1.0])]  # a x'' + b x' + x = ...
+    w = sc.winch
+    if w.model == "first_order":
+        modes.append((complex(-w.gain), "winch.gain"))
+    else:
+        modes += [(complex(v), "winch.natural_frequency")
+                  for v in np.roots([1.0, 2 * w.damping_ratio * w.natural_frequency,
+                                     w.natural_frequency**2])]
+    lam, key = max(modes, key=lambda m: abs(m[0]))
+    if abs(lam) * h > RK4_MAX_STEP:
+        need = int(math.ceil(abs(lam) * sc.controller.sample_time / RK4_MAX_STEP))
+        raise CableOCPError(
+            f"simulation.substeps = {sc.simulation.substeps}: the plant step sample_time / "
+            f"substeps = {h:.3g} s is too long for the fastest mode of the unit and winch "
+            f"({abs(lam):.4g} 1/s, from {key}): RK4 needs |lambda| h <= {RK4_MAX_STEP:g} to "
+            f"be stable and accurate (|R| = {_rk4_gain(lam * h):.3g} per step now); give "
+            f"simulation.substeps >= {need}")
 
 
 def check(sc: HeaveScene) -> None:
@@ -305,48 +398,50 @@ def check(sc: HeaveScene) -> None:
     Raises
     ------
     CableOCPError
-        Naming the offending key: a value of the wrong sign (limits, weights, times, model
-        coefficients; see ``_SIGN_RULES``), a missing or ambiguous sea frequency, a delay that is
-        not a whole number of samples, or inconsistent options.
+        Naming the offending key: a value out of its range (:data:`RULES`, with the reason),
+        a missing or ambiguous sea frequency, a delay that is not a whole number of samples,
+        a plant step too long for RK4, or inconsistent options.
     """
-    _check_signs(sc)
+    for (table, key), rule in RULES.items():
+        val = getattr(getattr(sc, table), key)
+        if val is not None:
+            _checked(rule, val, _key(table, key))
+    for (table, key), options in _CHOICES.items():
+        choice(getattr(getattr(sc, table), key), _key(table, key), options)
     s = sc.sea
     given = [k for k in ("modal_frequency", "zero_crossing_period", "peak_period")
              if getattr(s, k) is not None]
     if len(given) != 1:
         raise CableOCPError(
-            "[sea] give exactly one of modal_frequency (rad/s), zero_crossing_period (s), "
-            f"peak_period (s); got {given or 'none'}"
+            "sea: give exactly one of modal_frequency (rad/s), zero_crossing_period (s), "
+            f"peak_period (s); got {', '.join(given) if given else 'none'}"
         )
-    if s.significant_wave_height <= 0:
-        raise CableOCPError(f"[sea] significant_wave_height = {s.significant_wave_height} must "
-                            "be > 0 m")
     if sc.unit.cable_scene is not None:
         raise CableOCPError(
-            f"[unit] cable_scene = {sc.unit.cable_scene!r}: identifying a, b from a cable scene "
-            "needs the cable-dynamics model, which is not available yet; give [unit] a and b "
-            "(cable_ocp.heave.identify fits them to a recorded response)"
+            f"unit.cable_scene = {sc.unit.cable_scene!r}: identifying a, b from a cable scene "
+            "needs the cable-dynamics model, which is not available yet; give unit.a and "
+            "unit.b (cable_ocp.heave.identify fits them to a recorded response)"
         )
     if sc.unit.model == "quadratic" and not sc.unit.b_quadratic > 0:
-        raise CableOCPError("[unit] model = 'quadratic' needs b_quadratic > 0 (s^2/m, eq. (6.3))")
+        raise CableOCPError(f'unit.b_quadratic = {sc.unit.b_quadratic!r}: must be > 0 with '
+                            'unit.model = "quadratic" (s^2/m, Huang 1992, eq. (6.3))')
     c = sc.controller
-    if c.sample_time <= 0 or c.horizon < 1:
-        raise CableOCPError(f"[controller] sample_time = {c.sample_time} must be > 0 and "
-                            f"horizon = {c.horizon} >= 1")
     ratio = sc.winch.delay / c.sample_time
     if abs(ratio - round(ratio)) > 1e-9:
         raise CableOCPError(
-            f"[winch] delay = {sc.winch.delay} s must be an integer multiple of [controller] "
-            f"sample_time = {c.sample_time} s"
+            f"winch.delay = {sc.winch.delay!r}: must be an integer multiple of "
+            f"controller.sample_time = {c.sample_time} s (exact shift register)"
         )
     if sc.winch.accel_max is not None and sc.winch.model != "second_order":
-        raise CableOCPError("[winch] accel_max needs model = 'second_order'; limit "
-                            "command_rate_max (m per sample) for the first-order winch")
+        raise CableOCPError('winch.accel_max: needs winch.model = "second_order"; limit '
+                            "winch.command_rate_max (m per sample) for the first-order winch")
     if sc.winch.tension_min is not None and not (sc.unit.mass > 0):
-        raise CableOCPError("[winch] tension_min needs [unit] mass > 0 and static_tension")
-    if sc.simulation.duration <= sc.simulation.warmup:
-        raise CableOCPError(f"[simulation] duration = {sc.simulation.duration} s must exceed "
-                            f"warmup = {sc.simulation.warmup} s")
+        raise CableOCPError("winch.tension_min: needs unit.mass > 0 (kg) and "
+                            "unit.static_tension (N)")
+    if sc.simulation.warmup >= sc.simulation.duration:
+        raise CableOCPError(f"simulation.warmup = {sc.simulation.warmup!r}: must be less than "
+                            f"simulation.duration = {sc.simulation.duration} s")
+    _check_integration(sc)
 
 
 def load_scene(path: str | Path, overrides: dict[str, Any] | None = None) -> HeaveScene:

@@ -22,6 +22,36 @@ SEGMENT_KEYS = {"length", "diameter", "weight_in_water", "axial_stiffness", "nor
 BODY_KEYS = {"joint", "kind", "weight_in_water", "net_buoyancy", "drag_area",
              "drag_coefficient", "thrust"}
 
+# Ranges of the numbers every scene kind shares, with the reason for each bound. They are
+# wide (physical extremes, not design limits) and keep every number far from overflow.
+#: coordinates, m
+COORD_MAX = 1e5
+COORD_WHY = "further than the longest cable (100 km)"
+#: depths, m
+DEPTH_MAX = 12000.0
+DEPTH_WHY = "deeper than the deepest ocean (10.9 km)"
+#: forces and tensions, N
+FORCE_MAX = 1e10
+FORCE_WHY = "above the breaking load of any cable or chain (~2e7 N)"
+#: weights per length, N/m
+WEIGHT_MAX = 1e6
+WEIGHT_WHY = "100x the heaviest mooring chain (~8e3 N/m in water)"
+#: point loads of bodies, N
+BODY_MAX = 1e9
+BODY_WHY = "more than any crane vessel lifts (~2e8 N)"
+#: drag coefficients, -
+CD_MAX = 10.0
+CD_WHY = "drag coefficients of cables, chains and bodies are 0.005-3"
+#: current speeds, m/s
+SPEED_MAX = 30.0
+SPEED_WHY = "the fastest tidal races are ~6 m/s, fast tows ~15 m/s"
+#: angles, deg
+ANGLE_MAX = 360.0
+ANGLE_WHY = "an angle in degrees"
+#: cable lengths, m
+LENGTH_MIN, LENGTH_MAX = 1e-2, 1e5
+LENGTH_WHY = "from 1 cm to 100 km (deep-tow cables reach ~12 km)"
+
 
 @dataclass(frozen=True)
 class Current:
@@ -230,8 +260,12 @@ def parse_current(table: Any) -> Current | None:
             key = f"environment.current.profile[{i}]"
             if not isinstance(row, list) or len(row) != 3:
                 raise CableOCPError(f"{key} = {row!r}: expected [z (m), speed (m/s), heading_deg]")
-            rows.append((number(row[0], key + "[0]"), number(row[1], key + "[1]", nonneg=True),
-                         number(row[2], key + "[2]")))
+            rows.append((number(row[0], key + "[0]", low=-DEPTH_MAX, high=DEPTH_MAX, unit="m",
+                                why=DEPTH_WHY),
+                         number(row[1], key + "[1]", nonneg=True, high=SPEED_MAX, unit="m/s",
+                                why=SPEED_WHY),
+                         number(row[2], key + "[2]", low=-ANGLE_MAX, high=ANGLE_MAX,
+                                unit="deg", why=ANGLE_WHY)))
         rows.sort(key=lambda r: r[0])
         zs = [r[0] for r in rows]
         if any(b <= a for a, b in zip(zs, zs[1:], strict=False)):
@@ -241,8 +275,10 @@ def parse_current(table: Any) -> Current | None:
         cur = Current(z=tuple(zs), ux=ux, uy=uy)
     else:
         speed = number(require(table, "speed", "environment.current"),
-                        "environment.current.speed", nonneg=True)
-        heading = number(table.get("heading_deg", 0.0), "environment.current.heading_deg")
+                       "environment.current.speed", nonneg=True, high=SPEED_MAX, unit="m/s",
+                       why=SPEED_WHY)
+        heading = number(table.get("heading_deg", 0.0), "environment.current.heading_deg",
+                         low=-ANGLE_MAX, high=ANGLE_MAX, unit="deg", why=ANGLE_WHY)
         cur = Current(z=(0.0,), ux=(speed * math.cos(math.radians(heading)),),
                       uy=(speed * math.sin(math.radians(heading)),))
     if cur.max_speed == 0.0:
@@ -253,22 +289,30 @@ def parse_current(table: Any) -> Current | None:
 def parse_seabed(table: Any) -> Seabed:
     table = check_keys(table, SEABED_KEYS,
                         "environment.seabed")
-    slope = number(table.get("slope_deg", 0.0), "environment.seabed.slope_deg", nonneg=True)
+    slope = number(table.get("slope_deg", 0.0), "environment.seabed.slope_deg", nonneg=True,
+                   unit="deg")
     if slope >= 45.0:
-        raise CableOCPError(f"environment.seabed.slope_deg = {slope}: must be in [0, 45)")
+        raise CableOCPError(f"environment.seabed.slope_deg = {slope}: must be in [0, 45) "
+                            "(deg); steeper slopes are walls, not a seabed the model holds for")
     return Seabed(
-        depth_offset=number(table.get("depth_offset", 0.0), "environment.seabed.depth_offset"),
-        friction=number(table.get("friction", 0.0), "environment.seabed.friction", nonneg=True),
+        depth_offset=number(table.get("depth_offset", 0.0), "environment.seabed.depth_offset",
+                            low=-DEPTH_MAX, high=DEPTH_MAX, unit="m", why=DEPTH_WHY),
+        friction=number(table.get("friction", 0.0), "environment.seabed.friction", nonneg=True,
+                        high=10.0, unit="-",
+                        why="axial friction of cables and chains on soil is 0.1-1.5"),
         slope_deg=slope,
         slope_heading_deg=number(table.get("slope_heading_deg", 0.0),
-                                  "environment.seabed.slope_heading_deg"),
+                                 "environment.seabed.slope_heading_deg", low=-ANGLE_MAX,
+                                 high=ANGLE_MAX, unit="deg", why=ANGLE_WHY),
     )
 
 
 def parse_end(table: Any, name: str) -> End:
     table = check_keys(table, END_KEYS, name)
-    pos = vector3(table["position"], f"{name}.position") if "position" in table else None
-    frc = vector3(table["force"], f"{name}.force") if "force" in table else None
+    pos = (vector3(table["position"], f"{name}.position", bound=COORD_MAX, unit="m",
+                   why=COORD_WHY) if "position" in table else None)
+    frc = (vector3(table["force"], f"{name}.force", bound=FORCE_MAX, unit="N", why=FORCE_WHY)
+           if "force" in table else None)
     if pos is None and frc is None:
         raise CableOCPError(
             f"[{name}] needs position = [x, y, z] (m) and/or force = [Fx, Fy, Fz] (N)")
@@ -284,7 +328,8 @@ def parse_end(table: Any, name: str) -> End:
             )
     tension = None
     if "tension" in table:
-        tension = number(table["tension"], f"{name}.tension", positive=True)
+        tension = number(table["tension"], f"{name}.tension", positive=True, high=FORCE_MAX,
+                         unit="N", why=FORCE_WHY)
         if not all(p is not None for p in pos):
             raise CableOCPError(
                 f"{name}.tension needs a fully fixed {name}.position at the same end")
@@ -298,6 +343,29 @@ def parse_law(cab_t: dict[str, Any]) -> str:
     return law
 
 
+#: cable and segment numbers: keyword arguments of :func:`~cable_ocp.scene.fields.number`
+CABLE_RULES: dict[str, dict[str, Any]] = {
+    "length": {"positive": True, "low": LENGTH_MIN, "high": LENGTH_MAX, "unit": "m",
+               "why": LENGTH_WHY},
+    "diameter": {"positive": True, "low": 1e-4, "high": 10.0, "unit": "m",
+                 "why": "from a 0.1 mm line to a 10 m hose"},
+    "weight_in_water": {"low": -WEIGHT_MAX, "high": WEIGHT_MAX, "unit": "N/m",
+                        "why": WEIGHT_WHY},
+    "axial_stiffness": {"positive": True, "allow_inf": True, "low": 1.0, "high": 1e14,
+                        "unit": "N", "why": 'a 0.5 m steel bar has EA ~ 4e10 N; give "inf" '
+                                            "for an inextensible cable"},
+    "normal_drag": {"nonneg": True, "high": CD_MAX, "unit": "-", "why": CD_WHY},
+    "tangential_drag": {"nonneg": True, "high": CD_MAX, "unit": "-", "why": CD_WHY},
+    "bending_stiffness": {"nonneg": True, "high": 1e12, "unit": "N m^2",
+                          "why": "a 1 m steel pipe with a 25 mm wall has EI ~ 2e9 N m^2"},
+}
+
+
+def cable_number(value: Any, key: str, name: str) -> float:
+    """A cable or segment number ``name`` (a key of :data:`CABLE_RULES`) at ``key``."""
+    return number(value, key, **CABLE_RULES[name])
+
+
 def parse_single_cable(cab_t: dict[str, Any], need_drag: bool) -> Cable:
     if "bending_stiffness" in cab_t:
         raise CableOCPError(
@@ -307,26 +375,25 @@ def parse_single_cable(cab_t: dict[str, Any], need_drag: bool) -> Cable:
     if isinstance(length_v, str) and length_v.strip().lower() == FREE:
         length = None
     else:
-        length = number(length_v, "cable.length", positive=True)
+        length = cable_number(length_v, "cable.length", "length")
     law = parse_law(cab_t)
-    diameter = (number(require(cab_t, "diameter", "cable"), "cable.diameter", positive=True)
-                if need_drag or "diameter" in cab_t else 0.0)
-    cn = (number(require(cab_t, "normal_drag", "cable"), "cable.normal_drag", nonneg=True)
-          if need_drag or "normal_drag" in cab_t else 0.0)
-    ct = (number(require(cab_t, "tangential_drag", "cable"), "cable.tangential_drag",
-                  nonneg=True) if need_drag or "tangential_drag" in cab_t else 0.0)
-    cable = Cable(
+
+    def opt(key: str) -> float:
+        if need_drag or key in cab_t:
+            return cable_number(require(cab_t, key, "cable"), f"cable.{key}", key)
+        return 0.0
+
+    return Cable(
         length=length,
-        diameter=diameter,
-        weight_in_water=number(require(cab_t, "weight_in_water", "cable"),
-                                "cable.weight_in_water"),
-        axial_stiffness=number(cab_t.get("axial_stiffness", math.inf), "cable.axial_stiffness",
-                                positive=True, allow_inf=True),
-        normal_drag=cn,
-        tangential_drag=ct,
+        diameter=opt("diameter"),
+        weight_in_water=cable_number(require(cab_t, "weight_in_water", "cable"),
+                                     "cable.weight_in_water", "weight_in_water"),
+        axial_stiffness=cable_number(cab_t.get("axial_stiffness", math.inf),
+                                     "cable.axial_stiffness", "axial_stiffness"),
+        normal_drag=opt("normal_drag"),
+        tangential_drag=opt("tangential_drag"),
         drag_law=law,
     )
-    return cable
 
 
 def parse_segments(cab_t: dict[str, Any], need_drag: bool
@@ -350,26 +417,25 @@ def parse_segments(cab_t: dict[str, Any], need_drag: bool
             raise CableOCPError(
                 f'{where}.length = "free": a free length (prescribed end tension) is not '
                 "supported for multi-segment lines; give every segment its length")
-        length = number(lv, f"{where}.length", positive=True)
+        length = cable_number(lv, f"{where}.length", "length")
 
         def opt(key: str, t: dict[str, Any] = t, where: str = where) -> float:
             if need_drag or key in t:
-                return number(require(t, key, where), f"{where}.{key}",
-                               positive=key == "diameter", nonneg=key != "diameter")
+                return cable_number(require(t, key, where), f"{where}.{key}", key)
             return 0.0
 
         segs.append(Cable(
             length=length,
             diameter=opt("diameter"),
-            weight_in_water=number(require(t, "weight_in_water", where),
-                                    f"{where}.weight_in_water"),
-            axial_stiffness=number(t.get("axial_stiffness", math.inf),
-                                    f"{where}.axial_stiffness", positive=True, allow_inf=True),
+            weight_in_water=cable_number(require(t, "weight_in_water", where),
+                                         f"{where}.weight_in_water", "weight_in_water"),
+            axial_stiffness=cable_number(t.get("axial_stiffness", math.inf),
+                                         f"{where}.axial_stiffness", "axial_stiffness"),
             normal_drag=opt("normal_drag"),
             tangential_drag=opt("tangential_drag"),
             drag_law=law,
-            bending_stiffness=number(t.get("bending_stiffness", 0.0),
-                                      f"{where}.bending_stiffness", nonneg=True),
+            bending_stiffness=cable_number(t.get("bending_stiffness", 0.0),
+                                           f"{where}.bending_stiffness", "bending_stiffness"),
         ))
         iv = t.get("intervals")
         if iv is not None and (isinstance(iv, bool) or not isinstance(iv, int)
@@ -433,7 +499,7 @@ def parse_bodies(value: Any, n_segments: int) -> tuple[Body, ...]:
                    "buoy": {"joint", "kind", "net_buoyancy"},
                    "unit": {"joint", "kind", "weight_in_water", "drag_area",
                             "drag_coefficient", "thrust"}}
-        if kind not in allowed:
+        if not isinstance(kind, str) or kind not in allowed:
             raise CableOCPError(f'{where}.kind = {kind!r}: valid are "clump", "buoy", "unit"')
         extra = sorted(set(t) - allowed[kind])
         if extra:
@@ -442,14 +508,16 @@ def parse_bodies(value: Any, n_segments: int) -> tuple[Body, ...]:
         if kind == "clump":
             body = Body(joint, kind, weight_in_water=number(
                 require(t, "weight_in_water", where), f"{where}.weight_in_water",
-                positive=True))
+                positive=True, high=BODY_MAX, unit="N", why=BODY_WHY))
         elif kind == "buoy":
             body = Body(joint, kind, net_buoyancy=number(
-                require(t, "net_buoyancy", where), f"{where}.net_buoyancy", positive=True))
+                require(t, "net_buoyancy", where), f"{where}.net_buoyancy", positive=True,
+                high=BODY_MAX, unit="N", why=BODY_WHY))
         else:
-            area = number(t.get("drag_area", 0.0), f"{where}.drag_area", nonneg=True)
+            area = number(t.get("drag_area", 0.0), f"{where}.drag_area", nonneg=True,
+                          high=1e4, unit="m^2", why="larger than any subsea unit (~1e3 m^2)")
             cd = number(t.get("drag_coefficient", 0.0), f"{where}.drag_coefficient",
-                         nonneg=True)
+                        nonneg=True, high=CD_MAX, unit="-", why=CD_WHY)
             if (area > 0) != (cd > 0):
                 raise CableOCPError(f"{where}: give both drag_area (m^2) and drag_coefficient "
                                     "(-), or neither")
@@ -458,10 +526,12 @@ def parse_bodies(value: Any, n_segments: int) -> tuple[Body, ...]:
                 v = t["thrust"]
                 if not isinstance(v, list) or len(v) != 3:
                     raise CableOCPError(f"{where}.thrust = {v!r}: expected [Tx, Ty, Tz] (N)")
-                thrust = tuple(number(c, f"{where}.thrust[{k}]")  # type: ignore[assignment]
+                thrust = tuple(number(c, f"{where}.thrust[{k}]",  # type: ignore[assignment]
+                                      low=-BODY_MAX, high=BODY_MAX, unit="N", why=BODY_WHY)
                                for k, c in enumerate(v))
             body = Body(joint, kind, weight_in_water=number(
-                require(t, "weight_in_water", where), f"{where}.weight_in_water"),
+                require(t, "weight_in_water", where), f"{where}.weight_in_water",
+                low=-BODY_MAX, high=BODY_MAX, unit="N", why=BODY_WHY),
                 drag_area=area, drag_coefficient=cd, thrust=thrust)
         out.append(body)
     return tuple(out)

@@ -72,14 +72,21 @@ from pathlib import Path
 from typing import Any
 
 from cable_ocp.errors import CableOCPError
-from cable_ocp.scene.fields import check_keys, number, require
+from cable_ocp.scene.fields import check_keys, integer, number, require
 from cable_ocp.scene.files import apply_overrides, check_kind, read_problem
 from cable_ocp.scene.parts import (
+    ANGLE_MAX,
+    ANGLE_WHY,
+    DEPTH_MAX,
+    DEPTH_WHY,
     END_KEYS,
+    FORCE_MAX,
+    FORCE_WHY,
     Body,
     Cable,
     End,
     Environment,
+    cable_number,
     check_planar_bending,
     parse_bodies,
     parse_current,
@@ -285,10 +292,13 @@ def scene_from_dict(data: dict[str, Any]) -> Scene:
     env_t = check_keys(require(data, "environment", "problem"), _SCHEMA["environment"],
                         "environment")
     depth = number(require(env_t, "water_depth", "environment"), "environment.water_depth",
-                    positive=True)
+                   positive=True, high=DEPTH_MAX, unit="m", why=DEPTH_WHY)
     rho = number(require(env_t, "water_density", "environment"), "environment.water_density",
-                  positive=True)
-    g = number(env_t.get("gravity", 9.81), "environment.gravity", positive=True)
+                 low=0.1, high=2000.0, unit="kg/m^3",
+                 why="air is 1.2 (a cable tested in air), fresh water 1000, sea water "
+                     "1020-1030, dense brines ~1300")
+    g = number(env_t.get("gravity", 9.81), "environment.gravity", low=0.1, high=30.0,
+               unit="m/s^2", why="9.81 on Earth; 1.35 on Titan to 24.8 on Jupiter")
     current = parse_current(env_t["current"]) if "current" in env_t else None
     seabed = parse_seabed(env_t["seabed"]) if "seabed" in env_t else None
     env = Environment(water_depth=depth, water_density=rho, gravity=g, current=current,
@@ -309,7 +319,8 @@ def scene_from_dict(data: dict[str, Any]) -> Scene:
 
     layout = check_keys(data.get("layout", {}), _SCHEMA["layout"], "layout")
     if "psi0_deg" in layout:
-        psi = number(layout["psi0_deg"], "layout.psi0_deg")
+        psi = number(layout["psi0_deg"], "layout.psi0_deg", low=-ANGLE_MAX, high=ANGLE_MAX,
+                     unit="deg", why=ANGLE_WHY)
         if not (all(end_a.fixed_mask[:2]) and all(end_b.fixed_mask[:2])):
             raise CableOCPError("layout.psi0_deg needs fixed horizontal positions at both ends")
         ax, ay = end_a.position[0], end_a.position[1]
@@ -344,8 +355,8 @@ def scene_from_dict(data: dict[str, Any]) -> Scene:
         if chord >= length:
             raise CableOCPError(
                 f"cable.length = {length} m is not longer than the chord between the fixed ends "
-                f"({chord:.6g} m); an inextensible cable needs length > chord "
-                "(or give cable.axial_stiffness)"
+                f"end_a.position and end_b.position ({chord:.6g} m); an inextensible cable "
+                "needs length > chord (or give cable.axial_stiffness)"
             )
 
     sol_t = check_keys(data.get("solver", {}), _SCHEMA["solver"], "solver")
@@ -362,9 +373,9 @@ def scene_from_dict(data: dict[str, Any]) -> Scene:
     intervals = sol_t.get("intervals", defaults.intervals)
     if isinstance(intervals, bool) or not isinstance(intervals, int) or not 1 <= intervals <= 20000:
         raise CableOCPError(f"solver.intervals = {intervals!r}: expected an integer 1..20000")
-    max_it = sol_t.get("max_iterations", defaults.max_iterations)
-    if isinstance(max_it, bool) or not isinstance(max_it, int) or max_it < 1:
-        raise CableOCPError(f"solver.max_iterations = {max_it!r}: expected a positive integer")
+    max_it = integer(sol_t.get("max_iterations", defaults.max_iterations),
+                     "solver.max_iterations", 1, 100000,
+                     why="IPOPT iterations per attempt; a solve converges in tens")
     guess = sol_t.get("initial_guess", defaults.initial_guess)
     if guess not in ("catenary", "straight"):
         raise CableOCPError(f'solver.initial_guess = {guess!r}: valid are "catenary", "straight"')
@@ -374,9 +385,8 @@ def scene_from_dict(data: dict[str, Any]) -> Scene:
     refine = sol_t.get("refine", defaults.refine)
     if not isinstance(refine, bool):
         raise CableOCPError(f"solver.refine = {refine!r}: expected true or false")
-    max_int = sol_t.get("max_intervals", defaults.max_intervals)
-    if isinstance(max_int, bool) or not isinstance(max_int, int) or max_int < 1:
-        raise CableOCPError(f"solver.max_intervals = {max_int!r}: expected a positive integer")
+    max_int = integer(sol_t.get("max_intervals", defaults.max_intervals),
+                      "solver.max_intervals", 1, 20000, why="as solver.intervals")
     solver = SolverOptions(
         method=method,
         scheme=scheme,
@@ -388,13 +398,18 @@ def scene_from_dict(data: dict[str, Any]) -> Scene:
                              "the error estimate reports what the tolerance lets through"),
         max_iterations=max_it,
         smoothing=number(sol_t.get("smoothing", defaults.smoothing), "solver.smoothing",
-                          positive=True),
+                         positive=True, low=1e-12, high=0.1, unit="m/s",
+                         why="the drag is off by up to smoothing^2 / 2 (m/s)^2 (reported as "
+                             "smoothing_force_bound_N); below 1e-12 the modulus is not smooth "
+                             "in double precision"),
         vertical_blend=number(sol_t.get("vertical_blend", defaults.vertical_blend),
-                               "solver.vertical_blend", positive=True),
+                              "solver.vertical_blend", positive=True, unit="-"),
         error_estimate=est,
         initial_guess=guess,
         accuracy=number(sol_t.get("accuracy", defaults.accuracy), "solver.accuracy",
-                         positive=True),
+                        low=1e-12, high=1.0, unit="-",
+                        why="a relative error: 1e-12 is near what double precision resolves; "
+                            "1 accepts any estimate (to read it at a fixed mesh)"),
         refine=refine,
         max_intervals=max_int,
     )
@@ -421,18 +436,18 @@ def _parse_footprint(table: Any, end_a: End, end_b: End) -> Footprint:
         raise CableOCPError(
             '[footprint] needs the unit at end_a with position = ["free", "free", z] and '
             'force = [Fx, Fy, "free"] (thrust), and the ship at a fixed end_b.position')
-    lmax = number(require(table, "max_length", "footprint"), "footprint.max_length",
-                   positive=True)
-    lmin = number(table.get("min_length", abs(end_b.position[2] - end_a.position[2])),
-                   "footprint.min_length", positive=True)
+    lmax = cable_number(require(table, "max_length", "footprint"), "footprint.max_length",
+                        "length")
+    lmin = cable_number(table.get("min_length", abs(end_b.position[2] - end_a.position[2])),
+                        "footprint.min_length", "length")
     if lmin >= lmax:
         raise CableOCPError(f"footprint.min_length = {lmin} must be < max_length = {lmax}")
     bound = table.get("bound", "magnitude")
     if bound not in ("magnitude", "components"):
         raise CableOCPError(f'footprint.bound = {bound!r}: valid are "magnitude", "components"')
     need = ("thrust_max",) if bound == "magnitude" else ("thrust_x_max", "thrust_y_max")
-    vals = {k: number(require(table, k, "footprint"), f"footprint.{k}", nonneg=True)
-            for k in need}
+    vals = {k: number(require(table, k, "footprint"), f"footprint.{k}", nonneg=True,
+                      high=FORCE_MAX, unit="N", why=FORCE_WHY) for k in need}
     return Footprint(max_length=lmax, min_length=lmin, bound=bound, **vals)
 
 

@@ -1,0 +1,191 @@
+"""Cost estimates of a validated scene, and the limits above which a command refuses it.
+
+A value can be legal and still cost hours or gigabytes (a fine statics mesh of a high
+degree, a long MPC horizon, a long delay in samples, many plant substeps over a long
+duration). The commands estimate the cost before any work and refuse above
+:data:`TIME_LIMIT_S` or :data:`MEMORY_LIMIT_B`, with the estimate and the key to change in
+the message; ``--force`` runs it anyway.
+
+The constants are CPU seconds and bytes measured on the development machine (one x86 core
+of 2024, Python 3.11, CasADi 3.8, scipy 1.17) with the shipped scenes; the estimates are
+rough, good to a factor of about 2-3, which is enough to tell a minute from an hour.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+from typing import Any
+
+from cable_ocp.errors import CableOCPError
+
+#: refuse above 10 minutes of estimated run time: longer than a user waits without
+#: suspecting a hang, and ~30x the shipped examples
+TIME_LIMIT_S = 600.0
+#: refuse above 4 GB of estimated memory: half of a small laptop's RAM
+MEMORY_LIMIT_B = 4e9
+
+# --- statics (collocation: unit = one interval of degree d, (d + 1)^2 Jacobian blocks) ----
+#: CPU seconds per unit N (d + 1)^2 of a collocation solve (1.7e-4 at N = 640, d = 3;
+#: 1.4e-4 at N = 320, d = 9; 2.6e-4 at N = 5000, d = 3; rounded up)
+COLLOCATION_S_PER_UNIT = 3e-4
+#: bytes per unit N (d + 1)^2 (0.64 GB at N = 5000, d = 3; 1.46 GB at N = 2560, d = 9)
+COLLOCATION_B_PER_UNIT = 6.5e3
+#: CPU seconds per interval of the other methods (N = 160-640 on De Zoysa)
+METHOD_S_PER_INTERVAL = {"multiple_shooting": 1e-3, "solve_bvp": 1e-3,
+                         "huang_semianalytic": 1e-3, "wang_shooting_optimization": 0.015,
+                         "chucheepsakul_fem": 0.02}
+#: an error estimate re-solves on N/2 and N/4 (collocation) or N/2 (the others)
+ESTIMATE_FACTOR = {"collocation": 1.75, "multiple_shooting": 1.75}
+#: a footprint direction is one NLP over the collocated statics, ~2 solves
+FOOTPRINT_SOLVES_PER_DIRECTION = 2.0
+
+# --- heave ---------------------------------------------------------------------------
+#: CPU seconds per plant step (RK4 of unit and winch, one run)
+HEAVE_S_PER_FINE_STEP = 5.5e-5
+#: CPU seconds of a discrete Riccati design on n + d states: 0.5 + 3e-7 (n + d)^3
+#: (20 s at n + d = 411)
+DARE_S_CUBE = 3e-7
+#: MPC: build 7e-7 N^3 s, each step 2e-3 max(1, N/50)^3 s (qpOASES, condensed QP)
+MPC_BUILD_S_CUBE = 7e-7
+MPC_STEP_S = 2e-3
+
+
+@dataclass
+class Cost:
+    """An estimate: CPU seconds and bytes, with its parts (what, s, bytes, the keys that
+    drive it)."""
+
+    seconds: float = 0.0
+    bytes: float = 0.0
+    parts: list[tuple[str, float, float, str]] = field(default_factory=list)
+
+    def add(self, what: str, seconds: float, nbytes: float, keys: str) -> None:
+        """Add a part."""
+        self.seconds += seconds
+        self.bytes += nbytes
+        self.parts.append((what, seconds, nbytes, keys))
+
+    @property
+    def main(self) -> tuple[str, float, float, str]:
+        """The part nearest to (or furthest over) a limit."""
+        return max(self.parts, key=lambda p: max(p[1] / TIME_LIMIT_S, p[2] / MEMORY_LIMIT_B))
+
+    @property
+    def too_much(self) -> bool:
+        """True above :data:`TIME_LIMIT_S` or :data:`MEMORY_LIMIT_B`."""
+        return self.seconds > TIME_LIMIT_S or self.bytes > MEMORY_LIMIT_B
+
+    def describe(self) -> str:
+        """``about 25 min of CPU and 1.2 GB of memory (mostly ...)``."""
+        what, sec, nb, _ = self.main
+        return (f"about {_duration(self.seconds)} of CPU and {_size(self.bytes)} of memory "
+                f"(mostly {what}: {_duration(sec)}, {_size(nb)})")
+
+
+def _duration(s: float) -> str:
+    if s < 120:
+        return f"{s:.0f} s"
+    if s < 7200:
+        return f"{s / 60:.0f} min"
+    if s < 2 * 86400:
+        return f"{s / 3600:.1f} h"
+    return f"{s / 86400:.3g} days"
+
+
+def _size(b: float) -> str:
+    return f"{b / 1e9:.3g} GB" if b >= 1e8 else f"{b / 1e6:.0f} MB"
+
+
+def check_cost(cost: Cost, force: bool = False) -> None:
+    """Raise :class:`CableOCPError` when ``cost`` is above the limits and not ``force``."""
+    if force or not cost.too_much:
+        return
+    raise CableOCPError(
+        f"{cost.main[3]}: this run would take {cost.describe()}, above the limits of "
+        f"{_duration(TIME_LIMIT_S)} and {_size(MEMORY_LIMIT_B)}: lower them, or pass --force "
+        "to run it anyway")
+
+
+def _mesh_total(scene: Any, n: int) -> int:
+    """Intervals in all on a mesh of ``n``: a multi-segment line gives each segment its own
+    ``intervals`` or a share of ``solver.intervals`` (at least 2), scaled by
+    ``n / solver.intervals`` on other meshes (as the collocation does)."""
+    if not scene.segments:
+        return n
+    total = sum(c.length for c in scene.segments)
+    base = [iv if iv is not None else max(2, round(scene.solver.intervals * c.length / total))
+            for c, iv in zip(scene.segments, scene.segment_intervals, strict=True)]
+    return max(round(sum(base) * n / scene.solver.intervals), len(base))
+
+
+def statics_cost(scene: Any, directions: int | None = None) -> Cost:
+    """Estimate of the largest statics solve a scene allows (its mesh, or the refinement's
+    ``max_intervals``), with its error estimate; with ``directions``, of a footprint."""
+    opts = scene.solver
+    n = opts.intervals
+    if opts.refine and opts.error_estimate and directions is None:
+        n = max(n, opts.max_intervals)
+    cost = Cost()
+    method = opts.method
+    n = _mesh_total(scene, n)
+    if method == "collocation":
+        units = n * (opts.degree + 1) ** 2
+        sec = COLLOCATION_S_PER_UNIT * units
+        nbytes = COLLOCATION_B_PER_UNIT * units
+        what = f"a collocation solve on {n} intervals of degree {opts.degree}"
+    else:
+        sec = METHOD_S_PER_INTERVAL.get(method, 1e-3) * n
+        nbytes = 2e4 * n
+        what = f"a {method} solve on {n} intervals"
+    keys = (f"solver.intervals = {opts.intervals}" if n == _mesh_total(scene, opts.intervals)
+            else f"solver.max_intervals = {opts.max_intervals} (refinement)")
+    if any(iv is not None for iv in scene.segment_intervals):
+        keys += " and the segments' intervals"
+    if method == "collocation":
+        keys += f" with solver.degree = {opts.degree}"
+    if directions is not None:
+        cost.add(f"{directions} footprint directions, each {what}",
+                 directions * FOOTPRINT_SOLVES_PER_DIRECTION * sec, nbytes,
+                 f"--directions {directions} and {keys}")
+    elif opts.error_estimate:
+        cost.add(f"{what} and its error estimate", ESTIMATE_FACTOR.get(method, 1.5) * sec,
+                 nbytes, keys)
+    else:
+        cost.add(what, sec, nbytes, keys)
+    return cost
+
+
+def heave_cost(sc: Any) -> Cost:
+    """Estimate of a heave comparison: plant steps, Riccati designs, MPC."""
+    from cable_ocp.heave.discrete import delay_steps
+
+    c, sim = sc.controller, sc.simulation
+    h = c.sample_time
+    steps = int(round(sim.duration / h))
+    fine = steps * sim.substeps
+    ctrls = tuple(c.controllers)
+    runs = len(ctrls) + (0 if "passive" in ctrls else 1)
+    # states: unit + winch (3-4), vessel (2), sea filter (2 per section, <= 12)
+    n_sea = 2 if sc.vessel.model == "second_order" else 0
+    n_sea += 2 * (3 if sc.sea.shaping_filter == "thesis" else sc.sea.filter_order)
+    n = (3 if sc.winch.model == "first_order" else 4) + n_sea
+    d = delay_steps(sc.winch.delay, h)
+    nz = n + d
+    fine_all = fine + int(round(c.preview_time / h + 1)) * sim.substeps
+    cost = Cost()
+    cost.add(f"{runs} runs x {fine} plant steps ({steps} samples x {sim.substeps} substeps)",
+             HEAVE_S_PER_FINE_STEP * fine * runs,
+             8.0 * fine_all * (2 * n_sea + 2) + 8.0 * 6 * fine * len(ctrls),
+             f"simulation.duration = {sim.duration:g} s with simulation.substeps = "
+             f"{sim.substeps} and controller.sample_time = {h:g} s")
+    designs = 1 + ("lqg" in ctrls) + ("mpc" in ctrls)
+    cost.add(f"{designs} Riccati design(s) on {nz} states ({d} delay samples)",
+             designs * (0.5 + DARE_S_CUBE * nz**3), 8.0 * 8 * nz**2,
+             f"winch.delay = {sc.winch.delay:g} s over controller.sample_time = {h:g} s "
+             f"({d} samples)")
+    if "mpc" in ctrls:
+        hz = c.horizon
+        cost.add(f"the MPC with a {hz}-sample horizon over {steps} samples",
+                 MPC_BUILD_S_CUBE * hz**3 + steps * MPC_STEP_S * max(1.0, hz / 50) ** 3,
+                 8.0 * hz**2 * (nz + 8), f"controller.horizon = {hz}")
+    return cost
