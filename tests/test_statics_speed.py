@@ -10,6 +10,7 @@ benchmarks measure speed, ``cable-ocp bench sweep`` and ``cable-ocp bench accura
 * The on-disk function cache: bit-identical results, a real second process that loads
   instead of building, and corrupt, truncated or foreign entries rebuilt, never used.
 * The catenary parameter by Newton's method against the bracketing search it replaced.
+* ``cable-ocp bench sweep --json -``: the JSON alone on stdout, with the tracked keys.
 """
 
 from __future__ import annotations
@@ -256,6 +257,60 @@ def test_cache_switch_location_and_key(tmp_path: Path, monkeypatch: pytest.Monke
     assert len(_entries(folder)) == 2
 
 
+def test_an_unusable_cache_folder_is_skipped_silently(tmp_path: Path,
+                                                      monkeypatch: pytest.MonkeyPatch
+                                                      ) -> None:
+    """CABLE_OCP_CACHE_DIR under a regular file (no folder can be made there, even as
+    root, unlike a read-only folder) or in a read-only folder: nothing raised, the
+    functions built, the answer that of a solver without a cache (bit-identical); a
+    folder that does not exist yet is created and filled."""
+    scene = load_scene(DEZOYSA, {"solver.intervals": 4, **OFF})
+    monkeypatch.setenv("CABLE_OCP_CACHE", "0")
+    ref = StaticsSolver(scene).solve()
+    monkeypatch.delenv("CABLE_OCP_CACHE")
+    blocker = tmp_path / "a_file"
+    blocker.write_text("not a folder")
+    read_only = tmp_path / "read_only"
+    read_only.mkdir()
+    read_only.chmod(0o555)
+    try:
+        for folder in (blocker / "cache", blocker, read_only):
+            monkeypatch.setenv("CABLE_OCP_CACHE_DIR", str(folder))
+            solver = StaticsSolver(scene)
+            assert solver.build_source == "built"
+            sol = solver.solve()
+            assert sol.success and np.array_equal(sol.tension_vector, ref.tension_vector)
+            if folder is not read_only or not os.access(read_only, os.W_OK):
+                assert StaticsSolver(scene).build_source == "built"  # nothing stored
+        assert blocker.read_text() == "not a folder"
+    finally:
+        read_only.chmod(0o755)
+    fresh = tmp_path / "new" / "nested" / "cache"
+    monkeypatch.setenv("CABLE_OCP_CACHE_DIR", str(fresh))
+    assert StaticsSolver(scene).build_source == "built"
+    assert len(_entries(fresh)) == 1
+    assert StaticsSolver(scene).build_source == "disk cache"
+
+
+def test_sweep_past_a_refined_point() -> None:
+    """A sweep whose points are refined to different meshes (De Zoysa from 10 intervals
+    with error estimates: 140 deg needs 80 intervals, its neighbours 40) extrapolates only
+    through solutions of one mesh (it raised a broadcasting error before), and every
+    point equals its own single solve to the accuracy asked (1e-6 relative, the
+    scene's solver.accuracy, in the end forces)."""
+    from cable_ocp.statics.solver import solve_collocation
+
+    base = load_scene(DEZOYSA, {"solver.intervals": 10})
+    angles = [110.0, 120.0, 130.0, 140.0, 150.0]
+    sols = sweep(base, "layout.psi0_deg", angles, error_estimate=True)
+    assert len({s.s.shape for s in sols}) > 1  # the case: meshes differ along the sweep
+    for angle, sol in zip(angles, sols, strict=True):
+        assert sol.converged, sol.message
+        alone = solve_collocation(base.with_overrides({"layout.psi0_deg": angle}))
+        ref = np.max(np.abs(alone.force_a))
+        assert np.max(np.abs(sol.force_a - alone.force_a)) <= 2e-6 * ref
+
+
 def test_catenary_parameter_matches_the_bracketing_search() -> None:
     """Newton's method on log(sinh(u)/u) gives the catenary parameter of the bracketing
     search it replaced in the free-length guess (1e-9 relative: both solve
@@ -285,3 +340,26 @@ def test_free_length_guess_unchanged_on_berteaux() -> None:
     tension = scene.cable.weight_in_water * a * math.cosh((h - x0) / a)
     assert abs(tension - 11146.6) <= 1e-9 * 11146.6
     assert Formulation(scene).scales.force > 0
+
+
+def test_bench_sweep_json_alone_on_stdout(capsys: pytest.CaptureFixture[str]) -> None:
+    """``bench sweep --json -`` prints only the JSON envelope, with the tracked keys at its
+    top level (as ``bench-heave --json -`` puts its rows there). A short run (10
+    intervals, one repeat, no second process); the only number checked is the agreement
+    with solve_bvp, a method that shares no code with collocation: the end force within
+    1e-4 of the largest (10 intervals of degree 3 are good to ~1e-6 here, solve_bvp to
+    its 1e-8 tolerance). No timing is checked."""
+    from cable_ocp.cli import main
+
+    rc = main(["bench", "sweep", "--intervals", "10", "--repeats", "1", "--no-subprocess",
+               "--quiet", "--json", "-"])
+    out = capsys.readouterr().out
+    assert rc == 0
+    data = json.loads(out)  # the whole of stdout is one JSON document
+    assert data["status"] == "ok"
+    for key in ("warm_median_ms", "warm_iterations_median", "sweep_total_ms",
+                "solve_bvp_median_ms", "max_rel_difference"):
+        assert isinstance(data[key], (int, float)) and math.isfinite(data[key]), key
+        assert data[key] >= 0, key
+    assert data["warm_iterations_median"] >= 1
+    assert data["max_rel_difference"] <= 1e-4

@@ -1083,7 +1083,8 @@ def sweep(scene: Scene, key: str, values: Iterable[Any],
         for val, key_i, s_i in reversed(done):
             if (len(pts) == PREDICTOR_POINTS or key_i != k or not s_i.converged
                     or s_i.node_offset or not isinstance(val, (int, float))
-                    or any(val == x for x, _ in pts)):
+                    or any(val == x for x, _ in pts)
+                    or (pts and s_i.s.shape != pts[0][1].s.shape)):  # a refined point
                 break
             pts.insert(0, (val, s_i))
         if prev is not None and pts and pts[-1][1] is prev and isinstance(v, (int, float)):
