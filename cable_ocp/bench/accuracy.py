@@ -298,7 +298,7 @@ def write_csv(results: list[dict[str, Any]], path: str | Path) -> None:
 
 
 def plot(results: list[dict[str, Any]], path: str | Path) -> Path:
-    """Log-log error (the larger of force and profile error) against wall time
+    """Log-log error (the larger of force and profile error) against CPU time per solve
     (:func:`cable_ocp.plots.bench.plot_work_precision`)."""
     from cable_ocp.plots.bench import plot_work_precision
 
