@@ -1,6 +1,6 @@
 """The extreme scenes (problems/extreme): our solver converges on every one, within its
 error estimate, and agrees with an independent reference; never a wrong answer reported as
-success (issue 5).
+success.
 
 Two comparisons, of different strength:
 
@@ -94,7 +94,7 @@ def test_hanging_vertical_exact():
 
 
 def test_continuation_is_automatic_and_reported():
-    """004 section 2.5: when the cold solve at full current fails (here on the high-speed
+    """Huang (1992), section 2.5: when the cold solve at full current fails (here on the high-speed
     tow: Newton's line search stalls from the drag-free hanging guess, and the IPOPT
     fallback is held to 20 iterations, fewer than it needs), the solver ramps the current
     from 0 in steps, says so in the diagnostics, and lands on the same answer as an

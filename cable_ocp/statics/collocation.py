@@ -18,7 +18,7 @@ position, tension jump by the body load) replace the continuity across the joint
 
 Accuracy at the mesh points: order 2d for Gauss-Legendre and 2d - 1 for Radau, for
 smooth solutions (the |u|u drag kink where a flow component changes sign lowers it;
-CONVENTIONS "Reading the seeds").
+docs/conventions.md, "Reading the sources").
 """
 
 from __future__ import annotations

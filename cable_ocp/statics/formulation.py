@@ -1,28 +1,29 @@
 """Static cable equations of a scene, as CasADi functions (no discretisation here).
 
-State along the unstretched arc length s (CONVENTIONS: tension carried as a vector, so
+State along the unstretched arc length s (docs/conventions.md: tension carried as a vector, so
 vertical and horizontal cables are regular):
 
     x = (r, T),  r = position (m),  T = tension vector (N), the force the part of the
                  cable beyond s (towards end_b) exerts on the part before it.
 
-Equilibrium of an element ds and Hooke's law (000 eqs (1)-(3) in vector form; 004 eqs
-(2.1)-(2.5), (2.18)-(2.24)):
+Equilibrium of an element ds and Hooke's law (Wang, Cheong & Chucheepsakul (1993),
+eqs (1)-(3) in vector form; Huang (1992), eqs (2.1)-(2.5), (2.18)-(2.24)):
 
     dr/ds = (1 + |T|/EA) T/|T|                       (EA = inf: no stretch term built)
     dT/ds = -f,  f = (0, 0, -w) + (1 + |T|/EA) f_drag(U(z) , T/|T|)
 
 with w the weight in water per unstretched length (N/m) and f_drag the drag per
 stretched length (:mod:`cable_ocp.physics.drag`); the (1 + |T|/EA) factor converts it to
-per unstretched length (004 (2.46) uses the strained segment length; CONVENTIONS "Drag").
+per unstretched length (Huang (1992), eq. (2.46), uses the strained segment length;
+docs/conventions.md, "Drag").
 No current: no drag terms are built.
 
 The equations are solved in scaled form: sigma = s/L in [0, 1], r = ell * rho,
 T = F * tau, with a length scale ell and a force scale F chosen from the scene, so that
 every unknown and residual is O(1) for the solvers.
 
-Bending stiffness (``bending_stiffness`` = EI > 0 on a segment; 003 eqs (4)-(7) treat the
-towed object as a beam but print only a first-approximation deflection): when any
+Bending stiffness (``bending_stiffness`` = EI > 0 on a segment; Bielański, eqs (4)-(7),
+treats the towed object as a beam but prints only a first-approximation deflection): when any
 segment asks for it, every node carries two more states, x = (r, T, theta, M), and only
 the stiff segments get equations for them. A stiff segment is a planar beam-cable in the
 x-z plane (Kirchhoff rod, inextensible in bending), theta the angle of the tangent
@@ -41,7 +42,8 @@ end and where a stiff segment meets a flexible one or a body; theta and M contin
 between two stiff segments. The moment is scaled by M_ref = min(F ell, sqrt(EI F)), the
 boundary-layer moment of a tensioned beam.
 
-End conditions (004 eqs (2.6)-(2.15); 000 eqs (13)-(17)), per component i at each end:
+End conditions (Huang (1992), eqs (2.6)-(2.15); Wang, Cheong & Chucheepsakul (1993),
+eqs (13)-(17)), per component i at each end:
 a prescribed position r_i = p_i, or a prescribed external load F_i on the attachment,
 which at equilibrium means T_i(0) = -F_i at end_a and T_i(L) = +F_i at end_b. A
 prescribed tension magnitude adds |T|^2 = T0^2 at its end and makes L an unknown.

@@ -3,13 +3,13 @@
 Returned as node arrays in physical units, so they feed any transcription.
 
 * Both ends fixed, length known: the inextensible drag-free catenary through both ends
-  in their vertical plane (Irvine 1981; 004 eqs (2.31)-(2.33) with no point loads).
+  in their vertical plane (Irvine 1981; Huang (1992), eqs (2.31)-(2.33), with no point loads).
 * Both ends fixed, tension known, length free: the catenary through both ends whose
   tension at that end equals the prescribed one; of the two such catenaries, the one
-  with the shorter cable (CONVENTIONS: Berteaux's problem has a second, non-physical
+  with the shorter cable (docs/conventions.md: Berteaux's problem has a second, non-physical
   solution near 15 km).
 * One end fixed, the other loaded by a known force: the drag-free hanging solution
-  T(s) = T_end - w (s_end - s) e_z, integrated for the positions (004 (2.40)-(2.42)).
+  T(s) = T_end - w (s_end - s) e_z, integrated for the positions (Huang (1992), eqs (2.40)-(2.42)).
 * Otherwise (mixed ends), or when the above degenerate: a straight line with the
   tension of a vertically hanging cable.
 """

@@ -567,7 +567,7 @@ class StaticsSolver:
                     f"continuation in current scale failed at {c:g} of the current ({how})")
             w = w_new
         return w, total, True, (
-            f"current ramped {', '.join(f'{c:g}' for c in steps)} (004 section 2.5)")
+            f"current ramped {', '.join(f'{c:g}' for c in steps)} (Huang 1992, section 2.5)")
 
     def _make_solution(self, w: np.ndarray, p: np.ndarray, ok: bool, how: str, it: int,
                        wall: float, diag: dict[str, Any], g: np.ndarray | None = None
