@@ -8,7 +8,8 @@ benchmarks measure speed, ``cable-ocp bench sweep`` and ``cable-ocp bench accura
 * Newton-first cold solves against IPOPT cold solves, and the fallback to IPOPT where
   Newton's line search stalls.
 * The on-disk function cache: bit-identical results, a real second process that loads
-  instead of building, and corrupt, truncated or foreign entries rebuilt, never used.
+  instead of building, corrupt, truncated or foreign entries rebuilt, never used, an
+  unusable folder skipped, and the folder kept to its size.
 * The catenary parameter by Newton's method against the bracketing search it replaced.
 * ``cable-ocp bench sweep --json -``: the JSON alone on stdout, with the tracked keys.
 """
@@ -290,6 +291,37 @@ def test_an_unusable_cache_folder_is_skipped_silently(tmp_path: Path,
     assert StaticsSolver(scene).build_source == "built"
     assert len(_entries(fresh)) == 1
     assert StaticsSolver(scene).build_source == "disk cache"
+
+
+def test_the_cache_keeps_to_its_size(cache_folder: Path, monkeypatch: pytest.MonkeyPatch
+                                     ) -> None:
+    """The least recently used entries go when the folder would exceed MAX_BYTES (an
+    entry of an older version, never read again, among them), the newest always stays,
+    and an entry above MAX_ENTRY_BYTES is not written (the solve is unaffected)."""
+    import time
+
+    cache_folder.mkdir(parents=True)
+    stale = cache_folder / ("0" * 40 + "-newton" + disk_cache.SUFFIX)
+    stale.write_bytes(b"x" * 1000)  # an old entry: its mtime is the oldest
+    os.utime(stale, (time.time() - 3600, time.time() - 3600))
+    scenes = [load_scene(DEZOYSA, {"solver.intervals": n, **OFF}) for n in (4, 5, 6)]
+    StaticsSolver(scenes[0])
+    (first,) = [e for e in _entries(cache_folder) if e != stale]
+    size = first.stat().st_size
+    # room for two interval-function entries, not three, nor two and the stale one
+    monkeypatch.setattr(disk_cache, "MAX_BYTES", int(2.5 * size))
+    for sc in scenes[1:]:
+        time.sleep(0.01)  # distinct modification times
+        StaticsSolver(sc)
+    kept = _entries(cache_folder)
+    assert len(kept) == 2 and first not in kept and stale not in kept
+    assert StaticsSolver(scenes[2]).build_source == "disk cache"  # the newest stayed
+    assert StaticsSolver(scenes[0]).build_source == "built"  # the oldest went
+    monkeypatch.setattr(disk_cache, "MAX_ENTRY_BYTES", size // 2)
+    other = load_scene(DEZOYSA, {"solver.intervals": 7, **OFF})
+    before = set(_entries(cache_folder))
+    sol = StaticsSolver(other).solve()
+    assert sol.success and set(_entries(cache_folder)) == before  # nothing written
 
 
 def test_sweep_past_a_refined_point() -> None:

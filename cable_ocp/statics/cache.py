@@ -23,7 +23,9 @@ deserialised. A file that is missing, unreadable, truncated,
 altered or written for another key is a miss: the functions are rebuilt and the entry is
 rewritten. Writes go to a temporary file in the same folder, then ``os.replace`` (atomic),
 so a reader never sees half a file; a folder that cannot be written is skipped silently.
-At most :data:`MAX_ENTRIES` entries are kept (least recently used removed first).
+At most :data:`MAX_ENTRIES` entries and :data:`MAX_BYTES` bytes are kept (least recently
+used removed first: entries of older versions, never read again, go first), and an entry
+larger than :data:`MAX_ENTRY_BYTES` (IPOPT on a very fine mesh) is not stored.
 """
 
 from __future__ import annotations
@@ -43,6 +45,11 @@ import casadi as ca
 FORMAT = 1
 MAGIC = "cable_ocp statics function cache"
 MAX_ENTRIES = 256
+#: most bytes of all entries together (the interval functions take 0.1-0.5 MB per scene
+#: structure and mesh, IPOPT's whole-mesh graph 3-50 MB)
+MAX_BYTES = 256 * 2**20
+#: largest entry stored
+MAX_ENTRY_BYTES = 64 * 2**20
 SUFFIX = ".casadi"
 ENV_SWITCH = "CABLE_OCP_CACHE"
 ENV_DIR = "CABLE_OCP_CACHE_DIR"
@@ -138,6 +145,8 @@ def save(structure: str, role: str, functions: dict[str, ca.Function]) -> bool:
         payload = ser.encode().encode("ascii")
     except (RuntimeError, UnicodeEncodeError):  # cannot be serialised: nothing to store
         return False
+    if len(payload) > MAX_ENTRY_BYTES:
+        return False
     header = json.dumps({"magic": MAGIC, "format": FORMAT, "key": key, "names": names,
                          "bytes": len(payload),
                          "sha256": hashlib.sha256(payload).hexdigest()})
@@ -161,17 +170,21 @@ def save(structure: str, role: str, functions: dict[str, ca.Function]) -> bool:
 
 
 def _evict(folder: Path) -> None:
-    """Keep the :data:`MAX_ENTRIES` most recently used entries."""
-    try:
-        entries = [(p.stat().st_mtime, p) for p in folder.glob("*" + SUFFIX)]
-    except OSError:
-        return
-    if len(entries) <= MAX_ENTRIES:
-        return
-    entries.sort()
-    for _, p in entries[: len(entries) - MAX_ENTRIES]:
+    """Keep the most recently used entries, at most :data:`MAX_ENTRIES` of them and
+    :data:`MAX_BYTES` together (the newest entry is always kept)."""
+    entries = []
+    for p in folder.glob("*" + SUFFIX):
         with contextlib.suppress(OSError):
-            p.unlink()
+            st = p.stat()
+            entries.append((st.st_mtime, st.st_size, p))
+    entries.sort(reverse=True)  # most recently used first
+    count = total = 0
+    for _, size, p in entries:
+        count += 1
+        total += size
+        if count > 1 and (count > MAX_ENTRIES or total > MAX_BYTES):
+            with contextlib.suppress(OSError):
+                p.unlink()
 
 
 def clear() -> int:
