@@ -1,4 +1,4 @@
-"""``cable-ocp bench {sweep,accuracy,robustness}`` and ``cable-ocp bench-heave``.
+"""``cable-ocp bench {sweep,accuracy,robustness,batch,dynamics}`` and ``cable-ocp bench-heave``.
 
 Benchmarks print tables (and write JSON/CSV/plots when asked); nothing here is asserted by
 the tests. Each compares methods side by side in one run, so ratios stay meaningful on a
@@ -15,11 +15,11 @@ from cable_ocp.cli import output as out
 
 
 def register(sub: argparse._SubParsersAction, parent: argparse.ArgumentParser) -> None:
-    """Add ``bench`` (with its three benchmarks) and ``bench-heave``."""
+    """Add ``bench`` (with its benchmarks) and ``bench-heave``."""
     b = sub.add_parser(
-        "bench", parents=[parent], help="statics benchmarks that print a table",
-        description="Statics benchmarks (tables; nothing is asserted). Without a benchmark "
-                    "name: sweep.")
+        "bench", parents=[parent], help="statics and dynamics benchmarks that print a table",
+        description="Benchmarks (tables; nothing is asserted). Without a benchmark name: "
+                    "sweep.")
     b.set_defaults(func=cmd_sweep, scene=None, intervals=40, json=None, csv=None, plot=None)
     which = b.add_subparsers(dest="which", metavar="BENCHMARK")
 
@@ -90,6 +90,32 @@ def register(sub: argparse._SubParsersAction, parent: argparse.ArgumentParser) -
                     help="current speeds (10)")
     out.add_json_option(bb, "the rows and the summary")
     bb.set_defaults(func=cmd_bench_batch)
+
+    d = which.add_parser(
+        "dynamics", parents=[parent],
+        help="lumped-mass dynamics: wall time per simulated second beside MoorDyn",
+        description="Huang (1992) 5.7 system (300 m cable, 3 t unit, top moved by "
+                    "x = y = z = sin(1.256 t) m) at 20, 40 and 80 segments: wall time per "
+                    "simulated second of cable_ocp's implicit midpoint scheme at several time "
+                    "steps beside MoorDyn (optional: pip install moordyn) at its stable "
+                    "steps, each with its top-tension error against a converged reference, "
+                    "in one run; then the targets (100x real time at 40 segments; no slower "
+                    "than MoorDyn at equal accuracy). Several minutes; --quick: seconds.")
+    d.add_argument("--segments", type=int, nargs="+", default=None, metavar="N",
+                   help="numbers of segments (default 20 40 80)")
+    d.add_argument("--time-steps", type=float, nargs="+", default=None, metavar="DT",
+                   help="cable_ocp time steps, s (default 0.1 0.05 0.025)")
+    d.add_argument("--duration", type=float, default=None, metavar="S",
+                   help="simulated time, s (default 60; errors over the last 10 s)")
+    d.add_argument("--repeats", type=int, default=None, metavar="N",
+                   help="timed runs per row, fastest kept (default 2)")
+    d.add_argument("--no-moordyn", action="store_true", help="skip MoorDyn even if installed")
+    d.add_argument("--quick", action="store_true",
+                   help="a seconds-long smoke run (6 segments, one step, 20 s; its numbers "
+                        "mean little)")
+    out.add_json_option(d, "the rows and the targets")
+    out.add_plot_option(d, "error against wall time per simulated second")
+    d.set_defaults(func=cmd_bench_dynamics)
 
     h = sub.add_parser(
         "bench-heave", parents=[parent],
@@ -348,3 +374,80 @@ def cmd_bench_batch(args: argparse.Namespace) -> int:
                   f"speed-up on 2 workers {sm['speedup_2_workers']:.2f}x (target >= 1.8x)")
     out.emit_json(args, out.envelope("ok", "benchmark completed", res))
     return out.EXIT_OK
+
+
+DYNAMICS_KEYS = ["model", "segments", "time_step", "wall_per_simulated_s", "realtime_factor",
+                 "top_tension_amplitude_N", "error", "amplitude_vs_other", "status"]
+
+
+def cmd_bench_dynamics(args: argparse.Namespace) -> int:
+    """``cable-ocp bench dynamics``."""
+    import os
+
+    from cable_ocp.bench import dynamics as bd
+
+    out.check_outputs(args)
+    kw: dict[str, Any] = dict(bd.QUICK) if args.quick else {
+        "segments": (20, 40, 80), "time_steps": (0.1, 0.05, 0.025), "duration": bd.DURATION,
+        "repeats": 2, "compile_mode": "step", "moordyn_steps": None}
+    if args.segments is not None:
+        for n in args.segments:
+            if not 2 <= n <= 400:
+                raise out_error(f"--segments {n}: give 2..400")
+        kw["segments"] = tuple(args.segments)
+        if kw.get("moordyn_steps") is not None:
+            kw["moordyn_steps"] = {n: (4e-3,) if n <= 40 else (2e-3,) for n in args.segments}
+    if args.time_steps is not None:
+        for dt in args.time_steps:
+            if not 1e-4 <= dt <= 1.0:
+                raise out_error(f"--time-steps {dt}: give 1e-4..1 s")
+        kw["time_steps"] = tuple(args.time_steps)
+    if args.duration is not None:
+        if not bd.WINDOW + bd.RAMP <= args.duration <= 3600.0:
+            raise out_error(f"--duration {args.duration}: give {bd.WINDOW + bd.RAMP:g}..3600 s "
+                            f"(the {bd.RAMP:g} s ramp, then the {bd.WINDOW:g} s window the "
+                            "errors are taken over)")
+        kw["duration"] = args.duration
+    if args.repeats is not None:
+        if not 1 <= args.repeats <= 20:
+            raise out_error(f"--repeats {args.repeats}: give 1..20 (the fastest is kept)")
+        kw["repeats"] = args.repeats
+    with_md = not args.no_moordyn
+    if with_md and not bd.moordyn_available():
+        out.note(args, "MoorDyn is not installed (pip install moordyn): its rows say so")
+    total = bd.planned_rows(kw["segments"], kw["time_steps"], kw.get("moordyn_steps"), with_md)
+    done = [0]
+    with out.progress(args, total, "bench dynamics", "run") as bar:
+        def step(label: str) -> None:
+            bar(done[0], postfix=label)
+            done[0] += 1
+
+        rows = bd.run(kw["segments"], kw["time_steps"], kw.get("moordyn_steps"),
+                      with_moordyn=with_md, compile_mode=kw["compile_mode"],
+                      repeats=kw["repeats"], duration=kw["duration"], progress=step)
+        bar(total)
+    sm = bd.summary(rows)
+    load = os.getloadavg() if hasattr(os, "getloadavg") else None
+    out.say(args, f"Huang (1992) 5.7 system at {bd.FREQUENCY} rad/s, {kw['duration']:g} s "
+                  f"simulated; errors of the top tension over the last {bd.WINDOW:g} s against "
+                  "each model's converged reference (same segments, step / 8), over its "
+                  "amplitude; wall time of the stepping, fastest of "
+                  f"{kw['repeats']} (noisy on a shared machine: compare ratios)")
+    if load is not None:
+        out.say(args, "load average (1, 5, 15 min): " + ", ".join(f"{v:.2f}" for v in load))
+    out.say(args, bd.format_table(rows))
+    out.say(args, "\n" + bd.format_summary(sm))
+    rows_d = bd.as_dicts(rows)
+    # a MoorDyn step beyond its explicit limit failing is a result of the benchmark (its
+    # row says so); a cable_ocp run failing is a failure of the command
+    failed = [r for r in rows if r.model.startswith("cable_ocp") and r.status != "ok"]
+    status = "failed" if failed else "ok"
+    message = ("benchmark completed" if not failed else
+               f"{len(failed)} cable_ocp run(s) failed: " + "; ".join(
+                   f"{r.segments} segments, dt {r.time_step:g} s: {r.status}" for r in failed))
+    out.emit_json(args, out.envelope(status, message, {
+        "rows": rows_d, "summary": sm, "load_average": list(load) if load else None,
+        "duration_s": kw["duration"], "frequency_rad_s": bd.FREQUENCY}))
+    if args.plot:
+        out.emit_plot(args, lambda path: bd.plot(rows, path))
+    return out.EXIT_OK if status == "ok" else out.EXIT_NOT_SUCCESS
