@@ -27,12 +27,18 @@ def register(sub: argparse._SubParsersAction, parent: argparse.ArgumentParser) -
         "sweep", parents=[parent],
         help="De Zoysa psi0 sweep timing: collocation (built once, warm) vs scipy solve_bvp",
         description="Time the 19-angle De Zoysa psi0 sweep: collocation built once and "
-                    "warm-started, with and without error estimates, against scipy's "
-                    "solve_bvp from the catenary and from the previous point, in one run.")
+                    "warm-started (as a first process: functions built; and in a second "
+                    "process: functions from the disk cache), with and without error "
+                    "estimates, against scipy's solve_bvp from the catenary and from the "
+                    "previous point, in one run; wall-clock and CPU times.")
     s.add_argument("--scene", metavar="FILE", help="problem file with layout.psi0_deg "
                                                    "(default problems/dezoysa_sea_buggy.toml)")
     s.add_argument("--intervals", type=int, default=40, metavar="N",
                    help="collocation intervals (default 40)")
+    s.add_argument("--repeats", type=int, default=3, metavar="N",
+                   help="collocation sweep repeats, the least disturbed kept (default 3)")
+    s.add_argument("--no-subprocess", action="store_true",
+                   help="skip the second-process run (functions from the disk cache)")
     out.add_json_option(s, "the summary (warm median, iterations, totals, agreement)")
     out.add_csv_option(s, "the timing table")
     out.add_plot_option(s, "the end_a force against psi0, collocation and solve_bvp")
@@ -49,6 +55,8 @@ def register(sub: argparse._SubParsersAction, parent: argparse.ArgumentParser) -
                    help="restrict to these series (repeatable; labels as in the table)")
     a.add_argument("--repeats", type=int, default=3, metavar="N",
                    help="timing repeats, fastest kept (default 3)")
+    a.add_argument("--no-subprocess", action="store_true",
+                   help="skip the second-process timings (functions from the disk cache)")
     out.add_json_option(a, "every row")
     out.add_csv_option(a, "every row")
     out.add_plot_option(a, "the work-precision diagram")
@@ -136,18 +144,30 @@ def cmd_sweep(args: argparse.Namespace) -> int:
     out.check_outputs(args)
     if not 2 <= args.intervals <= 2560:
         raise out_error(f"--intervals {args.intervals}: give 2..2560")
-    kw: dict[str, Any] = {"intervals": args.intervals}
+    if not 1 <= getattr(args, "repeats", 3) <= 100:
+        raise out_error(f"--repeats {args.repeats}: give 1..100")
+    kw: dict[str, Any] = {"intervals": args.intervals, "repeats": getattr(args, "repeats", 3),
+                          "subprocess_run": not getattr(args, "no_subprocess", False)}
     if args.scene:
         kw["scene_path"] = args.scene
-    out.note(args, "bench sweep: timing the collocation and solve_bvp sweeps (~5 s) ...")
+    out.note(args, "bench sweep: timing the collocation and solve_bvp sweeps (~10 s) ...")
     res = statics_sweep.run(**kw)
-    m, t = res["measured"], res["targets"]
+    m, t, sm = res["measured"], res["targets"], res["summary"]
     out.say(args, f"De Zoysa psi0 sweep, {len(res['angles'])} angles, {args.intervals} "
-                  "intervals (fastest of 3 repeats for the collocation sweep)")
+                  f"intervals (least disturbed of {kw['repeats']} repeats for the collocation "
+                  f"sweeps; load average {sm['load_average_1min']:.1f})")
     out.say(args, report.table(res["headers"], res["rows"]))
-    out.say(args, f"\nwarm solve median {m['warm_median_ms']:.2f} ms (target < "
-                  f"{t['warm_median_ms']} ms); sweep incl. build {m['sweep_total_ms']:.0f} ms "
-                  f"(target < {t['sweep_total_ms']:.0f} ms)")
+    out.say(args, f"\nwarm solve median {m['warm_median_ms']:.2f} ms wall, "
+                  f"{sm['warm_median_cpu_ms']:.2f} ms CPU, {sm['warm_iterations_median']:g} "
+                  f"Newton steps (target <= {t['warm_median_ms']:g} ms); each point all in "
+                  f"{sm['warm_point_all_in_ms']:.2f} ms; solve_bvp/collocation per point "
+                  f"{sm['warm_ratio_solve_bvp_over_collocation']:.1f}x")
+    second = ("" if sm["sweep_total_second_process_ms"] is None else
+              f"; 2nd process {sm['sweep_total_second_process_ms']:.0f} ms wall, "
+              f"{sm['sweep_total_second_process_cpu_ms']:.0f} ms CPU")
+    out.say(args, f"sweep incl. build: 1st process {m['sweep_total_ms']:.0f} ms wall, "
+                  f"{sm['sweep_total_cpu_ms']:.0f} ms CPU{second} "
+                  f"(target <= {t['sweep_total_ms']:.0f} ms)")
     out.say(args, "collocation vs solve_bvp end_a force: max relative difference "
                   f"{res['agreement']:.1e}")
     out.emit_json(args, out.envelope("ok", "benchmark completed", {
@@ -169,10 +189,10 @@ def out_error(msg: str) -> Exception:
     return CableOCPError(msg)
 
 
-ACCURACY_KEYS = ["scene", "method", "resolution", "time_s", "status", "force_error",
+ACCURACY_KEYS = ["scene", "method", "resolution", "time_s", "cpu_s", "status", "force_error",
                  "profile_error", "estimate_ratio"]
-ACCURACY_HEADER = ["scene", "method", "resolution", "time [s]", "status", "force error [-]",
-                   "profile error [-]", "estimate/true [-]"]
+ACCURACY_HEADER = ["scene", "method", "resolution", "time [s]", "CPU [s]", "status",
+                   "force error [-]", "profile error [-]", "estimate/true [-]"]
 
 
 def cmd_accuracy(args: argparse.Namespace) -> int:
@@ -203,30 +223,47 @@ def cmd_accuracy(args: argparse.Namespace) -> int:
                 rows.append(row)
                 bar(len(rows), postfix=f"{row['scene']}: {row['method']}")
 
-            results = accuracy.run(scenes, args.method, repeats=args.repeats, progress=step)
+            results = accuracy.run(scenes, args.method, repeats=args.repeats, progress=step,
+                                   second_process=not args.no_subprocess)
     except KeyboardInterrupt:
         _write_partial(args, rows, ACCURACY_KEYS, ACCURACY_HEADER)
         raise
     for res in results:
         out.say(args, f"\n{res['scene']}: reference = {res['reference']} "
                       f"(agreement {res['reference_check']:.1e})")
-        table = [[r["method"], r["resolution"], f"{r['time_s'] * 1e3:.2f}", r["status"],
+        table = [[r["method"], r["resolution"], f"{r['time_s'] * 1e3:.2f}",
+                  f"{r.get('cpu_s', float('nan')) * 1e3:.2f}", r["status"],
                   fmt_sci(r["force_error"]), fmt_sci(r["profile_error"]),
                   fmt_sci(r["estimate_ratio"])] for r in res["rows"]]
-        out.say(args, report.table(["method", "resolution", "time [ms]", "status",
+        out.say(args, report.table(["method", "resolution", "time [ms]", "CPU [ms]", "status",
                                     "force error [-]", "profile error [-]", "est/true [-]"],
                                    table))
         for name, note in res["notes"].items():
             out.say(args, f"  {name}: {note}")
         for name, d in sorted(res["dominance"].items()):
             out.say(args, f"  {name}: {d}")
+        vs = res.get("versus_solve_bvp") or []
+        if any(e["solve_bvp_s"] is not None for e in vs):
+            def ms(x: float | None) -> str:
+                return "-" if x is None else f"{x * 1e3:.2f}"
+
+            out.say(args, "\n  least time to reach each error, cold collocation (any scheme) "
+                          "vs solve_bvp [ms], wall / CPU:")
+            out.say(args, report.table(
+                ["error <=", "solve_bvp", "collocation 1st process", "ahead",
+                 "collocation 2nd process", "ahead"],
+                [[f"{e['error']:.0e}", f"{ms(e['solve_bvp_s'])} / {ms(e['solve_bvp_cpu_s'])}",
+                  f"{ms(e['first_s'])} / {ms(e['first_cpu_s'])}",
+                  f"{e['first_ahead_s']} / {e['first_ahead_cpu_s']}",
+                  f"{ms(e['second_s'])} / {ms(e['second_cpu_s'])}",
+                  f"{e['second_ahead_s']} / {e['second_ahead_cpu_s']}"] for e in vs]))
     low = [(res["scene"], r["method"], r["resolution"], r["estimate_ratio"])
            for res in results for r in res["rows"]
            if r["estimate_ratio"] is not None and r["estimate_ratio"] < 0.1]
     out.say(args, "\nerror estimates under-estimating by more than 10x: "
             + (", ".join(f"{a} {b} {c} ({d:.2f})" for a, b, c, d in low) if low else "none"))
     out.emit_json(args, out.envelope("ok", "benchmark completed", {"scenes": results}))
-    out.emit_csv(args, ACCURACY_HEADER, [[r[k] for k in ACCURACY_KEYS]
+    out.emit_csv(args, ACCURACY_HEADER, [[r.get(k) for k in ACCURACY_KEYS]
                                          for res in results for r in res["rows"]])
     if args.plot:
         out.emit_plot(args, lambda path: accuracy.plot(results, path))
