@@ -8,7 +8,9 @@ MoorDyn (``pip install moordyn``; benchmark only, never needed by the tests) at 
 stable time steps, each with its error against a converged reference of the same model
 and discretisation (the same number of segments, a time step 8-16 times smaller), and
 the amplitude of the top tension of each, so that the two models can be compared on the
-same line (the target: amplitudes within 2 %).
+same line (the target: amplitudes within 2 %). MoorDyn is driven through its ``Step`` at a
+4 ms coupling step (:data:`COUPLING_STEP`): it moves the coupled top linearly within a
+coupling step, and a coarse one costs amplitude (see :func:`linear_check`).
 
 To make the two models the same line: the unit's drag is isotropic (MoorDyn's point drag
 1/2 rho CdA |u| u), its added mass the same in every direction (MoorDyn's point
