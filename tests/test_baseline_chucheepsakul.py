@@ -1,9 +1,11 @@
-"""Chucheepsakul & Subwonglee (1991) variational FEM baseline (seed 001, corrected per 000).
+"""Chucheepsakul & Subwonglee (1991) variational FEM baseline (corrected
+per Wang et al. (1993)).
 
-Numbers come from 000 Table 1 ("Chucheepsakul (1991)" column), the project's collocation
-solver as the converged reference (degree 4, 160 intervals, error ~1e-11), and an independent
-shooting solution (tests/shooting_reference.py: scipy solve_ivp + root on a right-hand side
-written separately) for the converged values that 000 does not print to enough digits.
+Numbers come from Wang et al. (1993) Table 1 ("Chucheepsakul (1991)" column), the project's
+collocation solver as the converged reference (degree 4, 160 intervals, error ~1e-11), and an
+independent shooting solution (tests/shooting_reference.py: scipy solve_ivp + root on a right-hand
+side written separately) for the converged values that Wang et al. (1993) does not print to enough
+digits.
 """
 
 from __future__ import annotations
@@ -37,15 +39,15 @@ def test_registered():
 
 
 def test_berteaux_20_elements(problems):
-    """000 Table 1, "Chucheepsakul (1991)", 20 elements: 3016 m, 90.4 deg, 35.7 deg.
+    """Wang et al. (1993) Table 1, "Chucheepsakul (1991)", 20 elements: 3016 m, 90.4 deg, 35.7 deg.
 
-    The faithful method with the tension of 001 eq. (13) (P_t kept, sign as derived from
-    001 eq. (1)) gives 3013.30 m, 90.24 deg, 36.29 deg: the converged answer. Converged
-    reference: the independent shooting (3013.300 m, 90.237 deg at the buoy, 36.289 deg at the
-    anchor), which rounds to Wang et al.'s own 3013 m, 90.2 deg, 36.3 deg (000 Table 1,
-    "Present study"). With 001's own simplification (14), P_t dropped from the tension, we get
-    3015.2 m, 90.35 deg, 35.86 deg, within 1 m and 0.2 deg of the published column: that
-    simplification, not the FEM, explains most of it.
+    The faithful method with the tension of Chucheepsakul (1991) eq. (13) (P_t kept, sign as derived
+    from Chucheepsakul (1991) eq. (1)) gives 3013.30 m, 90.24 deg, 36.29 deg: the converged answer.
+    Converged reference: the independent shooting (3013.300 m, 90.237 deg at the buoy, 36.289 deg at
+    the anchor), which rounds to Wang et al.'s own 3013 m, 90.2 deg, 36.3 deg (Wang et al. 1993,
+    Table 1, "Present study"). With Chucheepsakul (1991)'s own simplification (14), P_t dropped from
+    the tension, we get 3015.2 m, 90.35 deg, 35.86 deg, within 1 m and 0.2 deg of the published
+    column: that simplification, not the FEM, explains most of it.
     """
     import shooting_reference as sref
 
@@ -54,8 +56,8 @@ def test_berteaux_20_elements(problems):
                       length_guess=3000.0)
     assert shot.residual < 1e-10
     ang_a, ang_b = _angle(shot.tension_a), 180.0 - _angle(shot.tension_b)
-    # 000 Table 1 "Present study" prints 3013 m, 90.2 deg, 36.3 deg: half a unit of the last
-    # digit
+    # Wang et al. (1993) Table 1 "Present study" prints 3013 m, 90.2 deg, 36.3 deg: half a unit of
+    # the last digit
     assert abs(shot.length - 3013.0) <= 0.5
     assert abs(ang_b - 90.2) <= 0.05 and abs(ang_a - 36.3) <= 0.05
     scene = load_scene(path, {"solver.intervals": 20})
@@ -84,7 +86,7 @@ def test_fem_convergence_dezoysa_fixed_length(problems):
 
     Measured: 18.3, 4.0, 0.71, 0.11 N (ratios 4.6, 5.6, 6.5: order ~2.5-3 in the end
     force, which is read from the nodal slope at the natural boundary). Tx at 20 elements
-    1577.4 N vs 1579.9 N (000: 1.580 kN).
+    1577.4 N vs 1579.9 N (Wang et al. (1993): 1.580 kN).
     """
     path = problems / "dezoysa_sea_buggy.toml"
     ref = _ref(path)

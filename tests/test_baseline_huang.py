@@ -1,11 +1,12 @@
-"""Huang's semi-analytic baseline (004 ch. 2; cable_ocp.baselines.huang).
+"""Huang's semi-analytic baseline (Huang 1992, ch. 2; cable_ocp.baselines.huang).
 
 What is checked, and why each tolerance:
 
 * The piece formulas (2.31)-(2.33) (with the derived Delta z) against adaptive quadrature
   of (2.21)-(2.23), and their Jacobian against finite differences: the formulas are
   exact, so agreement is to rounding (1e-12 relative; FD Jacobian to 1e-7).
-* Point loads, constructed cases (004 Figs 2.4/2.5/2.8 are captions only, CONVENTIONS):
+* Point loads, constructed cases (Huang 1992, Figs 2.4/2.5/2.8 are captions only,
+docs/conventions.md):
   no point load against the closed-form elastic catenary (1e-9 relative); 1-3 interior
   point loads in 3D, for every boundary type, against an independent shooting solution
   of the piecewise ODE with scipy solve_ivp (DOP853, rtol 1e-13) and scipy root
@@ -15,7 +16,7 @@ What is checked, and why each tolerance:
   shooting solution (tests/shooting_reference.py). Lumping each segment's drag at its far
   end (Huang's numbering) is first order in 1/N, at the segment midpoint second order: the
   observed orders are asserted (measured: 1.00 and 2.00).
-* The current ramp (004 section 2.5) on a drag-dominated cable where the direct outer
+* The current ramp (Huang 1992, section 2.5) on a drag-dominated cable where the direct outer
   iteration does not converge.
 """
 
@@ -164,7 +165,7 @@ def test_piece_increments_exact(w: float, inv_ea: float, vertical: bool) -> None
 
 
 # --------------------------------------------------------------------------------------
-# point loads: constructed cases (CONVENTIONS: Figs 2.4/2.5/2.8 are captions only)
+# point loads: constructed cases (docs/conventions.md: Figs 2.4/2.5/2.8 are captions only)
 # --------------------------------------------------------------------------------------
 
 @pytest.mark.parametrize("ea", [1e5, "inf"])
@@ -298,11 +299,11 @@ def test_dezoysa_first_order_in_segments(psi: float) -> None:
                                            ("componentwise", (1579.9, 3388.9, 1140.1))])
 def test_dezoysa_psi90_forces(law: str, expected: tuple[float, float, float]) -> None:
     """psi0 = 90 deg, buggy force. The reference is the independent shooting solution
-    (tests/shooting_reference.py: scipy solve_ivp + root on a right-hand side written
-    separately, exact moduli); ``expected`` are regression values to 0.1 N (this project's
-    output; the componentwise Tx agrees with Wang et al.'s "Tx ~ 1.580" kN, 000 Fig. 3 text),
-    checked against the shooting to their printed digits (0.05 N). With midpoint lumping at
-    N = 320 the lumping error is ~1e-5 relative (0.05 N), so 0.3 N; Huang's own end lumping
+    (tests/shooting_reference.py: scipy solve_ivp + root on a right-hand side written separately,
+    exact moduli); ``expected`` are regression values to 0.1 N (this project's output; the
+    componentwise Tx agrees with Wang et al.'s "Tx ~ 1.580" kN, Wang et al. (1993) Fig. 3 text),
+    checked against the shooting to their printed digits (0.05 N). With midpoint lumping at N = 320
+    the lumping error is ~1e-5 relative (0.05 N), so 0.3 N; Huang's own end lumping
     at N = 320: first order, ~1.7e-3 relative, so 10 N."""
     import shooting_reference as sref
 
@@ -383,7 +384,7 @@ def test_berteaux_free_length() -> None:
 
 
 # --------------------------------------------------------------------------------------
-# the current ramp (004 section 2.5)
+# the current ramp (Huang 1992, section 2.5)
 # --------------------------------------------------------------------------------------
 
 def test_current_ramp_rescues_drag_dominated_case() -> None:
@@ -414,7 +415,7 @@ lifted 200 m clear of the seabed; the current is uniform):
 
 
 def test_profile_through_seabed_is_not_solved() -> None:
-    """No seabed contact in 004 ch. 2: a slack cable whose free-hanging answer passes
+    """No seabed contact in Huang (1992) ch. 2: a slack cable whose free-hanging answer passes
     below z = 0 must not be reported as solved."""
     sc = _scene({"position": [0.0, 0.0, 0.0]}, {"position": [100.0, 0.0, 10.0]},
                 length=200.0, z0=0.0)

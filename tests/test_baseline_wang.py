@@ -1,8 +1,9 @@
-"""Wang, Cheong & Chucheepsakul (1993) shooting-optimization baseline (seed 000).
+"""Wang, Cheong & Chucheepsakul (1993) shooting-optimization baseline (Wang et al. 1993).
 
-Numbers come from 000 Table 1 (Berteaux), 000's text (Tx ~ 1.580 kN at psi0 = 90 deg),
-000 eqs (26)-(27), (30), CONVENTIONS.md, and the project's collocation solver as an
-independent converged reference (degree 4, 160 intervals: error estimate ~1e-11).
+Numbers come from Wang et al. (1993) Table 1 (Berteaux), Wang et al. (1993)'s text (Tx ~ 1.580 kN at
+psi0 = 90 deg), Wang et al. (1993) eqs (26)-(27), (30), docs/conventions.md, and the project's
+collocation solver as an independent converged reference (degree 4, 160 intervals: error estimate
+~1e-11).
 """
 
 from __future__ import annotations
@@ -41,7 +42,8 @@ def test_registered():
 
 
 def test_nondimensional_inputs_match_000(problems):
-    """000 eqs (26a,b), (27): Vbar, alpha, 32/65 and F; (30a,d) for De Zoysa (printed digits)."""
+    """Wang et al. (1993) eqs (26a,b), (27): Vbar, alpha, 32/65 and F; (30a,d) for De
+    Zoysa (printed digits)."""
     p = wang.WangProblem(load_scene(problems / "berteaux_mooring.toml"))
     assert p.vbar == pytest.approx(0.0047712678, abs=1e-10)
     assert p.alpha == pytest.approx(56744.66007, abs=1e-5)
@@ -53,7 +55,8 @@ def test_nondimensional_inputs_match_000(problems):
 
 
 def test_berteaux_table1(problems, berteaux_ref):
-    """000 Table 1 "Present study", h = 0.05: L = 3013 m, phi(top) = 90.2, phi(bottom) = 36.3.
+    """Wang et al. (1993) Table 1 "Present study", h = 0.05: L = 3013 m, phi(top) = 90.2,
+    phi(bottom) = 36.3.
 
     Held to the printed digits (rounding: 0.5 m, 0.05 deg). We get 3013.30 m, 90.237 deg
     and 36.289 deg, and agree with collocation to the RK4 step error (3e-4 m at h = 0.05).
@@ -76,10 +79,11 @@ def test_berteaux_table1(problems, berteaux_ref):
 
 
 def test_dezoysa_psi90_componentwise(problems, dezoysa_ref):
-    """000: Tx ~ 1.580 kN at psi0 = 90 deg; CONVENTIONS: (1579.9, 3388.9, 1140.1) N.
+    """Wang et al. (1993): Tx ~ 1.580 kN at psi0 = 90 deg; docs/conventions.md: (1579.9, 3388.9,
+    1140.1) N.
 
     At h = 0.05 we get (1579.907, 3389.172, 1140.268) N: Tx to the printed digits; Ty and Tz
-    are off CONVENTIONS' converged values by the RK4 step error (0.36 N, 7e-5 of the top
+    are off docs/conventions.md' converged values by the RK4 step error (0.36 N, 7e-5 of the top
     tension), which the step-doubling estimate (5e-5) reports.
     """
     sol = wang.solve(load_scene(problems / "dezoysa_sea_buggy.toml", {"solver.intervals": 20,
@@ -97,7 +101,7 @@ def test_dezoysa_convergence_rk4_order(problems, dezoysa_ref):
     """Error in the bottom force against collocation at N = 20, 40, 80: ~16x per halving.
 
     Measured: 0.36, 0.020, 0.0012 N (ratios 18, 17). Nelder-Mead's floor (end mismatch
-    ~1e-13) is far below. psi0 = 90 deg has a flow-component sign change (CONVENTIONS), but
+    ~1e-13) is far below. psi0 = 90 deg has a flow-component sign change (docs/conventions.md), but
     in z the kink is crossed by fixed RK4 steps without spoiling order 4 at these h.
     """
     errs = []
@@ -150,7 +154,7 @@ def test_warm_start(problems, dezoysa_ref):
 
 
 @pytest.mark.parametrize(("name", "overrides"), [
-    ("dezoysa_sea_buggy.toml", {"layout.psi0_deg": 180.0}),  # touches down (CONVENTIONS)
+    ("dezoysa_sea_buggy.toml", {"layout.psi0_deg": 180.0}),  # touches down (docs/conventions.md)
     ("dezoysa_sea_buggy.toml", {"layout.psi0_deg": 150.0}),
     ("chucheepsakul_top_tension.toml", {}),                 # dips 0.1 deg below end_a
 ])

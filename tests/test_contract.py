@@ -460,7 +460,8 @@ def test_ctrl_c_in_bench_accuracy_writes_finished_rows(monkeypatch: pytest.Monke
              "force_error": 1e-8, "profile_error": 1e-8, "estimate_ratio": 1.0}
             for m in ("collocation", "solve_bvp")]
 
-    def fake(scenes: Any, methods: Any, repeats: int = 3, progress: Any = None) -> Any:
+    def fake(scenes: Any, methods: Any, repeats: int = 3, progress: Any = None,
+             **_: Any) -> Any:  # second_process=...
         for r in rows:
             progress(r)
         raise KeyboardInterrupt

@@ -1,6 +1,6 @@
 """The extreme scenes (problems/extreme): our solver converges on every one, within its
 error estimate, and agrees with an independent reference; never a wrong answer reported as
-success (issue 5).
+success.
 
 Two comparisons, of different strength:
 
@@ -94,10 +94,12 @@ def test_hanging_vertical_exact():
 
 
 def test_continuation_is_automatic_and_reported():
-    """004 section 2.5: when the cold IPOPT solve at full current fails (here forced by a
-    20-iteration budget on the high-speed tow, which needs more from the drag-free
-    hanging guess), the solver ramps the current from 0 in steps, says so in the
-    diagnostics, and lands on the same answer as an unrestricted solve (to 1e-9)."""
+    """Huang (1992), section 2.5: when the cold solve at full current fails (here on the high-speed
+    tow: Newton's line search stalls from the drag-free hanging guess, and the IPOPT
+    fallback is held to 20 iterations, fewer than it needs), the solver ramps the current
+    from 0 in steps, says so in the diagnostics, and lands on the same answer as an
+    unrestricted solve (to 1e-9 of the force; the out-of-plane component is zero, a few
+    1e-12 N of roundoff in both)."""
     path = EXTREME[0].parent / "high_speed_tow.toml"
     over = {"solver.refine": False, "solver.error_estimate": False}
     ramped = solve(load_scene(path, {**over, "solver.max_iterations": 20}))
@@ -105,4 +107,5 @@ def test_continuation_is_automatic_and_reported():
     assert "current ramped" in (ramped.diagnostics.get("continuation") or "")
     direct = solve(load_scene(path, over))
     assert direct.success and "continuation" not in direct.diagnostics
-    np.testing.assert_allclose(ramped.force_b, direct.force_b, rtol=1e-9)
+    np.testing.assert_allclose(ramped.force_b, direct.force_b, rtol=1e-9,
+                               atol=1e-9 * np.max(np.abs(direct.force_b)))

@@ -1,4 +1,4 @@
-"""Footprint (004 section 2.2.4): an NLP per direction over thrust and cable length."""
+"""Footprint (Huang 1992, section 2.2.4): an NLP per direction over thrust and cable length."""
 
 from __future__ import annotations
 

@@ -31,7 +31,7 @@ def unit(v) -> np.ndarray:
 
 
 def test_vector_law_formula():
-    """004 (2.46)-(2.47): normal 1/2 rho Cn D |Un| Un, tangential pi/2 rho Ct D |Ut| Ut."""
+    """Huang (1992) (2.46)-(2.47): normal 1/2 rho Cn D |Un| Un, tangential pi/2 rho Ct D |Ut| Ut."""
     rng = np.random.default_rng(1)
     for _ in range(20):
         t, u = unit(rng.normal(size=3)), rng.normal(size=3)
@@ -53,13 +53,15 @@ def test_vector_law_rotation_invariant():
 @pytest.mark.parametrize("theta_deg", [0.0, 30.0, 100.0, 200.0, 300.0])
 @pytest.mark.parametrize("phi_deg", [10.0, 45.0, 80.0, 135.0])
 def test_componentwise_matches_wang(theta_deg, phi_deg):
-    """000 eqs (4)-(6) with the current V along +x: the load is P_t e_t + P_b e_b + P_n e_n
-    (000 eqs (1)-(3): dT/ds = W sin(phi) - P_t, ...), e_n = e_t x e_b. phi > 90 deg (the
-    cable leaning back, as at Berteaux's buoy) flips e_z x e_t against 000's e_b; the
+    """Wang et al. (1993) eqs (4)-(6) with the current V along +x: the load is P_t e_t + P_b e_b +
+    P_n e_n (Wang et al. 1993, eqs (1)-(3): dT/ds = W sin(phi) - P_t, ...), e_n = e_t x e_b. phi >
+    90 deg (the cable leaning back, as at Berteaux's buoy) flips e_z x e_t against Wang et al.
+    (1993)'s e_b; the
     componentwise terms |U.e|(U.e)e do not depend on the sign of e, so both agree."""
     th, ph, v = math.radians(theta_deg), math.radians(phi_deg), 1.0277
     t = np.array([math.cos(ph) * math.cos(th), math.cos(ph) * math.sin(th), math.sin(ph)])
-    eb = np.array([-math.sin(th), math.cos(th), 0.0])  # 000 Fig. 1; = e_z x t/|.| if phi < 90
+    # Wang et al. (1993) Fig. 1; = e_z x t/|.| if phi < 90
+    eb = np.array([-math.sin(th), math.cos(th), 0.0])
     en = np.cross(t, eb)
     cpt = math.cos(ph) * math.cos(th)
     pt = 0.5 * RHO * CT * math.pi * D * v**2 * cpt * abs(cpt)
@@ -72,7 +74,7 @@ def test_componentwise_matches_wang(theta_deg, phi_deg):
 
 
 def test_laws_coincide_in_2d_and_differ_in_3d():
-    """CONVENTIONS "Drag": equal when the flow lies in the vertical plane of the cable."""
+    """docs/conventions.md "Drag": equal when the flow lies in the vertical plane of the cable."""
     t = unit([1.0, 0.0, 0.7])
     np.testing.assert_allclose(drag("componentwise", [0.8, 0, 0], t),
                                drag("vector", [0.8, 0, 0], t), rtol=1e-12)
@@ -136,7 +138,7 @@ def test_drag_error_bound_holds():
 
 
 def test_current_profile_interpolates_components():
-    """CONVENTIONS: linear in the velocity components between knots, constant outside; a
+    """docs/conventions.md: linear in the velocity components between knots, constant outside; a
     current that reverses with depth passes through zero at mid-depth."""
     cur = Current(z=(0.0, 100.0), ux=(-1.0, 1.0), uy=(0.0, 0.0))
     z = ca.SX.sym("z")

@@ -277,6 +277,22 @@ def test_sweep_and_work_precision(tmp_path: Path) -> None:
     np.testing.assert_allclose(coll.get_ydata(), [2e-4, 2e-6])   # larger of the two errors
     _legends_outside_axes(fig, _draw(fig))
     _units_on_labels(fig)
+    # the CSV as `bench accuracy --csv` writes it (headers with units, CPU times): the
+    # time axis is then the CPU time, and a 2nd-process series takes its series' colour
+    from cable_ocp.cli.bench import ACCURACY_HEADER
+
+    csv.write_text(",".join(ACCURACY_HEADER) + "\n"
+                   "A,collocation legendre d=3,4,0.02,0.01,solved,1e-4,2e-4,0.5\n"
+                   "A,collocation legendre d=3 (2nd process),4,0.008,0.004,solved,1e-4,2e-4,\n"
+                   "A,scipy solve_bvp,0.001,0.03,0.02,solved,1e-3,1e-3,\n")
+    fig = plot_work_precision(read_work_precision_csv(csv), tmp_path / "wp2.png")
+    a = _axes(fig)["A"]
+    assert a.get_xlabel().startswith("CPU time")
+    lines = {ln.get_label(): ln for ln in a.get_lines()}
+    np.testing.assert_allclose(lines["collocation legendre d=3"].get_xdata(), [10.0])  # ms
+    np.testing.assert_allclose(lines["scipy solve_bvp"].get_xdata(), [20.0])
+    assert (lines["collocation legendre d=3 (2nd process)"].get_color()
+            == lines["collocation legendre d=3"].get_color())
 
 
 # --------------------------------------------------------------------------------------

@@ -4,8 +4,9 @@ Checks, each against an independent result:
 
 * a cable split into two identical segments is the single cable (same equations on the
   same mesh when the split falls on a mesh point);
-* Huang's hanging cable under a point load (004 Fig. 2.5 is a caption only; CONVENTIONS
-  "Reading the seeds": a constructed case) against
+* Huang's hanging cable under a point load (Huang 1992, Fig. 2.5 is a caption only;
+docs/conventions.md
+  "Reading the sources": a constructed case) against
   :func:`cable_ocp.baselines.huang.solve_point_loads`, exact for point loads on a uniform
   elastic cable with no drag: a clump and a buoy;
 * a 3-segment line with different weights and EA, and a subsea unit with drag and thrust
@@ -87,7 +88,7 @@ SEG = {"weight_in_water": 10.0, "axial_stiffness": 1.0e6}  # N/m, N
                                            ("buoy", "net_buoyancy", 300.0)])
 def test_point_body_against_huang(kind, key, fz):
     """A still-water elastic cable (100 m, 10 N/m, EA = 1 MN) between fixed ends with a
-    clump (200 N down) or a buoy (300 N up) 40 m from end_a. Huang's method (004
+    clump (200 N down) or a buoy (300 N up) 40 m from end_a. Huang's method (Huang (1992)
     (2.31)-(2.33) with the segment relation derived from (2.31)-(2.32), exact for point
     loads) gives end forces and the joint position to its Newton tolerance; the
     collocation's discretisation error at 40 + 60 intervals is below 1e-9 (the profile is

@@ -1,5 +1,5 @@
-"""Still-water statics against the closed-form elastic catenary (Irvine 1981; 004 eqs
-(2.31)-(2.33) with no point loads), for every kind of end condition (004 (2.6)-(2.15)).
+"""Still-water statics against the closed-form elastic catenary (Irvine 1981; Huang (1992) eqs
+(2.31)-(2.33) with no point loads), for every kind of end condition (Huang 1992, (2.6)-(2.15)).
 
 With T(0) = (H e_h, V) at end_a, weight w per unstretched length and axial stiffness EA:
 
@@ -103,7 +103,7 @@ def test_inextensible_limit():
 
 
 def test_towing_force_end():
-    """Type 2 (004 (2.8)-(2.11)): end_a fixed, a known external load on end_b. With the
+    """Type 2 (Huang 1992, (2.8)-(2.11)): end_a fixed, a known external load on end_b. With the
     load equal to the closed form's T(L), end_b lands where the closed form puts it."""
     r, t = ends(2e7)
     sol = solve(scene({"position": list(r[0])}, {"force": list(t[1])}))
@@ -114,7 +114,7 @@ def test_towing_force_end():
 
 def test_towed_body_at_end_a():
     """A towed body at end_a (s = 0) with a known external load F: the cable pulls on it
-    with -F (CONVENTIONS "Forces at the ends"), and the body lands where the closed form
+    with -F (docs/conventions.md "Forces at the ends"), and the body lands where the closed form
     says relative to the fixed ship at end_b."""
     r, t = ends(2e7)
     load = -t[0]  # the body's own drag and weight, passed to the cable
@@ -125,7 +125,7 @@ def test_towed_body_at_end_a():
 
 
 def test_mooring_mixed_end():
-    """Type 3 (004 (2.12)-(2.15)): end_b has its horizontal load known and its height fixed;
+    """Type 3 (Huang 1992, (2.12)-(2.15)): end_b has its horizontal load known and its height fixed;
     its horizontal position comes out of the solve."""
     r, t = ends(2e7)
     sol = solve(scene({"position": list(r[0])},
@@ -138,7 +138,8 @@ def test_mooring_mixed_end():
 
 @pytest.mark.parametrize("at", ["end_a", "end_b"])
 def test_free_length_with_tension(at):
-    """Given tension, unknown length (000 eq. (15); 001): prescribing |T| of the closed form
+    """Given tension, unknown length (Wang et al. 1993, eq. (15); Chucheepsakul (1991)): prescribing
+    |T| of the closed form
     at either end recovers L."""
     r, t = ends(2e7)
     a, b = {"position": list(r[0])}, {"position": list(r[1])}

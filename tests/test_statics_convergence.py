@@ -1,7 +1,7 @@
 """Mesh convergence, the a-posteriori error estimate and the smoothing error.
 
 Rates are measured on De Zoysa at psi0 = 135 deg, where no relative-flow component changes
-sign (CONVENTIONS "Reading the seeds": at 90 deg the |u|u kink caps the order). The
+sign (docs/conventions.md "Reading the sources": at 90 deg the |u|u kink caps the order). The
 reference is Gauss-Legendre degree 5 on 320 intervals (order 10), accurate to the solve
 tolerance (~1e-10 relative), far below the errors compared here (>= 1e-8).
 """

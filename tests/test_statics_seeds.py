@@ -1,8 +1,9 @@
-"""The seeds' published statics numbers (000 Table 1 and Fig. 3, 001 Table 2).
+"""The published statics numbers (Wang et al. 1993, Table 1 and Fig. 3, Chucheepsakul (1991)
+Table 2).
 
-Tolerances are the issue's (0.1 % on Berteaux's length, 0.2 deg on the bottom angle, 0.5 %
+Tolerances (0.1 % on Berteaux's length, 0.2 deg on the bottom angle, 0.5 %
 on Wang's Tx at psi0 = 90 deg), which reflect the 3-4 digits the paper prints; where
-CONVENTIONS.md gives independently computed values with 5 digits, we hold to those digits.
+docs/conventions.md gives independently computed values with 5 digits, we hold to those digits.
 """
 
 from __future__ import annotations
@@ -18,7 +19,7 @@ from cable_ocp.statics.solver import StaticsSolver, solve, sweep
 
 def in_plane_angle_deg(sol, end: str) -> float:
     """Angle of the tangent above the horizontal, measured from the anchor-to-buoy
-    direction (000's phi, which exceeds 90 deg when the cable leans back)."""
+    direction (Wang et al. (1993)'s phi, which exceeds 90 deg when the cable leans back)."""
     chord = sol.position[-1] - sol.position[0]
     eh = np.array([chord[0], chord[1], 0.0]) / math.hypot(chord[0], chord[1])
     t = sol.tension_vector[0 if end == "a" else -1]
@@ -31,13 +32,14 @@ def berteaux(problems):
 
 
 def test_berteaux_table1(berteaux):
-    """000 Table 1, "Present study": L = 3013 m, phi(bottom) = 36.3 deg, phi(top) = 90.2."""
+    """Wang et al. (1993) Table 1, "Present study": L = 3013 m, phi(bottom) = 36.3 deg,
+    phi(top) = 90.2."""
     sol = berteaux
     assert sol.success, sol.message
     assert sol.length == pytest.approx(3013.0, rel=1e-3)
     assert in_plane_angle_deg(sol, "a") == pytest.approx(36.3, abs=0.2)
     # top angle: printed to 0.1 deg; our value 90.24 deg (the cable leans back past vertical
-    # just below the buoy, CONVENTIONS "Drag")
+    # just below the buoy, docs/conventions.md "Drag")
     assert in_plane_angle_deg(sol, "b") == pytest.approx(90.2, abs=0.1)
     assert sol.tension[-1] == pytest.approx(11146.6, rel=1e-9)  # the prescribed tension
     assert sol.diagnostics["min_z"] >= -1e-9  # the physical (short) solution, above the seabed
@@ -45,7 +47,7 @@ def test_berteaux_table1(berteaux):
 
 
 def test_berteaux_componentwise_equals_vector_in_2d(problems, berteaux):
-    """In 2D both drag laws coincide (CONVENTIONS "Drag"); Berteaux's cable passes through
+    """In 2D both drag laws coincide (docs/conventions.md "Drag"); Berteaux's cable passes through
     vertical, which exercises the componentwise law's vertical blend. Equal to 1e-9
     relative: only the smoothing (bound ~1e-10 of the loads) differs between the two."""
     sol = solve(load_scene(problems / "berteaux_mooring.toml",
@@ -63,7 +65,8 @@ def dezoysa_sweep(problems):
 
 
 def test_dezoysa_psi90_wang(dezoysa_sweep):
-    """000: "Tx ~ 1.580" (kN) at psi0 = 90 deg; CONVENTIONS: (1579.9, 3388.9, 1140.1) N."""
+    """Wang et al. (1993): "Tx ~ 1.580" (kN) at psi0 = 90 deg; docs/conventions.md:
+    (1579.9, 3388.9, 1140.1) N."""
     angles, sols = dezoysa_sweep
     sol = sols[angles.index(90)]
     assert sol.success, sol.message
@@ -73,15 +76,16 @@ def test_dezoysa_psi90_wang(dezoysa_sweep):
 
 
 def test_dezoysa_psi0_2d(dezoysa_sweep):
-    """CONVENTIONS: at psi0 = 0 the buggy force is (3658.03, 0, 645.54) N (2D: both laws)."""
+    """docs/conventions.md: at psi0 = 0 the buggy force is (3658.03, 0, 645.54) N (2D: both
+    laws)."""
     angles, sols = dezoysa_sweep
     np.testing.assert_allclose(sols[0].force_a, [3658.03, 0.0, 645.54], rtol=0, atol=0.006)
 
 
 def test_dezoysa_sweep_trends(dezoysa_sweep):
-    """Trends of 000 Fig. 3 as its text states them (the figure itself is not in the OCR):
-    Tx falls monotonically as the ship swings round to 150 deg (it bottoms out near 165 deg
-    and stays negative) and changes sign between 105 and 120 deg (CONVENTIONS); Ty vanishes
+    """Trends of Wang et al. (1993) Fig. 3 as its text states them (the figure itself is not in the
+    OCR): Tx falls monotonically as the ship swings round to 150 deg (it bottoms out near 165 deg
+    and stays negative) and changes sign between 105 and 120 deg (docs/conventions.md); Ty vanishes
     in the 2D cases 0 and 180 deg and is positive between; the cable is not perpendicular to
     the current at 90 deg (Tx far from 0)."""
     angles, sols = dezoysa_sweep
@@ -103,7 +107,7 @@ def test_dezoysa_sweep_trends(dezoysa_sweep):
 
 
 def test_dezoysa_touchdown_flagged(dezoysa_sweep):
-    """CONVENTIONS "Seabed": with the componentwise law the free-hanging cable reaches the
+    """docs/conventions.md "Seabed": with the componentwise law the free-hanging cable reaches the
     seabed at psi0 ~ 147.9 deg. This scene has no [environment.seabed] (no contact), so
     from there on the result is not a success: status below_seabed, saying where and how
     deep; before it, solved."""
@@ -115,7 +119,7 @@ def test_dezoysa_touchdown_flagged(dezoysa_sweep):
 
 
 def test_dezoysa_touchdown_angle(problems):
-    """CONVENTIONS "Seabed": the cable starts to touch the seabed at psi0 ~ 147.9 deg
+    """docs/conventions.md "Seabed": the cable starts to touch the seabed at psi0 ~ 147.9 deg
     (componentwise) and ~ 155.1 deg (vector law). It touches first at the buggy, where it
     becomes tangent to the seabed: the vertical force at the buggy changes sign there.
     Bisected to 1e-3 deg, held to the 0.1 deg the reference gives."""
@@ -137,7 +141,7 @@ def test_dezoysa_touchdown_angle(problems):
 
 
 def test_vector_law_differs_in_3d(problems, dezoysa_sweep):
-    """CONVENTIONS: the two laws differ by about 2 % on Tx at psi0 = 90 deg."""
+    """docs/conventions.md: the two laws differ by about 2 % on Tx at psi0 = 90 deg."""
     angles, sols = dezoysa_sweep
     vec = solve(load_scene(problems / "dezoysa_sea_buggy.toml", {"cable.drag_law": "vector"}))
     rel = abs(vec.force_a[0] - sols[angles.index(90)].force_a[0]) / 1580.0
@@ -145,7 +149,8 @@ def test_vector_law_differs_in_3d(problems, dezoysa_sweep):
 
 
 def test_chucheepsakul_free_length(problems):
-    """001 Table 2 at psi0 = 0 (315 m) with our reading of the unprinted top tension
+    """Chucheepsakul (1991) Table 2 at psi0 = 0 (315 m) with our reading of the unprinted top
+    tension
     (5000 N, see the problem file), to the 1 m the table prints."""
     sol = solve(load_scene(problems / "chucheepsakul_top_tension.toml"))
     assert sol.success, sol.message

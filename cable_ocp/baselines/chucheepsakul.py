@@ -93,6 +93,7 @@ from __future__ import annotations
 
 import math
 import time
+import warnings
 
 import numpy as np
 import scipy.sparse as sp
@@ -396,7 +397,9 @@ def _solve_fixed_tension(fem: FemProblem, q0: np.ndarray, t_top: float | None,
         k, res = fem.assemble(q, tens[0])
         kff = k[free][:, free]
         try:
-            dq = spsolve(kff, -res[free])
+            with warnings.catch_warnings():  # a singular K gives NaN (reported below), silently
+                warnings.simplefilter("ignore")
+                dq = spsolve(kff, -res[free])
         except (RuntimeError, ValueError) as exc:  # pragma: no cover - singular K
             return q, tens, it, "diverged", f"singular tangent: {exc}", rel
         if not np.all(np.isfinite(dq)):

@@ -27,7 +27,8 @@ def unsupported(method: str, reason: str) -> CableOCPError:
 
 
 def rising_fixed_ends(scene: Scene, method: str, why: str) -> tuple[float, float]:
-    """Heights (m) of end_a and end_b for the z-parametrised methods (000, 001), which
+    """Heights (m) of end_a and end_b for the z-parametrised methods (Wang et al. (1993),
+    Chucheepsakul (1991)), which
     need both ends fixed and end_b above end_a; ``why`` cites the method's equations."""
     ea, eb = scene.end_a, scene.end_b
     if not all(ea.fixed_mask) or not all(eb.fixed_mask):

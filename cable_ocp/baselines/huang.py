@@ -1,11 +1,11 @@
-"""Huang's semi-analytic statics (004, chapter 2): elastic catenaries between point loads.
+"""Huang's semi-analytic statics (Huang (1992), chapter 2): elastic catenaries between point loads.
 
-The method (004 sections 2.2-2.5), as implemented here:
+The method (Huang 1992, sections 2.2-2.5), as implemented here:
 
 1. **Point loads, exact.** The cable (unstretched length L, weight in water w = W/L per
    unstretched length, axial stiffness EA) carries point loads F^i at arc lengths s_i.
    Between two consecutive loads the tension vector is known in closed form from the end
-   force V = (V_x, V_y, V_z) that the support at s = 0 exerts on the cable (004 (2.1)-(2.3),
+   force V = (V_x, V_y, V_z) that the support at s = 0 exerts on the cable (Huang 1992, (2.1)-(2.3),
    (2.24)), in Huang's frame with z **downwards**::
 
        T_vec(s) = -(V + sum_{s_i <= s} F^i + w s e_z),   T = |T_vec|         (2.1)-(2.3), (2.24)
@@ -19,7 +19,7 @@ The method (004 sections 2.2-2.5), as implemented here:
        Delta y = -a_y [ (s_{n+1} - s_n)/EA + I ]                                        (2.32)
        Delta z = (A^2 - B^2)/(2 w EA) + (T_A - T_B)/w                                    (2.33)
 
-   (2.33) is garbled in the OCR of the thesis (CONVENTIONS.md): the relation above is
+   (2.33) is garbled in the OCR of the thesis (docs/conventions.md): the relation above is
    *derived here* by integrating (2.23) with (2.24), dz/ds = -X (1/EA + 1/T), X = a_z + w s,
    and agrees with the legible parts of (2.33) (its first bracket is the 1/EA term; the
    second is (L/W) times T(s_n) - T(s_{n+1})). Since T_A - T_B = -w (s_{n+1} - s_n)(A + B)/
@@ -27,7 +27,7 @@ The method (004 sections 2.2-2.5), as implemented here:
    buoyant cable, is regular), and I is evaluated through log1p in a cancellation-free
    form that is also regular on a vertical piece (h = 0) and at w -> 0 (see
    :func:`_piece_terms`). EA = inf makes the 1/EA terms vanish (inextensible cable).
-2. **Boundary conditions, per component** (004 (2.34)-(2.45)). A component fixed at both
+2. **Boundary conditions, per component** (Huang 1992, (2.34)-(2.45)). A component fixed at both
    ends gives an equation sum Delta r_i = r_i(L) - r_i(0) (type 1, (2.34)-(2.36)); a force
    prescribed at end_b gives V_i directly from (2.40)-(2.42) (type 2), so the mooring case
    (type 3) is (2.43)-(2.44) for V_x, V_y and (2.45) for V_z; a force prescribed at end_a
@@ -37,20 +37,19 @@ The method (004 sections 2.2-2.5), as implemented here:
    checked against the merit Phi + V . target (Armijo) and halved until it decreases it:
    a safeguard the thesis does not have (it notes that Newton "only guarantees local
    convergence", 2.7); a full step is always tried first.
-3. **Drag, lumped** (004 (2.46)-(2.47), Figure 2.3). The cable is divided into
-   N = ``scene.solver.intervals`` segments of equal unstretched length. The drag on
-   segment i (nodes i-1, i) is computed from its chord (strained length l, direction
-   t = chord / l: the strain factor of CONVENTIONS "Drag" is thereby included) and the
-   mean of the current at its two end nodes, and applied as one point load. Huang numbers
-   segments and loads so that F^i, the load "acting on the i-th segment", enters the sums
-   (2.1)-(2.3) from s_i on, i.e. it sits at the segment's far end node s_i (i = 1..N):
-   ``drag_placement="end"``, the default and the thesis' reading, first order in 1/N.
-   ``drag_placement="midpoint"`` puts it at the segment's mid-length instead (a midpoint
-   rule, second order): an option, not the thesis'. ``drag_law="vector"`` is exactly
-   (2.46)-(2.47); for ``"componentwise"`` the normal part of the segment's mean flow is
-   split along Wang's e_b = e_z x t / |e_z x t| and e_n = t x e_b (000 eqs (4)-(6)) with
-   the same vertical blend as :mod:`cable_ocp.physics.drag` (``solver.vertical_blend``);
-   here the modulus is exact (no smoothing is needed).
+3. **Drag, lumped** (Huang 1992, (2.46)-(2.47), Figure 2.3). The cable is divided into
+   N = ``scene.solver.intervals`` segments of equal unstretched length. The drag on segment i (nodes
+   i-1, i) is computed from its chord (strained length l, direction t = chord / l: the strain factor
+   of docs/conventions.md "Drag" is thereby included) and the mean of the current at its two end
+   nodes, and applied as one point load. Huang numbers segments and loads so that F^i, the load
+   "acting on the i-th segment", enters the sums (2.1)-(2.3) from s_i on, i.e. it sits at the
+   segment's far end node s_i (i = 1..N): ``drag_placement="end"``, the default and the thesis'
+   reading, first order in 1/N. ``drag_placement="midpoint"`` puts it at the segment's mid-length
+   instead (a midpoint rule, second order): an option, not the thesis'. ``drag_law="vector"`` is
+   exactly (2.46)-(2.47); for ``"componentwise"`` the normal part of the segment's mean flow is
+   split along Wang's e_b = e_z x t / |e_z x t| and e_n = t x e_b (Wang et al. 1993, eqs (4)-(6))
+   with the same vertical blend as :mod:`cable_ocp.physics.drag` (``solver.vertical_blend``); here
+   the modulus is exact (no smoothing is needed).
 4. **Outer fixed-point iteration** (section 2.5, Figure 2.3): start from the drag-free
    solution, compute the loads from the previous iterate's segment geometry, re-solve,
    repeat until the loads stop changing (sum_i |F^i_new - F^i_old| <= tolerance x force
@@ -72,9 +71,9 @@ are given as ``point_loads=[(s, (Fx, Fy, Fz)), ...]`` in the project frame: s is
 unstretched arc length from end_a (m), F the external force on the cable (N).
 
 Frames: the scene and the returned solution use the project frame (z up, seabed z = 0);
-Huang's z-down frame (004 (2.3), (2.42)) exists only inside this module (``_FLIP``).
+Huang's z-down frame (Huang 1992, (2.3), (2.42)) exists only inside this module (``_FLIP``).
 
-There is no seabed contact (004 ch. 2 has none): a profile that goes below z = 0 comes
+There is no seabed contact (Huang 1992, ch. 2 has none): a profile that goes below z = 0 comes
 back with status ``"seabed_contact"``, not ``"solved"``.
 
 Accuracy (the registry entry :func:`solve`): a Richardson error estimate from N/2 and N/4
@@ -114,7 +113,7 @@ __all__ = ["METHOD", "solve", "solve_huang", "solve_point_loads"]
 
 METHOD = "huang_semianalytic"
 
-# project frame (z up) <-> Huang's frame (z down, 004 (2.3), (2.42)): flip z
+# project frame (z up) <-> Huang's frame (z down, Huang (1992) (2.3), (2.42)): flip z
 _FLIP = np.array([1.0, 1.0, -1.0])
 
 _MAX_NEWTON = 50
@@ -153,7 +152,7 @@ def _piece_terms(v: np.ndarray, s0: np.ndarray, ds: np.ndarray, cum: np.ndarray,
     Parameters
     ----------
     v : ndarray, shape (3,)
-        End force V on the cable at s = 0, N (004 (2.1)-(2.3)).
+        End force V on the cable at s = 0, N (Huang 1992, (2.1)-(2.3)).
     s0, ds : ndarray, shape (M,)
         Start and unstretched length of each piece, m.
     cum : ndarray, shape (M, 3)
@@ -258,7 +257,7 @@ def _direct_components(scene: Scene, total_load: np.ndarray, w: float, length: f
     """V components fixed by a prescribed force (Huang frame) and the Newton mask.
 
     end_a force: the support passes F_a to the cable, V_i = F_a,i. end_b force: (2.40)-(2.42)
-    (and (2.43)-(2.44)) with the tension T(L) = F_b (004 (2.9)-(2.11)).
+    (and (2.43)-(2.44)) with the tension T(L) = F_b (Huang 1992, (2.9)-(2.11)).
     """
     v = np.zeros(3)
     unknown = np.zeros(3, dtype=bool)
@@ -275,7 +274,7 @@ def _direct_components(scene: Scene, total_load: np.ndarray, w: float, length: f
 
 
 def _guess_v(scene: Scene, length: float) -> np.ndarray:
-    """Drag-free starting V (Huang frame) from a catenary/parabola estimate (004 2.5)."""
+    """Drag-free starting V (Huang frame) from a catenary/parabola estimate (Huang 1992, 2.5)."""
     w = scene.cable.weight_in_water
     pa, pb = scene.end_a.position, scene.end_b.position
     # chord over the components fixed at both ends (the others are not Newton unknowns)
@@ -312,7 +311,7 @@ def _pieces(length: float, load_s: np.ndarray, nodes_s: np.ndarray) -> np.ndarra
 
 def _inner_solve(scene: Scene, length: float, load_s: np.ndarray, load_f: np.ndarray,
                  v_guess: np.ndarray | None, nodes_s: np.ndarray | None = None) -> _Inner:
-    """Solve the cable under given point loads exactly (004 (2.24)-(2.45)).
+    """Solve the cable under given point loads exactly (Huang 1992, (2.24)-(2.45)).
 
     ``load_s`` (m) and ``load_f`` (N, Huang frame, shape (K, 3)) are the point loads;
     ``nodes_s`` are extra piece boundaries (segment nodes, no load).
@@ -572,7 +571,7 @@ class _RootFailure(Exception):
 def solve_point_loads(scene: Scene, point_loads: _PointLoads | None = None, *,
                       length: float | None = None, v_guess: Sequence[float] | None = None
                       ) -> StaticsSolution:
-    """Exact elastic-catenary solution under given point loads, no drag (004 (2.21)-(2.45)).
+    """Exact elastic-catenary solution under given point loads, no drag (Huang 1992, (2.21)-(2.45)).
 
     The scene's current is ignored: this is the core of the method, exact (to the Newton
     tolerance ``scene.solver.tolerance``) for the given loads.
@@ -649,7 +648,7 @@ def _make_solution(scene: Scene, inner: _Inner, wall: float, iterations: int, ok
     min_z = _lowest_z(scene, inner) if finite else math.nan
     below = finite and min_z < -1e-6 * inner.length
     if ok and finite and ends_ok and below:
-        # no seabed contact in 004 ch. 2: a profile through the seabed is not an answer
+        # no seabed contact in Huang (1992) ch. 2: a profile through the seabed is not an answer
         status, message = "seabed_contact", (
             f"{METHOD}: {msg}, but the profile goes {-min_z:.3g} m below the seabed z = 0; "
             "this method has no seabed contact")
@@ -677,7 +676,8 @@ def _make_solution(scene: Scene, inner: _Inner, wall: float, iterations: int, ok
 # --------------------------------------------------------------------------------------
 
 def _current_at(scene: Scene, z: np.ndarray) -> np.ndarray:
-    """Current velocity (m/s, project frame) at heights z (CONVENTIONS: linear in ux, uy)."""
+    """Current velocity (m/s, project frame) at heights z (linear in ux, uy;
+    docs/conventions.md)."""
     cur = scene.environment.current
     out = np.zeros((z.size, 3))
     if cur is None:
@@ -877,7 +877,7 @@ def _drag_solve(scene: Scene, length: float, n: int, placement: str,
                 current_ramp: str | Sequence[float], extra_s: np.ndarray, extra_f: np.ndarray,
                 start: _DragState | None, warm_nodes: np.ndarray | None = None,
                 warm_v: np.ndarray | None = None, max_outer: int = 1000) -> _DragState:
-    """Drag iteration at one length, with the current ramp (004 section 2.5)."""
+    """Drag iteration at one length, with the current ramp (Huang 1992, section 2.5)."""
     if scene.environment.current is None:
         inner = _inner_solve(scene, length, extra_s, extra_f,
                              None if start is None else start.inner.v,
@@ -926,7 +926,7 @@ def solve_huang(scene: Scene, warm_start: StaticsSolution | None = None, *,
                 drag_placement: str = "end",
                 intervals: int | None = None,
                 max_outer: int = 1000) -> StaticsSolution:
-    """Huang's semi-analytic method with drag (004 ch. 2; see the module docstring).
+    """Huang's semi-analytic method with drag (Huang 1992, ch. 2; see the module docstring).
 
     Parameters
     ----------
@@ -938,7 +938,7 @@ def solve_huang(scene: Scene, warm_start: StaticsSolution | None = None, *,
     point_loads : sequence of (s, (Fx, Fy, Fz)), optional
         Extra point loads on the cable (clump weights, buoys), project frame, m and N.
     current_ramp : "auto", "off" or sequence of float
-        Current ramp (004 section 2.5), see the module docstring.
+        Current ramp (Huang 1992, section 2.5), see the module docstring.
     drag_placement : {"end", "midpoint"}
         Where each segment's lumped drag acts: its far end node (Huang's numbering, first
         order in 1/N) or its mid-length (second order; not the thesis').

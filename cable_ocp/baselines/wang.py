@@ -1,13 +1,13 @@
-"""Wang, Cheong & Chucheepsakul (1993): shooting-optimization in z (seed 000).
+"""Wang, Cheong & Chucheepsakul (1993): shooting-optimization in z (Wang et al. 1993).
 
-The seed's own method, reproduced as a baseline (``solver.method =
-"wang_shooting_optimization"``). Source: /work/shared/seeds/000_2b3c74cf924aa082.txt.
+The paper's own method, reproduced as a baseline (``solver.method =
+"wang_shooting_optimization"``). Source: Wang et al. (1993).
 
-Formulation (000 eqs (1)-(12))
+Formulation (Wang et al. 1993, eqs (1)-(12))
 ------------------------------
-The height z is the independent variable. With H = z_b - z_a (the seed's water depth when
+The height z is the independent variable. With H = z_b - z_a (the paper's water depth when
 end_a is on the seabed and end_b at the surface) and a weight scale W (N/m, the seed's
-W_c = |weight in water|), the nondimensional variables are (000, after eq. (6))
+W_c = |weight in water|), the nondimensional variables are (Wang et al. (1993), after eq. (6))
 
     zbar = (z - z_a)/H,  xbar = (x - x_a)/H,  ybar = (y - y_a)/H,  sbar = s/H,
     Tbar = T/(W H),  Vbar = V/sqrt(g H),  alpha = rho g D H / (2 W),
@@ -24,26 +24,26 @@ Pbar_t, Pbar_b, Pbar_n (load / W) along them, eqs (7)-(12) read
     dxbar/dzbar  = cot phi cos theta,   dybar/dzbar = cot phi sin theta      (10), (11)
     dsbar/dzbar  = 1 / (eps sin phi)                                         (12)
 
-where wbar = weight_in_water / W (= 1 for a sinking cable, as in the seed) and
-eps = 1 + T/EA is the stretch. For an inextensible cable (EA = inf, the seed's case) eps = 1
-and these are exactly 000 (7)-(12). **Finite EA is supported**, consistently with the rest of
-the project (CONVENTIONS "Drag"): the weight is per unstretched length (hence wbar/eps per
-stretched length), the drag per stretched length, and s is the unstretched arc length.
+where wbar = weight_in_water / W (= 1 for a sinking cable, as in the paper) and eps = 1 + T/EA is
+the stretch. For an inextensible cable (EA = inf, the paper's case) eps = 1 and these are exactly
+Wang et al. (1993) (7)-(12). **Finite EA is supported**, consistently with the rest of the project
+(docs/conventions.md "Drag"): the weight is per unstretched length (hence wbar/eps per stretched
+length), the drag per stretched length, and s is the unstretched arc length.
 
-Loads (000 eqs (4)-(6), with the modulus signs)
+Loads (Wang et al. 1993, eqs (4)-(6), with the modulus signs)
 -----------------------------------------------
-The seed takes x along the current, so that u = (V, 0, 0). Here the actual current vector
+The paper takes x along the current, so that u = (V, 0, 0). Here the actual current vector
 u(z) (any heading, any depth profile, interpolated as in :mod:`cable_ocp.physics.current`)
 is projected on the frame: u_t = u.e_t, u_b = u.e_b, u_n = u.e_n, and
 
-* ``drag_law = "componentwise"`` (000 eqs (4)-(6), Wilson's model)::
+* ``drag_law = "componentwise"`` (Wang et al. 1993, eqs (4)-(6), Wilson's model)::
 
       Pbar_t = pi alpha C_t |ubar_t| ubar_t,  Pbar_b = alpha C_n |ubar_b| ubar_b,
       Pbar_n = alpha C_n |ubar_n| ubar_n;
 
-  with u = (V, 0, 0) these are 000 (4)-(6) exactly (u_b = -V sin theta,
+  with u = (V, 0, 0) these are Wang et al. (1993) (4)-(6) exactly (u_b = -V sin theta,
   u_n = -V sin phi cos theta).
-* ``drag_law = "vector"`` (independence principle, not in the seed): the load is
+* ``drag_law = "vector"`` (independence principle, not in the paper): the load is
   1/2 rho D (C_n |U_N| U_N + pi C_t |u_t| u_t e_t) with U_N = u - u_t e_t, *projected on*
   e_t, e_b, e_n: Pbar_b = alpha C_n |ubar_N| ubar_b, Pbar_n = alpha C_n |ubar_N| ubar_n,
   |ubar_N| = sqrt(ubar_b^2 + ubar_n^2); Pbar_t as above.
@@ -52,12 +52,11 @@ The moduli are exact (no smoothing, unlike the collocation solver's ``solver.smo
 and the frame (e_b, e_n) is defined by theta everywhere, so no vertical blend is needed; but
 eq. (8) is singular where the cable is vertical (cos phi = 0) unless Pbar_b = 0 there.
 
-Method (000 eqs (18)-(25))
+Method (Wang et al. 1993, eqs (18)-(25))
 --------------------------
-Fixed-step classical RK4 in zbar from 0 to 1, h = 1/N with N = ``solver.intervals``
-(000 eqs (18)-(23); sbar is integrated as a sixth state, as (12) allows), from the unknown
-initial values zeta = (Tbar(0), theta(0), phi(0)). Nelder-Mead (scipy) minimises the L1
-objective
+Fixed-step classical RK4 in zbar from 0 to 1, h = 1/N with N = ``solver.intervals`` (Wang et al.
+1993, eqs (18)-(23); sbar is integrated as a sixth state, as (12) allows), from the unknown initial
+values zeta = (Tbar(0), theta(0), phi(0)). Nelder-Mead (scipy) minimises the L1 objective
 
     (24)  Phi = |xbar(1) - X| + |ybar(1) - Y| + |Tbar(1) - F|     (top tension F given)
     (25)  Phi = |xbar(1) - X| + |ybar(1) - Y| + |sbar(1) - Lbar|  (length given)
@@ -68,7 +67,7 @@ Tbar(0) known when the tension is given at the bottom end (end_a).
 Planar scenes (no current, or a current parallel at every depth to the vertical plane
 through both ends, as in Berteaux's problem): theta(0) is fixed to the chord's heading
 and not optimised; theta stays constant and the |ybar(1) - Y| term of (24)/(25) is zero
-to round-off. Deviation from the seed, whose (27) keeps |ybar(1)|: with theta(0) free,
+to round-off. Deviation from the paper, whose (27) keeps |ybar(1)|: with theta(0) free,
 a trial theta(0) != 0 makes (8) singular where the cable passes through vertical (about
 16 m below Berteaux's buoy, cos phi = 0), and with fine steps (N = 80) Nelder-Mead then
 settled on a spurious twisted discrete solution (top angle off by 0.02 deg). Nelder-Mead is run with
@@ -77,11 +76,11 @@ size of the last run's progress, until a restart improves Phi by less than 1 % (
 ``MAX_RESTARTS`` runs). The first simplex is built around the drag-free catenary through
 both ends (:func:`cable_ocp.statics.initial_guess.initial_guess`), or around a warm start.
 
-The z-formulation's implicit constraint (000, before "Solutions"): the cable must rise
-monotonically in z, 0 < phi < pi, with positive tension. A trial that leaves it is given
-the objective ``PENALTY + (1 - zbar reached)`` (feasible trials have Phi < PENALTY), so the
-simplex is pushed back. If the optimum lies on that boundary (a profile that would need to
-touch down or turn back in z), Phi stays non-zero and the status is a failure.
+The z-formulation's implicit constraint (Wang et al. (1993), before "Solutions"): the cable must
+rise monotonically in z, 0 < phi < pi, with positive tension. A trial that leaves it is given the
+objective ``PENALTY + (1 - zbar reached)`` (feasible trials have Phi < PENALTY), so the simplex is
+pushed back. If the optimum lies on that boundary (a profile that would need to touch down or turn
+back in z), Phi stays non-zero and the status is a failure.
 
 Status
 ------
@@ -118,7 +117,7 @@ legitimate but so poorly resolved in z that it stays "inaccurate" up to the step
 
 Representable scenes (else :class:`~cable_ocp.errors.CableOCPError`): end_a fully fixed
 (position), end_b fully fixed strictly above it, and either the length or one end tension
-given. The seed's own examples are of this kind (000 eqs (13)-(16), (28)).
+given. The paper's own examples are of this kind (Wang et al. 1993, eqs (13)-(16), (28)).
 """
 
 from __future__ import annotations
@@ -160,7 +159,8 @@ def _fail(reason: str) -> CableOCPError:
 
 
 class WangProblem:
-    """The nondimensional z-formulation of a scene (000 eqs (7)-(12)) and its RK4 shooting.
+    """The nondimensional z-formulation of a scene (Wang et al. 1993, eqs (7)-(12)) and its RK4
+    shooting.
 
     Parameters
     ----------
@@ -171,16 +171,16 @@ class WangProblem:
     Attributes
     ----------
     height : float
-        H = z_b - z_a, m (the seed's water depth).
+        H = z_b - z_a, m (the paper's water depth).
     weight_scale : float
         W, N/m: |weight in water|, or the drag scale for a neutrally buoyant cable.
     alpha : float
-        rho g D H / (2 W) (-), 000 after eq. (6).
+        rho g D H / (2 W) (-), Wang et al. (1993) after eq. (6).
     vbar : float
-        Largest current speed / sqrt(g H) (-), 000 eqs (26a), (30a).
+        Largest current speed / sqrt(g H) (-), Wang et al. (1993) eqs (26a), (30a).
     target : tuple of float
-        (X, Y, third) with X, Y the nondimensional top-end offsets (000 eqs (13)-(14)) and
-        third = F (top tension, (15)), Lbar (length, (16)) or Tbar(0) (bottom tension).
+        (X, Y, third) with X, Y the nondimensional top-end offsets (Wang et al. 1993, eqs (13)-(14))
+        and third = F (top tension, (15)), Lbar (length, (16)) or Tbar(0) (bottom tension).
     mode : str
         ``"top_tension"``, ``"length"`` or ``"bottom_tension"``.
     """
@@ -189,7 +189,8 @@ class WangProblem:
         env, cab = scene.environment, scene.cable
         ea, eb = scene.end_a, scene.end_b
         za, zb = rising_fixed_ends(
-            scene, METHOD, "000 eqs (10)-(16) integrate from a fixed bottom end to a fixed top end")
+            scene, METHOD,
+            "Wang et al. (1993) eqs (10)-(16) integrate from a fixed bottom end to a fixed top end")
         self.scene = scene
         self.origin = np.array(ea.position, dtype=float)
         self.height = h_ = zb - za
@@ -228,7 +229,7 @@ class WangProblem:
                 self.plane_heading = math.atan2(hy, hx)
         self.rhs = self._make_rhs()
 
-    # -- equations (000 (7)-(12)) -----------------------------------------------------
+    # -- equations (Wang et al. 1993, (7)-(12)) ----------------------------------------------------
     def _make_rhs(self) -> Callable[..., tuple[float, ...]]:
         scene = self.scene
         cab, cur = scene.cable, scene.environment.current
@@ -260,7 +261,8 @@ class WangProblem:
             sp, cp, st, ct = sin(ph), cos(ph), sin(th), cos(th)
             ux, uy = vel(z)
             eps = 1.0 + tb / ea_bar if elastic else 1.0
-            # projections of the current on e_t, e_b, e_n (000 (4)-(6) for u = (V, 0, 0))
+            # projections of the current on e_t, e_b, e_n (Wang et al. 1993, (4)-(6)
+            # for u = (V, 0, 0))
             uh = ux * ct + uy * st
             ut = cp * uh
             ub = -ux * st + uy * ct
@@ -281,10 +283,10 @@ class WangProblem:
                     1.0 / (eps * sp))                   # (12)
         return rhs
 
-    # -- RK4 (000 (18)-(23)) ----------------------------------------------------------
+    # -- RK4 (Wang et al. 1993, (18)-(23)) ---------------------------------------------------------
     def integrate(self, zeta: tuple[float, float, float], n: int, keep: bool = False
                   ) -> tuple[np.ndarray | None, float]:
-        """Integrate from zbar = 0 to 1 in ``n`` RK4 steps (000 eqs (18)-(23)).
+        """Integrate from zbar = 0 to 1 in ``n`` RK4 steps (Wang et al. 1993, eqs (18)-(23)).
 
         Parameters
         ----------
@@ -344,7 +346,7 @@ class WangProblem:
             return np.array(out), 1.0
         return np.array([tb, th, ph, x, y, s]), 1.0
 
-    # -- objective (000 (24), (25)) ---------------------------------------------------
+    # -- objective (Wang et al. 1993, (24), (25)) --------------------------------------------------
     def unknowns_to_zeta(self, v: np.ndarray) -> tuple[float, float, float]:
         """Optimisation variables -> (Tbar(0), theta(0), phi(0))."""
         vals = [float(a) for a in v]
@@ -361,7 +363,7 @@ class WangProblem:
         return np.array(out, dtype=float)
 
     def residuals(self, end: np.ndarray) -> tuple[float, float, float]:
-        """End mismatches (xbar(1) - X, ybar(1) - Y, third) (000 (24)/(25))."""
+        """End mismatches (xbar(1) - X, ybar(1) - Y, third) (Wang et al. 1993, (24)/(25))."""
         x_t, y_t, third = self.target
         if self.mode == "top_tension":
             r3 = end[0] - third
@@ -372,7 +374,8 @@ class WangProblem:
         return float(end[3] - x_t), float(end[4] - y_t), float(r3)
 
     def objective(self, v: np.ndarray, n: int) -> float:
-        """L1 objective Phi (000 eq. (24) or (25)); PENALTY + (1 - zbar) when infeasible."""
+        """L1 objective Phi (Wang et al. 1993, eq. (24) or (25)); PENALTY + (1 - zbar) when
+        infeasible."""
         end, reached = self.integrate(self.unknowns_to_zeta(v), n)
         if end is None:
             return PENALTY + (1.0 - reached)
@@ -533,7 +536,7 @@ def _estimate(problem: WangProblem, zeta: tuple[float, float, float], n: int,
 
 def _solve_steps(problem: WangProblem, n: int, warm_start: StaticsSolution | None,
                  zeta_start: tuple[float, float, float] | None = None) -> StaticsSolution:
-    """Nelder-Mead on the n-step shooting problem (000 eqs (24)/(25)); no estimate."""
+    """Nelder-Mead on the n-step shooting problem (Wang et al. 1993, eqs (24)/(25)); no estimate."""
     scene = problem.scene
     t_start = time.perf_counter()
     if zeta_start is not None and warm_start is not None:
@@ -584,13 +587,13 @@ def _solve_steps(problem: WangProblem, n: int, warm_start: StaticsSolution | Non
 
 
 def solve(scene: Scene, warm_start: StaticsSolution | None = None) -> StaticsSolution:
-    """Solve a scene with Wang et al.'s shooting-optimization (000 eqs (7)-(25)).
+    """Solve a scene with Wang et al.'s shooting-optimization (Wang et al. 1993, eqs (7)-(25)).
 
     Parameters
     ----------
     scene : Scene
         Both ends fully fixed, end_b above end_a; the length or one end tension given.
-        ``solver.intervals`` = N RK4 steps (h = 1/N in zbar; the seed uses h = 0.05).
+        ``solver.intervals`` = N RK4 steps (h = 1/N in zbar; the paper uses h = 0.05).
     warm_start : StaticsSolution, optional
         A nearby solution: its force at end_a seeds the simplex (smaller simplex).
 

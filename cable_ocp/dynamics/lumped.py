@@ -62,9 +62,7 @@ __all__ = [
     "LumpedRun",
     "PointBody",
     "UnitParams",
-    "modes_lumped",
     "run",
-    "simulate_lumped",
     "uniform_params",
 ]
 
@@ -452,6 +450,7 @@ class LumpedMassModel:
                                   [lam * fd for fd in self._drag(r, still)]))
         self._static_fj = ca.Function("static_fj", [x, t, lam], [fs, ca.jacobian(fs, x)])
         self._steps: dict[tuple, ca.Function] = {}
+        self._residuals: dict[tuple, ca.Function] = {}
 
     # -- parameters ---------------------------------------------------------------------
     @staticmethod
@@ -736,10 +735,14 @@ class LumpedMassModel:
         a = np.zeros_like(x)
         if scheme == "trapezoidal":
             from scipy.sparse import csc_matrix
-            from scipy.sparse.linalg import spsolve
+
+            from cable_ocp.dynamics.linalg import solve_sparse
 
             mm = csc_matrix(self.mass_matrix(x, t).sparse())
-            a = np.asarray(spsolve(mm, np.asarray(self.forces(x, v, t)).reshape(-1)))
+            sol = solve_sparse(mm, np.asarray(self.forces(x, v, t)).reshape(-1))
+            # a singular mass matrix (a massless free node) leaves a = 0: the trapezoidal
+            # rule's first step then solves for it (its Newton reports a failure if it can't)
+            a = np.zeros_like(x) if sol is None else sol
         return np.concatenate([x, v, a])
 
     def step_function(self, dt: float, scheme: str = "midpoint", *, tol: float = 1e-10,
@@ -782,13 +785,16 @@ class LumpedMassModel:
 
         ``"newton"`` (default): Newton's method written in the CasADi graph (at most
             ``max_iter`` iterations, each skipped by a short-circuit ``if_else`` once the
-            residual is below ``tol``), with the Jacobian of the tension terms exact and the
-            mass and drag terms taken as M(x)/dt^2-type and velocity-derivative terms (the
-            derivatives of the added-mass projector and of the drag with respect to the
-            segment orientation are left out: they multiply small quantities, so Newton
-            still converges fast, to the exact solution of the step), with a backtracking
-            line search on the residual. Sparse QR (``linear_solver``, CasADi ``qr``): the
-            midpoint's matrix is not symmetric.
+            residual is below ``tol``, or once the Newton update is at rounding level,
+            1e-13 of the coordinates, with the residual below max(1000 tol, 1e-6)). Its
+            matrix has the tension's derivative exact and the mass and drag terms as
+            M(x)/dt^2-type and velocity-derivative terms (the derivatives of the
+            added-mass projector and of the drag with respect to the segment orientation
+            are left out: they multiply small quantities, so Newton still converges fast,
+            to the exact solution of the step); a backtracking line search on the
+            residual; where Newton fails, two half steps instead (up to three times).
+            Sparse QR (``linear_solver``, CasADi ``qr``): the midpoint's matrix is not
+            symmetric.
         ``"rootfinder"``: CasADi's ``rootfinder("newton")`` with the exact Jacobian (about
             5x slower per iteration; a reference).
         """
@@ -931,7 +937,7 @@ class LumpedMassModel:
         return ca.Function("ends", [t], [ra, va, ca.vec(p.top_position(t)),
                                          ca.vec(self._top_vel(t))])
 
-    def _point_terms(self, r: Any, v: Any, gamma: Any) -> tuple[Any, Any]:
+    def _point_terms(self, r: Any, v: Any, gamma: Any, sym: Any = ca.MX) -> tuple[Any, Any]:
         """Drag (N, 3 x (N+1)) and its Newton blocks (9 x (N+1)) of the unit and the bodies
         at node positions r and velocities v (MX, 3 x (N+1))."""
         p = self.params
@@ -943,8 +949,8 @@ class LumpedMassModel:
         items += [(b.node, [b.drag_area * b.drag_coefficient] * 3, "vector")
                   for b in p.bodies]
         items = [it for it in items if any(it[1]) and p.water_density > 0]
-        fcols = [ca.MX.zeros(3, 1) for _ in range(n + 1)]
-        ccols = [ca.MX.zeros(9, 1) for _ in range(n + 1)]
+        fcols = [sym.zeros(3, 1) for _ in range(n + 1)]
+        ccols = [sym.zeros(9, 1) for _ in range(n + 1)]
         if not items:
             return ca.horzcat(*fcols), ca.horzcat(*ccols)
         rs, vs, gs = ca.SX.sym("r", 3), ca.SX.sym("v", 3), ca.SX.sym("g")
@@ -972,19 +978,25 @@ class LumpedMassModel:
             ccols[node] = ccols[node] + ck
         return ca.horzcat(*fcols), ca.horzcat(*ccols)
 
-    def _core_step(self, dt: float, scheme: str, tol: float, max_iter: int,
-                   linear_solver: str, compile_kernel: bool, force_scale: float | None
-                   ) -> ca.Function:
-        """One Newton-solved step ``(z, t0) -> (z1, residual, iterations, converged)``."""
+    def _residual_function(self, scheme: str, compile_kernel: bool, fscale: float
+                           ) -> ca.Function:
+        """``gj(x1, z, t0, dt)``: the step's scaled residual and, for the MX path, the
+        Newton matrix and force residual (``(res, J, f)``), or, for the SX path, the
+        Newton update by block elimination (``(res, dx)``). Cached: one function for
+        every step size (the step halving reuses it)."""
+        key = (scheme, compile_kernel, fscale)
+        if key in self._residuals:
+            return self._residuals[key]
         p = self.params
         n = p.segments
         nf = self.n_free
         nf3 = 3 * nf
         first = 1 if p.fixed_a else 0
         kern = _segment_kernel(p.drag_law, compile_kernel).map(n, "serial")
+        if not compile_kernel:
+            kern = _segment_kernel_expr(p.drag_law).map(n, "unroll")
         par = ca.DM(self._segment_parameters())
         ends = self._ends_function()
-        fscale = self.force_scale() if force_scale is None else float(force_scale)
         node_m = ca.DM(np.vstack([np.diag(m).T.reshape(-1) for m in self._node_mass]).T)
         static = np.zeros((3, n + 1))
         static[2] = -self._node_weight
@@ -1027,9 +1039,13 @@ class LumpedMassModel:
         order = np.lexsort((np.asarray(rows), np.asarray(cols)))
         src_sorted = [src[k] for k in order]
 
-        x1 = ca.MX.sym("x1", nf3)
-        zsym = ca.MX.sym("z", self.state_size(scheme))
-        t0 = ca.MX.sym("t0")
+        # the residual and Newton matrix: MX around the compiled kernel, or one SX
+        # function with the kernel inlined (compiled with the whole step: no overhead)
+        sym = ca.MX if compile_kernel else ca.SX
+        x1 = sym.sym("x1", nf3)
+        zsym = sym.sym("z", self.state_size(scheme))
+        t0 = sym.sym("t0")
+        dt = sym.sym("dt")
         x0 = zsym[0:nf3]
         v0 = zsym[nf3:2 * nf3]
         ra0, va0, rb0, vb0 = ends(t0)
@@ -1064,12 +1080,12 @@ class LumpedMassModel:
         if cur is not None:
             ucur = cur(0.5 * (rm[2, 0:n] + rm[2, 1:n + 1]))
         else:
-            ucur = ca.MX.zeros(3, n)
+            ucur = sym.zeros(3, n)
         fa, fb, madd, kb, cb = kern(r0[:, 0:n], r0[:, 1:n + 1], r1[:, 0:n], r1[:, 1:n + 1],
                                     vel[:, 0:n], vel[:, 1:n + 1], ucur, par, scv)
-        z3 = ca.MX.zeros(3, 1)
-        z9 = ca.MX.zeros(9, 1)
-        fpt, cpt = self._point_terms(rm, vel, gamma)
+        z3 = sym.zeros(3, 1)
+        z9 = sym.zeros(9, 1)
+        fpt, cpt = self._point_terms(rm, vel, gamma, sym)
         force = ca.horzcat(fa, z3) + ca.horzcat(z3, fb) + static + fpt
         mass = node_m + ca.horzcat(madd, z9) + ca.horzcat(z9, madd)
         free = slice(first, n)
@@ -1084,9 +1100,35 @@ class LumpedMassModel:
         diag_b = alpha * mass[:, free] + kc[:, free]
         off_b = -kb[:, first:n - 1] + cb[:, first:n - 1]
         vals = ca.vertcat(ca.vec(diag_b), ca.vec(off_b))
-        jac = ca.MX(sp, 0)
-        jac.nz[:] = vals[src_sorted]
-        gj = ca.Function("gj", [x1, zsym, t0], [res, jac, fres])
+        if compile_kernel:
+            jac = ca.MX(sp, 0)
+            jac.nz[:] = vals[src_sorted]
+            gj = ca.Function("gj", [x1, zsym, t0, dt], [res, jac, fres])
+        else:
+            # the Newton update by block-tridiagonal elimination (3x3 blocks, no pivoting:
+            # the matrix is close to symmetric positive definite), inlined in SX
+            dx_sx = _block_thomas(diag_b, off_b, ca.reshape(fres, 3, nf))
+            gj = ca.Function("gj", [x1, zsym, t0, dt], [res, dx_sx])
+        self._residuals[key] = gj
+        return gj
+
+    def _core_step(self, dt: float, scheme: str, tol: float, max_iter: int,
+                   linear_solver: str, compile_kernel: bool, force_scale: float | None
+                   ) -> ca.Function:
+        """One Newton-solved step ``(z, t0) -> (z1, residual, iterations, converged)``."""
+        p = self.params
+        nf3 = 3 * self.n_free
+        fscale = self.force_scale() if force_scale is None else float(force_scale)
+        x_scale = p.length + float(np.max(np.abs(np.asarray(p.top_position(0.0)))))
+        gj4 = self._residual_function(scheme, compile_kernel, fscale)
+        zsym = ca.MX.sym("z", self.state_size(scheme))
+        t0 = ca.MX.sym("t0")
+        x0 = zsym[0:nf3]
+        v0 = zsym[nf3:2 * nf3]
+
+        def gj(x: Any, z: Any, t: Any) -> Any:
+            return gj4(x, z, t, dt)
+
         # Newton with backtracking, skipped once converged: an iteration evaluates the
         # residual at x; if it did not decrease (2-norm) from the last accepted point, x
         # moves back along the last step (halving it, down to 1/16); else a Newton step.
@@ -1095,15 +1137,32 @@ class LumpedMassModel:
         dl = ca.MX.sym("dl", nf3)
         rno = ca.MX.sym("rno")
         lam = ca.MX.sym("lam")
-        rk, jk, fk = gj(xk, zsym, t0)
+        if compile_kernel:
+            rk, jk, fk = gj(xk, zsym, t0)
+        else:
+            rk, dxk = gj(xk, zsym, t0)
         rn = ca.norm_inf(rk)
         rn2 = ca.norm_2(rk)
-        conv = rn <= tol
-        worse = ca.logic_and(rn2 > rno, lam > 1.0 / 16.0)
-        newton_dx = ca.Function("newton_dx", [xk, zsym, t0], [ca.solve(jk, fk, linear_solver)])
+        # converged: the residual below tol, or (rounding floor: the residual of a heavy
+        # node at a small step, M eps |x| / dt^2, can exceed tol) the last Newton update
+        # at rounding level with the residual below the failure threshold
+        dln = ca.norm_inf(dl)
+        stalled = ca.logic_and(ca.logic_and(dln > 0.0, dln <= 1e-13 * x_scale),
+                               rn <= max(1e3 * tol, 1e-6))
+        conv = ca.logic_or(rn <= tol, stalled)
+        worse = ca.logic_and(ca.logic_and(rn2 > rno, lam > 1.0 / 16.0),
+                             ca.logic_not(conv))
         x_back = xo - 0.5 * lam * dl
-        dx = ca.if_else(ca.logic_or(conv, worse), ca.MX.zeros(nf3), newton_dx(xk, zsym, t0),
-                        True)
+        skip = ca.logic_or(conv, worse)
+        if compile_kernel:
+            # the sparse solve only when a Newton step is taken (on the values computed
+            # above: the solve's function takes J and f, not x)
+            jm = ca.MX.sym("J", jk.sparsity())
+            fm = ca.MX.sym("f", nf3)
+            solve = ca.Function("newton_solve", [jm, fm], [ca.solve(jm, fm, linear_solver)])
+            dx = ca.if_else(skip, ca.MX.zeros(nf3), solve(jk, fk), True)
+        else:
+            dx = ca.if_else(skip, ca.MX.zeros(nf3), dxk)
         x_new = ca.if_else(conv, xk, ca.if_else(worse, x_back, xk - dx))
         xo_new = ca.if_else(ca.logic_or(conv, worse), xo, xk)
         dl_new = ca.if_else(ca.logic_or(conv, worse), dl, dx)
@@ -1231,8 +1290,9 @@ class LumpedMassModel:
 
     def _static_newton(self, x: np.ndarray, t: float, lam_drag: float, tol: float,
                        max_iter: int, fscale: float) -> tuple[np.ndarray, dict[str, Any]]:
-        from scipy.sparse import csc_matrix
-        from scipy.sparse.linalg import spsolve
+        from scipy.sparse import csc_matrix, identity
+
+        from cable_ocp.dynamics.linalg import solve_sparse
 
         def resid(xx: np.ndarray) -> tuple[np.ndarray, Any]:
             fv, jv = self._static_fj(xx, t, lam_drag)
@@ -1242,6 +1302,17 @@ class LumpedMassModel:
         f, jac = resid(x)
         it = 0
         stalled = False
+        singular = False
+        # Levenberg-Marquardt fallback: where the Newton matrix is singular or gives no
+        # descent (a start with slack segments: no transverse stiffness, e.g. the chords of
+        # a sagging catenary interpolated from the statics are shorter than the stretched
+        # segments), solve (K + mu I) dx = F, mu raised tenfold from 1e-8 of the force
+        # scale per segment length until the force norm decreases, relaxed after success
+        n_dof = x.size
+        eye = identity(n_dof, format="csc")
+        mu0 = 1e-8 * fscale / float(np.min(self.params.segment_length))
+        mu_max = 1e12 * mu0
+        mu = 0.0
         for it in range(1, max_iter + 1):  # noqa: B007 - reported
             if not np.all(np.isfinite(f)):
                 break
@@ -1249,20 +1320,32 @@ class LumpedMassModel:
                 it -= 1
                 break
             jd = csc_matrix(jac.sparse())
-            try:
-                dx = -spsolve(jd, f)
-            except Exception:  # noqa: BLE001 - singular Jacobian: report, never raise
-                break
-            if not np.all(np.isfinite(dx)):
-                break
-            # backtracking on the force norm
             n0 = np.linalg.norm(f)
-            lam = 1.0
-            while lam > 1e-4:
-                fn, jn = resid(x + lam * dx)
-                if np.all(np.isfinite(fn)) and np.linalg.norm(fn) < (1 - 1e-4 * lam) * n0:
+            m = mu
+            accepted = False
+            sol = None
+            while True:
+                sol = solve_sparse(jd if m == 0.0 else jd - m * eye, f)
+                if sol is not None:
+                    dx = -sol
+                    lam = 1.0  # backtracking on the force norm
+                    while lam > 1e-4:
+                        fn, jn = resid(x + lam * dx)
+                        if (np.all(np.isfinite(fn))
+                                and np.linalg.norm(fn) < (1 - 1e-4 * lam) * n0):
+                            accepted = True
+                            break
+                        lam *= 0.5
+                    if accepted or np.abs(f).max() <= 1e-6 * fscale:
+                        break  # descent, or the rounding floor of a converged iterate
+                if m >= mu_max:
                     break
-                lam *= 0.5
+                m = mu0 if m == 0.0 else 10.0 * m
+            if not accepted:
+                singular = sol is None
+                stalled = np.abs(f).max() <= 1e-6 * fscale
+                break
+            mu = 0.0 if m <= mu0 else m / 100.0
             x = x + lam * dx
             f, jac = fn, jn
             stalled = lam * np.abs(dx).max() <= 1e-12 * self.params.length
@@ -1271,7 +1354,7 @@ class LumpedMassModel:
         rmax = float(np.abs(f).max()) if np.all(np.isfinite(f)) else math.inf
         ok = rmax <= tol * fscale or (stalled and rmax <= 1e-6 * fscale)
         return x, {"converged": bool(ok), "iterations": it, "residual_N": rmax,
-                   "relative_residual": rmax / fscale}
+                   "relative_residual": rmax / fscale, "singular_jacobian": singular}
 
     def linearize(self, x: np.ndarray, t: float = 0.0) -> tuple[np.ndarray, np.ndarray]:
         """Stiffness and mass matrices about a rest state, dense (3 n_free square).
@@ -1476,7 +1559,7 @@ def run(model: LumpedMassModel, x0: np.ndarray, v0: np.ndarray | None, duration:
             model.params.drag_law, True).class_name() == "External":
         compiled = "kernel"
     if compile == "step":
-        cc = _compile(chunk)
+        cc = _compile(chunk, "-O1")  # -O2: 4x the compile time, the same speed here
         compiled = "step" if cc is not chunk else "none"
         chunk = cc
     build = time.perf_counter() - tb
@@ -1646,6 +1729,28 @@ def _segment_kernel_expr(drag_law: str) -> ca.Function:
 _KERNELS: dict[str, ca.Function] = {}
 
 
+def _block_thomas(diag: Any, off: Any, rhs: Any) -> Any:
+    """Solve the block-tridiagonal system with 3x3 diagonal blocks ``diag`` (9 x n,
+    row-major) and equal upper and lower blocks ``off`` (9 x (n-1)) for ``rhs`` (3 x n), by
+    block elimination without pivoting (SX). Returns the solution as a (3 n,) vector."""
+    n = rhs.shape[1]
+
+    def blk(m: Any, k: int) -> Any:
+        return ca.reshape(m[:, k], 3, 3).T
+
+    d_p = [blk(diag, 0)]
+    y = [rhs[:, 0]]
+    for i in range(1, n):
+        w = ca.mtimes(blk(off, i - 1), ca.inv(d_p[i - 1]))
+        d_p.append(blk(diag, i) - ca.mtimes(w, blk(off, i - 1)))
+        y.append(rhs[:, i] - ca.mtimes(w, y[i - 1]))
+    x = [None] * n
+    x[n - 1] = ca.solve(d_p[n - 1], y[n - 1])
+    for i in range(n - 2, -1, -1):
+        x[i] = ca.solve(d_p[i], y[i] - ca.mtimes(blk(off, i), x[i + 1]))
+    return ca.vertcat(*x)
+
+
 def _segment_kernel(drag_law: str, compile_kernel: bool = True) -> ca.Function:
     """The segment kernel of ``drag_law``, compiled to C once and cached on disk when a C
     compiler is available (see :func:`_compile`), else interpreted."""
@@ -1656,29 +1761,70 @@ def _segment_kernel(drag_law: str, compile_kernel: bool = True) -> ca.Function:
     return _KERNELS[key]
 
 
-def _cache_dir() -> str:
+#: values of ``CABLE_OCP_CACHE`` that turn the compilation to C off
+_CACHE_OFF = ("0", "off", "false", "no")
+
+
+def _cache_dir() -> str | None:
+    """Directory of the compiled-C cache, or None when compiling is turned off.
+
+    ``CABLE_OCP_CACHE=0`` (or off/false/no) turns it off (everything interpreted);
+    ``CABLE_OCP_CACHE_DIR`` names the directory; an older ``CABLE_OCP_CACHE=PATH`` is read
+    as the directory too; default ``$XDG_CACHE_HOME/cable_ocp`` or ~/.cache/cable_ocp.
+    """
     import os
 
-    base = os.environ.get("CABLE_OCP_CACHE") or os.path.join(
+    flag = os.environ.get("CABLE_OCP_CACHE", "").strip()
+    if flag.lower() in _CACHE_OFF:
+        return None
+    if os.environ.get("CABLE_OCP_CACHE_DIR"):
+        return os.environ["CABLE_OCP_CACHE_DIR"]
+    if flag and flag.lower() not in ("1", "on", "true", "yes"):
+        return flag
+    return os.path.join(
         os.environ.get("XDG_CACHE_HOME") or os.path.join(os.path.expanduser("~"), ".cache"),
         "cable_ocp")
-    return base
 
 
-def _compile(fn: ca.Function) -> ca.Function:
-    """Compile a small CasADi Function to a shared library (C code generation, ``cc -O2``)
-    cached by the hash of its code in ``$CABLE_OCP_CACHE`` (default ~/.cache/cable_ocp);
-    return it as ``casadi.external``. Returns ``fn`` unchanged when no compiler is found or
-    anything fails (the interpreted function computes the same numbers, slower)."""
+def _c_compiler() -> list[str] | None:
+    """The C compiler command: ``$CC`` (may carry words, e.g. "ccache gcc") if its program
+    exists, else ``cc`` or ``gcc`` on the PATH; None when there is none."""
+    import os
+    import shlex
+    import shutil
+
+    env = os.environ.get("CC", "").strip()
+    if env:
+        try:
+            words = shlex.split(env)
+        except ValueError:
+            return None
+        return words if words and shutil.which(words[0]) else None
+    found = shutil.which("cc") or shutil.which("gcc")
+    return [found] if found else None
+
+
+def _compile(fn: ca.Function, opt: str = "-O2") -> ca.Function:
+    """Compile a CasADi Function to a shared library (C code generation, the C compiler
+    with ``opt``) cached by the hash of its code in :func:`_cache_dir`; return it as
+    ``casadi.external``.
+
+    Returns ``fn`` unchanged (the interpreted function computes the same numbers, slower)
+    when compiling is off (``CABLE_OCP_CACHE=0``), no C compiler is found (``$CC`` names a
+    missing program, or neither ``cc`` nor ``gcc`` is on the PATH), the cache directory
+    cannot be created or written, or the compiler or the loading fails. Silent.
+    """
     import hashlib
     import os
     import shutil
     import subprocess
     import tempfile
 
-    cc = os.environ.get("CC") or shutil.which("cc") or shutil.which("gcc")
-    if not cc:
+    cache = _cache_dir()
+    cc = _c_compiler()
+    if cache is None or cc is None:
         return fn
+    tmp = None
     try:
         tmp = tempfile.mkdtemp(prefix="cable_ocp_")
         name = fn.name()
@@ -1687,32 +1833,45 @@ def _compile(fn: ca.Function) -> ca.Function:
         cg.generate(tmp + os.sep)
         src = os.path.join(tmp, f"{name}.c")
         with open(src, "rb") as fh:
-            digest = hashlib.sha256(fh.read() + ca.__version__.encode()).hexdigest()[:16]
+            digest = hashlib.sha256(fh.read() + ca.__version__.encode()
+                                    + opt.encode()).hexdigest()[:16]
+        os.makedirs(cache, exist_ok=True)
+        lib = os.path.join(cache, f"{name}_{digest}.so")
+        if not os.path.exists(lib):
+            part = lib + f".{os.getpid()}.tmp"
+            try:
+                subprocess.run([*cc, opt, "-fPIC", "-shared", src, "-o", part, "-lm"],
+                               check=True, capture_output=True, timeout=600,
+                               stdin=subprocess.DEVNULL)
+                os.replace(part, lib)
+            finally:
+                if os.path.exists(part):
+                    os.remove(part)
+        return ca.external(name, lib)
+    except Exception:  # noqa: BLE001 - any failure: fall back to the interpreted function
+        return fn
+    finally:
+        if tmp is not None:
+            shutil.rmtree(tmp, ignore_errors=True)
+    try:
+        tmp = tempfile.mkdtemp(prefix="cable_ocp_")
+        name = fn.name()
+        cg = ca.CodeGenerator(f"{name}.c", {"with_header": False})
+        cg.add(fn)
+        cg.generate(tmp + os.sep)
+        src = os.path.join(tmp, f"{name}.c")
+        with open(src, "rb") as fh:
+            digest = hashlib.sha256(fh.read() + ca.__version__.encode()
+                                    + opt.encode()).hexdigest()[:16]
         cache = _cache_dir()
         os.makedirs(cache, exist_ok=True)
         lib = os.path.join(cache, f"{name}_{digest}.so")
         if not os.path.exists(lib):
             part = lib + f".{os.getpid()}.tmp"
-            subprocess.run([cc, "-O2", "-fPIC", "-shared", src, "-o", part, "-lm"],
+            subprocess.run([cc, opt, "-fPIC", "-shared", src, "-o", part, "-lm"],
                            check=True, capture_output=True, timeout=300)
             os.replace(part, lib)
         shutil.rmtree(tmp, ignore_errors=True)
         return ca.external(name, lib)
     except Exception:  # noqa: BLE001 - any failure: fall back to the interpreted function
         return fn
-
-
-def simulate_lumped(scene: Any, progress: Callable[[int, int], None] | None = None) -> Any:
-    """Entry point of :func:`cable_ocp.dynamics.simulate` for ``model = "lumped3d"``
-    (see :func:`cable_ocp.dynamics.lumped_scene.simulate_lumped`)."""
-    from cable_ocp.dynamics.lumped_scene import simulate_lumped as _simulate
-
-    return _simulate(scene, progress)
-
-
-def modes_lumped(scene: Any, count: int) -> Any:
-    """Entry point of :func:`cable_ocp.dynamics.modes` for ``model = "lumped3d"``
-    (see :func:`cable_ocp.dynamics.lumped_scene.modes_lumped`)."""
-    from cable_ocp.dynamics.lumped_scene import modes_lumped as _modes
-
-    return _modes(scene, count)

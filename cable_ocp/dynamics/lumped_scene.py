@@ -40,6 +40,9 @@ __all__ = ["lumped_params", "lumped_start", "modes_lumped", "segment_counts",
 
 #: at most this many progress calls (chunks) per run
 MAX_CHUNKS = 200
+#: runs with more segment-steps than this compile the whole step to C
+#: (:func:`cable_ocp.dynamics.lumped.run`, ``compile="step"``)
+COMPILE_STEP_ABOVE = 1_000_000
 
 
 def segment_counts(lengths: list[float], total: int) -> list[int]:
@@ -194,8 +197,13 @@ def lumped_start(scene: DynamicScene, model: LumpedMassModel
                 relative_residual=newton["relative_residual"], max_node_shift_m=shift,
                 statics_wall_time_s=sol.wall_time_s)
     if not newton["converged"]:
+        why = ("; its Newton matrix is singular (segments with no tension carry no "
+               "transverse stiffness: a slack or compressed line between fixed ends)"
+               if newton.get("singular_jacobian") else "")
         info["message"] = (f"the lumped-mass equilibrium did not converge from the statics "
-                           f"solution (relative residual {newton['relative_residual']:.3g})")
+                           f"solution (relative residual {newton['relative_residual']:.3g})"
+                           f"{why}; try another simulation.segments, or (a line with a "
+                           "[unit]) start = \"unstrained\"")
         return None, info
     info["message"] = (f"statics solution refined to the discrete equilibrium (largest node "
                        f"shift {shift:.3g} m)")
@@ -245,9 +253,14 @@ def simulate_lumped(scene: DynamicScene, progress: Callable[[int, int], None] | 
         out = run_thesis(model, x0, None, sim.duration, sim.time_step, record_every=every,
                          progress=prog)
     else:
+        # long runs: compile the whole step to C (a few seconds, cached) - about 3-5x
+        # faster per step than the compiled kernel alone
+        compile_mode = "step" if sim.steps * model.params.segments > COMPILE_STEP_ABOVE \
+            else "kernel"
         out = run(model, x0, None, sim.duration, sim.time_step, scheme=sim.scheme,
                   record_every=every, chunk_records=max(1, math.ceil(n_out / MAX_CHUNKS)),
-                  tol=sim.tolerance, max_iter=sim.max_iterations, progress=prog)
+                  tol=sim.tolerance, max_iter=sim.max_iterations, compile=compile_mode,
+                  progress=prog)
     return _result(scene, model, out, info)
 
 

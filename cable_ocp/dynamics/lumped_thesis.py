@@ -39,8 +39,8 @@ from typing import Any
 import casadi as ca
 import numpy as np
 from scipy.sparse import coo_matrix
-from scipy.sparse.linalg import spsolve
 
+from cable_ocp.dynamics.linalg import solve_sparse
 from cable_ocp.dynamics.lumped import LumpedMassModel, LumpedRun
 from cable_ocp.errors import CableOCPError
 
@@ -87,8 +87,9 @@ class _Thesis:
         return np.vstack(pts + [rb[None, :]])
 
     def step(self, x_prev: np.ndarray, x_now: np.ndarray, t: float, dt: float
-             ) -> np.ndarray:
-        """x^{j+1} of the free nodes from x^{j-1}, x^j at t = t_j (s)."""
+             ) -> np.ndarray | None:
+        """x^{j+1} of the free nodes from x^{j-1}, x^j at t = t_j (s); None when the
+        step's matrix is singular."""
         m = self.model
         n, nf, first = self.n, m.n_free, self.first
         r = self.all_nodes(x_now, t)
@@ -138,13 +139,13 @@ class _Thesis:
                     vals.append(np.asarray(blocks.get((a, b), np.zeros((3, 3)))).reshape(-1))
         mat = coo_matrix((np.concatenate(vals), (self.rows, self.cols)),
                          shape=(3 * nf, 3 * nf)).tocsc()
-        return np.asarray(spsolve(mat, rhs.reshape(-1)))
+        return solve_sparse(mat, rhs.reshape(-1))
 
 
 def thesis_step(model: LumpedMassModel) -> Callable[[np.ndarray, np.ndarray, float, float],
-                                                    np.ndarray]:
+                                                    np.ndarray | None]:
     """``step(x_prev, x_now, t, dt) -> x_next``: one step of (5.21) for ``model`` (free-node
-    positions, m; t the time of x_now, s)."""
+    positions, m; t the time of x_now, s; None when the step's matrix is singular)."""
     return _Thesis(model).step
 
 
@@ -177,6 +178,12 @@ def run_thesis(model: LumpedMassModel, x0: np.ndarray, v0: np.ndarray | None,
     for j in range(n_steps):
         t = t0 + j * dt
         x_next = th.step(x_prev, x_now, t, dt)
+        if x_next is None:
+            status = "failed"
+            message = (f"Huang's scheme (5.21): the step matrix is singular at t = {t:.6g} s "
+                       "(a node with no mass and no stiffness, e.g. a slack or massless "
+                       "segment at a free end)")
+            break
         if not np.all(np.isfinite(x_next)) or np.max(np.abs(x_next)) > scale:
             status = "failed"
             message = (f"Huang's scheme (5.21) diverged at t = {t + dt:.6g} s (positions "

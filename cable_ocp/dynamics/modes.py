@@ -27,7 +27,7 @@ __all__ = ["MODE_SOLVERS", "modes"]
 MODE_SOLVERS: dict[str, str] = {
     "axial": "cable_ocp.dynamics.axial:modes_axial",
     "planar": "cable_ocp.dynamics.planar:modes_planar",
-    "lumped3d": "cable_ocp.dynamics.lumped:modes_lumped",
+    "lumped3d": "cable_ocp.dynamics.lumped_scene:modes_lumped",
 }
 
 

@@ -498,7 +498,7 @@ def is_dynamic_dict(data: dict[str, Any]) -> bool:
 
 def current_at(current: Current | None, z: float) -> Vec3:
     """Current velocity (m/s) at height z (m): linear in the components between knots,
-    constant beyond the first and last knot (CONVENTIONS, "Frame and scene files")."""
+    constant beyond the first and last knot (docs/conventions.md, "Frame and scene files")."""
     if current is None:
         return (0.0, 0.0, 0.0)
     zs = current.z

@@ -27,7 +27,7 @@ SIMULATORS: dict[str, str] = {
     "axial": "cable_ocp.dynamics.axial:simulate_axial",
     "axial:thesis": "cable_ocp.dynamics.axial_thesis:simulate_thesis",
     "planar": "cable_ocp.dynamics.planar:simulate_planar",
-    "lumped3d": "cable_ocp.dynamics.lumped:simulate_lumped",
+    "lumped3d": "cable_ocp.dynamics.lumped_scene:simulate_lumped",
 }
 
 

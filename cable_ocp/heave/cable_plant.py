@@ -354,10 +354,22 @@ def _block_tridiagonal_solve(jac: ca.SX, r: ca.SX, n: int) -> ca.SX:
     return ca.vertcat(*sol)
 
 
-def _cache_dir() -> str:
+def _cache_dir() -> str | None:
+    """Directory of the compiled-C cache, or None when compiling is off; the conventions of
+    the lumped-mass model (:mod:`cable_ocp.dynamics.lumped`): ``CABLE_OCP_CACHE=0`` (or
+    off/false/no) turns it off, ``CABLE_OCP_CACHE_DIR`` names the directory, an older
+    ``CABLE_OCP_CACHE=PATH`` is read as the directory too; default
+    ``$XDG_CACHE_HOME/cable_ocp`` or ~/.cache/cable_ocp."""
     import os
 
-    return os.environ.get("CABLE_OCP_CACHE") or os.path.join(
+    flag = os.environ.get("CABLE_OCP_CACHE", "").strip()
+    if flag.lower() in ("0", "off", "false", "no") or os.environ.get("CABLE_OCP_NO_COMPILE"):
+        return None
+    if os.environ.get("CABLE_OCP_CACHE_DIR"):
+        return os.environ["CABLE_OCP_CACHE_DIR"]
+    if flag and flag.lower() not in ("1", "on", "true", "yes"):
+        return flag
+    return os.path.join(
         os.environ.get("XDG_CACHE_HOME") or os.path.join(os.path.expanduser("~"), ".cache"),
         "cable_ocp")
 
@@ -365,8 +377,8 @@ def _cache_dir() -> str:
 def _compile(fns: list[ca.Function], flags: str = "-O1") -> list[ca.Function]:
     """Compile CasADi functions to one shared library (C code generation, ``cc -O1``: on the
     generated straight-line code ``-O2`` is no faster and compiles as slowly), cached by the
-    hash of the code in ``$CABLE_OCP_CACHE`` (default ~/.cache/cable_ocp). Returns the
-    functions unchanged when no compiler is found or anything fails (the interpreted
+    hash of the code in :func:`_cache_dir`. Returns the functions unchanged when compiling is
+    off (``CABLE_OCP_CACHE=0``), no compiler is found or anything fails (the interpreted
     functions compute the same numbers, about 5x slower)."""
     import hashlib
     import os
@@ -374,7 +386,8 @@ def _compile(fns: list[ca.Function], flags: str = "-O1") -> list[ca.Function]:
     import subprocess
     import tempfile
 
-    if os.environ.get("CABLE_OCP_NO_COMPILE"):
+    cache = _cache_dir()
+    if cache is None:
         return fns
     cc = os.environ.get("CC") or shutil.which("cc") or shutil.which("gcc")
     if not cc:
@@ -390,7 +403,6 @@ def _compile(fns: list[ca.Function], flags: str = "-O1") -> list[ca.Function]:
         with open(src, "rb") as fh:
             digest = hashlib.sha256(fh.read() + ca.__version__.encode()
                                     + flags.encode()).hexdigest()[:16]
-        cache = _cache_dir()
         os.makedirs(cache, exist_ok=True)
         lib = os.path.join(cache, f"{name}_{digest}.so")
         if not os.path.exists(lib):

@@ -1,7 +1,7 @@
 """Exact sampled-data models: ZOH with an input delay, cost and noise discretisation.
 
-Used for the exact-delay LQR (004 section 6.2.5 done exactly rather than by (6.13)), the MPC and
-the closed-loop simulations. References: Astrom & Wittenmark, *Computer-Controlled Systems*,
+Used for the exact-delay LQR (Huang 1992, section 6.2.5 done exactly rather than by (6.13)), the MPC
+and the closed-loop simulations. References: Astrom & Wittenmark, *Computer-Controlled Systems*,
 section 2.3 (fractional input delay); Van Loan (1978) for the integrals of matrix exponentials.
 """
 

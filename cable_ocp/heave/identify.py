@@ -1,4 +1,4 @@
-"""Identification of the cable/unit coefficients ``a, b`` (004 section 6.2.3).
+"""Identification of the cable/unit coefficients ``a, b`` (Huang 1992, section 6.2.3).
 
 The thesis fits ``a x'' + b x' + x = x0`` (6.2), or ``a x'' + b x'|x'| + x = x0`` (6.3), to a
 simulated unit response ``z(t_i)`` by Gauss-Newton: ``[da, db] = (X^T X)^{-1} X^T e`` with the
@@ -107,7 +107,7 @@ def identify_unit(
     tol: float = 1e-10,
     max_iter: int = 50,
 ) -> IdentificationResult:
-    """Fit ``a, b`` of (6.2) or (6.3) to a measured response by Gauss-Newton (004 6.2.3).
+    """Fit ``a, b`` of (6.2) or (6.3) to a measured response by Gauss-Newton (Huang 1992, 6.2.3).
 
     Parameters
     ----------

@@ -1,4 +1,4 @@
-"""LQR regulators with the winch delay handled three ways (004 sections 6.2.4-6.2.6).
+"""LQR regulators with the winch delay handled three ways (Huang 1992, sections 6.2.4-6.2.6).
 
 * ``"none"``: design on the undelayed plant (6.6).
 * ``"taylor"``: the thesis' second-order Taylor model (6.13)-(6.14); the two extra states
@@ -33,7 +33,7 @@ from cable_ocp.heave.plant import HeavePlant, assemble_plant, delay_block, winch
 
 @dataclass(frozen=True)
 class LQRDesign:
-    """A state-feedback design for the regulator plant (004 (6.6)/(6.14)).
+    """A state-feedback design for the regulator plant (Huang 1992, (6.6)/(6.14)).
 
     Attributes
     ----------
@@ -81,7 +81,7 @@ class LQRDesign:
 
     @property
     def control_energy(self) -> float:
-        """J_c = sum G_i^2 (004 eq. (6.18))."""
+        """J_c = sum G_i^2 (Huang 1992, eq. (6.18))."""
         return float(np.sum(self.G**2))
 
 
@@ -422,7 +422,7 @@ def discrete_delay_margin(des: LQRDesign, tau_max: float = 5.0) -> float:
 # --------------------------------------------------------------------------------------------
 @dataclass(frozen=True)
 class Indices:
-    """Indices of 004 eqs. (6.16)-(6.18) for one design on one boom-tip record.
+    """Indices of Huang (1992) eqs. (6.16)-(6.18) for one design on one boom-tip record.
 
     Attributes
     ----------
@@ -437,7 +437,7 @@ class Indices:
         it only for designs whose states are physical (undelayed, Taylor (6.14)).
     J_w : float
         ``int u'^2 dt``, m^2/s: the winch-speed energy, a coordinate-free control-effort
-        measure that compares any two controllers (CONVENTIONS: the winch speed is "the
+        measure that compares any two controllers (docs/conventions.md: the winch speed is "the
         comparison that holds across controllers"). Evaluated from the winch output ``u`` of
         the loop as ``sum ((u_{k+1} - u_k) / dt)^2 dt`` (mean speed over each loop step).
     stable : bool
@@ -496,7 +496,7 @@ def return_difference_min(A: np.ndarray, B: np.ndarray, G: np.ndarray) -> float:
 def diagonal_weights_for_gain(A: np.ndarray, B: np.ndarray, G: np.ndarray,  # noqa: N803
                               R: float = 1.0) -> tuple[np.ndarray, np.ndarray]:
     """The only diagonal ``Q`` (and its ``P``) for which a SISO gain ``G`` solves the LQR
-    equations (inverse LQR, 004 (6.7)-(6.10) read backwards).
+    equations (inverse LQR, Huang (1992) (6.7)-(6.10) read backwards).
 
     With ``R B^T P = G`` the Riccati equation ``A^T P + P A - P B R^{-1} B^T P + Q = 0`` becomes
     linear in ``(P, Q)``: ``A^T P + P A + Q = G^T R G``. For ``n`` states that is
@@ -552,7 +552,7 @@ def tradeoff_curve(a: float, b: float, q_values: np.ndarray, t: np.ndarray, x0: 
 
 def tradeoff_data(a: float, b: float, K: float, tau: float, t: np.ndarray, x0: np.ndarray,
                   q_values: np.ndarray | None = None) -> dict:
-    """Trade-off data of 004 Figs. 6.18-6.19 for ``Q = diag(q, 0, 0)``, ``R = 1``.
+    """Trade-off data of Huang (1992) Figs. 6.18-6.19 for ``Q = diag(q, 0, 0)``, ``R = 1``.
 
     The undelayed design on the undelayed plant and the Taylor and Pade designs on the true
     delayed plant. Returns ``{label: array of rows [J_w, J_d, J_v, J_c]}`` over the stable

@@ -1,13 +1,13 @@
 """Model predictive control of the heave compensator in CasADi (issue 4, item 4).
 
-Prediction model: the assembled plant (004 eq. (6.28), or the regulator plant (6.6)) sampled
+Prediction model: the assembled plant (Huang 1992, eq. (6.28), or the regulator plant (6.6)) sampled
 exactly (ZOH) at ``h``, with the winch-command delay ``tau = d h`` as an **exact shift register**
 of the last ``d`` commands: ``z = [x; u0_{k-d}, ..., u0_{k-1}]``
 (:func:`cable_ocp.heave.discrete.discretize_delayed`). The cost is the continuous LQR cost
 ``int (q x^2 + r u0^2) dt`` sampled exactly, with the DARE solution as terminal cost, so that
 without active constraints and delay the MPC reproduces the discrete LQR.
 
-Limits (CONVENTIONS, "Heave compensation"):
+Limits (docs/conventions.md, "Heave compensation"):
 
 * hard: stroke ``|u| <= stroke_max`` and winch speed ``|u'| <= speed_max`` for either winch. For
   the first-order winch (6.1) with a held command, ``u`` moves monotonically between samples and
@@ -722,7 +722,7 @@ class _NonlinearMPC:
     the same penalties. With the linear unit (6.2) the shooting constraints are the exact ZOH
     model ``z_{k+1} = Ad z_k + Bd u0_k + Ed D_k``, so the NLP *is* the QP (same minimiser; a
     test checks the closed-loop moves agree). If ``nonlinear_b > 0`` the plant part is
-    integrated with RK4 (2 substeps per sample) with the unit's damping ``b |x'| x'`` (004
+    integrated with RK4 (2 substeps per sample) with the unit's damping ``b |x'| x'`` (Huang (1992)
     eq. (6.3), smoothed as ``b x' sqrt(x'^2 + 1e-6)``) instead.
     """
 

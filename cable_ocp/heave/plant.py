@@ -1,9 +1,10 @@
-"""State-space blocks of the heave-compensation plant and their assembly (004 section 6.2-6.3).
+"""State-space blocks of the heave-compensation plant and their assembly (Huang 1992, section
+6.2-6.3).
 
 Blocks (python-control ``StateSpace`` with named signals, composed by ``control.interconnect``):
 
 =====================  ==================================  ==========================
-block                  equation (004)                      signals (in -> out)
+block                  equation (Huang (1992))                      signals (in -> out)
 =====================  ==================================  ==========================
 :func:`unit_block`     (6.2)/(6.4) ``a x'' + b x' + x =    ``x0, u -> x, x_dot,
                        x0 + u``                            stretch``
@@ -37,7 +38,8 @@ from cable_ocp.errors import CableOCPError
 
 
 def unit_block(a: float, b: float) -> ct.StateSpace:
-    """Linear cable/subsea-unit model (004 eq. (6.2), with the winch output added as in (6.4)).
+    """Linear cable/subsea-unit model (Huang 1992, eq. (6.2), with the winch output added as in
+    (6.4)).
 
     Parameters
     ----------
@@ -63,7 +65,7 @@ def unit_block(a: float, b: float) -> ct.StateSpace:
 
 
 def winch_first(K: float) -> ct.StateSpace:
-    """First-order winch (004 eqs. (6.1), (6.5), (6.12)): ``u' + K u = K u0d``.
+    """First-order winch (Huang 1992, eqs. (6.1), (6.5), (6.12)): ``u' + K u = K u0d``.
 
     Parameters
     ----------
@@ -84,8 +86,8 @@ def winch_first(K: float) -> ct.StateSpace:
 def winch_second(omega: float, zeta: float) -> ct.StateSpace:
     """Second-order winch ``u'' + 2 zeta omega u' + omega^2 u = omega^2 u0d``.
 
-    Section 6.5 of 004 recommends a second-order winch without giving an equation; this form
-    is the one settled in CONVENTIONS ("Heave compensation").
+    Section 6.5 of Huang (1992) recommends a second-order winch without giving an equation; this
+    form is the one settled in docs/conventions.md ("Heave compensation").
 
     Parameters
     ----------
@@ -119,9 +121,10 @@ def delay_block(kind: str, tau: float, order: int = 2) -> ct.StateSpace:
     ----------
     kind : {"none", "taylor", "pade"}
         ``"none"``: ``u0d = u0`` (no delay, or the delay is handled elsewhere, e.g. exactly in
-        discrete time). ``"taylor"``: the thesis' second-order Taylor model (004 eq. (6.13)),
-        ``y'' = 2/tau^2 (u0 - y) - 2/tau y'``, i.e. ``1/(1 + tau s + tau^2 s^2 / 2)``, with states
-        ``[u0(t - tau), u0'(t - tau)]`` as in (6.14). ``"pade"``: ``control.pade(tau, order)``.
+        discrete time). ``"taylor"``: the thesis' second-order Taylor model (Huang 1992, eq.
+        (6.13)), ``y'' = 2/tau^2 (u0 - y) - 2/tau y'``, i.e. ``1/(1 + tau s + tau^2 s^2 / 2)``, with
+        states ``[u0(t - tau), u0'(t - tau)]`` as in (6.14). ``"pade"``: ``control.pade(tau,
+        order)``.
     tau : float
         Delay, s (>= 0; 0 gives the identity for every kind).
     order : int
@@ -154,7 +157,7 @@ def delay_block(kind: str, tau: float, order: int = 2) -> ct.StateSpace:
 
 
 def vessel_block(omega_v: float, zeta_v: float, gain: float) -> ct.StateSpace:
-    """Boom-tip heave filter (004 eqs. (6.25)-(6.26)).
+    """Boom-tip heave filter (Huang 1992, eqs. (6.25)-(6.26)).
 
     ``x0'' + 2 zeta_v omega_v x0' + omega_v^2 x0 = K_v omega_v^2 eta`` in the realisation (6.26):
     ``A_b = [[0, 1], [-w^2, -2 z w]]``, ``B_b = [0, 1]^T``, ``C_b = [K_v w^2, 0]``.
@@ -194,8 +197,8 @@ class HeavePlant:
     ----------
     sys : control.StateSpace
         Inputs ``["u0", d]`` with ``d = "w"`` (unit white noise into the sea filter) or ``"x0"``
-        (boom-tip motion as an exogenous signal, the regulator of 004 (6.6)/(6.14)); outputs
-        ``["x", "x_dot", "stretch", "u", "u_dot", ("u_ddot",) "x0"]``.
+        (boom-tip motion as an exogenous signal, the regulator of Huang (1992) (6.6)/(6.14));
+        outputs ``["x", "x_dot", "stretch", "u", "u_dot", ("u_ddot",) "x0"]``.
     blocks : dict
         Slices of the state vector per block: ``"unit"``, ``"winch"``, ``"delay"``, ``"vessel"``,
         ``"sea"``.
@@ -254,7 +257,8 @@ def assemble_plant(
     vessel: ct.StateSpace | None = None,
     sea: ct.StateSpace | None = None,
 ) -> HeavePlant:
-    """Assemble the plant from blocks (004 eq. (6.28) when ``vessel`` and ``sea`` are given).
+    """Assemble the plant from blocks (Huang 1992, eq. (6.28) when ``vessel`` and ``sea`` are
+    given).
 
     Parameters
     ----------

@@ -1,6 +1,6 @@
-"""Sea-wave spectra and rational shaping filters (004 section 6.3.1, eqs. (6.19)-(6.23)).
+"""Sea-wave spectra and rational shaping filters (Huang 1992, section 6.3.1, eqs. (6.19)-(6.23)).
 
-Conventions (``/work/shared/CONVENTIONS.md``, "Heave compensation"):
+Conventions (docs/conventions.md, "Heave compensation"):
 
 * Spectra are **one-sided** in angular frequency: the wave-elevation variance is
   ``m0 = integral_0^inf S(w) dw`` (m^2), and ``S`` is in m^2 s/rad.
@@ -34,7 +34,7 @@ THESIS_SECTION_DAMPING_2ZETA = 1.414
 
 
 def bretschneider(omega: np.ndarray, hs: float, omega_m: float) -> np.ndarray:
-    """Bretschneider spectrum (004 eq. (6.20), standard ``omega_m**4`` form).
+    """Bretschneider spectrum (Huang 1992, eq. (6.20), standard ``omega_m**4`` form).
 
     Parameters
     ----------
@@ -187,7 +187,7 @@ def second_order_sections(omegas: np.ndarray, two_zetas: np.ndarray, gain: float
 
 
 def thesis_shaping_filter(hs: float, omega_m: float) -> ct.StateSpace:
-    """The thesis' sixth-order shaping filter (004 eqs. (6.21)-(6.23)).
+    """The thesis' sixth-order shaping filter (Huang 1992, eqs. (6.21)-(6.23)).
 
     ``S_0 = 1.25/(4 omega_m) Hs^2 1.8861``, ``omega_0 = 0.9538 omega_m``, three sections with
     ``2 zeta = 1.414``; ``|H(i w)|^2 = S_0 (w/w0)^4 / (1 + (w/w0)^4)^3`` (6.21).

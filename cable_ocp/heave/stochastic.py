@@ -1,6 +1,6 @@
-"""Stochastic analysis and design (004 section 6.3): variances, LQG, winch-gain study.
+"""Stochastic analysis and design (Huang 1992, section 6.3): variances, LQG, winch-gain study.
 
-Variance convention (CONVENTIONS, "Heave compensation"): for ``x' = A0 x + B2 w`` with ``w``
+Variance convention (docs/conventions.md, "Heave compensation"): for ``x' = A0 x + B2 w`` with ``w``
 white noise of unit **one-sided** spectral density,
 
     sigma^2 = pi * C P C^T = integral_0^inf |H(i w)|^2 dw,     A0 P + P A0^T + B2 B2^T = 0,
@@ -31,7 +31,7 @@ WHITE_NOISE_INTENSITY = np.pi
 
 
 def state_covariance(A0: np.ndarray, B2: np.ndarray) -> np.ndarray:  # noqa: N803
-    """Solution ``P`` of the Lyapunov equation (004 eq. (6.31)) as printed (unit intensity).
+    """Solution ``P`` of the Lyapunov equation (Huang 1992, eq. (6.31)) as printed (unit intensity).
 
     Raises
     ------
@@ -95,7 +95,7 @@ def output_variance_spectral(A0: np.ndarray, B2: np.ndarray, C: np.ndarray,  # n
 
 def lqr_continuous(A: np.ndarray, B: np.ndarray, Q: np.ndarray, R: np.ndarray  # noqa: N803
                    ) -> np.ndarray:
-    """Continuous LQR gain ``G`` (``u0 = -G x``, 004 (6.10)/(6.30)) via ``control.lqr``."""
+    """Continuous LQR gain ``G`` (``u0 = -G x``, Huang (1992) (6.10)/(6.30)) via ``control.lqr``."""
     G, _, _ = ct.lqr(A, B, Q, R)
     return np.asarray(G)
 
@@ -113,7 +113,7 @@ class StochasticDesign:
     sigma_uncontrolled : float
         Open-loop value, m.
     energy_index : float
-        ``sqrt(sum G_i^2)`` (004 section 6.3.5).
+        ``sqrt(sum G_i^2)`` (Huang 1992, section 6.3.5).
     reduction_pct : float
         ``100 (1 - sigma / sigma_uncontrolled)``.
     closed_loop_poles : numpy.ndarray
@@ -130,7 +130,7 @@ class StochasticDesign:
 
 def stochastic_lqr(A: np.ndarray, B1: np.ndarray, B2: np.ndarray, c_x: np.ndarray,  # noqa: N803
                    q: float, r: float = 1.0) -> StochasticDesign:
-    """Full-state LQR with ``Q = q c_x^T c_x``, ``R = r`` (004 (6.29)-(6.31)).
+    """Full-state LQR with ``Q = q c_x^T c_x``, ``R = r`` (Huang 1992, (6.29)-(6.31)).
 
     Parameters
     ----------
@@ -237,7 +237,8 @@ def lqg_closed_loop_sigma(A: np.ndarray, B1: np.ndarray, B2: np.ndarray,  # noqa
 
 def winch_gain_study(build: Callable[[float], HeavePlant], K_values: np.ndarray,  # noqa: N803
                      sigma_target: float, r: float = 1.0) -> list[tuple[float, float, float]]:
-    """Energy index versus winch gain ``K`` at a prescribed sigma (004 section 6.3.5, Fig. 6.25).
+    """Energy index versus winch gain ``K`` at a prescribed sigma (Huang 1992, section 6.3.5, Fig.
+    6.25).
 
     Parameters
     ----------

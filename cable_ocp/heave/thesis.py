@@ -1,4 +1,4 @@
-"""Numbers printed in 004 chapter 6, with where they come from.
+"""Numbers printed in Huang (1992) chapter 6, with where they come from.
 
 Only values the thesis prints live here; chosen values (limits, noise, weights) live in the
 problem files ``problems/heave/*.toml`` with their justification.

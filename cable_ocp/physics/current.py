@@ -1,7 +1,7 @@
 """Current velocity as a function of height z (CasADi expression).
 
 A profile is interpolated linearly in the horizontal velocity components between its
-knots and held constant beyond the first and last knot (CONVENTIONS.md, "Frame and scene
+knots and held constant beyond the first and last knot (docs/conventions.md, "Frame and scene
 files"): a current that reverses with depth passes through zero, not through a cross-flow.
 """
 

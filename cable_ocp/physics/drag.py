@@ -2,7 +2,7 @@
 
 Two laws, selected per problem by ``cable.drag_law``:
 
-``vector`` (independence principle; 004 eqs (2.46)-(2.47))
+``vector`` (independence principle; Huang (1992) eqs (2.46)-(2.47))
     The relative flow U is split into its tangential part U_t = (U . t) t and its normal
     part U_n = U - U_t; the load per unit length is
 
@@ -10,8 +10,9 @@ Two laws, selected per problem by ``cable.drag_law``:
 
     Rotation invariant.
 
-``componentwise`` (Wang, Cheong & Chucheepsakul 1993; 000 eqs (4)-(6), Wilson's model)
-    With e_b = e_z x t / |e_z x t| and e_n = t x e_b (CONVENTIONS.md, "Drag"), the normal
+``componentwise`` (Wang, Cheong & Chucheepsakul 1993; Wang et al. (1993) eqs (4)-(6), Wilson's
+model)
+    With e_b = e_z x t / |e_z x t| and e_n = t x e_b (docs/conventions.md, "Drag"), the normal
     flow is split along e_b and e_n and each component is squared with its own sign:
 
         f = 1/2 rho C_n D (|U.e_b| (U.e_b) e_b + |U.e_n| (U.e_n) e_n) + tangential as above.

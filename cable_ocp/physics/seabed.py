@@ -3,7 +3,7 @@
 The cable leaves an anchor on the seabed (end_a), lies on the plane for a grounded length
 g, and lifts off at the touchdown point (TDP), where it is tangent to the seabed:
 T(TDP) . n = 0 with n the plane's unit normal. On the seabed the cable carries no current
-load (it lies in the boundary layer; CONVENTIONS "Seabed") and no lateral load resists
+load (it lies in the boundary layer; docs/conventions.md "Seabed") and no lateral load resists
 it, so the grounded part is straight, from the anchor towards the TDP along e = T/|T|.
 
 Axial tension along the grounded part, with s' measured from the anchor (0 <= s' <= g):

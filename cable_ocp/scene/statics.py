@@ -11,7 +11,7 @@ Schema (all values SI; the README repeats this with examples)::
     [layout]                     optional conveniences
     psi0_deg = 90.0              rotate end_b about the vertical through end_a to this
                                  bearing (deg from +x towards +y), keeping its horizontal
-                                 distance and height (De Zoysa's psi0, 000 eq. (28))
+                                 distance and height (De Zoysa's psi0, Wang et al. (1993) eq. (28))
     [environment]
     water_depth = 183.0          m; the free surface is at z = water_depth, seabed at z = 0
     water_density = 1021.0       kg/m^3
@@ -24,15 +24,13 @@ Schema (all values SI; the README repeats this with examples)::
     heading_deg = 0.0            deg, direction the water flows TO, from +x towards +y
     profile = [[z, speed, heading_deg], ...]   ... or a depth profile (m, m/s, deg),
                                  interpolated linearly in the velocity components
-    [cable]
-    length = 305.0               m (unstretched), or "free" with a prescribed end tension
-    diameter = 0.023             m, hydrodynamic diameter
-    weight_in_water = 12.3       N/m (per unstretched length)
-    axial_stiffness = 1.0e9      N (EA); omit or "inf" for an inextensible cable
-    normal_drag = 1.0            C_n (-)
-    tangential_drag = 0.005      C_t (-), acts on the wetted perimeter pi*D
-    drag_law = "vector"          "vector" (independence principle) | "componentwise" (000)
-    [[cable.segments]]           optional multi-segment line, listed from end_a to end_b;
+    [cable] length = 305.0               m (unstretched), or "free" with a prescribed end tension
+    diameter = 0.023             m, hydrodynamic diameter weight_in_water = 12.3       N/m (per
+    unstretched length) axial_stiffness = 1.0e9      N (EA); omit or "inf" for an inextensible cable
+    normal_drag = 1.0            C_n (-) tangential_drag = 0.005      C_t (-), acts on the wetted
+    perimeter pi*D drag_law = "vector"          "vector" (independence principle) | "componentwise"
+    (Wang et al. (1993)) [[cable.segments]]           optional multi-segment line, listed from end_a
+    to end_b;
                                  each with length, diameter, weight_in_water,
                                  axial_stiffness, normal_drag, tangential_drag (as above)
                                  and optional intervals (collocation intervals) and
@@ -55,7 +53,7 @@ Schema (all values SI; the README repeats this with examples)::
 At each end and for each of x, y, z exactly one of ``position`` and ``force`` gives a
 number: a fixed end gives ``position`` only, a free (towed) end ``force`` only, a
 mooring end mixes them, e.g. ``position = ["free", "free", 100.0]`` with
-``force = [2000.0, 0.0, "free"]`` (004 eqs (2.12)-(2.15)).
+``force = [2000.0, 0.0, "free"]`` (Huang 1992, eqs (2.12)-(2.15)).
 
 Force sign example: a towed body whose drag is 500 N along -x and whose weight in water
 is 2 kN hangs at end_a: ``force = [-500.0, 0.0, -2000.0]``. At equilibrium the cable
@@ -164,7 +162,7 @@ class SolverOptions:
 
 @dataclass(frozen=True)
 class Footprint:
-    """Footprint problem settings (``[footprint]``; 004 section 2.2.4, type 4).
+    """Footprint problem settings (``[footprint]``; Huang (1992) section 2.2.4, type 4).
 
     The subsea unit is end_a, resting on the seabed (its z fixed, x and y free), pushed by
     its thrusters (the external load ``end_a.force`` x, y); the ship is end_b, fixed.
@@ -177,7 +175,7 @@ class Footprint:
         Smallest cable length considered, m.
     bound : str
         ``"magnitude"`` (default: |T_h| <= thrust_max) or ``"components"`` (|T_x| <=
-        thrust_x_max, |T_y| <= thrust_y_max, symmetric; CONVENTIONS "Footprint").
+        thrust_x_max, |T_y| <= thrust_y_max, symmetric; docs/conventions.md "Footprint").
     thrust_max, thrust_x_max, thrust_y_max : float
         Thrust limits, N.
     """

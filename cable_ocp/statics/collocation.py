@@ -18,12 +18,14 @@ position, tension jump by the body load) replace the continuity across the joint
 
 Accuracy at the mesh points: order 2d for Gauss-Legendre and 2d - 1 for Radau, for
 smooth solutions (the |u|u drag kink where a flow component changes sign lowers it;
-CONVENTIONS "Reading the seeds").
+docs/conventions.md, "Reading the sources").
 """
 
 from __future__ import annotations
 
+import functools
 import math
+from collections.abc import Callable
 from dataclasses import dataclass, replace
 
 import casadi as ca
@@ -39,6 +41,7 @@ from cable_ocp.statics.formulation import (
     P_TENSION,
     Formulation,
 )
+from cable_ocp.statics.newton import Block, residual_function
 
 
 def segment_intervals(scene: Scene, intervals: int) -> tuple[int, ...]:
@@ -60,22 +63,52 @@ def segment_intervals(scene: Scene, intervals: int) -> tuple[int, ...]:
     return tuple(max(1, math.floor(b * factor + 0.5)) for b in base)
 
 
-def _lagrange_matrices(tau: list[float]) -> tuple[np.ndarray, np.ndarray]:
-    """Derivative matrix C (C[j, r] = dl_j/dtau at tau_r) and end weights D."""
-    pts = [0.0, *tau]
+@functools.lru_cache(maxsize=32)
+def _lagrange_matrices(tau: tuple[float, ...]) -> tuple[np.ndarray, np.ndarray]:
+    """Derivative matrix C (C[j, r] = dl_j/dtau at tau_r) and end weights D of the Lagrange
+    basis l_0 .. l_d through tau_0 = 0 and the d collocation points.
+
+    Closed forms, no polynomial arithmetic: l_j(x) = prod_{m != j} (x - t_m) / (t_j - t_m),
+    l_j'(t_r) = (1 / (t_j - t_r)) prod_{m != j, r} (t_r - t_m) / (t_j - t_m) for r != j,
+    and l_j'(t_j) = sum_{m != j} 1 / (t_j - t_m). Cached: constants of the scheme."""
+    pts = np.array([0.0, *tau])
     d = len(tau)
     cmat = np.zeros((d + 1, d + 1))
     dvec = np.zeros(d + 1)
     for j in range(d + 1):
-        coeff = np.poly1d([1.0])
+        others = [m for m in range(d + 1) if m != j]
+        dvec[j] = np.prod([(1.0 - pts[m]) / (pts[j] - pts[m]) for m in others])
         for r in range(d + 1):
-            if r != j:
-                coeff *= np.poly1d([1.0, -pts[r]]) / (pts[j] - pts[r])
-        dvec[j] = coeff(1.0)
-        der = np.polyder(coeff)
-        for r in range(d + 1):
-            cmat[j, r] = der(pts[r])
+            if r == j:
+                cmat[j, r] = sum(1.0 / (pts[j] - pts[m]) for m in others)
+            else:
+                cmat[j, r] = np.prod([(pts[r] - pts[m]) / (pts[j] - pts[m])
+                                      for m in others if m != r]) / (pts[j] - pts[r])
+    cmat.setflags(write=False)
+    dvec.setflags(write=False)
     return cmat, dvec
+
+
+@functools.lru_cache(maxsize=64)
+def _mesh_sigma(mesh: Mesh) -> np.ndarray:
+    """:meth:`Mesh.sigma`, cached per mesh (read-only)."""
+    if mesh.segments:
+        parts = []
+        for k, n in enumerate(mesh.segments):
+            lo, hi = mesh.bounds[k], mesh.bounds[k + 1]
+            local = _mesh_sigma(replace(mesh, intervals=n, segments=(), bounds=()))
+            parts.append(lo + (hi - lo) * local)
+        out = np.concatenate(parts)
+    else:
+        h = 1.0 / mesh.intervals
+        pts: list[float] = []
+        for k in range(mesh.intervals):
+            pts.append(k * h)
+            pts.extend(k * h + h * t for t in mesh.tau)
+        pts.append(1.0)
+        out = np.asarray(pts)
+    out.setflags(write=False)
+    return out
 
 
 @dataclass(frozen=True)
@@ -108,21 +141,8 @@ class Mesh:
     def sigma(self) -> np.ndarray:
         """sigma of every state node, in unknown order (not sorted for Radau: the last
         collocation point of an interval coincides with the next interval start; a joint
-        between segments appears twice)."""
-        if self.segments:
-            parts = []
-            for k, n in enumerate(self.segments):
-                lo, hi = self.bounds[k], self.bounds[k + 1]
-                local = replace(self, intervals=n, segments=(), bounds=()).sigma()
-                parts.append(lo + (hi - lo) * local)
-            return np.concatenate(parts)
-        h = 1.0 / self.intervals
-        out = []
-        for k in range(self.intervals):
-            out.append(k * h)
-            out.extend(k * h + h * t for t in self.tau)
-        out.append(1.0)
-        return np.asarray(out)
+        between segments appears twice). A new array (computed once per mesh)."""
+        return _mesh_sigma(self).copy()
 
     def mesh_index(self) -> np.ndarray:
         """Indices of the mesh points (interval ends) among the state nodes."""
@@ -161,7 +181,26 @@ class Collocation:
             bounds = (*bounds[:-1], 1.0)
         self.mesh = Mesh(intervals, degree, scheme, tuple(float(t) for t in tau), segs, bounds)
         self._setup(grounded)
-        self.residual = self._build()
+
+    # the residual and its block description are built on first use: a solver whose
+    # functions come from the on-disk cache never builds them
+    @property
+    def residual(self) -> ca.Function:
+        """``G(w, p) -> g``, the collocated equations (scaled)."""
+        if self._residual is None:
+            self._residual = self._build()
+        return self._residual
+
+    @residual.setter
+    def residual(self, fn: ca.Function) -> None:
+        self._residual = fn
+
+    @property
+    def blocks(self) -> list[Block]:
+        """The residual as blocks (:mod:`cable_ocp.statics.newton`)."""
+        if self._blocks is None:
+            self._blocks = self._make_blocks()
+        return self._blocks
 
     def _setup(self, grounded: bool) -> None:
         """Unknown layout: node states, then lam (free length), then g (grounded)."""
@@ -172,6 +211,9 @@ class Collocation:
         self.i_lam = self.n_x if self.free_length else None
         self.i_g = self.n_x + (1 if self.free_length else 0) if grounded else None
         self.n_w = self.n_x + (1 if self.free_length else 0) + (1 if grounded else 0)
+        self._residual: ca.Function | None = None
+        self._blocks: list[Block] | None = None
+        self._block_fns: list[ca.Function] | None = None
 
     def _lengths(self, w: ca.MX, p: ca.MX) -> tuple[ca.MX, ca.MX | float]:
         """Scaled length of the collocated (suspended) part and scaled grounded length."""
@@ -193,68 +235,224 @@ class Collocation:
         return bc
 
     def _build(self) -> ca.Function:
-        if self.mesh.segments:
-            return self._build_segmented()
-        n, d = self.mesh.intervals, self.mesh.degree
-        w = ca.MX.sym("w", self.n_w)
-        p = ca.MX.sym("p", len(self.form.params()))
-        lam, g_len = self._lengths(w, p)
-        xs = ca.reshape(w[: self.n_x], self.nx, self.mesh.n_nodes)
-        # interval blocks: columns k*(d+1) .. k*(d+1)+d, one column per interval
-        blocks = ca.reshape(xs[:, : n * (d + 1)], self.nx * (d + 1), n)
-        interval = self._interval_function(self.form.rhs, 1.0 / n)
-        coll_all, xend_all = interval.map(n)(blocks, lam, p[P_CURRENT])
-        starts = ca.horzcat(*[xs[:, (k + 1) * (d + 1)] for k in range(n)])
-        cont = ca.vec(xend_all - starts)
-        bc = self._boundary(xs[:, 0], xs[:, -1], g_len, p)
-        gexpr = ca.vertcat(ca.vec(coll_all), cont, *bc)
-        return ca.Function("G", [w, p], [gexpr], ["w", "p"], ["g"])
+        return residual_function(self.blocks, self.n_w, len(self.form.params()))
 
-    def _interval_function(self, rhs: ca.Function, h: float) -> ca.Function:
-        """Collocation residuals and end state of one interval of width h (sigma).
+    def _interval_block(self, rhs: ca.Function, h: float, fraction: float | None,
+                        with_g: bool) -> tuple[ca.Function, ca.Function]:
+        """One interval of width h (sigma): ``(z, p) -> [collocation residuals; x_end -
+        x_next]`` with z = [x_k, x_k^1 .. x_k^d, x_next, (lam | g)], and ``(z, p) -> (r,
+        dr/dz)``.
 
-        The residuals are in derivative units (divided by h), so that one residual
-        tolerance means the same accuracy on every mesh."""
+        The collocation residuals are in derivative units (divided by h), so that one
+        residual tolerance means the same accuracy on every mesh. The scaled length of the
+        interval's segment is lam = z[-1] (free length), else p[P_LENGTH] (times
+        ``fraction`` on a multi-segment line) less the grounded length g = z[-1] when
+        ``with_g``.
+
+        The Jacobian by the chain rule: r is linear in the node states and in the
+        right-hand side values f_j = f(x_k^j, lam), so dr/dz = (the constant part) +
+        sum_j dr/df_j (df/d(x, lam) at x_k^j) d(x_k^j, lam)/dz, with df/d(x, lam) the
+        right-hand side's own small Jacobian (cheaper to build than differentiating the
+        whole interval)."""
         d, nx = self.mesh.degree, self.nx
-        cmat, dvec = _lagrange_matrices(list(self.mesh.tau))
-        xk = ca.MX.sym("xk", nx * (d + 1))
-        lam_s = ca.MX.sym("lam")
-        cs_s = ca.MX.sym("cs")
+        cmat, dvec = _lagrange_matrices(self.mesh.tau)
+        has_tail = self.free_length or with_g
+        n_z = nx * (d + 2) + (1 if has_tail else 0)
+        z = ca.SX.sym("z", n_z)
+        p = ca.SX.sym("p", len(self.form.params()))
+        xk = z[: nx * (d + 1)]
+        x_next = z[nx * (d + 1): nx * (d + 2)]
+        if self.free_length:
+            lam, dlam = z[-1], 1.0
+        else:
+            lam = p[P_LENGTH] if fraction is None else p[P_LENGTH] * fraction
+            dlam = 0.0
+            if with_g:
+                lam, dlam = lam - z[-1], -1.0
         xcols = ca.reshape(xk, nx, d + 1)
-        fx = rhs.map(d)(xcols[:, 1:], lam_s, cs_s)
-        coll = [fx[:, j - 1] - ca.mtimes(xcols, ca.DM(cmat[:, j])) / h for j in range(1, d + 1)]
-        x_end = ca.mtimes(xcols, ca.DM(dvec))
-        return ca.Function("interval", [xk, lam_s, cs_s], [ca.vertcat(*coll), x_end]).expand()
+        # the right-hand side and its Jacobian in (x, lam) at the collocation points
+        xs_, lam_s, cs_s = ca.SX.sym("x", nx), ca.SX.sym("lam"), ca.SX.sym("cs")
+        f_s = rhs(xs_, lam_s, cs_s)
+        rhs_jac = ca.Function("rhs_jac", [xs_, lam_s, cs_s],
+                              [f_s, ca.jacobian(f_s, ca.vertcat(xs_, lam_s))])
+        fx, jx = [], []
+        for j in range(1, d + 1):
+            fj, jj = rhs_jac(xcols[:, j], lam, p[P_CURRENT])
+            fx.append(fj)
+            jx.append(jj)
+        coll = [fx[j - 1] - ca.mtimes(xcols, ca.DM(cmat[:, j].tolist())) / h
+                for j in range(1, d + 1)]
+        x_end = ca.mtimes(xcols, ca.DM(dvec.tolist()))
+        r = ca.vertcat(*coll, x_end - x_next)
+        fn = ca.Function("interval", [z, p], [r])
+        # constant part of dr/dz: -C[i, j]/h on the collocation rows, D_i and -1 on the
+        # last rows (sparse DMs built from lists: numpy-to-DM conversion is slow)
+        nr = nx * (d + 1)
+        rows, cols, vals = [], [], []
+        for j in range(1, d + 1):
+            for i in range(d + 1):
+                rows += range((j - 1) * nx, j * nx)
+                cols += range(i * nx, (i + 1) * nx)
+                vals += [float(-cmat[i, j] / h)] * nx
+        for i in range(d + 1):
+            rows += range(d * nx, (d + 1) * nx)
+            cols += range(i * nx, (i + 1) * nx)
+            vals += [float(dvec[i])] * nx
+        rows += range(d * nx, (d + 1) * nx)
+        cols += range((d + 1) * nx, (d + 2) * nx)
+        vals += [-1.0] * nx
+        order = sorted(range(len(rows)), key=lambda k: (cols[k], rows[k]))  # CCS order
+        jac = ca.SX(ca.DM(ca.Sparsity.triplet(nr, n_z, rows, cols), [vals[k] for k in order]))
+        tail_col = has_tail and dlam != 0.0
+        for j in range(1, d + 1):
+            # rows of coll_j; columns of x_k^j and of the tail
+            put = ca.DM(ca.Sparsity.triplet(nr, nx, list(range((j - 1) * nx, j * nx)),
+                                            list(range(nx))), [1.0] * nx)
+            sel = ca.DM(ca.Sparsity.triplet(
+                nx + 1, n_z, list(range(nx)) + ([nx] if tail_col else []),
+                list(range(j * nx, (j + 1) * nx)) + ([n_z - 1] if tail_col else [])),
+                [1.0] * nx + ([dlam] if tail_col else []))
+            jac = jac + ca.mtimes(ca.mtimes(put, jx[j - 1]), sel)
+        jac_fn = ca.Function("interval_jac", [z, p], [r, jac])
+        return fn, jac_fn
 
-    def _build_segmented(self) -> ca.Function:
-        """Residual of a multi-segment line: per segment, collocation on its own share of
-        sigma (local variable in [0, 1], scaled length lam_k = L_k / ell, minus the
-        grounded length on the first); joint conditions between segments."""
-        d, form, nx = self.mesh.degree, self.form, self.nx
-        w = ca.MX.sym("w", self.n_w)
-        p = ca.MX.sym("p", len(form.params()))
-        g_len = w[self.i_g] if self.grounded else 0.0
-        xs = ca.reshape(w[: self.n_x], nx, self.mesh.n_nodes)
+    def _interval_rows(self, n: int, coll0: int, cont0: int) -> np.ndarray:
+        """Rows of G of the n intervals of one segment: collocation rows from ``coll0``,
+        continuity rows from ``cont0`` (rows in the order of the unscaled build)."""
+        d, nx = self.mesh.degree, self.nx
+        k = np.arange(n)
+        coll = coll0 + k[None, :] * nx * d + np.arange(nx * d)[:, None]
+        cont = cont0 + k[None, :] * nx + np.arange(nx)[:, None]
+        return np.vstack([coll, cont])
+
+    def _interval_index(self, n: int, node0: int, tail: int | None) -> np.ndarray:
+        """w indices of z of the n intervals of a segment whose first node is ``node0``."""
+        d, nx = self.mesh.degree, self.nx
+        k = np.arange(n)
+        first = (node0 + k * (d + 1)) * nx  # first unknown of each interval block
+        idx = first[None, :] + np.arange(nx * (d + 2))[:, None]
+        if tail is not None:
+            idx = np.vstack([idx, np.full((1, n), tail)])
+        return idx
+
+    def block_functions(self) -> list[ca.Function]:
+        """The blocks' SX functions, ``[f_0, jac_0, f_1, jac_1, ...]`` in block order
+        (what the on-disk cache stores: their size does not grow with the mesh)."""
+        if self._block_fns is None:
+            self._block_fns = [f for b in self.blocks for f in (b.fn, b.jac)]
+        return self._block_fns
+
+    def set_block_functions(self, fns: list[ca.Function]) -> bool:
+        """Use stored block functions (from :meth:`block_functions` of a collocation of
+        the same structure and mesh) instead of building them; False (and nothing
+        changed) when they do not fit this layout."""
+        try:
+            blocks = self._make_blocks(fns)
+        except (ValueError, IndexError, RuntimeError):
+            return False
+        self._blocks, self._block_fns = blocks, list(fns)
+        return True
+
+    def _make_blocks(self, fns: list[ca.Function] | None = None) -> list[Block]:
+        """The residual as blocks: one mapped interval block per segment, the joints and
+        the end conditions; rows in the order collocation, continuity (per segment),
+        joints, end conditions. With ``fns`` (from :meth:`block_functions`), no function
+        is built: the layout is checked against them."""
+        d, nx, form = self.mesh.degree, self.nx, self.form
+        n_p = len(form.params())
+        tail = self.i_lam if self.free_length else self.i_g
+        given = iter(fns) if fns is not None else None
+        blocks: list[Block] = []
+
+        def add(make: Callable[[], tuple[ca.Function, ca.Function]], idx: np.ndarray,
+                rows: Callable[[int], np.ndarray]) -> int:
+            if given is None:
+                fn, jac = make()
+            else:
+                fn, jac = next(given), next(given)
+                if fn.size1_in(0) != idx.shape[0] or fn.size1_in(1) != n_p \
+                        or jac.size1_out(0) != fn.size1_out(0) \
+                        or jac.size_out(1) != (fn.size1_out(0), idx.shape[0]):
+                    raise ValueError("stored block functions do not fit this layout")
+            nr = fn.size1_out(0)
+            blocks.append(Block(fn, idx, rows(nr), jac))
+            return nr
+
+        segs = self.mesh.segments or (self.mesh.intervals,)
         offs = self.mesh.segment_offsets()
-        res, joints = [], []
-        for k, n in enumerate(self.mesh.segments):
-            lam = p[P_LENGTH] * form.fractions[k] - (g_len if k == 0 else 0.0)
-            seg = xs[:, offs[k]: offs[k + 1]]
-            blocks = ca.reshape(seg[:, : n * (d + 1)], nx * (d + 1), n)
-            interval = self._interval_function(form.rhs_list[k], 1.0 / n)
-            coll_all, xend_all = interval.map(n)(blocks, lam, p[P_CURRENT])
-            starts = ca.horzcat(*[seg[:, (i + 1) * (d + 1)] for i in range(n)])
-            res += [ca.vec(coll_all), ca.vec(xend_all - starts)]
-            x_prev = xs[:, offs[k] - 1] if k > 0 else None
-            if k > 0:
-                x_end, x_start = x_prev, xs[:, offs[k]]
-                load = form.joint_loads[k - 1](x_end[0:NX], p[P_CURRENT])
-                joints += [x_start[0:3] - x_end[0:3], x_start[3:6] - (x_end[3:6] - load)]
-            joints += form.bending_joint_residual(k, x_prev, xs[:, offs[k]],
-                                                  xs[:, offs[k + 1] - 1])
-        bc = self._boundary(xs[:, 0], xs[:, -1], g_len, p)
-        gexpr = ca.vertcat(*res, *joints, *bc)
-        return ca.Function("G", [w, p], [gexpr], ["w", "p"], ["g"])
+        row = 0
+        for k, n in enumerate(segs):
+            with_g = self.grounded and k == 0 and not self.free_length
+            use_tail = tail if (self.free_length or with_g) else None
+
+            def interval(k: int = k, n: int = n, with_g: bool = with_g
+                         ) -> tuple[ca.Function, ca.Function]:
+                rhs = form.rhs_list[k] if self.mesh.segments else form.rhs
+                return self._interval_block(rhs, 1.0 / n, form.fractions[k]
+                                            if self.mesh.segments else None, with_g)
+
+            add(interval, self._interval_index(n, offs[k], use_tail),
+                lambda nr, n=n, row=row: self._interval_rows(n, row, row + nx * d * n))
+            row += nx * (d + 1) * n
+        if self.mesh.segments:
+            for k in range(len(segs)):
+                if k == 0 and nx == NX:
+                    continue  # no joint before the first segment, no bending conditions
+                row += add(lambda k=k: self._joint_block(k, n_p), self._joint_index(k, offs),
+                           lambda nr, row=row: (row + np.arange(nr))[:, None])
+        idx = np.concatenate([np.arange(nx), self.n_x - nx + np.arange(nx)]
+                             + ([[self.i_g]] if self.grounded else []))
+        add(lambda: self._ends_block(n_p), idx[:, None],
+            lambda nr, row=row: (row + np.arange(nr))[:, None])
+        if given is not None and next(given, None) is not None:
+            raise ValueError("more stored block functions than blocks")
+        return blocks
+
+    @staticmethod
+    def _with_jacobian(fn: ca.Function) -> tuple[ca.Function, ca.Function]:
+        """``fn`` and ``(z, p) -> (fn(z, p), d fn / dz)`` (a small block: SX Jacobian)."""
+        z = ca.SX.sym("z", fn.size1_in(0))
+        p = ca.SX.sym("p", fn.size1_in(1))
+        r = fn(z, p)
+        return fn, ca.Function(fn.name() + "_jac", [z, p], [r, ca.jacobian(r, z)])
+
+    def _ends_block(self, n_p: int) -> tuple[ca.Function, ca.Function]:
+        """End conditions: ``(z, p) -> r`` with z = [x_0, x_N, (g)]."""
+        nx = self.nx
+        x0 = ca.SX.sym("x0", nx)
+        xn = ca.SX.sym("xn", nx)
+        gs = ca.SX.sym("g") if self.grounded else None
+        p = ca.SX.sym("p", n_p)
+        bc = self._boundary(x0, xn, gs if gs is not None else 0.0, p)
+        zs = [x0, xn] + ([gs] if gs is not None else [])
+        return self._with_jacobian(ca.Function("ends", [ca.vertcat(*zs), p],
+                                               [ca.vertcat(*bc)]))
+
+    def _joint_index(self, k: int, offs: list[int]) -> np.ndarray:
+        """w indices of z of the joint block of segment k (see :meth:`_joint_block`)."""
+        nx = self.nx
+        idx = np.concatenate(([(offs[k] - 1) * nx + np.arange(nx)] if k > 0 else [])
+                             + [offs[k] * nx + np.arange(nx), (offs[k + 1] - 1) * nx
+                                + np.arange(nx)])
+        return idx[:, None]
+
+    def _joint_block(self, k: int, n_p: int) -> tuple[ca.Function, ca.Function]:
+        """Joint conditions at the start of segment k (continuous position, tension jump by
+        the body loads) and the bending conditions of segment k: ``(z, p) -> r`` with
+        z = [last node of segment k-1 (k > 0), first and last node of segment k]."""
+        nx, form = self.nx, self.form
+        x_prev = ca.SX.sym("x_prev", nx) if k > 0 else None
+        x_start = ca.SX.sym("x_start", nx)
+        x_last = ca.SX.sym("x_last", nx)
+        p = ca.SX.sym("p", n_p)
+        res = []
+        if k > 0:
+            load = form.joint_loads[k - 1](x_prev[0:NX], p[P_CURRENT])
+            res += [x_start[0:3] - x_prev[0:3], x_start[3:6] - (x_prev[3:6] - load)]
+        res += form.bending_joint_residual(k, x_prev, x_start, x_last)
+        zs = ([x_prev] if k > 0 else []) + [x_start, x_last]
+        return self._with_jacobian(ca.Function(f"joint_{k}", [ca.vertcat(*zs), p],
+                                               [ca.vertcat(*res)]))
 
     # -- arc length -----------------------------------------------------------------------
     def _segment_s(self, length: float, g: float) -> list[tuple[float, float]]:

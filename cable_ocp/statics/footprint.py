@@ -1,4 +1,4 @@
-"""Footprint of a tethered subsea unit (004 section 2.2.4, type 4, eqs (2.16)-(2.17)).
+"""Footprint of a tethered subsea unit (Huang 1992, section 2.2.4, type 4, eqs (2.16)-(2.17)).
 
 The unit (end_a) rests on the seabed and pushes with bounded thrust; the ship (end_b) is
 fixed. For each direction theta, one NLP maximises the unit's horizontal distance from the
@@ -6,7 +6,7 @@ ship along theta,
 
     max  c1 = (r_a - r_b)_h . (cos theta, sin theta)
     s.t. (r_a - r_b)_h . (-sin theta, cos theta) = 0,     the collocated statics,
-         |T_h| <= T_max  (or |T_x| <= T_xmax, |T_y| <= T_ymax; CONVENTIONS "Footprint"),
+         |T_h| <= T_max  (or |T_x| <= T_xmax, |T_y| <= T_ymax; docs/conventions.md "Footprint"),
          L_min <= L <= L_max,  the cable above the seabed (z >= 0 at the nodes) and leaving
          the unit upwards (vertical force on the unit >= 0),
 

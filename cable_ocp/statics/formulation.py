@@ -1,28 +1,29 @@
 """Static cable equations of a scene, as CasADi functions (no discretisation here).
 
-State along the unstretched arc length s (CONVENTIONS: tension carried as a vector, so
+State along the unstretched arc length s (docs/conventions.md: tension carried as a vector, so
 vertical and horizontal cables are regular):
 
     x = (r, T),  r = position (m),  T = tension vector (N), the force the part of the
                  cable beyond s (towards end_b) exerts on the part before it.
 
-Equilibrium of an element ds and Hooke's law (000 eqs (1)-(3) in vector form; 004 eqs
-(2.1)-(2.5), (2.18)-(2.24)):
+Equilibrium of an element ds and Hooke's law (Wang, Cheong & Chucheepsakul (1993),
+eqs (1)-(3) in vector form; Huang (1992), eqs (2.1)-(2.5), (2.18)-(2.24)):
 
     dr/ds = (1 + |T|/EA) T/|T|                       (EA = inf: no stretch term built)
     dT/ds = -f,  f = (0, 0, -w) + (1 + |T|/EA) f_drag(U(z) , T/|T|)
 
 with w the weight in water per unstretched length (N/m) and f_drag the drag per
 stretched length (:mod:`cable_ocp.physics.drag`); the (1 + |T|/EA) factor converts it to
-per unstretched length (004 (2.46) uses the strained segment length; CONVENTIONS "Drag").
+per unstretched length (Huang (1992), eq. (2.46), uses the strained segment length;
+docs/conventions.md, "Drag").
 No current: no drag terms are built.
 
 The equations are solved in scaled form: sigma = s/L in [0, 1], r = ell * rho,
 T = F * tau, with a length scale ell and a force scale F chosen from the scene, so that
 every unknown and residual is O(1) for the solvers.
 
-Bending stiffness (``bending_stiffness`` = EI > 0 on a segment; 003 eqs (4)-(7) treat the
-towed object as a beam but print only a first-approximation deflection): when any
+Bending stiffness (``bending_stiffness`` = EI > 0 on a segment; Bielański, eqs (4)-(7),
+treats the towed object as a beam but prints only a first-approximation deflection): when any
 segment asks for it, every node carries two more states, x = (r, T, theta, M), and only
 the stiff segments get equations for them. A stiff segment is a planar beam-cable in the
 x-z plane (Kirchhoff rod, inextensible in bending), theta the angle of the tangent
@@ -41,7 +42,8 @@ end and where a stiff segment meets a flexible one or a body; theta and M contin
 between two stiff segments. The moment is scaled by M_ref = min(F ell, sqrt(EI F)), the
 boundary-layer moment of a tensioned beam.
 
-End conditions (004 eqs (2.6)-(2.15); 000 eqs (13)-(17)), per component i at each end:
+End conditions (Huang (1992), eqs (2.6)-(2.15); Wang, Cheong & Chucheepsakul (1993),
+eqs (13)-(17)), per component i at each end:
 a prescribed position r_i = p_i, or a prescribed external load F_i on the attachment,
 which at equilibrium means T_i(0) = -F_i at end_a and T_i(L) = +F_i at end_b. A
 prescribed tension magnitude adds |T|^2 = T0^2 at its end and makes L an unknown.
@@ -49,6 +51,7 @@ prescribed tension magnitude adds |T|^2 = T0^2 at its end and makes L an unknown
 
 from __future__ import annotations
 
+import functools
 import math
 from dataclasses import dataclass
 
@@ -162,27 +165,45 @@ class Formulation:
             else 1.0
         self.terms = self._build_terms()
 
-        x = ca.SX.sym("x", self.nx)
-        lam = ca.SX.sym("lam")
-        cs = ca.SX.sym("cscale")
-        self.rhs_list = tuple(
-            ca.Function("rhs", [x, lam, cs], [self._segment_rhs(x, lam, cs, c)],
-                        ["x", "lam", "cscale"], ["dx"]) for c in self.lines)
-        self.rhs = self.rhs_list[0]
         total = sum(c.length for c in self.lines) if self.segmented else 1.0
         #: share L_k / L of each segment in the unstretched length (-)
         self.fractions = (tuple(c.length / total for c in self.lines)  # type: ignore[operator]
                           if self.segmented else (1.0,))
-        #: ``load(x[6], cscale) -> P / F`` (scaled external load) of each body and of the
-        #: bodies at each joint (x the joint state)
-        x = ca.SX.sym("x", NX)
-        self.body_loads = tuple(
+
+    # the CasADi functions are built on first use: a solver whose collocated functions
+    # come from the on-disk cache never needs them
+    @functools.cached_property
+    def rhs_list(self) -> tuple[ca.Function, ...]:
+        """``rhs(x, lam, cscale) -> dx/dsigma`` of each segment (scaled)."""
+        x = ca.SX.sym("x", self.nx)
+        lam = ca.SX.sym("lam")
+        cs = ca.SX.sym("cscale")
+        return tuple(
+            ca.Function("rhs", [x, lam, cs], [self._segment_rhs(x, lam, cs, c)],
+                        ["x", "lam", "cscale"], ["dx"]) for c in self.lines)
+
+    @property
+    def rhs(self) -> ca.Function:
+        """The first (or only) segment's right-hand side."""
+        return self.rhs_list[0]
+
+    @functools.cached_property
+    def body_loads(self) -> tuple[ca.Function, ...]:
+        """``load(x[6], cscale) -> P / F`` (scaled external load) of each body."""
+        x, cs = ca.SX.sym("x", NX), ca.SX.sym("cscale")
+        return tuple(
             ca.Function(f"body_load_{i}", [x, cs], [self._body_load_expr(b, x, cs)],
-                        ["x", "cscale"], ["load"]) for i, b in enumerate(scene.bodies))
-        self.joint_loads = tuple(
+                        ["x", "cscale"], ["load"]) for i, b in enumerate(self.scene.bodies))
+
+    @functools.cached_property
+    def joint_loads(self) -> tuple[ca.Function, ...]:
+        """The summed scaled load of the bodies at each joint k = 1 .. (x the joint state)."""
+        x, cs = ca.SX.sym("x", NX), ca.SX.sym("cscale")
+        return tuple(
             ca.Function(f"joint_load_{k}", [x, cs], [sum(
-                (self.body_loads[i](x, cs) for i, b in enumerate(scene.bodies) if b.joint == k),
-                ca.SX.zeros(3))], ["x", "cscale"], ["load"]) for k in range(1, len(self.lines)))
+                (self.body_loads[i](x, cs) for i, b in enumerate(self.scene.bodies)
+                 if b.joint == k), ca.SX.zeros(3))], ["x", "cscale"], ["load"])
+            for k in range(1, len(self.lines)))
 
     # -- physics ------------------------------------------------------------------------
     def _build_terms(self) -> tuple[str, ...]:

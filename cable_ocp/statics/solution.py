@@ -66,6 +66,10 @@ class StaticsSolution:
         default=None, repr=False, compare=False)
     _stiffness_cache: dict[str, dict[str, Any]] | None = field(
         default=None, repr=False, compare=False)
+    #: (solver token, scaled unknowns): lets the solver that produced this solution
+    #: warm-start from its own unknowns without interpolating the node arrays
+    _unknowns: tuple[object, np.ndarray] | None = field(default=None, repr=False,
+                                                         compare=False)
 
     @property
     def grounded_length(self) -> float:

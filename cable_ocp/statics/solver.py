@@ -1,15 +1,19 @@
 """Build once, solve many: the statics solver for one scene structure.
 
-A :class:`StaticsSolver` builds the collocated residual G(w, p) = 0 once, with two
-solvers on it:
+A :class:`StaticsSolver` builds the collocated residual G(w, p) = 0 once, with its sparse
+Jacobian and the Newton step assembled per collocation interval
+(:mod:`cable_ocp.statics.newton`), and solves it by Newton's method with a backtracking
+line search on |G| (one CasADi call per step, on preallocated buffers):
 
-* IPOPT (``nlpsol``) for cold starts: a square system, zero objective;
-* a CasADi Newton ``rootfinder`` (csparse) for warm starts from a neighbouring solution,
-  a few Newton steps, about 10x cheaper than IPOPT on the same equations; if Newton
-  fails the solve falls back to IPOPT from the same start.
+* warm start (a neighbouring solution, e.g. the previous point of a sweep, or a
+  prediction from the last points): Newton; if it fails, IPOPT from the same start;
+* cold start (the drag-free catenary or another guess): Newton; only if that fails, IPOPT
+  (``nlpsol``, a square system with zero objective, built on first use) from the same
+  guess, then a ramp of the current from 0 to its value (Huang (1992), section 2.5), and
+  the diagnostics say which did it.
 
-When a cold IPOPT solve from the drag-free guess fails on a scene with current, the
-current is ramped from 0 to its value (004 section 2.5) and the diagnostics say so.
+The built functions are kept on disk (:mod:`cable_ocp.statics.cache`) so that another
+process solving a scene of the same structure loads them instead of building them.
 
 Every solution is checked by evaluating the residual at the returned point; only a
 residual within tolerance is reported as ``"solved"``.
@@ -34,7 +38,8 @@ import numpy as np
 
 from cable_ocp.errors import CableOCPError
 from cable_ocp.physics import seabed
-from cable_ocp.scene import Scene, apply_overrides, load_scene, scene_from_dict
+from cable_ocp.scene import Scene, SolverOptions, apply_overrides, load_scene, scene_from_dict
+from cable_ocp.statics import cache as disk_cache
 from cable_ocp.statics.checks import check_physical
 from cable_ocp.statics.collocation import Collocation
 from cable_ocp.statics.formulation import (
@@ -46,6 +51,13 @@ from cable_ocp.statics.formulation import (
     reference_length,
 )
 from cable_ocp.statics.initial_guess import initial_guess, touchdown_guess
+from cable_ocp.statics.newton import (
+    LINEAR_SOLVER,
+    Kernel,
+    NewtonResult,
+    jacobian_functions,
+    newton,
+)
 from cable_ocp.statics.registry import get_method, register
 from cable_ocp.statics.shooting import MultipleShooting
 from cable_ocp.statics.solution import StaticsSolution
@@ -53,6 +65,8 @@ from cable_ocp.statics.solution import StaticsSolution
 __all__ = ["StaticsSolver", "solve", "sweep"]
 
 _CONTINUATION_STEPS = (0.0, 0.1, 0.25, 0.5, 0.75, 1.0)
+#: most Newton steps per attempt (warm and cold; ``solver.max_iterations`` is IPOPT's)
+NEWTON_MAX_STEPS = 30
 
 
 class StaticsSolver:
@@ -76,6 +90,9 @@ class StaticsSolver:
     grounded : bool
         Seabed contact at end_a: the cable lies on the seabed from the anchor for an
         unknown length and lifts off tangentially (:mod:`cable_ocp.physics.seabed`).
+    cold : {"newton", "ipopt"}
+        How a solve without a warm start begins: Newton with a line search, IPOPT only if
+        it fails (default); or IPOPT directly (as before Newton-first cold solves).
 
     Notes
     -----
@@ -87,8 +104,11 @@ class StaticsSolver:
 
     def __init__(self, scene: Scene, intervals: int | None = None, degree: int | None = None,
                  scheme: str | None = None, cache: dict[tuple, StaticsSolver] | None = None,
-                 grounded: bool = False):
+                 grounded: bool = False, cold: str = "newton"):
+        if cold not in ("newton", "ipopt"):
+            raise CableOCPError(f"cold = {cold!r}: valid are 'newton' and 'ipopt'")
         t0 = time.perf_counter()
+        self.cold = cold
         opts = scene.solver
         self.scene = scene
         self.form = Formulation(scene)
@@ -97,11 +117,6 @@ class StaticsSolver:
         self.coll = transcription(self.form, intervals or opts.intervals, degree or opts.degree,
                                   scheme or opts.scheme, grounded=grounded)
         self.tol = opts.tolerance
-        # MX graph over a map of per-interval SX functions: derivatives are built per
-        # interval, so the build cost does not grow with N (an all-SX graph took ~0.3 s).
-        w = ca.MX.sym("w", self.coll.n_w)
-        p = ca.MX.sym("p", len(self.form.params()))
-        g = self.coll.residual(w, p)
         self._lbx = -np.inf * np.ones(self.coll.n_w)
         if self.coll.free_length:
             self._lbx[self.coll.i_lam] = 1e-6
@@ -111,30 +126,88 @@ class StaticsSolver:
             self._lbx[self.coll.i_g] = 0.0
             self._ubx[self.coll.i_g] = (1.0 - 1e-6) * scene.segments[0].length \
                 / self.form.scales.length
-        self._ipopt = ca.nlpsol("statics_ipopt", "ipopt", {"x": w, "p": p, "f": 0, "g": g}, {
-            "print_time": False,
-            "error_on_fail": False,
-            "ipopt.print_level": 0,
-            "ipopt.sb": "yes",
-            "ipopt.tol": self.tol,
-            "ipopt.constr_viol_tol": self.tol,
-            "ipopt.max_iter": opts.max_iterations,
-            "ipopt.nlp_scaling_method": "none",
-            # square system: the primal step is fixed by the constraint Jacobian alone, so
-            # the Lagrangian Hessian buys nothing here and costs build and evaluation time
-            "ipopt.hessian_approximation": "limited-memory",
-            # the unknowns are already O(1); MUMPS' own scaling of this zero-Hessian KKT
-            # system made its fill-in explode at N = 320, d = 5 (>1 GB, no progress)
-            "ipopt.mumps_scaling": 0,
-        })
-        self._newton: ca.Function | None = None
-        self._jacobian: ca.Function | None = None
-        self._sensitivity: tuple[ca.Function, ca.Function] | None = None
+        self._ipopt_fn: ca.Function | None = None
+        self._sensitivity: ca.Function | None = None
         # solvers of the same scene on other meshes (by number of intervals), shared by the
         # error estimate and the mesh refinement so that no mesh is built twice
         self._cache = {} if cache is None else cache
         self._cache[(self.coll.mesh.intervals, grounded)] = self
+        #: identifies the unknowns this solver produced (a warm start from its own
+        #: solution skips the interpolation onto the mesh)
+        self._token = object()
+        #: where the Newton functions came from: "built" or "disk cache"
+        self.build_source = "built"
+        self._late_build_s = 0.0  # IPOPT, built on first use: wall and CPU seconds
+        self._late_build_cpu_s = 0.0
+        self._gj, self._kernel = self._newton_functions()
         self.build_time_s = time.perf_counter() - t0
+
+    def _cache_structure(self, extra: tuple = ()) -> str:
+        """Text of everything the built functions depend on (the on-disk cache's key):
+        the structure without the solver options that do not enter the equations, the
+        scales, the transcription and its mesh."""
+        opts = self.scene.solver
+        key = tuple(x for x in self.form.key if not isinstance(x, SolverOptions))
+        return repr((key, ("smoothing", opts.smoothing, "vertical_blend", opts.vertical_blend),
+                     self.form.scales, self.form.moment_scale, type(self.coll).__name__,
+                     self.coll.mesh, self.grounded, self.coll.n_w, LINEAR_SOLVER, *extra))
+
+    def _newton_functions(self) -> tuple[ca.Function, Kernel]:
+        """``GJ`` and the buffered Newton kernel. The transcription's block functions (the
+        SX parts, whose size does not grow with the mesh) come from the on-disk cache or
+        are built; the residual, its Jacobian and the Newton step are assembled from them."""
+        n_w, n_p = self.coll.n_w, len(self.form.params())
+        structure = self._cache_structure()
+        stored = disk_cache.load(structure, "blocks")
+        if stored is not None and self.coll.set_block_functions(
+                [stored[f"f{i}"] for i in range(len(stored))]):
+            self.build_source = "disk cache"
+        else:
+            fns = self.coll.block_functions()
+            disk_cache.save(structure, "blocks", {f"f{i}": f for i, f in enumerate(fns)})
+        g_fn = self.coll.residual
+        gj, step = jacobian_functions(self.coll.blocks, n_w, n_p)
+        return gj, Kernel(g_fn, step)
+
+    @property
+    def _ipopt(self) -> ca.Function:
+        """IPOPT on the square system (zero objective), built (or loaded) on first use."""
+        if self._ipopt_fn is None:
+            t0, c0 = time.perf_counter(), time.process_time()
+            opts = self.scene.solver
+            structure = self._cache_structure(("ipopt", opts.tolerance, opts.max_iterations))
+            fns = disk_cache.load(structure, "ipopt")
+            if fns is not None and "ipopt" in fns:
+                self._ipopt_fn = fns["ipopt"]
+            else:
+                w = ca.MX.sym("w", self.coll.n_w)
+                p = ca.MX.sym("p", len(self.form.params()))
+                g = self.coll.residual(w, p)
+                self._ipopt_fn = ca.nlpsol("statics_ipopt", "ipopt", {
+                    "x": w, "p": p, "f": 0, "g": g}, {
+                    "print_time": False,
+                    "error_on_fail": False,
+                    "ipopt.print_level": 0,
+                    "ipopt.sb": "yes",
+                    "ipopt.tol": self.tol,
+                    "ipopt.constr_viol_tol": self.tol,
+                    "ipopt.max_iter": opts.max_iterations,
+                    "ipopt.nlp_scaling_method": "none",
+                    # square system: the primal step is fixed by the constraint Jacobian
+                    # alone, so the Lagrangian Hessian buys nothing here and costs build
+                    # and evaluation time
+                    "ipopt.hessian_approximation": "limited-memory",
+                    # the unknowns are already O(1); MUMPS' own scaling of this
+                    # zero-Hessian KKT system made its fill-in explode at N = 320, d = 5
+                    # (>1 GB, no progress)
+                    "ipopt.mumps_scaling": 0,
+                })
+                disk_cache.save(structure, "ipopt", {"ipopt": self._ipopt_fn})
+            dt = time.perf_counter() - t0
+            self._late_build_s += dt
+            self._late_build_cpu_s += time.process_time() - c0
+            self.build_time_s += dt
+        return self._ipopt_fn
 
     # -- public -------------------------------------------------------------------------
     @property
@@ -183,24 +256,40 @@ class StaticsSolver:
             "scheme": self.mesh.scheme, "order": self.mesh.order}, "terms": list(self.form.terms)}
         if getattr(self.mesh, "segments", ()):
             diag["mesh"]["segments"] = list(self.mesh.segments)  # intervals per segment
-        t0 = time.perf_counter()
+        t0, c0 = time.perf_counter(), time.process_time()
+        late0, late0_cpu = self._late_build_s, self._late_build_cpu_s
+        g_end: np.ndarray | None = None
         if warm_start is not None:
             w0 = self._from_solution(warm_start)
-            w, it, ok, how = self._newton_solve(w0, p)
+            res = self._newton(w0, p)
+            w, it, ok, how, g_end = res.w, res.iterations, res.success, "newton", res.g
             if not ok:
                 w, it, ok, how = self._ipopt_solve(w0, p)
-                how = "newton failed; " + how
+                how = f"newton failed ({res.message}); " + how
+                g_end = None
             diag["start"] = "warm"
         else:
             w0, guess = self._guess(scene)
             diag["start"] = f"cold ({guess} guess)"
-            w, it, ok, how = self._ipopt_solve(w0, p)
+            if self.cold == "newton":
+                res = self._newton(w0, p)
+                w, it, ok, how, g_end = res.w, res.iterations, res.success, \
+                    "newton (line search)", res.g
+                if not ok:
+                    w, it, ok, how = self._ipopt_solve(w0, p)
+                    how = f"newton failed ({res.message}); " + how
+                    g_end = None
+            else:
+                w, it, ok, how = self._ipopt_solve(w0, p)
             if not ok and scene.environment.current is not None and current_scale != 0.0:
                 w, it, ok, how = self._continuation(w0, p, current_scale)
                 diag["continuation"] = how
-        wall = time.perf_counter() - t0
+        # a solver built on first use (IPOPT) is build time, not solve time
+        wall = time.perf_counter() - t0 - (self._late_build_s - late0)
+        diag["cpu_time_s"] = time.process_time() - c0 - (self._late_build_cpu_s - late0_cpu)
         diag["solver"] = how
-        sol = self._make_solution(w, p, ok, how, it, wall, diag)
+        diag["build_source"] = self.build_source
+        sol = self._make_solution(w, p, ok, how, it, wall, diag, g_end)
         if sol.success and (scene.solver.error_estimate if error_estimate is None
                             else error_estimate):
             self._estimate_error(sol, scene, current_scale)
@@ -251,6 +340,9 @@ class StaticsSolver:
 
     def _from_solution(self, sol: StaticsSolution) -> np.ndarray:
         """Unknowns from a neighbouring solution (any mesh, grounded or not)."""
+        own = sol._unknowns
+        if own is not None and own[0] is self._token:
+            return own[1].copy()  # this solver's own unknowns (or a prediction of them)
         off = sol.node_offset
         g = sol.grounded_length if self.grounded else 0.0
         if self.grounded and not off:
@@ -283,40 +375,26 @@ class StaticsSolver:
             t = np.stack([np.interp(sig, src, t_src[:, k]) for k in range(3)], axis=1)
         return self.coll.pack(r, t, sol.length, g)
 
+    def _newton(self, w0: np.ndarray, p: np.ndarray) -> NewtonResult:
+        """Newton with a line search from w0, within the bounds (a positive free length, a
+        grounded part on the first segment); a free length that comes out non-positive is
+        a failure."""
+        res = newton(self._kernel, w0, p, self.tol, NEWTON_MAX_STEPS, lb=self._lbx,
+                     ub=self._ubx)
+        if res.success and self.coll.free_length and res.w[self.coll.i_lam] <= 0:
+            res.success, res.message = False, "non-positive free length"
+        return res
+
     def _newton_solve(self, w0: np.ndarray, p: np.ndarray) -> tuple[np.ndarray, int, bool, str]:
-        if self._newton is None:
-            # expanded to SX: ~60 ms to build, ~0.7 ms per Newton step (MX: ~2.6 ms)
-            self._newton = ca.rootfinder("statics_newton", "newton", self.coll.residual.expand(), {
-                "linear_solver": "csparse",
-                "abstol": self.tol,
-                "abstolStep": 1e-14,
-                "max_iter": 30,
-                "error_on_fail": False,
-            })
-        try:
-            w = np.asarray(self._newton(w0, p)).reshape(-1)
-        except RuntimeError as exc:  # pragma: no cover - casadi raises on NaN/linear failure
-            return w0, 0, False, f"newton error: {exc}"
-        st = self._newton.stats()
-        ok = bool(st.get("success", False)) and bool(np.all(np.isfinite(w)))
-        if ok and self.coll.free_length and w[-1] <= 0:
-            ok = False
-        return w, int(st.get("iter_count", st.get("n_iter", 0))), ok, "newton"
+        """Newton from w0: (w, steps, success, "newton")."""
+        res = self._newton(w0, p)
+        return res.w, res.iterations, res.success, "newton"
 
     def _algebraic_error(self, w: np.ndarray, p: np.ndarray, sol: StaticsSolution) -> float:
         """Relative change of the end forces, positions and length under one more Newton
         correction -J(w)^-1 g(w) at the returned iterate (0 for a converged one): the
         algebraic part of the error, which the mesh comparison cannot see."""
-        if self._jacobian is None:
-            fn = self.coll.residual.expand()
-            ws, ps = ca.SX.sym("w", self.coll.n_w), ca.SX.sym("p", fn.size1_in(1))
-            g = fn(ws, ps)
-            self._jacobian = ca.Function("statics_jac", [ws, ps], [g, ca.jacobian(g, ws)])
-        g, jac = self._jacobian(w, p)
-        try:
-            dw = np.asarray(ca.solve(jac, -g, "csparse")).reshape(-1)
-        except RuntimeError:
-            return math.inf
+        dw = self._kernel.step(w, p)[1]
         if not np.all(np.isfinite(dw)):
             return math.inf
         r0, t0, l0, _ = self.coll.unpack(w, p)
@@ -344,15 +422,11 @@ class StaticsSolver:
             fa = sc.force * tau0
         return ca.vertcat(fa, -sc.force * tau_n)
 
-    def _sensitivity_functions(self) -> tuple[ca.Function, ca.Function]:
-        """``(w, p) -> (G_e, F_w)`` and ``(w, p) -> G_w``: the Jacobians of the collocated
-        residual in the end values p[P_END_A], p[P_END_B] (n_w x 6) and of the end forces
-        (N) in the unknowns (6 x n_w); and of the residual in the unknowns (n_w x n_w).
-
-        On the MX graph of the residual (a map over per-interval functions), whose sparse
-        Jacobian CasADi colours: ~0.05 s to build, ~0.02 s to evaluate G_w on a
-        40-interval mesh (linear in N). The SX Jacobian of the algebraic error, when the
-        error estimate has built it, evaluates G_w in ~1 ms instead."""
+    def _sensitivity_functions(self) -> ca.Function:
+        """``(w, p) -> (G_e, F_w)``: the Jacobians of the collocated residual in the end
+        values p[P_END_A], p[P_END_B] (n_w x 6) and of the end forces (N) in the unknowns
+        (6 x n_w), on the MX graph of the residual (the Jacobian in the unknowns, G_w,
+        comes from the Newton functions)."""
         if self._sensitivity is None:
             n_p = len(self.form.params())
             w = ca.MX.sym("w", self.coll.n_w)
@@ -360,19 +434,13 @@ class StaticsSolver:
             ends = ca.MX.sym("p_ends", P_END_B.stop - P_END_A.start)
             tail = ca.MX.sym("p_tail", n_p - P_END_B.stop)
             g = self.coll.residual(w, ca.vertcat(head, ends, tail))
-            # two functions: a call of one evaluates all its outputs
             cheap = ca.Function("statics_sensitivity_parts", [w, head, ends, tail],
                                 [ca.jacobian(g, ends), ca.jacobian(self._end_forces(w), w)])
-            full = ca.Function("statics_jacobian_parts", [w, head, ends, tail],
-                               [ca.jacobian(g, w)])
             wp, pp = ca.MX.sym("w", self.coll.n_w), ca.MX.sym("p", n_p)
             args = (wp, pp[: P_END_A.start], pp[P_END_A.start: P_END_B.stop],
                     pp[P_END_B.stop:])
-            self._sensitivity = (
-                ca.Function("statics_sensitivity", [wp, pp], cheap(*args), ["w", "p"],
-                            ["G_e", "F_w"]),
-                ca.Function("statics_jacobian_mx", [wp, pp], [full(*args)], ["w", "p"],
-                            ["G_w"]))
+            self._sensitivity = ca.Function("statics_sensitivity", [wp, pp], cheap(*args),
+                                            ["w", "p"], ["G_e", "F_w"])
         return self._sensitivity
 
     def end_stiffness(self, w: np.ndarray, p: np.ndarray) -> dict[str, dict[str, Any]]:
@@ -428,9 +496,8 @@ class StaticsSolver:
             return out
         # parameter columns of the fixed ends among p[P_END_A], p[P_END_B] (scaled m)
         cols = [c for key in fixed for c in ((0, 1, 2) if key == "a" else (3, 4, 5))]
-        sens, jac_mx = self._sensitivity_functions()
-        g_p, f_w = sens(w, p)
-        g_w = jac_mx(w, p) if self._jacobian is None else self._jacobian(w, p)[1]
+        g_p, f_w = self._sensitivity_functions()(w, p)
+        g_w = self._gj(w, p)[1]
         h_w = g_w.sparse().tocsr()
         h_p = np.asarray(g_p.sparse().todense())[:, cols]
         if self.coll.free_length:
@@ -500,11 +567,13 @@ class StaticsSolver:
                     f"continuation in current scale failed at {c:g} of the current ({how})")
             w = w_new
         return w, total, True, (
-            f"current ramped {', '.join(f'{c:g}' for c in steps)} (004 section 2.5)")
+            f"current ramped {', '.join(f'{c:g}' for c in steps)} (Huang 1992, section 2.5)")
 
     def _make_solution(self, w: np.ndarray, p: np.ndarray, ok: bool, how: str, it: int,
-                       wall: float, diag: dict[str, Any]) -> StaticsSolution:
-        g = np.asarray(self.coll.residual(w, p)).reshape(-1)
+                       wall: float, diag: dict[str, Any], g: np.ndarray | None = None
+                       ) -> StaticsSolution:
+        if g is None:  # else the residual at w, from the Newton iteration
+            g = self._kernel.g(w, p)
         viol = float(np.max(np.abs(g))) if np.all(np.isfinite(g)) else math.inf
         r, t, length, g_len = self.coll.unpack(w, p)
         s = self.coll.node_s(length, g_len)
@@ -543,6 +612,8 @@ class StaticsSolver:
         if finite:
             # the end stiffness, computed on first use (StaticsSolution.stiffness)
             sol._stiffness_source = functools.partial(self.end_stiffness, w.copy(), p.copy())
+            # the unknowns themselves, for a warm start by this solver
+            sol._unknowns = (self._token, w.copy())
         tmax = float(np.max(np.linalg.norm(t, axis=1))) if finite else math.nan
         diag["smoothing_force_bound_N"] = self.form.smoothing_force_bound(length, tmax)
         diag["min_z"] = float(np.min(r[:, 2])) if finite else math.nan
@@ -927,13 +998,40 @@ class SolveSession:
         return sol
 
 
-def _extrapolate(a: StaticsSolution, b: StaticsSolution, factor: float) -> StaticsSolution:
-    """Secant predictor b + factor (b - a) on the node arrays (same mesh)."""
-    return StaticsSolution(
-        status="predicted", message="secant predictor", s=b.s + factor * (b.s - a.s),
-        position=b.position + factor * (b.position - a.position),
-        tension_vector=b.tension_vector + factor * (b.tension_vector - a.tension_vector),
-        length=b.length + factor * (b.length - a.length))
+#: most points of the polynomial predictor in a sweep (4: cubic extrapolation; on the De
+#: Zoysa sweep it takes 3 Newton steps per point where the secant takes 4)
+PREDICTOR_POINTS = 4
+#: largest sum of |Lagrange weights| of a prediction (uniform steps: 15 for the cubic,
+#: 7 for the quadratic, 3 for the secant); beyond it (a long step after short ones) the
+#: oldest points are dropped, and without a usable secant the previous solution is used
+_PREDICTOR_MAX_GAIN = 16.0
+
+
+def _weights(vs: list[float], v: float) -> list[float]:
+    """Lagrange weights of the values at ``vs`` for extrapolation to ``v``."""
+    return [math.prod((v - vs[j]) / (vs[i] - vs[j]) for j in range(len(vs)) if j != i)
+            for i in range(len(vs))]
+
+
+def _extrapolate(points: list[tuple[float, StaticsSolution]], v: float) -> StaticsSolution:
+    """Lagrange extrapolation to ``v`` through (value, solution) points of one mesh, on
+    the node arrays and, when one solver produced every point, on its unknowns."""
+    weights = _weights([float(x) for x, _ in points], v)
+
+    def comb(arrays: list[Any]) -> Any:
+        return sum(wt * a for wt, a in zip(weights, arrays, strict=True))
+
+    sols = [sol for _, sol in points]
+    out = StaticsSolution(
+        status="predicted", message=f"extrapolated through {len(points)} solutions",
+        s=comb([x.s for x in sols]), position=comb([x.position for x in sols]),
+        tension_vector=comb([x.tension_vector for x in sols]),
+        length=float(comb([x.length for x in sols])))
+    own = [x._unknowns for x in sols]
+    if all(u is not None and u[0] is own[-1][0] and u[1].shape == own[-1][1].shape
+           for u in own):
+        out._unknowns = (own[-1][0], comb([u[1] for u in own]))
+    return out
 
 
 def sweep(scene: Scene, key: str, values: Iterable[Any],
@@ -942,9 +1040,10 @@ def sweep(scene: Scene, key: str, values: Iterable[Any],
 
     The solver is built once and reused while the scene structure stays the same (end
     positions, forces, a fixed length, the tension, ``layout.psi0_deg``); otherwise a new
-    one is built. Each point starts from a secant prediction through the two previous
-    solutions when the key is numeric (fewer Newton steps), else from the previous
-    solution; if Newton fails from the prediction, it is retried from the previous solution.
+    one is built. When the key is numeric, each point starts from a polynomial
+    extrapolation through up to :data:`PREDICTOR_POINTS` previous solutions (fewer Newton
+    steps), else from the previous solution; if Newton fails from the prediction, it is
+    retried from the previous solution.
     A point whose error estimate misses ``solver.accuracy`` is refined like a single solve
     (:func:`solve_collocation`).
 
@@ -979,16 +1078,28 @@ def sweep(scene: Scene, key: str, values: Iterable[Any],
 
         prev = done[-1][2] if done and done[-1][2].converged else None
         start = prev
-        if (len(done) >= 2 and prev is not None and done[-2][2].converged
-                and done[-1][1] == k and done[-2][1] == k
-                and all(isinstance(x, (int, float)) for x in (v, done[-1][0], done[-2][0]))
-                and done[-1][0] != done[-2][0]
-                and prev.node_offset == done[-2][2].node_offset == 0):
-            factor = (v - done[-1][0]) / (done[-1][0] - done[-2][0])
-            start = _extrapolate(done[-2][2], prev, factor)
+        # the last points solved on this structure without seabed contact, numeric values
+        pts: list[tuple[float, StaticsSolution]] = []
+        for val, key_i, s_i in reversed(done):
+            if (len(pts) == PREDICTOR_POINTS or key_i != k or not s_i.converged
+                    or s_i.node_offset or not isinstance(val, (int, float))
+                    or any(val == x for x, _ in pts)
+                    or (pts and s_i.s.shape != pts[0][1].s.shape)):  # a refined point
+                break
+            pts.insert(0, (val, s_i))
+        if prev is not None and pts and pts[-1][1] is prev and isinstance(v, (int, float)):
+            while len(pts) >= 2 and sum(abs(x) for x in _weights(
+                    [float(x) for x, _ in pts], float(v))) > _PREDICTOR_MAX_GAIN:
+                pts.pop(0)
+            if len(pts) >= 2:
+                start = _extrapolate(pts, v)
+        known = {id(x) for x in cache.values()}
         sol = _solve_with_contact(sc, get, start, error_estimate)
         if start is not prev and not sol.converged:
             sol = _solve_with_contact(sc, get, prev, error_estimate)
+        built = [x.build_time_s for x in cache.values() if id(x) not in known]
+        if built:  # this point built solvers (the first point of each structure)
+            sol.diagnostics["build_time_s"] = float(sum(built))
         if sol.status == "inaccurate" and sc.solver.refine:
             # this point needs a finer mesh than the sweep's: refine it on its own (the
             # next points keep the sweep's solver and warm-start from this solution)

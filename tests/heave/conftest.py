@@ -1,4 +1,4 @@
-"""Shared fixtures: the thesis' example plants (004 sections 6.2.6 and 6.3.6)."""
+"""Shared fixtures: the thesis' example plants (Huang 1992, sections 6.2.6 and 6.3.6)."""
 
 from __future__ import annotations
 

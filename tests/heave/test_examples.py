@@ -24,9 +24,11 @@ def test_example_6_3_6(tmp_path: Path, monkeypatch: pytest.MonkeyPatch,
     r = mod.compute(K_values=(0.5, 1, 4))
     assert r["sigma_uncontrolled"] == pytest.approx(0.255, abs=5e-4)
     assert r["lqr"].sigma == pytest.approx(2.96e-4, abs=5e-7)
-    # CONVENTIONS: q = 63.5 is the least weight that reaches 99 % (to the 0.1 printed there).
+    # docs/conventions.md: q = 63.5 is the least weight that reaches 99 % (to the 0.1 printed
+    # there).
     assert r["q_99pct"] == pytest.approx(63.5, abs=0.1)
-    # CONVENTIONS: the exact Bretschneider spectrum gives ~0.2165 m; the better fits approach it
+    # docs/conventions.md: the exact Bretschneider spectrum gives ~0.2165 m; the better fits
+    # approach it
     assert abs(r["sigma_by_filter"]["fit4"] - 0.2165) < abs(r["sigma_by_filter"]["thesis"] - 0.2165)
     assert mod.plot(r, tmp_path / "f.png").stat().st_size > 1000
     # the command line: arguments reach compute, the numbers go to stdout, the file to stderr

@@ -1,4 +1,4 @@
-"""LQR with time delay (004 sections 6.2.4-6.2.6)."""
+"""LQR with time delay (Huang 1992, sections 6.2.4-6.2.6)."""
 
 from __future__ import annotations
 
@@ -13,7 +13,7 @@ from cable_ocp.heave.thesis import A_626, B_626, G3_626, G5_626
 
 
 def test_printed_gains_stable_at_K1() -> None:
-    # CONVENTIONS: at K = 1 the printed gains give stable loops (G5 with the Taylor model).
+    # docs/conventions.md: at K = 1 the printed gains give stable loops (G5 with the Taylor model).
     d3 = lqr.design_from_gains(A_626, B_626, G3_626)
     A = d3.Ap - d3.Bp @ d3.Gp
     assert np.max(np.linalg.eigvals(A).real) < 0
@@ -23,7 +23,7 @@ def test_printed_gains_stable_at_K1() -> None:
 
 
 def test_g3_delay_margin_about_033() -> None:
-    # CONVENTIONS: G3 has a delay margin of about 0.33 s. Two independent checks: the
+    # docs/conventions.md: G3 has a delay margin of about 0.33 s. Two independent checks: the
     # exact crossing condition, and the spectral radius of the loop sampled at 10 ms (which
     # adds ~h/2 = 5 ms of delay, hence the 1e-2 s tolerance between them).
     d3 = lqr.design_from_gains(A_626, B_626, G3_626)

@@ -24,7 +24,7 @@ def test_unconstrained_mpc_equals_dlqr(plant_636: pl.HeavePlant, solver: str, op
     # (stochastic.discrete_delay_lqr), without delay and with the 0.2 s delay as a 4-sample
     # shift register. The issue asks for 1e-6; every solver reaches <= 9e-14 here (IPOPT too:
     # the problem is a convex QP that it solves in one Newton step; OSQP needs tight eps,
-    # CONVENTIONS: at default tolerances it is off by ~1e-2), so 1e-12.
+    # docs/conventions.md: at default tolerances it is off by ~1e-2), so 1e-12.
     from cable_ocp.heave.stochastic import discrete_delay_lqr
 
     m = mpc.LinearMPC(plant_636, tau, mpc.MPCSettings(horizon=50, sample_time=0.05,
@@ -438,7 +438,7 @@ def _opti_nmpc(a: float, bq: float, K: float, h: float, d: int, N: int, Qz: np.n
                P: np.ndarray, rh: float, vmax: float, umax: float):  # noqa: ANN202
     """The NLP of the nonlinear-unit MPC, written separately with ``casadi.Opti``.
 
-    Unit (004 eq. (6.3)): a x'' + bq |x'| x' + x = x0 + u, |x'| smoothed as
+    Unit (Huang 1992, eq. (6.3)): a x'' + bq |x'| x' + x = x0 + u, |x'| smoothed as
     sqrt(x'^2 + 1e-6) (as documented for the MPC); winch u' = K (v - u); v the command sent
     d samples earlier; the boom tip x0 = D_k held over sample k. RK4 with 2 substeps per
     sample. Limits: winch speed K (v_k - u_k) for k >= d (the first row a decision can
@@ -493,7 +493,7 @@ def _opti_nmpc(a: float, bq: float, K: float, h: float, d: int, N: int, Qz: np.n
 
 
 def test_nonlinear_unit_mpc_matches_an_independent_nlp_and_closes_the_loop() -> None:
-    # The IPOPT MPC on the quadratic-damping unit (004 eq. (6.3), Fig. 6.13:
+    # The IPOPT MPC on the quadratic-damping unit (Huang 1992, eq. (6.3), Fig. 6.13:
     # a = 7.326944 s^2, b_q = 0.0719096 s^2/m; K = 1 1/s, 0.2 s delay), boom tip
     # 1.5 sin(0.45 t) m known over the horizon, speed limit 0.5 m/s (the boom tip moves at up
     # to 0.675 m/s) and stroke 3 m. The cost is the exactly sampled LQR cost of the linear

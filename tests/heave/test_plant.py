@@ -1,4 +1,4 @@
-"""Plant blocks and the assembled 11-state plant (004 eqs. (6.1)-(6.28))."""
+"""Plant blocks and the assembled 11-state plant (Huang 1992, eqs. (6.1)-(6.28))."""
 
 from __future__ import annotations
 
@@ -53,7 +53,7 @@ def test_assembled_plant_equals_6_28_typed_by_hand(plant_636: pl.HeavePlant) -> 
 
 
 def test_first_order_winch_sinusoid_6_1() -> None:
-    # 004 section 6.2.2: |u/u0| = 1/sqrt(w^2/K^2 + 1), phase -atan(w/K).
+    # Huang (1992) section 6.2.2: |u/u0| = 1/sqrt(w^2/K^2 + 1), phase -atan(w/K).
     K, w = 1.5, 0.8
     g = _resp(pl.winch_first(K), 1j * w)
     assert abs(g) == pytest.approx(1 / np.sqrt(w**2 / K**2 + 1), rel=1e-12)

@@ -1,4 +1,4 @@
-"""Sea spectra and shaping filters (004 eqs. (6.19)-(6.23))."""
+"""Sea spectra and shaping filters (Huang 1992, eqs. (6.19)-(6.23))."""
 
 from __future__ import annotations
 
@@ -24,7 +24,7 @@ def test_bretschneider_peak_at_modal_frequency() -> None:
 
 
 def test_pm_modal_frequency_from_tz_6_2_6() -> None:
-    # Example 6.2.6: Tz = 14 s; (16 pi^3 / 1.25)^(1/4) / 14 = 0.31880 (CONVENTIONS: ~0.319).
+    # Example 6.2.6: Tz = 14 s; (16 pi^3 / 1.25)^(1/4) / 14 = 0.31880 (docs/conventions.md: ~0.319).
     assert sea.modal_frequency_from_zero_crossing(14.0) == pytest.approx(0.3188, abs=1e-4)
 
 

@@ -56,10 +56,10 @@ def _rms_tolerance(A: np.ndarray, G: np.ndarray, c: np.ndarray, h: float, n_samp
 
 
 def test_sea_realisation_has_the_stationary_boom_tip_variance() -> None:
-    # wave_realisation samples the sea and vessel filters exactly (ZOH transition, Van Loan
-    # noise covariance), so at any step its boom tip has the stationary variance of the
-    # filters. 40 000 s at 0.25 s (160 000 samples, well beyond the ~6 s correlation time):
-    # the RMS's 4-sigma band (computed from the model, _rms_tolerance) is +-3.4 %, far inside
+    # wave_realisation samples the sea and vessel filters exactly (ZOH transition, Van Loan noise
+    # covariance), so at any step its boom tip has the stationary variance of the filters. 40 Wang
+    # et al. (1993) s at 0.25 s (160 Wang et al. (1993) samples, well beyond the ~6 s correlation
+    # time): the RMS's 4-sigma band (computed from the model, _rms_tolerance) is +-3.4 %, far inside
     # the 41 % that doubling the noise variance would cause (and a 10 % error would fail).
     from cable_ocp.heave import simulate as sim
 
@@ -90,7 +90,7 @@ def test_passive_rms_over_a_long_run_matches_the_stationary_sigma() -> None:
     tr = r.traces["passive"]
     n = int(np.sum(tr.t >= 50.0 - 1e-12))
     sigma, tol = _rms_tolerance(p.A, p.B2, p.output_row("x")[0], 0.1, n)
-    assert sigma == pytest.approx(0.2551, abs=1e-4)  # 004 Fig. 6.23: 0.255 m
+    assert sigma == pytest.approx(0.2551, abs=1e-4)  # Huang (1992) Fig. 6.23: 0.255 m
     assert tol < 0.10
     assert r.metrics["passive"].heave_rms == pytest.approx(sigma, rel=tol)
 

@@ -1,4 +1,5 @@
-"""Stochastic analysis (004 section 6.3): variances (6.31)/(6.33)-(6.35), LQR, LQG, 6.3.5."""
+"""Stochastic analysis (Huang 1992, section 6.3): variances (6.31)/(6.33)-(6.35), LQR, LQG,
+6.3.5."""
 
 from __future__ import annotations
 
@@ -21,11 +22,11 @@ Q_636 = 553.6  # weight found for 6.3.6 (README "Heave compensation"; problems/h
 
 
 def test_sigma_uncontrolled_0255(plant_636: pl.HeavePlant) -> None:
-    # 004 Fig. 6.23: sigma = 0.255 m, in the convention sigma^2 = pi P11 (CONVENTIONS); the
-    # thesis prints 3 digits, so +-0.0005 m.
+    # Huang (1992) Fig. 6.23: sigma = 0.255 m, in the convention sigma^2 = pi P11
+    # (docs/conventions.md); the thesis prints 3 digits, so +-0.0005 m.
     s = np.sqrt(st.output_variance_lyapunov(plant_636.A, plant_636.B2, plant_636.e("x")))
     assert s == pytest.approx(SIGMA_UNCONTROLLED_636, abs=5e-4)
-    # The as-printed readings give other numbers (CONVENTIONS): P11 alone and (-inf, inf).
+    # The as-printed readings give other numbers (docs/conventions.md): P11 alone and (-inf, inf).
     P = st.state_covariance(plant_636.A, plant_636.B2)
     assert np.sqrt(P[0, 0]) == pytest.approx(0.144, abs=5e-4)
     assert np.sqrt(2 * np.pi * P[0, 0]) == pytest.approx(0.361, abs=5e-4)
@@ -46,7 +47,7 @@ def test_lyapunov_equals_spectral(plant_636: pl.HeavePlant, controlled: bool) ->
 
 
 def test_lqr_636_reproduces_296e_4(plant_636: pl.HeavePlant) -> None:
-    # 004 Fig. 6.24: sigma = 2.96e-4 m; weights unstated. Q = q e1 e1^T, R = 1, q = 553.6
+    # Huang (1992) Fig. 6.24: sigma = 2.96e-4 m; weights unstated. Q = q e1 e1^T, R = 1, q = 553.6
     # reproduces it to the printed 3 digits (+-0.005e-4); the loop is stable and the reduction
     # exceeds 99 %.
     d = st.stochastic_lqr(plant_636.A, plant_636.B1, plant_636.B2, plant_636.e("x"), Q_636)
@@ -63,8 +64,8 @@ def test_weight_for_sigma_inverts_design(plant_636: pl.HeavePlant) -> None:
 
 
 def test_discrete_exact_delay_design_recovers_sigma(plant_636: pl.HeavePlant) -> None:
-    # CONVENTIONS: the exact discrete-delay design (tau = 0.2 s, h = 0.05 s) recovers 2.96e-4 m
-    # (within 1 %: sampling changes the optimum slightly).
+    # docs/conventions.md: the exact discrete-delay design (tau = 0.2 s, h = 0.05 s) recovers
+    # 2.96e-4 m (within 1 %: sampling changes the optimum slightly).
     p = plant_636
     G = st.discrete_delay_lqr(p.A, p.B1, p.e("x"), Q_636, 1.0, 0.05, 0.2)
     s = st.sampled_loop_sigma(p.A, p.B1, p.B2, p.e("x"), 0.05, 0.2, G[:, :11], G[:, 11:])
@@ -182,7 +183,8 @@ def test_lqg_variance_lyapunov_equals_spectral_of_hand_built_loop(plant_636: pl.
 
 
 def test_winch_gain_study_energy_decreases_with_K() -> None:
-    # 004 Fig. 6.25: at a prescribed sigma, the energy index falls as K grows and levels off.
+    # Huang (1992) Fig. 6.25: at a prescribed sigma, the energy index falls as K grows and levels
+    # off.
     f = sea.thesis_shaping_filter(HS_636, WM_636)
 
     def build(K: float) -> pl.HeavePlant:

@@ -1,0 +1,576 @@
+"""Benchmark of the 3D lumped-mass dynamics on the system of Huang (1992) 5.7.
+
+The 300 m cable and 3 t unit of Huang (1992) 5.7 (``problems/dynamics/huang_5_7.toml``),
+its top moved by x = y = z = sin(1.256 t) m (the faster case of 5.7.1), ramped in over 5 s.
+For 20, 40 and 80 segments :func:`run` returns, in one run, the wall time per simulated
+second of cable_ocp's implicit midpoint scheme at a few time steps, and optionally of
+MoorDyn (``pip install moordyn``; benchmark only, never needed by the tests) at its
+stable time steps, each with its error against a converged reference of the same model
+and discretisation (the same number of segments, a time step 8-16 times smaller), and
+the amplitude of the top tension of each, so that the two models can be compared on the
+same line (the target: amplitudes within 2 %). MoorDyn is driven through its ``Step`` at a
+4 ms coupling step (:data:`COUPLING_STEP`): it moves the coupled top linearly within a
+coupling step, and a coarse one costs amplitude (see :func:`linear_check`).
+
+To make the two models the same line: the unit's drag is isotropic (MoorDyn's point drag
+1/2 rho CdA |u| u), its added mass the same in every direction (MoorDyn's point
+Ca rho V), and both carry the same internal damping T = EA e + c de/dt with c = 3.4e4 N s
+(MoorDyn's BA; MoorDyn's explicit RK2 needs some: without it its undamped axial modes
+grow), about half of critical for the shortest segment's axial mode at 40 segments and
+0.3 % for the first axial mode. Remaining differences of formulation: MoorDyn takes the
+cable's drag and added mass at the nodes with node tangents, Huang's ch. 5 (and
+cable_ocp) on the segments.
+
+Nothing here prints (MoorDyn writes to stdout and stderr on every call: both are silenced
+at the file-descriptor level). Timings are wall-clock and noisy on a shared machine:
+compare ratios from one run.
+"""
+
+from __future__ import annotations
+
+import math
+import os
+import sys
+import tempfile
+import time
+from collections.abc import Callable, Sequence
+from contextlib import contextmanager
+from dataclasses import asdict, dataclass
+from pathlib import Path
+from typing import Any
+
+import numpy as np
+
+from cable_ocp.dynamics.scene import DynamicScene, load_dynamic_scene
+
+__all__ = ["QUICK", "BenchRow", "as_dicts", "format_summary", "format_table", "linear_check",
+           "moordyn_available", "plot", "planned_rows", "run", "scene", "summary"]
+
+PROBLEM = Path(__file__).resolve().parents[2] / "problems" / "dynamics" / "huang_5_7.toml"
+FREQUENCY = 1.256  # rad/s, Huang 5.7.1 (Figure 5.5)
+RAMP = 5.0  # s
+DAMPING = 3.4e4  # N s, internal damping of both models (MoorDyn's BA)
+OUTPUT_STEP = 0.05  # s, the sampling of cable_ocp's top tension
+#: s, MoorDyn's coupling step (its top tension is sampled at each): MoorDyn moves a coupled
+#: point linearly within a coupling step, and a coarse one costs accuracy that no dtM
+#: recovers (the linear check's amplitude: -7.5 % at 0.05 s, -3.0 % at 0.01 s, -1.5 % at
+#: 2.5 ms of the closed form; the 5.7 case at 40 segments: -4.2 % at 0.05 s, -0.5 % at
+#: 0.01 s, +0.2 % at 2 ms of cable_ocp's). 4 ms: a multiple of every dtM used here
+COUPLING_STEP = 0.004
+DURATION = 60.0  # s
+WINDOW = 10.0  # s: errors and amplitudes over the last WINDOW seconds
+LINEAR_DAMPING = 2.0e6  # N s, internal damping of the closed-form check
+#: the project's targets: simulated seconds per wall second at 40 segments, and the accuracy
+#: (top-tension error over its amplitude) at which the two models' speeds are compared
+TARGET_REALTIME = 100.0
+TARGET_SEGMENTS = 40
+EQUAL_ACCURACY = 0.01
+#: a seconds-long configuration (a smoke run for the tests; its numbers mean little)
+QUICK: dict[str, Any] = {"segments": (6,), "time_steps": (0.1,), "duration": 20.0,
+                         "repeats": 1, "compile_mode": "kernel",
+                         "moordyn_steps": {6: (4e-3,)}}
+DEFAULT_MOORDYN_STEPS: dict[int, tuple[float, ...]] = {20: (4e-3, 2e-3), 40: (4e-3, 2e-3),
+                                                       80: (2e-3, 1e-3)}
+
+
+@dataclass
+class BenchRow:
+    """One line of the benchmark table.
+
+    Attributes
+    ----------
+    model : str
+        ``"cable_ocp midpoint"`` or ``"MoorDyn <scheme>"``.
+    segments : int
+    time_step : float
+        Integration step, s.
+    wall_per_simulated_s : float
+        Wall time per simulated second, s (stepping only, fastest of the repeats).
+    realtime_factor : float
+        Simulated seconds per wall second.
+    top_tension_amplitude_N : float
+        Half the peak-to-peak top tension over the last 10 s, N.
+    error : float
+        Largest top-tension difference from the converged reference of the same model and
+        segments over the last 10 s, over the reference's amplitude (-).
+    amplitude_vs_other : float or None
+        Relative difference of the top-tension amplitude from the other model at the same
+        segments and converged time step (-); None without MoorDyn.
+    status : str
+        ``"ok"`` or why not.
+    """
+
+    model: str
+    segments: int
+    time_step: float
+    wall_per_simulated_s: float
+    realtime_factor: float
+    top_tension_amplitude_N: float
+    error: float
+    amplitude_vs_other: float | None
+    status: str
+
+
+def scene(segments: int, time_step: float, duration: float = DURATION,
+          linear: bool = False) -> DynamicScene:
+    """The benchmark scene (see the module docstring) with ``segments`` and ``time_step``.
+
+    ``linear``: the closed-form check of :func:`linear_check` instead: heave only, no drag,
+    internal damping 2e6 N s (a Kelvin-Voigt rod).
+    """
+    ov: dict[str, Any] = {
+        "top_motion.heave_frequency": FREQUENCY, "top_motion.horizontal_frequency": FREQUENCY,
+        "top_motion.ramp_time": RAMP, "unit.drag_area": 0.5, "unit.drag_coefficient": 1.5,
+        "unit.added_mass": 3000.0, "cable.axial_damping": DAMPING,
+        "simulation.segments": segments, "simulation.time_step": time_step,
+        "simulation.output_step": time_step, "simulation.duration": duration}
+    if linear:
+        ov.update({"top_motion.horizontal_amplitude": 0.0, "unit.drag_area": 0.0,
+                   "unit.drag_coefficient": 0.0, "cable.normal_drag": 0.0,
+                   "cable.tangential_drag": 0.0, "cable.axial_damping": LINEAR_DAMPING})
+    return load_dynamic_scene(PROBLEM, ov)
+
+
+def _cable_ocp(segments: int, time_step: float, compile_mode: str | bool,
+               duration: float, linear: bool = False
+               ) -> tuple[np.ndarray, np.ndarray, float, str]:
+    from cable_ocp.dynamics.lumped import LumpedMassModel, run
+    from cable_ocp.dynamics.lumped_scene import lumped_params, lumped_start
+
+    sc = scene(segments, time_step, duration, linear)
+    model = LumpedMassModel(lumped_params(sc))
+    x0, info = lumped_start(sc, model)
+    if x0 is None:
+        return np.zeros(0), np.zeros(0), math.nan, info["message"]
+    every = max(1, int(round(OUTPUT_STEP / time_step)))
+    out = run(model, x0, None, duration, time_step, record_every=every,
+              chunk_records=max(1, int(round(duration / OUTPUT_STEP)) // 10),
+              compile=compile_mode, tol=sc.simulation.tolerance)
+    status = "ok" if out.success else out.status
+    return out.t, np.linalg.norm(out.top_force, axis=1), out.wall_time_s, status
+
+
+def moordyn_available() -> bool:
+    """True when the optional ``moordyn`` package imports."""
+    try:
+        import moordyn  # noqa: F401
+    except Exception:  # noqa: BLE001 - optional
+        return False
+    return True
+
+
+@contextmanager
+def _silenced() -> Any:
+    """Redirect the C-level stdout and stderr to /dev/null (MoorDyn writes there)."""
+    sys.stdout.flush()
+    sys.stderr.flush()
+    saved = [os.dup(1), os.dup(2)]
+    null = os.open(os.devnull, os.O_WRONLY)
+    try:
+        os.dup2(null, 1)
+        os.dup2(null, 2)
+        yield
+    finally:
+        os.dup2(saved[0], 1)
+        os.dup2(saved[1], 2)
+        for fd in (*saved, null):
+            os.close(fd)
+
+
+def _moordyn_input(sc: DynamicScene, segments: int, dtm: float) -> str:
+    """MoorDyn v2 input file of the benchmark scene (z = 0 at the surface, end_b there)."""
+    st = sc.statics
+    cab = st.cable
+    dyn = sc.cable[0]
+    unit = sc.unit
+    rho = st.environment.water_density
+    depth = st.environment.water_depth
+    top = sc.top_position
+    z_top = top[2] - depth
+    volume = unit.volume if unit.volume is not None else (
+        unit.mass - unit.weight_in_water / st.environment.gravity) / rho
+    ca_point = unit.added_mass[0] / (rho * volume)
+    cda = unit.drag_area[0] * unit.drag_coefficient[0]
+    return f"""--------------------- MoorDyn Input File ------------------------------------
+cable_ocp benchmark: Huang (1992) 5.7 system
+---------------------- LINE TYPES ----------------------------------------------------------
+TypeName Diam MassDen EA BA EI Cd Ca CdAx CaAx
+(name) (m) (kg/m) (N) (N-s) (N-m^2) (-) (-) (-) (-)
+cable {cab.diameter} {dyn.mass_per_length} {cab.axial_stiffness} {dyn.axial_damping} 0 \
+{cab.normal_drag} {dyn.added_mass_coefficient} {cab.tangential_drag} \
+{dyn.tangential_added_mass_coefficient}
+---------------------- POINTS ---------------------------------------
+ID Attachment X Y Z Mass Volume CdA Ca
+(#) (word) (m) (m) (m) (kg) (m^3) (m^2) (-)
+1 Free {top[0]} {top[1]} {z_top - cab.length} {unit.mass} {volume} {cda} {ca_point}
+2 Coupled {top[0]} {top[1]} {z_top} 0 0 0 0
+---------------------- LINES ----------------------------------------
+ID LineType AttachA AttachB UnstrLen NumSegs LineOutputs
+(#) (name) (ID) (ID) (m) (-) (-)
+1 cable 1 2 {cab.length} {segments} -
+---------------------- OPTIONS -----------------------------------------
+{dtm} dtM
+{depth} WtrDpth
+{rho} rho
+{st.environment.gravity} g
+120 TmaxIC
+1e-6 threshIC
+0 writeLog
+------------------------- need this line -------------------------------------
+"""
+
+
+def _moordyn(segments: int, dtm: float, duration: float, scheme: str = "RK2",
+             linear: bool = False) -> tuple[np.ndarray, np.ndarray, float, str]:
+    import casadi as ca
+    import moordyn
+
+    from cable_ocp.dynamics.motion import top_offset_expr
+
+    sc = scene(segments, OUTPUT_STEP, duration, linear)
+    ts = ca.SX.sym("t")
+    off = top_offset_expr(sc.top_motion, ts)
+    motion = ca.Function("m", [ts], [off, ca.jacobian(off, ts)])
+    top = np.asarray(sc.top_position, float)
+    z_shift = np.array([0.0, 0.0, -sc.statics.environment.water_depth])
+    with tempfile.TemporaryDirectory() as tmp:
+        path = os.path.join(tmp, "huang_5_7.txt")
+        with open(path, "w") as fh:
+            fh.write(_moordyn_input(sc, segments, dtm))
+        times, tens = [], []
+        status = "ok"
+        with _silenced():
+            try:
+                system = moordyn.Create(path)
+                if scheme != "RK2":
+                    moordyn.SetTimeScheme(system, scheme)
+                # the prescribed top at the start of every coupling step (MoorDyn moves
+                # the coupled point linearly from there: r = r0 + v0 (t - t0)), computed
+                # before the timing
+                n_c = int(round(duration / COUPLING_STEP))
+                tc = COUPLING_STEP * np.arange(n_c + 1)
+                pos_c, vel_c = (np.asarray(a) for a in motion.map(n_c + 1)(tc[None, :]))
+                pos_c = ((top + z_shift)[:, None] + pos_c).T.tolist()
+                vel_c = vel_c.T.tolist()
+                tc = tc.tolist()
+                moordyn.Init(system, pos_c[0], vel_c[0])
+                t0 = time.perf_counter()
+                for k in range(n_c):
+                    f = moordyn.Step(system, pos_c[k], vel_c[k], tc[k], COUPLING_STEP)
+                    times.append(tc[k + 1])
+                    tens.append(math.hypot(f[0], f[1], f[2]))
+                wall = time.perf_counter() - t0
+                moordyn.Close(system)
+            except Exception as exc:  # noqa: BLE001 - MoorDyn's failure is a result
+                wall = math.nan
+                status = f"failed: {exc}"
+    tens_a = np.asarray(tens)
+    if status == "ok" and (not np.all(np.isfinite(tens_a)) or tens_a.max() > 1e7):
+        status = "unstable"
+    return np.asarray(times), tens_a, wall, status
+
+
+def _window(t: np.ndarray, y: np.ndarray, duration: float) -> tuple[np.ndarray, np.ndarray]:
+    keep = t >= duration - WINDOW - 1e-9
+    return t[keep], y[keep]
+
+
+def _amplitude(t: np.ndarray, y: np.ndarray, duration: float) -> float:
+    _, yw = _window(t, y, duration)
+    return 0.5 * float(np.ptp(yw)) if yw.size else math.nan
+
+
+def _error(t: np.ndarray, y: np.ndarray, tr: np.ndarray, yr: np.ndarray,
+           duration: float) -> float:
+    tw, yw = _window(t, y, duration)
+    if yw.size == 0 or tr.size == 0:
+        return math.nan
+    ref = np.interp(tw, tr, yr)
+    return float(np.max(np.abs(yw - ref)) / _amplitude(tr, yr, duration))
+
+
+def run(segments: Sequence[int] = (20, 40, 80),
+        time_steps: Sequence[float] = (0.1, 0.05, 0.025),
+        moordyn_steps: dict[int, Sequence[float]] | None = None, *,
+        with_moordyn: bool = True, compile_mode: str | bool = "step", repeats: int = 2,
+        duration: float = DURATION,
+        progress: Callable[[str], None] | None = None) -> list[BenchRow]:
+    """Run the benchmark and return its rows (prints nothing).
+
+    Parameters
+    ----------
+    segments : sequence of int
+        Numbers of lumped segments.
+    time_steps : sequence of float
+        cable_ocp's time steps, s (multiples or divisors of the 0.05 s sampling).
+    moordyn_steps : dict, optional
+        MoorDyn's dtM per number of segments, s; default: its largest stable step
+        (4 ms at 20 and 40 segments, 2 ms at 80, found by halving from 8 ms) and half of it.
+    with_moordyn : bool
+        Include MoorDyn when it is installed.
+    compile_mode : {"step", "kernel", False}
+        See :func:`cable_ocp.dynamics.lumped.run` (``"step"``: a few seconds of C
+        compilation per new scene and step, cached, not counted in the wall time).
+    repeats : int
+        Timed runs per row; the fastest is kept.
+    duration : float
+        Simulated time, s (the errors and amplitudes use its last 10 s).
+    progress : callable, optional
+        Called with a short label before each row.
+    """
+    if moordyn_steps is None:
+        moordyn_steps = {n: DEFAULT_MOORDYN_STEPS.get(n, (1e-3,)) for n in segments}
+    use_md = with_moordyn and moordyn_available()
+    rows: list[BenchRow] = []
+    for n in segments:
+        if progress:
+            progress(f"cable_ocp reference, {n} segments")
+        dt_ref = min(time_steps) / 8.0
+        tr, yr, _, st_ref = _cable_ocp(n, dt_ref, compile_mode, duration)
+        amp_ref = _amplitude(tr, yr, duration)
+        md_ref = None
+        if use_md:
+            if progress:
+                progress(f"MoorDyn reference, {n} segments")
+            mdr = _moordyn(n, min(moordyn_steps.get(n, (1e-3,))) / 8.0, duration)
+            md_ref = mdr if mdr[3] == "ok" else None
+        amp_md = _amplitude(md_ref[0], md_ref[1], duration) if md_ref else None
+        for dt in time_steps:
+            if progress:
+                progress(f"cable_ocp, {n} segments, dt = {dt} s")
+            best = None
+            for _ in range(max(1, repeats)):
+                res = _cable_ocp(n, dt, compile_mode, duration)
+                if best is None or res[2] < best[2]:
+                    best = res
+            t, y, wall, status = best  # type: ignore[misc]
+            rows.append(BenchRow(
+                model="cable_ocp midpoint", segments=n, time_step=dt,
+                wall_per_simulated_s=wall / duration, realtime_factor=duration / wall,
+                top_tension_amplitude_N=_amplitude(t, y, duration),
+                error=_error(t, y, tr, yr, duration),
+                amplitude_vs_other=(amp_ref / amp_md - 1.0) if amp_md else None,
+                status=status if st_ref == "ok" else f"{status} (reference {st_ref})"))
+        if not use_md:
+            if with_moordyn:  # asked for but absent: say so in the table
+                for dtm in moordyn_steps.get(n, ()):
+                    rows.append(BenchRow(
+                        model="MoorDyn RK2", segments=n, time_step=dtm,
+                        wall_per_simulated_s=math.nan, realtime_factor=math.nan,
+                        top_tension_amplitude_N=math.nan, error=math.nan,
+                        amplitude_vs_other=None,
+                        status="not installed (pip install moordyn)"))
+            continue
+        for dtm in moordyn_steps.get(n, ()):
+            if progress:
+                progress(f"MoorDyn, {n} segments, dtM = {dtm} s")
+            best = None
+            for _ in range(max(1, repeats)):
+                res = _moordyn(n, dtm, duration)
+                if best is None or not (res[2] >= best[2]):
+                    best = res
+            t, y, wall, status = best  # type: ignore[misc]
+            ok = status == "ok"
+            rows.append(BenchRow(
+                model="MoorDyn RK2", segments=n, time_step=dtm,
+                wall_per_simulated_s=wall / duration if ok else math.nan,
+                realtime_factor=duration / wall if ok else math.nan,
+                top_tension_amplitude_N=_amplitude(t, y, duration) if ok else math.nan,
+                error=_error(t, y, md_ref[0], md_ref[1], duration) if (ok and md_ref)
+                else math.nan,
+                amplitude_vs_other=(amp_md / amp_ref - 1.0) if amp_md else None,
+                status=status))
+    return rows
+
+
+def format_table(rows: Sequence[BenchRow]) -> str:
+    """The rows as a plain-text table (for the CLI; this module prints nothing)."""
+    head = (f"{'model':<20} {'N':>3} {'dt (s)':>8} {'wall/sim s':>11} {'x real time':>11} "
+            f"{'T amp (kN)':>10} {'error':>9} {'amp vs other':>12}  status")
+    lines = [head, "-" * len(head)]
+    for r in rows:
+        other = "" if r.amplitude_vs_other is None else f"{100 * r.amplitude_vs_other:+.2f} %"
+        lines.append(
+            f"{r.model:<20} {r.segments:>3} {r.time_step:>8.4g} "
+            f"{r.wall_per_simulated_s * 1e3:>8.2f} ms {r.realtime_factor:>11.0f} "
+            f"{r.top_tension_amplitude_N / 1e3:>10.3f} {r.error:>9.2e} {other:>12}  "
+            f"{r.status}")
+    return "\n".join(lines)
+
+
+def as_dicts(rows: Sequence[BenchRow]) -> list[dict[str, Any]]:
+    """The rows as JSON-ready dictionaries."""
+    return [asdict(r) for r in rows]
+
+
+def _first_harmonic(t: np.ndarray, y: np.ndarray, w: float) -> float:
+    basis = np.column_stack([np.ones_like(t), np.sin(w * t), np.cos(w * t),
+                             np.sin(2 * w * t), np.cos(2 * w * t)])
+    coef = np.linalg.lstsq(basis, y, rcond=None)[0]
+    return float(np.hypot(coef[1], coef[2]))
+
+
+def linear_check(segments: int = 20, duration: float = 60.0, with_moordyn: bool = True
+                 ) -> dict[str, Any]:
+    """The top-tension amplitude of a linear case against its closed form.
+
+    The benchmark line heaving alone (no drag, internal damping 2e6 N s): a viscoelastic rod
+    with a tip mass M (unit mass + added mass), whose steady response to z_b = sin(w t)
+    is closed-form (EA* = EA + i w c, k^2 = mu w^2 / EA*, u = B cos(k s) + C sin(k s),
+    -M w^2 B = EA* k C, u(L) = 1; top tension EA* u'(L)). Returns the first-harmonic
+    amplitudes of the top tension (N) over the last 20 s: ``closed_form``,
+    ``cable_ocp`` (dt = 0.0125 s) and ``moordyn`` (dtM = 0.25 ms; None without it).
+    """
+    import cmath
+
+    sc = scene(segments, 0.0125, duration, linear=True)
+    st = sc.statics
+    ea = st.cable.axial_stiffness
+    mu = sc.cable[0].mass_per_length
+    big_m = sc.unit.mass + sc.unit.added_mass[2]  # type: ignore[union-attr]
+    w = FREQUENCY
+    es = ea + 1j * w * LINEAR_DAMPING
+    k = w * cmath.sqrt(mu / es)
+    length = float(st.cable.length)  # type: ignore[arg-type]
+    b = 1.0 / (cmath.cos(k * length) - big_m * w * w / (es * k) * cmath.sin(k * length))
+    c = -big_m * w * w * b / (es * k)
+    closed = abs(es * k * (-b * cmath.sin(k * length) + c * cmath.cos(k * length)))
+    t, y, _, status = _cable_ocp(segments, 0.0125, "kernel", duration, linear=True)
+    keep = t >= duration - 20.0
+    out: dict[str, Any] = {"closed_form": closed,
+                           "cable_ocp": _first_harmonic(t[keep], y[keep], w),
+                           "cable_ocp_status": status, "moordyn": None}
+    if with_moordyn and moordyn_available():
+        tm, ym, _, st_md = _moordyn(segments, 2.5e-4, duration, linear=True)
+        keep = tm >= duration - 20.0
+        out["moordyn"] = _first_harmonic(tm[keep], ym[keep], w) if st_md == "ok" else None
+        out["moordyn_status"] = st_md
+    return out
+
+
+def planned_rows(segments: Sequence[int], time_steps: Sequence[float],
+                 moordyn_steps: dict[int, Sequence[float]] | None, with_moordyn: bool
+                 ) -> int:
+    """How many ``progress`` calls :func:`run` makes (references included)."""
+    use_md = with_moordyn and moordyn_available()
+    md = moordyn_steps or {n: DEFAULT_MOORDYN_STEPS.get(n, (1e-3,)) for n in segments}
+    return sum(1 + len(time_steps) + ((1 + len(md.get(n, ()))) if use_md else 0)
+               for n in segments)
+
+
+def _ok(r: BenchRow) -> bool:
+    return r.status == "ok" and math.isfinite(r.wall_per_simulated_s) and math.isfinite(r.error)
+
+
+def summary(rows: Sequence[BenchRow], accuracy: float = EQUAL_ACCURACY) -> dict[str, Any]:
+    """The project's two speed targets from the rows of :func:`run`.
+
+    * ``realtime``: at :data:`TARGET_SEGMENTS` segments, cable_ocp's fastest row whose
+      top-tension error is within ``accuracy`` of the amplitude: its real-time factor
+      against :data:`TARGET_REALTIME`.
+    * ``versus_moordyn``: per number of segments, the fastest row of each model within
+      ``accuracy`` (each against its own converged reference) and the ratio of MoorDyn's
+      wall time to cable_ocp's (>= 1: cable_ocp no slower at equal accuracy); plus the
+      relative difference of the two models' converged top-tension amplitudes (the target
+      is 2 %).
+    """
+    out: dict[str, Any] = {"accuracy": accuracy, "target_realtime": TARGET_REALTIME,
+                           "target_segments": TARGET_SEGMENTS, "realtime": None,
+                           "versus_moordyn": []}
+
+    def fastest(model_prefix: str, n: int) -> BenchRow | None:
+        cand = [r for r in rows if r.model.startswith(model_prefix) and r.segments == n
+                and _ok(r) and r.error <= accuracy]
+        return min(cand, key=lambda r: r.wall_per_simulated_s) if cand else None
+
+    ours40 = fastest("cable_ocp", TARGET_SEGMENTS)
+    if ours40 is not None:
+        out["realtime"] = {"time_step": ours40.time_step,
+                           "realtime_factor": ours40.realtime_factor,
+                           "error": ours40.error,
+                           "met": ours40.realtime_factor >= TARGET_REALTIME}
+    for n in dict.fromkeys(r.segments for r in rows):
+        ours = fastest("cable_ocp", n)
+        md = fastest("MoorDyn", n)
+        md_rows = [r for r in rows if r.model.startswith("MoorDyn") and r.segments == n]
+        entry: dict[str, Any] = {
+            "segments": n,
+            "cable_ocp": None if ours is None else {
+                "time_step": ours.time_step, "wall_per_simulated_s": ours.wall_per_simulated_s,
+                "error": ours.error},
+            "moordyn": None if md is None else {
+                "time_step": md.time_step, "wall_per_simulated_s": md.wall_per_simulated_s,
+                "error": md.error},
+            "moordyn_status": ("not run" if not md_rows else "ok" if md is not None else
+                               md_rows[0].status if not md_rows[0].status == "ok" else
+                               f"has no row within {accuracy:.0%}"),
+            "speed_ratio": None, "met": None, "amplitude_difference": None}
+        if ours is not None and md is not None:
+            ratio = md.wall_per_simulated_s / ours.wall_per_simulated_s
+            entry.update(speed_ratio=ratio, met=ratio >= 1.0)
+        amp = [r.amplitude_vs_other for r in rows if r.model.startswith("cable_ocp")
+               and r.segments == n and r.amplitude_vs_other is not None]
+        if amp:
+            entry["amplitude_difference"] = amp[0]
+        out["versus_moordyn"].append(entry)
+    return out
+
+
+def format_summary(sm: dict[str, Any]) -> str:
+    """The targets of :func:`summary` as text lines."""
+    acc = sm["accuracy"]
+    lines = []
+    rt = sm["realtime"]
+    if rt is None:
+        lines.append(f"target {sm['target_realtime']:.0f}x real time at "
+                     f"{sm['target_segments']} segments: no cable_ocp row at that many "
+                     f"segments within {acc:.0%} (not run or not accurate enough)")
+    else:
+        lines.append(f"target {sm['target_realtime']:.0f}x real time at "
+                     f"{sm['target_segments']} segments (error <= {acc:.0%}): "
+                     f"{rt['realtime_factor']:.0f}x at dt = {rt['time_step']:g} s -> "
+                     f"{'met' if rt['met'] else 'NOT met'}")
+    for e in sm["versus_moordyn"]:
+        head = f"{e['segments']} segments vs MoorDyn at equal accuracy (error <= {acc:.0%}): "
+        if e["cable_ocp"] is None or e["moordyn"] is None:
+            why = ("MoorDyn " + e["moordyn_status"]) if e["moordyn"] is None else \
+                "no cable_ocp row within the accuracy"
+            lines.append(head + why)
+        else:
+            lines.append(head + f"cable_ocp {e['cable_ocp']['wall_per_simulated_s'] * 1e3:.2f}"
+                         f" ms (dt {e['cable_ocp']['time_step']:g} s) vs MoorDyn "
+                         f"{e['moordyn']['wall_per_simulated_s'] * 1e3:.2f} ms (dtM "
+                         f"{e['moordyn']['time_step']:g} s): MoorDyn/cable_ocp = "
+                         f"{e['speed_ratio']:.2f} -> {'met' if e['met'] else 'NOT met'}")
+        if e["amplitude_difference"] is not None:
+            lines.append(f"    converged top-tension amplitudes differ by "
+                         f"{100 * e['amplitude_difference']:+.2f} % (target within 2 %)")
+    return "\n".join(lines)
+
+
+def plot(rows: Sequence[BenchRow], path: str | Path) -> Path:
+    """Work-precision figure: top-tension error against wall time per simulated second,
+    one colour per number of segments, solid cable_ocp, dashed MoorDyn."""
+    from cable_ocp.plots.common import new_figure, save
+
+    fig = new_figure(7.5, 5.2)
+    ax = fig.add_subplot(1, 1, 1)
+    for j, n in enumerate(dict.fromkeys(r.segments for r in rows)):
+        for model, style in (("cable_ocp", {"ls": "-", "marker": "o"}),
+                             ("MoorDyn", {"ls": "--", "marker": "s"})):
+            # joined in the order of the time step (largest first), not of the timings
+            pts = sorted((-r.time_step, r.wall_per_simulated_s, r.error) for r in rows
+                         if r.segments == n and r.model.startswith(model) and _ok(r))
+            if pts:
+                _, w, e = np.array(pts).T
+                ax.loglog(w * 1e3, np.maximum(e, 1e-16), color=f"C{j % 10}",
+                          label=f"{model}, {n} segments", **style)
+    ax.axhline(EQUAL_ACCURACY, color="0.5", lw=0.8, ls=":")  # the equal-accuracy level
+    ax.axvline(1e3 / TARGET_REALTIME, color="0.5", lw=0.8, ls=":")  # 100x real time
+    ax.set_xlabel("wall time per simulated second (ms)")
+    ax.set_ylabel("top-tension error / amplitude (-)")
+    ax.set_title("Huang (1992) 5.7 system at 1.256 rad/s: work-precision", fontsize=10.5)
+    ax.grid(True, which="major", alpha=0.35)
+    ax.legend(fontsize=8)
+    save(fig, path)
+    return Path(path)

@@ -1,0 +1,300 @@
+"""Newton's method on the collocated system G(w, p) = 0, with few Python round trips.
+
+The residual of a transcription is described as *blocks*: each block is a small SX
+function r = f(z, p) of a few unknowns z = w[index] (one collocation interval, the end
+conditions, a joint), mapped over its instances. From the blocks this module builds
+
+* ``G(w, p) -> g`` (MX over the mapped block functions),
+* ``GJ(w, p) -> (g, J)`` with the sparse Jacobian J = dG/dw assembled from the blocks'
+  own small SX Jacobians (no colouring of the global graph: building it costs about as
+  much as building G, and the number of operations per evaluation is the same as that
+  of the Jacobian of the fully expanded residual),
+* ``step(w, p) -> (g, dw)``, the Newton step dw = -J^-1 g, with the sparse linear solve
+  (CSparse's LU) inside the same call.
+
+:class:`Kernel` evaluates them through CasADi's ``FunctionBuffer`` on preallocated numpy
+arrays (converting a 1000-entry numpy vector to a CasADi matrix costs about as much as
+evaluating the residual), and :func:`newton` runs the iteration: Newton steps with a
+backtracking line search within bounds, as CasADi's ``rootfinder`` does, but the full
+step's residual comes from the next step's call, so an undamped step costs no extra
+evaluation.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+
+import casadi as ca
+import numpy as np
+
+#: sparse linear solver of the Newton step (CasADi plugin): CSparse's LU, as the CasADi
+#: ``rootfinder`` used before; its set-up costs a tenth of the sparse QR's ("qr") and its
+#: solves about as much on the collocated systems
+LINEAR_SOLVER = "csparse"
+
+
+@dataclass(frozen=True)
+class Block:
+    """Rows of G computed by one SX function ``fn(z, p) -> r`` on ``count`` instances.
+
+    Attributes
+    ----------
+    fn : casadi.Function
+        ``(z[nz], p[np]) -> r[nr]``, built from SX.
+    z_index : ndarray of int, shape (nz, count)
+        Indices into w of each instance's z.
+    rows : ndarray of int, shape (nr, count)
+        Rows of G of each instance's r.
+    jac : casadi.Function, optional
+        ``(z, p) -> (r, dr/dz)`` when the block knows its Jacobian's structure (cheaper
+        to build than differentiating ``fn``); else ``fn`` is differentiated.
+    """
+
+    fn: ca.Function
+    z_index: np.ndarray
+    rows: np.ndarray
+    jac: ca.Function | None = None
+
+    @property
+    def count(self) -> int:
+        """Number of instances."""
+        return int(self.z_index.shape[1])
+
+
+def _gather(w: ca.MX, block: Block) -> ca.MX:
+    """z of every instance as the columns of one (nz, count) matrix."""
+    nz, count = block.z_index.shape
+    return ca.reshape(w[block.z_index.ravel(order="F").tolist()], nz, count)
+
+
+def _scatter_order(blocks: list[Block], n: int) -> list[int]:
+    """Permutation taking the concatenated block outputs to the rows of G."""
+    rows = np.concatenate([b.rows.ravel(order="F") for b in blocks])
+    if rows.size != n or not np.array_equal(np.sort(rows), np.arange(n)):
+        raise ValueError("the blocks do not cover every row of G exactly once")
+    order = np.empty(n, dtype=int)
+    order[rows] = np.arange(n)
+    return order.tolist()
+
+
+def _call(block: Block, fn: ca.Function, w: ca.MX, p: ca.MX) -> list[ca.MX]:
+    z = _gather(w, block)
+    if block.count == 1:
+        return fn(z, p) if fn.n_out() > 1 else [fn(z, p)]
+    out = fn.map(block.count)(z, p)
+    return out if fn.n_out() > 1 else [out]
+
+
+def residual_function(blocks: list[Block], n_w: int, n_p: int, name: str = "G"
+                      ) -> ca.Function:
+    """``G(w, p) -> g`` from the blocks (rows in the blocks' declared order)."""
+    w, p = ca.MX.sym("w", n_w), ca.MX.sym("p", n_p)
+    parts = [ca.vec(_call(b, b.fn, w, p)[0]) for b in blocks]
+    g = ca.vertcat(*parts)[_scatter_order(blocks, n_w)]
+    return ca.Function(name, [w, p], [g], ["w", "p"], ["g"])
+
+
+def jacobian_functions(blocks: list[Block], n_w: int, n_p: int,
+                       linear_solver: str = LINEAR_SOLVER) -> tuple[ca.Function, ca.Function]:
+    """``GJ(w, p) -> (g, J)`` and ``step(w, p) -> (g, dw)`` from the blocks.
+
+    J is assembled from each block's SX Jacobian dr/dz (its structural nonzeros, in
+    compressed-column order of the global pattern); dw = -J^-1 g by ``linear_solver``.
+    """
+    w, p = ca.MX.sym("w", n_w), ca.MX.sym("p", n_p)
+    g_parts, values, rows, cols = [], [], [], []
+    for b in blocks:
+        if b.jac is not None:
+            fj = b.jac
+        else:
+            z = ca.SX.sym("z", b.fn.size1_in(0))
+            ps = ca.SX.sym("p", n_p)
+            r = b.fn(z, ps)
+            fj = ca.Function(b.fn.name() + "_jac", [z, ps], [r, ca.jacobian(r, z)])
+        r_all, j_all = _call(b, fj, w, p)
+        g_parts.append(ca.vec(r_all))
+        values.append(j_all.nz[:] if j_all.nnz() else ca.MX(0, 1))
+        jr, jc = (np.asarray(v) for v in fj.sparsity_out(1).get_triplet())
+        # the per-instance nonzeros in compressed-column order of (nr, nz)
+        order = np.lexsort((jr, jc))
+        jr, jc = jr[order], jc[order]
+        rows.append(b.rows[jr, :].ravel(order="F"))  # instance by instance
+        cols.append(b.z_index[jc, :].ravel(order="F"))
+    g = ca.vertcat(*g_parts)[_scatter_order(blocks, n_w)]
+    rows_a, cols_a = np.concatenate(rows), np.concatenate(cols)
+    key = np.sort(cols_a.astype(np.int64) * n_w + rows_a)
+    if key.size > 1 and np.any(key[1:] == key[:-1]):
+        raise ValueError("two blocks write the same Jacobian entry")
+    ccs = np.lexsort((rows_a, cols_a))
+    colind = np.searchsorted(cols_a[ccs], np.arange(n_w + 1))
+    sp = ca.Sparsity(n_w, n_w, colind.tolist(), rows_a[ccs].tolist())
+    jac_mx = ca.sparsity_cast(ca.vertcat(*values)[ccs.tolist()], sp)
+    gj = ca.Function("GJ", [w, p], [g, jac_mx], ["w", "p"], ["g", "J"])
+    dw = -ca.solve(jac_mx, g, linear_solver)
+    step = ca.Function("newton_step", [w, p], [g, dw], ["w", "p"], ["g", "dw"])
+    return gj, step
+
+
+class Kernel:
+    """Buffered evaluation of ``G`` and the Newton step (not thread-safe: one set of
+    buffers per kernel).
+
+    Parameters
+    ----------
+    g_fn : casadi.Function
+        ``(w, p) -> g``.
+    step_fn : casadi.Function
+        ``(w, p) -> (g, dw)``.
+    """
+
+    def __init__(self, g_fn: ca.Function, step_fn: ca.Function):
+        n_w, n_p = g_fn.size1_in(0), g_fn.size1_in(1)
+        self.n_w, self.n_p = n_w, n_p
+        self._w = np.zeros(n_w)
+        self._p = np.zeros(n_p)
+        self._g = np.zeros(n_w)
+        self._g2 = np.zeros(n_w)
+        self._dw = np.zeros(n_w)
+        self._gbuf, self._geval = g_fn.buffer()
+        self._gbuf.set_arg(0, memoryview(self._w))
+        self._gbuf.set_arg(1, memoryview(self._p))
+        self._gbuf.set_res(0, memoryview(self._g))
+        self._sbuf, self._seval = step_fn.buffer()
+        self._sbuf.set_arg(0, memoryview(self._w))
+        self._sbuf.set_arg(1, memoryview(self._p))
+        self._sbuf.set_res(0, memoryview(self._g2))
+        self._sbuf.set_res(1, memoryview(self._dw))
+        #: evaluations since construction: residuals, Newton steps (Jacobian + solve)
+        self.counts = {"g": 0, "step": 0}
+
+    def g(self, w: np.ndarray, p: np.ndarray) -> np.ndarray:
+        """G(w, p) (a new array)."""
+        self._w[:] = w
+        self._p[:] = p
+        self._geval()
+        self.counts["g"] += 1
+        return self._g.copy()
+
+    def step(self, w: np.ndarray, p: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+        """(G(w, p), -J(w, p)^-1 G(w, p)) (new arrays; the step is NaN where the sparse
+        factorisation fails: a singular Jacobian)."""
+        self._w[:] = w
+        self._p[:] = p
+        self.counts["step"] += 1
+        try:
+            self._seval()
+        except RuntimeError:  # CSparse: "factorization failed, ... singular"
+            return self.g(w, p), np.full(self.n_w, np.nan)
+        return self._g2.copy(), self._dw.copy()
+
+
+@dataclass
+class NewtonResult:
+    """Outcome of :func:`newton`."""
+
+    w: np.ndarray
+    g: np.ndarray | None  # G at w when evaluated there (None otherwise)
+    iterations: int  # Newton steps taken (linear solves)
+    success: bool
+    message: str
+
+
+def _max_step(w: np.ndarray, dw: np.ndarray, lb: np.ndarray | None, ub: np.ndarray | None
+              ) -> float:
+    """Largest alpha <= 1 keeping w + alpha dw within 99 % of the way to the bounds."""
+    alpha = 1.0
+    for bound, sign in ((lb, -1.0), (ub, 1.0)):
+        if bound is None:
+            continue
+        gap = sign * (bound - w)  # >= 0 inside
+        move = sign * dw
+        hit = np.isfinite(bound) & (move > 0)
+        if np.any(hit):
+            alpha = min(alpha, float(np.min(0.99 * np.maximum(gap[hit], 0.0) / move[hit])))
+    return alpha
+
+
+def _decrease(g_new: np.ndarray, g_max: float, alpha: float) -> bool:
+    """Sufficient decrease for a step of length alpha: max|G| falls to (1 - alpha/2) of
+    its value (the test of CasADi's ``rootfinder`` "newton")."""
+    new = float(np.max(np.abs(g_new))) if g_new.size else 0.0
+    return math.isfinite(new) and new <= (1.0 - 0.5 * alpha) * g_max
+
+
+def newton(kernel: Kernel, w0: np.ndarray, p: np.ndarray, tol: float, max_iter: int = 30,
+           lb: np.ndarray | None = None, ub: np.ndarray | None = None,
+           step_tol: float = 1e-14) -> NewtonResult:
+    """Solve G(w, p) = 0 from ``w0`` to max|G| <= ``tol`` by Newton's method with a
+    backtracking line search within [lb, ub]: the step length is halved until max|G| falls
+    to (1 - alpha/2) of its value, as in CasADi's ``rootfinder`` "newton" (its default).
+
+    The full step is tried first, and its residual comes from the next Newton-step call
+    (the Jacobian there is used if the step is accepted), so a step that needs no damping
+    costs no extra evaluation; only a rejected full step costs residual evaluations (and
+    the Jacobian computed at the rejected point). When quadratic convergence predicts
+    that the full step lands within the tolerance, its residual is checked first, without
+    a Jacobian.
+
+    Parameters
+    ----------
+    kernel : Kernel
+        The residual and its Newton step.
+    w0, p : ndarray
+        Start and parameters (scaled).
+    tol : float
+        Tolerance on the largest absolute residual (scaled).
+    max_iter : int
+        Most Newton steps.
+    lb, ub : ndarray, optional
+        Bounds kept by every step (99 % of the way to a bound at most).
+    step_tol : float
+        A step shorter than this (max norm) ends the iteration as converged (CasADi
+        ``rootfinder``'s ``abstolStep``); the caller checks the residual.
+
+    Returns
+    -------
+    NewtonResult
+        ``iterations`` counts the accepted Newton steps (one Jacobian and one sparse
+        factorisation each).
+    """
+    w = np.array(w0, dtype=float)
+    if lb is not None or ub is not None:
+        w = np.clip(w, lb if lb is not None else -np.inf, ub if ub is not None else np.inf)
+    g, dw = kernel.step(w, p)
+    steps = 0
+    kappa = math.nan  # |g_{k+1}| / |dw_k|^2: the quadratic-convergence constant
+    while True:
+        gmax = float(np.max(np.abs(g))) if g.size else 0.0
+        if not math.isfinite(gmax):
+            return NewtonResult(w, g, steps, False, "non-finite residual")
+        if gmax <= tol:
+            return NewtonResult(w, g, steps, True, "converged")
+        if steps >= max_iter:
+            return NewtonResult(w, g, steps, False, f"no convergence in {max_iter} steps")
+        if dw is None:
+            g, dw = kernel.step(w, p)
+            continue
+        if not np.all(np.isfinite(dw)):
+            return NewtonResult(w, g, steps, False, "singular Jacobian (non-finite step)")
+        alpha = _max_step(w, dw, lb, ub)
+        dnorm = float(np.max(np.abs(dw))) if dw.size else 0.0
+        trial = w + alpha * dw
+        if alpha == 1.0 and math.isfinite(kappa) and kappa * dnorm**2 <= 10.0 * tol:
+            g_new, dw_new = kernel.g(trial, p), None  # probably converged: no Jacobian
+        else:
+            g_new, dw_new = kernel.step(trial, p)
+        while not _decrease(g_new, gmax, alpha):
+            alpha *= 0.5
+            if alpha * dnorm <= step_tol or alpha < 2.0**-60:
+                return NewtonResult(w, g, steps, False,
+                                    "line search failed (no decrease of the residual)")
+            trial = w + alpha * dw
+            g_new, dw_new = kernel.g(trial, p), None
+        new_max = float(np.max(np.abs(g_new))) if g_new.size else 0.0
+        if alpha == 1.0 and dnorm > 0.0:
+            kappa = new_max / dnorm**2
+        w, g, dw = trial, g_new, dw_new
+        steps += 1
+        if alpha * dnorm <= step_tol and new_max > tol:
+            return NewtonResult(w, g, steps, True, "step below tolerance")
