@@ -23,6 +23,7 @@ from cable_ocp.heave import identify_cable as idc
 from cable_ocp.heave import mpc as mpc_mod
 from cable_ocp.heave import simulate as sm
 from cable_ocp.heave.cable_plant import (
+    CABLE_FIELDS,
     AxialCablePlant,
     CableComparison,
     CableMetrics,
@@ -117,8 +118,16 @@ def _compare_on_cable(sc: HeaveScene, sd: HeaveScene, dyn: DynamicScene,
     rng = np.random.default_rng(sc.simulation.seed + 1000)
     noise = rng.standard_normal((n_ctrl + 1, 3)) * np.array(
         [c.measurement_noise, c.winch_noise, c.boom_tip_noise])
-    table, p = design_table(sd, np.array([L0]), np.array([sd.unit.a]), np.array([sd.unit.b]))
-    G = table.G[0]
+    try:
+        with np.errstate(all="ignore"):
+            table, p = design_table(sd, np.array([L0]), np.array([sd.unit.a]),
+                                    np.array([sd.unit.b]))
+        G, design_error = table.G[0], None
+    except CableOCPError:
+        raise
+    except sm._DESIGN_ERRORS as exc:  # a Riccati equation without a stabilising solution
+        table, p, G = None, models.plant, None
+        design_error = f"the design on the design model failed: {type(exc).__name__}: {exc}"
     settings = _mpc_settings(sd)
     t_u0, t_t0 = plant_c.static_tensions()
     quad = sd.unit.model == "quadratic"
@@ -127,6 +136,13 @@ def _compare_on_cable(sc: HeaveScene, sd: HeaveScene, dyn: DynamicScene,
     solve_times, failures = None, 0
     warnings: list[str] = []
     for idx, name in enumerate(runs_of):
+        if design_error is not None and name != "passive":
+            statuses[name], messages[name] = "failed", design_error
+            empty = dict.fromkeys(("heave_rms", "reduction_pct", "peak_winch_speed",
+                                   "max_stroke", "energy_index", "max_constraint_violation",
+                                   "solve_time_median_s", "winch_speed_rms") + CABLE_FIELDS)
+            metrics[name] = (empty, empty)
+            continue
         runs = {}
         for j, kind in enumerate(("model", "cable")):
             base = (2 * idx + j) * n_ctrl
