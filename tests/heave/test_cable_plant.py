@@ -347,3 +347,30 @@ def test_design_table_interpolates_linearly() -> None:
         assert np.array_equal(lo[k], [tab.Ad, tab.Bd, tab.G, tab.M3, tab.M1][k][0])
         np.testing.assert_allclose(mid[k], 0.5 * (lo[k] + hi[k]), rtol=1e-12, atol=1e-15)
     assert np.array_equal(tab.at(50.0)[2], lo[2])  # held outside the table
+
+
+def test_cli_failed_controller_on_the_cable_exit_1(tmp_path: Path) -> None:
+    """The output contract with a controller that fails on the cable (the depth-only LQG on
+    the 900 m line, 10 elements, 40 s): exit 1, strict JSON with the top-level status
+    "failed" and the controller's message, null metrics (no NaN), and the figure written."""
+    text = (ROOT / "problems" / "dynamics" / "huang_6_2_6.toml").read_text()
+    assert "segments = 50" in text
+    (tmp_path / "line.toml").write_text(text.replace("segments = 50", "segments = 10"))
+    heave = (HEAVE / "ex_6_2_6_cable.toml").read_text().replace(
+        "../dynamics/huang_6_2_6.toml", "line.toml")
+    (tmp_path / "heave.toml").write_text(heave)
+    out, fig = tmp_path / "out.json", tmp_path / "fig.png"
+    rc = main(["heave", str(tmp_path / "heave.toml"), "--json", str(out), "--plot", str(fig),
+               "--quiet", "--duration", "40", "--set", "identification.duration=30",
+               "--controllers", "passive", "lqg"])
+
+    def strict(token: str) -> None:
+        raise AssertionError(f"non-strict JSON token {token}")
+
+    data = json.loads(out.read_text(), parse_constant=strict)
+    assert rc == 1 and data["status"] == "failed"
+    assert data["controllers"]["lqg"]["status"] == "failed"
+    assert "lqg: failed:" in data["message"]
+    assert data["controllers"]["lqg"]["heave_rms"] is None
+    assert data["controllers"]["passive"]["status"] == "solved"
+    assert fig.stat().st_size > 0
