@@ -4,7 +4,7 @@ The heave scene's ``[deployment]`` table lowers the unit of ``[unit] cable_scene
 cable scene's length to ``final_length`` at ``payout_speed`` (after the warm-up, the speed
 ramped in and out over ``ramp_time``, 20 s held at the end) in the scene's sea, on the cable plant
 (:mod:`cable_ocp.heave.cable_plant`). On the way the first axial natural frequency
-``omega_1(L)`` falls through the wave band (Huang (1992) 3.3.5 lowers through resonance
+``omega_1(L)`` falls through the wave band (Huang (1992), section 3.3.5 lowers through resonance
 without control), and the design model (6.2) changes with it: ``a(L) ~ 1 / omega_1(L)^2``.
 
 Three compensators are compared on the same sea:

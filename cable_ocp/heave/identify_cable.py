@@ -1,4 +1,4 @@
-"""The identification experiment of Huang (1992) 6.2.3 run on the cable model.
+"""The identification experiment of Huang (1992), section 6.2.3 run on the cable model.
 
 Huang simulates the unit's response to a random boom-tip motion with his ch. 3 cable model
 and fits ``a, b`` of (6.2) (and of (6.3)) by Gauss-Newton. Here the cable model is the axial

@@ -1,5 +1,5 @@
-"""Heave compensation on the cable: identification from the axial model (Huang (1992) 6.2.3)
-and the controllers in closed loop with the cable dynamics.
+"""Heave compensation on the cable: identification from the axial model (Huang (1992),
+section 6.2.3) and the controllers in closed loop with the cable dynamics.
 
 Independent references written here:
 
