@@ -260,7 +260,16 @@ def compare(sc: HeaveScene, controllers: tuple | None = None,
     that cannot be designed, or whose loop is unstable or non-finite, never stops the others.
     ``progress``, if given, is called as ``progress(done, total, None)`` every 100 control
     samples (``total`` = samples x runs, the passive baseline included).
+
+    A scene with ``[unit] cable_scene`` is compared by :func:`cable_ocp.heave.compare`
+    (:mod:`cable_ocp.heave.cable_compare`: identification from the cable, the cable as the
+    plant); here it raises.
     """
+    if sc.unit.cable_scene is not None:
+        raise CableOCPError(
+            f"unit.cable_scene = {sc.unit.cable_scene!r}: a scene on a cable is compared by "
+            "cable_ocp.heave.compare (cable_ocp.heave.cable_compare), which identifies the "
+            "design model from the cable; simulate.compare runs the design model alone")
     models = build_models(sc)
     p = models.plant
     c = sc.controller
