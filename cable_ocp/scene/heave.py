@@ -444,7 +444,7 @@ def scene_from_dict(data: dict[str, Any], base_dir: str | Path | None = None) ->
     """
     if not isinstance(data, dict):
         raise CableOCPError("a heave scene must be a table")
-    data = _resolve_cable_scene(data, base_dir)
+    data = resolve_cable_scene(data, base_dir)
     kwargs: dict[str, Any] = {"raw": copy.deepcopy(data)}
     for key, val in data.items():
         if key in _TABLES:
@@ -463,7 +463,7 @@ def scene_from_dict(data: dict[str, Any], base_dir: str | Path | None = None) ->
     return scene
 
 
-def _resolve_cable_scene(data: dict[str, Any], base_dir: str | Path | None) -> dict[str, Any]:
+def resolve_cable_scene(data: dict[str, Any], base_dir: str | Path | None) -> dict[str, Any]:
     """``[unit] cable_scene`` made absolute (relative to ``base_dir``, else the working
     directory), so that the scene and its overrides keep pointing at the same file."""
     unit = data.get("unit")
