@@ -618,7 +618,10 @@ def _check_cable(sc: HeaveScene) -> None:
     try:
         (check_axial if model == "axial" else check_planar)(dyn)
     except CableOCPError as exc:
-        raise CableOCPError(f"unit.cable_scene = {sc.unit.cable_scene!r}: {exc}") from None
+        note = (' (a lumped3d cable scene cannot be the heave plant: axial or planar only)'
+                if "lumped3d" in str(exc) else "")
+        raise CableOCPError(f"unit.cable_scene = {sc.unit.cable_scene!r}: {exc}{note}"
+                            ) from None
     h = sc.controller.sample_time
     ratio = h / dyn.simulation.time_step
     if abs(ratio - round(ratio)) > 1e-9 * max(1.0, ratio) or round(ratio) < 1:
