@@ -35,10 +35,12 @@ from cable_ocp.dynamics.scene import DynamicScene, dynamic_scene_from_dict
 from cable_ocp.errors import CableOCPError
 from cable_ocp.heave.cable_plant import AxialCablePlant, _compile
 
-__all__ = ["PLANT_MODELS", "PlanarCablePlant", "axial_twin", "cable_plant"]
+__all__ = ["HALVINGS", "PLANT_MODELS", "PlanarCablePlant", "axial_twin", "cable_plant"]
 
 #: the cable scene's ``simulation.model`` values that can be the heave plant
 PLANT_MODELS = ("axial", "planar")
+#: times a planar step whose Newton iteration fails is halved (down to 1/8 of the step)
+HALVINGS = 3
 
 
 def cable_plant(scene: DynamicScene, sample_time: float) -> Any:
@@ -89,14 +91,17 @@ class _SteppedPlanar(PlanarModel):
 
     As the axial plant's: over one step of ``dt`` both are linear in time between their
     values at the start and the end of the step, ``p = [L_a, L_b, z_a, z_b]`` (m); the top
-    stays at its static x. Time ``t`` runs from 0 to ``dt`` within the step.
+    stays at its static x. Time ``t`` runs from 0 to ``dt`` within the step; ``dt`` (s) is
+    a parameter too (:attr:`motion_params` = ``[p; dt]``).
     """
 
-    def __init__(self, scene: DynamicScene, dt: float) -> None:
+    def __init__(self, scene: DynamicScene) -> None:
         super().__init__(scene)
-        self.dt = dt
+        #: the step, s: a symbol, so that one compiled step serves every step size (the
+        #: halving of a step whose Newton iteration does not converge)
+        self.dt = dt = ca.SX.sym("dt")
         p = ca.SX.sym("p", 4)
-        self.motion_params = p
+        self.motion_params = ca.vertcat(p, dt)
         top = scene.top_position
 
         def motion(t: Any) -> tuple:
@@ -118,8 +123,9 @@ class PlanarCablePlant:
     the top keeps its static x. A current along x (``[environment.current]`` of the cable
     scene) inclines the line and drags on the unit and the cable as they move. Each
     sub-step is the planar model's own implicit-midpoint step with its discrete-gradient
-    tension (:meth:`cable_ocp.dynamics.planar.PlanarModel._step_expressions`), solved by
-    CasADi's Newton ``rootfinder`` (sparse LU), with ``L`` and the top height as parameters.
+    tension (:meth:`cable_ocp.dynamics.planar.PlanarModel._step_expressions`), with ``L``,
+    the top height and the step size as parameters, solved by Newton's method (compiled;
+    a step that does not converge is halved, :meth:`_build`).
 
     Outputs per sub-step: the unit's height and vertical velocity, the tension at the unit
     (the magnitude of the force that the cable exerts on it: element 0's tension less the
@@ -163,23 +169,24 @@ class PlanarCablePlant:
         self.tolerance = sim.tolerance
         # the static state: the statics solution refined to the discrete equilibrium, by
         # the model with the scene's own (time) motion at t = 0 (the static top, L0)
-        base = PlanarModel(scene)
+        base = PlanarModel(scene if sim.start == "static"
+                           else scene.with_overrides({"simulation.start": "static"}))
         x0, info = base.initial_state()
         if x0 is None:
             raise CableOCPError(f"cable scene: the planar line's static state failed: "
                                 f"{info.get('message', '')}")
         self._x0 = np.asarray(x0, dtype=float)
-        self.model = _SteppedPlanar(scene, self.dt)
+        self.model = _SteppedPlanar(scene)
         self.model.force_scale = base.force_scale
         self.nf = self.model.nf
-        self._sample = self._build(sim.tolerance, sim.max_iterations)
+        self._sample = self._build(sim.tolerance, sim.max_iterations, HALVINGS)
         self._chunks: dict[int, ca.Function] = {}
-        p_static = np.array([self.length0, self.length0, self.z_top0, self.z_top0])
+        p_static = np.array([self.length0, self.length0, self.z_top0, self.z_top0, self.dt])
         r = self._outputs_at(self._x0, p_static)
         self._z_static = float(r[0])
         self._t_static = (float(r[2]), float(r[3]))
 
-    def _build(self, tol: float, max_iter: int) -> ca.Function:
+    def _build(self, tol: float, max_iter: int, halvings: int) -> ca.Function:
         """The sample function ``(x, P) -> (x_next, z_unit, v_unit, t_unit, t_top, t_min,
         residual)`` over ``substeps`` midpoint steps (as the axial plant's).
 
@@ -189,12 +196,15 @@ class PlanarCablePlant:
         short-circuit switch, as the axial plant). The Newton matrix (block banded: the
         pay-out terms reach two nodes each way) is solved by CasADi's sparse QR, which,
         unlike the ``rootfinder``, generates C: the functions are compiled as the axial
-        plant's (:func:`cable_ocp.heave.cable_plant._compile`).
+        plant's (:func:`cable_ocp.heave.cable_plant._compile`). Where a step does not
+        converge (the residual above the failure threshold ``1e3 tolerance``: a line going
+        slack, where the no-compression law bends sharply), it is taken again as two steps
+        of half the size, recursively up to ``halvings`` times (only then evaluated).
         """
         md = self.model
-        dt = self.dt
         nf2 = 2 * self.nf
-        p = md.motion_params
+        p = md.motion_params  # [L_a, L_b, z_a, z_b, dt]
+        dt = md.dt
         q1, q0, v0, t0, res, v1, _, pred = md._step_expressions(dt)
         res, v1, pred = ca.substitute([res, v1, pred], [t0], [ca.SX(0.0)])
         pars = ca.vertcat(q0, v0, p)
@@ -211,7 +221,7 @@ class PlanarCablePlant:
         qs = ca.SX.sym("q", nf2)
         vs = ca.SX.sym("v", nf2)
         va = ca.SX.sym("va", nf2)  # velocities at the start of the step
-        rs, tens, top, _, vel, _ = outf(ca.SX(dt), qs, vs, p)
+        rs, tens, top, _, vel, _ = outf(dt, qs, vs, p)
         # the pull on the unit: element 0's tension along its chord, less the half element
         # that node 0 carries (weight in water, drag, inertia at the step's mean
         # acceleration), as the axial plant's
@@ -236,9 +246,9 @@ class PlanarCablePlant:
         newton, resid, guess, post, out = _compile([newton, resid, guess, post, out])
         self._out = out
 
-        # one sub-step: two iterations, then more while the residual exceeds tol
+        # one step: two iterations, then more while the residual exceeds tol
         xa = ca.MX.sym("xa", 2 * nf2)
-        pm = ca.MX.sym("p", 4)
+        pm = ca.MX.sym("p", 5)
         pv = ca.vertcat(xa, pm)
         x2 = newton(newton(guess(pv), pv), pv)
         y = ca.vertcat(x2, resid(x2, pv))
@@ -251,17 +261,35 @@ class PlanarCablePlant:
             y = switch(y[nf2] > tol, y, xa, pm)
         qn = y[:nf2]
         vn = post(qn, pv)
-        sub = ca.Function("planar_substep", [xa, pm],
-                          [ca.vertcat(qn, vn), y[nf2], out(qn, vn, xa[nf2:], pm)])
-
+        step = ca.Function("planar_step", [xa, pm],
+                           [ca.vertcat(qn, vn, y[nf2], out(qn, vn, xa[nf2:], pm))])
+        fail = max(1e3 * tol, 1e-6)
+        n_out = 2 * nf2 + 6
+        core = step
+        for level in range(halvings):
+            # the step, or (where it fails) two halves of it, each with the step before
+            hm = ca.vertcat(0.5 * (pm[0] + pm[1]), 0.5 * (pm[2] + pm[3]))
+            first = step(xa, ca.vertcat(pm[0], hm[0], pm[2], hm[1], 0.5 * pm[4]))
+            second = step(first[:2 * nf2], ca.vertcat(hm[0], pm[1], hm[1], pm[3],
+                                                      0.5 * pm[4]))
+            halves = ca.Function("halves", [xa, pm], [ca.vertcat(
+                second[:2 * nf2], ca.fmax(first[2 * nf2], second[2 * nf2]),
+                second[2 * nf2 + 1:])])
+            whole = core(xa, pm)
+            r = whole[2 * nf2]
+            step = ca.Function(f"planar_halving{level}", [xa, pm], [ca.if_else(
+                ca.logic_not(r <= fail), halves(xa, pm), whole, True)])
+        assert step.numel_out(0) == n_out
+        self._step = step
         X = ca.MX.sym("X", 2 * nf2)
         P = ca.MX.sym("P", 4, self.substeps)
         xx = X
         cols, rmax = [], None
         for j in range(self.substeps):
-            xx, r, o_j = sub(xx, P[:, j])
-            rmax = r if rmax is None else ca.fmax(rmax, r)
-            cols.append(o_j)
+            yj = step(xx, ca.vertcat(P[:, j], self.dt))
+            xx = yj[:2 * nf2]
+            rmax = yj[2 * nf2] if rmax is None else ca.fmax(rmax, yj[2 * nf2])
+            cols.append(yj[2 * nf2 + 1:])
         o = ca.horzcat(*cols)
         tmin = o[4, 0]
         for j in range(1, self.substeps):
