@@ -85,7 +85,9 @@ PLANAR = tuple(_PLN + t for t in (
     "damped_vertical_run_settles_to_the_statics_solution",
     "damped_run_in_current_settles_to_the_statics_solution",
     "slack_is_detected_where_and_when_the_wave_front_predicts",
-    "huang_4_5_5_static_elongation_and_resonant_length", "anchored_catenary_start_and_payout"))
+    "huang_4_5_5_static_elongation_and_resonant_length", "anchored_catenary_start_and_payout",
+    "pendulum_and_spring_modes_use_the_units_added_mass_per_axis")) + (
+    "tests/dynamics/test_axial.py::test_payout_wave_against_dalembert",)
 
 PHYS, FORM, COLL, HEAVE_A = "physics", "statics/formulation", "statics/collocation", "heave"
 DYN = "dynamics"
@@ -362,6 +364,22 @@ MUTATIONS: tuple[Mutation, ...] = (
     Mutation("lumped-tangential-drag-unsigned", DYN, LM_F,
              "ca.sqrt(ut * ut + delta * delta) * ut * tm", "ut * ut * tm", LUMPED,
              "lumped step: tangential drag u_t^2 instead of |u_t| u_t"),
+    Mutation("axial-thesis-coriolis-sign", DYN, "cable_ocp/dynamics/axial_thesis.py",
+             "                -2 * mu * v * y / ell,", "                2 * mu * v * y / ell,",
+             AXIAL, "Huang's scheme: the pay-out cross term C = -2 mu v y / l of (3.5) with "
+             "the wrong sign"),
+    Mutation("lumped-static-start-ignored", DYN, "cable_ocp/dynamics/lumped_scene.py",
+             'if scene.simulation.start == "unstrained":', "if True:", LUMPED,
+             "lumped: start = \"static\" starts from the unstretched vertical line"),
+    Mutation("planar-unit-drag-no-half", DYN, PL_F,
+             "half = 0.5 * self.rho", "half = self.rho", PLANAR,
+             "planar: the unit's drag rho C_D S |u| u without the 1/2"),
+    Mutation("static-unit-current-not-updated", DYN, "cable_ocp/dynamics/static.py",
+             "new = solve(static_scene(scene, z), warm_start=sol)",
+             "new = solve(static_scene(scene, None), warm_start=sol)",
+             ("tests/dynamics/test_scene.py", "tests/dynamics/test_lumped_robust.py"),
+             "static start: the unit's drag in a depth-varying current not re-taken at its "
+             "solved height"),
     Mutation("planar-current-wrong-component", DYN, PL_F,
              "return ca.repmat(ca.vertcat(self.current.ux[0], 0.0), 1, k)",
              "return ca.repmat(ca.vertcat(self.current.uy[0], 0.0), 1, k)", PLANAR,
