@@ -55,11 +55,18 @@ def simulation_figure(res: Any, title: str = "", scene: Any = None) -> Figure:
     a = ax[1, 0]
     zt = res.top_position[:, 2] - res.top_position[0, 2]
     zu = up[:, 2] - up[0, 2]
+    paid = np.asarray(res.length, dtype=float) - float(res.length[0])
     a.plot(t, zt, color="C2", lw=1.0, label="top (end_b) heave from its static position")
-    a.plot(t, zu, color="C0", lw=1.0, label="unit (end_a) heave from its static position")
+    if np.ptp(paid) > 0:
+        # a deployment: the unit's descent by the paid-out length would hide its heave
+        a.plot(t, zu + paid, color="C0", lw=1.0,
+               label="unit (end_a) heave about its lowering path (z + paid-out length)")
+        a.set_title("Top against unit heave (pay-out taken out)")
+    else:
+        a.plot(t, zu, color="C0", lw=1.0, label="unit (end_a) heave from its static position")
+        a.set_title("Top against unit heave")
     a.set_xlabel("time t (s)")
     a.set_ylabel("heave (m)")
-    a.set_title("Top against unit heave")
     a.grid(True, alpha=0.3)
     # top tension and length in time
     a = ax[1, 1]
