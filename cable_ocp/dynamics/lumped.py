@@ -1853,25 +1853,3 @@ def _compile(fn: ca.Function, opt: str = "-O2") -> ca.Function:
     finally:
         if tmp is not None:
             shutil.rmtree(tmp, ignore_errors=True)
-    try:
-        tmp = tempfile.mkdtemp(prefix="cable_ocp_")
-        name = fn.name()
-        cg = ca.CodeGenerator(f"{name}.c", {"with_header": False})
-        cg.add(fn)
-        cg.generate(tmp + os.sep)
-        src = os.path.join(tmp, f"{name}.c")
-        with open(src, "rb") as fh:
-            digest = hashlib.sha256(fh.read() + ca.__version__.encode()
-                                    + opt.encode()).hexdigest()[:16]
-        cache = _cache_dir()
-        os.makedirs(cache, exist_ok=True)
-        lib = os.path.join(cache, f"{name}_{digest}.so")
-        if not os.path.exists(lib):
-            part = lib + f".{os.getpid()}.tmp"
-            subprocess.run([cc, opt, "-fPIC", "-shared", src, "-o", part, "-lm"],
-                           check=True, capture_output=True, timeout=300)
-            os.replace(part, lib)
-        shutil.rmtree(tmp, ignore_errors=True)
-        return ca.external(name, lib)
-    except Exception:  # noqa: BLE001 - any failure: fall back to the interpreted function
-        return fn
