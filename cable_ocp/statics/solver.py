@@ -36,6 +36,7 @@ from typing import Any
 import casadi as ca
 import numpy as np
 
+from cable_ocp.compile import compile_function, is_compiled
 from cable_ocp.errors import CableOCPError
 from cable_ocp.physics import seabed
 from cable_ocp.scene import Scene, SolverOptions, apply_overrides, load_scene, scene_from_dict
@@ -65,6 +66,10 @@ from cable_ocp.statics.solution import StaticsSolution
 __all__ = ["StaticsSolver", "solve", "sweep"]
 
 _CONTINUATION_STEPS = (0.0, 0.1, 0.25, 0.5, 0.75, 1.0)
+#: the sparse linear solver of the compiled Newton step (C code generation supports it)
+COMPILED_LINEAR_SOLVER = "qr"
+#: the C compiler's optimisation flag for the compiled Newton kernel
+COMPILE_FLAG = "-O2"
 #: most Newton steps per attempt (warm and cold; ``solver.max_iterations`` is IPOPT's)
 NEWTON_MAX_STEPS = 30
 
@@ -137,6 +142,8 @@ class StaticsSolver:
         self._token = object()
         #: where the Newton functions came from: "built" or "disk cache"
         self.build_source = "built"
+        #: the Newton kernel runs compiled C (``solver.compile = "auto"`` with a compiler)
+        self.compiled = False
         self._late_build_s = 0.0  # IPOPT, built on first use: wall and CPU seconds
         self._late_build_cpu_s = 0.0
         self._gj, self._kernel = self._newton_functions()
@@ -167,7 +174,34 @@ class StaticsSolver:
             disk_cache.save(structure, "blocks", {f"f{i}": f for i, f in enumerate(fns)})
         g_fn = self.coll.residual
         gj, step = jacobian_functions(self.coll.blocks, n_w, n_p)
+        if self.scene.solver.compile == "auto":
+            kernel = self._compiled_kernel(structure, n_w, n_p)
+            if kernel is not None:
+                return gj, kernel
         return gj, Kernel(g_fn, step)
+
+    def _compiled_kernel(self, structure: str, n_w: int, n_p: int) -> Kernel | None:
+        """The Newton kernel compiled to C (``solver.compile = "auto"``), or None when it
+        cannot be compiled (no compiler, compiling off, an unwritable cache folder).
+
+        The step solves with CasADi's sparse QR ("qr"), which C code generation supports
+        (CSparse's LU does not): the same Newton iteration, its steps equal to the LU's
+        to rounding. The libraries are named by the full cache key (versions, sources,
+        structure, mesh), so a cached library is loaded without generating its code.
+        """
+        key = disk_cache.entry_key(structure + "\nlinear solver " + COMPILED_LINEAR_SOLVER,
+                                   "compiled newton kernel")
+        step = compile_function(
+            lambda: jacobian_functions(self.coll.blocks, n_w, n_p, COMPILED_LINEAR_SOLVER)[1],
+            COMPILE_FLAG, key=key, name="newton_step")
+        if not is_compiled(step):
+            return None
+        g_fn = compile_function(self.coll.residual, COMPILE_FLAG, key=key,
+                                name=self.coll.residual.name())
+        if not is_compiled(g_fn):
+            return None
+        self.compiled = True
+        return Kernel(g_fn, step)
 
     @property
     def _ipopt(self) -> ca.Function:
@@ -289,6 +323,7 @@ class StaticsSolver:
         diag["cpu_time_s"] = time.process_time() - c0 - (self._late_build_cpu_s - late0_cpu)
         diag["solver"] = how
         diag["build_source"] = self.build_source
+        diag["compiled"] = self.compiled
         sol = self._make_solution(w, p, ok, how, it, wall, diag, g_end)
         if sol.success and (scene.solver.error_estimate if error_estimate is None
                             else error_estimate):

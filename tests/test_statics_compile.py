@@ -1,0 +1,151 @@
+"""The statics Newton kernel compiled to C (``solver.compile = "auto"``) gives the answers
+of the interpreted kernel, loads a cached library without generating code, and falls back
+to the interpreted kernel, silently, when it cannot compile (no timing here: ``cable-ocp
+bench sweep`` measures the speed).
+
+The compiled step solves with CasADi's sparse QR, the interpreted one with CSparse's LU:
+the same Newton iteration, steps equal to rounding. Coarse meshes keep the C compilations
+short (about half a second each).
+"""
+
+from __future__ import annotations
+
+from pathlib import Path
+
+import casadi as ca
+import numpy as np
+import pytest
+
+from cable_ocp import compile as cc
+from cable_ocp.errors import CableOCPError
+from cable_ocp.scene import load_scene
+from cable_ocp.statics.solver import StaticsSolver, sweep
+
+DEZOYSA = Path(__file__).resolve().parents[1] / "problems" / "dezoysa_sea_buggy.toml"
+OFF = {"solver.error_estimate": False, "solver.refine": False, "solver.intervals": 12}
+
+needs_cc = pytest.mark.skipif(cc.c_compiler() is None, reason="no C compiler")
+
+
+@pytest.fixture
+def cache_folder(tmp_path: Path, monkeypatch: pytest.MonkeyPatch) -> Path:
+    """An empty cache folder of the test's own (function cache and compiled libraries)."""
+    folder = tmp_path / "cache"
+    monkeypatch.setenv("CABLE_OCP_CACHE_DIR", str(folder))
+    monkeypatch.delenv("CABLE_OCP_CACHE", raising=False)
+    return folder
+
+
+def test_compile_key_is_checked() -> None:
+    """``solver.compile`` defaults to "never"; another word is a CableOCPError naming the
+    key and the valid values."""
+    assert load_scene(DEZOYSA).solver.compile == "never"
+    assert load_scene(DEZOYSA, {"solver.compile": "auto"}).solver.compile == "auto"
+    with pytest.raises(CableOCPError, match=r'solver.compile = .*"never", "auto"'):
+        load_scene(DEZOYSA, {"solver.compile": "yes"})
+
+
+@needs_cc
+def test_compiled_step_equals_the_interpreted_step(cache_folder: Path) -> None:
+    """At a point off the solution, the compiled residual equals the interpreted one to
+    1e-14 relative (the same operations) and the compiled Newton step (sparse QR) the
+    interpreted one (sparse LU) to 1e-9 relative (two factorisations of one matrix: their
+    rounding times the condition number of the collocated Jacobian, ~1e5 here)."""
+    scene = load_scene(DEZOYSA, OFF)
+    plain = StaticsSolver(scene)
+    fast = StaticsSolver(scene.with_overrides({"solver.compile": "auto"}))
+    assert fast.compiled and not plain.compiled
+    w = plain.solve()._unknowns[1]
+    w = w * (1.0 + 1e-3 * np.random.default_rng(5).standard_normal(w.size))
+    p = plain.form.params()
+    g1, d1 = plain._kernel.step(w, p)
+    g2, d2 = fast._kernel.step(w, p)
+    assert np.max(np.abs(g2 - g1)) <= 1e-14 * np.max(np.abs(g1))
+    assert np.max(np.abs(d2 - d1)) <= 1e-9 * np.max(np.abs(d1))
+    assert np.array_equal(fast._kernel.g(w, p), g2)
+
+
+@needs_cc
+def test_compiled_sweep_matches_the_interpreted_sweep(cache_folder: Path) -> None:
+    """The psi0 sweep with the compiled kernel gives the end forces of the interpreted
+    sweep (itself checked against CasADi's rootfinder in test_statics_speed.py) to 1e-9
+    relative: both stop at a scaled residual of 1e-10, and the collocated system's
+    conditioning turns that into ~1e-10 relative in the forces."""
+    base = load_scene(DEZOYSA, OFF)
+    angles = np.arange(0.0, 181.0, 30.0)
+    plain = sweep(base, "layout.psi0_deg", angles, error_estimate=False)
+    fast = sweep(base.with_overrides({"solver.compile": "auto"}), "layout.psi0_deg", angles,
+                 error_estimate=False)
+    assert all(s.diagnostics["compiled"] for s in fast)
+    assert not any(s.diagnostics["compiled"] for s in plain)
+    for a, b in zip(plain, fast, strict=True):
+        assert a.status == b.status
+        ref = max(np.max(np.abs(a.force_a)), np.max(np.abs(a.force_b)))
+        assert np.max(np.abs(b.force_a - a.force_a)) <= 1e-9 * ref
+        assert np.max(np.abs(b.force_b - a.force_b)) <= 1e-9 * ref
+
+
+@needs_cc
+def test_a_cached_library_is_loaded_without_generating_code(
+        cache_folder: Path, monkeypatch: pytest.MonkeyPatch) -> None:
+    """A second solver of the same structure and mesh loads the compiled libraries by
+    their key: with C code generation made to fail, it is still compiled. A new mesh needs
+    new code: its generation fails, and the solver falls back to the interpreted kernel
+    silently and still solves (to the forces of the compiled solver within 1e-9, as
+    above)."""
+    scene = load_scene(DEZOYSA, {**OFF, "solver.compile": "auto"})
+    first = StaticsSolver(scene)
+    assert first.compiled
+    assert any(cache_folder.glob("newton_step_*.so"))
+
+    def broken(*args: object, **kwargs: object) -> None:
+        raise RuntimeError("code generation is not available")
+
+    monkeypatch.setattr(ca, "CodeGenerator", broken)
+    again = StaticsSolver(scene)
+    assert again.compiled
+    other = StaticsSolver(scene, intervals=14)
+    assert not other.compiled
+    s1, s2 = first.solve(), other.solve()
+    assert s1.success and s2.success
+    assert not s2.diagnostics["compiled"]
+
+
+@pytest.mark.parametrize("case", ["missing_cc", "cache_off"])
+def test_without_a_compiler_the_interpreted_kernel_runs(
+        case: str, cache_folder: Path, monkeypatch: pytest.MonkeyPatch) -> None:
+    """``CC`` naming a missing program, or ``CABLE_OCP_CACHE=0``: ``solver.compile =
+    "auto"`` runs the interpreted kernel, silently, with bit-identical results (the very
+    functions of ``"never"``), and writes no library."""
+    if case == "missing_cc":
+        monkeypatch.setenv("CC", str(cache_folder.parent / "nonexistent-cc"))
+    else:
+        monkeypatch.setenv("CABLE_OCP_CACHE", "0")
+    scene = load_scene(DEZOYSA, OFF)
+    auto = StaticsSolver(scene.with_overrides({"solver.compile": "auto"}))
+    assert not auto.compiled
+    s1, s2 = StaticsSolver(scene).solve(), auto.solve()
+    assert s2.success and not s2.diagnostics["compiled"]
+    assert np.array_equal(s1.force_a, s2.force_a) and np.array_equal(s1.force_b, s2.force_b)
+    assert not list(cache_folder.glob("*.so"))
+
+
+@needs_cc
+def test_compile_function_by_key(cache_folder: Path) -> None:
+    """``compile_function`` with a key: the builder runs once (the second call loads the
+    library without building), the result equals the interpreted function's to rounding
+    (1e-14 relative: the same operations, compiled; libm may round differently)."""
+    calls = []
+
+    def build() -> ca.Function:
+        calls.append(1)
+        x = ca.SX.sym("x", 3)
+        return ca.Function("probe_key", [x], [ca.sin(x) * x[0] + ca.exp(x[1])])
+
+    f1 = cc.compile_function(build, key="probe v1", name="probe_key")
+    f2 = cc.compile_function(build, key="probe v1", name="probe_key")
+    assert cc.is_compiled(f1) and cc.is_compiled(f2)
+    assert len(calls) == 1
+    x = np.array([0.3, -1.2, 2.5])
+    ref = np.asarray(build()(x)).ravel()
+    assert np.allclose(np.asarray(f2(x)).ravel(), ref, rtol=1e-14, atol=0)
