@@ -224,11 +224,13 @@ class Kernel:
         """(G(w, p), -J(w, p)^-1 G(w, p)) (new arrays; the step is NaN where the sparse
         factorisation fails: a singular Jacobian)."""
         if self._qr is not None:
-            g = self.factor(w, p)
+            self._w[:] = w
+            self._p[:] = p
+            self._jeval()
+            self._qr.factor()
             self.counts["step"] += 1
-            self.counts["chord"] -= 1  # a full Newton step, not a chord step
-            dw = self.chord_step(g)
-            return g, dw if np.all(np.isfinite(dw)) else np.full(self.n_w, np.nan)
+            dw = self._qr.newton_step(self._g2)
+            return self._g2.copy(), dw if np.all(np.isfinite(dw)) else np.full(self.n_w, np.nan)
         self._w[:] = w
         self._p[:] = p
         self.counts["step"] += 1
@@ -352,10 +354,11 @@ def newton(kernel: Kernel, w0: np.ndarray, p: np.ndarray, tol: float, max_iter: 
 
 
 #: a chord step is accepted when it cuts max|G| to this fraction or less; else the
-#: Jacobian is evaluated and factorised again. On the De Zoysa sweep (40 intervals) 0.05
-#: and 0.1 took the least time (one or two factorisations and four to seven chord steps
-#: per warm point; 0.02 refactorises too often, 0.2-0.3 takes too many slow steps)
-CHORD_CONTRACTION = 0.05
+#: Jacobian is evaluated and factorised again. On the De Zoysa sweep (40 intervals; a
+#: factorisation costs about four chord steps there) 0.03-0.2 took the same time within
+#: the noise of a shared machine (0.1: on average 1.4 factorisations and 5.8 steps per
+#: warm point; 0.03: 2.1 and 4.4; 0.2: 1.3 and 6.5)
+CHORD_CONTRACTION = 0.1
 
 
 def chord_newton(kernel: Kernel, w0: np.ndarray, p: np.ndarray, tol: float,
