@@ -52,6 +52,8 @@ def _timed_sweep(base: Scene, angles: np.ndarray, error_estimate: bool = False
         "warm_ms": [s.wall_time_s * 1e3 for s in warm],
         "warm_cpu_ms": [s.diagnostics.get("cpu_time_s", float("nan")) * 1e3 for s in warm],
         "iterations": [int(s.iterations) for s in warm],
+        "factorizations": [int(s.diagnostics.get("factorizations", s.iterations))
+                           for s in warm],
         "solvers": sorted({s.diagnostics.get("solver", "") for s in sols}),
         "solved": int(sum(s.success for s in sols)), "points": len(sols),
         "forces": [s.force_a.tolist() for s in sols],
@@ -98,9 +100,10 @@ def second_process(scene_path: str | Path, angles: np.ndarray, intervals: int, r
 def _row(label: str, r: dict[str, Any]) -> list[Any]:
     warm, warm_cpu, its = (np.asarray(r[k], float) for k in ("warm_ms", "warm_cpu_ms",
                                                               "iterations"))
+    facs = np.asarray(r.get("factorizations", [np.nan]), float)  # none for solve_bvp
     return [label, r["points"], r["total_ms"], r["total_cpu_ms"], r["first_ms"],
             float(np.median(warm)), float(np.median(warm_cpu)), float(np.percentile(warm, 90)),
-            float(np.mean(its)), float(np.median(its)), r["solved"]]
+            float(np.mean(its)), float(np.median(its)), float(np.mean(facs)), r["solved"]]
 
 
 def run(scene_path: str | Path = DEFAULT_SCENE, angles: np.ndarray | None = None,
@@ -161,7 +164,7 @@ def run(scene_path: str | Path = DEFAULT_SCENE, angles: np.ndarray | None = None
         b_wall, b_cpu = min(builds, key=lambda x: x[1])
         nan = float("nan")
         rows.append(["  build only (Newton functions, no cache)", 1, b_wall, b_cpu, nan, nan,
-                     nan, nan, nan, nan, 1])
+                     nan, nan, nan, nan, nan, 1])
 
     scenes = [base.with_overrides({"layout.psi0_deg": float(a)}) for a in angles]
     form = Formulation(base)
@@ -191,7 +194,7 @@ def run(scene_path: str | Path = DEFAULT_SCENE, angles: np.ndarray | None = None
     agree = float(np.max(np.abs(fa - fb)) / np.max(np.abs(fa)))
     headers = ["method", "points", "total [ms]", "total CPU [ms]", "first [ms]",
                "median next [ms]", "median next CPU [ms]", "p90 next [ms]", "mean iters",
-               "median iters", "solved"]
+               "median iters", "mean factorisations", "solved"]
     per_point = (first["total_ms"] - first["build_ms"] - first["first_ms"]) \
         / max(first["points"] - 1, 1)
     comp_row = _row("", comp_second or comp_first)
@@ -219,6 +222,7 @@ def run(scene_path: str | Path = DEFAULT_SCENE, angles: np.ndarray | None = None
         "compiled_warm_median_ms": comp_row[5],
         "compiled_warm_median_cpu_ms": comp_row[6],
         "compiled_warm_iterations_median": comp_row[9],
+        "compiled_warm_factorizations_mean": comp_row[10],
         "compiled_sweep_total_second_process_ms": (comp_second["total_ms"] if comp_second
                                                    else None),
         "compiled_sweep_total_second_process_cpu_ms": (comp_second["total_cpu_ms"]

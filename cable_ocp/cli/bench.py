@@ -178,7 +178,9 @@ def cmd_sweep(args: argparse.Namespace) -> int:
         out.say(args, f"compiled (solver.compile = auto): warm median "
                       f"{sm['compiled_warm_median_ms']:.2f} ms wall, "
                       f"{sm['compiled_warm_median_cpu_ms']:.2f} ms CPU, "
-                      f"{sm['compiled_warm_iterations_median']:g} Newton steps; 1st process "
+                      f"{sm['compiled_warm_iterations_median']:g} steps (chord and Newton) "
+                      f"and {sm['compiled_warm_factorizations_mean']:.1f} Jacobian "
+                      f"factorisations per point (mean); 1st process "
                       f"with the C compilation {sm['compiled_sweep_total_first_process_ms']:.0f}"
                       f" ms{second}")
     else:

@@ -400,8 +400,8 @@ def chord_newton(kernel: Kernel, w0: np.ndarray, p: np.ndarray, tol: float,
     bounded = lb is not None or ub is not None
     g = kernel.factor(w, p)
     factors, steps, fresh = 1, 0, True
+    gmax = float(np.max(np.abs(g))) if g.size else 0.0
     while True:
-        gmax = float(np.max(np.abs(g))) if g.size else 0.0
         if not math.isfinite(gmax):
             return NewtonResult(w, g, steps, False, "non-finite residual", factors)
         if gmax <= tol:
@@ -420,7 +420,7 @@ def chord_newton(kernel: Kernel, w0: np.ndarray, p: np.ndarray, tol: float,
         g_new = kernel.g(trial, p)
         new_max = float(np.max(np.abs(g_new))) if g_new.size else 0.0
         if math.isfinite(new_max) and new_max <= contraction * gmax:
-            w, g, fresh = trial, g_new, False
+            w, g, gmax, fresh = trial, g_new, new_max, False
             continue
         if math.isfinite(new_max) and new_max < gmax:
             w = trial  # a decrease, too slow: a new Jacobian at the new point
@@ -438,5 +438,6 @@ def chord_newton(kernel: Kernel, w0: np.ndarray, p: np.ndarray, tol: float,
                     return NewtonResult(w, g, steps, False,
                                         "line search failed from a fresh Jacobian", factors)
         g = kernel.factor(w, p)
+        gmax = float(np.max(np.abs(g))) if g.size else 0.0
         factors += 1
         fresh = True
