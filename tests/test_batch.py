@@ -220,3 +220,58 @@ def test_dask_equals_local_and_survives_worker_deaths(dask_client, tmp_path: Pat
     st = {r["case"]: r["status"] for r in lost.rows}
     assert sorted(st) == list(range(8)) and st.pop(6) == "worker_lost"
     assert set(st.values()) == {"solved"}
+
+
+def test_dynamics_batch_rows_equal_single_runs_and_scale_with_the_heave(tmp_path: Path) -> None:
+    """A `simulate` scene as a batch: each row equals a single `simulate` run of the same
+    overrides (same code, same numbers: 1e-12), and the linear axial line in air responds
+    in proportion to the top heave: doubling the amplitude doubles the top tension's swing
+    about its static value and the unit's heave (to 1e-3: the geometric nonlinearity of a
+    0.1 m heave on a 100 m wire and the air drag are far below that)."""
+    from cable_ocp.dynamics import load_dynamic_scene, simulate
+
+    src = ROOT / "problems" / "dynamics" / "vertical_in_air.toml"
+    res = run_batch(src, grids=[("top_motion.heave_amplitude", [0.05, 0.1])], workers=0,
+                    out=tmp_path / "dyn")
+    assert res.kind == "dynamics" and [r["status"] for r in res.rows] == ["solved"] * 2
+    for row in res.rows:
+        single = simulate(load_dynamic_scene(
+            src, {"top_motion.heave_amplitude": row["top_motion.heave_amplitude"]}))
+        assert row["max_top_tension [N]"] == pytest.approx(float(np.max(single.top_tension)),
+                                                           rel=1e-12)
+        assert row["slack [-]"] == 0.0
+    static = float(simulate(load_dynamic_scene(
+        src, {"top_motion.heave_amplitude": 0.0})).top_tension[0])
+    small, big = res.rows
+    swing = [r["max_top_tension [N]"] - static for r in (small, big)]
+    assert swing[1] / swing[0] == pytest.approx(2.0, rel=1e-3)
+    assert big["unit_heave_amplitude [m]"] / small["unit_heave_amplitude [m]"] == (
+        pytest.approx(2.0, rel=1e-3))
+
+
+def test_heave_on_the_cable_batch_reads_its_cable_scene_next_to_the_problem(
+        tmp_path: Path, monkeypatch) -> None:
+    """A heave scene whose `[unit] cable_scene` is relative to the problem file runs as a
+    batch from another working directory (the path is resolved before the workers get the
+    problem), through the CLI as through the API, and its passive run is the same as the
+    single `cable-ocp heave` run of that case (same seed: 1e-12)."""
+    from cable_ocp.heave import compare
+    from cable_ocp.scene.heave import load_scene as load_heave
+
+    src = ROOT / "problems" / "heave" / "ex_6_3_6_cable.toml"
+    monkeypatch.chdir(tmp_path)
+    grid = [("simulation.duration", [40.0])]
+    res = run_batch(src, grids=grid, options={"controllers": ["passive"]}, workers=0, seed=5)
+    (row,) = res.rows
+    assert row["status"] == "solved", row["message"]
+    case = build_cases(grid, seed=5)[0]
+    single = compare(load_heave(src, {"simulation.duration": 40.0,
+                                      "simulation.seed": case.seed % (2**31)}), ("passive",))
+    assert row["passive_heave_rms [m]"] == pytest.approx(
+        single.metrics["passive"].as_dict()["heave_rms"], rel=1e-12)
+    rc = main(["batch", str(src), "--grid", "simulation.duration=40", "--set",
+               'controller.controllers=["passive"]', "--seed", "5", "--out",
+               str(tmp_path / "cli"), "--quiet", "--workers", "0"])
+    assert rc == 0
+    cli_row = json.loads((tmp_path / "cli.jsonl").read_text().splitlines()[0])
+    assert cli_row["passive_heave_rms [m]"] == row["passive_heave_rms [m]"]

@@ -34,6 +34,7 @@ import csv
 import io
 import json
 import math
+import shutil
 import tomllib
 from collections import Counter
 from pathlib import Path
@@ -53,12 +54,21 @@ ROOT = Path(__file__).resolve().parents[1]
 #: hide no check: ``solver.refine=false`` keeps the error estimate (so "inaccurate" is still
 #: reported when it exceeds solver.accuracy) but skips the mesh doublings; the heave and
 #: dynamics runs are 2 s long (every controller or model is still built and run; the status
-#: rules do not depend on the duration); the footprint takes 3 directions. A new scene kind
-#: adds one line here.
+#: rules do not depend on the duration); the footprint takes 3 directions. The heave scenes
+#: on a cable also shorten the identification experiment to 30 s (its multi-sine needs
+#: harmonics of 2 pi / 10 s inside the band) and lower the unit at 10 m/s.
+#: A new scene kind adds one line here; a file matched by two lines of one command takes the
+#: first.
 TARGETS: list[tuple[str, tuple[str, ...], tuple[str, ...]]] = [
     ("solve", ("problems/*.toml", "problems/extreme/*.toml"),
      ("--set", "solver.refine=false")),
     ("footprint", ("problems/footprint_*.toml",), ("--directions", "3")),
+    ("heave", ("problems/heave/*_cable.toml",),
+     ("--duration", "2", "--set", "simulation.warmup=0.5", "--set",
+      "identification.duration=30")),
+    ("heave", ("problems/heave/deployment_*.toml",),
+     ("--set", "simulation.warmup=0.5", "--set", "identification.duration=30", "--set",
+      "deployment.payout_speed=10")),
     ("heave", ("problems/heave/*.toml",),
      ("--duration", "2", "--set", "simulation.warmup=0.5")),
     ("simulate", ("problems/dynamics/*.toml",), ("--set", "simulation.duration=2")),
@@ -77,11 +87,13 @@ N_CASES = 330
 
 
 def _files() -> list[tuple[str, Path, tuple[str, ...]]]:
-    out = []
+    out, seen = [], set()
     for command, globs, extra in TARGETS:
         for pattern in globs:
             for path in sorted(ROOT.glob(pattern)):
-                out.append((command, path, extra))
+                if (command, path) not in seen:
+                    seen.add((command, path))
+                    out.append((command, path, extra))
     return out
 
 
@@ -238,7 +250,7 @@ def cases(draw: Any) -> dict[str, Any]:
 
 def current_at(scene: Any, z: np.ndarray) -> np.ndarray:
     """Current velocity (m/s) at heights z: components linear between knots, constant
-    beyond (CONVENTIONS, "Frame and scene files")."""
+    beyond (docs/conventions.md, "Frame and scene files")."""
     cur = scene.environment.current
     u = np.zeros((len(z), 3))
     if cur is None:
@@ -250,7 +262,7 @@ def current_at(scene: Any, z: np.ndarray) -> np.ndarray:
 
 def drag(law: str, rho: float, d: float, cn: float, ct: float, u: np.ndarray,
          t: np.ndarray, blend: float) -> tuple[np.ndarray, np.ndarray]:
-    """Drag per unit stretched length (N/m) by the laws of CONVENTIONS "Drag", and a bound
+    """Drag per unit stretched length (N/m) by the laws of docs/conventions.md "Drag", and a bound
     (N/m) on how far the solver's vertical blend of the componentwise law may lie from it.
 
     vector:        1/2 rho (C_n D |U_n| U_n + C_t pi D |U_t| U_t)
@@ -389,7 +401,7 @@ def check_statics_physics(scene: Any, data: dict, table: np.ndarray) -> dict[str
     td = data.get("touchdown")
     if sb is not None and td and td.get("grounded_length"):
         # contact is modelled: the grounded part (which must lie on the seabed) carries
-        # no current load (CONVENTIONS "Seabed") and its horizontal tension changes by at
+        # no current load (docs/conventions.md "Seabed") and its horizontal tension changes by at
         # most the friction, mu w per metre; the balance starts at the touchdown node
         start = int(np.argmin(np.abs(s - td["grounded_length"])))
         assert np.all(pos[:start + 1, 2] - floor[:start + 1] <= tol_z), "grounded part"
@@ -419,7 +431,7 @@ def check_statics_physics(scene: Any, data: dict, table: np.ndarray) -> dict[str
         pts = p_[sel][uniq]
         if len(pts) < 3:
             continue
-        # drag: per stretched length (CONVENTIONS "Drag"): integrated over |dr| of the
+        # drag: per stretched length (docs/conventions.md "Drag"): integrated over |dr| of the
         # returned geometry, so no EA enters. Tangent: T/|T| where the segment is flexible
         # (its internal force is tangent), finite differences of the nodes elsewhere
         ell = np.concatenate([[0.0], np.cumsum(np.linalg.norm(np.diff(pts, axis=0), axis=1))])
@@ -552,7 +564,11 @@ def run_case(case: dict, work: Path, counts: Counter, balance: list) -> tuple[in
 def test_fuzz_every_shipped_problem(tmp_path_factory: Any) -> None:
     """At least 300 mutated problem files through the CLI: no traceback, exit code and
     JSON status agree, every solved statics answer passes the independent physics."""
-    work = tmp_path_factory.mktemp("fuzz")
+    base = tmp_path_factory.mktemp("fuzz")
+    work = base / "cases"
+    work.mkdir()
+    # the heave scenes on a cable name their line relative to the file: ../dynamics/...
+    shutil.copytree(ROOT / "problems" / "dynamics", base / "dynamics")
     counts: Counter = Counter()
     balance: list[dict[str, float]] = []
 

@@ -120,7 +120,8 @@ def run_batch(problem: str | Path | dict[str, Any], grids: Sequence[tuple[str, l
         ``samples`` seeded random draws of the ``randoms`` keys (:func:`parse_random`),
         combined with every grid point; ``seed`` also gives every case its own seed.
     command : str, optional
-        ``"statics"`` (default for a statics scene) or ``"footprint"``.
+        ``"statics"`` (default for a statics scene) or ``"footprint"``; heave and dynamic
+        (``simulate``) scenes have one runner each.
     options : dict, optional
         Runner options (footprint ``directions``, heave ``controllers``).
     out : path, optional
@@ -148,6 +149,12 @@ def run_batch(problem: str | Path | dict[str, Any], grids: Sequence[tuple[str, l
     t0 = time.perf_counter()
     data = problem if isinstance(problem, dict) else read_problem(problem)
     kind = runner_kind(data, command)
+    if kind == "heave" and not isinstance(problem, dict):
+        # a relative [unit] cable_scene is read from the problem file's folder, also in
+        # the workers (an absolute path: a cluster's workers need that file at that path)
+        from cable_ocp.scene.heave import resolve_cable_scene
+
+        data = resolve_cable_scene(data, Path(problem).parent)
     cases = build_cases(list(grids) + list(ranges), samples, list(randoms), seed)
     _check_base(data, kind)
     spec = spec or RunnerSpec(kind, data, dict(options or {}))
@@ -204,7 +211,9 @@ def _heave_columns(spec: RunnerSpec) -> list[str]:
 def _check_base(data: dict[str, Any], kind: str) -> None:
     """Validate the base problem before any work (exit 2 for the CLI); a case whose own
     overrides make it invalid becomes a row with status ``"invalid_input"``."""
+    from cable_ocp.dynamics.scene import dynamic_scene_from_dict
     from cable_ocp.scene import scene_from_dict
     from cable_ocp.scene.heave import scene_from_dict as heave_from_dict
 
-    (heave_from_dict if kind == "heave" else scene_from_dict)(data)
+    check = {"heave": heave_from_dict, "dynamics": dynamic_scene_from_dict}
+    check.get(kind, scene_from_dict)(data)

@@ -34,6 +34,9 @@ OUTPUTS: dict[str, list[str]] = {
     "footprint": ["directions [-]", "solved_directions [-]", "min_reach [m]", "max_reach [m]",
                   "mean_reach [m]"],
     "heave": ["sigma_uncontrolled [m]"],  # + per controller, see HeaveRunner.columns
+    "dynamics": ["max_top_tension [N]", "min_top_tension [N]", "min_tension [N]",
+                 "slack [-]", "first_slack_time [s]", "unit_heave_amplitude [m]",
+                 "final_length [m]", "simulation_wall_time [s]"],
 }
 SUCCESS = {"statics": ("solved",), "footprint": ("solved",), "heave": ("solved",),
            "dynamics": ("solved",)}
@@ -155,7 +158,7 @@ class HeaveRunner(Runner):
         return cols
 
     def _run(self, case: Case) -> tuple[str, str, dict[str, Any]]:
-        from cable_ocp.heave.simulate import compare
+        from cable_ocp.heave import compare
         from cable_ocp.scene.heave import scene_from_dict
 
         over = dict(case.overrides)
@@ -177,15 +180,52 @@ class HeaveRunner(Runner):
         return "solved", "every controller ran", out
 
 
+class DynamicsRunner(Runner):
+    """``cable-ocp simulate`` per case (any model of the scene's ``[simulation]``).
+
+    ``unit_heave_amplitude`` is half the range of the unit's height about its lowering path
+    (z + paid-out length, so that a deployment's descent does not count as heave), after
+    the first quarter of the run (the start transient); ``slack`` is 1 when a tension
+    reached zero (the status is then ``"slack"``)."""
+
+    kind = "dynamics"
+
+    def _run(self, case: Case) -> tuple[str, str, dict[str, Any]]:
+        from cable_ocp.dynamics import simulate
+        from cable_ocp.dynamics.scene import dynamic_scene_from_dict
+
+        res = simulate(dynamic_scene_from_dict(self._data(case)))
+        out: dict[str, Any] = {"simulation_wall_time [s]": res.wall_time_s,
+                               "min_tension [N]": res.min_tension}
+        slack = res.slack or {}
+        out["slack [-]"] = 1.0 if slack.get("occurred") else 0.0
+        out["first_slack_time [s]"] = slack.get("first_time")
+        tt = np.asarray(res.top_tension, dtype=float)
+        if tt.size:
+            out["max_top_tension [N]"] = float(np.nanmax(tt))
+            out["min_top_tension [N]"] = float(np.nanmin(tt))
+            length = np.asarray(res.length, dtype=float)
+            heave = np.asarray(res.unit_position, dtype=float)[:, 2] + (length - length[0])
+            tail = heave[len(heave) // 4:]
+            if tail.size:
+                out["unit_heave_amplitude [m]"] = 0.5 * float(np.ptp(tail))
+            out["final_length [m]"] = float(length[-1])
+        return res.status, res.message, out
+
+
 RUNNERS: dict[str, Callable[..., Runner]] = {
     "statics": StaticsRunner, "footprint": FootprintRunner, "heave": HeaveRunner,
+    "dynamics": DynamicsRunner,
 }
 
 
 def runner_kind(data: dict[str, Any], command: str | None = None) -> str:
     """The runner for a problem: ``footprint`` when asked (or the scene has a [footprint]
-    table and no command is given), else the scene kind."""
+    table and no command is given), else the scene kind (``simulate`` names the dynamics
+    runner)."""
     kind = scene_kind(data)
+    if command == "simulate":
+        command = "dynamics"
     if command is not None:
         if command not in RUNNERS:
             raise CableOCPError(f"--command {command}: valid are {', '.join(RUNNERS)}")

@@ -39,7 +39,8 @@ def register(sub: argparse._SubParsersAction, parent: argparse.ArgumentParser) -
     p.add_argument("--seed", type=int, default=0, metavar="S",
                    help="batch seed: random draws and every case's own seed (default 0)")
     p.add_argument("--command", choices=["statics", "footprint"],
-                   help="for a statics scene: solve (default) or footprint")
+                   help="for a statics scene: solve (default) or footprint; heave and "
+                        "dynamic (simulate) scenes need none")
     p.add_argument("--directions", type=int, default=36, metavar="N",
                    help="footprint directions per case (default 36)")
     p.add_argument("--out", required=True, metavar="PATH",
@@ -64,7 +65,8 @@ def register(sub: argparse._SubParsersAction, parent: argparse.ArgumentParser) -
     p.set_defaults(func=cmd_batch)
 
 
-MAIN_OUTPUT = {"statics": "max_tension [N]", "footprint": "max_reach [m]"}
+MAIN_OUTPUT = {"statics": "max_tension [N]", "footprint": "max_reach [m]",
+               "dynamics": "max_top_tension [N]"}
 
 
 def cmd_batch(args: argparse.Namespace) -> int:
@@ -73,6 +75,7 @@ def cmd_batch(args: argparse.Namespace) -> int:
     from cable_ocp.batch import parse_grid, parse_random, parse_range, run_batch
     from cable_ocp.batch.store import paths
     from cable_ocp.scene import apply_overrides, read_problem
+    from cable_ocp.scene.heave import resolve_cable_scene
 
     out.check_outputs(args)
     for p in paths(args.out):
@@ -91,6 +94,8 @@ def cmd_batch(args: argparse.Namespace) -> int:
     if not (grids or ranges or randoms):
         raise CableOCPError("give at least one --grid, --range or --random (with --samples)")
     data = apply_overrides(read_problem(args.file), out.overrides(args))
+    # a heave scene's relative [unit] cable_scene is read from the problem file's folder
+    data = resolve_cable_scene(data, Path(args.file).parent)
     failures = 0
     with out.progress(args, 1, "batch", "case") as bar:
         def step(done: int, total: int, row: dict[str, Any]) -> None:

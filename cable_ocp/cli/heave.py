@@ -54,7 +54,7 @@ def _overrides(args: argparse.Namespace) -> dict[str, Any]:
 
 def cmd_heave(args: argparse.Namespace) -> int:
     """``cable-ocp heave FILE``."""
-    from cable_ocp.heave.simulate import compare
+    from cable_ocp.heave.cable_compare import compare
     from cable_ocp.scene.cost import heave_cost
     from cable_ocp.scene.heave import load_scene
 
@@ -72,9 +72,10 @@ def cmd_heave(args: argparse.Namespace) -> int:
             for k, v in res.metrics.items()}
     if "mpc" in ctrl:
         ctrl["mpc"]["solver_failures"] = res.mpc_failures
-    out.emit_json(args, out.envelope(res.status, message, {
-        "sigma_uncontrolled": res.sigma_uncontrolled,
-        "passive_heave_rms": res.passive_heave_rms, "controllers": ctrl}, res.warnings))
+    data = {"sigma_uncontrolled": res.sigma_uncontrolled,
+            "passive_heave_rms": res.passive_heave_rms, "controllers": ctrl}
+    data.update(getattr(res, "json_extra", None) or {})  # cable scenes: plant, identified
+    out.emit_json(args, out.envelope(res.status, message, data, res.warnings))
     if args.csv and res.traces:
         names = list(res.traces)
         t = next(iter(res.traces.values())).t
@@ -127,6 +128,42 @@ def _print_table(sc: Any, args: argparse.Namespace, res: Any) -> None:
     for name, st in res.statuses.items():
         if st != "solved":
             print(f"{name}: {st}: {res.messages[name]}")
+    extra = getattr(res, "json_extra", None) or {}
+    if extra:
+        _print_cable(extra, res)
+
+
+def _print_cable(extra: dict, res: Any) -> None:
+    """Identification and, on the cable plant, predicted vs achieved (cable scenes)."""
+    idf = extra.get("identified")
+    if idf:
+        print(f"identified from the cable ({idf['excitation']}, {idf['duration']:g} s): "
+              f"a = {idf['a']:.5g} +- {idf['a_std']:.2g} s^2, b = {idf['b']:.4g} +- "
+              f"{idf['b_std']:.2g} s, fit {idf['fit_pct']:.2f} %; (6.3): b_quadratic = "
+              f"{idf['b_quadratic']:.4g} s^2/m, fit {idf['fit_pct_quadratic']:.2f} %; "
+              f"first axial mode {idf['omega_1']:.4g} rad/s: 1/omega_1^2 = "
+              f"{idf['a_modal']:.5g} s^2 ({idf['a_vs_modal_pct']:+.2f} %)")
+    dm = extra.get("design_model", {})
+    print(f"design model: a = {dm.get('a', float('nan')):.5g} s^2, "
+          f"b = {dm.get('b', float('nan')):.4g} s ({dm.get('source', '-')}); "
+          f"plant: {extra.get('plant', 'model')}")
+    if extra.get("plant") != "cable" or "deployment" in extra:
+        return
+    print("{:<10} {:>15} {:>15} {:>23} {:>23} {:>6}".format(
+        "controller", "predicted [%]", "achieved [%]", "tension unit [kN]",
+        "tension top [kN]", "slack"))
+    def f(v: float | None, spec: str, scale: float = 1.0) -> str:
+        if v is None:
+            return "-".rjust(int(spec.split(".")[0].rstrip("df") or 0))
+        return format(v / scale if scale != 1.0 else v, spec)
+
+    for name, m in res.metrics.items():
+        d = m.as_dict()
+        print(f"{name:<10} {f(d['reduction_predicted_pct'], '15.3f')} "
+              f"{f(d['reduction_pct'], '15.3f')} "
+              f"{f(d['tension_unit_min'], '11.1f', 1e3)} {f(d['tension_unit_max'], '11.1f', 1e3)} "
+              f"{f(d['tension_top_min'], '11.1f', 1e3)} {f(d['tension_top_max'], '11.1f', 1e3)} "
+              f"{f(d['slack_samples'], '6d')}")
 
 
 def _plot(sc: Any, args: argparse.Namespace, res: Any, path: str) -> None:
@@ -134,6 +171,11 @@ def _plot(sc: Any, args: argparse.Namespace, res: Any, path: str) -> None:
     from cable_ocp.heave.lqr import tradeoff_data
     from cable_ocp.plots.heave import plot_comparison
 
+    if "deployment" in (getattr(res, "json_extra", None) or {}):
+        from cable_ocp.plots.heave_cable import plot_deployment
+
+        plot_deployment(res, path, sc.title)
+        return
     tr = next(iter(res.traces.values()))
     step = 0.01
     t = np.arange(0.0, min(tr.t[-1], 200.0), step)
@@ -143,7 +185,9 @@ def _plot(sc: Any, args: argparse.Namespace, res: Any, path: str) -> None:
         tau = 0.2
         out.note(args, "trade-off plot: the scene has no delay; its delayed curves use 0.2 s, "
                        "the delay of the thesis' study (Fig. 6.17)")
-    td = tradeoff_data(sc.unit.a, sc.unit.b, sc.winch.gain, tau, t, x0)
+    dm = (getattr(res, "json_extra", None) or {}).get("design_model", {})
+    td = tradeoff_data(dm.get("a", sc.unit.a), dm.get("b", sc.unit.b), sc.winch.gain, tau, t,
+                       x0)
     plot_comparison(res, path, td, scene=sc)
 
 

@@ -1,7 +1,7 @@
 """Heave compensation of a tethered subsea unit (Huang 1992, chapter 6).
 
 Huang, S. (1992), *Analysis and control of marine cable systems*, PhD thesis, University of
-Strathclyde, chapter 6, eqs. (6.1)-(6.35) (cited as *004* in older docstrings).
+Strathclyde, chapter 6, eqs. (6.1)-(6.35).
 
 In a few lines::
 
@@ -23,13 +23,18 @@ lqr         LQR designs with the delay handled three ways, delay margins, indice
 stochastic  Lyapunov (6.31) and spectral (6.33)-(6.35) variances, LQG, winch-gain study (6.3.5)
 mpc         condensed linear MPC (CasADi ``conic``) and nonlinear MPC (IPOPT), built once
 simulate    closed-loop simulation on one seeded wave realisation, metrics
+identify_cable  the identification experiment (6.2.3) on a cable scene's axial line
+cable_plant     the axial line as the plant, the Kalman estimate from depth/winch/boom-tip
+deployment  lowering the unit through resonance, with gain scheduling
+cable_compare   :func:`compare` for every scene: on the design model, or on the cable
 (the scene schema lives in :mod:`cable_ocp.scene.heave`)
 """
 
+from cable_ocp.heave.cable_compare import compare
 from cable_ocp.heave.lqr import LQRDesign, design_lqr, regulator_plant
 from cable_ocp.heave.mpc import LinearMPC, MPCSettings, MPCStep, settings_from_scene
 from cable_ocp.heave.plant import HeavePlant, assemble_plant
-from cable_ocp.heave.simulate import Comparison, Metrics, build_models, compare
+from cable_ocp.heave.simulate import Comparison, Metrics, build_models
 from cable_ocp.scene.heave import HeaveScene, load_scene, scene_from_dict
 
 __all__ = [

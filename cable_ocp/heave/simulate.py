@@ -1,4 +1,4 @@
-"""Closed-loop simulation and comparison on one seeded wave realisation (issue 4, item 5).
+"""Closed-loop simulation and comparison on one seeded wave realisation (Huang 1992, 6.3.6).
 
 The sea and vessel states (the shaping filter (6.23) and boom-tip filter (6.26)) are sampled
 exactly on the fine grid ``h_sim = h / substeps`` (ZOH transition, Van Loan noise covariance with
@@ -130,7 +130,7 @@ class Trace:
 
 @dataclass(frozen=True)
 class Metrics:
-    """JSON metrics of one controller (field names as in CONVENTIONS, "Heave compensation").
+    """JSON metrics of one controller (field names as in docs/conventions.md, "Heave compensation").
 
     Every field is None (JSON null) where the number does not exist: all but
     ``energy_index`` and ``solve_time_median_s`` for a controller whose status is not
@@ -260,7 +260,16 @@ def compare(sc: HeaveScene, controllers: tuple | None = None,
     that cannot be designed, or whose loop is unstable or non-finite, never stops the others.
     ``progress``, if given, is called as ``progress(done, total, None)`` every 100 control
     samples (``total`` = samples x runs, the passive baseline included).
+
+    A scene with ``[unit] cable_scene`` is compared by :func:`cable_ocp.heave.compare`
+    (:mod:`cable_ocp.heave.cable_compare`: identification from the cable, the cable as the
+    plant); here it raises.
     """
+    if sc.unit.cable_scene is not None:
+        raise CableOCPError(
+            f"unit.cable_scene = {sc.unit.cable_scene!r}: a scene on a cable is compared by "
+            "cable_ocp.heave.compare (cable_ocp.heave.cable_compare), which identifies the "
+            "design model from the cable; simulate.compare runs the design model alone")
     models = build_models(sc)
     p = models.plant
     c = sc.controller

@@ -76,6 +76,11 @@ def _title(words: str, refs: dict[str, str], key: str) -> str:
     return wrap(f"{words} ({refs[key]})" if key in refs else words, 6.6, 10)
 
 
+def _rms(m: Any, prefix: str = "rms ") -> str:
+    """``rms 0.0123 m``, or ``not solved`` for a run without a heave RMS (JSON null)."""
+    return "not solved" if m.heave_rms is None else f"{prefix}{m.heave_rms:.3g} m"
+
+
 def _name(name: str) -> str:
     return "passive" if name == "passive" else name.upper()
 
@@ -153,7 +158,7 @@ def comparison_figure(res: Comparison, tradeoff: dict | None = None, scene: Any 
     if "passive" in traces:
         m = res.metrics["passive"]
         handles += ax.plot(t, traces["passive"].x, lw=0.9,
-                           label=f"unit heave, passive (rms {m.heave_rms:.3g} m)",
+                           label=f"unit heave, passive ({_rms(m)})",
                            **CONTROLLER_STYLE["passive"])
     ax.set(xlabel="time t (s)", ylabel="heave (m)")
     ax.set_title(_title("Boom-tip heave and unit heave without control", refs, "passive"),
@@ -171,7 +176,7 @@ def comparison_figure(res: Comparison, tradeoff: dict | None = None, scene: Any 
         _time_axes(ax, t, warmup, handles)
         m = res.metrics[name]
         handles += ax.plot(t, traces[name].x * 1e3, lw=0.8,
-                           label=f"unit heave, {_name(name)} (rms {m.heave_rms:.3g} m)",
+                           label=f"unit heave, {_name(name)} ({_rms(m)})",
                            **CONTROLLER_STYLE.get(name, {}))
         after = t >= warmup
         if warmup > 0 and after.sum() > 1:  # fit the scale to the measured part
@@ -253,7 +258,7 @@ def comparison_figure(res: Comparison, tradeoff: dict | None = None, scene: Any 
     title = getattr(scene, "title", "") if scene is not None else ""
     if scene is not None and not title:
         title = (getattr(scene, "meta", None) or {}).get("title", "")
-    sub = ("unit heave rms: " + ", ".join(f"{_name(k)} {m.heave_rms:.3g} m"
+    sub = ("unit heave rms: " + ", ".join(f"{_name(k)} {_rms(m, '')}"
                                           for k, m in res.metrics.items()))
     fig.suptitle((f"{title}\n" if title else "") + sub, fontsize=11)
     legend_below(fig, handles, ncols=3)

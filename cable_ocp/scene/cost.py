@@ -48,6 +48,10 @@ DARE_S_CUBE = 3e-7
 #: MPC: build 7e-7 N^3 s, each step 2e-3 max(1, N/50)^3 s (qpOASES, condensed QP)
 MPC_BUILD_S_CUBE = 7e-7
 MPC_STEP_S = 2e-3
+#: CPU seconds per element and midpoint step of the axial cable plant (compiled block
+#: tridiagonal Newton: 0.035 ms per step of 50 elements, 7e-7 per element; the estimator
+#: and the loop's Python roughly double it)
+CABLE_S_PER_ELEMENT_STEP = 1.5e-6
 
 
 @dataclass
@@ -188,4 +192,40 @@ def heave_cost(sc: Any) -> Cost:
         cost.add(f"the MPC with a {hz}-sample horizon over {steps} samples",
                  MPC_BUILD_S_CUBE * hz**3 + steps * MPC_STEP_S * max(1.0, hz / 50) ** 3,
                  8.0 * hz**2 * (nz + 8), f"controller.horizon = {hz}")
+    if sc.unit.cable_scene is not None:
+        _cable_cost(sc, cost, runs)
     return cost
+
+
+def _cable_cost(sc: Any, cost: Cost, runs: int) -> None:
+    """The cable parts of a heave scene with ``unit.cable_scene``: the identification
+    experiment(s) and the closed-loop runs on the axial line."""
+    from cable_ocp.scene.heave import load_cable_scene
+
+    dyn = load_cable_scene(sc)
+    n, dt = dyn.simulation.segments, dyn.simulation.time_step
+    per_step = CABLE_S_PER_ELEMENT_STEP * n
+    dep = sc.deployment
+    n_ident = 1
+    if dep is not None:
+        n_ident = 1 + (len(dep.schedule_lengths) if dep.schedule_lengths else 7)
+    ident = sc.identification.duration / dt
+    cost.add(f"{n_ident} identification run(s) of {ident:.0f} steps of a {n}-element line",
+             n_ident * ident * per_step, 8.0 * ident * 4 * n,
+             f"identification.duration = {sc.identification.duration:g} s with the cable "
+             f"scene's simulation.time_step = {dt:g} s and segments = {n}")
+    if dep is not None and dep.final_length is not None:
+        dur = (sc.simulation.warmup + abs(dep.final_length - dyn.length) / dep.payout_speed
+               + dep.ramp_time + 20.0)
+        what, nruns = f"3 deployment runs of {dur:.0f} s", 3
+        keys = (f"deployment.payout_speed = {dep.payout_speed:g} m/s from {dyn.length:g} to "
+                f"deployment.final_length = {dep.final_length:g} m")
+    elif sc.simulation.plant == "cable":
+        dur, nruns = sc.simulation.duration, runs
+        what = f"{runs} runs of {dur:g} s on the cable"
+        keys = f"simulation.duration = {dur:g} s with simulation.plant = \"cable\""
+    else:
+        return
+    steps = dur / dt
+    cost.add(f"{what} ({steps:.0f} steps of a {n}-element line each)",
+             nruns * steps * per_step, 8.0 * steps * 12 * nruns, keys)

@@ -39,6 +39,8 @@ Schema (SI units; see ``problems/heave/*.toml`` for commented examples)::
     b_quadratic = 0.2                    # s^2/m, (6.3)
     mass = 125000.0                      # kg (with added mass)
     static_tension = 50000.0             # N at the unit
+    cable_scene = "../dynamics/x.toml"   # a dynamic scene (path relative to this file): a, b
+                                         # are identified from it unless a and b are given
 
     [controller]
     q = 553.6                            # 1/m^2, weight on the unit's heave
@@ -47,7 +49,10 @@ Schema (SI units; see ``problems/heave/*.toml`` for commented examples)::
     sample_time = 0.05                   # s
     solver = "daqp" | "qpoases" | "osqp" | "qrqp" | "ipopt"
     preview_time = 0.0                   # s
-    measurement_noise = 0.01             # m, std of the sampled position sensor (LQG)
+    measurement_noise = 0.01             # m, std of the sampled unit-depth sensor
+    winch_noise = 0.001                  # m, std of the winch-position sensor (cable plant)
+    boom_tip_noise = 0.05                # m, std of the motion sensor's boom-tip heave
+    depth_bias_time = 60.0               # s, estimator time constant of a depth offset
     controllers = ["passive", "lqr", "lqg", "mpc"]
 
     [simulation]
@@ -55,6 +60,23 @@ Schema (SI units; see ``problems/heave/*.toml`` for commented examples)::
     seed = 1
     substeps = 5                         # plant integration steps per control sample
     warmup = 30.0                        # s discarded from the metrics
+    plant = "model" | "cable"            # the design model (6.2)/(6.3), or the cable scene
+
+    [identification]                     # the experiment of Huang (1992), 6.2.3, on the cable
+    excitation = "multisine" | "chirp" | "step" | "sea"
+    duration = 180.0                     # s
+    amplitude = 0.28                     # m RMS of the boom-tip motion (default: the sea's)
+    band = [0.39, 2.4]                   # rad/s (multisine, chirp; default from the sea)
+    noise = 0.01                         # m, depth-sensor noise (default measurement_noise)
+    seed = 7
+
+    [deployment]                         # lowering through resonance (cable plant)
+    final_length = 600.0                 # m (from the cable scene's length)
+    payout_speed = 0.5                   # m/s
+    schedule_lengths = [100.0, 200.0]    # m, where a, b and the LQR gain are tabulated
+    fixed_length = 100.0                 # m, the length of the fixed-gain design
+    window = 10.0                        # m of length per row of the result table
+    ramp_time = 20.0                     # s, smooth start of the pay-out
 """
 
 from __future__ import annotations
@@ -89,7 +111,7 @@ class SeaSpec:
 
 @dataclass(frozen=True)
 class VesselSpec:
-    """``[vessel]`` (004 eq. (6.25))."""
+    """``[vessel]`` (Huang 1992, eq. (6.25))."""
 
     model: str = "second_order"
     natural_frequency: float = 0.393
@@ -99,7 +121,7 @@ class VesselSpec:
 
 @dataclass(frozen=True)
 class WinchSpec:
-    """``[winch]`` (004 eqs. (6.1), (6.12)) and its limits."""
+    """``[winch]`` (Huang 1992, eqs. (6.1), (6.12)) and its limits."""
 
     model: str = "first_order"
     gain: float = 1.0
@@ -115,7 +137,7 @@ class WinchSpec:
 
 @dataclass(frozen=True)
 class UnitSpec:
-    """``[unit]`` (004 eqs. (6.2), (6.3))."""
+    """``[unit]`` (Huang 1992, eqs. (6.2), (6.3))."""
 
     a: float = 0.8959
     b: float = 0.1658
@@ -138,6 +160,9 @@ class ControllerSpec:
     terminal: str = "dare"
     preview_time: float = 0.0
     measurement_noise: float = 0.01
+    winch_noise: float = 0.001
+    boom_tip_noise: float = 0.05
+    depth_bias_time: float = 60.0
     tension_penalty: float = 1e6
     controllers: tuple = ("passive", "lqr", "lqg", "mpc")
 
@@ -150,6 +175,36 @@ class SimulationSpec:
     seed: int = 1
     substeps: int = 5
     warmup: float = 30.0
+    plant: str = "model"
+
+
+@dataclass(frozen=True)
+class IdentificationSpec:
+    """``[identification]``: the identification experiment on the cable scene (Huang (1992),
+    section 6.2.3).
+
+    ``None`` values take defaults from the rest of the scene (see
+    :mod:`cable_ocp.heave.identify_cable`).
+    """
+
+    excitation: str = "multisine"
+    duration: float = 180.0
+    amplitude: float | None = None
+    band: tuple | None = None
+    noise: float | None = None
+    seed: int = 7
+
+
+@dataclass(frozen=True)
+class DeploymentSpec:
+    """``[deployment]``: lowering the unit with the compensator on (cable plant)."""
+
+    final_length: float | None = None
+    payout_speed: float = 0.5
+    schedule_lengths: tuple | None = None
+    fixed_length: float | None = None
+    window: float | None = None
+    ramp_time: float = 20.0
 
 
 @dataclass(frozen=True)
@@ -162,6 +217,8 @@ class HeaveScene:
     unit: UnitSpec = field(default_factory=UnitSpec)
     controller: ControllerSpec = field(default_factory=ControllerSpec)
     simulation: SimulationSpec = field(default_factory=SimulationSpec)
+    identification: IdentificationSpec = field(default_factory=IdentificationSpec)
+    deployment: DeploymentSpec | None = None
     meta: dict[str, str] = field(default_factory=dict, compare=False, hash=False)
     raw: dict[str, Any] = field(default_factory=dict, compare=False, hash=False, repr=False)
 
@@ -183,6 +240,8 @@ _CHOICES = {
     ("unit", "model"): ("linear", "quadratic"),
     ("controller", "solver"): ("daqp", "qpoases", "osqp", "qrqp", "ipopt"),
     ("controller", "terminal"): ("dare", "none"),
+    ("simulation", "plant"): ("model", "cable"),
+    ("identification", "excitation"): ("multisine", "chirp", "step", "sea"),
 }
 _CONTROLLERS = ("passive", "lqr", "lqg", "mpc")
 
@@ -282,6 +341,32 @@ RULES: dict[tuple[str, str], _Num | _Int] = {
     ("simulation", "seed"): _Int(0, 2**32 - 1, why="a 32-bit seed"),
     ("simulation", "substeps"): _Int(1, 100000, why="plant steps per control sample"),
     ("simulation", "warmup"): _Num("s", low=0.0, high=1e6, why="less than the duration"),
+    ("controller", "winch_noise"): _Num(
+        "m", low=1e-9, high=10.0,
+        why="the winch-position sensor (an encoder) of the cable plant's estimator; "
+            "a noise-free sensor makes the Kalman filter singular"),
+    ("controller", "boom_tip_noise"): _Num(
+        "m", low=1e-6, high=10.0,
+        why="the vessel motion sensor's boom-tip heave; '5 cm or 5 %' is a common spec"),
+    ("controller", "depth_bias_time"): _Num(
+        "s", low=0.0, high=1e6, why="the estimator's depth-offset state (0: none)"),
+    ("identification", "duration"): _Num(
+        "s", low=1.0, high=1e5, why="an identification record of seconds to hours"),
+    ("identification", "amplitude"): _Num(
+        "m", positive=True, high=100.0, why="RMS of the prescribed boom-tip motion"),
+    ("identification", "noise"): _Num(
+        "m", low=0.0, high=10.0, why="the depth sensor's noise in the experiment (0: none)"),
+    ("identification", "seed"): _Int(0, 2**32 - 1, why="a 32-bit seed"),
+}
+
+#: ``[deployment]`` keys, checked only when the table is given.
+DEPLOYMENT_RULES: dict[str, _Num] = {
+    "final_length": _Num("m", positive=True, high=1e5, why="the unstretched length at the end"),
+    "payout_speed": _Num("m/s", positive=True, high=10.0,
+                         why="crane and winch pay-out speeds are up to a few m/s"),
+    "fixed_length": _Num("m", positive=True, high=1e5, why="the fixed-gain design's length"),
+    "window": _Num("m", positive=True, high=1e5, why="length per row of the result table"),
+    "ramp_time": _Num("s", low=0.0, high=1e4, why="the pay-out's smooth start and stop"),
 }
 
 
@@ -305,7 +390,24 @@ def _value(table: str, key: str, val: Any) -> Any:
         if not isinstance(val, str):
             raise CableOCPError(f"{name} = {val!r}: expected a file path (string)")
         return val
+    if key in ("band", "schedule_lengths"):
+        return _number_list(name, val, 2 if key == "band" else None)
+    if table == "deployment":
+        return _checked(DEPLOYMENT_RULES[key], val, name)
     return _checked(RULES[(table, key)], val, name)
+
+
+def _number_list(name: str, val: Any, size: int | None) -> tuple:
+    """A list of positive finite numbers, strictly increasing (``size`` entries if given)."""
+    what = f"a list of {size} numbers" if size else "a list of numbers"
+    if (not isinstance(val, list) or not val or (size is not None and len(val) != size)
+            or any(isinstance(v, bool) or not isinstance(v, (int, float)) for v in val)):
+        raise CableOCPError(f"{name} = {val!r}: expected {what}")
+    out = tuple(float(v) for v in val)
+    if not all(math.isfinite(v) and v > 0 for v in out) or any(
+            b <= a for a, b in zip(out[:-1], out[1:], strict=True)):
+        raise CableOCPError(f"{name} = {val!r}: must be finite, > 0 and increasing")
+    return out
 
 
 def _checked(rule: _Num | _Int, val: Any, name: str) -> Any:
@@ -324,11 +426,15 @@ def _build(cls: type, table: str, data: Any) -> Any:
 
 
 _TABLES = {"sea": SeaSpec, "vessel": VesselSpec, "winch": WinchSpec, "unit": UnitSpec,
-           "controller": ControllerSpec, "simulation": SimulationSpec}
+           "controller": ControllerSpec, "simulation": SimulationSpec,
+           "identification": IdentificationSpec, "deployment": DeploymentSpec}
 
 
-def scene_from_dict(data: dict[str, Any]) -> HeaveScene:
+def scene_from_dict(data: dict[str, Any], base_dir: str | Path | None = None) -> HeaveScene:
     """Validate a parsed TOML document and return the scene.
+
+    ``base_dir`` is the directory that a relative ``[unit] cable_scene`` is read from (the
+    heave file's; default the working directory); the scene keeps the resolved path.
 
     Raises
     ------
@@ -338,6 +444,7 @@ def scene_from_dict(data: dict[str, Any]) -> HeaveScene:
     """
     if not isinstance(data, dict):
         raise CableOCPError("a heave scene must be a table")
+    data = resolve_cable_scene(data, base_dir)
     kwargs: dict[str, Any] = {"raw": copy.deepcopy(data)}
     for key, val in data.items():
         if key in _TABLES:
@@ -354,6 +461,39 @@ def scene_from_dict(data: dict[str, Any]) -> HeaveScene:
     scene = HeaveScene(**kwargs)
     check(scene)
     return scene
+
+
+def resolve_cable_scene(data: dict[str, Any], base_dir: str | Path | None) -> dict[str, Any]:
+    """``[unit] cable_scene`` made absolute (relative to ``base_dir``, else the working
+    directory), so that the scene and its overrides keep pointing at the same file."""
+    unit = data.get("unit")
+    if not isinstance(unit, dict) or not isinstance(unit.get("cable_scene"), str):
+        return data
+    path = Path(unit["cable_scene"]).expanduser()
+    if not path.is_absolute():
+        path = Path(base_dir or ".") / path
+    data = copy.deepcopy(data)
+    data["unit"]["cable_scene"] = str(path.resolve())
+    return data
+
+
+def load_cable_scene(sc: HeaveScene) -> Any:
+    """The dynamic scene of ``[unit] cable_scene`` (a :class:`~cable_ocp.dynamics.DynamicScene`).
+
+    Raises
+    ------
+    CableOCPError
+        Naming the key when the file is missing, not a dynamic scene, or invalid.
+    """
+    from cable_ocp.dynamics.scene import load_dynamic_scene
+
+    path = sc.unit.cable_scene
+    if path is None:
+        raise CableOCPError("unit.cable_scene: is not given")
+    try:
+        return load_dynamic_scene(path)
+    except CableOCPError as exc:
+        raise CableOCPError(f"unit.cable_scene = {path!r}: {exc}") from None
 
 
 def _rk4_gain(z: complex) -> float:
@@ -406,6 +546,11 @@ def check(sc: HeaveScene) -> None:
         val = getattr(getattr(sc, table), key)
         if val is not None:
             _checked(rule, val, _key(table, key))
+    if sc.deployment is not None:
+        for key, rule in DEPLOYMENT_RULES.items():
+            val = getattr(sc.deployment, key)
+            if val is not None:
+                _checked(rule, val, _key("deployment", key))
     for (table, key), options in _CHOICES.items():
         choice(getattr(getattr(sc, table), key), _key(table, key), options)
     s = sc.sea
@@ -416,12 +561,7 @@ def check(sc: HeaveScene) -> None:
             "sea: give exactly one of modal_frequency (rad/s), zero_crossing_period (s), "
             f"peak_period (s); got {', '.join(given) if given else 'none'}"
         )
-    if sc.unit.cable_scene is not None:
-        raise CableOCPError(
-            f"unit.cable_scene = {sc.unit.cable_scene!r}: identifying a, b from a cable scene "
-            "needs the cable-dynamics model, which is not available yet; give unit.a and "
-            "unit.b (cable_ocp.heave.identify fits them to a recorded response)"
-        )
+    _check_cable(sc)
     if sc.unit.model == "quadratic" and not sc.unit.b_quadratic > 0:
         raise CableOCPError(f'unit.b_quadratic = {sc.unit.b_quadratic!r}: must be > 0 with '
                             'unit.model = "quadratic" (s^2/m, Huang 1992, eq. (6.3))')
@@ -435,13 +575,64 @@ def check(sc: HeaveScene) -> None:
     if sc.winch.accel_max is not None and sc.winch.model != "second_order":
         raise CableOCPError('winch.accel_max: needs winch.model = "second_order"; limit '
                             "winch.command_rate_max (m per sample) for the first-order winch")
-    if sc.winch.tension_min is not None and not (sc.unit.mass > 0):
+    if (sc.winch.tension_min is not None and not (sc.unit.mass > 0)
+            and sc.unit.cable_scene is None):
         raise CableOCPError("winch.tension_min: needs unit.mass > 0 (kg) and "
                             "unit.static_tension (N)")
     if sc.simulation.warmup >= sc.simulation.duration:
         raise CableOCPError(f"simulation.warmup = {sc.simulation.warmup!r}: must be less than "
                             f"simulation.duration = {sc.simulation.duration} s")
     _check_integration(sc)
+
+
+def _check_cable(sc: HeaveScene) -> None:
+    """The cable-scene keys: ``[unit] cable_scene`` readable and an axial line,
+    ``[simulation] plant = "cable"`` and ``[deployment]`` only with a cable scene."""
+    if sc.unit.cable_scene is None:
+        if sc.simulation.plant == "cable":
+            raise CableOCPError('simulation.plant = "cable": needs unit.cable_scene = "PATH" '
+                                "(a dynamic scene, relative to the heave file)")
+        if sc.deployment is not None:
+            raise CableOCPError('[deployment]: needs unit.cable_scene = "PATH" (the line '
+                                "that is lowered, a dynamic scene)")
+        return
+    dyn = load_cable_scene(sc)
+    if dyn.simulation.model != "axial":
+        raise CableOCPError(
+            f"unit.cable_scene = {sc.unit.cable_scene!r}: its simulation.model = "
+            f"{dyn.simulation.model!r}; the heave plant and the identification use the axial "
+            'model (model = "axial"): a vertical line whose length the winch changes')
+    from cable_ocp.dynamics.axial import check_axial
+
+    try:
+        check_axial(dyn)
+    except CableOCPError as exc:
+        raise CableOCPError(f"unit.cable_scene = {sc.unit.cable_scene!r}: {exc}") from None
+    h = sc.controller.sample_time
+    ratio = h / dyn.simulation.time_step
+    if abs(ratio - round(ratio)) > 1e-9 * max(1.0, ratio) or round(ratio) < 1:
+        raise CableOCPError(
+            f"unit.cable_scene: its simulation.time_step = {dyn.simulation.time_step} s "
+            f"must divide controller.sample_time = {h} s (the cable is stepped per sample)")
+    band = sc.identification.band
+    if band is not None and not band[0] < band[1]:
+        raise CableOCPError(f"identification.band = {list(band)}: must be [low, high] rad/s "
+                            "with low < high")
+    dep = sc.deployment
+    if dep is not None:
+        if dep.final_length is None:
+            raise CableOCPError("deployment.final_length: is required (m)")
+        if dep.final_length == dyn.length:
+            raise CableOCPError(f"deployment.final_length = {dep.final_length}: equals the "
+                                "cable scene's length (m): nothing is paid out")
+        lo, hi = sorted((dyn.length, dep.final_length))
+        for key in ("schedule_lengths", "fixed_length"):
+            val = getattr(dep, key)
+            vals = () if val is None else (val if isinstance(val, tuple) else (val,))
+            if any(v < lo - 1e-9 or v > hi + 1e-9 for v in vals):
+                raise CableOCPError(f"deployment.{key} = {val}: must lie between the cable "
+                                    f"scene's length {dyn.length} m and deployment."
+                                    f"final_length {dep.final_length} m")
 
 
 def load_scene(path: str | Path, overrides: dict[str, Any] | None = None) -> HeaveScene:
@@ -456,4 +647,4 @@ def load_scene(path: str | Path, overrides: dict[str, Any] | None = None) -> Hea
     check_kind(data, "heave", path)
     if overrides:
         data = apply_overrides(data, overrides)
-    return scene_from_dict(data)
+    return scene_from_dict(data, Path(path).parent)

@@ -1,0 +1,214 @@
+"""Heave compensation on a cable scene: identification, the comparison on the cable plant,
+and the deployment through resonance.
+
+A heave scene with ``[unit] cable_scene`` is compared here: the design model is identified
+from the cable (Huang (1992), section 6.2.3; :mod:`cable_ocp.heave.identify_cable`) unless
+``[unit] a, b`` are given; ``[simulation] plant = "model"`` runs the usual comparison
+(:func:`cable_ocp.heave.simulate.compare`) on that model, ``"cable"`` runs every controller
+against the axial cable (:mod:`cable_ocp.heave.cable_plant`) and against the design model
+for the prediction, and a ``[deployment]`` table lowers the unit through resonance
+(:mod:`cable_ocp.heave.deployment`). :func:`compare` takes any heave scene.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Callable
+from typing import Any
+
+import numpy as np
+
+from cable_ocp.dynamics.scene import DynamicScene
+from cable_ocp.errors import CableOCPError
+from cable_ocp.heave import identify_cable as idc
+from cable_ocp.heave import mpc as mpc_mod
+from cable_ocp.heave import simulate as sm
+from cable_ocp.heave.cable_plant import (
+    CABLE_FIELDS,
+    AxialCablePlant,
+    CableComparison,
+    CableMetrics,
+    _CableLoopPlant,
+    _Ctrl,
+    _metrics_cable,
+    _ModelLoopPlant,
+    _mpc_settings,
+    design_damping,
+    design_scene,
+    design_table,
+    make_wave,
+    run_loop,
+    run_status,
+)
+from cable_ocp.heave.deployment import deploy
+from cable_ocp.scene.heave import HeaveScene, load_cable_scene
+
+__all__ = ["compare", "compare_cable"]
+
+
+def compare(sc: HeaveScene, controllers: tuple | None = None,
+            progress: Callable[[int, int, Any], None] | None = None) -> Any:
+    """:func:`cable_ocp.heave.simulate.compare` for any heave scene: a scene with
+    ``[unit] cable_scene`` goes to :func:`compare_cable`, the others to
+    :func:`cable_ocp.heave.simulate.compare`. Returns a
+    :class:`~cable_ocp.heave.simulate.Comparison` or a
+    :class:`~cable_ocp.heave.cable_plant.CableComparison` (the same fields, and the
+    cable's)."""
+    if sc.unit.cable_scene is not None:
+        return compare_cable(sc, controllers, progress)
+    return sm.compare(sc, controllers, progress)
+
+
+def compare_cable(sc: HeaveScene, controllers: tuple | None = None,
+                  progress: Callable[[int, int, Any], None] | None = None) -> Any:
+    """:func:`cable_ocp.heave.simulate.compare` for a scene with ``[unit] cable_scene``.
+
+    The design model is identified from the cable scene (Huang (1992), section 6.2.3,
+    :func:`cable_ocp.heave.identify_cable.identify_from_cable`) unless ``[unit] a, b`` are
+    given. With ``[simulation] plant = "model"`` the usual comparison runs on that model;
+    with ``"cable"`` every controller runs against the cable
+    (:mod:`cable_ocp.heave.cable_plant`), and against the design model with the same
+    estimator for the prediction.
+    """
+    dyn = load_cable_scene(sc)
+    ident = idc.identify_from_cable(sc, dyn)
+    sd, source = design_scene(sc, ident, dyn)
+    warn = design_damping(ident.linear.b, "design model")[1] if source == "identified" else None
+    extra = {"plant": sc.simulation.plant,
+             "design_model": {"a": sd.unit.a, "b": sd.unit.b,
+                              "b_quadratic": sd.unit.b_quadratic, "source": source,
+                              "mass": sd.unit.mass, "static_tension": sd.unit.static_tension},
+             "identified": idc.identified_json(ident)}
+    if sc.deployment is not None:
+        res = deploy(sc, sd, dyn, ident, extra, progress)
+    elif sc.simulation.plant == "model":
+        r = sm.compare(sd, controllers, progress)
+        res = CableComparison(r.sigma_uncontrolled, r.metrics, r.traces, r.models,
+                              r.mpc_solve_times, r.mpc_failures, r.statuses, r.messages,
+                              r.passive_heave_rms, r.warnings, json_extra=extra)
+    else:
+        res = _compare_on_cable(sc, sd, dyn, controllers, progress, extra)
+    if warn is not None and warn not in res.warnings:
+        res.warnings.insert(0, warn)
+    return res
+
+
+def _compare_on_cable(sc: HeaveScene, sd: HeaveScene, dyn: DynamicScene,
+                      controllers: tuple | None, progress: Callable | None, extra: dict
+                      ) -> CableComparison:
+    c = sc.controller
+    h = c.sample_time
+    T = sc.simulation.duration
+    n_ctrl = int(round(T / h))
+    controllers = tuple(controllers or c.controllers)
+    for name in controllers:
+        if name not in ("passive", "lqr", "lqg", "mpc"):
+            raise CableOCPError(f"controller {name!r} is unknown; valid: passive, lqr, lqg, "
+                                "mpc")
+    # the passive run is the baseline of every reduction, run when not asked for
+    runs_of = controllers if "passive" in controllers else controllers + ("passive",)
+    models = sm.build_models(sd)
+    plant_c = AxialCablePlant(dyn, h)
+    m = plant_c.substeps
+    hs = h / sc.simulation.substeps
+    t_f, x0_f, _ = sm.wave_realisation(models.plant, T + c.preview_time + 2 * h, hs,
+                                       sc.simulation.seed)
+    L0 = dyn.length
+    wave = make_wave(t_f, x0_f, h, m, n_ctrl, lambda t: np.full_like(t, L0),
+                     0.5 * sc.simulation.warmup)
+    rng = np.random.default_rng(sc.simulation.seed + 1000)
+    noise = rng.standard_normal((n_ctrl + 1, 3)) * np.array(
+        [c.measurement_noise, c.winch_noise, c.boom_tip_noise])
+    try:
+        with np.errstate(all="ignore"):
+            table, p = design_table(sd, np.array([L0]), np.array([sd.unit.a]),
+                                    np.array([sd.unit.b]))
+        G, design_error = table.G[0], None
+    except CableOCPError:
+        raise
+    except sm._DESIGN_ERRORS as exc:  # a Riccati equation without a stabilising solution
+        table, p, G = None, models.plant, None
+        design_error = f"the design on the design model failed: {type(exc).__name__}: {exc}"
+    settings = _mpc_settings(sd)
+    t_u0, t_t0 = plant_c.static_tensions()
+    quad = sd.unit.model == "quadratic"
+    total = 2 * n_ctrl * len(runs_of)
+    metrics, traces, predicted, statuses, messages = {}, {}, {}, {}, {}
+    solve_times, failures = None, 0
+    warnings: list[str] = []
+    for idx, name in enumerate(runs_of):
+        if design_error is not None and name != "passive":
+            statuses[name], messages[name] = "failed", design_error
+            empty = dict.fromkeys(("heave_rms", "reduction_pct", "peak_winch_speed",
+                                   "max_stroke", "energy_index", "max_constraint_violation",
+                                   "solve_time_median_s", "winch_speed_rms") + CABLE_FIELDS)
+            metrics[name] = (empty, empty)
+            continue
+        runs = {}
+        for j, kind in enumerate(("model", "cable")):
+            base = (2 * idx + j) * n_ctrl
+
+            def prog(k: int, base: int = base) -> None:
+                if progress is not None:
+                    progress(base + k, total, None)
+
+            mpc = (mpc_mod.LinearMPC(p, sc.winch.delay, settings) if name == "mpc" else None)
+            ctrl = _Ctrl(name, None if name == "passive" else table, mpc)
+            if kind == "model":
+                plant: Any = _ModelLoopPlant(sd.unit.a, sd.unit.b, sd.unit.b_quadratic, quad, m,
+                                             h / m, sd.unit.mass, t_u0, t_t0)
+            else:
+                plant = _CableLoopPlant(plant_c)
+            runs[kind] = run_loop(sc, plant, ctrl, wave, noise, n_ctrl, prog)
+        mc = _metrics_cable(sd, runs["cable"], name, G)
+        mm = _metrics_cable(sd, runs["model"], name, G)
+        metrics[name] = (mc, mm)
+        if name not in controllers:
+            continue
+        statuses[name], messages[name] = run_status(runs["cable"])
+        pst, pmsg = run_status(runs["model"], "design-model")
+        if pst != "solved":
+            warnings.append(f"{name}: on the design model (the prediction): {pst}: {pmsg}")
+        if mc["slack_samples"]:
+            warnings.append(
+                f"{name}: the line went slack on the cable (an element tension <= 0 at "
+                f"{mc['slack_samples']} samples after the warm-up, first at "
+                f"t = {mc['slack_first_time_s']:.2f} s); the axial model cannot follow slack, "
+                "its tensions there are not physical")
+        traces[name] = runs["cable"].trace
+        predicted[name] = runs["model"].trace
+        if name == "mpc":
+            solve_times = runs["cable"].times
+            failures = runs["cable"].failures
+            if failures:
+                warnings.append(f"mpc: the QP failed at {failures} of {solve_times.size} "
+                                "samples on the cable; the shifted previous plan was applied")
+    if progress is not None:
+        progress(total, total, None)
+    out = {}
+    base_c = metrics["passive"][0]["heave_rms"]
+    base_m = metrics["passive"][1]["heave_rms"]
+
+    def reduction(rms: float | None, base: float | None) -> float | None:
+        ok = rms is not None and base is not None and base > 0
+        return float(100.0 * (1.0 - rms / base)) if ok else None
+
+    for name in controllers:
+        mc, mm = metrics[name]
+        d = dict(mc)
+        d["reduction_pct"] = reduction(mc["heave_rms"], base_c)
+        d["heave_rms_predicted"] = mm["heave_rms"]
+        d["reduction_predicted_pct"] = reduction(mm["heave_rms"], base_m)
+        d["tension_unit_min_predicted"] = mm["tension_unit_min"]
+        d["tension_unit_max_predicted"] = mm["tension_unit_max"]
+        out[name] = CableMetrics(d)
+    extra = dict(extra)
+    extra["cable_plant"] = {"segments": plant_c.model.n, "time_step": plant_c.dt,
+                            "substeps": m, "length": L0,
+                            "static_tension_unit": t_u0, "static_tension_top": t_t0}
+    extra["passive_heave_rms_predicted"] = base_m
+    if models.sigma_uncontrolled is None:
+        warnings.append("sigma_uncontrolled: the Lyapunov equation of the sea and vessel "
+                        "filters gives no valid variance (ill-conditioned); reported as null")
+    return CableComparison(models.sigma_uncontrolled, out, traces, models, solve_times,
+                           failures, statuses, messages, base_c, warnings,
+                           json_extra=extra, predicted_traces=predicted)

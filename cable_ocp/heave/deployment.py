@@ -1,0 +1,234 @@
+"""A controlled deployment through resonance: the unit is lowered with the compensator on.
+
+The heave scene's ``[deployment]`` table lowers the unit of ``[unit] cable_scene`` from the
+cable scene's length to ``final_length`` at ``payout_speed`` (after the warm-up, the speed
+ramped in and out over ``ramp_time``, 20 s held at the end) in the scene's sea, on the cable plant
+(:mod:`cable_ocp.heave.cable_plant`). On the way the first axial natural frequency
+``omega_1(L)`` falls through the wave band (Huang (1992), section 3.3.5 lowers through resonance
+without control), and the design model (6.2) changes with it: ``a(L) ~ 1 / omega_1(L)^2``.
+
+Three compensators are compared on the same sea:
+
+* ``passive``: the compensating winch held still;
+* ``lqr_fixed``: the LQR and Kalman filter (three sensors, as on the cable plant) designed
+  once, on ``a, b`` identified at ``fixed_length`` (default: the start, where a crew would
+  identify the line before lowering);
+* ``lqr_scheduled``: the same design tabulated over ``schedule_lengths`` from the
+  identification (6.2.3) at each length; the gain, the filter's gains and its sampled model
+  are interpolated linearly in the paid-out length as it changes (gain scheduling).
+
+The unit's heave is measured from the static depth at the current paid-out length. Results
+per ``window`` metres of length: unit heave RMS, tension extremes at the unit and the top,
+slack samples.
+"""
+
+from __future__ import annotations
+
+import math
+from collections.abc import Callable
+from typing import Any
+
+import numpy as np
+
+from cable_ocp.dynamics.scene import DynamicScene
+from cable_ocp.heave import cable_plant as cp
+from cable_ocp.heave.identify_cable import CableIdentification, identify_from_cable
+from cable_ocp.scene.heave import HeaveScene
+
+__all__ = ["deploy", "length_history"]
+
+CONTROLLERS = ("passive", "lqr_fixed", "lqr_scheduled")
+
+
+def length_history(t: np.ndarray, start: float, final: float, speed: float, t0: float,
+                   ramp: float) -> np.ndarray:
+    """Paid-out length (m) at times ``t`` (s): ``start`` until ``t0``, then moving to
+    ``final`` with the speed ``v (r(s) - r(s - T_c))``, ``s = t - t0``, ``T_c = |final -
+    start| / v`` and ``r`` the ramp ``10 x^3 - 15 x^4 + 6 x^5`` over ``ramp`` s: the speed
+    rises smoothly to ``v`` and falls smoothly to 0 (no acceleration step at either end),
+    covering exactly the distance. ``ramp`` is cut to ``T_c`` if longer."""
+    dist = abs(final - start)
+    tc = dist / speed
+    ramp = min(ramp, tc)
+
+    def big_r(s: np.ndarray) -> np.ndarray:  # integral of the ramp from 0 to s
+        s = np.maximum(s, 0.0)
+        if ramp <= 0:
+            return s
+        x = np.clip(s / ramp, 0.0, 1.0)
+        return np.where(s < ramp, ramp * x**4 * (2.5 - 3.0 * x + x**2), s - 0.5 * ramp)
+
+    s = np.asarray(t, dtype=float) - t0
+    d = speed * (big_r(s) - big_r(s - tc))
+    sign = 1.0 if final >= start else -1.0
+    return start + sign * np.minimum(d, dist)
+
+
+def _schedule(sc: HeaveScene, dyn: DynamicScene, ident0: CableIdentification,
+              lengths: np.ndarray) -> list[CableIdentification]:
+    out = []
+    for L in lengths:
+        if abs(L - ident0.length) < 1e-9:
+            out.append(ident0)
+        else:
+            out.append(identify_from_cable(sc, dyn, length=float(L)))
+    return out
+
+
+def deploy(sc: HeaveScene, sd: HeaveScene, dyn: DynamicScene, ident0: CableIdentification,
+           extra: dict, progress: Callable[[int, int, Any], None] | None = None
+           ) -> cp.CableComparison:
+    """Run the deployment of ``sc.deployment`` (module docstring).
+
+    ``sd`` is the design scene (:func:`cable_ocp.heave.cable_plant.design_scene`), ``ident0``
+    the identification at the start. Returns a
+    :class:`~cable_ocp.heave.cable_plant.CableComparison` whose ``json_extra["deployment"]``
+    holds the schedule and the per-length table.
+    """
+    from cable_ocp.heave import simulate as sm
+    from cable_ocp.heave.identify_cable import first_frequency, identified_json
+
+    dep = sc.deployment
+    assert dep is not None and dep.final_length is not None
+    c = sc.controller
+    h = c.sample_time
+    L0, L1 = dyn.length, dep.final_length
+    lo, hi = sorted((L0, L1))
+    lengths = design_lengths(sc, dyn)
+    lf = dep.fixed_length if dep.fixed_length is not None else L0
+    idents = _schedule(sc, dyn, ident0, lengths)
+    a_tab = np.array([i.linear.a for i in idents])
+    warnings: list[str] = []
+    b_tab = np.empty(len(idents))
+    for j, (i, L) in enumerate(zip(idents, lengths, strict=True)):
+        b_tab[j], w = cp.design_damping(i.linear.b, f"schedule at {L:g} m")
+        if w:
+            warnings.append(w)
+    fixed_ident = next((i for i, L in zip(idents, lengths, strict=True) if abs(L - lf) < 1e-9),
+                       None) or identify_from_cable(sc, dyn, length=lf)
+    sched, p = cp.design_table(sd, lengths, a_tab, b_tab)
+    b_fixed, w = cp.design_damping(fixed_ident.linear.b, f"fixed design at {lf:g} m")
+    if w and w not in warnings:
+        warnings.append(w)
+    fixed, _ = cp.design_table(sd, np.array([lf]), np.array([fixed_ident.linear.a]),
+                               np.array([b_fixed]))
+
+    warm = sc.simulation.warmup
+    T = warm + abs(L1 - L0) / dep.payout_speed + dep.ramp_time + 20.0
+    n_ctrl = int(math.ceil(T / h))
+    models = sm.build_models(sd)
+    plant = cp.AxialCablePlant(dyn, h)
+    m = plant.substeps
+    t_f, x0_f, _ = sm.wave_realisation(models.plant, n_ctrl * h + 2 * h, h / sc.simulation.substeps,
+                                       sc.simulation.seed)
+    wave = cp.make_wave(t_f, x0_f, h, m, n_ctrl,
+                        lambda t: length_history(t, L0, L1, dep.payout_speed, warm,
+                                                 dep.ramp_time), 0.5 * warm)
+    rng = np.random.default_rng(sc.simulation.seed + 1000)
+    noise = rng.standard_normal((n_ctrl + 1, 3)) * np.array(
+        [c.measurement_noise, c.winch_noise, c.boom_tip_noise])
+    total = n_ctrl * len(CONTROLLERS)
+    runs: dict[str, cp.LoopRun] = {}
+    for idx, name in enumerate(CONTROLLERS):
+        table = {"passive": None, "lqr_fixed": fixed, "lqr_scheduled": sched}[name]
+        ctrl = cp._Ctrl(name, table, None)
+
+        def prog(k: int, base: int = idx * n_ctrl) -> None:
+            if progress is not None:
+                progress(base + k, total, None)
+
+        runs[name] = cp.run_loop(sc, cp._CableLoopPlant(plant), ctrl, wave, noise, n_ctrl, prog)
+    if progress is not None:
+        progress(total, total, None)
+
+    metrics, statuses, messages = {}, {}, {}
+    base = None
+    for name, run in runs.items():
+        statuses[name], messages[name] = cp.run_status(run)
+        d = cp._metrics_cable(sd, run, "lqr" if name != "passive" else "passive",
+                              fixed.G[0] if name == "lqr_fixed" else sched.G[0])
+        if name == "passive":
+            base = d["heave_rms"]
+        ok = d["heave_rms"] is not None and base is not None and base > 0
+        d["reduction_pct"] = float(100.0 * (1.0 - d["heave_rms"] / base)) if ok else None
+        if name == "lqr_scheduled":
+            d["energy_index"] = None  # the gain changes with the length
+        metrics[name] = cp.CableMetrics(d)
+
+    window = dep.window if dep.window is not None else (hi - lo) / 40.0
+    table = _per_length(runs, sc, lo, hi, window)
+    w1 = np.array([first_frequency(dyn.with_overrides({"cable.length": float(L)}))
+                   if abs(L - dyn.length) > 1e-9 else ident0.omega_1 for L in lengths])
+    extra = dict(extra)
+    extra["deployment"] = {
+        "start_length": L0, "final_length": L1, "payout_speed": dep.payout_speed,
+        "duration": n_ctrl * h, "sample_time": h, "fixed_length": lf,
+        "schedule": {"lengths": lengths.tolist(), "a": a_tab.tolist(), "b": b_tab.tolist(),
+                     "b_identified": [i.linear.b for i in idents],
+                     "omega_1": w1.tolist(), "a_modal": (1.0 / w1**2).tolist(),
+                     "fit_pct": [i.linear.fit_pct for i in idents]},
+        "fixed_identified": identified_json(fixed_ident),
+        "window": window, "per_length": table,
+    }
+    extra["cable_plant"] = {"segments": plant.model.n, "time_step": plant.dt, "substeps": m}
+    traces = {k: r.trace for k, r in runs.items()}
+    return cp.CableComparison(models.sigma_uncontrolled, metrics, traces, models, None, 0,
+                              statuses, messages, base, warnings, json_extra=extra)
+
+
+def _per_length(runs: dict[str, cp.LoopRun], sc: HeaveScene, lo: float, hi: float,
+                window: float) -> dict[str, Any]:
+    """Per window of paid-out length: centre (m) and, per controller, the unit's heave from
+    the static depth at the paid-out length (RMS, mean, standard deviation about the mean,
+    largest magnitude; m), tension extremes at the unit and the top (N) and slack samples.
+
+    The mean is the quasi-steady offset of a pay-out (the drag of the moving line and unit
+    lifts the unit by centimetres, the pay-out's acceleration at the ends shifts it); the
+    standard deviation is the heave the compensator acts on."""
+    edges = np.arange(lo, hi + 0.5 * window, window)
+    if edges[-1] < hi - 1e-9:
+        edges = np.append(edges, hi)
+    centres = 0.5 * (edges[:-1] + edges[1:])
+    out: dict[str, Any] = {"length": centres.tolist()}
+    h = sc.controller.sample_time
+    warm = sc.simulation.warmup
+    for name, run in runs.items():
+        tr = run.trace
+        ok = (tr.t >= warm - 1e-12) & np.isfinite(tr.x)  # NaN after a run that stopped
+        idx = np.clip(np.searchsorted(edges, tr.length, side="right") - 1, 0, centres.size - 1)
+        ks = np.arange(tr.min_element_tension.size)
+        lk = tr.length[ks * (tr.t.size - 1) // max(1, tr.min_element_tension.size)]
+        kidx = np.clip(np.searchsorted(edges, lk, side="right") - 1, 0, centres.size - 1)
+        kok = ks * h >= warm - 1e-12
+        rows: dict[str, list] = {k: [] for k in ("heave_rms", "heave_mean", "heave_std",
+                                                 "heave_max", "tension_unit_min",
+                                                 "tension_unit_max", "tension_top_min",
+                                                 "tension_top_max", "slack_samples")}
+        for j in range(centres.size):
+            sel = ok & (idx == j)
+            if not np.any(sel):
+                for v in rows.values():
+                    v.append(None)
+                continue
+            rows["heave_rms"].append(float(np.sqrt(np.mean(tr.x[sel] ** 2))))
+            rows["heave_mean"].append(float(np.mean(tr.x[sel])))
+            rows["heave_std"].append(float(np.std(tr.x[sel])))
+            rows["heave_max"].append(float(np.max(np.abs(tr.x[sel]))))
+            rows["tension_unit_min"].append(float(np.min(tr.tension_unit[sel])))
+            rows["tension_unit_max"].append(float(np.max(tr.tension_unit[sel])))
+            rows["tension_top_min"].append(float(np.min(tr.tension_top[sel])))
+            rows["tension_top_max"].append(float(np.max(tr.tension_top[sel])))
+            rows["slack_samples"].append(int(np.count_nonzero(
+                (tr.min_element_tension <= 0.0) & kok & (kidx == j))))
+        out[name] = rows
+    return out
+
+
+def design_lengths(sc: HeaveScene, dyn: DynamicScene) -> np.ndarray:
+    """The schedule's lengths (m): ``[deployment] schedule_lengths`` or 7 from start to end."""
+    dep = sc.deployment
+    assert dep is not None and dep.final_length is not None
+    if dep.schedule_lengths:
+        return np.asarray(dep.schedule_lengths, dtype=float)
+    lo, hi = sorted((dyn.length, dep.final_length))
+    return np.linspace(lo, hi, 7)
