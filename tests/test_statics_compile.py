@@ -252,3 +252,36 @@ def test_compile_function_by_key(cache_folder: Path) -> None:
     x = np.array([0.3, -1.2, 2.5])
     ref = np.asarray(build()(x)).ravel()
     assert np.allclose(np.asarray(f2(x)).ravel(), ref, rtol=1e-14, atol=0)
+
+
+@needs_cc
+@pytest.mark.parametrize("name, key, values, method", [
+    ("berteaux_mooring.toml", "end_b.tension", [11146.6, 11400.0, 11700.0], "collocation"),
+    ("berteaux_mooring.toml", "end_b.tension", [11146.6, 11400.0], "multiple_shooting"),
+    pytest.param("mooring_clump_buoy.toml", "end_b.position",
+                 [[680.0, 0.0, 140.0], [690.0, 0.0, 140.0], [700.0, 0.0, 140.0]],
+                 "collocation", marks=pytest.mark.slow),  # ~20 s: compiles the contact solvers
+])
+def test_compiled_warm_solves_on_other_structures(cache_folder: Path, name: str, key: str,
+                                                  values: list, method: str) -> None:
+    """A free length (a bounded unknown), multiple shooting, and three segments with
+    seabed contact: a session of warm solves with the compiled kernel gives the statuses,
+    lengths and end forces of the interpreted session to 1e-8 relative (both stop at a
+    scaled residual of 1e-10; the free length and touchdown add to the conditioning)."""
+    path = Path(__file__).resolve().parents[1] / "problems" / name
+    from cable_ocp.statics.solver import SolveSession
+
+    out = {}
+    for mode in ("never", "auto"):
+        base = load_scene(path, {"solver.error_estimate": False, "solver.refine": False,
+                                 "solver.intervals": 16, "solver.method": method,
+                                 "solver.compile": mode})
+        session = SolveSession(error_estimate=False)
+        out[mode] = [session.solve(base.with_overrides({key: v})) for v in values]
+    assert any(s.diagnostics.get("compiled") for s in out["auto"])
+    for a, b in zip(out["never"], out["auto"], strict=True):
+        assert a.status == b.status and a.converged
+        ref = max(np.max(np.abs(a.force_a)), np.max(np.abs(a.force_b)))
+        assert np.max(np.abs(b.force_a - a.force_a)) <= 1e-8 * ref
+        assert np.max(np.abs(b.force_b - a.force_b)) <= 1e-8 * ref
+        assert abs(b.length - a.length) <= 1e-8 * a.length

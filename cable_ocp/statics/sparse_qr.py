@@ -94,12 +94,17 @@ void cqr_solve(double* x, const cint* sp_v, const double* v, const cint* sp_r,
 """
 
 
-@functools.lru_cache(maxsize=1)
 def _library() -> ctypes.CDLL | None:
     """The compiled helper (built once per machine into the cache folder), or None."""
     folder, cc = cache_dir(), c_compiler()
     if folder is None or cc is None:
         return None
+    return _load(folder, tuple(cc))
+
+
+@functools.lru_cache(maxsize=8)
+def _load(folder: str, cc: tuple[str, ...]) -> ctypes.CDLL | None:
+    """The helper compiled by ``cc`` into ``folder`` (once per process and setting)."""
     digest = hashlib.sha256(_SOURCE.encode()).hexdigest()[:16]
     lib = os.path.join(folder, f"cable_ocp_sparse_qr_{digest}.so")
     try:
