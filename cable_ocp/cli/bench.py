@@ -389,6 +389,9 @@ def cmd_bench_batch(args: argparse.Namespace) -> int:
                   f"{sm['overhead_per_case_ms']:.2f} ms per case "
                   f"({100 * sm['overhead_fraction']:.1f} % of a bare solve, target < 10 %); "
                   f"speed-up on 2 workers {sm['speedup_2_workers']:.2f}x (target >= 1.8x)")
+    if sm.get("load_average"):
+        out.say(args, "load average " + ", ".join(f"{x:.2f}" for x in sm["load_average"])
+                + f" on {sm['cpu_count']} cores (the speed-up needs them free)")
     out.emit_json(args, out.envelope("ok", "benchmark completed", res))
     return out.EXIT_OK
 
