@@ -275,3 +275,17 @@ def test_heave_on_the_cable_batch_reads_its_cable_scene_next_to_the_problem(
     assert rc == 0
     cli_row = json.loads((tmp_path / "cli.jsonl").read_text().splitlines()[0])
     assert cli_row["passive_heave_rms [m]"] == row["passive_heave_rms [m]"]
+
+
+def test_bench_batch_prints_its_json_alone(capsys) -> None:
+    """`cable-ocp bench batch --json -` on a 2 x 2 matrix: the JSON alone on stdout, every
+    case solved in every run, and the summary's figures derived from its own rows (the
+    overhead is the one-worker batch minus the bare loop, per case)."""
+    rc = main(["bench", "batch", "--angles", "2", "--speeds", "2", "--json", "-", "--quiet"])
+    assert rc == 0
+    data = json.loads(capsys.readouterr().out)
+    rows, sm = data["rows"], data["summary"]
+    assert sm["cases"] == 4 and [r["solved"] for r in rows[1:]] == [4, 4]
+    bare, one, two = (r["wall_s"] for r in rows)
+    assert sm["overhead_per_case_ms"] == pytest.approx(1e3 * (one - bare) / 4)
+    assert sm["speedup_2_workers"] == pytest.approx(one / two)

@@ -250,7 +250,7 @@ def cases(draw: Any) -> dict[str, Any]:
 
 def current_at(scene: Any, z: np.ndarray) -> np.ndarray:
     """Current velocity (m/s) at heights z: components linear between knots, constant
-    beyond (CONVENTIONS, "Frame and scene files")."""
+    beyond (docs/conventions.md, "Frame and scene files")."""
     cur = scene.environment.current
     u = np.zeros((len(z), 3))
     if cur is None:
@@ -262,7 +262,7 @@ def current_at(scene: Any, z: np.ndarray) -> np.ndarray:
 
 def drag(law: str, rho: float, d: float, cn: float, ct: float, u: np.ndarray,
          t: np.ndarray, blend: float) -> tuple[np.ndarray, np.ndarray]:
-    """Drag per unit stretched length (N/m) by the laws of CONVENTIONS "Drag", and a bound
+    """Drag per unit stretched length (N/m) by the laws of docs/conventions.md "Drag", and a bound
     (N/m) on how far the solver's vertical blend of the componentwise law may lie from it.
 
     vector:        1/2 rho (C_n D |U_n| U_n + C_t pi D |U_t| U_t)
@@ -401,7 +401,7 @@ def check_statics_physics(scene: Any, data: dict, table: np.ndarray) -> dict[str
     td = data.get("touchdown")
     if sb is not None and td and td.get("grounded_length"):
         # contact is modelled: the grounded part (which must lie on the seabed) carries
-        # no current load (CONVENTIONS "Seabed") and its horizontal tension changes by at
+        # no current load (docs/conventions.md "Seabed") and its horizontal tension changes by at
         # most the friction, mu w per metre; the balance starts at the touchdown node
         start = int(np.argmin(np.abs(s - td["grounded_length"])))
         assert np.all(pos[:start + 1, 2] - floor[:start + 1] <= tol_z), "grounded part"
@@ -431,7 +431,7 @@ def check_statics_physics(scene: Any, data: dict, table: np.ndarray) -> dict[str
         pts = p_[sel][uniq]
         if len(pts) < 3:
             continue
-        # drag: per stretched length (CONVENTIONS "Drag"): integrated over |dr| of the
+        # drag: per stretched length (docs/conventions.md "Drag"): integrated over |dr| of the
         # returned geometry, so no EA enters. Tangent: T/|T| where the segment is flexible
         # (its internal force is tangent), finite differences of the nodes elsewhere
         ell = np.concatenate([[0.0], np.cumsum(np.linalg.norm(np.diff(pts, axis=0), axis=1))])

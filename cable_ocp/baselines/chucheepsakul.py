@@ -1,81 +1,81 @@
-"""Chucheepsakul & Subwonglee (1991): variational finite elements in z (seed 001).
+"""Chucheepsakul & Subwonglee (1991): variational finite elements in z (a baseline).
 
-The seed's own method, reproduced as a baseline (``solver.method = "chucheepsakul_fem"``),
-with the modulus-sign correction that Wang et al. (000) show it needs. Source:
-/work/shared/seeds/001_9db2f67368b5ef27.txt (and 000_2b3c74cf924aa082.txt for the
+The paper's own method, reproduced as a baseline (``solver.method = "chucheepsakul_fem"``),
+with the modulus-sign correction that Wang et al. (1993) show it needs. Sources:
+Chucheepsakul & Subwonglee (1991) (and Wang et al. (1993) for the
 correction).
 
-Formulation (001 eqs (8)-(13))
+Formulation (Chucheepsakul 1991, eqs (8)-(13))
 ------------------------------
 The height z (from end_a, 0 <= z <= H = z_b - z_a) is the independent variable; the
 unknowns are the horizontal coordinates x(z), y(z) (relative to end_a) and the tension
-T(z). The functional (001 eq. (8))
+T(z). The functional (Chucheepsakul 1991, eq. (8))
 
     Pi = int_0^H ( T sqrt(1 + x'^2 + y'^2) - P_x x - P_y y ) dz
 
-is made stationary in x and y with T, P_x, P_y held fixed; its Euler-Lagrange equations
-d/dz (T x'/S) = -P_x, d/dz (T y'/S) = -P_y (S = sqrt(1 + x'^2 + y'^2) = 1/sin phi) are the
-horizontal equilibrium of the cable, with P_x, P_y the horizontal loads per unit *height*
-(001 eqs (9)-(10): load per unit length / sin phi). The tension follows from the
-tangential equilibrium (001 eq. (1)) integrated down from the top (001 eq. (13)):
+is made stationary in x and y with T, P_x, P_y held fixed; its Euler-Lagrange equations d/dz (T
+x'/S) = -P_x, d/dz (T y'/S) = -P_y (S = sqrt(1 + x'^2 + y'^2) = 1/sin phi) are the horizontal
+equilibrium of the cable, with P_x, P_y the horizontal loads per unit *height* (Chucheepsakul 1991,
+eqs (9)-(10): load per unit length / sin phi). The tension follows from the tangential equilibrium
+(Chucheepsakul 1991, eq. (1)) integrated down from the top (Chucheepsakul 1991, eq. (13)):
 
     T(z) = T_H - W_e (H - z) + int_z^H P_t S dz'          (inextensible)
 
-*Sign*: 001 prints ``- int P_t/sin phi``; integrating its own eq. (1),
-dT/dz = W_e - P_t/sin phi, gives ``+``, which we use (with 001's sign a current pushing
-the cable up the tangent would lower the tension below it). 001's eq. (14) drops the
-integral ("normally P_t is small"); we **keep it** (eq. (13)), since 000 and the other
-solvers include the tangential drag and dropping it is a modelling error, not part of
-the method (for De Zoysa's cable the term is ~1 N of 5 kN). When the tension is given at
-end_a instead, the same equation is integrated up from the bottom. The vertical
-equilibrium then holds automatically (x, y and the tangent span space while sin phi > 0).
+*Sign*: Chucheepsakul (1991) prints ``- int P_t/sin phi``; integrating its own eq. (1),
+dT/dz = W_e - P_t/sin phi, gives ``+``, which we use (with Chucheepsakul (1991)'s sign a current
+pushing the cable up the tangent would lower the tension below it). Chucheepsakul (1991)'s eq. (14)
+drops the integral ("normally P_t is small"); we **keep it** (eq. (13)), since Wang et al. (1993)
+and the other solvers include the tangential drag and dropping it is a modelling error, not part of
+the method (for De Zoysa's cable the term is ~1 N of 5 kN). When the tension is given at end_a
+instead, the same equation is integrated up from the bottom. The vertical equilibrium then holds
+automatically (x, y and the tangent span space while sin phi > 0).
 
-Loads, **with the modulus signs** (000 eqs (4)-(6) and its remark on 001): the drag per
-unit length of :mod:`cable_ocp.physics.drag` with the exact modulus (no smoothing), with
-the actual current vector (any heading, depth profile) and the scene's ``drag_law``:
-``"componentwise"`` (Wilson's law as in 000 (4)-(6); the vertical blend of
-``solver.vertical_blend`` is applied as in the main solver) or ``"vector"``. 001's
-eqs (5)-(7), (11)-(12) square the flow components without sign and its eq. (5) lacks the
-pi of the perimeter; both are corrected here (000 eq. (4) has pi D).
+Loads, **with the modulus signs** (Wang et al. 1993, eqs (4)-(6) and its remark on Chucheepsakul
+(1991)): the drag per unit length of :mod:`cable_ocp.physics.drag` with the exact modulus (no
+smoothing), with the actual current vector (any heading, depth profile) and the scene's
+``drag_law``: ``"componentwise"`` (Wilson's law as in Wang et al. (1993) (4)-(6); the vertical blend
+of ``solver.vertical_blend`` is applied as in the main solver) or ``"vector"``. Chucheepsakul
+(1991)'s eqs (5)-(7), (11)-(12) square the flow components without sign and its eq. (5) lacks the pi
+of the perimeter; both are corrected here (Wang et al. 1993, eq. (4) has pi D).
 
-000 Table 1 gives "Chucheepsakul (1991)", 20 elements, for Berteaux: 3016 m, 90.4 deg,
-35.7 deg. With (13) as derived we get 3013.30 m, 90.24 deg, 36.29 deg (= Wang's and the
-collocation answer: in 2D the modulus signs do not matter, 000). With (14) (P_t dropped)
-we get 3015.2 m, 90.35 deg, 35.86 deg, and with (13)'s printed minus sign 3017.2 m,
-90.46 deg, 35.42 deg: the published column sits between these two, so it most likely
-comes from one of 001's own simplifications of the tangential drag, not from the FEM
-discretisation (20 elements are converged to 1e-4 m here).
+Wang et al. (1993) Table 1 gives "Chucheepsakul (1991)", 20 elements, for Berteaux: 3016 m, 90.4
+deg, 35.7 deg. With (13) as derived we get 3013.30 m, 90.24 deg, 36.29 deg (= Wang's and the
+collocation answer: in 2D the modulus signs do not matter, Wang et al. (1993)). With (14) (P_t
+dropped) we get 3015.2 m, 90.35 deg, 35.86 deg, and with (13)'s printed minus sign 3017.2 m, 90.46
+deg, 35.42 deg: the published column sits between these two, so it most likely comes from one of
+Chucheepsakul (1991)'s own simplifications of the tangential drag, not from the FEM discretisation
+(20 elements are converged to 1e-4 m here).
 
-Elasticity: finite EA is included as in the rest of the project (CONVENTIONS "Drag"):
-drag per stretched length, weight per unstretched length, so dT/dz = W_e/eps - P_t S with
-eps = 1 + T/EA, and the unstretched length is int S/eps dz. 001 is inextensible (eps = 1).
+Elasticity: finite EA is included as in the rest of the project (docs/conventions.md "Drag"): drag
+per stretched length, weight per unstretched length, so dT/dz = W_e/eps - P_t S with eps = 1 + T/EA,
+and the unstretched length is int S/eps dz. Chucheepsakul (1991) is inextensible (eps = 1).
 
-Discretisation (001 eqs (15)-(20))
+Discretisation (Chucheepsakul 1991, eqs (15)-(20))
 ----------------------------------
-N = ``solver.intervals`` equal elements in z. 001 writes x = x_l + x_a per element, a
-linear part plus a cubic nonlinear part with "local degrees of freedom" (eqs (15)-(16)).
-Our reading: C^1 Hermite cubic elements with nodal values and slopes (x_i, x'_i, y_i,
-y'_i); the linear part is the chord (x_l(0) = 0, x_l(H) = X), imposed as the essential
-conditions x_0 = 0, x_N = X (same for y), and the slopes at the ends are free (natural
-conditions). Element integrals use 4-point Gauss-Legendre quadrature (001: "Gaussian
-quadrature"; 4 points integrate the cubic-times-cubic terms exactly).
+N = ``solver.intervals`` equal elements in z. Chucheepsakul (1991) writes x = x_l + x_a per element,
+a linear part plus a cubic nonlinear part with "local degrees of freedom" (eqs (15)-(16)). Our
+reading: C^1 Hermite cubic elements with nodal values and slopes (x_i, x'_i, y_i, y'_i); the linear
+part is the chord (x_l(0) = 0, x_l(H) = X), imposed as the essential conditions x_0 = 0, x_N = X
+(same for y), and the slopes at the ends are free (natural conditions). Element integrals use
+4-point Gauss-Legendre quadrature (Chucheepsakul (1991): "Gaussian quadrature"; 4 points integrate
+the cubic-times-cubic terms exactly).
 
-Iteration (001 eqs (17)-(20)): with T (from (13)) and P_x, P_y evaluated at the current
-iterate, the residual (20)
+Iteration (Chucheepsakul 1991, eqs (17)-(20)): with T (from (13)) and P_x, P_y evaluated at the
+current iterate, the residual (20)
 
     R = int ( N'^T T (x', y')/S - N^T (P_x, P_y) ) dz
 
-and the tangent (19) give the Newton-Raphson step K dD = -R (18); then T and the loads
-are recomputed and the step repeated (001 section 4). 001's (19) is
-int N'^T T N' / S^3 dz, the exact second derivative in 2D; in 3D we use the exact
-Hessian of T S with respect to (x', y'), T ((1 + |g|^2) I - g g^T) / S^3 with
-g = (x', y'), which reduces to (19) when y' = 0. T and the loads are lagged (not
-differentiated), as in 001, so the iteration converges linearly at a rate set by how much
-the drag and tension change with the slopes. Converged when the step is below
-``solver.tolerance`` x H (at least 1e-12 H) in the node values and 1e-10 in the slopes.
+and the tangent (19) give the Newton-Raphson step K dD = -R (18); then T and the loads are
+recomputed and the step repeated (Chucheepsakul 1991, section 4). Chucheepsakul (1991)'s (19) is int
+N'^T T N' / S^3 dz, the exact second derivative in 2D; in 3D we use the exact Hessian of T S with
+respect to (x', y'), T ((1 + |g|^2) I - g g^T) / S^3 with g = (x', y'), which reduces to (19) when
+y' = 0. T and the loads are lagged (not differentiated), as in Chucheepsakul (1991), so the
+iteration converges linearly at a rate set by how much the drag and tension change with the slopes.
+Converged when the step is below ``solver.tolerance`` x H (at least 1e-12 H) in the node values and
+1e-10 in the slopes.
 
-Length given instead of tension (001 cannot: "known top tension and unknown length"):
-an outer secant iteration on the top tension T_H until the FEM length matches (relative
+Length given instead of tension (Chucheepsakul 1991, cannot: "known top tension and unknown
+length"): an outer secant iteration on the top tension T_H until the FEM length matches (relative
 ``max(solver.tolerance, 1e-10)``), each inner solve warm-started from the previous one.
 
 Accuracy (the registry entry :func:`solve`): a Richardson error estimate from N/2 and N/4
@@ -144,7 +144,7 @@ def _hermite(xi: np.ndarray, h: float) -> tuple[np.ndarray, np.ndarray]:
 
 
 class FemProblem:
-    """Hermite-cubic finite elements for 001's functional (8) on a scene.
+    """Hermite-cubic finite elements for Chucheepsakul (1991)'s functional (8) on a scene.
 
     Parameters
     ----------
@@ -158,7 +158,7 @@ class FemProblem:
         self.tangential_in_tension = tangential_in_tension
         ea, eb = scene.end_a, scene.end_b
         za, zb = rising_fixed_ends(
-            scene, METHOD, "001 fixes both ends and integrates in z between them")
+            scene, METHOD, "Chucheepsakul (1991) fixes both ends and integrates in z between them")
         if ea.tension is not None and eb.tension is not None:  # pragma: no cover - schema
             raise _fail("only one end tension can be given")
         self.scene = scene
@@ -217,8 +217,8 @@ class FemProblem:
     def drag(self, z: np.ndarray, g: np.ndarray) -> np.ndarray:
         """Drag per unit stretched length, N/m, at heights z with slopes g = (x', y').
 
-        Exact moduli (000 eqs (4)-(6)); the componentwise law uses e_b = e_z x t / |.|,
-        e_n = t x e_b and blends into the vector law within ``solver.vertical_blend`` of
+        Exact moduli (Wang et al. 1993, eqs (4)-(6)); the componentwise law uses e_b = e_z x t /
+        |.|, e_n = t x e_b and blends into the vector law within ``solver.vertical_blend`` of
         vertical, like :func:`cable_ocp.physics.drag.drag_per_length`.
         """
         if self.current is None:
@@ -246,8 +246,9 @@ class FemProblem:
         return self.cn * normal + self.ct * (np.abs(ut) * ut)[..., None] * t
 
     def _dtdz_parts(self, z: np.ndarray, g: np.ndarray) -> np.ndarray:
-        """P_t S (N/m per unit height): the drag part of -dT/dz (001 eq. (13)); zero when
-        the tangential drag is dropped from the tension (001 eq. (14))."""
+        """P_t S (N/m per unit height): the drag part of -dT/dz (Chucheepsakul 1991, eq. (13)); zero
+        when
+        the tangential drag is dropped from the tension (Chucheepsakul 1991, eq. (14))."""
         if not self.tangential_in_tension:
             return np.zeros(z.shape)
         s = np.sqrt(1.0 + g[..., 0] ** 2 + g[..., 1] ** 2)
@@ -257,7 +258,7 @@ class FemProblem:
     def tension(self, q: np.ndarray, t_top: float | None, t_bottom: float | None,
                 t_prev: tuple[np.ndarray, np.ndarray] | None
                 ) -> tuple[np.ndarray, np.ndarray]:
-        """Tension at the Gauss points (n, g) and nodes (n + 1) from 001 eq. (13).
+        """Tension at the Gauss points (n, g) and nodes (n + 1) from Chucheepsakul (1991) eq. (13).
 
         dT/dz = W_e/eps - P_t S, integrated from the end with the known tension with the
         element Gauss rule (partial integrals by a mapped Gauss rule). eps = 1 + T/EA uses
@@ -295,14 +296,15 @@ class FemProblem:
 
     # -- residual (20) and tangent (19) -------------------------------------------------
     def assemble(self, q: np.ndarray, tg: np.ndarray) -> tuple[sp.csc_matrix, np.ndarray]:
-        """Tangent K (001 (19), 3D Hessian of T S) and residual R (001 (20)), all dofs.
+        """Tangent K (Chucheepsakul 1991, (19), 3D Hessian of T S) and residual R (Chucheepsakul
+        1991, (20)), all dofs.
 
         Dof layout: x dofs 0..ndof-1, then y dofs. T and the loads are held fixed.
         """
         g = self.slopes(q)
         s = np.sqrt(1.0 + g[..., 0] ** 2 + g[..., 1] ** 2)
         f = self.drag(self.zg, g)
-        px, py = f[..., 0] * s, f[..., 1] * s  # per unit height (001 (9)-(10))
+        px, py = f[..., 0] * s, f[..., 1] * s  # per unit height (Chucheepsakul 1991, (9)-(10))
         wts = self.h * _WG[None, :]  # (1, g)
         n_, dn = self.shape, self.dshape
         res = np.zeros(2 * self.ndof)
@@ -384,7 +386,8 @@ def _solve_fixed_tension(fem: FemProblem, q0: np.ndarray, t_top: float | None,
                          t_bottom: float | None, tol: float, max_it: int
                          ) -> tuple[np.ndarray, tuple[np.ndarray, np.ndarray], int, str, str,
                                     float]:
-    """001's iteration at a known end tension. Returns (q, (T gauss, T nodes), iterations,
+    """Chucheepsakul (1991)'s iteration at a known end tension. Returns (q, (T gauss, T nodes),
+    iterations,
     status, message, relative residual)."""
     q = q0.copy()
     free = fem.free_dofs()
@@ -404,7 +407,7 @@ def _solve_fixed_tension(fem: FemProblem, q0: np.ndarray, t_top: float | None,
             return q, tens, it, "diverged", f"singular tangent: {exc}", rel
         if not np.all(np.isfinite(dq)):
             return q, tens, it, "diverged", "non-finite Newton step", rel
-        # step limit (a safeguard 001 does not state): slope changes of at most
+        # step limit (a safeguard Chucheepsakul (1991) does not state): slope changes of at most
         # max(1, |slope|/2) per iteration, so a start far from the answer cannot fling the
         # nearly flat part of the cable past horizontal
         flat = np.concatenate([q[0], q[1]])
@@ -455,7 +458,7 @@ ORDER_RANGE = (0.5, 4.0)
 def solve(scene: Scene, warm_start: StaticsSolution | None = None) -> StaticsSolution:
     """Registry entry (``solver.method = "chucheepsakul_fem"``), with the accuracy contract.
 
-    :func:`solve_fem` with the tension of 001 eq. (13) on N = ``solver.intervals``
+    :func:`solve_fem` with the tension of Chucheepsakul (1991) eq. (13) on N = ``solver.intervals``
     elements. Error estimate: Richardson from the same method on N/2 and N/4 elements
     (warm-started), observed order clipped to [0.5, 4]
     (:func:`cable_ocp.baselines.common.richardson_coarser`; the end-force order is
@@ -508,19 +511,20 @@ def solve(scene: Scene, warm_start: StaticsSolution | None = None) -> StaticsSol
 
 def solve_fem(scene: Scene, warm_start: StaticsSolution | None = None,
               tangential_in_tension: bool = True) -> StaticsSolution:
-    """Solve a scene with Chucheepsakul & Subwonglee's variational FEM (001 eqs (8)-(20)).
+    """Solve a scene with Chucheepsakul & Subwonglee's variational FEM (Chucheepsakul 1991, eqs
+    (8)-(20)).
 
     Parameters
     ----------
     scene : Scene
-        Both ends fully fixed, end_b above end_a; one end tension given (001's case) or the
-        length (outer secant on the top tension). ``solver.intervals`` = number of
-        elements (001 uses 10, 000 reports 20 for Berteaux).
+        Both ends fully fixed, end_b above end_a; one end tension given (Chucheepsakul (1991)'s
+        case) or the length (outer secant on the top tension). ``solver.intervals`` = number of
+        elements (Chucheepsakul 1991, uses 10, Wang et al. (1993) reports 20 for Berteaux).
     warm_start : StaticsSolution, optional
         Start the iteration from this profile instead of the drag-free catenary.
     tangential_in_tension : bool
-        False drops the P_t integral from the tension, 001 eq. (14) (for comparison with
-        000 Table 1's "Chucheepsakul (1991)" column; see the module docstring).
+        False drops the P_t integral from the tension, Chucheepsakul (1991) eq. (14) (for comparison
+        with Wang et al. (1993) Table 1's "Chucheepsakul (1991)" column; see the module docstring).
 
     Returns
     -------
@@ -541,7 +545,8 @@ def solve_fem(scene: Scene, warm_start: StaticsSolution | None = None,
     tol = scene.solver.tolerance
     max_it = max(scene.solver.max_iterations, 200)
     diag: dict = {"method": METHOD, "elements": n, "gauss_points": GAUSS_POINTS,
-                  "tension_equation": "001 (13)" if tangential_in_tension else "001 (14)"}
+                  "tension_equation": "Chucheepsakul & Subwonglee (1991), eq. ("
+                  + ("13)" if tangential_in_tension else "14)")}
     t0 = time.perf_counter()
     if scene.cable.length is None:
         q0 = _initial_dofs(fem, warm_start)
@@ -551,7 +556,7 @@ def solve_fem(scene: Scene, warm_start: StaticsSolution | None = None,
         diag.update(top_tension_N=float(tens[1][-1]), outer_iterations=0)
         return _result(fem, q, tens, status, f"{METHOD}: {msg}", it, wall, rel, diag)
 
-    # length given: secant on the top tension (an extension; 001 needs the tension)
+    # length given: secant on the top tension (an extension; Chucheepsakul (1991) needs the tension)
     length = float(scene.cable.length)
     if warm_start is not None:
         t_a = float(np.linalg.norm(warm_start.tension_vector[-1]))

@@ -1,4 +1,4 @@
-"""Robustness matrix: every statics method on every extreme scene (issue 5).
+"""Robustness matrix: every statics method on every extreme scene.
 
 Each cell is one of
 

@@ -52,9 +52,12 @@ def _timed_sweep(base: Scene, angles: np.ndarray, error_estimate: bool = False
         "warm_ms": [s.wall_time_s * 1e3 for s in warm],
         "warm_cpu_ms": [s.diagnostics.get("cpu_time_s", float("nan")) * 1e3 for s in warm],
         "iterations": [int(s.iterations) for s in warm],
+        "factorizations": [int(s.diagnostics.get("factorizations", s.iterations))
+                           for s in warm],
         "solvers": sorted({s.diagnostics.get("solver", "") for s in sols}),
         "solved": int(sum(s.success for s in sols)), "points": len(sols),
         "forces": [s.force_a.tolist() for s in sols],
+        "compiled": bool(sols[0].diagnostics.get("compiled", False)),
     }
 
 
@@ -77,11 +80,13 @@ def first_process(base: Scene, angles: np.ndarray, repeats: int, folder: Path
 
 
 def second_process(scene_path: str | Path, angles: np.ndarray, intervals: int, repeats: int,
-                   folder: Path) -> dict[str, Any]:
+                   folder: Path, compile_mode: str = "never") -> dict[str, Any]:
     """The same sweep in a new Python process whose cache is ``folder`` (filled by the
-    first process): each repeat loads the functions instead of building them."""
+    first process): each repeat loads the functions (and, with ``compile_mode`` "auto",
+    the compiled libraries) instead of building them."""
     args = json.dumps({"scene": str(scene_path), "angles": [float(a) for a in angles],
-                       "intervals": intervals, "repeats": repeats})
+                       "intervals": intervals, "repeats": repeats,
+                       "compile": compile_mode})
     env = {**os.environ, "CABLE_OCP_CACHE_DIR": str(folder)}
     env.pop("CABLE_OCP_CACHE", None)
     root = str(Path(__file__).resolve().parents[2])
@@ -95,9 +100,10 @@ def second_process(scene_path: str | Path, angles: np.ndarray, intervals: int, r
 def _row(label: str, r: dict[str, Any]) -> list[Any]:
     warm, warm_cpu, its = (np.asarray(r[k], float) for k in ("warm_ms", "warm_cpu_ms",
                                                               "iterations"))
+    facs = np.asarray(r.get("factorizations", [np.nan]), float)  # none for solve_bvp
     return [label, r["points"], r["total_ms"], r["total_cpu_ms"], r["first_ms"],
             float(np.median(warm)), float(np.median(warm_cpu)), float(np.percentile(warm, 90)),
-            float(np.mean(its)), float(np.median(its)), r["solved"]]
+            float(np.mean(its)), float(np.median(its)), float(np.mean(facs)), r["solved"]]
 
 
 def run(scene_path: str | Path = DEFAULT_SCENE, angles: np.ndarray | None = None,
@@ -131,6 +137,20 @@ def run(scene_path: str | Path = DEFAULT_SCENE, angles: np.ndarray | None = None
         if subprocess_run:
             second = second_process(scene_path, angles, intervals, repeats, folder)
             rows.append(_row("  2nd process (functions from the disk cache)", second))
+        # the Newton kernel compiled to C (solver.compile = "auto"): the first process
+        # generates and compiles the C code (once: an empty folder), a second process
+        # loads the cached libraries
+        comp_base = base.with_overrides({"solver.compile": "auto"})
+        comp_folder = Path(tmp) / "compiled"
+        with cache_folder(comp_folder):
+            comp_first = _timed_sweep(comp_base, angles)
+        rows.append(_row("compiled (solver.compile = auto), 1st process (C compile incl.)",
+                         comp_first))
+        comp_second = None
+        if subprocess_run:
+            comp_second = second_process(scene_path, angles, intervals, repeats, comp_folder,
+                                         compile_mode="auto")
+            rows.append(_row("  compiled, 2nd process (cached libraries)", comp_second))
         with cache_folder(Path(tmp) / "est"):
             est = _timed_sweep(base, angles, error_estimate=True)
         rows.append(_row("  with error estimates (1st process)", est))
@@ -144,7 +164,7 @@ def run(scene_path: str | Path = DEFAULT_SCENE, angles: np.ndarray | None = None
         b_wall, b_cpu = min(builds, key=lambda x: x[1])
         nan = float("nan")
         rows.append(["  build only (Newton functions, no cache)", 1, b_wall, b_cpu, nan, nan,
-                     nan, nan, nan, nan, 1])
+                     nan, nan, nan, nan, nan, 1])
 
     scenes = [base.with_overrides({"layout.psi0_deg": float(a)}) for a in angles]
     form = Formulation(base)
@@ -174,9 +194,10 @@ def run(scene_path: str | Path = DEFAULT_SCENE, angles: np.ndarray | None = None
     agree = float(np.max(np.abs(fa - fb)) / np.max(np.abs(fa)))
     headers = ["method", "points", "total [ms]", "total CPU [ms]", "first [ms]",
                "median next [ms]", "median next CPU [ms]", "p90 next [ms]", "mean iters",
-               "median iters", "solved"]
+               "median iters", "mean factorisations", "solved"]
     per_point = (first["total_ms"] - first["build_ms"] - first["first_ms"]) \
         / max(first["points"] - 1, 1)
+    comp_row = _row("", comp_second or comp_first)
     summary = {
         "warm_median_ms": rows[0][5],
         "warm_iterations_median": rows[0][9],
@@ -194,6 +215,18 @@ def run(scene_path: str | Path = DEFAULT_SCENE, angles: np.ndarray | None = None
         "solve_bvp_median_cpu_ms": rows[-2][6],
         "warm_ratio_solve_bvp_over_collocation": rows[-2][5] / rows[0][5],
         "load_average_1min": load,
+        "compiled": comp_first["compiled"],
+        "compiled_sweep_total_first_process_ms": comp_first["total_ms"],
+        # per point: the second process's least disturbed repeat (the first process runs
+        # once, as compiling is done once)
+        "compiled_warm_median_ms": comp_row[5],
+        "compiled_warm_median_cpu_ms": comp_row[6],
+        "compiled_warm_iterations_median": comp_row[9],
+        "compiled_warm_factorizations_mean": comp_row[10],
+        "compiled_sweep_total_second_process_ms": (comp_second["total_ms"] if comp_second
+                                                   else None),
+        "compiled_sweep_total_second_process_cpu_ms": (comp_second["total_cpu_ms"]
+                                                       if comp_second else None),
     }
     return {"headers": headers, "rows": rows, "angles": angles, "forces": fa,
             "forces_bvp": fb, "agreement": agree, "targets": dict(TARGETS),
@@ -205,7 +238,8 @@ def _child(args: dict[str, Any]) -> None:
     """The second process: the sweep, its functions loaded from the cache (prints JSON)."""
     from cable_ocp.statics.solver import StaticsSolver as Solver
 
-    base = load_scene(args["scene"], {"solver.intervals": args["intervals"]})
+    base = load_scene(args["scene"], {"solver.intervals": args["intervals"],
+                                      "solver.compile": args.get("compile", "never")})
     angles = np.asarray(args["angles"], float)
     runs = [_timed_sweep(base, angles) for _ in range(args["repeats"])]
     best = _best(runs)

@@ -29,8 +29,10 @@ def register(sub: argparse._SubParsersAction, parent: argparse.ArgumentParser) -
         description="Time the 19-angle De Zoysa psi0 sweep: collocation built once and "
                     "warm-started (as a first process: functions built; and in a second "
                     "process: functions from the disk cache), with and without error "
-                    "estimates, against scipy's solve_bvp from the catenary and from the "
-                    "previous point, in one run; wall-clock and CPU times.")
+                    "estimates, with the Newton kernel compiled to C (solver.compile = "
+                    "auto: first and second process), against scipy's solve_bvp from the "
+                    "catenary and from the previous point, in one run; wall-clock and CPU "
+                    "times.")
     s.add_argument("--scene", metavar="FILE", help="problem file with layout.psi0_deg "
                                                    "(default problems/dezoysa_sea_buggy.toml)")
     s.add_argument("--intervals", type=int, default=40, metavar="N",
@@ -168,6 +170,21 @@ def cmd_sweep(args: argparse.Namespace) -> int:
     out.say(args, f"sweep incl. build: 1st process {m['sweep_total_ms']:.0f} ms wall, "
                   f"{sm['sweep_total_cpu_ms']:.0f} ms CPU{second} "
                   f"(target <= {t['sweep_total_ms']:.0f} ms)")
+    if sm["compiled"]:
+        second = ("" if sm["compiled_sweep_total_second_process_ms"] is None else
+                  f"; sweep incl. build, 2nd process "
+                  f"{sm['compiled_sweep_total_second_process_ms']:.0f} ms wall, "
+                  f"{sm['compiled_sweep_total_second_process_cpu_ms']:.0f} ms CPU")
+        out.say(args, f"compiled (solver.compile = auto): warm median "
+                      f"{sm['compiled_warm_median_ms']:.2f} ms wall, "
+                      f"{sm['compiled_warm_median_cpu_ms']:.2f} ms CPU, "
+                      f"{sm['compiled_warm_iterations_median']:g} steps (chord and Newton) "
+                      f"and {sm['compiled_warm_factorizations_mean']:.1f} Jacobian "
+                      f"factorisations per point (mean); 1st process "
+                      f"with the C compilation {sm['compiled_sweep_total_first_process_ms']:.0f}"
+                      f" ms{second}")
+    else:
+        out.say(args, "compiled (solver.compile = auto): no C compiler, ran interpreted")
     out.say(args, "collocation vs solve_bvp end_a force: max relative difference "
                   f"{res['agreement']:.1e}")
     out.emit_json(args, out.envelope("ok", "benchmark completed", {
@@ -372,6 +389,9 @@ def cmd_bench_batch(args: argparse.Namespace) -> int:
                   f"{sm['overhead_per_case_ms']:.2f} ms per case "
                   f"({100 * sm['overhead_fraction']:.1f} % of a bare solve, target < 10 %); "
                   f"speed-up on 2 workers {sm['speedup_2_workers']:.2f}x (target >= 1.8x)")
+    if sm.get("load_average"):
+        out.say(args, "load average " + ", ".join(f"{x:.2f}" for x in sm["load_average"])
+                + f" on {sm['cpu_count']} cores (the speed-up needs them free)")
     out.emit_json(args, out.envelope("ok", "benchmark completed", res))
     return out.EXIT_OK
 

@@ -51,6 +51,7 @@ from typing import Any
 import casadi as ca
 import numpy as np
 
+from cable_ocp.compile import CACHE_OFF, c_compiler, cache_dir, compile_function
 from cable_ocp.errors import CableOCPError
 from cable_ocp.physics.drag import DRAG_LAWS, drag_per_length
 from cable_ocp.physics.smooth import smooth_abs
@@ -1762,116 +1763,12 @@ def _segment_kernel(drag_law: str, compile_kernel: bool = True) -> ca.Function:
 
 
 #: values of ``CABLE_OCP_CACHE`` that turn the compilation to C off
-_CACHE_OFF = ("0", "off", "false", "no")
-
-
-def _cache_dir() -> str | None:
-    """Directory of the compiled-C cache, or None when compiling is turned off.
-
-    ``CABLE_OCP_CACHE=0`` (or off/false/no) turns it off (everything interpreted);
-    ``CABLE_OCP_CACHE_DIR`` names the directory; an older ``CABLE_OCP_CACHE=PATH`` is read
-    as the directory too; default ``$XDG_CACHE_HOME/cable_ocp`` or ~/.cache/cable_ocp.
-    """
-    import os
-
-    flag = os.environ.get("CABLE_OCP_CACHE", "").strip()
-    if flag.lower() in _CACHE_OFF:
-        return None
-    if os.environ.get("CABLE_OCP_CACHE_DIR"):
-        return os.environ["CABLE_OCP_CACHE_DIR"]
-    if flag and flag.lower() not in ("1", "on", "true", "yes"):
-        return flag
-    return os.path.join(
-        os.environ.get("XDG_CACHE_HOME") or os.path.join(os.path.expanduser("~"), ".cache"),
-        "cable_ocp")
-
-
-def _c_compiler() -> list[str] | None:
-    """The C compiler command: ``$CC`` (may carry words, e.g. "ccache gcc") if its program
-    exists, else ``cc`` or ``gcc`` on the PATH; None when there is none."""
-    import os
-    import shlex
-    import shutil
-
-    env = os.environ.get("CC", "").strip()
-    if env:
-        try:
-            words = shlex.split(env)
-        except ValueError:
-            return None
-        return words if words and shutil.which(words[0]) else None
-    found = shutil.which("cc") or shutil.which("gcc")
-    return [found] if found else None
+_CACHE_OFF = CACHE_OFF
+_cache_dir = cache_dir
+_c_compiler = c_compiler
 
 
 def _compile(fn: ca.Function, opt: str = "-O2") -> ca.Function:
-    """Compile a CasADi Function to a shared library (C code generation, the C compiler
-    with ``opt``) cached by the hash of its code in :func:`_cache_dir`; return it as
-    ``casadi.external``.
-
-    Returns ``fn`` unchanged (the interpreted function computes the same numbers, slower)
-    when compiling is off (``CABLE_OCP_CACHE=0``), no C compiler is found (``$CC`` names a
-    missing program, or neither ``cc`` nor ``gcc`` is on the PATH), the cache directory
-    cannot be created or written, or the compiler or the loading fails. Silent.
-    """
-    import hashlib
-    import os
-    import shutil
-    import subprocess
-    import tempfile
-
-    cache = _cache_dir()
-    cc = _c_compiler()
-    if cache is None or cc is None:
-        return fn
-    tmp = None
-    try:
-        tmp = tempfile.mkdtemp(prefix="cable_ocp_")
-        name = fn.name()
-        cg = ca.CodeGenerator(f"{name}.c", {"with_header": False})
-        cg.add(fn)
-        cg.generate(tmp + os.sep)
-        src = os.path.join(tmp, f"{name}.c")
-        with open(src, "rb") as fh:
-            digest = hashlib.sha256(fh.read() + ca.__version__.encode()
-                                    + opt.encode()).hexdigest()[:16]
-        os.makedirs(cache, exist_ok=True)
-        lib = os.path.join(cache, f"{name}_{digest}.so")
-        if not os.path.exists(lib):
-            part = lib + f".{os.getpid()}.tmp"
-            try:
-                subprocess.run([*cc, opt, "-fPIC", "-shared", src, "-o", part, "-lm"],
-                               check=True, capture_output=True, timeout=600,
-                               stdin=subprocess.DEVNULL)
-                os.replace(part, lib)
-            finally:
-                if os.path.exists(part):
-                    os.remove(part)
-        return ca.external(name, lib)
-    except Exception:  # noqa: BLE001 - any failure: fall back to the interpreted function
-        return fn
-    finally:
-        if tmp is not None:
-            shutil.rmtree(tmp, ignore_errors=True)
-    try:
-        tmp = tempfile.mkdtemp(prefix="cable_ocp_")
-        name = fn.name()
-        cg = ca.CodeGenerator(f"{name}.c", {"with_header": False})
-        cg.add(fn)
-        cg.generate(tmp + os.sep)
-        src = os.path.join(tmp, f"{name}.c")
-        with open(src, "rb") as fh:
-            digest = hashlib.sha256(fh.read() + ca.__version__.encode()
-                                    + opt.encode()).hexdigest()[:16]
-        cache = _cache_dir()
-        os.makedirs(cache, exist_ok=True)
-        lib = os.path.join(cache, f"{name}_{digest}.so")
-        if not os.path.exists(lib):
-            part = lib + f".{os.getpid()}.tmp"
-            subprocess.run([cc, opt, "-fPIC", "-shared", src, "-o", part, "-lm"],
-                           check=True, capture_output=True, timeout=300)
-            os.replace(part, lib)
-        shutil.rmtree(tmp, ignore_errors=True)
-        return ca.external(name, lib)
-    except Exception:  # noqa: BLE001 - any failure: fall back to the interpreted function
-        return fn
+    """Compile ``fn`` to C, cached (:func:`cable_ocp.compile.compile_function`); ``fn``
+    itself when compiling is off or impossible. Silent."""
+    return compile_function(fn, opt)

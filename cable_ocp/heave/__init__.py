@@ -1,7 +1,7 @@
 """Heave compensation of a tethered subsea unit (Huang 1992, chapter 6).
 
 Huang, S. (1992), *Analysis and control of marine cable systems*, PhD thesis, University of
-Strathclyde, chapter 6, eqs. (6.1)-(6.35) (cited as *004* in older docstrings).
+Strathclyde, chapter 6, eqs. (6.1)-(6.35).
 
 In a few lines::
 

@@ -1,4 +1,4 @@
-"""Model predictive control of the heave compensator in CasADi (issue 4, item 4).
+"""Model predictive control of the heave compensator in CasADi.
 
 Prediction model: the assembled plant (Huang 1992, eq. (6.28), or the regulator plant (6.6)) sampled
 exactly (ZOH) at ``h``, with the winch-command delay ``tau = d h`` as an **exact shift register**

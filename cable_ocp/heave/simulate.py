@@ -1,4 +1,4 @@
-"""Closed-loop simulation and comparison on one seeded wave realisation (issue 4, item 5).
+"""Closed-loop simulation and comparison on one seeded wave realisation (Huang 1992, 6.3.6).
 
 The sea and vessel states (the shaping filter (6.23) and boom-tip filter (6.26)) are sampled
 exactly on the fine grid ``h_sim = h / substeps`` (ZOH transition, Van Loan noise covariance with
@@ -130,7 +130,7 @@ class Trace:
 
 @dataclass(frozen=True)
 class Metrics:
-    """JSON metrics of one controller (field names as in CONVENTIONS, "Heave compensation").
+    """JSON metrics of one controller (field names as in docs/conventions.md, "Heave compensation").
 
     Every field is None (JSON null) where the number does not exist: all but
     ``energy_index`` and ``solve_time_median_s`` for a controller whose status is not

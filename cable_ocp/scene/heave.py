@@ -111,7 +111,7 @@ class SeaSpec:
 
 @dataclass(frozen=True)
 class VesselSpec:
-    """``[vessel]`` (004 eq. (6.25))."""
+    """``[vessel]`` (Huang 1992, eq. (6.25))."""
 
     model: str = "second_order"
     natural_frequency: float = 0.393
@@ -121,7 +121,7 @@ class VesselSpec:
 
 @dataclass(frozen=True)
 class WinchSpec:
-    """``[winch]`` (004 eqs. (6.1), (6.12)) and its limits."""
+    """``[winch]`` (Huang 1992, eqs. (6.1), (6.12)) and its limits."""
 
     model: str = "first_order"
     gain: float = 1.0
@@ -137,7 +137,7 @@ class WinchSpec:
 
 @dataclass(frozen=True)
 class UnitSpec:
-    """``[unit]`` (004 eqs. (6.2), (6.3))."""
+    """``[unit]`` (Huang 1992, eqs. (6.2), (6.3))."""
 
     a: float = 0.8959
     b: float = 0.1658

@@ -12,6 +12,11 @@ conditions, a joint), mapped over its instances. From the blocks this module bui
 * ``step(w, p) -> (g, dw)``, the Newton step dw = -J^-1 g, with the sparse linear solve
   (CSparse's LU) inside the same call.
 
+When the kernel is compiled (``solver.compile = "auto"``), J is factorised by a sparse QR
+whose factors are kept (:mod:`cable_ocp.statics.sparse_qr`), and warm solves run
+:func:`chord_newton`: one factorisation serves several steps, each a residual evaluation
+and a back-substitution.
+
 :class:`Kernel` evaluates them through CasADi's ``FunctionBuffer`` on preallocated numpy
 arrays (converting a 1000-entry numpy vector to a CasADi matrix costs about as much as
 evaluating the residual), and :func:`newton` runs the iteration: Newton steps with a
@@ -144,11 +149,18 @@ class Kernel:
     ----------
     g_fn : casadi.Function
         ``(w, p) -> g``.
-    step_fn : casadi.Function
+    step_fn : casadi.Function, optional
         ``(w, p) -> (g, dw)``.
+    gj_fn : casadi.Function, optional
+        ``(w, p) -> (g, J)``, with ``qr``: the Jacobian is factorised by ``qr`` and the
+        factors are kept (:meth:`factor`, :meth:`chord_step`: the simplified Newton
+        iteration of :func:`chord_newton`); :meth:`step` then factorises and solves.
+    qr : cable_ocp.statics.sparse_qr.SparseQR, optional
+        Factors of matrices of J's sparsity.
     """
 
-    def __init__(self, g_fn: ca.Function, step_fn: ca.Function):
+    def __init__(self, g_fn: ca.Function, step_fn: ca.Function | None = None,
+                 gj_fn: ca.Function | None = None, qr: object | None = None):
         n_w, n_p = g_fn.size1_in(0), g_fn.size1_in(1)
         self.n_w, self.n_p = n_w, n_p
         self._w = np.zeros(n_w)
@@ -160,13 +172,29 @@ class Kernel:
         self._gbuf.set_arg(0, memoryview(self._w))
         self._gbuf.set_arg(1, memoryview(self._p))
         self._gbuf.set_res(0, memoryview(self._g))
-        self._sbuf, self._seval = step_fn.buffer()
-        self._sbuf.set_arg(0, memoryview(self._w))
-        self._sbuf.set_arg(1, memoryview(self._p))
-        self._sbuf.set_res(0, memoryview(self._g2))
-        self._sbuf.set_res(1, memoryview(self._dw))
-        #: evaluations since construction: residuals, Newton steps (Jacobian + solve)
-        self.counts = {"g": 0, "step": 0}
+        self._qr = qr if gj_fn is not None else None
+        if self._qr is not None:
+            self._jbuf, self._jeval = gj_fn.buffer()
+            self._jbuf.set_arg(0, memoryview(self._w))
+            self._jbuf.set_arg(1, memoryview(self._p))
+            self._jbuf.set_res(0, memoryview(self._g2))
+            self._jbuf.set_res(1, memoryview(self._qr.nz))
+        elif step_fn is not None:
+            self._sbuf, self._seval = step_fn.buffer()
+            self._sbuf.set_arg(0, memoryview(self._w))
+            self._sbuf.set_arg(1, memoryview(self._p))
+            self._sbuf.set_res(0, memoryview(self._g2))
+            self._sbuf.set_res(1, memoryview(self._dw))
+        else:
+            raise ValueError("a kernel needs step_fn, or gj_fn with qr")
+        #: evaluations since construction: residuals, Newton steps (Jacobian + solve),
+        #: factorisations kept for chord steps and the chord steps
+        self.counts = {"g": 0, "step": 0, "factor": 0, "chord": 0}
+
+    @property
+    def can_chord(self) -> bool:
+        """True when the kernel keeps its factorisation (:func:`chord_newton` applies)."""
+        return self._qr is not None
 
     def g(self, w: np.ndarray, p: np.ndarray) -> np.ndarray:
         """G(w, p) (a new array)."""
@@ -176,9 +204,33 @@ class Kernel:
         self.counts["g"] += 1
         return self._g.copy()
 
+    def factor(self, w: np.ndarray, p: np.ndarray) -> np.ndarray:
+        """Evaluate G and J at (w, p), factorise J and keep the factors; return G (a new
+        array). Only when :attr:`can_chord`."""
+        self._w[:] = w
+        self._p[:] = p
+        self._jeval()
+        self._qr.factor()
+        self.counts["factor"] += 1
+        return self._g2.copy()
+
+    def chord_step(self, g: np.ndarray) -> np.ndarray:
+        """``-J^-1 g`` with the kept factors (a new array; non-finite where J was
+        singular)."""
+        self.counts["chord"] += 1
+        return self._qr.newton_step(g)
+
     def step(self, w: np.ndarray, p: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
         """(G(w, p), -J(w, p)^-1 G(w, p)) (new arrays; the step is NaN where the sparse
         factorisation fails: a singular Jacobian)."""
+        if self._qr is not None:
+            self._w[:] = w
+            self._p[:] = p
+            self._jeval()
+            self._qr.factor()
+            self.counts["step"] += 1
+            dw = self._qr.newton_step(self._g2)
+            return self._g2.copy(), dw if np.all(np.isfinite(dw)) else np.full(self.n_w, np.nan)
         self._w[:] = w
         self._p[:] = p
         self.counts["step"] += 1
@@ -198,6 +250,7 @@ class NewtonResult:
     iterations: int  # Newton steps taken (linear solves)
     success: bool
     message: str
+    factorizations: int = -1  # Jacobians evaluated and factorised (-1: not counted)
 
 
 def _max_step(w: np.ndarray, dw: np.ndarray, lb: np.ndarray | None, ub: np.ndarray | None
@@ -298,3 +351,93 @@ def newton(kernel: Kernel, w0: np.ndarray, p: np.ndarray, tol: float, max_iter: 
         steps += 1
         if alpha * dnorm <= step_tol and new_max > tol:
             return NewtonResult(w, g, steps, True, "step below tolerance")
+
+
+#: a chord step is accepted when it cuts max|G| to this fraction or less; else the
+#: Jacobian is evaluated and factorised again. On the De Zoysa sweep (40 intervals; a
+#: factorisation costs about four chord steps there) 0.03-0.2 took the same time within
+#: the noise of a shared machine (0.1: on average 1.4 factorisations and 5.8 steps per
+#: warm point; 0.03: 2.1 and 4.4; 0.2: 1.3 and 6.5)
+CHORD_CONTRACTION = 0.1
+
+
+def chord_newton(kernel: Kernel, w0: np.ndarray, p: np.ndarray, tol: float,
+                 max_iter: int = 30, lb: np.ndarray | None = None,
+                 ub: np.ndarray | None = None, contraction: float | None = None
+                 ) -> NewtonResult:
+    """Simplified (chord) Newton from a warm start: the Jacobian is factorised at ``w0``
+    and the factors are reused, each further step costing one residual and one
+    back-substitution: ``w <- w - J(w_f)^-1 G(w)``, with w_f the point of the last
+    factorisation (Kelley (2003), *Solving Nonlinear Equations with Newton's Method*,
+    section 1.8; Shamanskii's method).
+
+    A step that cuts max|G| to ``contraction`` of its value or less is accepted. A step
+    that decreases it less is accepted and the Jacobian is factorised again at the new
+    point; a step that does not decrease it is rejected and the Jacobian is factorised
+    again at the current point. A step from a fresh factorisation (a Newton step) that
+    does not decrease max|G| is shortened as in :func:`newton`'s line search (halved until
+    max|G| falls to (1 - alpha/2) of its value; residual evaluations only). A failed line
+    search, a step that would cross a bound, a non-finite residual or step, or
+    ``max_iter`` steps end the iteration unsuccessfully at the best point reached (the
+    caller then runs :func:`newton` from there). The answer is
+    accepted on the same test as :func:`newton`'s: max|G| <= ``tol``.
+
+    Returns
+    -------
+    NewtonResult
+        ``iterations`` counts the steps (linear solves), ``factorizations`` the
+        Jacobians evaluated and factorised.
+    """
+    if not kernel.can_chord:
+        raise ValueError("chord_newton needs a kernel that keeps its factorisation")
+    contraction = CHORD_CONTRACTION if contraction is None else contraction
+    w = np.array(w0, dtype=float)
+    if lb is not None or ub is not None:
+        w = np.clip(w, lb if lb is not None else -np.inf, ub if ub is not None else np.inf)
+    # bounds that can be crossed (the others cost nothing per step)
+    lb = lb if lb is not None and np.any(np.isfinite(lb)) else None
+    ub = ub if ub is not None and np.any(np.isfinite(ub)) else None
+    bounded = lb is not None or ub is not None
+    g = kernel.factor(w, p)
+    factors, steps, fresh = 1, 0, True
+    gmax = float(np.max(np.abs(g))) if g.size else 0.0
+    while True:
+        if not math.isfinite(gmax):
+            return NewtonResult(w, g, steps, False, "non-finite residual", factors)
+        if gmax <= tol:
+            return NewtonResult(w, g, steps, True, "converged", factors)
+        if steps >= max_iter:
+            return NewtonResult(w, g, steps, False, f"no convergence in {max_iter} steps",
+                                factors)
+        dw = kernel.chord_step(g)
+        steps += 1
+        if not math.isfinite(float(np.max(np.abs(dw))) if dw.size else 0.0):
+            return NewtonResult(w, g, steps, False, "singular Jacobian (non-finite step)",
+                                factors)
+        if bounded and _max_step(w, dw, lb, ub) < 1.0:
+            return NewtonResult(w, g, steps, False, "chord step crosses a bound", factors)
+        trial = w + dw
+        g_new = kernel.g(trial, p)
+        new_max = float(np.max(np.abs(g_new))) if g_new.size else 0.0
+        if math.isfinite(new_max) and new_max <= contraction * gmax:
+            w, g, gmax, fresh = trial, g_new, new_max, False
+            continue
+        if math.isfinite(new_max) and new_max < gmax:
+            w = trial  # a decrease, too slow: a new Jacobian at the new point
+        elif fresh:
+            # a Newton step that does not decrease max|G|: backtrack along it (the line
+            # search of :func:`newton`, each trial a residual only)
+            alpha = 0.5
+            while True:
+                trial = w + alpha * dw
+                if _decrease(kernel.g(trial, p), gmax, alpha):
+                    w = trial
+                    break
+                alpha *= 0.5
+                if alpha < 2.0**-20:
+                    return NewtonResult(w, g, steps, False,
+                                        "line search failed from a fresh Jacobian", factors)
+        g = kernel.factor(w, p)
+        gmax = float(np.max(np.abs(g))) if g.size else 0.0
+        factors += 1
+        fresh = True

@@ -36,10 +36,12 @@ from typing import Any
 import casadi as ca
 import numpy as np
 
+from cable_ocp.compile import compile_function, is_compiled
 from cable_ocp.errors import CableOCPError
 from cable_ocp.physics import seabed
 from cable_ocp.scene import Scene, SolverOptions, apply_overrides, load_scene, scene_from_dict
 from cable_ocp.statics import cache as disk_cache
+from cable_ocp.statics import sparse_qr
 from cable_ocp.statics.checks import check_physical
 from cable_ocp.statics.collocation import Collocation
 from cable_ocp.statics.formulation import (
@@ -55,6 +57,7 @@ from cable_ocp.statics.newton import (
     LINEAR_SOLVER,
     Kernel,
     NewtonResult,
+    chord_newton,
     jacobian_functions,
     newton,
 )
@@ -65,6 +68,8 @@ from cable_ocp.statics.solution import StaticsSolution
 __all__ = ["StaticsSolver", "solve", "sweep"]
 
 _CONTINUATION_STEPS = (0.0, 0.1, 0.25, 0.5, 0.75, 1.0)
+#: the C compiler's optimisation flag for the compiled Newton kernel
+COMPILE_FLAG = "-O2"
 #: most Newton steps per attempt (warm and cold; ``solver.max_iterations`` is IPOPT's)
 NEWTON_MAX_STEPS = 30
 
@@ -137,6 +142,8 @@ class StaticsSolver:
         self._token = object()
         #: where the Newton functions came from: "built" or "disk cache"
         self.build_source = "built"
+        #: the Newton kernel runs compiled C (``solver.compile = "auto"`` with a compiler)
+        self.compiled = False
         self._late_build_s = 0.0  # IPOPT, built on first use: wall and CPU seconds
         self._late_build_cpu_s = 0.0
         self._gj, self._kernel = self._newton_functions()
@@ -167,7 +174,35 @@ class StaticsSolver:
             disk_cache.save(structure, "blocks", {f"f{i}": f for i, f in enumerate(fns)})
         g_fn = self.coll.residual
         gj, step = jacobian_functions(self.coll.blocks, n_w, n_p)
+        if self.scene.solver.compile == "auto":
+            kernel = self._compiled_kernel(structure, gj)
+            if kernel is not None:
+                return gj, kernel
         return gj, Kernel(g_fn, step)
+
+    def _compiled_kernel(self, structure: str, gj: ca.Function) -> Kernel | None:
+        """The Newton kernel compiled to C (``solver.compile = "auto"``), or None when it
+        cannot be compiled (no compiler, compiling off, an unwritable cache folder).
+
+        The residual G and ``GJ`` (G and its sparse Jacobian) are compiled; the Jacobian
+        is factorised by a sparse QR whose factors are kept
+        (:mod:`cable_ocp.statics.sparse_qr`), so that warm solves take chord steps
+        (:func:`cable_ocp.statics.newton.chord_newton`). The libraries are named by the
+        full cache key (versions, sources, structure, mesh): a cached library is loaded
+        without generating its code.
+        """
+        if not sparse_qr.available():
+            return None
+        key = disk_cache.entry_key(structure, "compiled newton kernel")
+        gj_c = compile_function(gj, COMPILE_FLAG, key=key, name=gj.name())
+        if not is_compiled(gj_c):
+            return None
+        g_fn = compile_function(self.coll.residual, COMPILE_FLAG, key=key,
+                                name=self.coll.residual.name())
+        if not is_compiled(g_fn):
+            return None
+        self.compiled = True
+        return Kernel(g_fn, gj_fn=gj_c, qr=sparse_qr.SparseQR(gj.sparsity_out(1)))
 
     @property
     def _ipopt(self) -> ca.Function:
@@ -261,8 +296,11 @@ class StaticsSolver:
         g_end: np.ndarray | None = None
         if warm_start is not None:
             w0 = self._from_solution(warm_start)
-            res = self._newton(w0, p)
+            res = self._newton(w0, p, warm=True)
             w, it, ok, how, g_end = res.w, res.iterations, res.success, "newton", res.g
+            diag["factorizations"] = res.factorizations
+            if self._kernel.can_chord:
+                diag["chord"] = res.message  # "converged": chord steps alone sufficed
             if not ok:
                 w, it, ok, how = self._ipopt_solve(w0, p)
                 how = f"newton failed ({res.message}); " + how
@@ -289,6 +327,7 @@ class StaticsSolver:
         diag["cpu_time_s"] = time.process_time() - c0 - (self._late_build_cpu_s - late0_cpu)
         diag["solver"] = how
         diag["build_source"] = self.build_source
+        diag["compiled"] = self.compiled
         sol = self._make_solution(w, p, ok, how, it, wall, diag, g_end)
         if sol.success and (scene.solver.error_estimate if error_estimate is None
                             else error_estimate):
@@ -375,12 +414,28 @@ class StaticsSolver:
             t = np.stack([np.interp(sig, src, t_src[:, k]) for k in range(3)], axis=1)
         return self.coll.pack(r, t, sol.length, g)
 
-    def _newton(self, w0: np.ndarray, p: np.ndarray) -> NewtonResult:
+    def _newton(self, w0: np.ndarray, p: np.ndarray, warm: bool = False) -> NewtonResult:
         """Newton with a line search from w0, within the bounds (a positive free length, a
         grounded part on the first segment); a free length that comes out non-positive is
-        a failure."""
-        res = newton(self._kernel, w0, p, self.tol, NEWTON_MAX_STEPS, lb=self._lbx,
-                     ub=self._ubx)
+        a failure. From a warm start, with a kernel that keeps its factorisation (the
+        compiled one), chord steps first, then Newton from where they stopped if they
+        fail. ``factorizations`` counts the Jacobians factorised."""
+        counts = self._kernel.counts
+        f0 = counts["step"] + counts["factor"]
+        if warm and self._kernel.can_chord:
+            res = chord_newton(self._kernel, w0, p, self.tol, NEWTON_MAX_STEPS,
+                               lb=self._lbx, ub=self._ubx)
+            if not res.success:
+                start = res.w if np.all(np.isfinite(res.w)) else w0
+                fb = newton(self._kernel, start, p, self.tol, NEWTON_MAX_STEPS,
+                            lb=self._lbx, ub=self._ubx)
+                fb.iterations += res.iterations
+                fb.message = f"chord steps stopped ({res.message}); newton: {fb.message}"
+                res = fb
+        else:
+            res = newton(self._kernel, w0, p, self.tol, NEWTON_MAX_STEPS, lb=self._lbx,
+                         ub=self._ubx)
+        res.factorizations = counts["step"] + counts["factor"] - f0
         if res.success and self.coll.free_length and res.w[self.coll.i_lam] <= 0:
             res.success, res.message = False, "non-positive free length"
         return res

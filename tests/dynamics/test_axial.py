@@ -145,6 +145,26 @@ def test_modes_match_the_frequency_equation() -> None:
     assert len(d["modes"][0]["shape"]) == 81
 
 
+def test_modes_in_water_carry_the_added_masses() -> None:
+    """In water the axial line moves with its tangential added mass m_at = C_at rho pi d^2/4
+    per length and the unit with its heave added mass M_a (Huang (1992) (3.1)-(3.2)): the
+    frequencies are the tip-rod's with mu + m_at and M + M_a (frequency equation above),
+    to 1e-3 as the in-air test (80 elements: lumped-mass error (beta h)^2 / 24 below
+    3e-4 for the third mode). The added masses are chosen large (m_at = mu/2, M_a = M) so
+    that leaving either out moves omega_1 by far more than that (by 7 % and 25 %)."""
+    rho, diam, cat = 1025.0, 0.05, 0.5
+    m_at = cat * rho * math.pi * diam**2 / 4.0  # 1.006 kg/m, written here from its definition
+    d = air_scene(segments=80)
+    d["environment"]["water_density"] = rho
+    d["cable"].update(diameter=diam, tangential_added_mass_coefficient=cat,
+                      normal_drag=0.0, tangential_drag=0.0)
+    d["unit"]["added_mass"] = [0.0, 0.0, MASS]
+    res = modes(dynamic_scene_from_dict(d), 3)
+    assert res.status == "solved", res.message
+    rod = TipRod(L0, MU + m_at, EA, 2.0 * MASS, 3)
+    np.testing.assert_allclose(res.frequencies, rod.omega, rtol=1e-3)
+
+
 @pytest.mark.parametrize("scheme", SCHEMES)
 def test_free_vibration_and_natural_frequency(scheme: str) -> None:
     """Released unstretched at rest (start = "unstrained"), the tip oscillates about the
@@ -429,6 +449,89 @@ def test_static_start_is_the_statics_solution() -> None:
     np.testing.assert_allclose(z, st.position[:, 2], atol=1e-7)
     res = simulate(s.with_overrides({"simulation.duration": 0.5}))
     assert res.unit_position[0, 2] == pytest.approx(st.position[0, 2], abs=1e-7)
+
+
+# a soft weightless line in air (c = sqrt(EA / mu) = 100 m/s, strain W / EA = 0.1 at rest)
+# paid out from rest: the pay-out wave travels down and reaches the unit at t = L0 / c = 1 s
+WV_L0, WV_MU, WV_EA, WV_W = 100.0, 1.0, 1.0e4, 1000.0
+WV_C = math.sqrt(WV_EA / WV_MU)
+
+
+def _payout_wave_scene(speed: float, ramp: float, duration: float, model: str = "axial"
+                       ) -> dict:
+    return {"environment": {"water_depth": 500.0, "water_density": 1.225},
+            "cable": {"length": WV_L0, "weight_in_water": 0.0, "axial_stiffness": WV_EA,
+                      "mass_per_length": WV_MU, "added_mass_coefficient": 0.0},
+            "unit": {"mass": 200.0, "weight_in_water": WV_W},
+            "end_b": {"position": [0.0, 0.0, 200.0]},
+            "top_motion": {"payout_speed": speed, "ramp_time": ramp},
+            "simulation": {"model": model, "duration": duration, "time_step": 1e-3,
+                           "segments": 200}}
+
+
+def _ramp_integral(t: float, tau: float) -> float:
+    """R(t) = int_0^t r of the quintic ramp r = 10 x^3 - 15 x^4 + 6 x^5, x = t / tau."""
+    x = min(t / tau, 1.0)
+    return tau * x**4 * (2.5 - 3.0 * x + x * x) if t < tau else t - 0.5 * tau
+
+
+def _payout_wave_drop(speed: float) -> float:
+    """Tension drop behind the pay-out wave front, N (see the test below)."""
+    e = WV_W / WV_EA
+    return WV_MU * WV_C * speed * (1.0 + e) / (1.0 + speed / WV_C)
+
+
+@pytest.mark.parametrize("model", ("axial", "planar"))
+def test_payout_wave_against_dalembert(model: str) -> None:
+    """Pay-out from rest (L = L0 + v R(t), ramped over 0.3 s) on a weightless line in air,
+    before the wave reaches the unit: the exact material solution. With u = z - z0(s),
+    z0 the static profile at rest extended above s = L0, (3.1) is the wave equation
+    u_tt = c^2 u_ss (no weight gradient, no drag), so u = G(t + s / c), a wave going
+    down; the sheave condition z(L(t), t) = z_b gives G(t + L(t) / c) = -(L(t) - L0)
+    (1 + e), e = W / EA (the material arriving at the sheave comes from above the old
+    top). The wave is Doppler-shifted by the moving boundary: behind the ramp the material
+    velocity is u_t = -v (1 + e) / (1 + v / c) and the tension drops by mu c of it.
+    Here v / c = 0.05, so this checks the pay-out terms of the fixed-domain
+    transformation (3.4)-(3.7) at 5 %: the whole profile at t = 0.8 s to 1e-3 of the
+    wave's amplitude (seen 9e-5: lumped-mass dispersion of a 30 m long ramp on 0.5 m
+    elements) and the top tension behind the ramp to 1e-4 (seen 6e-6). The planar model
+    (Huang ch. 4, its own fixed-domain transformation) on the same vertical line obeys the
+    same equation along z."""
+    v, tau = 5.0, 0.3
+    res = simulate(dynamic_scene_from_dict(_payout_wave_scene(v, tau, 0.8, model)))
+    assert res.status == "solved", res.message
+    e = WV_W / WV_EA
+
+    def g_wave(arg: float) -> float:
+        if arg <= WV_L0 / WV_C:
+            return 0.0
+        t = brentq(lambda t: t + (WV_L0 + v * _ramp_integral(t, tau)) / WV_C - arg,
+                   0.0, arg, xtol=1e-14)
+        return -v * _ramp_integral(t, tau) * (1.0 + e)
+
+    t_end, length = float(res.t[-1]), float(res.length[-1])
+    s = np.linspace(0.0, 1.0, res.node_positions.shape[1]) * length
+    z0 = 200.0 - (WV_L0 - s) * (1.0 + e)
+    ref = np.array([g_wave(t_end + si / WV_C) for si in s])
+    u = res.node_positions[-1, :, 2] - z0
+    assert np.max(np.abs(ref)) > 3.0  # the wave has travelled 80 m down the line
+    assert np.max(np.abs(u - ref)) <= 1e-3 * np.max(np.abs(ref))
+    behind = res.t >= tau + 0.05
+    np.testing.assert_allclose(res.top_tension[behind], WV_W - _payout_wave_drop(v),
+                               rtol=1e-4)
+
+
+def test_slack_threshold_against_the_payout_wave() -> None:
+    """The pay-out wave above drops the tension by mu c v (1 + e) / (1 + v / c) (exact,
+    linear): speeds that take the tension to -5 % and +5 % of the static W. The first run
+    must report slack, the second must not (the threshold is 1e-9 of the static top
+    tension; the discrete minimum matches the closed form to 1e-4 of W, see above)."""
+    for target, expect in ((-0.05, True), (0.05, False)):
+        v = brentq(lambda sp, tg=target: WV_W - _payout_wave_drop(sp) - tg * WV_W, 1.0, 20.0)
+        res = simulate(dynamic_scene_from_dict(_payout_wave_scene(v, 0.3, 0.6)))
+        assert res.min_tension == pytest.approx(target * WV_W, abs=1e-3 * WV_W)
+        assert res.slack["occurred"] is expect, (target, res.slack, res.min_tension)
+        assert (res.status == "slack") is expect
 
 
 def test_slack_is_detected_located_and_stops_when_asked() -> None:

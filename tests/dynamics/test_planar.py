@@ -656,3 +656,36 @@ def test_anchored_catenary_start_and_payout() -> None:
     np.testing.assert_array_equal(r.unit_position, np.tile([0.0, 0.0, 700.0], (r.t.size, 1)))
     ramp = 10.0 * 0.5 * (2.5 - 3.0 + 1.0)  # the integral of the quintic ramp over 10 s
     assert r.length[-1] == pytest.approx(300.0 + 0.5 * (20.0 - 10.0) + ramp, rel=1e-12)
+
+
+@pytest.mark.parametrize("model", ("planar", "lumped3d"))
+def test_pendulum_and_spring_modes_use_the_units_added_mass_per_axis(model: str) -> None:
+    """A light, stiff 10 m line with a 100 kg unit whose added mass differs per axis
+    (M_ax = 50, M_ay = 0, M_az = 200 kg; Huang (1992) (4.11)-(4.12), (5.6)): the lowest
+    modes are the pendulum swings omega^2 = W / (l (M + M_a,k)) along x (and y in 3D;
+    l the stretched length L (1 + W / EA)) and the spring mode omega^2 = EA / (L (M +
+    M_az)). Closed forms of a massless line; the line's mass (mu L / M = 1e-3) and
+    weight (w L / W = 1e-3) shift them by a few 1e-4 (seen 1.4e-4, 8e-5, 6e-5), hence
+    1e-3. Taking one axis's added mass for another moves them by 15-30 %."""
+    mass, ma, ea, length, mu = 100.0, (50.0, 0.0, 200.0), 1.0e6, 10.0, 0.01
+    big_w = mass * G
+    d = {"environment": {"water_depth": 100.0, "water_density": 1.225},
+         "cable": {"length": length, "diameter": 0.005, "weight_in_water": mu * G,
+                   "axial_stiffness": ea, "mass_per_length": mu,
+                   "added_mass_coefficient": 0.0, "normal_drag": 0.0,
+                   "tangential_drag": 0.0},
+         "unit": {"mass": mass, "added_mass": list(ma), "weight_in_water": big_w},
+         "end_b": {"position": [0.0, 0.0, 50.0]},
+         "simulation": {"model": model, "duration": 1.0, "time_step": 0.01,
+                        "segments": 10}}
+    ell = length * (1.0 + big_w / ea)
+    pend = [math.sqrt(big_w / (ell * (mass + ma[k]))) for k in (0, 1)]
+    spring = math.sqrt(ea / (length * (mass + ma[2])))
+    expect = {"planar": [(pend[0], 0), (spring, 2)],
+              "lumped3d": [(pend[0], 0), (pend[1], 1), (spring, 2)]}[model]
+    res = modes(dynamic_scene_from_dict(d), len(expect))
+    assert res.status == "solved", res.message
+    for k, (omega, axis) in enumerate(expect):
+        assert res.frequencies[k] == pytest.approx(omega, rel=1e-3), (k, res.frequencies)
+        # the unit (node 0) moves along that axis
+        assert abs(res.shapes[k, 0, axis]) == pytest.approx(1.0)

@@ -212,3 +212,36 @@ def test_tow_path_loop_turn() -> None:
     # speed along the path is 4 m/s everywhere
     for t in (10.0, quarter, half, after):
         assert np.linalg.norm(np.asarray(f(t)[4]).ravel()) == pytest.approx(4.0, rel=1e-12)
+
+
+def test_static_start_takes_the_units_drag_at_its_solved_height() -> None:
+    """In a sheared current U(z) = (z - 200) / 300 m/s (linear from 0 at z = 200 m to
+    1 m/s at the surface, written here from the profile's knots) the unit's drag depends
+    on where it settles: the static start must re-solve until the drag is the one at the
+    unit's solved height. The unit's balance (cable pull at s = 0 plus weight and drag)
+    then holds with D = 1/2 rho C_D S U(z_0)^2 along x: to 1e-6 (the statics tolerance;
+    seen 1e-7). The drag taken at the height first estimated (the line hanging straight
+    down, z = 290 m) is 14 % off: the unit settles at z = 297 m, 52 m downstream."""
+    from cable_ocp.dynamics.static import static_state
+
+    rho, area, weight = 1025.0, 20.0, 5000.0
+    d = {"environment": {"water_depth": 500.0, "water_density": rho,
+                         "current": {"profile": [[200.0, 0.0, 0.0], [500.0, 1.0, 0.0]]}},
+         "cable": {"length": 200.0, "diameter": 0.03, "weight_in_water": 10.0,
+                   "axial_stiffness": 1.0e8, "mass_per_length": 12.0, "normal_drag": 1.2,
+                   "tangential_drag": 0.01},
+         "unit": {"mass": 1000.0, "weight_in_water": weight, "drag_area": area,
+                  "drag_coefficient": 1.0},
+         "end_b": {"position": [0.0, 0.0, 490.0]},
+         "simulation": {"model": "lumped3d", "duration": 1.0, "time_step": 0.1}}
+    sol = static_state(dynamic_scene_from_dict(d))
+    assert sol.success, sol.message
+    assert sol.diagnostics["unit_current_updates"] >= 2
+    z0 = float(sol.position[0, 2])
+    u0 = (z0 - 200.0) / 300.0
+    drag = 0.5 * rho * 1.0 * area * u0 * abs(u0)
+    assert drag > 1000.0  # a real load: the unit swings downstream
+    # the cable's pull on the unit (its tension along the line towards end_b) balances the
+    # weight and the drag: T(0) = (-D, 0, W)
+    np.testing.assert_allclose(sol.tension_vector[0], [-drag, 0.0, weight], rtol=1e-6,
+                               atol=1e-6 * weight)

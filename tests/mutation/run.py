@@ -67,8 +67,32 @@ HEAVE = ("tests/heave/test_plant.py", "tests/heave/test_discrete.py", "tests/hea
          "tests/heave/test_stochastic.py", "tests/heave/test_lqr.py",
          "tests/heave/test_mpc.py", "tests/heave/test_simulate.py")
 HEAVE_SIM = ("tests/heave/test_simulate.py", "tests/heave/test_examples.py")
+# dynamics: whole files where every test is quick, else the non-slow test ids
+AXIAL = ("tests/dynamics/test_axial.py", "tests/dynamics/test_axial_huang.py")
+_LMP = "tests/dynamics/test_lumped.py::test_"
+LUMPED = ("tests/dynamics/test_lumped_modes.py", _LMP + "energy_conserved_in_air",
+          _LMP + "bdf2_dissipates_and_midpoint_does_not",
+          _LMP + "damped_vertical_run_settles_to_the_statics_solution",
+          _LMP + "damped_run_in_current_settles_to_the_discrete_statics",
+          _LMP + "vertical_line_equals_axial_model",
+          _LMP + "forced_heave_against_viscoelastic_rod_closed_form",
+          _LMP + "abrupt_start_at_1256_goes_slack", "tests/dynamics/test_lumped_robust.py")
+_PLN = "tests/dynamics/test_planar.py::test_"
+PLANAR = tuple(_PLN + t for t in (
+    "vertical_case_equals_axial_model", "planar_case_equals_lumped3d",
+    "in_plane_modes_equal_lumped3d", "hanging_cable_with_tip_mass_against_bessel",
+    "taut_string_frequencies", "energy_conserved_in_air",
+    "damped_vertical_run_settles_to_the_statics_solution",
+    "damped_run_in_current_settles_to_the_statics_solution",
+    "slack_is_detected_where_and_when_the_wave_front_predicts",
+    "huang_4_5_5_static_elongation_and_resonant_length", "anchored_catenary_start_and_payout",
+    "pendulum_and_spring_modes_use_the_units_added_mass_per_axis")) + (
+    "tests/dynamics/test_axial.py::test_payout_wave_against_dalembert",)
 
 PHYS, FORM, COLL, HEAVE_A = "physics", "statics/formulation", "statics/collocation", "heave"
+DYN = "dynamics"
+AX_F, LM_F, PL_F, MO_F = ("cable_ocp/dynamics/axial.py", "cable_ocp/dynamics/lumped.py",
+                          "cable_ocp/dynamics/planar.py", "cable_ocp/dynamics/motion.py")
 
 MUTATIONS: tuple[Mutation, ...] = (
     # -- physics/ ---------------------------------------------------------------------------
@@ -268,6 +292,109 @@ MUTATIONS: tuple[Mutation, ...] = (
     Mutation("sim-lqg-buffer-not-reset", HEAVE_A, "cable_ocp/heave/simulate.py",
              "xh[self.n :] = z[self.n :]", "pass", HEAVE_SIM,
              "LQG estimate of its own past commands not reset to the known values"),
+    # -- dynamics/ (Huang (1992) ch. 3-5) ------------------------------------------------------
+    Mutation("axial-drag-unsigned", DYN, AX_F,
+             "drag = self.k_drag * (1.0 + eps_node) * ca.fabs(vel) * vel",
+             "drag = self.k_drag * (1.0 + eps_node) * vel * vel", AXIAL,
+             "axial: tangential drag k u^2 instead of k |u| u (pushes when the cable rises)"),
+    Mutation("axial-unit-weight-missing", DYN, AX_F,
+             "f0 = (ten[0] - self.unit_weight - 0.5 * h * (self.w + drag[0])",
+             "f0 = (ten[0] - 0.5 * h * (self.w + drag[0])", AXIAL,
+             "axial: the unit's weight in water left out of its equation of motion (3.2)"),
+    Mutation("axial-unit-added-mass-dropped", DYN, AX_F,
+             "self.unit_mass = unit.mass + unit.added_mass[2]", "self.unit_mass = unit.mass",
+             AXIAL, "axial: the unit's heave added mass left out"),
+    Mutation("axial-tangential-added-mass-dropped", DYN, AX_F,
+             "self.mu = dyn.mass_per_length + dyn.tangential_added_mass_per_length(",
+             "self.mu = dyn.mass_per_length + 0.0 * dyn.tangential_added_mass_per_length(",
+             AXIAL, "axial: the cable's tangential added mass m_at of (3.1) left out"),
+    Mutation("axial-advection-velocity-dropped", DYN, AX_F,
+             "acc.append((ten[i] - ten[i - 1] - h * (self.w + drag[i])) / (self.mu * h)\n"
+             "                       + adv[i] * vy)",
+             "acc.append((ten[i] - ten[i - 1] - h * (self.w + drag[i])) / (self.mu * h))",
+             AXIAL, "axial: fixed-domain transformation (3.4)-(3.7) without the y L_t/L V_y term"),
+    Mutation("axial-advection-position-dropped", DYN, AX_F,
+             "dz.append(vel[i] + ref_rate + adv[i] * zy)", "dz.append(vel[i] + ref_rate)",
+             AXIAL, "axial: fixed-domain transformation without the y L_t/L Z_y term"),
+    Mutation("axial-modes-unit-mass-missing", DYN, AX_F,
+             "mass[0] = self.unit_mass + 0.5 * self.mu * h", "mass[0] = 0.5 * self.mu * h",
+             AXIAL, "axial modes: the unit's mass missing from the mass matrix"),
+    Mutation("axial-top-tension-inertia-dropped", DYN, AX_F,
+             "(self.w + self.mu * a_top + drag_top)", "(self.w + drag_top)", AXIAL,
+             "axial: the top tension without the inertia of the top half element"),
+    Mutation("axial-static-start-ignored", DYN, AX_F,
+             'if self.scene.simulation.start == "unstrained":', "if True:", AXIAL,
+             "axial: start = \"static\" starts from the unstretched line"),
+    Mutation("axial-slack-threshold-loose", DYN, AX_F,
+             "self.slack_tolerance = 1e-9 * (", "self.slack_tolerance = 1e-1 * (", AXIAL,
+             "axial: slack reported only below -10 % of the static top tension"),
+    Mutation("payout-speed-sign", DYN, MO_F,
+             "out = length0 + tm.payout_speed * big_r", "out = length0 - tm.payout_speed * big_r",
+             AXIAL + ("tests/dynamics/test_planar.py::test_anchored_catenary_start_and_payout",),
+             "pay-out law: a positive speed hauls in"),
+    Mutation("heave-phase-cosine", DYN, MO_F,
+             "dz = dz + r * tm.heave_amplitude * ca.sin(tm.heave_frequency * t)",
+             "dz = dz + r * tm.heave_amplitude * ca.cos(tm.heave_frequency * t)", AXIAL,
+             "top heave A cos(w t) instead of A sin(w t) (a jump at t = 0)"),
+    Mutation("lumped-node-mass-off-by-one", DYN, LM_F,
+             "m[1:] += half\n", "m[:-1] += half\n", LUMPED,
+             "lumped: each segment's mass at its lower node instead of half at each end"),
+    Mutation("lumped-unit-weight-missing", DYN, LM_F,
+             "w[0] += p.unit.weight_in_water", "pass", LUMPED,
+             "lumped: the unit's weight in water missing (5.6)"),
+    Mutation("lumped-unit-added-mass-dropped", DYN, LM_F,
+             "out[0] += p.unit.mass + np.asarray(p.unit.added_mass)", "out[0] += p.unit.mass",
+             LUMPED, "lumped: the unit's added mass left out"),
+    Mutation("lumped-added-mass-tangential-projector", DYN, LM_F,
+             "madd = 0.5 * (en * (eye - eet) + et * eet)",
+             "madd = 0.5 * (en * eet + et * (eye - eet))", LUMPED,
+             "lumped step: added mass (5.2) along the tangent t t^T instead of I - t t^T"),
+    Mutation("lumped-modes-added-mass-tangential-projector", DYN, LM_F,
+             "add = 0.5 * (en * (ca.SX.eye(3) - tt) + et * tt)",
+             "add = 0.5 * (en * tt + et * (ca.SX.eye(3) - tt))",
+             LUMPED + ("tests/dynamics/test_planar.py::test_in_plane_modes_equal_lumped3d",),
+             "lumped modes: added mass (5.2) along the tangent instead of normal"),
+    Mutation("lumped-tension-ea-over-l", DYN, LM_F,
+             "    def tension(eps: Any) -> Any:\n        u = ea * eps\n",
+             "    def tension(eps: Any) -> Any:\n        u = ea / ell * eps\n", LUMPED,
+             "lumped step: segment tension EA/l eps (a spring constant) instead of EA eps"),
+    Mutation("lumped-current-ignored", DYN, LM_F,
+             "urel = u_c - 0.5 * (va + vb)", "urel = -0.5 * (va + vb)", LUMPED,
+             "lumped step: the segments' drag ignores the current"),
+    Mutation("lumped-tangential-drag-unsigned", DYN, LM_F,
+             "ca.sqrt(ut * ut + delta * delta) * ut * tm", "ut * ut * tm", LUMPED,
+             "lumped step: tangential drag u_t^2 instead of |u_t| u_t"),
+    Mutation("axial-thesis-coriolis-sign", DYN, "cable_ocp/dynamics/axial_thesis.py",
+             "                -2 * mu * v * y / ell,", "                2 * mu * v * y / ell,",
+             AXIAL, "Huang's scheme: the pay-out cross term C = -2 mu v y / l of (3.5) with "
+             "the wrong sign"),
+    Mutation("lumped-static-start-ignored", DYN, "cable_ocp/dynamics/lumped_scene.py",
+             'if scene.simulation.start == "unstrained":', "if True:", LUMPED,
+             "lumped: start = \"static\" starts from the unstretched vertical line"),
+    Mutation("planar-unit-drag-no-half", DYN, PL_F,
+             "half = 0.5 * self.rho", "half = self.rho", PLANAR,
+             "planar: the unit's drag rho C_D S |u| u without the 1/2"),
+    Mutation("static-unit-current-not-updated", DYN, "cable_ocp/dynamics/static.py",
+             "new = solve(static_scene(scene, z), warm_start=sol)",
+             "new = solve(static_scene(scene, None), warm_start=sol)",
+             ("tests/dynamics/test_scene.py", "tests/dynamics/test_lumped_robust.py"),
+             "static start: the unit's drag in a depth-varying current not re-taken at its "
+             "solved height"),
+    Mutation("planar-current-wrong-component", DYN, PL_F,
+             "return ca.repmat(ca.vertcat(self.current.ux[0], 0.0), 1, k)",
+             "return ca.repmat(ca.vertcat(self.current.uy[0], 0.0), 1, k)", PLANAR,
+             "planar: a uniform current's y component used as the in-plane one"),
+    Mutation("planar-added-mass-cross-sign", DYN, PL_F,
+             "axz = 0.5 * h * (self.mat - self.man) * txz",
+             "axz = 0.5 * h * (self.man - self.mat) * txz", PLANAR,
+             "planar: off-diagonal added mass of (5.2) with the wrong sign"),
+    Mutation("planar-advection-velocity-dropped", DYN, PL_F,
+             "acc = (v1 - vv0) / dt - self._free_cols(adv * vy)", "acc = (v1 - vv0) / dt",
+             PLANAR, "planar: fixed-domain transformation (4.4.3) without the a V_y term"),
+    Mutation("planar-unit-x-added-mass-as-z", DYN, PL_F,
+             "self.unit_mass = (unit.mass + unit.added_mass[0], unit.mass + unit.added_mass[2])",
+             "self.unit_mass = (unit.mass + unit.added_mass[2], unit.mass + unit.added_mass[2])",
+             PLANAR, "planar: the unit's z added mass used for x too"),
 )
 
 
@@ -286,7 +413,10 @@ def _copy_tree(dst: Path) -> None:
 
 def _pytest(tree: Path, tests: tuple[str, ...], timeout: float) -> tuple[str, str, float]:
     """Run the subset in ``tree``; return (status, first failing test, seconds)."""
-    env = dict(os.environ, PYTHONPATH=str(tree), PYTHONDONTWRITEBYTECODE="1")
+    # the compiled-C kernels of the copy (mutated kernels hash differently) stay in the
+    # copy: the user's cache gets no mutants
+    env = dict(os.environ, PYTHONPATH=str(tree), PYTHONDONTWRITEBYTECODE="1",
+               CABLE_OCP_CACHE_DIR=str(tree / ".kernel_cache"))
     cmd = [sys.executable, "-m", "pytest", "-x", "-q", "-p", "no:cacheprovider", "-rf",
            *tests]
     t0 = time.perf_counter()
@@ -315,7 +445,7 @@ def main(argv: list[str] | None = None) -> int:
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     ap.add_argument("--only", nargs="+", default=None,
                     help="mutation names or areas (physics, statics/formulation, "
-                         "statics/collocation, heave)")
+                         "statics/collocation, heave, dynamics)")
     ap.add_argument("--list", action="store_true", help="list the mutations and exit")
     ap.add_argument("--baseline", action="store_true",
                     help="first run every selected subset on the unmutated copy")

@@ -1,0 +1,158 @@
+"""Compile CasADi functions to C and cache the shared libraries on disk.
+
+Used by the lumped-mass dynamics (its segment kernel and chunked integrators) and by the
+statics solver's Newton kernel when ``solver.compile = "auto"``. A compiled function
+computes the same numbers as the CasADi virtual machine (the same graph, the same
+operations) several times faster, at the price of a C compilation (seconds for a large
+graph) the first time; the library is kept, so a later process loads it in milliseconds.
+
+Where: ``$CABLE_OCP_CACHE_DIR`` if set, else ``$XDG_CACHE_HOME/cable_ocp``, else
+``~/.cache/cable_ocp``. ``CABLE_OCP_CACHE=0`` (or off/false/no) turns compiling off.
+The compiler is ``$CC`` (it may carry words, e.g. "ccache gcc"), else ``cc`` or ``gcc``.
+
+Every failure (no compiler, a folder that cannot be written, the compiler or the loading
+failing) falls back to the interpreted function, silently.
+"""
+
+from __future__ import annotations
+
+import contextlib
+import hashlib
+import os
+import shlex
+import shutil
+import subprocess
+import tempfile
+from collections.abc import Callable
+
+import casadi as ca
+
+__all__ = ["cache_dir", "c_compiler", "compile_function", "is_compiled"]
+
+#: values of ``CABLE_OCP_CACHE`` that turn the compilation to C off
+CACHE_OFF = ("0", "off", "false", "no")
+
+
+def cache_dir() -> str | None:
+    """Directory of the compiled-C cache, or None when compiling is turned off.
+
+    ``CABLE_OCP_CACHE=0`` (or off/false/no) turns it off (everything interpreted);
+    ``CABLE_OCP_CACHE_DIR`` names the directory; an older ``CABLE_OCP_CACHE=PATH`` is read
+    as the directory too; default ``$XDG_CACHE_HOME/cable_ocp`` or ~/.cache/cable_ocp.
+    """
+    flag = os.environ.get("CABLE_OCP_CACHE", "").strip()
+    if flag.lower() in CACHE_OFF:
+        return None
+    if os.environ.get("CABLE_OCP_CACHE_DIR"):
+        return os.environ["CABLE_OCP_CACHE_DIR"]
+    if flag and flag.lower() not in ("1", "on", "true", "yes"):
+        return flag
+    return os.path.join(
+        os.environ.get("XDG_CACHE_HOME") or os.path.join(os.path.expanduser("~"), ".cache"),
+        "cable_ocp")
+
+
+def c_compiler() -> list[str] | None:
+    """The C compiler command: ``$CC`` (may carry words, e.g. "ccache gcc") if its program
+    exists, else ``cc`` or ``gcc`` on the PATH; None when there is none."""
+    env = os.environ.get("CC", "").strip()
+    if env:
+        try:
+            words = shlex.split(env)
+        except ValueError:
+            return None
+        return words if words and shutil.which(words[0]) else None
+    found = shutil.which("cc") or shutil.which("gcc")
+    return [found] if found else None
+
+
+def is_compiled(fn: ca.Function) -> bool:
+    """True when ``fn`` runs from a compiled shared library (``casadi.external``)."""
+    return fn.is_a("External")
+
+
+def _library(cache: str, name: str, digest: str) -> str:
+    return os.path.join(cache, f"{name}_{digest}.so")
+
+
+def compile_function(fn: ca.Function | Callable[[], ca.Function], opt: str = "-O2",
+                     key: str | None = None, name: str | None = None) -> ca.Function:
+    """Compile a CasADi Function to a shared library cached in :func:`cache_dir`; return
+    it as ``casadi.external``.
+
+    Parameters
+    ----------
+    fn : casadi.Function or callable
+        The function, or a callable that builds it (called only when the library is not
+        cached under ``key``, or when compiling is impossible).
+    opt : str
+        Optimisation flag of the C compiler.
+    key : str, optional
+        Text that determines the function completely (e.g. a structure key). With a key,
+        the library is named by its hash and a cached library is loaded *without*
+        generating the C code (generating the code of a large graph takes a good part of
+        a second); without one, the library is named by the hash of the generated code.
+    name : str, optional
+        The function's name (needed with ``key`` when ``fn`` is a callable).
+
+    Returns
+    -------
+    casadi.Function
+        The compiled function, or the interpreted one (the same numbers, slower) when
+        compiling is off (``CABLE_OCP_CACHE=0``), no C compiler is found (``$CC`` names a
+        missing program, or neither ``cc`` nor ``gcc`` is on the PATH), the cache
+        directory cannot be created or written, or the compiler or the loading fails.
+        Silent.
+    """
+    def built() -> ca.Function:
+        return fn if isinstance(fn, ca.Function) else fn()
+
+    cache = cache_dir()
+    cc = c_compiler()
+    if cache is None or cc is None:
+        return built()
+    fname = name or (fn.name() if isinstance(fn, ca.Function) else None)
+    if key is not None and fname is not None:
+        digest = hashlib.sha256((key + "\0" + fname + "\0" + ca.__version__ + "\0" + opt
+                                 ).encode()).hexdigest()[:16]
+        lib = _library(cache, fname, digest)
+        if os.path.exists(lib):
+            try:
+                return ca.external(fname, lib)
+            except Exception:  # noqa: BLE001 - a broken library: compile it again
+                with contextlib.suppress(OSError):
+                    os.remove(lib)
+    else:
+        lib = None
+    f = built()
+    tmp = None
+    try:
+        tmp = tempfile.mkdtemp(prefix="cable_ocp_")
+        fname = f.name()
+        cg = ca.CodeGenerator(f"{fname}.c", {"with_header": False})
+        cg.add(f)
+        cg.generate(tmp + os.sep)
+        src = os.path.join(tmp, f"{fname}.c")
+        if lib is None:
+            with open(src, "rb") as fh:
+                digest = hashlib.sha256(fh.read() + ca.__version__.encode()
+                                        + opt.encode()).hexdigest()[:16]
+            lib = _library(cache, fname, digest)
+        os.makedirs(cache, exist_ok=True)
+        if not os.path.exists(lib):
+            part = lib + f".{os.getpid()}.tmp"
+            try:
+                subprocess.run([*cc, opt, "-fPIC", "-shared", src, "-o", part, "-lm"],
+                               check=True, capture_output=True, timeout=600,
+                               stdin=subprocess.DEVNULL)
+                os.replace(part, lib)
+            finally:
+                if os.path.exists(part):
+                    os.remove(part)
+        return ca.external(fname, lib)
+    except Exception:  # noqa: BLE001 - any failure: fall back to the interpreted function
+        return f
+    finally:
+        if tmp is not None:
+            shutil.rmtree(tmp, ignore_errors=True)
+

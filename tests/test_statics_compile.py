@@ -1,0 +1,287 @@
+"""The statics Newton kernel compiled to C (``solver.compile = "auto"``) gives the answers
+of the interpreted kernel, loads a cached library without generating code, and falls back
+to the interpreted kernel, silently, when it cannot compile (no timing here: ``cable-ocp
+bench sweep`` measures the speed).
+
+The compiled kernel factorises the Jacobian by a sparse QR whose factors are kept
+(cable_ocp.statics.sparse_qr), the interpreted one by CSparse's LU at every step: Newton
+steps equal to rounding. Warm solves with the compiled kernel take chord steps
+(cable_ocp.statics.newton.chord_newton), checked here against full Newton. Coarse meshes
+keep the C compilations short (about half a second each).
+"""
+
+from __future__ import annotations
+
+from pathlib import Path
+
+import casadi as ca
+import numpy as np
+import pytest
+
+from cable_ocp import compile as cc
+from cable_ocp.errors import CableOCPError
+from cable_ocp.scene import load_scene
+from cable_ocp.statics import newton as nw
+from cable_ocp.statics import sparse_qr
+from cable_ocp.statics.solver import StaticsSolver, sweep
+
+DEZOYSA = Path(__file__).resolve().parents[1] / "problems" / "dezoysa_sea_buggy.toml"
+OFF = {"solver.error_estimate": False, "solver.refine": False, "solver.intervals": 12}
+
+needs_cc = pytest.mark.skipif(cc.c_compiler() is None, reason="no C compiler")
+
+
+@pytest.fixture
+def cache_folder(tmp_path: Path, monkeypatch: pytest.MonkeyPatch) -> Path:
+    """An empty cache folder of the test's own (function cache and compiled libraries)."""
+    folder = tmp_path / "cache"
+    monkeypatch.setenv("CABLE_OCP_CACHE_DIR", str(folder))
+    monkeypatch.delenv("CABLE_OCP_CACHE", raising=False)
+    return folder
+
+
+def test_compile_key_is_checked() -> None:
+    """``solver.compile`` defaults to "never"; another word is a CableOCPError naming the
+    key and the valid values."""
+    assert load_scene(DEZOYSA).solver.compile == "never"
+    assert load_scene(DEZOYSA, {"solver.compile": "auto"}).solver.compile == "auto"
+    with pytest.raises(CableOCPError, match=r'solver.compile = .*"never", "auto"'):
+        load_scene(DEZOYSA, {"solver.compile": "yes"})
+
+
+@needs_cc
+def test_compiled_step_equals_the_interpreted_step(cache_folder: Path) -> None:
+    """At a point off the solution, the compiled residual equals the interpreted one to
+    1e-14 relative (the same operations) and the compiled Newton step (sparse QR, factors
+    kept) the interpreted one (sparse LU) to 1e-9 relative (two factorisations of one
+    matrix: their rounding times the condition number of the collocated Jacobian, ~1e5
+    here); a chord step from the kept factors equals the compiled Newton step exactly."""
+    scene = load_scene(DEZOYSA, OFF)
+    plain = StaticsSolver(scene)
+    fast = StaticsSolver(scene.with_overrides({"solver.compile": "auto"}))
+    assert fast.compiled and not plain.compiled
+    w = plain.solve()._unknowns[1]
+    w = w * (1.0 + 1e-3 * np.random.default_rng(5).standard_normal(w.size))
+    p = plain.form.params()
+    g1, d1 = plain._kernel.step(w, p)
+    g2, d2 = fast._kernel.step(w, p)
+    assert np.max(np.abs(g2 - g1)) <= 1e-14 * np.max(np.abs(g1))
+    assert np.max(np.abs(d2 - d1)) <= 1e-9 * np.max(np.abs(d1))
+    assert np.array_equal(fast._kernel.g(w, p), g2)
+    assert np.array_equal(fast._kernel.chord_step(g2), d2)
+
+
+@needs_cc
+def test_sparse_qr_solves_like_scipy(cache_folder: Path) -> None:
+    """The kept QR factors solve a collocated Jacobian like scipy's SuperLU (an independent
+    sparse LU) to 1e-10 relative, for several right-hand sides from one factorisation;
+    a singular matrix gives non-finite steps (not a crash)."""
+    import scipy.sparse.linalg as spl
+
+    solver = StaticsSolver(load_scene(DEZOYSA, OFF))
+    w = solver.solve()._unknowns[1] + 1e-2
+    _, jac = solver._gj(w, solver.form.params())
+    qr = sparse_qr.SparseQR(jac.sparsity())
+    qr.nz[:] = np.asarray(jac.nonzeros()).ravel()
+    qr.factor()
+    lu = spl.splu(jac.sparse().tocsc())
+    rng = np.random.default_rng(2)
+    for _ in range(3):
+        b = rng.standard_normal(solver.coll.n_w)
+        ref = -lu.solve(b)
+        assert np.max(np.abs(qr.newton_step(b) - ref)) <= 1e-10 * np.max(np.abs(ref))
+    qr.nz[:] = 0.0
+    qr.factor()
+    assert not np.all(np.isfinite(qr.newton_step(np.ones(solver.coll.n_w))))
+
+
+@needs_cc
+@pytest.mark.parametrize("angle", [20.0, 90.0, 130.0])
+def test_chord_newton_converges_to_the_newton_solution(cache_folder: Path,
+                                                       angle: float) -> None:
+    """From the solution 10 degrees away (a warm start with a scaled residual ~1e-1),
+    chord steps reach max|G| <= 1e-10 (the residual re-evaluated here by the interpreted
+    G) with fewer factorisations than steps, at the point full Newton reaches from the
+    same start to 1e-9 relative (both iterates are within the 1e-10 residual tolerance;
+    the Jacobian's condition number ~1e5 bounds their distance by ~1e-9 of the solution)
+    and to 1e-12 relative after one full Newton step from each (quadratic convergence:
+    both polished to rounding)."""
+    base = load_scene(DEZOYSA, {**OFF, "solver.compile": "auto"})
+    solver = StaticsSolver(base)
+    assert solver.compiled
+    prev = solver.solve(base.with_overrides({"layout.psi0_deg": angle - 10.0}))
+    scene = base.with_overrides({"layout.psi0_deg": angle})
+    p = solver.form.params(scene)
+    w0 = prev._unknowns[1]
+    assert np.max(np.abs(np.asarray(solver.coll.residual(w0, p)))) > 1e-3  # a real warm start
+    chord = nw.chord_newton(solver._kernel, w0, p, 1e-10)
+    full = nw.newton(solver._kernel, w0, p, 1e-10)
+    assert chord.success and full.success
+    assert chord.factorizations < chord.iterations
+    g = np.asarray(StaticsSolver(load_scene(DEZOYSA, OFF)).coll.residual(chord.w, p))
+    assert np.max(np.abs(g)) <= 1e-10
+    scale = np.max(np.abs(full.w))
+    assert np.max(np.abs(chord.w - full.w)) <= 1e-9 * scale
+    polished = [w + solver._kernel.step(w, p)[1] for w in (chord.w, full.w)]
+    assert np.max(np.abs(polished[0] - polished[1])) <= 1e-12 * scale
+
+
+@needs_cc
+def test_chord_refactorises_and_falls_back_on_poor_contraction(
+        cache_folder: Path, monkeypatch: pytest.MonkeyPatch) -> None:
+    """A contraction demand no step can meet (1e-300) makes every step a new
+    factorisation (factorisations >= steps: full Newton, here with backtracking from the
+    previous angle's solution, whose full step does not decrease max|G|); from a start
+    far from any solution (3x the unknowns of another layout) chord_newton gives up
+    within 3 steps (success False) and the solver's warm path finishes with the damped
+    Newton from there; with the usual step limit the warm solve from that far start lands
+    on the cold solution's forces within 1e-9 relative."""
+    base = load_scene(DEZOYSA, {**OFF, "solver.compile": "auto"})
+    solver = StaticsSolver(base)
+    scene = base.with_overrides({"layout.psi0_deg": 60.0})
+    p = solver.form.params(scene)
+    w0 = solver.solve(base.with_overrides({"layout.psi0_deg": 50.0}))._unknowns[1]
+    strict = nw.chord_newton(solver._kernel, w0, p, 1e-10, contraction=1e-300)
+    assert strict.success and strict.factorizations >= strict.iterations
+
+    far = solver.solve(base.with_overrides({"layout.psi0_deg": 180.0}))
+    far_w = 3.0 * far._unknowns[1]  # no longer near any solution
+    gave_up = nw.chord_newton(solver._kernel, far_w, p, 1e-10, max_iter=3)
+    assert not gave_up.success
+    calls = []
+    real = nw.newton
+
+    def spy(*args: object, **kwargs: object) -> nw.NewtonResult:
+        calls.append(1)
+        return real(*args, **kwargs)
+
+    monkeypatch.setattr("cable_ocp.statics.solver.newton", spy)
+    monkeypatch.setattr("cable_ocp.statics.solver.NEWTON_MAX_STEPS", 3)
+    res = solver._newton(far_w, p, warm=True)
+    assert calls  # the chord steps gave up within 3 steps: damped Newton took over
+    assert "chord steps stopped" in res.message
+    cold = StaticsSolver(load_scene(DEZOYSA, {**OFF, "layout.psi0_deg": 60.0})).solve()
+    monkeypatch.setattr("cable_ocp.statics.solver.NEWTON_MAX_STEPS", 30)
+    sol = solver.solve(scene, warm_start=far)
+    assert sol.success
+    ref = np.max(np.abs(cold.force_a))
+    assert np.max(np.abs(sol.force_a - cold.force_a)) <= 1e-9 * ref
+
+
+@needs_cc
+def test_compiled_sweep_matches_the_interpreted_sweep(cache_folder: Path) -> None:
+    """The psi0 sweep with the compiled kernel gives the end forces of the interpreted
+    sweep (itself checked against CasADi's rootfinder in test_statics_speed.py) to 1e-9
+    relative: both stop at a scaled residual of 1e-10, and the collocated system's
+    conditioning turns that into ~1e-10 relative in the forces."""
+    base = load_scene(DEZOYSA, OFF)
+    angles = np.arange(0.0, 181.0, 30.0)
+    plain = sweep(base, "layout.psi0_deg", angles, error_estimate=False)
+    fast = sweep(base.with_overrides({"solver.compile": "auto"}), "layout.psi0_deg", angles,
+                 error_estimate=False)
+    assert all(s.diagnostics["compiled"] for s in fast)
+    assert not any(s.diagnostics["compiled"] for s in plain)
+    for a, b in zip(plain, fast, strict=True):
+        assert a.status == b.status
+        ref = max(np.max(np.abs(a.force_a)), np.max(np.abs(a.force_b)))
+        assert np.max(np.abs(b.force_a - a.force_a)) <= 1e-9 * ref
+        assert np.max(np.abs(b.force_b - a.force_b)) <= 1e-9 * ref
+
+
+@needs_cc
+def test_a_cached_library_is_loaded_without_generating_code(
+        cache_folder: Path, monkeypatch: pytest.MonkeyPatch) -> None:
+    """A second solver of the same structure and mesh loads the compiled libraries by
+    their key: with C code generation made to fail, it is still compiled. A new mesh needs
+    new code: its generation fails, and the solver falls back to the interpreted kernel
+    silently and still solves (to the forces of the compiled solver within 1e-9, as
+    above)."""
+    scene = load_scene(DEZOYSA, {**OFF, "solver.compile": "auto"})
+    first = StaticsSolver(scene)
+    assert first.compiled
+    assert any(cache_folder.glob("GJ_*.so"))
+
+    def broken(*args: object, **kwargs: object) -> None:
+        raise RuntimeError("code generation is not available")
+
+    monkeypatch.setattr(ca, "CodeGenerator", broken)
+    again = StaticsSolver(scene)
+    assert again.compiled
+    other = StaticsSolver(scene, intervals=14)
+    assert not other.compiled
+    s1, s2 = first.solve(), other.solve()
+    assert s1.success and s2.success
+    assert not s2.diagnostics["compiled"]
+
+
+@pytest.mark.parametrize("case", ["missing_cc", "cache_off"])
+def test_without_a_compiler_the_interpreted_kernel_runs(
+        case: str, cache_folder: Path, monkeypatch: pytest.MonkeyPatch) -> None:
+    """``CC`` naming a missing program, or ``CABLE_OCP_CACHE=0``: ``solver.compile =
+    "auto"`` runs the interpreted kernel, silently, with bit-identical results (the very
+    functions of ``"never"``), and writes no library."""
+    if case == "missing_cc":
+        monkeypatch.setenv("CC", str(cache_folder.parent / "nonexistent-cc"))
+    else:
+        monkeypatch.setenv("CABLE_OCP_CACHE", "0")
+    scene = load_scene(DEZOYSA, OFF)
+    auto = StaticsSolver(scene.with_overrides({"solver.compile": "auto"}))
+    assert not auto.compiled
+    s1, s2 = StaticsSolver(scene).solve(), auto.solve()
+    assert s2.success and not s2.diagnostics["compiled"]
+    assert np.array_equal(s1.force_a, s2.force_a) and np.array_equal(s1.force_b, s2.force_b)
+    assert not list(cache_folder.glob("*.so"))
+
+
+@needs_cc
+def test_compile_function_by_key(cache_folder: Path) -> None:
+    """``compile_function`` with a key: the builder runs once (the second call loads the
+    library without building), the result equals the interpreted function's to rounding
+    (1e-14 relative: the same operations, compiled; libm may round differently)."""
+    calls = []
+
+    def build() -> ca.Function:
+        calls.append(1)
+        x = ca.SX.sym("x", 3)
+        return ca.Function("probe_key", [x], [ca.sin(x) * x[0] + ca.exp(x[1])])
+
+    f1 = cc.compile_function(build, key="probe v1", name="probe_key")
+    f2 = cc.compile_function(build, key="probe v1", name="probe_key")
+    assert cc.is_compiled(f1) and cc.is_compiled(f2)
+    assert len(calls) == 1
+    x = np.array([0.3, -1.2, 2.5])
+    ref = np.asarray(build()(x)).ravel()
+    assert np.allclose(np.asarray(f2(x)).ravel(), ref, rtol=1e-14, atol=0)
+
+
+@needs_cc
+@pytest.mark.parametrize("name, key, values, method", [
+    ("berteaux_mooring.toml", "end_b.tension", [11146.6, 11400.0, 11700.0], "collocation"),
+    ("berteaux_mooring.toml", "end_b.tension", [11146.6, 11400.0], "multiple_shooting"),
+    pytest.param("mooring_clump_buoy.toml", "end_b.position",
+                 [[680.0, 0.0, 140.0], [690.0, 0.0, 140.0], [700.0, 0.0, 140.0]],
+                 "collocation", marks=pytest.mark.slow),  # ~20 s: compiles the contact solvers
+])
+def test_compiled_warm_solves_on_other_structures(cache_folder: Path, name: str, key: str,
+                                                  values: list, method: str) -> None:
+    """A free length (a bounded unknown), multiple shooting, and three segments with
+    seabed contact: a session of warm solves with the compiled kernel gives the statuses,
+    lengths and end forces of the interpreted session to 1e-8 relative (both stop at a
+    scaled residual of 1e-10; the free length and touchdown add to the conditioning)."""
+    path = Path(__file__).resolve().parents[1] / "problems" / name
+    from cable_ocp.statics.solver import SolveSession
+
+    out = {}
+    for mode in ("never", "auto"):
+        base = load_scene(path, {"solver.error_estimate": False, "solver.refine": False,
+                                 "solver.intervals": 16, "solver.method": method,
+                                 "solver.compile": mode})
+        session = SolveSession(error_estimate=False)
+        out[mode] = [session.solve(base.with_overrides({key: v})) for v in values]
+    assert any(s.diagnostics.get("compiled") for s in out["auto"])
+    for a, b in zip(out["never"], out["auto"], strict=True):
+        assert a.status == b.status and a.converged
+        ref = max(np.max(np.abs(a.force_a)), np.max(np.abs(a.force_b)))
+        assert np.max(np.abs(b.force_a - a.force_a)) <= 1e-8 * ref
+        assert np.max(np.abs(b.force_b - a.force_b)) <= 1e-8 * ref
+        assert abs(b.length - a.length) <= 1e-8 * a.length
