@@ -263,8 +263,7 @@ class PlanarCablePlant:
         vn = post(qn, pv)
         step = ca.Function("planar_step", [xa, pm],
                            [ca.vertcat(qn, vn, y[nf2], out(qn, vn, xa[nf2:], pm))])
-        fail = max(1e3 * tol, 1e-6)
-        n_out = 2 * nf2 + 6
+        fail = max(1e3 * tol, 1e-6)  # the closed loop's failure threshold
         core = step
         for level in range(halvings):
             # the step, or (where it fails) two halves of it, each with the step before
@@ -279,7 +278,6 @@ class PlanarCablePlant:
             r = whole[2 * nf2]
             step = ca.Function(f"planar_halving{level}", [xa, pm], [ca.if_else(
                 ca.logic_not(r <= fail), halves(xa, pm), whole, True)])
-        assert step.numel_out(0) == n_out
         self._step = step
         X = ca.MX.sym("X", 2 * nf2)
         P = ca.MX.sym("P", 4, self.substeps)
