@@ -165,6 +165,11 @@ class PlanarModel:
         The free nodes: 0..N-1 with a unit, 1..N-1 with an anchored end_a.
     """
 
+    #: symbols that :attr:`motion` reads besides the time (None: a function of time only):
+    #: a subclass that moves the top by parameters (the heave plant) sets them, and
+    #: :meth:`output_function` takes them as its last input
+    motion_params: Any = None
+
     def __init__(self, scene: DynamicScene, segments: int | None = None) -> None:
         check_planar(scene)
         self.scene = scene
@@ -463,12 +468,14 @@ class PlanarModel:
     # ------------------------------------------------------------------ outputs
     def output_function(self) -> ca.Function:
         """``(t, q, V) -> (node positions (2, N+1), element tensions (N), top tension,
-        L, node velocities (2, N+1), strains (N))`` (m, N, N, m, m/s, -)."""
+        L, node velocities (2, N+1), strains (N))`` (m, N, N, m, m/s, -); with
+        :attr:`motion_params` set, ``(t, q, V, p)``."""
         n = self.n
         t = ca.SX.sym("t")
         q = ca.SX.sym("q", 2 * self.nf)
         v = ca.SX.sym("v", 2 * self.nf)
         mo = self._motion(t)
+        extra = [] if self.motion_params is None else [self.motion_params]
         h = mo["L"] / n
         qq = self._offsets(q, mo)
         dd = self._elements(qq, h)
@@ -497,7 +504,7 @@ class PlanarModel:
         mxx, mxz, mzz = (r[n] for r in self._mass_rows(dd, h))
         inert = ca.vertcat(mxx * a_n[0] + mxz * a_n[1], mxz * a_n[0] + mzz * a_n[1])
         top = ca.norm_2(inert - f_n)
-        return ca.Function("outputs", [t, q, v],
+        return ca.Function("outputs", [t, q, v, *extra],
                            [rs, tens.T, top, mo["L"], vs, eps.T])
 
     # ------------------------------------------------------------------ statics

@@ -5,7 +5,8 @@ A heave scene with ``[unit] cable_scene`` is compared here: the design model is 
 from the cable (Huang (1992), section 6.2.3; :mod:`cable_ocp.heave.identify_cable`) unless
 ``[unit] a, b`` are given; ``[simulation] plant = "model"`` runs the usual comparison
 (:func:`cable_ocp.heave.simulate.compare`) on that model, ``"cable"`` runs every controller
-against the axial cable (:mod:`cable_ocp.heave.cable_plant`) and against the design model
+against the cable (the axial or planar model of the cable scene,
+:func:`cable_ocp.heave.cable_models.cable_plant`) and against the design model
 for the prediction, and a ``[deployment]`` table lowers the unit through resonance
 (:mod:`cable_ocp.heave.deployment`). :func:`compare` takes any heave scene.
 """
@@ -22,9 +23,9 @@ from cable_ocp.errors import CableOCPError
 from cable_ocp.heave import identify_cable as idc
 from cable_ocp.heave import mpc as mpc_mod
 from cable_ocp.heave import simulate as sm
+from cable_ocp.heave.cable_models import cable_plant
 from cable_ocp.heave.cable_plant import (
     CABLE_FIELDS,
-    AxialCablePlant,
     CableComparison,
     CableMetrics,
     _CableLoopPlant,
@@ -65,9 +66,9 @@ def compare_cable(sc: HeaveScene, controllers: tuple | None = None,
     The design model is identified from the cable scene (Huang (1992), section 6.2.3,
     :func:`cable_ocp.heave.identify_cable.identify_from_cable`) unless ``[unit] a, b`` are
     given. With ``[simulation] plant = "model"`` the usual comparison runs on that model;
-    with ``"cable"`` every controller runs against the cable
-    (:mod:`cable_ocp.heave.cable_plant`), and against the design model with the same
-    estimator for the prediction.
+    with ``"cable"`` every controller runs against the cable (the cable scene's axial or
+    planar model, :func:`cable_ocp.heave.cable_models.cable_plant`), and against the design
+    model with the same estimator for the prediction.
     """
     dyn = load_cable_scene(sc)
     ident = idc.identify_from_cable(sc, dyn)
@@ -107,7 +108,7 @@ def _compare_on_cable(sc: HeaveScene, sd: HeaveScene, dyn: DynamicScene,
     # the passive run is the baseline of every reduction, run when not asked for
     runs_of = controllers if "passive" in controllers else controllers + ("passive",)
     models = sm.build_models(sd)
-    plant_c = AxialCablePlant(dyn, h)
+    plant_c = cable_plant(dyn, h)
     m = plant_c.substeps
     hs = h / sc.simulation.substeps
     t_f, x0_f, _ = sm.wave_realisation(models.plant, T + c.preview_time + 2 * h, hs,
@@ -172,8 +173,8 @@ def _compare_on_cable(sc: HeaveScene, sd: HeaveScene, dyn: DynamicScene,
             warnings.append(
                 f"{name}: the line went slack on the cable (an element tension <= 0 at "
                 f"{mc['slack_samples']} samples after the warm-up, first at "
-                f"t = {mc['slack_first_time_s']:.2f} s); the axial model cannot follow slack, "
-                "its tensions there are not physical")
+                f"t = {mc['slack_first_time_s']:.2f} s); the {plant_c.model_name} model cannot "
+                "follow slack, its tensions there are not physical")
         traces[name] = runs["cable"].trace
         predicted[name] = runs["model"].trace
         if name == "mpc":
@@ -202,7 +203,8 @@ def _compare_on_cable(sc: HeaveScene, sd: HeaveScene, dyn: DynamicScene,
         d["tension_unit_max_predicted"] = mm["tension_unit_max"]
         out[name] = CableMetrics(d)
     extra = dict(extra)
-    extra["cable_plant"] = {"segments": plant_c.model.n, "time_step": plant_c.dt,
+    extra["cable_plant"] = {"model": plant_c.model_name, "segments": plant_c.model.n,
+                            "time_step": plant_c.dt,
                             "substeps": m, "length": L0,
                             "static_tension_unit": t_u0, "static_tension_top": t_t0}
     extra["passive_heave_rms_predicted"] = base_m

@@ -119,6 +119,9 @@ class AxialCablePlant:
         The discretised line.
     """
 
+    #: the cable scene's ``simulation.model`` of this plant
+    model_name = "axial"
+
     def __init__(self, scene: DynamicScene, sample_time: float) -> None:
         sim = scene.simulation
         if sim.model != "axial":
@@ -748,7 +751,7 @@ def run_status(run: LoopRun, plant: str = "cable") -> tuple[str, str]:
     if run.plant_failed_at is not None:
         return ("failed", f"the {plant} plant's Newton step did not converge at t = "
                 f"{run.plant_failed_at:.2f} s (scaled residual {run.max_residual:.3g}); the "
-                "run stops there (a diverging loop or a slack line, which the axial model "
+                "run stops there (a diverging loop or a slack line, which the cable model "
                 "cannot follow)")
     return "solved", "ran to the end with finite, bounded states"
 

@@ -1,9 +1,9 @@
 """The identification experiment of Huang (1992), section 6.2.3 run on the cable model.
 
 Huang simulates the unit's response to a random boom-tip motion with his ch. 3 cable model
-and fits ``a, b`` of (6.2) (and of (6.3)) by Gauss-Newton. Here the cable model is the axial
-model of the heave scene's ``[unit] cable_scene``, stepped by
-:class:`cable_ocp.heave.cable_plant.AxialCablePlant` with a prescribed top motion at a fixed
+and fits ``a, b`` of (6.2) (and of (6.3)) by Gauss-Newton. Here the cable model is the model
+of the heave scene's ``[unit] cable_scene`` (axial or planar), stepped by the heave plant
+(:func:`cable_ocp.heave.cable_models.cable_plant`) with a prescribed top motion at a fixed
 length, and the fit is :func:`cable_ocp.heave.identify.identify_unit` (the thesis' iteration
 with exact sensitivities).
 
@@ -146,9 +146,9 @@ def run_experiment(dyn: DynamicScene, x0: np.ndarray, sample_time: float
     s, from rest) at its length; return the unit's heave ``z`` (m, relative to the static
     depth, on the sample grid), the tensions at the unit and the top, and the Newton
     residual (:meth:`AxialCablePlant.run_open_loop`)."""
-    from cable_ocp.heave.cable_plant import AxialCablePlant
+    from cable_ocp.heave.cable_models import cable_plant
 
-    plant = AxialCablePlant(dyn, sample_time)
+    plant = cable_plant(dyn, sample_time)
     m = plant.substeps
     n = x0.size
     t = np.arange(n) * sample_time
@@ -162,10 +162,12 @@ def run_experiment(dyn: DynamicScene, x0: np.ndarray, sample_time: float
 
 
 def first_frequency(dyn: DynamicScene) -> float:
-    """First axial natural frequency of the line, rad/s (undamped, about the static state)."""
+    """First axial natural frequency of the line, rad/s (undamped, about the static state;
+    for a planar scene that of the same line hanging vertically, without the current)."""
     from cable_ocp.dynamics.axial import AxialModel
+    from cable_ocp.heave.cable_models import axial_twin
 
-    return float(AxialModel(dyn).modes(1).frequencies[0])
+    return float(AxialModel(axial_twin(dyn)).modes(1).frequencies[0])
 
 
 def identify_line(dyn: DynamicScene, *, excitation: str, amplitude: float,

@@ -586,7 +586,7 @@ def check(sc: HeaveScene) -> None:
 
 
 def _check_cable(sc: HeaveScene) -> None:
-    """The cable-scene keys: ``[unit] cable_scene`` readable and an axial line,
+    """The cable-scene keys: ``[unit] cable_scene`` readable and an axial or planar line,
     ``[simulation] plant = "cable"`` and ``[deployment]`` only with a cable scene."""
     if sc.unit.cable_scene is None:
         if sc.simulation.plant == "cable":
@@ -597,17 +597,31 @@ def _check_cable(sc: HeaveScene) -> None:
                                 "that is lowered, a dynamic scene)")
         return
     dyn = load_cable_scene(sc)
-    if dyn.simulation.model != "axial":
+    model = dyn.simulation.model
+    if model not in ("axial", "planar"):
         raise CableOCPError(
-            f"unit.cable_scene = {sc.unit.cable_scene!r}: its simulation.model = "
-            f"{dyn.simulation.model!r}; the heave plant and the identification use the axial "
-            'model (model = "axial"): a vertical line whose length the winch changes')
+            f"unit.cable_scene = {sc.unit.cable_scene!r}: its simulation.model = {model!r}; "
+            'the heave plant and the identification take model = "axial" (a vertical line) '
+            'or "planar" (a line in the x-z plane, in a current along x): the lumped-mass '
+            "model has fixed segment lengths, so the winch cannot pay cable in or out")
+    if model == "planar" and sc.deployment is not None:
+        raise CableOCPError(
+            f"[deployment] with unit.cable_scene = {sc.unit.cable_scene!r}: its "
+            'simulation.model = "planar"; a deployment (a changing length, a schedule over '
+            'lengths) needs model = "axial"')
+    if model == "planar" and dyn.unit is None:
+        raise CableOCPError(f"unit.cable_scene = {sc.unit.cable_scene!r}: needs a [unit] at "
+                            "end_a (the unit the winch lifts), not an anchor")
     from cable_ocp.dynamics.axial import check_axial
+    from cable_ocp.dynamics.planar import check_planar
 
     try:
-        check_axial(dyn)
+        (check_axial if model == "axial" else check_planar)(dyn)
     except CableOCPError as exc:
-        raise CableOCPError(f"unit.cable_scene = {sc.unit.cable_scene!r}: {exc}") from None
+        note = (' (a lumped3d cable scene cannot be the heave plant: axial or planar only)'
+                if "lumped3d" in str(exc) else "")
+        raise CableOCPError(f"unit.cable_scene = {sc.unit.cable_scene!r}: {exc}{note}"
+                            ) from None
     h = sc.controller.sample_time
     ratio = h / dyn.simulation.time_step
     if abs(ratio - round(ratio)) > 1e-9 * max(1.0, ratio) or round(ratio) < 1:
