@@ -95,11 +95,17 @@ class StaticsRunner(Runner):
         from cable_ocp.statics.solver import SolveSession
 
         self.session = SolveSession()
+        self._last = -2
 
     def _run(self, case: Case) -> tuple[str, str, dict[str, Any]]:
         from cable_ocp.scene import scene_from_dict
 
-        sol = self.session.solve(scene_from_dict(self._data(case)))
+        # warm from the previous case only when it is this case's neighbour in the batch
+        # order (a chunk that starts elsewhere in the grid starts cold: cheaper than a
+        # warm start from far)
+        warm = case.index == self._last + 1
+        self._last = case.index
+        sol = self.session.solve(scene_from_dict(self._data(case)), warm=warm)
         if not np.all(np.isfinite(sol.tension_vector)):
             return sol.status, sol.message, {}
         ta, tb = sol.tension_vector[0], sol.tension_vector[-1]

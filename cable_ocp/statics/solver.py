@@ -1008,8 +1008,9 @@ def solve(scene: Scene | str | Path | dict[str, Any], overrides: dict[str, Any] 
 
 class SolveSession:
     """Solve many scenes in a row, as a load-case batch does: each solver is built once per
-    scene structure and kept, and each solve starts from the previous converged solution of
-    the same structure, falling back to a cold start when the warm start fails.
+    scene structure and kept, and each solve starts from the previous converged solution
+    when the solve just before was of the same structure, falling back to a cold start when
+    the warm start fails.
 
     Parameters
     ----------
@@ -1021,13 +1022,20 @@ class SolveSession:
         self.error_estimate = error_estimate
         self._caches: dict[tuple, dict[tuple, StaticsSolver]] = {}
         self._prev: dict[tuple, StaticsSolution] = {}
+        self._last_key: tuple | None = None
 
-    def solve(self, scene: Scene) -> StaticsSolution:
-        """Solve ``scene`` (any method; collocation and shooting reuse their solvers)."""
+    def solve(self, scene: Scene, warm: bool = True) -> StaticsSolution:
+        """Solve ``scene`` (any method; collocation and shooting reuse their solvers);
+        ``warm=False`` starts cold (the previous solution is no neighbour of this scene:
+        a warm start from far costs more than a cold one)."""
         key = (_structure_key(scene) if scene.solver.method in ("collocation",
                                                                  "multiple_shooting")
                else ("method", scene.solver.method))
-        prev = self._prev.get(key)
+        # warm only from the solve just before, of the same structure: an older solution of
+        # this structure (before other structures were solved) is no neighbour, and a warm
+        # start from far fails slowly (seconds) before the cold start
+        prev = self._prev.get(key) if warm and key == self._last_key else None
+        self._last_key = key
         if key[0] == "method":
             sol = solve(scene, warm_start=prev)
             if prev is not None and not sol.converged:
