@@ -27,7 +27,7 @@ from collections.abc import Callable
 
 import casadi as ca
 
-__all__ = ["cache_dir", "c_compiler", "compile_function", "is_compiled"]
+__all__ = ["cache_dir", "c_compiler", "compile_function", "compile_functions", "is_compiled"]
 
 #: values of ``CABLE_OCP_CACHE`` that turn the compilation to C off
 CACHE_OFF = ("0", "off", "false", "no")
@@ -156,3 +156,50 @@ def compile_function(fn: ca.Function | Callable[[], ca.Function], opt: str = "-O
         if tmp is not None:
             shutil.rmtree(tmp, ignore_errors=True)
 
+
+
+def compile_functions(fns: list[ca.Function], opt: str = "-O1",
+                      prefix: str = "") -> list[ca.Function]:
+    """Compile several CasADi Functions into one shared library cached in
+    :func:`cache_dir` (named by the hash of the generated code); return them as
+    ``casadi.external``.
+
+    The library is named ``prefix`` + the first function's name. Returns ``fns`` unchanged
+    (interpreted: the same numbers, slower) whenever :func:`compile_function` would fall
+    back: compiling off, no compiler, an unwritable cache, a failing compiler or loading.
+    Silent.
+    """
+    cache = cache_dir()
+    cc = c_compiler()
+    if cache is None or cc is None or not fns:
+        return fns
+    tmp = None
+    try:
+        tmp = tempfile.mkdtemp(prefix="cable_ocp_")
+        name = prefix + fns[0].name()
+        cg = ca.CodeGenerator(f"{name}.c", {"with_header": False})
+        for fn in fns:
+            cg.add(fn)
+        cg.generate(tmp + os.sep)
+        src = os.path.join(tmp, f"{name}.c")
+        with open(src, "rb") as fh:
+            digest = hashlib.sha256(fh.read() + ca.__version__.encode()
+                                    + opt.encode()).hexdigest()[:16]
+        os.makedirs(cache, exist_ok=True)
+        lib = _library(cache, name, digest)
+        if not os.path.exists(lib):
+            part = lib + f".{os.getpid()}.tmp"
+            try:
+                subprocess.run([*cc, opt, "-fPIC", "-shared", src, "-o", part, "-lm"],
+                               check=True, capture_output=True, timeout=600,
+                               stdin=subprocess.DEVNULL)
+                os.replace(part, lib)
+            finally:
+                if os.path.exists(part):
+                    os.remove(part)
+        return [ca.external(fn.name(), lib) for fn in fns]
+    except Exception:  # noqa: BLE001 - any failure: the interpreted functions
+        return fns
+    finally:
+        if tmp is not None:
+            shutil.rmtree(tmp, ignore_errors=True)

@@ -45,6 +45,7 @@ import casadi as ca
 import numpy as np
 from scipy import linalg
 
+from cable_ocp.compile import compile_functions
 from cable_ocp.dynamics.axial import AxialModel, static_profile
 from cable_ocp.dynamics.scene import DynamicScene
 from cable_ocp.errors import CableOCPError
@@ -357,67 +358,13 @@ def _block_tridiagonal_solve(jac: ca.SX, r: ca.SX, n: int) -> ca.SX:
     return ca.vertcat(*sol)
 
 
-def _cache_dir() -> str | None:
-    """Directory of the compiled-C cache, or None when compiling is off; the conventions of
-    the lumped-mass model (:mod:`cable_ocp.dynamics.lumped`): ``CABLE_OCP_CACHE=0`` (or
-    off/false/no) turns it off, ``CABLE_OCP_CACHE_DIR`` names the directory, an older
-    ``CABLE_OCP_CACHE=PATH`` is read as the directory too; default
-    ``$XDG_CACHE_HOME/cable_ocp`` or ~/.cache/cable_ocp."""
-    import os
-
-    flag = os.environ.get("CABLE_OCP_CACHE", "").strip()
-    if flag.lower() in ("0", "off", "false", "no") or os.environ.get("CABLE_OCP_NO_COMPILE"):
-        return None
-    if os.environ.get("CABLE_OCP_CACHE_DIR"):
-        return os.environ["CABLE_OCP_CACHE_DIR"]
-    if flag and flag.lower() not in ("1", "on", "true", "yes"):
-        return flag
-    return os.path.join(
-        os.environ.get("XDG_CACHE_HOME") or os.path.join(os.path.expanduser("~"), ".cache"),
-        "cable_ocp")
-
-
 def _compile(fns: list[ca.Function], flags: str = "-O1") -> list[ca.Function]:
-    """Compile CasADi functions to one shared library (C code generation, ``cc -O1``: on the
-    generated straight-line code ``-O2`` is no faster and compiles as slowly), cached by the
-    hash of the code in :func:`_cache_dir`. Returns the functions unchanged when compiling is
+    """Compile the plant's functions to one shared library (``cc -O1``: on the generated
+    straight-line code ``-O2`` is no faster and compiles as slowly), cached
+    (:func:`cable_ocp.compile.compile_functions`). Returns them unchanged when compiling is
     off (``CABLE_OCP_CACHE=0``), no compiler is found or anything fails (the interpreted
     functions compute the same numbers, about 5x slower)."""
-    import hashlib
-    import os
-    import shutil
-    import subprocess
-    import tempfile
-
-    cache = _cache_dir()
-    if cache is None:
-        return fns
-    cc = os.environ.get("CC") or shutil.which("cc") or shutil.which("gcc")
-    if not cc:
-        return fns
-    tmp = tempfile.mkdtemp(prefix="cable_ocp_")
-    try:
-        name = "heave_" + fns[0].name()
-        cg = ca.CodeGenerator(f"{name}.c", {"with_header": False})
-        for fn in fns:
-            cg.add(fn)
-        cg.generate(tmp + os.sep)
-        src = os.path.join(tmp, f"{name}.c")
-        with open(src, "rb") as fh:
-            digest = hashlib.sha256(fh.read() + ca.__version__.encode()
-                                    + flags.encode()).hexdigest()[:16]
-        os.makedirs(cache, exist_ok=True)
-        lib = os.path.join(cache, f"{name}_{digest}.so")
-        if not os.path.exists(lib):
-            part = lib + f".{os.getpid()}.tmp"
-            subprocess.run([cc, flags, "-fPIC", "-shared", src, "-o", part, "-lm"],
-                           check=True, capture_output=True, timeout=600)
-            os.replace(part, lib)
-        return [ca.external(fn.name(), lib) for fn in fns]
-    except Exception:  # noqa: BLE001 - any failure: the interpreted functions
-        return fns
-    finally:
-        shutil.rmtree(tmp, ignore_errors=True)
+    return compile_functions(fns, flags, prefix="heave_")
 
 
 # ------------------------------------------------------------------------------------------
