@@ -52,6 +52,7 @@ from cable_ocp.errors import CableOCPError
 from cable_ocp.heave import mpc as mpc_mod
 from cable_ocp.heave import plant as pl
 from cable_ocp.heave.discrete import DelayedDiscreteModel, discretize_delayed, discretize_noise
+from cable_ocp.heave.simulate import Comparison
 from cable_ocp.heave.stochastic import WHITE_NOISE_INTENSITY, discrete_delay_lqr
 from cable_ocp.scene.heave import HeaveScene
 
@@ -848,7 +849,7 @@ def run_loop(sc: HeaveScene, plant: Any, ctrl: _Ctrl, wave: Wave, noise: np.ndar
 # ------------------------------------------------------------------------------------------
 
 @dataclass(frozen=True)
-class CableComparison:
+class CableComparison(Comparison):
     """Result of :func:`compare_cable` (the fields of
     :class:`cable_ocp.heave.simulate.Comparison` plus the cable's).
 
@@ -869,24 +870,8 @@ class CableComparison:
         The runs on the design model (same estimator, sensors, noise, sea).
     """
 
-    sigma_uncontrolled: float | None
-    metrics: dict
-    traces: dict
-    models: Any
-    mpc_solve_times: np.ndarray | None
-    mpc_failures: int
-    statuses: dict = field(default_factory=dict)
-    messages: dict = field(default_factory=dict)
-    passive_heave_rms: float | None = None
-    warnings: list = field(default_factory=list)
     json_extra: dict = field(default_factory=dict)
     predicted_traces: dict = field(default_factory=dict)
-
-    @property
-    def status(self) -> str:
-        """``"solved"`` when every controller is, else the first other status."""
-        bad = [s for s in self.statuses.values() if s != "solved"]
-        return bad[0] if bad else "solved"
 
 
 #: the smallest damping b (s) a design takes: an identified b below it (a line without drag
