@@ -4,12 +4,11 @@ and as batches on 1 and 2 local workers, in one run.
 
 One untimed pass builds the solvers' functions; then the bare loop (a new SolveSession,
 as each batch worker starts one) and each batch run ``repeats`` times, the fastest
-counted: the bare warm solve the batch is compared with. Per-case overhead = (batch wall time on
-one worker - bare wall time) / cases: everything the batch adds to each case (the worker
-process, its own solver build, pipes, rows written as they arrive, cold starts at chunk
-boundaries), and, separately, the machinery's own share: wall time minus the cases' own
-run time (each row's ``wall_time_s``). Speed-up = batch time on one worker / batch time on
-two. The load average
+counted. The batch on one worker is compared with the bare warm loop two ways: the
+difference of their wall times per case (everything the batch adds, its cases' own
+run-to-run spread included), and the machinery's own share, wall time minus the cases'
+own run time (each row's ``wall_time_s``): the worker process, pipes, rows written as
+they arrive. Speed-up = batch time on one worker / batch time on two. The load average
 is recorded: the speed-up needs the cores to be free.
 """
 
@@ -59,25 +58,31 @@ def run(n_angles: int = 20, n_speeds: int = 10, workers: tuple[int, ...] = (1, 2
     rows = [{"run": "bare warm loop (this process)", "workers": 0, "wall_s": bare,
              "per_case_ms": 1e3 * bare / n, "solve_ms": 1e3 * bare / n, "speedup": None,
              "overhead_ms": None, "solved": None}]
-    times: dict[int, float] = {}
-    solve: dict[int, float] = {}
-    for w in workers:
-        if progress:
-            progress(f"batch on {w} worker(s)")
-        times[w] = math.inf
+    times: dict[tuple[str, int], float] = {}
+    solve: dict[tuple[str, int], float] = {}
+
+    def fastest(label: str, key: tuple[str, int], **kw: Any) -> None:
+        """Run the batch ``repeats`` times; keep the fastest run's wall and case times."""
+        times[key] = math.inf
         for _ in range(repeats):
             with tempfile.TemporaryDirectory() as tmp:
                 t0 = time.perf_counter()
-                res = run_batch(data, ranges=ranges, workers=w, out=Path(tmp) / "b")
+                res = run_batch(data, ranges=ranges, out=Path(tmp) / "b", **kw)
                 wall = time.perf_counter() - t0
-            if wall < times[w]:
-                times[w] = wall
-                solve[w] = sum(r["wall_time_s"] for r in res.rows)
-        rows.append({"run": f"batch, {w} local worker(s)", "workers": w, "wall_s": times[w],
-                     "per_case_ms": 1e3 * times[w] / n, "solve_ms": 1e3 * solve[w] / n,
-                     "speedup": times[1] / times[w] if 1 in times else None,
-                     "overhead_ms": 1e3 * (times[w] * w - solve[w]) / n,
-                     "solved": sum(r["status"] == "solved" for r in res.rows)})
+            if wall < times[key]:
+                times[key], solve[key] = wall, sum(r["wall_time_s"] for r in res.rows)
+                solved = sum(r["status"] == "solved" for r in res.rows)
+        w, one = key[1], times.get(("local", 1))
+        rows.append({"run": label, "workers": w, "wall_s": times[key],
+                     "per_case_ms": 1e3 * times[key] / n, "solve_ms": 1e3 * solve[key] / n,
+                     "speedup": None if one is None else one / times[key],
+                     "overhead_ms": 1e3 * (times[key] * w - solve[key]) / n,
+                     "solved": solved})
+
+    for w in workers:
+        if progress:
+            progress(f"batch on {w} worker(s)")
+        fastest(f"batch, {w} local worker(s)", ("local", w), workers=w)
     if dask_workers:
         if progress:
             progress(f"batch on a dask LocalCluster of {dask_workers} worker(s)")
@@ -86,20 +91,10 @@ def run(n_angles: int = 20, n_speeds: int = 10, workers: tuple[int, ...] = (1, 2
         with LocalCluster(n_workers=dask_workers, threads_per_worker=1, processes=True,
                           dashboard_address=None) as cluster, Client(cluster) as client:
             run_batch(data, ranges=ranges, scheduler=client)  # workers build (not timed)
-            best = math.inf
-            for _ in range(repeats):
-                t0 = time.perf_counter()
-                res = run_batch(data, ranges=ranges, scheduler=client)
-                wall = time.perf_counter() - t0
-                if wall < best:
-                    best, dsolve = wall, sum(r["wall_time_s"] for r in res.rows)
-        rows.append({"run": f"batch, dask LocalCluster, {dask_workers} worker(s)",
-                     "workers": dask_workers, "wall_s": best, "per_case_ms": 1e3 * best / n,
-                     "solve_ms": 1e3 * dsolve / n,
-                     "speedup": times[1] / best if 1 in times else None,
-                     "overhead_ms": 1e3 * (best * dask_workers - dsolve) / n,
-                     "solved": sum(r["status"] == "solved" for r in res.rows)})
-    one = times.get(1)
+            fastest(f"batch, dask LocalCluster, {dask_workers} worker(s)",
+                    ("dask", dask_workers), scheduler=client)
+    one, two = times.get(("local", 1)), times.get(("local", 2))
+    one_solve = solve.get(("local", 1), 0.0)
     summary = {
         "cases": n,
         "load_average": list(os.getloadavg()) if hasattr(os, "getloadavg") else None,
@@ -107,11 +102,11 @@ def run(n_angles: int = 20, n_speeds: int = 10, workers: tuple[int, ...] = (1, 2
         "bare_per_case_ms": 1e3 * bare / n,
         # what the machinery adds per case on one worker: wall time minus the cases' own
         # run time (process start, pipes, rows written, bookkeeping)
-        "overhead_per_case_ms": None if one is None else 1e3 * (one - solve[1]) / n,
-        "overhead_fraction": None if one is None else (one - solve[1]) / bare,
+        "overhead_per_case_ms": None if one is None else 1e3 * (one - one_solve) / n,
+        "overhead_fraction": None if one is None else (one - one_solve) / bare,
         # the cases' own run time in the batch against the bare loop (warm starts intact)
-        "solve_in_batch_per_case_ms": None if one is None else 1e3 * solve[1] / n,
+        "solve_in_batch_per_case_ms": None if one is None else 1e3 * one_solve / n,
         "difference_to_bare_per_case_ms": None if one is None else 1e3 * (one - bare) / n,
-        "speedup_2_workers": None if one is None or 2 not in times else one / times[2],
+        "speedup_2_workers": None if one is None or two is None else one / two,
     }
     return {"rows": rows, "summary": summary}
