@@ -75,6 +75,39 @@ def _library(cache: str, name: str, digest: str) -> str:
     return os.path.join(cache, f"{name}_{digest}.so")
 
 
+def _build_library(fns: list[ca.Function], name: str, cache: str, cc: list[str], opt: str,
+                   lib: str | None = None) -> str:
+    """Generate the C code of ``fns`` as one file, compile it into ``lib`` (default: named
+    by the hash of the code) unless that library exists, and return its path. Raises on
+    any failure (the callers fall back to the interpreted functions)."""
+    tmp = tempfile.mkdtemp(prefix="cable_ocp_")
+    try:
+        cg = ca.CodeGenerator(f"{name}.c", {"with_header": False})
+        for fn in fns:
+            cg.add(fn)
+        cg.generate(tmp + os.sep)
+        src = os.path.join(tmp, f"{name}.c")
+        if lib is None:
+            with open(src, "rb") as fh:
+                digest = hashlib.sha256(fh.read() + ca.__version__.encode()
+                                        + opt.encode()).hexdigest()[:16]
+            lib = _library(cache, name, digest)
+        os.makedirs(cache, exist_ok=True)
+        if not os.path.exists(lib):
+            part = lib + f".{os.getpid()}.tmp"
+            try:
+                subprocess.run([*cc, opt, "-fPIC", "-shared", src, "-o", part, "-lm"],
+                               check=True, capture_output=True, timeout=600,
+                               stdin=subprocess.DEVNULL)
+                os.replace(part, lib)
+            finally:
+                if os.path.exists(part):
+                    os.remove(part)
+        return lib
+    finally:
+        shutil.rmtree(tmp, ignore_errors=True)
+
+
 def compile_function(fn: ca.Function | Callable[[], ca.Function], opt: str = "-O2",
                      key: str | None = None, name: str | None = None) -> ca.Function:
     """Compile a CasADi Function to a shared library cached in :func:`cache_dir`; return
@@ -125,37 +158,10 @@ def compile_function(fn: ca.Function | Callable[[], ca.Function], opt: str = "-O
     else:
         lib = None
     f = built()
-    tmp = None
     try:
-        tmp = tempfile.mkdtemp(prefix="cable_ocp_")
-        fname = f.name()
-        cg = ca.CodeGenerator(f"{fname}.c", {"with_header": False})
-        cg.add(f)
-        cg.generate(tmp + os.sep)
-        src = os.path.join(tmp, f"{fname}.c")
-        if lib is None:
-            with open(src, "rb") as fh:
-                digest = hashlib.sha256(fh.read() + ca.__version__.encode()
-                                        + opt.encode()).hexdigest()[:16]
-            lib = _library(cache, fname, digest)
-        os.makedirs(cache, exist_ok=True)
-        if not os.path.exists(lib):
-            part = lib + f".{os.getpid()}.tmp"
-            try:
-                subprocess.run([*cc, opt, "-fPIC", "-shared", src, "-o", part, "-lm"],
-                               check=True, capture_output=True, timeout=600,
-                               stdin=subprocess.DEVNULL)
-                os.replace(part, lib)
-            finally:
-                if os.path.exists(part):
-                    os.remove(part)
-        return ca.external(fname, lib)
+        return ca.external(f.name(), _build_library([f], f.name(), cache, cc, opt, lib))
     except Exception:  # noqa: BLE001 - any failure: fall back to the interpreted function
         return f
-    finally:
-        if tmp is not None:
-            shutil.rmtree(tmp, ignore_errors=True)
-
 
 
 def compile_functions(fns: list[ca.Function], opt: str = "-O1",
@@ -173,33 +179,9 @@ def compile_functions(fns: list[ca.Function], opt: str = "-O1",
     cc = c_compiler()
     if cache is None or cc is None or not fns:
         return fns
-    tmp = None
+    name = prefix + fns[0].name()
     try:
-        tmp = tempfile.mkdtemp(prefix="cable_ocp_")
-        name = prefix + fns[0].name()
-        cg = ca.CodeGenerator(f"{name}.c", {"with_header": False})
-        for fn in fns:
-            cg.add(fn)
-        cg.generate(tmp + os.sep)
-        src = os.path.join(tmp, f"{name}.c")
-        with open(src, "rb") as fh:
-            digest = hashlib.sha256(fh.read() + ca.__version__.encode()
-                                    + opt.encode()).hexdigest()[:16]
-        os.makedirs(cache, exist_ok=True)
-        lib = _library(cache, name, digest)
-        if not os.path.exists(lib):
-            part = lib + f".{os.getpid()}.tmp"
-            try:
-                subprocess.run([*cc, opt, "-fPIC", "-shared", src, "-o", part, "-lm"],
-                               check=True, capture_output=True, timeout=600,
-                               stdin=subprocess.DEVNULL)
-                os.replace(part, lib)
-            finally:
-                if os.path.exists(part):
-                    os.remove(part)
+        lib = _build_library(fns, name, cache, cc, opt)
         return [ca.external(fn.name(), lib) for fn in fns]
     except Exception:  # noqa: BLE001 - any failure: the interpreted functions
         return fns
-    finally:
-        if tmp is not None:
-            shutil.rmtree(tmp, ignore_errors=True)

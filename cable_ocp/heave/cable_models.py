@@ -33,7 +33,7 @@ import numpy as np
 from cable_ocp.dynamics.planar import PlanarModel
 from cable_ocp.dynamics.scene import DynamicScene, dynamic_scene_from_dict
 from cable_ocp.errors import CableOCPError
-from cable_ocp.heave.cable_plant import AxialCablePlant, _compile
+from cable_ocp.heave.cable_plant import AxialCablePlant, SampledCablePlant, _compile
 
 __all__ = ["HALVINGS", "PLANT_MODELS", "PlanarCablePlant", "axial_twin", "cable_plant"]
 
@@ -115,7 +115,7 @@ class _SteppedPlanar(PlanarModel):
         self.motion = motion
 
 
-class PlanarCablePlant:
+class PlanarCablePlant(SampledCablePlant):
     """The planar cable model (Huang (1992), ch. 4) advanced one control sample per call.
 
     The boom-tip heave moves the top (end_b) vertically, the winch output ``u`` pays cable
@@ -143,6 +143,8 @@ class PlanarCablePlant:
     sample_time : float
         Control sample ``h``, s.
     """
+
+    _chunk_name = "planar_chunk"
 
     #: the cable scene's ``simulation.model`` of this plant
     model_name = "planar"
@@ -332,54 +334,3 @@ class PlanarCablePlant:
         if length is not None and abs(length - self.length0) > 1e-9 * self.length0:
             self.static_unit_height(length)  # raises
         return self._t_static
-
-    def advance(self, x: np.ndarray, lengths: np.ndarray, tops: np.ndarray
-                ) -> tuple[np.ndarray, dict[str, Any]]:
-        """Advance one sample (as :meth:`AxialCablePlant.advance`)."""
-        m = self.substeps
-        P = np.empty(4 * m)
-        P[0::4] = lengths[:-1]
-        P[1::4] = lengths[1:]
-        P[2::4] = tops[:-1]
-        P[3::4] = tops[1:]
-        r = self._flat(x, P).full().ravel()
-        n2 = x.size
-        out = {"z_unit": r[n2: n2 + m], "v_unit": r[n2 + m: n2 + 2 * m],
-               "t_unit": r[n2 + 2 * m: n2 + 3 * m], "t_top": r[n2 + 3 * m: n2 + 4 * m],
-               "t_min": float(r[n2 + 4 * m]), "residual": float(r[n2 + 4 * m + 1])}
-        return r[:n2], out
-
-    def run_open_loop(self, lengths: np.ndarray, tops: np.ndarray,
-                      chunk: int = 200) -> dict[str, np.ndarray]:
-        """Run a prescribed top height and length from the static state (as
-        :meth:`AxialCablePlant.run_open_loop`): ``z_unit``, ``t_unit``, ``t_top`` on the
-        sub-step grid, ``t_min`` and ``residual`` over the run."""
-        m = self.substeps
-        nk = (len(lengths) - 1) // m
-        if nk * m + 1 != len(lengths) or len(tops) != len(lengths):
-            raise CableOCPError("run_open_loop: lengths and tops need K * substeps + 1 points")
-        x = self.initial_state()
-        t_u0, t_t0 = self._t_static
-        z = [np.array([self._z_static + tops[0] - self.z_top0])]
-        tu, tt = [np.array([t_u0])], [np.array([t_t0])]
-        t_min, rmax = min(t_u0, t_t0), 0.0
-        done = 0
-        while done < nk:
-            k = min(chunk, nk - done)
-            if k not in self._chunks:
-                self._chunks[k] = self._sample.mapaccum("planar_chunk", k)
-            i0 = done * m
-            L = lengths[i0: i0 + k * m + 1]
-            T = tops[i0: i0 + k * m + 1]
-            P = np.empty((4, k * m))
-            P[0], P[1], P[2], P[3] = L[:-1], L[1:], T[:-1], T[1:]
-            r = self._chunks[k](x, P)
-            x = np.asarray(r[0])[:, -1]
-            z.append(np.asarray(r[1]).ravel())
-            tu.append(np.asarray(r[3]).ravel())
-            tt.append(np.asarray(r[4]).ravel())
-            t_min = min(t_min, float(np.min(np.asarray(r[5]))))
-            rmax = max(rmax, float(np.max(np.asarray(r[6]))))
-            done += k
-        return {"z_unit": np.concatenate(z), "t_unit": np.concatenate(tu),
-                "t_top": np.concatenate(tt), "t_min": t_min, "residual": rmax}

@@ -100,7 +100,93 @@ class _SteppedAxial(AxialModel):
         self.motion = motion
 
 
-class AxialCablePlant:
+class SampledCablePlant:
+    """What the heave loop needs of a cable plant stepped one control sample per call:
+    :meth:`advance` (one sample from the state) and :meth:`run_open_loop` (a prescribed
+    top and length, for the identification), on top of a subclass's ``_flat`` (one sample,
+    flat outputs), ``_sample`` (one sample, for ``mapaccum``), ``substeps``, ``length0``,
+    ``z_top0``, :meth:`initial_state`, :meth:`static_unit_height` and
+    :meth:`static_tensions`."""
+
+    substeps: int
+    length0: float
+    z_top0: float
+    _chunk_name = "cable_chunk"
+
+    def advance(self, x: np.ndarray, lengths: np.ndarray, tops: np.ndarray
+                ) -> tuple[np.ndarray, dict[str, Any]]:
+        """Advance one sample.
+
+        Parameters
+        ----------
+        x : numpy.ndarray
+            State (``2 N``).
+        lengths, tops : numpy.ndarray, shape (substeps + 1,)
+            Unstretched length (m) and sheave height (m) at the sub-step points of the
+            sample, start included.
+
+        Returns
+        -------
+        x_next : numpy.ndarray
+        out : dict
+            ``z_unit``, ``v_unit``, ``t_unit``, ``t_top`` (m, m/s, N, N at the ends of the
+            sub-steps, shape (substeps,)), ``t_min`` (smallest element tension, N) and
+            ``residual`` (largest scaled Newton residual).
+        """
+        m = self.substeps
+        P = np.empty(4 * m)
+        P[0::4] = lengths[:-1]
+        P[1::4] = lengths[1:]
+        P[2::4] = tops[:-1]
+        P[3::4] = tops[1:]
+        r = self._flat(x, P).full().ravel()
+        n2 = x.size
+        out = {"z_unit": r[n2: n2 + m], "v_unit": r[n2 + m: n2 + 2 * m],
+               "t_unit": r[n2 + 2 * m: n2 + 3 * m], "t_top": r[n2 + 3 * m: n2 + 4 * m],
+               "t_min": float(r[n2 + 4 * m]), "residual": float(r[n2 + 4 * m + 1])}
+        return r[:n2], out
+
+    def run_open_loop(self, lengths: np.ndarray, tops: np.ndarray,
+                      chunk: int = 200) -> dict[str, np.ndarray]:
+        """Run a prescribed top motion and length from the static state (identification).
+
+        ``lengths``, ``tops``: on the sub-step grid, ``K * substeps + 1`` points (K samples).
+        Returns ``z_unit``, ``t_unit``, ``t_top`` on that grid (the first point static) and
+        ``t_min``, ``residual`` (over the run). Chunks of samples are stepped by ``mapaccum``.
+        """
+        m = self.substeps
+        nk = (len(lengths) - 1) // m
+        if nk * m + 1 != len(lengths) or len(tops) != len(lengths):
+            raise CableOCPError("run_open_loop: lengths and tops need K * substeps + 1 points")
+        x = self.initial_state()
+        t_u0, t_t0 = self.static_tensions(float(lengths[0]))
+        z = [np.array([float(self.static_unit_height(self.length0)) + tops[0] - self.z_top0])]
+        tu, tt = [np.array([t_u0])], [np.array([t_t0])]
+        t_min, rmax = min(t_u0, t_t0), 0.0
+        done = 0
+        while done < nk:
+            k = min(chunk, nk - done)
+            if k not in self._chunks:
+                self._chunks[k] = self._sample.mapaccum(self._chunk_name, k)
+            i0 = done * m
+            L = lengths[i0: i0 + k * m + 1]
+            T = tops[i0: i0 + k * m + 1]
+            P = np.vstack([L[:-1], L[1:], T[:-1], T[1:]])
+            r = self._chunks[k](x, P)
+            x = np.asarray(r[0])[:, -1]
+            z.append(np.asarray(r[1]).ravel())
+            tu.append(np.asarray(r[3]).ravel())
+            tt.append(np.asarray(r[4]).ravel())
+            t_min = min(t_min, float(np.min(np.asarray(r[5]))))
+            rmax = max(rmax, float(np.max(np.asarray(r[6]))))
+            done += k
+        return {"z_unit": np.concatenate(z), "t_unit": np.concatenate(tu),
+                "t_top": np.concatenate(tt), "t_min": t_min, "residual": rmax}
+
+
+
+
+class AxialCablePlant(SampledCablePlant):
     """The axial cable model advanced one control sample per call (module docstring).
 
     Parameters
@@ -262,77 +348,6 @@ class AxialCablePlant:
         md = self.model
         length = self.length0 if length is None else length
         return md.unit_weight, md.unit_weight + md.w * length
-
-    def advance(self, x: np.ndarray, lengths: np.ndarray, tops: np.ndarray
-                ) -> tuple[np.ndarray, dict[str, Any]]:
-        """Advance one sample.
-
-        Parameters
-        ----------
-        x : numpy.ndarray
-            State (``2 N``).
-        lengths, tops : numpy.ndarray, shape (substeps + 1,)
-            Unstretched length (m) and sheave height (m) at the sub-step points of the
-            sample, start included.
-
-        Returns
-        -------
-        x_next : numpy.ndarray
-        out : dict
-            ``z_unit``, ``v_unit``, ``t_unit``, ``t_top`` (m, m/s, N, N at the ends of the
-            sub-steps, shape (substeps,)), ``t_min`` (smallest element tension, N) and
-            ``residual`` (largest scaled Newton residual).
-        """
-        m = self.substeps
-        P = np.empty(4 * m)
-        P[0::4] = lengths[:-1]
-        P[1::4] = lengths[1:]
-        P[2::4] = tops[:-1]
-        P[3::4] = tops[1:]
-        r = self._flat(x, P).full().ravel()
-        n2 = x.size
-        out = {"z_unit": r[n2: n2 + m], "v_unit": r[n2 + m: n2 + 2 * m],
-               "t_unit": r[n2 + 2 * m: n2 + 3 * m], "t_top": r[n2 + 3 * m: n2 + 4 * m],
-               "t_min": float(r[n2 + 4 * m]), "residual": float(r[n2 + 4 * m + 1])}
-        return r[:n2], out
-
-    def run_open_loop(self, lengths: np.ndarray, tops: np.ndarray,
-                      chunk: int = 200) -> dict[str, np.ndarray]:
-        """Run a prescribed top motion and length from the static state (identification).
-
-        ``lengths``, ``tops``: on the sub-step grid, ``K * substeps + 1`` points (K samples).
-        Returns ``z_unit``, ``t_unit``, ``t_top`` on that grid (the first point static) and
-        ``t_min``, ``residual`` (over the run). Chunks of samples are stepped by ``mapaccum``.
-        """
-        m = self.substeps
-        nk = (len(lengths) - 1) // m
-        if nk * m + 1 != len(lengths) or len(tops) != len(lengths):
-            raise CableOCPError("run_open_loop: lengths and tops need K * substeps + 1 points")
-        x = self.initial_state()
-        t_u0, t_t0 = self.static_tensions(float(lengths[0]))
-        z = [np.array([float(self.static_unit_height(self.length0)) + tops[0] - self.z_top0])]
-        tu, tt = [np.array([t_u0])], [np.array([t_t0])]
-        t_min, rmax = min(t_u0, t_t0), 0.0
-        done = 0
-        while done < nk:
-            k = min(chunk, nk - done)
-            if k not in self._chunks:
-                self._chunks[k] = self._sample.mapaccum("cable_chunk", k)
-            i0 = done * m
-            L = lengths[i0: i0 + k * m + 1]
-            T = tops[i0: i0 + k * m + 1]
-            P = np.vstack([L[:-1], L[1:], T[:-1], T[1:]])
-            r = self._chunks[k](x, P)
-            x = np.asarray(r[0])[:, -1]
-            z.append(np.asarray(r[1]).ravel())
-            tu.append(np.asarray(r[3]).ravel())
-            tt.append(np.asarray(r[4]).ravel())
-            t_min = min(t_min, float(np.min(np.asarray(r[5]))))
-            rmax = max(rmax, float(np.max(np.asarray(r[6]))))
-            done += k
-        return {"z_unit": np.concatenate(z), "t_unit": np.concatenate(tu),
-                "t_top": np.concatenate(tt), "t_min": t_min, "residual": rmax}
-
 
 def _inv2(m: ca.SX) -> ca.SX:
     a, b, c, d = m[0, 0], m[0, 1], m[1, 0], m[1, 1]
