@@ -108,6 +108,7 @@ from cable_ocp.scene.fields import check_keys as _check_keys
 from cable_ocp.scene.fields import number as _number
 from cable_ocp.scene.fields import require as _require
 from cable_ocp.scene.files import check_kind, read_problem
+from cable_ocp.scene.statics import TOP_LEVEL_TABLES
 
 __all__ = [
     "DEFAULT_SCHEME",
@@ -783,6 +784,11 @@ def dynamic_scene_from_dict(data: dict[str, Any]) -> DynamicScene:
     if "layout" in data:
         raise CableOCPError("[layout] is not supported in a dynamic scene: give "
                             "end_b.position directly")
+    tables = sorted((set(TOP_LEVEL_TABLES) - {"footprint", "layout"}) | set(DYNAMIC_TABLES))
+    unknown = sorted(set(data) - set(tables))
+    if unknown:
+        raise CableOCPError(f"unknown top-level table [{unknown[0]}]; valid in a dynamic "
+                            f"scene: {', '.join(tables)}")
     stat, dyn = _strip_dynamic(data)
     for name in ("environment", "cable"):
         if name not in stat:

@@ -270,6 +270,9 @@ _SCHEMA: dict[str, Any] = {
         "compile",
     },
 }
+
+#: the top-level tables of a statics scene
+TOP_LEVEL_TABLES: tuple[str, ...] = tuple(_SCHEMA)
 _CURRENT_KEYS = {"speed", "heading_deg", "profile"}
 _SEGMENT_KEYS = {"length", "diameter", "weight_in_water", "axial_stiffness", "normal_drag",
                  "tangential_drag", "intervals", "bending_stiffness"}

@@ -104,6 +104,17 @@ def test_unknown_key_lists_the_valid_ones() -> None:
     assert "time_step" in str(exc.value) and "segments" in str(exc.value)
 
 
+def test_unknown_table_lists_the_dynamic_scene_tables() -> None:
+    """An unknown top-level table names the tables a dynamic scene takes (the dynamic ones
+    included, not the statics list)."""
+    with pytest.raises(CableOCPError) as exc:
+        dynamic_scene_from_dict(with_("nonsense.key", 1))
+    msg = str(exc.value)
+    assert "[nonsense]" in msg
+    assert all(t in msg for t in ("simulation", "top_motion", "unit", "cable"))
+    assert "footprint" not in msg and "layout" not in msg
+
+
 def test_added_mass_needs_a_diameter_and_zero_is_valid() -> None:
     d = with_("cable.diameter", None)
     d["cable"].pop("tangential_drag")
