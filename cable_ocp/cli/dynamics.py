@@ -11,6 +11,7 @@ import numpy as np
 
 from cable_ocp.cli import output as out
 from cable_ocp.errors import CableOCPError
+from cable_ocp.scene.cost import dynamics_cost
 
 
 def register(sub: argparse._SubParsersAction, parent: argparse.ArgumentParser) -> None:
@@ -35,6 +36,7 @@ def register(sub: argparse._SubParsersAction, parent: argparse.ArgumentParser) -
     s.add_argument("--netcdf", metavar="PATH",
                    help="write the full time series as netCDF (needs xarray and netCDF4 or "
                         "scipy's netCDF3 writer)")
+    out.add_force_option(s)
     s.set_defaults(func=cmd_simulate)
 
     m = sub.add_parser(
@@ -55,6 +57,7 @@ def register(sub: argparse._SubParsersAction, parent: argparse.ArgumentParser) -
                            "\"shape\"}]}) or the chart")
     out.add_csv_option(m, "the frequencies (and the chart's rows with --lengths)")
     out.add_plot_option(m, "the mode shapes, or the deployment chart with --lengths")
+    out.add_force_option(m)
     m.set_defaults(func=cmd_modes)
 
 
@@ -76,6 +79,7 @@ def cmd_simulate(args: argparse.Namespace) -> int:
         except ImportError:
             raise CableOCPError("--netcdf needs xarray: pip install xarray") from None
     scene = _load(args)
+    out.check_cost(args, dynamics_cost(scene))
     with out.progress(args, 1, f"simulate ({scene.simulation.model})", "step") as bar:
         res = simulate(scene, progress=lambda done, total: bar(done, total))
     title = scene.statics.meta.get("title", Path(args.file).stem)
@@ -196,6 +200,7 @@ def cmd_modes(args: argparse.Namespace) -> int:
         raise CableOCPError(f"--count {args.count}: give 1..200")
     lengths = _parse_lengths(args.lengths) if args.lengths else None
     scene = _load(args)
+    out.check_cost(args, dynamics_cost(scene, lengths=1 if lengths is None else len(lengths)))
     title = scene.statics.meta.get("title", Path(args.file).stem)
     if lengths is not None:
         out.note(args, f"modes: {len(lengths)} lengths, one static solve and eigenproblem "

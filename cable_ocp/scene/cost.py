@@ -229,3 +229,43 @@ def _cable_cost(sc: Any, cost: Cost, runs: int) -> None:
     steps = dur / dt
     cost.add(f"{what} ({steps:.0f} steps of a {n}-element line each)",
              nruns * steps * per_step, 8.0 * steps * 12 * nruns, keys)
+
+
+# --- dynamics --------------------------------------------------------------------------
+#: CPU seconds per segment and time step, by model (measured: axial 20 elements at dt
+#: 0.05 s, 8.5 ms per simulated second -> 2e-5; planar ~2.5x that; lumped3d 40 segments
+#: 0.4-0.6 ms per compiled step -> 1.5e-5, ~5x more interpreted; rounded up)
+DYNAMICS_S_PER_SEGMENT_STEP = {"axial": 2e-5, "planar": 5e-5, "lumped3d": 5e-5}
+#: CPU seconds per segment to build (and, for the lumped-mass model, compile) the step
+#: (7 s for 40 segments compiled at -O1)
+DYNAMICS_BUILD_S_PER_SEGMENT = {"axial": 0.01, "planar": 0.02, "lumped3d": 0.2}
+#: bytes per segment of the symbolic step (graph, generated code), rounded up
+DYNAMICS_B_PER_SEGMENT = 2e5
+#: CPU seconds of a dense symmetric eigenproblem of size n: ~1e-9 n^3 (LAPACK)
+EIG_S_CUBE = 1e-9
+
+
+def dynamics_cost(scene: Any, lengths: int = 0) -> Cost:
+    """Estimate of a dynamic scene's simulation (``lengths = 0``) or of its modal analysis
+    (``lengths`` = the number of lengths of a deployment chart, 1 for one length)."""
+    sim = scene.simulation
+    n = sim.segments
+    model = sim.model
+    dof = n * (1 if model == "axial" else 2 if model == "planar" else 3)
+    cost = Cost()
+    keys = f"simulation.segments = {n} ({model} model)"
+    cost.add(f"building the {model} step for {n} segments",
+             DYNAMICS_BUILD_S_PER_SEGMENT.get(model, 0.2) * n,
+             DYNAMICS_B_PER_SEGMENT * n, keys)
+    if lengths:
+        cost.add(f"{lengths} eigenproblem(s) of {2 * dof} states",
+                 lengths * EIG_S_CUBE * (2 * dof) ** 3, 8.0 * 4 * (2 * dof) ** 2, keys)
+        return cost
+    steps = sim.steps
+    samples = steps // max(1, sim.output_every) + 1
+    cost.add(f"{steps} steps of {n} segments",
+             DYNAMICS_S_PER_SEGMENT_STEP.get(model, 5e-5) * n * steps,
+             8.0 * 2 * samples * (n + 1) * 4,
+             f"{keys}, simulation.duration = {sim.duration:g} s and simulation.time_step = "
+             f"{sim.time_step:g} s")
+    return cost

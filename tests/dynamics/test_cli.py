@@ -73,3 +73,22 @@ def test_input_errors_exit_2(args: list[str], needle: str, capsys: pytest.Captur
     monkeypatch.chdir(ROOT)
     assert main(args) == 2
     assert needle in capsys.readouterr().err
+
+
+@pytest.mark.parametrize("command", ["simulate", "modes"])
+def test_a_run_that_would_take_hours_is_refused_before_any_work(
+        command: str, capsys: pytest.CaptureFixture) -> None:
+    """100 000 lumped-mass segments: exit 2 at once with the estimate and the key (the run
+    itself would build for hours and need tens of GB); every shipped dynamic scene is far
+    below the limits (checked by the same estimate)."""
+    from cable_ocp.dynamics import load_dynamic_scene
+    from cable_ocp.scene.cost import dynamics_cost
+
+    src = ROOT / "problems" / "dynamics" / "huang_5_7.toml"
+    rc = main([command, str(src), "--set", "simulation.segments=100000", "--quiet"])
+    err = capsys.readouterr().err
+    assert rc == 2
+    assert "simulation.segments = 100000" in err and "--force" in err
+    for path in sorted((ROOT / "problems" / "dynamics").glob("*.toml")):
+        cost = dynamics_cost(load_dynamic_scene(path))
+        assert not cost.too_much, (path.name, cost.describe())
