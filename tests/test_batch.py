@@ -292,3 +292,25 @@ def test_bench_batch_prints_its_json_alone(capsys) -> None:
     assert 0 < rows[1]["solve_ms"] < 1e3 * one / 4
     assert sm["difference_to_bare_per_case_ms"] == pytest.approx(1e3 * (one - bare) / 4)
     assert sm["speedup_2_workers"] == pytest.approx(one / two)
+
+
+def test_solve_session_warm_starts_only_from_the_solve_just_before() -> None:
+    """A SolveSession warm-starts from the previous solve when it had the same structure,
+    and starts cold after a solve of another structure (the current speed is structural
+    here): a stale solution of the structure, from before, is no neighbour (its failed
+    warm start used to cost about a second)."""
+    from cable_ocp.scene import load_scene
+    from cable_ocp.statics.solver import SolveSession
+
+    src = ROOT / "problems" / "dezoysa_sea_buggy.toml"
+
+    def scene(speed: float, psi: float) -> Any:
+        return load_scene(src, {"environment.current.speed": speed, "layout.psi0_deg": psi})
+
+    session = SolveSession()
+    starts = [session.solve(sc).diagnostics.get("start") for sc in (
+        scene(0.5, 0.0), scene(0.5, 10.0), scene(1.0, 140.0), scene(0.5, 20.0))]
+    assert starts[1] == "warm"
+    assert starts[0].startswith("cold") and starts[2].startswith("cold")
+    assert starts[3].startswith("cold")
+    assert session.solve(scene(0.5, 30.0)).diagnostics.get("start") == "warm"
