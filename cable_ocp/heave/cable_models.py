@@ -33,7 +33,12 @@ import numpy as np
 from cable_ocp.dynamics.planar import PlanarModel
 from cable_ocp.dynamics.scene import DynamicScene, dynamic_scene_from_dict
 from cable_ocp.errors import CableOCPError
-from cable_ocp.heave.cable_plant import AxialCablePlant, SampledCablePlant, _compile
+from cable_ocp.heave.cable_plant import (
+    AxialCablePlant,
+    SampledCablePlant,
+    _compile,
+    sampled_motion,
+)
 
 __all__ = ["HALVINGS", "PLANT_MODELS", "PlanarCablePlant", "axial_twin", "cable_plant"]
 
@@ -102,17 +107,7 @@ class _SteppedPlanar(PlanarModel):
         self.dt = dt = ca.SX.sym("dt")
         p = ca.SX.sym("p", 4)
         self.motion_params = ca.vertcat(p, dt)
-        top = scene.top_position
-
-        def motion(t: Any) -> tuple:
-            s = t / dt
-            length = p[0] + s * (p[1] - p[0])
-            z = p[2] + s * (p[3] - p[2])
-            return (length, (p[1] - p[0]) / dt, ca.SX(0.0),
-                    ca.vertcat(top[0], top[1], z), ca.vertcat(0.0, 0.0, (p[3] - p[2]) / dt),
-                    ca.SX.zeros(3))
-
-        self.motion = motion
+        self.motion = sampled_motion(scene.top_position, p, dt)
 
 
 class PlanarCablePlant(SampledCablePlant):

@@ -72,6 +72,23 @@ __all__ = [
 # The step-able cable
 # ------------------------------------------------------------------------------------------
 
+def sampled_motion(top: Any, p: ca.SX, dt: Any) -> Callable[[Any], tuple]:
+    """The motion of a plant step as the models' ``motion(t)``: over the step (0, dt) the
+    unstretched length goes linearly from ``p[0]`` to ``p[1]`` and the top's height from
+    ``p[2]`` to ``p[3]`` (x and y stay at ``top``'s); returns (length, its rate, its second
+    derivative, top position, velocity, acceleration)."""
+
+    def motion(t: Any) -> tuple:
+        s = t / dt
+        length = p[0] + s * (p[1] - p[0])
+        z = p[2] + s * (p[3] - p[2])
+        return (length, (p[1] - p[0]) / dt, ca.SX(0.0),
+                ca.vertcat(top[0], top[1], z), ca.vertcat(0.0, 0.0, (p[3] - p[2]) / dt),
+                ca.SX.zeros(3))
+
+    return motion
+
+
 class _SteppedAxial(AxialModel):
     """The axial model with the sheave height and the unstretched length as parameters.
 
@@ -86,18 +103,7 @@ class _SteppedAxial(AxialModel):
         super().__init__(scene)
         self.dt = dt
         self.p = ca.SX.sym("p", 4)
-        top = scene.top_position
-        p = self.p
-
-        def motion(t: Any) -> tuple:
-            s = t / dt
-            length = p[0] + s * (p[1] - p[0])
-            z = p[2] + s * (p[3] - p[2])
-            return (length, (p[1] - p[0]) / dt, ca.SX(0.0),
-                    ca.vertcat(top[0], top[1], z), ca.vertcat(0.0, 0.0, (p[3] - p[2]) / dt),
-                    ca.SX.zeros(3))
-
-        self.motion = motion
+        self.motion = sampled_motion(scene.top_position, self.p, dt)
 
 
 class SampledCablePlant:
