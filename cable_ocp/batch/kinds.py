@@ -15,6 +15,7 @@ from __future__ import annotations
 
 import math
 import time
+from abc import ABC, abstractmethod
 from collections.abc import Callable
 from typing import Any
 
@@ -50,7 +51,7 @@ def _num(x: Any) -> float | None:
     return v if math.isfinite(v) else None
 
 
-class Runner:
+class Runner(ABC):
     """Base class: ``run(case) -> row``; subclasses implement :meth:`_run`."""
 
     kind = ""
@@ -80,8 +81,9 @@ class Runner:
     def _data(self, case: Case) -> dict[str, Any]:
         return apply_overrides(self.data, case.overrides)
 
-    def _run(self, case: Case) -> tuple[str, str, dict[str, Any]]:  # pragma: no cover
-        raise NotImplementedError
+    @abstractmethod
+    def _run(self, case: Case) -> tuple[str, str, dict[str, Any]]:
+        """(status, message, outputs by column name) of one case."""
 
 
 class StaticsRunner(Runner):
