@@ -70,6 +70,7 @@ import scipy.linalg
 from cable_ocp.dynamics.motion import motion_function
 from cable_ocp.dynamics.result import ModesResult, SimulationResult
 from cable_ocp.dynamics.scene import DynamicScene
+from cable_ocp.dynamics.stepping import run_chunks
 from cable_ocp.errors import CableOCPError
 
 __all__ = ["AxialModel", "check_axial", "modes_axial", "simulate_axial", "static_profile"]
@@ -390,38 +391,11 @@ class AxialModel:
         off = 2 * n2 + 1 if bdf else n2
         acc = np.concatenate([x0] + ([x0, [1.0]] if bdf else [])
                              + [[0.0, ten0, np.inf, -1.0]])
-        states = [x0]
-        times = [0.0]
-        done = 0
-        status, message = "solved", ""
         tol_fail = max(1e3 * sim.tolerance, 1e-6)
-        t0 = time.perf_counter()
-        while done < n_out:
-            m = min(per_chunk, n_out - done)
-            tgrid = (done * every + np.arange(m * every)) * dt
-            res = np.asarray(chunk_fn(m)(acc, tgrid.reshape(1, -1)))
-            rcol = res[off, :]
-            bad = np.where(~(rcol <= tol_fail))[0]
-            k_good = int(bad[0]) if bad.size else m
-            for j in range(k_good):
-                states.append(res[:n2, j].copy())
-                times.append((done + j + 1) * every * dt)
-            if bad.size:
-                status = "failed"
-                message = (f"the implicit step did not converge before t = "
-                           f"{(done + k_good + 1) * every * dt:.6g} s (scaled residual "
-                           f"{rcol[k_good]:.3g} > {tol_fail:.3g}); the history stops at the "
-                           "last good sample: try a smaller simulation.time_step")
-                if k_good > 0:
-                    acc = res[:, k_good - 1].copy()
-                break
-            acc = res[:, -1].copy()
-            done += m
-            if progress is not None:
-                progress(done * every, n_out * every)
-            if sim.on_slack == "stop" and np.isfinite(acc[off + 2]):
-                break
-        wall = time.perf_counter() - t0
+        ts, xs, acc, status, message, wall = run_chunks(
+            chunk_fn, acc, n_out, per_chunk, every, dt, off, n2, tol_fail,
+            sim.on_slack == "stop", progress)
+        times, states = [0.0, *ts], [x0, *xs]
         return self._result(np.asarray(times), np.stack(states, axis=1), acc[off:off + 4],
                             post, status, message, wall, build_time)
 

@@ -1,0 +1,63 @@
+"""The chunked time loop shared by the axial and planar models.
+
+Each model builds a CasADi function that advances ``every`` integration steps per output
+sample and maps it over ``m`` samples (``mapaccum``). The loop below calls it chunk by
+chunk (no Python per time step), keeps the good samples, and stops at the first sample
+whose scaled Newton residual exceeds the failure tolerance or whose state is not finite.
+
+The accumulator row layout is the models': the state (and any scheme history) in rows
+``[0, off)``, then the residual at ``off`` and the slack time at ``off + 2``.
+"""
+
+from __future__ import annotations
+
+import time
+from collections.abc import Callable
+
+import casadi as ca
+import numpy as np
+
+
+def run_chunks(chunk_fn: Callable[[int], ca.Function], acc: np.ndarray, n_out: int,
+               per_chunk: int, every: int, dt: float, off: int, n_state: int,
+               tol_fail: float, stop_on_slack: bool,
+               progress: Callable[[int, int], None] | None
+               ) -> tuple[list[float], list[np.ndarray], np.ndarray, str, str, float]:
+    """Advance ``n_out`` output samples from ``acc``.
+
+    Returns ``(times, states, acc, status, message, wall)``: the sample times (s) and
+    states (the first ``n_state`` rows) after the start, the last good accumulator,
+    ``"solved"`` or ``"failed"`` with its message, and the wall time of the loop (s).
+    """
+    times: list[float] = []
+    states: list[np.ndarray] = []
+    status, message = "solved", ""
+    done = 0
+    t0 = time.perf_counter()
+    while done < n_out:
+        m = min(per_chunk, n_out - done)
+        tgrid = (done * every + np.arange(m * every)) * dt
+        res = np.asarray(chunk_fn(m)(acc, tgrid.reshape(1, -1)))
+        rcol = res[off, :]
+        bad = np.where(~(rcol <= tol_fail)
+                       | ~np.all(np.isfinite(res[:n_state, :]), axis=0))[0]
+        k_good = int(bad[0]) if bad.size else m
+        for j in range(k_good):
+            states.append(res[:n_state, j].copy())
+            times.append((done + j + 1) * every * dt)
+        if bad.size:
+            status = "failed"
+            message = (f"the implicit step did not converge before t = "
+                       f"{(done + k_good + 1) * every * dt:.6g} s (scaled residual "
+                       f"{rcol[k_good]:.3g} > {tol_fail:.3g}); the history stops at the "
+                       "last good sample: try a smaller simulation.time_step")
+            if k_good > 0:
+                acc = res[:, k_good - 1].copy()
+            break
+        acc = res[:, -1].copy()
+        done += m
+        if progress is not None:
+            progress(done * every, n_out * every)
+        if stop_on_slack and np.isfinite(acc[off + 2]):
+            break
+    return times, states, acc, status, message, time.perf_counter() - t0
