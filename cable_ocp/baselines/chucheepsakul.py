@@ -101,6 +101,7 @@ from scipy.sparse.linalg import spsolve
 
 from cable_ocp.baselines.common import (
     Estimate,
+    MeshCache,
     double_within,
     equilibrium_check,
     refine_to_accuracy,
@@ -475,25 +476,12 @@ def solve(scene: Scene, warm_start: StaticsSolution | None = None) -> StaticsSol
     (:func:`cable_ocp.baselines.common.refine_to_accuracy`). A solved result then passes
     the independent equilibrium check (:func:`cable_ocp.baselines.common.equilibrium_check`).
     """
-    cache: dict[int, StaticsSolution] = {}
-
-    def solve_at(n: int, warm: StaticsSolution | None) -> StaticsSolution:
-        if warm is None and n in cache:
-            return cache[n]
-        sol = solve_fem(scene.with_overrides({"solver.intervals": n}), warm)
-        if sol.success:
-            cache[n] = sol
-        return sol
-
-    def get(n: int) -> StaticsSolution | None:
-        if n not in cache:
-            finest = cache[min(k for k in cache if k > n)] if any(k > n for k in cache) else None
-            solve_at(n, finest)
-        return cache.get(n)
+    cache = MeshCache(
+        lambda n, warm: solve_fem(scene.with_overrides({"solver.intervals": n}), warm))
 
     def estimate(n: int, sol: StaticsSolution) -> Estimate:
-        cache[n] = sol
-        est = richardson_coarser(n, sol, get, "z", *ORDER_RANGE, "elements")
+        cache.solutions[n] = sol
+        est = richardson_coarser(n, sol, cache.get, "z", *ORDER_RANGE, "elements")
         alg = float(sol.constraint_violation)
         est.detail["algebraic"] = alg
         est.value += alg
@@ -504,7 +492,7 @@ def solve(scene: Scene, warm_start: StaticsSolution | None = None) -> StaticsSol
         return double_within(n, est, scene.solver.accuracy, lim,
                              f"solver.max_intervals = {lim}", ORDER_RANGE[1], "elements")
 
-    sol = refine_to_accuracy(scene, METHOD, scene.solver.intervals, solve_at, estimate, finer,
+    sol = refine_to_accuracy(scene, METHOD, scene.solver.intervals, cache.solve_at, estimate, finer,
                              warm_start, label=lambda n: f"{n} elements", retry_cold=False)
     return equilibrium_check(scene, sol, METHOD)
 

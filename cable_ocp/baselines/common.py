@@ -112,6 +112,35 @@ def observed_order(rel_fine: float, rel_coarse: float, low: float, high: float,
     return fallback
 
 
+class MeshCache:
+    """Successful solutions of one scene by resolution ``n``, for the refinement loop and
+    the estimate's coarser solves.
+
+    ``solve(n, warm)`` solves at ``n`` (from ``warm`` when given); :meth:`solve_at` reuses
+    a cached cold solution, :meth:`get` solves a missing coarser resolution warm-started
+    from the next finer one it has (None when that fails).
+    """
+
+    def __init__(self, solve: Callable[[int, StaticsSolution | None], StaticsSolution]
+                 ) -> None:
+        self._solve = solve
+        self.solutions: dict[int, StaticsSolution] = {}
+
+    def solve_at(self, n: int, warm: StaticsSolution | None) -> StaticsSolution:
+        if warm is None and n in self.solutions:
+            return self.solutions[n]
+        sol = self._solve(n, warm)
+        if sol.success:
+            self.solutions[n] = sol
+        return sol
+
+    def get(self, n: int) -> StaticsSolution | None:
+        if n not in self.solutions:
+            finer = [k for k in self.solutions if k > n]
+            self.solve_at(n, self.solutions[min(finer)] if finer else None)
+        return self.solutions.get(n)
+
+
 def richardson_coarser(n: int, sol: StaticsSolution, get: Callable[[int], StaticsSolution | None],
                        param: str, low: float, high: float, unit: str,
                        min_coarse: int = 4) -> Estimate:

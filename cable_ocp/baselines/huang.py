@@ -99,6 +99,7 @@ from scipy.optimize import brentq
 
 from cable_ocp.baselines.common import (
     Estimate,
+    MeshCache,
     double_within,
     refine_to_accuracy,
     richardson_coarser,
@@ -1053,25 +1054,11 @@ def solve(scene: Scene, warm_start: StaticsSolution | None = None) -> StaticsSol
     accuracy) segments: ~10^5 for 1e-6 on De Zoysa). A result above the accuracy is
     ``"inaccurate"`` (:func:`cable_ocp.baselines.common.refine_to_accuracy`).
     """
-    cache: dict[int, StaticsSolution] = {}
-
-    def solve_at(n: int, warm: StaticsSolution | None) -> StaticsSolution:
-        if warm is None and n in cache:
-            return cache[n]
-        sol = solve_huang(scene, warm, intervals=n)
-        if sol.success:
-            cache[n] = sol
-        return sol
-
-    def get(n: int) -> StaticsSolution | None:
-        if n not in cache:
-            finest = cache[min(k for k in cache if k > n)] if any(k > n for k in cache) else None
-            solve_at(n, finest)
-        return cache.get(n)
+    cache = MeshCache(lambda n, warm: solve_huang(scene, warm, intervals=n))
 
     def estimate(n: int, sol: StaticsSolution) -> Estimate:
-        cache[n] = sol
-        est = richardson_coarser(n, sol, get, "s", ORDER_LOW, 1.0, "segments")
+        cache.solutions[n] = sol
+        est = richardson_coarser(n, sol, cache.get, "s", ORDER_LOW, 1.0, "segments")
         alg = float(sol.constraint_violation) + float(sol.diagnostics.get("outer_load_change",
                                                                           0.0))
         est.detail["algebraic"] = alg
@@ -1085,8 +1072,8 @@ def solve(scene: Scene, warm_start: StaticsSolution | None = None) -> StaticsSol
 
     # no equilibrium_check: shooting the cable equations from a first-order answer
     # amplifies its ~1e-2 lumping error past the check's threshold on ordinary scenes
-    return refine_to_accuracy(scene, METHOD, scene.solver.intervals, solve_at, estimate, finer,
-                              warm_start, label=lambda n: f"{n} segments")
+    return refine_to_accuracy(scene, METHOD, scene.solver.intervals, cache.solve_at, estimate,
+                              finer, warm_start, label=lambda n: f"{n} segments")
 
 
 register("huang_semianalytic", solve)
