@@ -11,7 +11,7 @@ from pathlib import Path
 import pytest
 
 ROOT = Path(__file__).resolve().parents[1]
-# Test helpers written independently of the package (shooting_reference): importable by name
+# Test helpers written independently of the package (shooting_reference, closed_forms): by name
 # from the test modules (pytest runs with --import-mode=importlib, which adds no test folder).
 sys.path.insert(0, str(Path(__file__).resolve().parent))
 PROBLEMS = ROOT / "problems"
