@@ -356,6 +356,23 @@ def uniform_params(length: float, segments: int, *, axial_stiffness: float, diam
 # --------------------------------------------------------------------------------------
 
 
+def _next_state(scheme: str, x1: Any, z: Any, dt: Any, nf3: int) -> tuple[Any, Any]:
+    """The stepped state from the new positions ``x1`` and the old stepped state ``z``
+    (positions, velocities, then the scheme's history: the acceleration for the midpoint
+    and trapezoidal rules, the previous positions and velocities and the start flag for
+    BDF2); returns (new stepped state, new velocities)."""
+    x0, v0 = z[0:nf3], z[nf3:2 * nf3]
+    if scheme == "midpoint":
+        v1 = 2.0 * (x1 - x0) / dt - v0
+        return ca.vertcat(x1, v1, (v1 - v0) / dt), v1
+    if scheme == "trapezoidal":
+        v1 = 2.0 * (x1 - x0) / dt - v0
+        return ca.vertcat(x1, v1, 2.0 * (v1 - v0) / dt - z[2 * nf3:3 * nf3]), v1
+    st, xp = z[4 * nf3], z[2 * nf3:3 * nf3]
+    v1 = ((1.0 + 0.5 * st) * x1 + (-1.0 - st) * x0 + 0.5 * st * xp) / dt
+    return ca.vertcat(x1, v1, x0, v0, 1.0), v1
+
+
 class LumpedMassModel:
     """CasADi functions of the lumped-mass model built from :class:`LumpedParams`.
 
@@ -887,19 +904,7 @@ class LumpedMassModel:
         x1m = newton(guess_m, extra_m)
         resid = ca.norm_inf(g(x1m, extra_m))
         iters = ca.MX(math.nan)
-        x0m = zs[0:nf3]
-        v0m = zs[nf3:2 * nf3]
-        if scheme == "midpoint":
-            v1m = 2.0 * (x1m - x0m) / dt - v0m
-            z1 = ca.vertcat(x1m, v1m, (v1m - v0m) / dt)
-        elif scheme == "trapezoidal":
-            v1m = 2.0 * (x1m - x0m) / dt - v0m
-            z1 = ca.vertcat(x1m, v1m, 2.0 * (v1m - v0m) / dt - zs[2 * nf3:3 * nf3])
-        else:
-            st = zs[4 * nf3]
-            xpm = zs[2 * nf3:3 * nf3]
-            v1m = ((1.0 + 0.5 * st) * x1m + (-1.0 - st) * x0m + 0.5 * st * xpm) / dt
-            z1 = ca.vertcat(x1m, v1m, x0m, v0m, 1.0)
+        z1, _ = _next_state(scheme, x1m, zs, dt, nf3)
         eps = self.tensions(x1m, ts + dt)[1]
         emin = ca.mmin(eps)
         step = ca.Function(f"step_{scheme}", [zs, ts],
@@ -1190,17 +1195,7 @@ class LumpedMassModel:
                                                      rni)
         resid = ca.if_else(done, rni, ca.norm_inf(gj(xi, zsym, t0)[0]), True)
         x1m = xi
-        if scheme == "midpoint":
-            v1m = 2.0 * (x1m - x0) / dt - v0
-            z1 = ca.vertcat(x1m, v1m, (v1m - v0) / dt)
-        elif scheme == "trapezoidal":
-            v1m = 2.0 * (x1m - x0) / dt - v0
-            z1 = ca.vertcat(x1m, v1m, 2.0 * (v1m - v0) / dt - zsym[2 * nf3:3 * nf3])
-        else:
-            st = zsym[4 * nf3]
-            xp = zsym[2 * nf3:3 * nf3]
-            v1m = ((1.0 + 0.5 * st) * x1m + (-1.0 - st) * x0 + 0.5 * st * xp) / dt
-            z1 = ca.vertcat(x1m, v1m, x0, v0, 1.0)
+        z1, _ = _next_state(scheme, x1m, zsym, dt, nf3)
         return ca.Function(f"core_{scheme}", [zsym, t0], [z1, resid, count, done])
 
     def _halving_step(self, dt: float, scheme: str, tol: float, max_iter: int,
