@@ -65,6 +65,12 @@ LINEAR_DAMPING = 2.0e6  # N s, internal damping of the closed-form check
 TARGET_REALTIME = 100.0
 TARGET_SEGMENTS = 40
 EQUAL_ACCURACY = 0.01
+#: cable_ocp's default time steps, s
+TIME_STEPS = (0.1, 0.075, 0.05, 0.025)
+#: Newton tolerance of cable_ocp's timed runs (scaled residual: 1e-8 of the force scale,
+#: here ~0.3 mN on a 30 kN line, far below the 1 % accuracy compared; the scene's default
+#: 1e-10 costs a third more matrix evaluations per step)
+TOLERANCE = 1e-8
 #: a seconds-long configuration (a smoke run for the tests; its numbers mean little)
 QUICK: dict[str, Any] = {"segments": (6,), "time_steps": (0.1,), "duration": 20.0,
                          "repeats": 1, "compile_mode": "kernel",
@@ -132,7 +138,7 @@ def scene(segments: int, time_step: float, duration: float = DURATION,
 
 
 def _cable_ocp(segments: int, time_step: float, compile_mode: str | bool,
-               duration: float, linear: bool = False
+               duration: float, linear: bool = False, tolerance: float | None = None
                ) -> tuple[np.ndarray, np.ndarray, float, str]:
     from cable_ocp.dynamics.lumped import LumpedMassModel, run
     from cable_ocp.dynamics.lumped_scene import lumped_params, lumped_start
@@ -145,7 +151,8 @@ def _cable_ocp(segments: int, time_step: float, compile_mode: str | bool,
     every = max(1, int(round(OUTPUT_STEP / time_step)))
     out = run(model, x0, None, duration, time_step, record_every=every,
               chunk_records=max(1, int(round(duration / OUTPUT_STEP)) // 10),
-              compile=compile_mode, tol=sc.simulation.tolerance)
+              compile=compile_mode,
+              tol=sc.simulation.tolerance if tolerance is None else tolerance)
     status = "ok" if out.success else out.status
     return out.t, np.linalg.norm(out.top_force, axis=1), out.wall_time_s, status
 
@@ -290,10 +297,10 @@ def _error(t: np.ndarray, y: np.ndarray, tr: np.ndarray, yr: np.ndarray,
 
 
 def run(segments: Sequence[int] = (20, 40, 80),
-        time_steps: Sequence[float] = (0.1, 0.05, 0.025),
+        time_steps: Sequence[float] = TIME_STEPS,
         moordyn_steps: dict[int, Sequence[float]] | None = None, *,
         with_moordyn: bool = True, compile_mode: str | bool = "step", repeats: int = 2,
-        duration: float = DURATION,
+        duration: float = DURATION, tolerance: float = TOLERANCE,
         progress: Callable[[str], None] | None = None) -> list[BenchRow]:
     """Run the benchmark and return its rows (prints nothing).
 
@@ -302,7 +309,7 @@ def run(segments: Sequence[int] = (20, 40, 80),
     segments : sequence of int
         Numbers of lumped segments.
     time_steps : sequence of float
-        cable_ocp's time steps, s (multiples or divisors of the 0.05 s sampling).
+        cable_ocp's time steps, s.
     moordyn_steps : dict, optional
         MoorDyn's dtM per number of segments, s; default: its largest stable step
         (4 ms at 20 and 40 segments, 2 ms at 80, found by halving from 8 ms) and half of it.
@@ -315,6 +322,9 @@ def run(segments: Sequence[int] = (20, 40, 80),
         Timed runs per row; the fastest is kept.
     duration : float
         Simulated time, s (the errors and amplitudes use its last 10 s).
+    tolerance : float
+        Newton tolerance of cable_ocp's timed runs (scaled residual, -; the references
+        use the scene's, 1e-10, so that the errors include the Newton error).
     progress : callable, optional
         Called with a short label before each row.
     """
@@ -340,7 +350,7 @@ def run(segments: Sequence[int] = (20, 40, 80),
                 progress(f"cable_ocp, {n} segments, dt = {dt} s")
             best = None
             for _ in range(max(1, repeats)):
-                res = _cable_ocp(n, dt, compile_mode, duration)
+                res = _cable_ocp(n, dt, compile_mode, duration, tolerance=tolerance)
                 if best is None or res[2] < best[2]:
                     best = res
             t, y, wall, status = best  # type: ignore[misc]
@@ -470,7 +480,9 @@ def summary(rows: Sequence[BenchRow], accuracy: float = EQUAL_ACCURACY) -> dict[
       against :data:`TARGET_REALTIME`.
     * ``versus_moordyn``: per number of segments, the fastest row of each model within
       ``accuracy`` (each against its own converged reference) and the ratio of MoorDyn's
-      wall time to cable_ocp's (>= 1: cable_ocp no slower at equal accuracy); plus the
+      wall time to cable_ocp's (>= 1: cable_ocp no slower at equal accuracy); where no
+      MoorDyn row is within ``accuracy``, MoorDyn's fastest row against cable_ocp's
+      fastest row at least as accurate (``basis`` says which); plus the
       relative difference of the two models' converged top-tension amplitudes (the target
       is 2 %).
     """
@@ -504,7 +516,24 @@ def summary(rows: Sequence[BenchRow], accuracy: float = EQUAL_ACCURACY) -> dict[
             "moordyn_status": ("not run" if not md_rows else "ok" if md is not None else
                                md_rows[0].status if not md_rows[0].status == "ok" else
                                f"has no row within {accuracy:.0%}"),
-            "speed_ratio": None, "met": None, "amplitude_difference": None}
+            "speed_ratio": None, "met": None, "amplitude_difference": None,
+            "basis": f"error <= {accuracy:.0%}"}
+        md_ok = [r for r in md_rows if _ok(r)]
+        if md is None and md_ok:
+            # MoorDyn reaches no row within the accuracy: compare at its own accuracy,
+            # its fastest row against cable_ocp's fastest row that is at least as accurate
+            md = min(md_ok, key=lambda r: r.wall_per_simulated_s)
+            cand = [r for r in rows if r.model.startswith("cable_ocp") and r.segments == n
+                    and _ok(r) and r.error <= md.error]
+            ours = min(cand, key=lambda r: r.wall_per_simulated_s) if cand else None
+            entry.update(basis=f"MoorDyn's own accuracy ({md.error:.2g})", moordyn_status="ok",
+                         moordyn={"time_step": md.time_step,
+                                  "wall_per_simulated_s": md.wall_per_simulated_s,
+                                  "error": md.error},
+                         cable_ocp=None if ours is None else {
+                             "time_step": ours.time_step,
+                             "wall_per_simulated_s": ours.wall_per_simulated_s,
+                             "error": ours.error})
         if ours is not None and md is not None:
             ratio = md.wall_per_simulated_s / ours.wall_per_simulated_s
             entry.update(speed_ratio=ratio, met=ratio >= 1.0)
@@ -531,7 +560,8 @@ def format_summary(sm: dict[str, Any]) -> str:
                      f"{rt['realtime_factor']:.0f}x at dt = {rt['time_step']:g} s -> "
                      f"{'met' if rt['met'] else 'NOT met'}")
     for e in sm["versus_moordyn"]:
-        head = f"{e['segments']} segments vs MoorDyn at equal accuracy (error <= {acc:.0%}): "
+        head = (f"{e['segments']} segments vs MoorDyn at equal accuracy "
+                f"({e.get('basis', f'error <= {acc:.0%}')}): ")
         if e["cable_ocp"] is None or e["moordyn"] is None:
             why = ("MoorDyn " + e["moordyn_status"]) if e["moordyn"] is None else \
                 "no cable_ocp row within the accuracy"

@@ -109,7 +109,10 @@ def register(sub: argparse._SubParsersAction, parent: argparse.ArgumentParser) -
     d.add_argument("--segments", type=int, nargs="+", default=None, metavar="N",
                    help="numbers of segments (default 20 40 80)")
     d.add_argument("--time-steps", type=float, nargs="+", default=None, metavar="DT",
-                   help="cable_ocp time steps, s (default 0.1 0.05 0.025)")
+                   help="cable_ocp time steps, s (default 0.1 0.075 0.05 0.025)")
+    d.add_argument("--tolerance", type=float, default=None, metavar="TOL",
+                   help="Newton tolerance of cable_ocp's timed runs (scaled residual; "
+                        "default 1e-8; the references use the scene's 1e-10)")
     d.add_argument("--duration", type=float, default=None, metavar="S",
                    help="simulated time, s (default 60; errors over the last 10 s)")
     d.add_argument("--repeats", type=int, default=None, metavar="N",
@@ -424,7 +427,7 @@ def cmd_bench_dynamics(args: argparse.Namespace) -> int:
 
     out.check_outputs(args)
     kw: dict[str, Any] = dict(bd.QUICK) if args.quick else {
-        "segments": (20, 40, 80), "time_steps": (0.1, 0.05, 0.025), "duration": bd.DURATION,
+        "segments": (20, 40, 80), "time_steps": bd.TIME_STEPS, "duration": bd.DURATION,
         "repeats": 2, "compile_mode": "step", "moordyn_steps": None}
     if args.segments is not None:
         for n in args.segments:
@@ -444,6 +447,12 @@ def cmd_bench_dynamics(args: argparse.Namespace) -> int:
                             f"(the {bd.RAMP:g} s ramp, then the {bd.WINDOW:g} s window the "
                             "errors are taken over)")
         kw["duration"] = args.duration
+    tolerance = bd.TOLERANCE
+    if args.tolerance is not None:
+        if not 1e-14 <= args.tolerance <= 1e-4:
+            raise out_error(f"--tolerance {args.tolerance}: give 1e-14..1e-4 (a scaled "
+                            "residual)")
+        tolerance = args.tolerance
     if args.repeats is not None:
         if not 1 <= args.repeats <= 20:
             raise out_error(f"--repeats {args.repeats}: give 1..20 (the fastest is kept)")
@@ -460,14 +469,16 @@ def cmd_bench_dynamics(args: argparse.Namespace) -> int:
 
         rows = bd.run(kw["segments"], kw["time_steps"], kw.get("moordyn_steps"),
                       with_moordyn=with_md, compile_mode=kw["compile_mode"],
-                      repeats=kw["repeats"], duration=kw["duration"], progress=step)
+                      repeats=kw["repeats"], duration=kw["duration"], tolerance=tolerance,
+                      progress=step)
         bar(total)
     sm = bd.summary(rows)
     load = os.getloadavg() if hasattr(os, "getloadavg") else None
     out.say(args, f"Huang (1992) 5.7 system at {bd.FREQUENCY} rad/s, {kw['duration']:g} s "
                   f"simulated; errors of the top tension over the last {bd.WINDOW:g} s against "
                   "each model's converged reference (same segments, step / 8), over its "
-                  "amplitude; wall time of the stepping, fastest of "
+                  f"amplitude; cable_ocp's Newton tolerance {tolerance:g} (references "
+                  "1e-10); wall time of the stepping, fastest of "
                   f"{kw['repeats']} (noisy on a shared machine: compare ratios)")
     if load is not None:
         out.say(args, "load average (1, 5, 15 min): " + ", ".join(f"{v:.2f}" for v in load))
@@ -483,7 +494,8 @@ def cmd_bench_dynamics(args: argparse.Namespace) -> int:
                    f"{r.segments} segments, dt {r.time_step:g} s: {r.status}" for r in failed))
     out.emit_json(args, out.envelope(status, message, {
         "rows": rows_d, "summary": sm, "load_average": list(load) if load else None,
-        "duration_s": kw["duration"], "frequency_rad_s": bd.FREQUENCY}))
+        "duration_s": kw["duration"], "frequency_rad_s": bd.FREQUENCY,
+        "newton_tolerance": tolerance}))
     if args.plot:
         out.emit_plot(args, lambda path: bd.plot(rows, path))
     return out.EXIT_OK if status == "ok" else out.EXIT_NOT_SUCCESS

@@ -82,6 +82,7 @@ def test_json_to_stdout_alone_and_strict(no_moordyn: None, monkeypatch: pytest.M
 
 @pytest.mark.parametrize("argv", [["--segments", "1"], ["--time-steps", "0"],
                                   ["--duration", "5"], ["--repeats", "0"],
+                                  ["--tolerance", "0.1"],
                                   ["--json", "/nonexistent-dir/b.json"],
                                   ["--plot", "b.unknownformat"]])
 def test_bad_input_exits_2_before_work(argv: list[str], monkeypatch: pytest.MonkeyPatch
@@ -92,3 +93,27 @@ def test_bad_input_exits_2_before_work(argv: list[str], monkeypatch: pytest.Monk
 
     monkeypatch.setattr(bd, "run", boom)
     assert main(["bench", "dynamics", "--quiet", *argv]) == 2
+
+
+def _row(model: str, dt: float, wall: float, error: float) -> bd.BenchRow:
+    return bd.BenchRow(model=model, segments=20, time_step=dt, wall_per_simulated_s=wall,
+                       realtime_factor=1.0 / wall, top_tension_amplitude_N=1.5e4,
+                       error=error, amplitude_vs_other=None, status="ok")
+
+
+def test_summary_compares_at_moordyns_own_accuracy_when_it_misses_one_percent() -> None:
+    """Where no MoorDyn row is within 1 %, its fastest row is compared with cable_ocp's
+    fastest row that is at least as accurate (not with a faster, less accurate one)."""
+    rows = [_row("cable_ocp midpoint", 0.1, 0.002, 0.02),
+            _row("cable_ocp midpoint", 0.075, 0.0025, 0.0076),
+            _row("MoorDyn RK2", 0.004, 0.003, 0.0156),
+            _row("MoorDyn RK2", 0.002, 0.005, 0.0155)]
+    e = bd.summary(rows)["versus_moordyn"][0]
+    assert e["cable_ocp"]["time_step"] == 0.075  # 0.1 s is faster but less accurate
+    assert e["moordyn"]["time_step"] == 0.004
+    assert e["speed_ratio"] == pytest.approx(0.003 / 0.0025) and e["met"] is True
+    assert "own accuracy" in e["basis"]
+    # within 1 %, the plain comparison
+    rows[2] = _row("MoorDyn RK2", 0.004, 0.003, 0.009)
+    e = bd.summary(rows)["versus_moordyn"][0]
+    assert e["basis"] == "error <= 1%" and e["cable_ocp"]["time_step"] == 0.075
