@@ -1177,7 +1177,8 @@ class LumpedMassModel:
             jm = ca.MX.sym("J", jk.sparsity())
             fm = ca.MX.sym("f", nf3)
             solve = ca.Function("newton_solve", [jm, fm], [ca.solve(jm, fm, linear_solver)])
-            dx = ca.if_else(skip, ca.MX.zeros(nf3), solve(jk, fk), True)
+            no_step = ca.Function("no_step", [jm, fm], [ca.MX.zeros(nf3)])
+            dx = _switch("maybe_solve", skip, no_step, solve, jk, fk)
         else:
             dx = ca.if_else(skip, ca.MX.zeros(nf3), dxk)
         # stop on the contraction estimate (after Hairer & Wanner (1996), Solving ODEs II,
@@ -1193,7 +1194,10 @@ class LumpedMassModel:
         check = ca.logic_and(ca.logic_and(ca.logic_not(skip), rio < 1e300),
                              ca.logic_and(rn < rio, est <= tol))
         g_only = self._residual_norms[(scheme, compile_kernel, fscale)]
-        r_chk = ca.if_else(check, g_only(xk - dx, zsym, t0, dt), ca.inf, True)
+        xs_, zs_, ts_ = ca.MX.sym("x", nf3), ca.MX.sym("z", zsym.shape[0]), ca.MX.sym("t")
+        no_chk = ca.Function("no_check", [xs_, zs_, ts_], [ca.inf])
+        chk = ca.Function("check", [xs_, zs_, ts_], [g_only(xs_, zs_, ts_, dt)])
+        r_chk = _switch("maybe_check", check, chk, no_chk, xk - dx, zsym, t0)
         early = ca.logic_and(check, r_chk <= tol)
         x_new = ca.if_else(conv, xk, ca.if_else(worse, x_back, xk - dx))
         xo_new = ca.if_else(ca.logic_or(conv, worse), xo, xk)
@@ -1221,7 +1225,11 @@ class LumpedMassModel:
             count = count + (1.0 - done)
             xi, xoi, dli, rnoi, rioi, lami, rni, done = it(done, xi, xoi, dli, rnoi, rioi,
                                                            lami, zsym, t0, rni)
-        resid = ca.if_else(done, rni, ca.norm_inf(gj(xi, zsym, t0)[0]), True)
+        # the residual at the last iterate where the iteration ran out of iterations
+        rs_ = ca.MX.sym("r")
+        last = ca.Function("last_residual", [rs_, xk, zsym, t0], [g_only(xk, zsym, t0, dt)])
+        known = ca.Function("known_residual", [rs_, xk, zsym, t0], [rs_])
+        resid = _switch("final_residual", done, known, last, rni, xi, zsym, t0)
         x1m = xi
         z1, _ = _next_state(scheme, x1m, zsym, dt, nf3)
         return ca.Function(f"core_{scheme}", [zsym, t0], [z1, resid, count, done])
@@ -1245,7 +1253,10 @@ class LumpedMassModel:
         two = ca.Function("two_halves", [z, t0],
                           [ca.vertcat(zb, ca.fmax(ra, rb), ia + ib, da * db)])
         z1, r1, i1, d1 = core(z, t0)
-        packed = ca.if_else(d1, ca.vertcat(z1, r1, i1, d1), two(z, t0), True)
+        y = ca.MX.sym("y", z.shape[0] + 3)
+        keep = ca.Function("keep", [y, z, t0], [y])
+        halves = ca.Function("halves", [y, z, t0], [two(z, t0)])
+        packed = _switch("halving_select", d1, keep, halves, ca.vertcat(z1, r1, i1, d1), z, t0)
         n = z.shape[0]
         return ca.Function(f"halving_{scheme}", [z, t0],
                            [packed[0:n], packed[n], packed[n + 1], packed[n + 2]])
@@ -1751,6 +1762,16 @@ def _segment_kernel_expr(drag_law: str) -> ca.Function:
 
 
 _KERNELS: dict[str, ca.Function] = {}
+
+
+def _switch(name: str, cond: Any, if_true: ca.Function, if_false: ca.Function,
+            *args: Any) -> Any:
+    """``if_true(*args)`` where ``cond`` holds, else ``if_false(*args)``: only one is
+    evaluated. (CasADi's ``if_else(c, a, b, True)`` on expressions builds each branch as a
+    function of the graph's *inputs*, so a branch that reuses a value computed before it
+    (a Newton iterate, a step's result) evaluates that value again: here the branches take
+    those values as arguments.)"""
+    return ca.Function.if_else(name, if_true, if_false)(cond, *args)
 
 
 def _block_thomas(diag: Any, off: Any, rhs: Any) -> Any:
