@@ -361,6 +361,17 @@ MUTATIONS: tuple[Mutation, ...] = (
     Mutation("lumped-current-ignored", DYN, LM_F,
              "urel = u_c - 0.5 * (va + vb)", "urel = -0.5 * (va + vb)", LUMPED,
              "lumped step: the segments' drag ignores the current"),
+    Mutation("lumped-newton-accepts-on-estimate-alone", DYN, LM_F,
+             "early = ca.logic_and(check, r_chk <= tol)", "early = check",
+             (_LMP + "newton_stop_on_the_contraction_estimate_checks_the_residual",),
+             "lumped step: Newton stops on the contraction estimate without checking the "
+             "residual at the new iterate"),
+    Mutation("lumped-halving-branches-swapped", DYN, LM_F,
+             '_switch("halving_select", d1, keep, halves,',
+             '_switch("halving_select", d1, halves, keep,', LUMPED + (
+                 _LMP + "newton_step_equals_casadi_rootfinder",),
+             "lumped step: two half steps where the whole step converged (and the "
+             "unconverged whole step kept)"),
     Mutation("lumped-tangential-drag-unsigned", DYN, LM_F,
              "ca.sqrt(ut * ut + delta * delta) * ut * tm", "ut * ut * tm", LUMPED,
              "lumped step: tangential drag u_t^2 instead of |u_t| u_t"),
