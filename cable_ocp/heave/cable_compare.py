@@ -136,6 +136,16 @@ def _compare_on_cable(sc: HeaveScene, sd: HeaveScene, dyn: DynamicScene,
     metrics, traces, predicted, statuses, messages = {}, {}, {}, {}, {}
     solve_times, failures = None, 0
     warnings: list[str] = []
+    top_range = getattr(plant_c, "top_range", None)  # the lumped3d plant's top segment
+    stroke = sc.winch.stroke_max
+    if top_range is not None and stroke is not None:
+        haul, pay = plant_c.l_top0 - top_range[0], top_range[1] - plant_c.l_top0
+        if stroke > min(haul, pay):
+            warnings.append(
+                f"winch.stroke_max = {stroke:g} m: the lumped3d plant pays cable through its "
+                f"top segment ({plant_c.l_top0:.4g} m), which takes {haul:.3g} m of haul-in "
+                f"and {pay:.3g} m of pay-out; a run whose winch goes further stops as failed "
+                "(fewer simulation.segments in the cable scene lengthen that segment)")
     for idx, name in enumerate(runs_of):
         if design_error is not None and name != "passive":
             statuses[name], messages[name] = "failed", design_error
