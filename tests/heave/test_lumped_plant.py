@@ -314,10 +314,10 @@ def test_lumped3d_without_a_unit_is_a_one_line_error(tmp_path: Path,
     assert len(err.splitlines()) == 1 and "needs a [unit] at end_a" in err
 
 
-def _cli(tmp: Path, line: str) -> dict:
+def _cli(tmp: Path, line: str, *extra: str) -> dict:
     """ex_6_3_6_cable_lumped3d.toml on the line ``line`` (a file of problems/dynamics)
     as lumped3d with 10 segments, 90 s (60 s after the warm-up), a 60 s identification,
-    LQR only, through the CLI."""
+    LQR only, through the CLI (``extra``: more arguments)."""
     text, count = re.subn(r"(?m)^segments = \d+", "segments = 10", (DYN / line).read_text())
     assert count == 1
     text = text.replace('model = "axial"', 'model = "lumped3d"').replace(
@@ -329,7 +329,7 @@ def _cli(tmp: Path, line: str) -> dict:
     out = tmp / "out.json"
     rc = main(["heave", str(tmp / "heave.toml"), "--json", str(out), "--quiet",
                "--set", "simulation.duration=90.0", "--set", "identification.duration=60.0",
-               "--controllers", "passive", "lqr"])
+               "--controllers", "passive", "lqr", *extra])
     data = json.loads(out.read_text())
     data["_rc"] = rc
     return data
@@ -337,7 +337,9 @@ def _cli(tmp: Path, line: str) -> dict:
 
 @pytest.fixture(scope="module")
 def vertical_json(tmp_path_factory: pytest.TempPathFactory) -> dict:
-    return _cli(tmp_path_factory.mktemp("vertical"), "line_6_3_6.toml")
+    # a stroke of 8 m (the LQR has no limits) exceeds the top segment's 7.91 m of haul-in
+    return _cli(tmp_path_factory.mktemp("vertical"), "line_6_3_6.toml",
+                "--set", "winch.stroke_max=8.0")
 
 
 @pytest.fixture(scope="module")
@@ -358,6 +360,8 @@ def test_lumped_plant_achieves_the_predicted_reduction(vertical_json: dict) -> N
     assert m["reduction_pct"] > 50.0
     assert abs(m["reduction_pct"] - m["reduction_predicted_pct"]) < 2.0
     assert m["slack_samples"] == 0 and m["tension_unit_min"] > 0.0
+    assert any("winch.stroke_max = 8 m" in w and "7.91 m of haul-in" in w
+               for w in d["warnings"])
 
 
 def test_lumped_plant_in_a_current_along_x(current_json: dict) -> None:
