@@ -157,9 +157,15 @@ def _sample_functions(name: str, step: ca.Function, nx: int, substeps: int, dt: 
         halves = ca.Function("halves", [xa, pm], [ca.vertcat(
             second[:nx], ca.fmax(first[nx], second[nx]), second[nx + 1:])])
         whole = core(xa, pm)
-        r = whole[nx]
-        step = ca.Function(f"{name}_halving{level}", [xa, pm], [ca.if_else(
-            ca.logic_not(r <= fail), halves(xa, pm), whole, True)])
+        # a switch on functions that take the whole step as an argument: only the taken
+        # branch runs (CasADi's if_else on expressions would build the "whole" branch as a
+        # function of (xa, pm) and take the step again there)
+        yw = ca.MX.sym("y", whole.shape[0])
+        keep = ca.Function("keep", [yw, xa, pm], [yw])
+        halve = ca.Function("halve", [yw, xa, pm], [halves(xa, pm)])
+        pick = ca.Function.if_else(f"{name}_halving{level}_pick", halve, keep)
+        step = ca.Function(f"{name}_halving{level}", [xa, pm], [
+            pick(ca.logic_not(whole[nx] <= fail), whole, xa, pm)])
     X = ca.MX.sym("X", nx)
     P = ca.MX.sym("P", 4, substeps)
     xx = X
