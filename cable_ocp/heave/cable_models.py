@@ -45,7 +45,8 @@ from cable_ocp.heave.cable_plant import (
 from cable_ocp.physics.drag import drag_per_length
 
 __all__ = ["HALVINGS", "PLANT_MODELS", "TOP_SEGMENT_RANGE", "LumpedCablePlant",
-           "PlanarCablePlant", "axial_twin", "cable_plant", "still_scene"]
+           "PlanarCablePlant", "axial_twin", "cable_plant", "lumped_axial_frequency",
+           "still_scene"]
 
 # 3-point Gauss-Legendre rule on [-1, 1] (the discrete-gradient tension, as the models')
 _GAUSS_X = (-math.sqrt(0.6), 0.0, math.sqrt(0.6))

@@ -3,10 +3,9 @@
 Huang simulates the unit's response to a random boom-tip motion with his ch. 3 cable model
 and fits ``a, b`` of (6.2) (and of (6.3)) by Gauss-Newton. Here the cable model is the model
 of the heave scene's ``[unit] cable_scene`` (axial, planar or lumped3d), stepped by the heave
-plant
-(:func:`cable_ocp.heave.cable_models.cable_plant`) with a prescribed top motion at a fixed
-length, and the fit is :func:`cable_ocp.heave.identify.identify_unit` (the thesis' iteration
-with exact sensitivities).
+plant (:func:`cable_ocp.heave.cable_models.cable_plant`) with a prescribed top motion at a
+fixed length, and the fit is :func:`cable_ocp.heave.identify.identify_unit` (the thesis'
+iteration with exact sensitivities).
 
 Excitations (``[identification] excitation``):
 

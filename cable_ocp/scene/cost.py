@@ -53,7 +53,8 @@ MPC_STEP_S = 2e-3
 #: and the loop's Python roughly double it)
 CABLE_S_PER_ELEMENT_STEP = 1.5e-6
 #: the same per cable model: the planar and lumped3d plants (compiled sparse-QR Newton)
-#: cost 4-9 times the axial one per sample (0.2-0.5 ms per step of 20-50 elements)
+#: cost 2-5 times the axial one per sample at 20-50 elements (0.1-0.3 ms per step; the
+#: loop around it as for the axial one), rounded up
 CABLE_S_PER_ELEMENT_STEP_BY_MODEL = {"axial": CABLE_S_PER_ELEMENT_STEP, "planar": 1e-5,
                                      "lumped3d": 1.2e-5}
 

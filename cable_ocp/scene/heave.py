@@ -617,9 +617,9 @@ def _check_cable(sc: HeaveScene) -> None:
     from cable_ocp.dynamics.lumped_scene import check_lumped_plant
     from cable_ocp.dynamics.planar import check_planar
 
-    check = {"axial": check_axial, "planar": check_planar, "lumped3d": check_lumped_plant}
+    checks = {"axial": check_axial, "planar": check_planar, "lumped3d": check_lumped_plant}
     try:
-        check[model](dyn)
+        checks[model](dyn)
     except CableOCPError as exc:
         raise CableOCPError(f"unit.cable_scene = {sc.unit.cable_scene!r}: {exc}") from None
     h = sc.controller.sample_time
