@@ -35,8 +35,8 @@ from cable_ocp.dynamics.scene import DynamicScene
 from cable_ocp.errors import CableOCPError
 from cable_ocp.physics.current import current_velocity
 
-__all__ = ["lumped_params", "lumped_start", "modes_lumped", "segment_counts",
-           "simulate_lumped"]
+__all__ = ["check_lumped_plant", "lumped_params", "lumped_start", "modes_lumped",
+           "segment_counts", "simulate_lumped"]
 
 #: at most this many progress calls (chunks) per run
 MAX_CHUNKS = 200
@@ -71,6 +71,14 @@ def _check(scene: DynamicScene) -> None:
         raise CableOCPError(f'top_motion.{key}: simulation.model = "lumped3d" has a fixed '
                             'length (Huang (1992) ch. 5); pay-out needs model = "axial" or '
                             '"planar"')
+    check_lumped_plant(scene)
+
+
+def check_lumped_plant(scene: DynamicScene) -> None:
+    """Raise :class:`CableOCPError` (naming the key) when the scene's line has what the
+    lumped-mass model cannot represent, its ``[top_motion]`` aside (the heave plant,
+    :class:`cable_ocp.heave.cable_models.LumpedCablePlant`, moves the top and pays cable
+    out itself)."""
     if scene.statics.environment.seabed is not None:
         raise CableOCPError('[environment.seabed]: simulation.model = "lumped3d" has no '
                             "seabed contact; remove the table (the seabed is then only "

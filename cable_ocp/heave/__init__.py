@@ -25,7 +25,8 @@ mpc         condensed linear MPC (CasADi ``conic``) and nonlinear MPC (IPOPT), b
 simulate    closed-loop simulation on one seeded wave realisation, metrics
 identify_cable  the identification experiment (6.2.3) on a cable scene's line
 cable_plant     the axial line as the plant, the Kalman estimate from depth/winch/boom-tip
-cable_models    the planar line as the plant; cable_plant(): the plant by the scene's model
+cable_models    the planar and 3D lumped-mass lines as the plant; cable_plant(): the plant by
+                the scene's model
 deployment  lowering the unit through resonance, with gain scheduling
 cable_compare   :func:`compare` for every scene: on the design model, or on the cable
 (the scene schema lives in :mod:`cable_ocp.scene.heave`)

@@ -5,7 +5,7 @@ A heave scene with ``[unit] cable_scene`` is compared here: the design model is 
 from the cable (Huang (1992), section 6.2.3; :mod:`cable_ocp.heave.identify_cable`) unless
 ``[unit] a, b`` are given; ``[simulation] plant = "model"`` runs the usual comparison
 (:func:`cable_ocp.heave.simulate.compare`) on that model, ``"cable"`` runs every controller
-against the cable (the axial or planar model of the cable scene,
+against the cable (the axial, planar or lumped3d model of the cable scene,
 :func:`cable_ocp.heave.cable_models.cable_plant`) and against the design model
 for the prediction, and a ``[deployment]`` table lowers the unit through resonance
 (:mod:`cable_ocp.heave.deployment`). :func:`compare` takes any heave scene.
@@ -66,9 +66,9 @@ def compare_cable(sc: HeaveScene, controllers: tuple | None = None,
     The design model is identified from the cable scene (Huang (1992), section 6.2.3,
     :func:`cable_ocp.heave.identify_cable.identify_from_cable`) unless ``[unit] a, b`` are
     given. With ``[simulation] plant = "model"`` the usual comparison runs on that model;
-    with ``"cable"`` every controller runs against the cable (the cable scene's axial or
-    planar model, :func:`cable_ocp.heave.cable_models.cable_plant`), and against the design
-    model with the same estimator for the prediction.
+    with ``"cable"`` every controller runs against the cable (the cable scene's axial,
+    planar or lumped3d model, :func:`cable_ocp.heave.cable_models.cable_plant`), and
+    against the design model with the same estimator for the prediction.
     """
     dyn = load_cable_scene(sc)
     ident = idc.identify_from_cable(sc, dyn)
@@ -136,6 +136,16 @@ def _compare_on_cable(sc: HeaveScene, sd: HeaveScene, dyn: DynamicScene,
     metrics, traces, predicted, statuses, messages = {}, {}, {}, {}, {}
     solve_times, failures = None, 0
     warnings: list[str] = []
+    top_range = getattr(plant_c, "top_range", None)  # the lumped3d plant's top segment
+    stroke = sc.winch.stroke_max
+    if top_range is not None and stroke is not None:
+        haul, pay = plant_c.l_top0 - top_range[0], top_range[1] - plant_c.l_top0
+        if stroke > min(haul, pay):
+            warnings.append(
+                f"winch.stroke_max = {stroke:g} m: the lumped3d plant pays cable through its "
+                f"top segment ({plant_c.l_top0:.4g} m), which takes {haul:.3g} m of haul-in "
+                f"and {pay:.3g} m of pay-out; a run whose winch goes further stops as failed "
+                "(fewer simulation.segments in the cable scene lengthen that segment)")
     for idx, name in enumerate(runs_of):
         if design_error is not None and name != "passive":
             statuses[name], messages[name] = "failed", design_error
@@ -170,11 +180,13 @@ def _compare_on_cable(sc: HeaveScene, sd: HeaveScene, dyn: DynamicScene,
         if pst != "solved":
             warnings.append(f"{name}: on the design model (the prediction): {pst}: {pmsg}")
         if mc["slack_samples"]:
+            why = ("cannot follow slack (it carries compression), its tensions there are not "
+                   "physical" if plant_c.model_name == "axial" else "has no compression and "
+                   "follows a slack line only approximately (it may fold there)")
             warnings.append(
                 f"{name}: the line went slack on the cable (an element tension <= 0 at "
                 f"{mc['slack_samples']} samples after the warm-up, first at "
-                f"t = {mc['slack_first_time_s']:.2f} s); the {plant_c.model_name} model cannot "
-                "follow slack, its tensions there are not physical")
+                f"t = {mc['slack_first_time_s']:.2f} s); the {plant_c.model_name} model {why}")
         traces[name] = runs["cable"].trace
         predicted[name] = runs["model"].trace
         if name == "mpc":

@@ -8,14 +8,14 @@
   ch. 4 (:class:`cable_ocp.dynamics.planar.PlanarModel`): the same heave and pay-out at
   the top, and the line swings out of the vertical in a current along x (sway, and the
   vertical motion that the inclined line couples to it);
-* ``"lumped3d"`` is refused: the lumped-mass model of Huang (1992), ch. 5
-  (:class:`cable_ocp.dynamics.lumped.LumpedMassModel`) has fixed segment lengths (its
-  unstretched lengths, node masses and weights are constants of its compiled residual) and a
-  top motion that is a closed-form function of time, so the winch cannot pay cable in or
-  out at the top. A plant on it needs the top segment's length and the top position as
-  parameters of each step (a change to that model's step builder).
+* ``"lumped3d"``: :class:`LumpedCablePlant`, the three-dimensional lumped-mass line of
+  Huang (1992), ch. 5 (:class:`cable_ocp.dynamics.lumped.LumpedMassModel`): the same heave
+  and pay-out at the top, the winch paying cable in and out through the line's top
+  segment (whose unstretched length must stay within :data:`TOP_SEGMENT_RANGE` of its
+  nominal one: no re-meshing, so no ``[deployment]``); a current of any heading and
+  profile swings the line out of the vertical in 3D.
 
-Both plants have the interface that the closed loop (:func:`cable_ocp.heave.cable_plant.run_loop`
+The plants have the interface that the closed loop (:func:`cable_ocp.heave.cable_plant.run_loop`
 through ``_CableLoopPlant``) and the identification experiment use: ``substeps``, ``dt``,
 ``length0``, ``z_top0``, ``tolerance``, ``model.n``, :meth:`initial_state`,
 :meth:`static_unit_height`, :meth:`static_tensions`, :meth:`advance` and
@@ -25,11 +25,14 @@ through ``_CableLoopPlant``) and the identification experiment use: ``substeps``
 from __future__ import annotations
 
 import copy
+import math
+from collections.abc import Callable
 from typing import Any
 
 import casadi as ca
 import numpy as np
 
+from cable_ocp.dynamics.lumped import LumpedMassModel, LumpedParams
 from cable_ocp.dynamics.planar import PlanarModel
 from cable_ocp.dynamics.scene import DynamicScene, dynamic_scene_from_dict
 from cable_ocp.errors import CableOCPError
@@ -39,12 +42,20 @@ from cable_ocp.heave.cable_plant import (
     _compile,
     sampled_motion,
 )
+from cable_ocp.physics.drag import drag_per_length
 
-__all__ = ["HALVINGS", "PLANT_MODELS", "PlanarCablePlant", "axial_twin", "cable_plant"]
+__all__ = ["HALVINGS", "PLANT_MODELS", "TOP_SEGMENT_RANGE", "LumpedCablePlant",
+           "PlanarCablePlant", "axial_twin", "cable_plant", "lumped_axial_frequency",
+           "still_scene"]
+
+# 3-point Gauss-Legendre rule on [-1, 1] (the discrete-gradient tension, as the models')
+_GAUSS_X = (-math.sqrt(0.6), 0.0, math.sqrt(0.6))
+_GAUSS_W = (5.0 / 18.0, 8.0 / 18.0, 5.0 / 18.0)
 
 #: the cable scene's ``simulation.model`` values that can be the heave plant
-PLANT_MODELS = ("axial", "planar")
-#: times a planar step whose Newton iteration fails is halved (down to 1/8 of the step)
+PLANT_MODELS = ("axial", "planar", "lumped3d")
+#: times a planar or lumped3d step whose Newton iteration fails is halved (down to 1/8 of
+#: the step)
 HALVINGS = 3
 
 
@@ -60,22 +71,24 @@ def cable_plant(scene: DynamicScene, sample_time: float) -> Any:
 
     Returns
     -------
-    AxialCablePlant or PlanarCablePlant
+    AxialCablePlant, PlanarCablePlant or LumpedCablePlant
 
     Raises
     ------
     CableOCPError
-        For ``model = "lumped3d"`` (module docstring) or a scene the model refuses.
+        For a scene the model refuses (no unit, a time step that does not divide the
+        sample, a static state that fails).
     """
     model = scene.simulation.model
     if model == "axial":
         return AxialCablePlant(scene, sample_time)
     if model == "planar":
         return PlanarCablePlant(scene, sample_time)
+    if model == "lumped3d":
+        return LumpedCablePlant(scene, sample_time)
     raise CableOCPError(
         f"simulation.model = {model!r} in the cable scene: the heave plant takes "
-        f"{' or '.join(repr(m) for m in PLANT_MODELS)}; the lumped-mass model has fixed "
-        "segment lengths, so the winch cannot pay cable in or out at its top")
+        f"{', '.join(repr(m) for m in PLANT_MODELS)}")
 
 
 def axial_twin(scene: DynamicScene) -> DynamicScene:
@@ -89,6 +102,93 @@ def axial_twin(scene: DynamicScene) -> DynamicScene:
     if isinstance(raw.get("environment"), dict):
         raw["environment"].pop("current", None)
     return dynamic_scene_from_dict(raw)
+
+
+def _newton_step(name: str, newton: ca.Function, resid: ca.Function, guess: ca.Function,
+                 finish: Callable[[Any, Any], Any], nx: int, ny: int, tol: float,
+                 max_iter: int) -> ca.Function:
+    """One plant step ``(x, p) -> [x_next; residual; outputs]`` (``p`` = ``[L_a, L_b, z_a,
+    z_b, dt]``) by Newton's method on the step's unknowns ``y`` (``ny``).
+
+    ``guess(pv)``, ``newton(y, pv)`` (one iteration) and ``resid(y, pv)`` (the scaled
+    residual) are functions of ``pv = [x; p]``; ``finish(y, pv)`` gives ``[x_next;
+    outputs]``. Two iterations from the guess, then more (up to ``max_iter``) only while
+    the residual exceeds ``tol``: a short-circuit switch, evaluated only when taken.
+    """
+    xa = ca.MX.sym("xa", nx)
+    pm = ca.MX.sym("p", 5)
+    pv = ca.vertcat(xa, pm)
+    y1 = newton(newton(guess(pv), pv), pv)
+    y = ca.vertcat(y1, resid(y1, pv))
+    yb = ca.MX.sym("y", ny + 1)
+    xb = newton(yb[:ny], pv)
+    more = ca.Function("more", [yb, xa, pm], [ca.vertcat(xb, resid(xb, pv))])
+    keep = ca.Function("keep", [yb, xa, pm], [yb])
+    switch = ca.Function.conditional(f"{name}_more", [keep], more)
+    for _ in range(max(0, max_iter - 2)):
+        y = switch(y[ny] > tol, y, xa, pm)
+    fin = finish(y[:ny], pv)
+    return ca.Function(f"{name}_step", [xa, pm], [ca.vertcat(fin[:nx], y[ny], fin[nx:])])
+
+
+def _sample_functions(name: str, step: ca.Function, nx: int, substeps: int, dt: float,
+                      tol: float, halvings: int
+                      ) -> tuple[ca.Function, ca.Function, ca.Function]:
+    """``(sample, flat, step)`` from one plant step ``(x, p) -> [x_next; residual;
+    z_unit, v_unit, t_unit, t_top, t_min]`` (:func:`_newton_step`).
+
+    ``step`` with halving: where the residual exceeds the failure threshold ``1e3 tol``
+    (a line going slack, where the no-compression law bends sharply), the step is taken
+    again as two steps of half the size (``L`` and the top height halved linearly),
+    recursively up to ``halvings`` times (only then evaluated). ``sample(X, P)``:
+    ``substeps`` steps of ``dt`` with ``P`` (4 x substeps: ``L_a, L_b, z_a, z_b`` per
+    step) -> ``(x_next, z_unit, v_unit, t_unit, t_top, t_min, residual)``; ``flat(X,
+    Pf)``: the same with ``P`` as one column and the outputs stacked (one conversion per
+    call in the closed loop).
+    """
+    xa = ca.MX.sym("xa", nx)
+    pm = ca.MX.sym("p", 5)
+    fail = max(1e3 * tol, 1e-6)  # the closed loop's failure threshold
+    core = step
+    for level in range(halvings):
+        # the step, or (where it fails) two halves of it, each with the step before
+        hm = ca.vertcat(0.5 * (pm[0] + pm[1]), 0.5 * (pm[2] + pm[3]))
+        first = step(xa, ca.vertcat(pm[0], hm[0], pm[2], hm[1], 0.5 * pm[4]))
+        second = step(first[:nx], ca.vertcat(hm[0], pm[1], hm[1], pm[3], 0.5 * pm[4]))
+        halves = ca.Function("halves", [xa, pm], [ca.vertcat(
+            second[:nx], ca.fmax(first[nx], second[nx]), second[nx + 1:])])
+        whole = core(xa, pm)
+        # a switch on functions that take the whole step as an argument: only the taken
+        # branch runs (CasADi's if_else on expressions would build the "whole" branch as a
+        # function of (xa, pm) and take the step again there)
+        yw = ca.MX.sym("y", whole.shape[0])
+        keep = ca.Function("keep", [yw, xa, pm], [yw])
+        halve = ca.Function("halve", [yw, xa, pm], [halves(xa, pm)])
+        pick = ca.Function.if_else(f"{name}_halving{level}_pick", halve, keep)
+        step = ca.Function(f"{name}_halving{level}", [xa, pm], [
+            pick(ca.logic_not(whole[nx] <= fail), whole, xa, pm)])
+    X = ca.MX.sym("X", nx)
+    P = ca.MX.sym("P", 4, substeps)
+    xx = X
+    cols, rmax = [], None
+    for j in range(substeps):
+        yj = step(xx, ca.vertcat(P[:, j], dt))
+        xx = yj[:nx]
+        rmax = yj[nx] if rmax is None else ca.fmax(rmax, yj[nx])
+        cols.append(yj[nx + 1:])
+    o = ca.horzcat(*cols)
+    tmin = o[4, 0]
+    for j in range(1, substeps):
+        tmin = ca.fmin(tmin, o[4, j])
+    sample = ca.Function(f"{name}_sample", [X, P],
+                         [xx, o[0, :], o[1, :], o[2, :], o[3, :], tmin, rmax],
+                         ["x", "P"], ["x_next", "z_unit", "v_unit", "t_unit", "t_top",
+                                      "t_min", "residual"])
+    Pf = ca.MX.sym("Pf", 4 * substeps)
+    r = sample(X, ca.reshape(Pf, 4, substeps))
+    flat = ca.Function(f"{name}_sample_flat", [X, Pf], [ca.vertcat(
+        r[0], r[1].T, r[2].T, r[3].T, r[4].T, r[5], r[6])])
+    return sample, flat, step
 
 
 class _SteppedPlanar(PlanarModel):
@@ -244,60 +344,15 @@ class PlanarCablePlant(SampledCablePlant):
         self._out = out
 
         # one step: two iterations, then more while the residual exceeds tol
-        xa = ca.MX.sym("xa", 2 * nf2)
-        pm = ca.MX.sym("p", 5)
-        pv = ca.vertcat(xa, pm)
-        x2 = newton(newton(guess(pv), pv), pv)
-        y = ca.vertcat(x2, resid(x2, pv))
-        yb = ca.MX.sym("y", nf2 + 1)
-        xb = newton(yb[:nf2], pv)
-        more = ca.Function("more", [yb, xa, pm], [ca.vertcat(xb, resid(xb, pv))])
-        keep = ca.Function("keep", [yb, xa, pm], [yb])
-        switch = ca.Function.conditional("planar_more", [keep], more)
-        for _ in range(max(0, max_iter - 2)):
-            y = switch(y[nf2] > tol, y, xa, pm)
-        qn = y[:nf2]
-        vn = post(qn, pv)
-        step = ca.Function("planar_step", [xa, pm],
-                           [ca.vertcat(qn, vn, y[nf2], out(qn, vn, xa[nf2:], pm))])
-        fail = max(1e3 * tol, 1e-6)  # the closed loop's failure threshold
-        core = step
-        for level in range(halvings):
-            # the step, or (where it fails) two halves of it, each with the step before
-            hm = ca.vertcat(0.5 * (pm[0] + pm[1]), 0.5 * (pm[2] + pm[3]))
-            first = step(xa, ca.vertcat(pm[0], hm[0], pm[2], hm[1], 0.5 * pm[4]))
-            second = step(first[:2 * nf2], ca.vertcat(hm[0], pm[1], hm[1], pm[3],
-                                                      0.5 * pm[4]))
-            halves = ca.Function("halves", [xa, pm], [ca.vertcat(
-                second[:2 * nf2], ca.fmax(first[2 * nf2], second[2 * nf2]),
-                second[2 * nf2 + 1:])])
-            whole = core(xa, pm)
-            r = whole[2 * nf2]
-            step = ca.Function(f"planar_halving{level}", [xa, pm], [ca.if_else(
-                ca.logic_not(r <= fail), halves(xa, pm), whole, True)])
-        self._step = step
-        X = ca.MX.sym("X", 2 * nf2)
-        P = ca.MX.sym("P", 4, self.substeps)
-        xx = X
-        cols, rmax = [], None
-        for j in range(self.substeps):
-            yj = step(xx, ca.vertcat(P[:, j], self.dt))
-            xx = yj[:2 * nf2]
-            rmax = yj[2 * nf2] if rmax is None else ca.fmax(rmax, yj[2 * nf2])
-            cols.append(yj[2 * nf2 + 1:])
-        o = ca.horzcat(*cols)
-        tmin = o[4, 0]
-        for j in range(1, self.substeps):
-            tmin = ca.fmin(tmin, o[4, j])
-        sample = ca.Function("planar_sample", [X, P],
-                             [xx, o[0, :], o[1, :], o[2, :], o[3, :], tmin, rmax],
-                             ["x", "P"], ["x_next", "z_unit", "v_unit", "t_unit", "t_top",
-                                          "t_min", "residual"])
-        m = self.substeps
-        Pf = ca.MX.sym("Pf", 4 * m)
-        r = sample(X, ca.reshape(Pf, 4, m))
-        self._flat = ca.Function("planar_sample_flat", [X, Pf], [ca.vertcat(
-            r[0], r[1].T, r[2].T, r[3].T, r[4].T, r[5], r[6])])
+        def finish(y: ca.MX, pv: ca.MX) -> ca.MX:
+            vn = post(y, pv)
+            return ca.vertcat(y, vn, out(y, vn, pv[nf2:2 * nf2], pv[2 * nf2:]))
+
+        step = _newton_step("planar", newton, resid, guess, finish, 2 * nf2, nf2, tol,
+                            max_iter)
+        sample, self._flat, self._step = _sample_functions("planar", step, 2 * nf2,
+                                                           self.substeps, self.dt, tol,
+                                                           halvings)
         return sample
 
     def _outputs_at(self, x: np.ndarray, p: np.ndarray) -> np.ndarray:
@@ -318,6 +373,458 @@ class PlanarCablePlant(SampledCablePlant):
         length = np.asarray(length, dtype=float)
         if np.any(np.abs(length - self.length0) > 1e-9 * self.length0):
             raise CableOCPError('the planar heave plant knows the static depth at the cable '
+                                f'scene\'s length ({self.length0} m) only: a [deployment] '
+                                'needs simulation.model = "axial"')
+        return np.full(length.shape, self._z_static) if length.shape else np.asarray(
+            self._z_static)
+
+    def static_tensions(self, length: float | None = None) -> tuple[float, float]:
+        """(tension at the unit, at the top) of the static line, N (the scene's length;
+        with a current the unit's includes its drag)."""
+        if length is not None and abs(length - self.length0) > 1e-9 * self.length0:
+            self.static_unit_height(length)  # raises
+        return self._t_static
+
+
+# ------------------------------------------------------------------------------------------
+# The three-dimensional lumped-mass line (Huang (1992), ch. 5) as the plant
+# ------------------------------------------------------------------------------------------
+
+#: the top segment's unstretched length must stay within these multiples of its nominal
+#: length (the winch pays cable in and out through it; it is not re-meshed)
+TOP_SEGMENT_RANGE = (0.3, 2.0)
+
+
+def still_scene(scene: DynamicScene) -> DynamicScene:
+    """The cable scene without its ``[top_motion]`` and with the static start: the line
+    at rest under its static top (the heave plant moves the top itself)."""
+    raw = copy.deepcopy(scene.raw)
+    raw.pop("top_motion", None)
+    raw.setdefault("simulation", {})["start"] = "static"
+    return dynamic_scene_from_dict(raw)
+
+
+def lumped_axial_frequency(scene: DynamicScene) -> float:
+    """First axial natural frequency (rad/s) of a lumped3d scene's line hanging vertically
+    without the current: the lowest mode of the lumped-mass model about its static state
+    whose shape is vertical (more than 99 % of its squared displacements along z; the
+    vertical line's axial and transverse modes are uncoupled)."""
+    from cable_ocp.dynamics.lumped_scene import lumped_params, lumped_start
+
+    raw = copy.deepcopy(still_scene(scene).raw)
+    if isinstance(raw.get("environment"), dict):
+        raw["environment"].pop("current", None)
+    twin = dynamic_scene_from_dict(raw)
+    model = LumpedMassModel(lumped_params(twin))
+    x0, info = lumped_start(twin, model)
+    if x0 is None:
+        raise CableOCPError(f"cable scene: the vertical lumped-mass line's static state "
+                            f"failed: {info.get('message', '')}")
+    omega, shapes, _ = model.modes(x0)
+    share = np.sum(shapes[:, :, 2] ** 2, axis=1) / np.sum(shapes**2, axis=(1, 2))
+    return float(omega[np.flatnonzero(share > 0.99)[0]])
+
+class _SteppedLumped(LumpedMassModel):
+    """The lumped-mass model with the top segment's unstretched length and the top's
+    height as parameters of a step.
+
+    The base model (built on the scene's line at its length ``L0``, the top at rest)
+    gives the static equilibrium, the force scale, the node masses and weights of the
+    fixed segments and the loads of the unit and bodies. :meth:`step_expressions` builds
+    the implicit-midpoint step with, over the step ``(0, dt)``, the unstretched length
+    ``L`` and the top's height linear between ``p = [L_a, L_b, z_a, z_b]`` (m); the top
+    keeps its static x and y. The top segment (node N-1 to the top, node N) has the
+    unstretched length ``l_top = l_top0 + (L - L0)``: the winch pays cable in and out
+    there; the other segments keep theirs.
+    """
+
+    def __init__(self, params: LumpedParams, length0: float) -> None:
+        super().__init__(params)
+        if params.fixed_a:
+            raise CableOCPError("the lumped-mass heave plant needs a [unit] at end_a (the "
+                                "unit the winch lifts), not an anchor")
+        self.length0 = float(length0)
+        self.l_top0 = float(params.segment_length[-1])
+        self.top0 = np.asarray(params.top_position(0.0), dtype=float).ravel()
+
+    @property
+    def n(self) -> int:
+        """Number of lumped segments N."""
+        return self.params.segments
+
+    # -- one segment ---------------------------------------------------------------------
+    def _seg_drag(self, j: int, d: Any, urel: Any) -> Any:
+        """Drag on segment ``j`` (N) with chord ``d`` and relative flow ``urel``: the drag
+        per stretched length (:func:`cable_ocp.physics.drag.drag_per_length`) times
+        ``|d|``, as :class:`~cable_ocp.dynamics.lumped.LumpedMassModel`."""
+        p = self.params
+        if p.water_density == 0 or (p.normal_drag[j] == 0 and p.tangential_drag[j] == 0):
+            return ca.SX.zeros(3)
+        lm = ca.norm_2(d)
+        return lm * drag_per_length(
+            p.drag_law, urel, d / lm, rho=p.water_density, diameter=float(p.diameter[j]),
+            normal_drag=float(p.normal_drag[j]),
+            tangential_drag=float(p.tangential_drag[j]), delta=p.smoothing,
+            blend=p.vertical_blend)
+
+    def _seg_added_mass(self, j: int, d: Any, ell: Any) -> Any:
+        """Each end node's share (3x3, kg) of segment ``j``'s added mass at chord ``d`` and
+        unstretched length ``ell`` (Huang (1992), eq. (5.2))."""
+        p = self.params
+        area = math.pi * float(p.diameter[j]) ** 2 / 4.0
+        cn = p.water_density * float(p.added_mass_coefficient[j]) * area
+        ct = p.water_density * float(p.tangential_added_mass_coefficient[j]) * area
+        if cn == 0 and ct == 0:
+            return ca.SX.zeros(3, 3)
+        tt = ca.mtimes(d, d.T) / ca.dot(d, d)
+        return 0.5 * ell * (cn * (ca.SX.eye(3) - tt) + ct * tt)
+
+    def _seg_tension(self, j: int, d: Any, ell: Any, rate: Any) -> tuple[Any, Any]:
+        """(tension (N): the smooth no-compression law plus the material damping at the
+        strain rate ``rate`` (1/s); the Hooke tension ``EA eps`` plus the same damping,
+        negative where the segment is slack)."""
+        eps = ca.norm_2(d) / ell - 1.0
+        damp = float(self.params.axial_damping[j]) * rate * self._taut(eps, j)
+        return (self._tension_of_strain(eps, j) + damp,
+                float(self.params.axial_stiffness[j]) * eps + damp)
+
+    # -- the step ------------------------------------------------------------------------
+    def step_expressions(self, fscale: float) -> dict[str, Any]:
+        """The midpoint step of the plant as SX expressions.
+
+        Unknown ``y``: the free nodes' displacement over the step relative to the top
+        (``q1 - q0``, ``3 N``: small numbers, so the residual has no round-off from the
+        positions). State: ``q`` the free nodes' positions relative to the top (m) and
+        ``v`` their velocities (m/s). Equations at node i::
+
+            M_i(r_m, l_m) (v1 - v0) / dt = F_T + W_i(l_m) + D(r_m, (r1 - r0) / dt) + ...
+            r1 - r0 = dt (v0 + v1) / 2
+
+        with the discrete-gradient tension of each segment: the mean of T over
+        ``[eps0, eps1]`` (3-point Gauss) along ``(d0 + d1) / (|d0| + |d1|)``, where the
+        strain of each level is taken with that level's unstretched length
+        (``eps_k = |d_k| / l_k - 1``), and the material damping at the strain rate
+        ``(eps1 - eps0) / dt``. For the fixed segments this is the model's own scheme
+        (:meth:`LumpedMassModel.step_function`, ``"midpoint"``). For the top segment it
+        is the same form, second order (``eps`` and the direction are midpoint values up
+        to ``O(dt^2)``); it does not balance the strain energy exactly while ``l``
+        changes, which is not required: cable paid out carries energy in and out with
+        it, and with the winch still (``l_a = l_b``) the step is the model's own,
+        energy-conserving one.
+
+        The node below the top carries half of the top segment's mass, added mass and
+        weight in water at its length in the middle of the step, ``l_m``: the mass
+        changes as cable is paid out and joins the node at the node's own velocity, for
+        which ``M(l_m) (v1 - v0) = m1 v1 - m0 v0 - (m1 - m0) (v0 + v1) / 2`` is exactly
+        the discrete momentum balance ``d(m v)/dt = F + m' v`` (no thrust). The
+        momentum that the paid-out cable brings in at the sheave's velocity is left
+        out: ``mu L' (v_sheave - v) / 2``, a few newtons against the tensions.
+
+        Returns a dict: symbols ``y``, ``q0``, ``v0``, ``p`` (4), ``dt``; ``res``
+        (scaled by ``fscale``, N), ``x1`` (the state at the end), ``guess`` (the
+        explicit predictor ``r1 = r0 + dt v0``) and ``out``: ``[z_unit, v_unit, t_unit,
+        t_top, t_min]`` at the end of the step.
+        """
+        p = self.params
+        n = p.segments
+        nf3 = 3 * n
+        y = ca.SX.sym("y", nf3)
+        q0 = ca.SX.sym("q0", nf3)
+        v0 = ca.SX.sym("v0", nf3)
+        par = ca.SX.sym("p", 4)
+        dt = ca.SX.sym("dt")
+        la = self.l_top0 + (par[0] - self.length0)
+        lb = self.l_top0 + (par[1] - self.length0)
+        lm = 0.5 * (la + lb)
+        drt = ca.vertcat(0.0, 0.0, par[3] - par[2])  # the top's displacement over the step
+        ztm = 0.5 * (par[2] + par[3])
+        top_xy = ca.DM(self.top0[:2])
+
+        def node(v: Any, i: int) -> Any:
+            return v[3 * i:3 * i + 3] if i < n else ca.SX.zeros(3)
+
+        q1 = q0 + y
+        dq = [node(y, i) + drt for i in range(n)] + [drt]  # r1 - r0 of every node
+        vel = [d / dt for d in dq]  # the step's mean velocities
+        v1 = 2.0 * (y + ca.repmat(drt, n, 1)) / dt - v0
+        ell0 = [float(v) for v in p.segment_length[:-1]] + [la]
+        ell1 = [float(v) for v in p.segment_length[:-1]] + [lb]
+        ellm = [float(v) for v in p.segment_length[:-1]] + [lm]
+
+        def absolute(q: Any, i: int, zt: Any) -> Any:  # a node's position, m
+            return ca.vertcat(top_xy, zt) + node(q, i)
+
+        def current(z: Any) -> Any:
+            return ca.vec(p.current(z)) if p.current is not None else ca.SX.zeros(3)
+
+        force = [ca.SX.zeros(3) for _ in range(n + 1)]
+        madd = []
+        for j in range(n):
+            d0 = node(q0, j + 1) - node(q0, j)
+            d1 = node(q1, j + 1) - node(q1, j)
+            n0, n1 = ca.norm_2(d0), ca.norm_2(d1)
+            e0, e1 = n0 / ell0[j] - 1.0, n1 / ell1[j] - 1.0
+            em, de = 0.5 * (e0 + e1), 0.5 * (e1 - e0)
+            tbar = sum(w * self._tension_of_strain(em + g * de, j)
+                       for g, w in zip(_GAUSS_X, _GAUSS_W, strict=True))
+            c = float(p.axial_damping[j])
+            if c > 0:
+                tbar = tbar + c * (e1 - e0) / dt * self._taut(em, j)
+            fe = tbar * (d0 + d1) / (n0 + n1)
+            dm = 0.5 * (d0 + d1)
+            zm = 0.25 * (node(q0, j)[2] + node(q1, j)[2] + node(q0, j + 1)[2]
+                         + node(q1, j + 1)[2]) + ztm
+            fd = self._seg_drag(j, dm, current(zm) - 0.5 * (vel[j] + vel[j + 1]))
+            force[j] = force[j] + fe + 0.5 * fd
+            force[j + 1] = force[j + 1] - fe + 0.5 * fd
+            madd.append(self._seg_added_mass(j, dm, ellm[j]))
+        loads = self._static_loads()
+        # the top segment's share of mass and weight at its length in the middle of the step
+        extra_l = lm - self.l_top0
+        loads[n - 1] = loads[n - 1] - ca.vertcat(0.0, 0.0, 0.5 * float(p.weight_in_water[-1])
+                                                 * extra_l)
+        mu_top = float(p.mass_per_length[-1])
+        rows = []
+        for i in range(n):
+            mass = ca.SX(ca.diag(ca.DM(self._node_mass[i]))) + madd[i]
+            if i > 0:
+                mass = mass + madd[i - 1]
+            if i == n - 1:
+                mass = mass + 0.5 * mu_top * extra_l * ca.SX.eye(3)
+            fi = force[i] + loads[i]
+            rm = 0.5 * (absolute(q0, i, par[2]) + absolute(q1, i, par[3]))
+            fi = fi + self._point_force(i, rm, vel[i])
+            rows.append(ca.mtimes(mass, node(v1, i) - node(v0, i)) / dt - fi)
+        res = ca.vertcat(*rows) / fscale
+
+        # outputs at the end of the step (the top's velocity: its mean over the step)
+        vend = [node(v1, i) for i in range(n)] + [drt / dt]
+        ldot = (lb - la) / dt
+        tens, hooke, chords = [], [], []
+        for j in range(n):
+            d1 = node(q1, j + 1) - node(q1, j)
+            n1 = ca.norm_2(d1)
+            rate = ca.dot(d1, vend[j + 1] - vend[j]) / (n1 * ell1[j])
+            if j == n - 1:
+                rate = rate - n1 * ldot / ell1[j] ** 2  # d/dt (|d| / l) with l changing
+            t_j, h_j = self._seg_tension(j, d1, ell1[j], rate)
+            tens.append(t_j)
+            hooke.append(h_j)
+            chords.append(d1)
+
+        def end_drag(j: int) -> Any:
+            zm = 0.5 * (node(q1, j)[2] + node(q1, j + 1)[2]) + par[3]
+            return self._seg_drag(j, chords[j], current(zm) - 0.5 * (vend[j] + vend[j + 1]))
+
+        ez = ca.DM([0.0, 0.0, 1.0])
+        # the pull of the cable on the unit: segment 0's tension less the half segment
+        # that node 0 carries (weight in water, drag, inertia at the step's mean
+        # acceleration)
+        e_0 = chords[0] / ca.norm_2(chords[0])
+        half = (0.5 * float(p.mass_per_length[0]) * ell1[0] * ca.SX.eye(3)
+                + self._seg_added_mass(0, chords[0], ell1[0]))
+        acc0 = (node(v1, 0) - node(v0, 0)) / dt
+        pull = (tens[0] * e_0 + 0.5 * end_drag(0)
+                - 0.5 * float(p.weight_in_water[0]) * ell1[0] * ez - ca.mtimes(half, acc0))
+        # the top: the force of the attachment on the cable, node N's balance without its
+        # acceleration (the top is linear within a step)
+        e_t = chords[n - 1] / ca.norm_2(chords[n - 1])
+        top = (tens[n - 1] * e_t - 0.5 * end_drag(n - 1)
+               + 0.5 * float(p.weight_in_water[-1]) * lb * ez)
+        out = ca.vertcat(node(q1, 0)[2] + par[3], node(v1, 0)[2], ca.norm_2(pull),
+                         ca.norm_2(top), ca.mmin(ca.vertcat(*hooke)))
+        guess = dt * v0 - ca.repmat(drt, n, 1)
+        return {"y": y, "q0": q0, "v0": v0, "p": par, "dt": dt, "res": res,
+                "x1": ca.vertcat(q1, v1), "guess": guess, "out": out}
+
+    def _point_force(self, i: int, r: Any, v: Any) -> Any:
+        """Drag (N) of the unit (node 0) or of a body at node ``i`` at position ``r`` and
+        velocity ``v`` (the model's ``_point_drag``)."""
+        p = self.params
+        f = ca.SX.zeros(3)
+        if p.water_density == 0:
+            return f
+        if i == 0 and p.unit is not None:
+            u = p.unit
+            f = f + self._point_drag(r, v, u.drag_area, u.drag_coefficient, u.drag_law)
+        for b in p.bodies:
+            if b.node == i:
+                f = f + self._point_drag(r, v, (b.drag_area,) * 3, (b.drag_coefficient,) * 3,
+                                         "vector")
+        return f
+
+
+class LumpedCablePlant(SampledCablePlant):
+    """The three-dimensional lumped-mass line (Huang (1992), ch. 5) advanced one control
+    sample per call.
+
+    The boom-tip heave moves the top (end_b) vertically (its x and y stay at the static
+    position), the winch output ``u`` pays cable in there (``L = L_dep - u``), as
+    :class:`cable_ocp.heave.cable_plant.AxialCablePlant`. The winch pays cable in and out
+    through the top segment: its unstretched length is ``l_top0 + (L - L0)``; the other
+    segments keep theirs. Its length must stay within :data:`TOP_SEGMENT_RANGE` times its
+    nominal length: the plant is not re-meshed, and :meth:`advance` stops the run (a
+    ``"failed"`` status with the reason) where the winch would leave that range. A
+    current (any heading) swings the line out of the vertical and drags on the unit and
+    the cable as they move; without a current the vertical line is the axial one.
+
+    Each sub-step is the lumped-mass model's implicit-midpoint step with its
+    discrete-gradient tension (:meth:`_SteppedLumped.step_expressions`), ``L``, the top
+    height and the step as parameters, solved by Newton's method with the exact Jacobian
+    (block tridiagonal; CasADi's sparse QR, compiled), a step that does not converge
+    halved as the planar plant's. The static start is the model's own equilibrium
+    (:func:`cable_ocp.dynamics.lumped_scene.lumped_start`).
+
+    Outputs per sub-step: the unit's height and vertical velocity, the tension at the unit
+    (the magnitude of the cable's pull on it: segment 0's tension less the half segment
+    that the unit's node carries, its inertia at the step's mean acceleration), the top
+    tension (the top node's balance without its acceleration) and the smallest segment
+    tension, the Hooke tension ``EA eps`` with the material damping: ``<= 0`` exactly where
+    a segment is slack (``eps <= 0``, the lumped-mass model's slack), where the model's
+    smooth no-compression law carries almost nothing.
+
+    Parameters
+    ----------
+    scene : DynamicScene
+        A lumped3d scene with a unit (``[simulation] model = "lumped3d"``): ``segments``,
+        ``time_step`` (must divide ``sample_time``), ``tolerance``, ``max_iterations``.
+        Its ``[top_motion]`` and ``start`` are not used.
+    sample_time : float
+        Control sample ``h``, s.
+    """
+
+    _chunk_name = "lumped_chunk"
+
+    #: the cable scene's ``simulation.model`` of this plant
+    model_name = "lumped3d"
+
+    def __init__(self, scene: DynamicScene, sample_time: float) -> None:
+        from cable_ocp.dynamics.lumped_scene import lumped_params, lumped_start
+
+        sim = scene.simulation
+        if sim.model != "lumped3d":
+            raise CableOCPError(f"LumpedCablePlant: simulation.model = {sim.model!r}; "
+                                'expected "lumped3d"')
+        if scene.unit is None:
+            raise CableOCPError('simulation.model = "lumped3d" as the heave plant: the cable '
+                                "scene needs a [unit] at end_a (the unit the winch lifts)")
+        ratio = sample_time / sim.time_step
+        m = int(round(ratio))
+        if m < 1 or abs(ratio - m) > 1e-9 * max(1.0, ratio):
+            raise CableOCPError(f"cable scene: [simulation] time_step = {sim.time_step} s must "
+                                f"divide the control sample time {sample_time} s")
+        self.scene = scene
+        self.h = float(sample_time)
+        self.substeps = m
+        self.dt = self.h / m
+        self.length0 = scene.length
+        self.z_top0 = float(scene.top_position[2])
+        self.tolerance = sim.tolerance
+        still = still_scene(scene)
+        self.model = md = _SteppedLumped(lumped_params(still), self.length0)
+        x_abs, info = lumped_start(still, md)
+        if x_abs is None:
+            raise CableOCPError(f"cable scene: the lumped-mass line's static state failed: "
+                                f"{info.get('message', '')}")
+        self.l_top0 = md.l_top0
+        self.top_range = (TOP_SEGMENT_RANGE[0] * md.l_top0, TOP_SEGMENT_RANGE[1] * md.l_top0)
+        nf3 = 3 * md.n
+        q = np.asarray(x_abs, dtype=float) - np.tile(md.top0, md.n)
+        self._x0 = np.concatenate([q, np.zeros(nf3)])
+        self.force_scale = md.force_scale(np.asarray(x_abs, dtype=float))
+        self._sample = self._build(sim.tolerance, sim.max_iterations, HALVINGS)
+        self._chunks: dict[int, ca.Function] = {}
+        r = self._outputs_at(self._x0, np.array([self.length0, self.length0, self.z_top0,
+                                                 self.z_top0, self.dt]))
+        self._z_static = float(r[0])
+        self._t_static = (float(r[2]), float(r[3]))
+
+    def _build(self, tol: float, max_iter: int, halvings: int) -> ca.Function:
+        """The sample function ``(x, P) -> (x_next, z_unit, v_unit, t_unit, t_top, t_min,
+        residual)`` over ``substeps`` midpoint steps (as the planar plant's: Newton from
+        the explicit predictor, two iterations, then more only while the scaled residual
+        exceeds the tolerance; a failing step halved)."""
+        md = self.model
+        nf3 = 3 * md.n
+        e = md.step_expressions(self.force_scale)
+        pars = ca.vertcat(e["q0"], e["v0"], e["p"], e["dt"])
+        y = e["y"]
+        fj = ca.Function("lumped_fj", [y, pars], [e["res"], ca.jacobian(e["res"], y)])
+        ys = ca.MX.sym("y", nf3)
+        ps = ca.MX.sym("pars", pars.shape[0])
+        rk, jk = fj(ys, ps)
+        newton = ca.Function("lumped_newton", [ys, ps], [ys - ca.solve(jk, rk, "qr")])
+        resid = ca.Function("lumped_resid", [y, pars], [ca.norm_inf(e["res"])])
+        guess = ca.Function("lumped_guess", [pars], [e["guess"]])
+        fin = ca.Function("lumped_finish", [y, pars], [ca.vertcat(e["x1"], e["out"])])
+        newton, resid, guess, fin = _compile([newton, resid, guess, fin])
+        self._fin = fin
+        step = _newton_step("lumped", newton, resid, guess, fin, 2 * nf3, nf3, tol, max_iter)
+        sample, self._flat, self._step = _sample_functions("lumped", step, 2 * nf3,
+                                                           self.substeps, self.dt, tol,
+                                                           halvings)
+        return sample
+
+    def _outputs_at(self, x: np.ndarray, p: np.ndarray) -> np.ndarray:
+        """``[z_unit, v_unit, t_unit, t_top, t_min]`` of the state ``x`` at rest over a
+        step of ``p`` (the static outputs: no displacement over the step)."""
+        nf3 = 3 * self.model.n
+        r = np.asarray(self._fin(np.zeros(nf3), np.concatenate([x, p]))).ravel()
+        return r[2 * nf3:]
+
+    def _out_of_range(self, lengths: np.ndarray) -> str | None:
+        """Why ``lengths`` (m) would take the top segment out of its range, or None."""
+        lt = self.l_top0 + (np.asarray(lengths, dtype=float) - self.length0)
+        lo, hi = self.top_range
+        bad = np.flatnonzero((lt < lo) | (lt > hi))
+        if not bad.size:
+            return None
+        k = int(bad[0])
+        return (f"the winch would take the lumped3d plant's top segment to {lt[k]:.4g} m "
+                f"(unstretched line {lengths[k]:.6g} m against the cable scene's "
+                f"{self.length0:.6g} m), outside {TOP_SEGMENT_RANGE[0]:g} to "
+                f"{TOP_SEGMENT_RANGE[1]:g} times its nominal {self.l_top0:.4g} m: the plant "
+                "pays cable in and out through its top segment and is not re-meshed (fewer "
+                "simulation.segments in the cable scene lengthen that segment; "
+                "winch.stroke_max limits the winch; simulation.model = \"axial\" has no such "
+                "limit)")
+
+    # ------------------------------------------------------------------------------------
+    def advance(self, x: np.ndarray, lengths: np.ndarray, tops: np.ndarray
+                ) -> tuple[np.ndarray, dict[str, Any]]:
+        """:meth:`SampledCablePlant.advance`; where the winch would take the top segment
+        out of its range, nothing is stepped: the state is returned unchanged, the
+        outputs are NaN, the residual infinite and ``out["stop"]`` says why."""
+        why = self._out_of_range(lengths)
+        if why is None:
+            return super().advance(x, lengths, tops)
+        nan = np.full(self.substeps, np.nan)
+        return x.copy(), {"z_unit": nan, "v_unit": nan.copy(), "t_unit": nan.copy(),
+                          "t_top": nan.copy(), "t_min": math.nan, "residual": math.inf,
+                          "stop": why}
+
+    def run_open_loop(self, lengths: np.ndarray, tops: np.ndarray,
+                      chunk: int = 200) -> dict[str, np.ndarray]:
+        """:meth:`SampledCablePlant.run_open_loop`; raises :class:`CableOCPError` where
+        ``lengths`` would take the top segment out of its range."""
+        why = self._out_of_range(lengths)
+        if why is not None:
+            raise CableOCPError(why)
+        return super().run_open_loop(lengths, tops, chunk)
+
+    def initial_state(self) -> np.ndarray:
+        """The static state at the scene's length, at rest: the free nodes' positions
+        relative to the top (m; a displaced top carries the line with it) and their
+        velocities (zero)."""
+        return self._x0.copy()
+
+    def static_unit_height(self, length: float | np.ndarray) -> np.ndarray:
+        """Static height of the unit (m) at the scene's length (the discrete equilibrium,
+        in the current if any). Known at that length only: a deployment needs the axial
+        plant."""
+        length = np.asarray(length, dtype=float)
+        if np.any(np.abs(length - self.length0) > 1e-9 * self.length0):
+            raise CableOCPError('the lumped3d heave plant knows the static depth at the cable '
                                 f'scene\'s length ({self.length0} m) only: a [deployment] '
                                 'needs simulation.model = "axial"')
         return np.full(length.shape, self._z_static) if length.shape else np.asarray(

@@ -403,16 +403,23 @@ class _CableLoopPlant:
         self.heave = 0.0
         self.failed_at: int | None = None
         self.max_residual = 0.0
+        #: (status, message) where the plant refused a sample (its ``out["stop"]``)
+        self.stop: tuple[str, str] | None = None
 
     def start(self, x0_start: float, ldep0: float) -> tuple[float, float]:
         self.x = self.p.initial_state()
         self.heave = x0_start  # the static line hangs from the displaced top, at rest
+        self.stop = None
         return self.p.static_tensions(ldep0)
 
     def advance(self, k: int, u: np.ndarray, x0: np.ndarray, ldep: np.ndarray
                 ) -> tuple[np.ndarray, np.ndarray, np.ndarray, float]:
         x, out = self.p.advance(self.x, ldep - u, self.p.z_top0 + x0)
-        self.max_residual = max(self.max_residual, out["residual"])
+        if "stop" in out and self.stop is None:
+            self.stop = ("failed", f"at t = {k * self.p.h:.2f} s {out['stop']}; the run "
+                         "stops there")
+        if "stop" not in out:
+            self.max_residual = max(self.max_residual, out["residual"])
         if not (out["residual"] <= max(1e3 * self.p.tolerance, 1e-6)) and self.failed_at is None:
             self.failed_at = k
         self.x = x
@@ -782,7 +789,8 @@ def run_loop(sc: HeaveScene, plant: Any, ctrl: _Ctrl, wave: Wave, noise: np.ndar
 
     ``noise``: shape (n_ctrl + 1, 3), the measurement noise of depth, winch and boom tip
     (m) per sample (the same for every controller and plant). The run stops (the rest of
-    the trace NaN) where the plant's step fails, a state or command turns non-finite, or
+    the trace NaN) where the plant's step fails (or the plant refuses the sample, with its
+    reason as the run's status), a state or command turns non-finite, or
     the unit heave or winch output leaves ``bound`` (m; default
     :data:`cable_ocp.heave.simulate.UNSTABLE_FACTOR` times the largest boom-tip heave, as
     :func:`cable_ocp.heave.simulate.compare`).
@@ -841,6 +849,7 @@ def run_loop(sc: HeaveScene, plant: Any, ctrl: _Ctrl, wave: Wave, noise: np.ndar
         tt[i + 1: i + m + 1] = t_top
         tmin[k] = t_mn
         if plant.failed_at is not None:
+            stop = getattr(plant, "stop", None)  # a reason the plant gave, if any
             break
         last = np.concatenate([heave, upts, [u0]])
         if not np.all(np.isfinite(last)):

@@ -2,10 +2,10 @@
 
 Huang simulates the unit's response to a random boom-tip motion with his ch. 3 cable model
 and fits ``a, b`` of (6.2) (and of (6.3)) by Gauss-Newton. Here the cable model is the model
-of the heave scene's ``[unit] cable_scene`` (axial or planar), stepped by the heave plant
-(:func:`cable_ocp.heave.cable_models.cable_plant`) with a prescribed top motion at a fixed
-length, and the fit is :func:`cable_ocp.heave.identify.identify_unit` (the thesis' iteration
-with exact sensitivities).
+of the heave scene's ``[unit] cable_scene`` (axial, planar or lumped3d), stepped by the heave
+plant (:func:`cable_ocp.heave.cable_models.cable_plant`) with a prescribed top motion at a
+fixed length, and the fit is :func:`cable_ocp.heave.identify.identify_unit` (the thesis'
+iteration with exact sensitivities).
 
 Excitations (``[identification] excitation``):
 
@@ -163,10 +163,15 @@ def run_experiment(dyn: DynamicScene, x0: np.ndarray, sample_time: float
 
 def first_frequency(dyn: DynamicScene) -> float:
     """First axial natural frequency of the line, rad/s (undamped, about the static state;
-    for a planar scene that of the same line hanging vertically, without the current)."""
+    for a planar or lumped3d scene that of the same line hanging vertically, without the
+    current: the axial model's, or, for a lumped3d line of several ``[[cable.segments]]``
+    or with ``[[bodies]]``, the lumped-mass model's first vertical mode)."""
     from cable_ocp.dynamics.axial import AxialModel
-    from cable_ocp.heave.cable_models import axial_twin
+    from cable_ocp.heave.cable_models import axial_twin, lumped_axial_frequency
 
+    st = dyn.statics
+    if dyn.simulation.model == "lumped3d" and (st.segments or st.bodies):
+        return lumped_axial_frequency(dyn)
     return float(AxialModel(axial_twin(dyn)).modes(1).frequencies[0])
 
 

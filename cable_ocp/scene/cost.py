@@ -52,6 +52,11 @@ MPC_STEP_S = 2e-3
 #: tridiagonal Newton: 0.035 ms per step of 50 elements, 7e-7 per element; the estimator
 #: and the loop's Python roughly double it)
 CABLE_S_PER_ELEMENT_STEP = 1.5e-6
+#: the same per cable model: the planar and lumped3d plants (compiled sparse-QR Newton)
+#: cost 2-5 times the axial one per sample at 20-50 elements (0.1-0.3 ms per step; the
+#: loop around it as for the axial one), rounded up
+CABLE_S_PER_ELEMENT_STEP_BY_MODEL = {"axial": CABLE_S_PER_ELEMENT_STEP, "planar": 1e-5,
+                                     "lumped3d": 1.2e-5}
 
 
 @dataclass
@@ -199,12 +204,13 @@ def heave_cost(sc: Any) -> Cost:
 
 def _cable_cost(sc: Any, cost: Cost, runs: int) -> None:
     """The cable parts of a heave scene with ``unit.cable_scene``: the identification
-    experiment(s) and the closed-loop runs on the axial line."""
+    experiment(s) and the closed-loop runs on the cable scene's line."""
     from cable_ocp.scene.heave import load_cable_scene
 
     dyn = load_cable_scene(sc)
     n, dt = dyn.simulation.segments, dyn.simulation.time_step
-    per_step = CABLE_S_PER_ELEMENT_STEP * n
+    per_step = CABLE_S_PER_ELEMENT_STEP_BY_MODEL.get(dyn.simulation.model,
+                                                     CABLE_S_PER_ELEMENT_STEP) * n
     dep = sc.deployment
     n_ident = 1
     if dep is not None:

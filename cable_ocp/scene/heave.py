@@ -586,8 +586,9 @@ def check(sc: HeaveScene) -> None:
 
 
 def _check_cable(sc: HeaveScene) -> None:
-    """The cable-scene keys: ``[unit] cable_scene`` readable and an axial or planar line,
-    ``[simulation] plant = "cable"`` and ``[deployment]`` only with a cable scene."""
+    """The cable-scene keys: ``[unit] cable_scene`` readable and an axial, planar or
+    lumped3d line with a unit, ``[simulation] plant = "cable"`` and ``[deployment]`` only
+    with a cable scene (and an axial one)."""
     if sc.unit.cable_scene is None:
         if sc.simulation.plant == "cable":
             raise CableOCPError('simulation.plant = "cable": needs unit.cable_scene = "PATH" '
@@ -598,30 +599,29 @@ def _check_cable(sc: HeaveScene) -> None:
         return
     dyn = load_cable_scene(sc)
     model = dyn.simulation.model
-    if model not in ("axial", "planar"):
+    if model not in ("axial", "planar", "lumped3d"):
         raise CableOCPError(
             f"unit.cable_scene = {sc.unit.cable_scene!r}: its simulation.model = {model!r}; "
-            'the heave plant and the identification take model = "axial" (a vertical line) '
-            'or "planar" (a line in the x-z plane, in a current along x): the lumped-mass '
-            "model has fixed segment lengths, so the winch cannot pay cable in or out")
-    if model == "planar" and sc.deployment is not None:
+            'the heave plant and the identification take model = "axial" (a vertical line), '
+            '"planar" (a line in the x-z plane, in a current along x) or "lumped3d" (a line '
+            "in 3D, in any current)")
+    if model != "axial" and sc.deployment is not None:
         raise CableOCPError(
             f"[deployment] with unit.cable_scene = {sc.unit.cable_scene!r}: its "
-            'simulation.model = "planar"; a deployment (a changing length, a schedule over '
+            f'simulation.model = "{model}"; a deployment (a changing length, a schedule over '
             'lengths) needs model = "axial"')
-    if model == "planar" and dyn.unit is None:
+    if model != "axial" and dyn.unit is None:
         raise CableOCPError(f"unit.cable_scene = {sc.unit.cable_scene!r}: needs a [unit] at "
                             "end_a (the unit the winch lifts), not an anchor")
     from cable_ocp.dynamics.axial import check_axial
+    from cable_ocp.dynamics.lumped_scene import check_lumped_plant
     from cable_ocp.dynamics.planar import check_planar
 
+    checks = {"axial": check_axial, "planar": check_planar, "lumped3d": check_lumped_plant}
     try:
-        (check_axial if model == "axial" else check_planar)(dyn)
+        checks[model](dyn)
     except CableOCPError as exc:
-        note = (' (a lumped3d cable scene cannot be the heave plant: axial or planar only)'
-                if "lumped3d" in str(exc) else "")
-        raise CableOCPError(f"unit.cable_scene = {sc.unit.cable_scene!r}: {exc}{note}"
-                            ) from None
+        raise CableOCPError(f"unit.cable_scene = {sc.unit.cable_scene!r}: {exc}") from None
     h = sc.controller.sample_time
     ratio = h / dyn.simulation.time_step
     if abs(ratio - round(ratio)) > 1e-9 * max(1.0, ratio) or round(ratio) < 1:

@@ -126,17 +126,6 @@ def test_planar_plant_static_state_in_a_current() -> None:
         p.static_unit_height(120.0)
 
 
-def test_lumped3d_is_refused_with_the_valid_models() -> None:
-    dyn = load_dynamic_scene(DYN / "huang_5_7.toml")
-    with pytest.raises(CableOCPError, match=r"simulation.model = 'lumped3d'.*'axial' or "
-                                            r"'planar'"):
-        cable_plant(dyn, 0.05)
-    doc = {"sea": {"modal_frequency": 0.7}, "unit": {"cable_scene": "huang_5_7.toml"},
-           "simulation": {"plant": "cable"}}
-    with pytest.raises(CableOCPError, match=r'simulation.model = .lumped3d.*"planar"'):
-        scene_from_dict(doc, DYN)
-
-
 def test_planar_deployment_is_refused() -> None:
     doc = {"sea": {"modal_frequency": 0.7},
            "unit": {"cable_scene": "line_6_3_6_planar.toml"},
@@ -180,13 +169,3 @@ def test_planar_plant_achieves_the_predicted_reduction(planar_json: dict) -> Non
     assert abs(m["reduction_pct"] - m["reduction_predicted_pct"]) < 2.0
     assert m["slack_samples"] == 0 and m["tension_unit_min"] > 0.0
 
-
-def test_cli_lumped3d_cable_scene_is_a_one_line_error(tmp_path: Path,
-                                                      capsys: pytest.CaptureFixture) -> None:
-    heave = (HEAVE / "ex_6_3_6_cable.toml").read_text().replace(
-        "../dynamics/line_6_3_6.toml", str(DYN / "huang_5_7.toml"))
-    (tmp_path / "heave.toml").write_text(heave)
-    rc = main(["heave", str(tmp_path / "heave.toml"), "--quiet"])
-    err = capsys.readouterr().err.strip()
-    assert rc == 2
-    assert len(err.splitlines()) == 1 and "simulation.model = 'lumped3d'" in err
