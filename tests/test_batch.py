@@ -222,6 +222,28 @@ def test_dask_equals_local_and_survives_worker_deaths(dask_client, tmp_path: Pat
     assert set(st.values()) == {"solved"}
 
 
+@pytest.mark.slow
+def test_dask_default_chunks_follow_the_clusters_worker_count(dask_client,
+                                                               monkeypatch: pytest.MonkeyPatch
+                                                               ) -> None:
+    """Without --chunk-size, the dask path cuts the chunks for the cluster's worker threads
+    (2 here), not for this machine's cores: the first chunk is 1/(2 x 2) of the cases."""
+    import cable_ocp.batch as batch
+
+    seen: list[int] = []
+    real = batch._chunks
+
+    def spy(cases, workers, chunk_size):  # noqa: ANN001, ANN202
+        seen.append(workers)
+        return real(cases, workers, chunk_size)
+
+    monkeypatch.setattr(batch, "_chunks", spy)
+    monkeypatch.setattr(batch.os, "cpu_count", lambda: 64)
+    res = run_batch(DEZOYSA, ranges=RANGE, scheduler=dask_client)
+    assert [r["case"] for r in res.rows] == list(range(8))
+    assert seen[-1] == 2  # the cluster's, after the local guess (64)
+
+
 def test_dynamics_batch_rows_equal_single_runs_and_scale_with_the_heave(tmp_path: Path) -> None:
     """A `simulate` scene as a batch: each row equals a single `simulate` run of the same
     overrides (same code, same numbers: 1e-12), and the linear axial line in air responds
@@ -314,3 +336,20 @@ def test_solve_session_warm_starts_only_from_the_solve_just_before() -> None:
     assert starts[0].startswith("cold") and starts[2].startswith("cold")
     assert starts[3].startswith("cold")
     assert session.solve(scene(0.5, 30.0)).diagnostics.get("start") == "warm"
+
+
+def test_guided_chunks_cover_every_case_once_in_order_and_shrink() -> None:
+    """Default chunks: consecutive runs that cover every case once, in grid order, the
+    first 1/(2 w) of the cases, then shrinking to 2 or fewer at the end (so the workers
+    finish within a case or two of each other); a given chunk_size is kept."""
+    from cable_ocp.batch import _chunks
+
+    cases = list(range(200))
+    for w in (1, 2, 4):
+        ch = _chunks(cases, w, None)
+        assert [c for chunk in ch for c in chunk] == cases
+        sizes = [len(c) for c in ch]
+        assert sizes[0] == 200 // (2 * w)
+        assert all(a >= b for a, b in zip(sizes, sizes[1:], strict=False))
+        assert max(sizes[-w:]) <= 2
+    assert [len(c) for c in _chunks(cases, 2, 30)] == [30] * 6 + [20]

@@ -93,10 +93,22 @@ class BatchResult:
 
 
 def _chunks(cases: Sequence[Case], workers: int, chunk_size: int | None) -> list[list[Case]]:
-    """Runs of consecutive cases: about 4 chunks per worker (load balance) unless given."""
+    """Runs of consecutive cases, ``chunk_size`` each if given; else of decreasing size
+    (guided self-scheduling, Polychronopoulos & Kuck (1987)): each chunk takes 1/(2 w) of
+    the cases still unassigned, at least 2, so that the first chunks are long (warm starts
+    along the grid) and the last ones short: the workers finish within a case or two of
+    each other instead of up to a whole chunk (a quarter of a worker's share with equal
+    chunks)."""
     n = len(cases)
-    size = chunk_size or max(1, math.ceil(n / max(1, 4 * max(workers, 1))))
-    return [list(cases[i:i + size]) for i in range(0, n, size)]
+    if chunk_size:
+        return [list(cases[i:i + chunk_size]) for i in range(0, n, chunk_size)]
+    w = max(1, workers)
+    out, i = [], 0
+    while i < n:
+        size = max(2, math.ceil((n - i) / (2 * w)))
+        out.append(list(cases[i:i + size]))
+        i += size
+    return out
 
 
 def run_batch(problem: str | Path | dict[str, Any], grids: Sequence[tuple[str, list]] = (),
@@ -134,7 +146,9 @@ def run_batch(problem: str | Path | dict[str, Any], grids: Sequence[tuple[str, l
     scheduler : str or distributed.Client, optional
         Run on a dask.distributed cluster instead.
     chunk_size : int, optional
-        Consecutive cases per task (default: about 4 tasks per worker).
+        Consecutive cases per task (default: guided, see :func:`_chunks`: chunks of
+        1/(2 w) of the cases left, w the local processes or the cluster's worker
+        threads).
     max_attempts : int
         How often a case may kill its worker process before it is given up (local pool).
     spec : RunnerSpec, optional
@@ -185,8 +199,9 @@ def run_batch(problem: str | Path | dict[str, Any], grids: Sequence[tuple[str, l
     n_workers = (os.cpu_count() or 1) if workers is None else workers
     chunks = _chunks(todo, n_workers, chunk_size)
     try:
-        if scheduler is not None:
-            run_dask(spec, chunks, on_row, scheduler, max_attempts)
+        if scheduler is not None:  # chunks for the cluster's own number of workers
+            run_dask(spec, lambda n: _chunks(todo, n, chunk_size), on_row, scheduler,
+                     max_attempts)
         elif n_workers == 0 or len(todo) <= 1:
             run_serial(spec, chunks, on_row)
         else:

@@ -232,8 +232,9 @@ def _dask_chunk(spec: RunnerSpec, chunk: list[Case]) -> list[dict[str, Any]]:
     return [_safe_run(runner, case) for case in chunk]
 
 
-def run_dask(spec: RunnerSpec, chunks: Sequence[Sequence[Case]], on_row: OnRow,
-             scheduler: Any, max_attempts: int = 2) -> None:
+def run_dask(spec: RunnerSpec,
+             chunks: Sequence[Sequence[Case]] | Callable[[int], Sequence[Sequence[Case]]],
+             on_row: OnRow, scheduler: Any, max_attempts: int = 2) -> None:
     """Run the chunks on a dask.distributed cluster.
 
     Two phases. First every chunk runs as a task (dask itself retries a task whose worker
@@ -245,6 +246,9 @@ def run_dask(spec: RunnerSpec, chunks: Sequence[Sequence[Case]], on_row: OnRow,
 
     Parameters
     ----------
+    chunks : sequence of case runs, or callable
+        The chunks, or ``chunks(n)`` that makes them for the cluster's ``n`` worker
+        threads (known once connected).
     scheduler : str or distributed.Client
         The scheduler's address (``tcp://host:8786``) or a connected client.
     """
@@ -260,6 +264,9 @@ def run_dask(spec: RunnerSpec, chunks: Sequence[Sequence[Case]], on_row: OnRow,
     client = Client(scheduler, timeout="20s") if own else scheduler
     suspects: list[Case] = []
     try:
+        if callable(chunks):
+            workers = client.scheduler_info().get("workers", {})
+            chunks = chunks(max(1, sum(int(w.get("nthreads", 1)) for w in workers.values())))
         futures = {client.submit(_dask_chunk, spec, list(c), pure=False): list(c)
                    for c in chunks if c}
         for fut in as_completed(list(futures)):

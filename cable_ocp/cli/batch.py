@@ -55,7 +55,8 @@ def register(sub: argparse._SubParsersAction, parent: argparse.ArgumentParser) -
                    help="run on a dask.distributed scheduler, e.g. tcp://10.0.0.5:8786 "
                         "(needs pip install -e '.[cluster]')")
     p.add_argument("--chunk-size", type=int, metavar="N",
-                   help="consecutive cases per task (default: about 4 tasks per worker)")
+                   help="consecutive cases per task (default: shrinking chunks, each 1/(2 x "
+                        "workers) of the cases left, so that the workers finish together)")
     out.add_set_option(p)
     out.add_json_option(p, "the summary (statuses, extremes, files)")
     out.add_plot_option(p, "an output over one swept key (line) or two (heat map)")
