@@ -386,9 +386,9 @@ class StaticsSolver:
         diag["build_source"] = self.build_source
         diag["compiled"] = self.compiled
         if self.fit_kinks:
-            diag["mesh"]["kind"] = ("uniform" if not self.mesh.edges else
-                                    "fitted to kinks" if fit else
-                                    "fitted to the kinks of the warm start's solve")
+            # "kinks": mesh points on kinks (found by this solve, kinks_s, or kept from
+            # the warm start's solve); the interval ends in points_s
+            diag["mesh"]["kind"] = "kinks" if self.mesh.edges else "uniform"
         sol = self._make_solution(w, p, ok, how, it, wall, diag, g_end)
         if sol.success and estimate:
             self._estimate_error(sol, scene, current_scale)
