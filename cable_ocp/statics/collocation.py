@@ -395,50 +395,54 @@ class Collocation:
             if with_g:
                 lam, dlam = lam - z[-1], -1.0
         xcols = ca.reshape(xk, nx, d + 1)
-        # the right-hand side and its Jacobian in (x, lam) at the collocation points
+        # the right-hand side, and it with its Jacobian in (x, lam), at the collocation
+        # points: called, not inlined (never_inline: one copy of each in the interval's
+        # functions instead of d, so they build and serialise in about half the time)
         xs_, lam_s, cs_s = ca.SX.sym("x", nx), ca.SX.sym("lam"), ca.SX.sym("cs")
         f_s = rhs(xs_, lam_s, cs_s)
+        rhs_val = ca.Function("rhs_val", [xs_, lam_s, cs_s], [f_s], {"never_inline": True})
         rhs_jac = ca.Function("rhs_jac", [xs_, lam_s, cs_s],
-                              [f_s, ca.jacobian(f_s, ca.vertcat(xs_, lam_s))])
+                              [f_s, ca.jacobian(f_s, ca.vertcat(xs_, lam_s))],
+                              {"never_inline": True})
+        inv_h = 1.0 / h
+        # X C_j / h for j = 1 .. d as the columns of one (nx, d) matrix, and the end state
+        lin = ca.mtimes(xcols, ca.DM(cmat[:, 1:].tolist())) * inv_h
+        x_end = ca.mtimes(xcols, ca.DM(dvec.tolist()))
+        fn = ca.Function("interval", [z, q], [ca.vertcat(ca.vec(ca.horzcat(
+            *[rhs_val(xcols[:, j], lam, p[P_CURRENT]) for j in range(1, d + 1)]) - lin),
+            x_end - x_next)])
         fx, jx = [], []
         for j in range(1, d + 1):
             fj, jj = rhs_jac(xcols[:, j], lam, p[P_CURRENT])
             fx.append(fj)
             jx.append(jj)
-        coll = [fx[j - 1] - ca.mtimes(xcols, ca.DM(cmat[:, j].tolist())) / h
-                for j in range(1, d + 1)]
-        x_end = ca.mtimes(xcols, ca.DM(dvec.tolist()))
-        r = ca.vertcat(*coll, x_end - x_next)
-        fn = ca.Function("interval", [z, q], [r])
-        # constant part of dr/dz: -C[i, j]/h on the collocation rows, D_i and -1 on the
-        # last rows (sparse matrices built from lists: numpy-to-DM conversion is slow)
-        nr = nx * (d + 1)
-        rows, cols, vals = [], [], []
-        for j in range(1, d + 1):
-            for i in range(d + 1):
-                rows += range((j - 1) * nx, j * nx)
-                cols += range(i * nx, (i + 1) * nx)
-                vals += [-float(cmat[i, j]) / h] * nx
-        for i in range(d + 1):
-            rows += range(d * nx, (d + 1) * nx)
-            cols += range(i * nx, (i + 1) * nx)
-            vals += [float(dvec[i])] * nx
-        rows += range(d * nx, (d + 1) * nx)
-        cols += range((d + 1) * nx, (d + 2) * nx)
-        vals += [-1.0] * nx
-        order = sorted(range(len(rows)), key=lambda k: (cols[k], rows[k]))  # CCS order
-        jac = ca.SX(ca.Sparsity.triplet(nr, n_z, rows, cols))
-        jac.nz[:] = ca.vertcat(*[vals[k] for k in order])
-        tail_col = has_tail and dlam != 0.0
-        for j in range(1, d + 1):
-            # rows of coll_j; columns of x_k^j and of the tail
-            put = ca.DM(ca.Sparsity.triplet(nr, nx, list(range((j - 1) * nx, j * nx)),
-                                            list(range(nx))), [1.0] * nx)
-            sel = ca.DM(ca.Sparsity.triplet(
-                nx + 1, n_z, list(range(nx)) + ([nx] if tail_col else []),
-                list(range(j * nx, (j + 1) * nx)) + ([n_z - 1] if tail_col else [])),
-                [1.0] * nx + ([dlam] if tail_col else []))
-            jac = jac + ca.mtimes(ca.mtimes(put, jx[j - 1]), sel)
+        r = ca.vertcat(ca.vec(ca.horzcat(*fx) - lin), x_end - x_next)
+        # dr/dz: the constant part, -C[i, j]/h on the collocation rows (A/h), D_i and -1 on
+        # the last rows (B), plus the right-hand side's Jacobians: block-diagonal in the
+        # collocation points x_k^1 .. x_k^d (columns nx .. nx (d + 1) of z), and the tail
+        nr, ncoll = nx * (d + 1), nx * d
+        eye = np.arange(nx)
+        a_rows = np.concatenate([(j - 1) * nx + eye for j in range(1, d + 1)
+                                 for i in range(d + 1)])
+        a_cols = np.concatenate([i * nx + eye for j in range(1, d + 1) for i in range(d + 1)])
+        a_vals = np.concatenate([np.full(nx, -float(cmat[i, j])) for j in range(1, d + 1)
+                                 for i in range(d + 1)])
+        b_rows = np.concatenate([ncoll + eye] * (d + 2))
+        b_cols = np.concatenate([i * nx + eye for i in range(d + 2)])
+        b_vals = np.concatenate([np.full(nx, float(dvec[i])) for i in range(d + 1)]
+                                + [np.full(nx, -1.0)])
+
+        def sparse(rows: np.ndarray, cols: np.ndarray, vals: np.ndarray) -> ca.DM:
+            order = np.lexsort((rows, cols))  # compressed-column order
+            return ca.DM(ca.Sparsity.triplet(nr, n_z, rows.tolist(), cols.tolist()),
+                         vals[order].tolist())
+
+        blocks = ca.diagcat(*[jj[:, :nx] for jj in jx])
+        tail = [ca.vertcat(*[jj[:, nx] for jj in jx]) * dlam] \
+            if has_tail and dlam != 0.0 else [ca.SX(ncoll, 1)] if has_tail else []
+        varying = ca.vertcat(ca.horzcat(ca.SX(ncoll, nx), blocks, ca.SX(ncoll, nx), *tail),
+                             ca.SX(nx, n_z))
+        jac = sparse(a_rows, a_cols, a_vals) * inv_h + sparse(b_rows, b_cols, b_vals) + varying
         jac_fn = ca.Function("interval_jac", [z, q], [r, jac])
         return fn, jac_fn
 

@@ -89,11 +89,17 @@ def _scatter_order(blocks: list[Block], n: int) -> list[int]:
     return order.tolist()
 
 
+def _block_params(block: Block, p: ca.MX) -> ca.MX:
+    """The block's parameters: p itself, or one column per instance (its entries of p)."""
+    if block.p_index is None:
+        return p
+    m, count = block.p_index.shape
+    return ca.reshape(p[block.p_index.ravel(order="F").tolist()], m, count)
+
+
 def _call(block: Block, fn: ca.Function, w: ca.MX, p: ca.MX) -> list[ca.MX]:
     z = _gather(w, block)
-    if block.p_index is not None:
-        n_pb = block.p_index.shape[0]
-        p = ca.reshape(p[block.p_index.ravel(order="F").tolist()], n_pb, block.count)
+    p = _block_params(block, p)
     if block.count == 1:
         return fn(z, p) if fn.n_out() > 1 else [fn(z, p)]
     out = fn.map(block.count)(z, p)
