@@ -161,16 +161,23 @@ class StaticsSolver:
         self._gj, self._kernel = self._newton_functions()
         self.build_time_s = time.perf_counter() - t0
 
-    def _cache_structure(self, extra: tuple = ()) -> str:
+    def _cache_structure(self, extra: tuple = (), blocks: bool = False) -> str:
         """Text of everything the built functions depend on (the on-disk cache's key):
         the structure without the solver options that do not enter the equations, the
-        scales, the transcription and its mesh."""
+        scales, the transcription and its mesh. ``blocks``: the key of the collocation
+        interval functions, which do not depend on the numbers of intervals (their
+        widths are parameters), so that the meshes of the error estimate and of the
+        refinement share one entry."""
         opts = self.scene.solver
         key = tuple(x for x in self.form.key if not isinstance(x, SolverOptions))
         mesh = self.coll.mesh.uniform if isinstance(self.coll.mesh, Mesh) else self.coll.mesh
+        n_w: int | None = self.coll.n_w
+        if blocks and isinstance(mesh, Mesh):
+            mesh = replace(mesh, intervals=0, segments=tuple(0 for _ in mesh.segments))
+            n_w = None
         return repr((key, ("smoothing", opts.smoothing, "vertical_blend", opts.vertical_blend),
                      self.form.scales, self.form.moment_scale, type(self.coll).__name__,
-                     mesh, self.grounded, self.coll.n_w, LINEAR_SOLVER, *extra))
+                     mesh, self.grounded, n_w, LINEAR_SOLVER, *extra))
 
     def _newton_functions(self) -> tuple[ca.Function, Kernel]:
         """``GJ`` and the buffered Newton kernel. The transcription's block functions (the
@@ -178,13 +185,14 @@ class StaticsSolver:
         are built; the residual, its Jacobian and the Newton step are assembled from them."""
         n_w, n_p = self.coll.n_w, self.coll.n_p
         structure = self._cache_structure()
-        stored = disk_cache.load(structure, "blocks")
+        key = self._cache_structure(blocks=True)
+        stored = disk_cache.load(key, "blocks")
         if stored is not None and self.coll.set_block_functions(
                 [stored[f"f{i}"] for i in range(len(stored))]):
             self.build_source = "disk cache"
         else:
             fns = self.coll.block_functions()
-            disk_cache.save(structure, "blocks", {f"f{i}": f for i, f in enumerate(fns)})
+            disk_cache.save(key, "blocks", {f"f{i}": f for i, f in enumerate(fns)})
         g_fn = self.coll.residual
         gj, step = jacobian_functions(self.coll.blocks, n_w, n_p)
         if self.scene.solver.compile == "auto":
