@@ -1,8 +1,8 @@
 """Direct collocation of the static cable BVP on sigma = s/L in [0, 1].
 
-The mesh has N uniform intervals; in each, the state is a Lagrange polynomial of degree d
-through the interval start and d collocation points (Gauss-Legendre or Gauss-Radau,
-``casadi.collocation_points``). Unknowns, in order::
+The mesh has N intervals (uniform, or with points on the drag's kinks); in each, the state
+is a Lagrange polynomial of degree d through the interval start and d collocation points
+(Gauss-Legendre or Gauss-Radau, ``casadi.collocation_points``). Unknowns, in order::
 
     w = [x_0, x_0^1 .. x_0^d, x_1, x_1^1 .. x_{N-1}^d, x_N, (lam if the length is free)]
 
@@ -17,8 +17,9 @@ end of one block and the start of the next), and the joint conditions (continuou
 position, tension jump by the body load) replace the continuity across the joint.
 
 Accuracy at the mesh points: order 2d for Gauss-Legendre and 2d - 1 for Radau, for
-smooth solutions (the |u|u drag kink where a flow component changes sign lowers it;
-docs/conventions.md, "Reading the sources").
+smooth solutions (the |u|u drag kink where a flow component changes sign lowers it,
+unless a mesh point sits on it: :mod:`cable_ocp.statics.kinks`). The intervals need not
+be uniform: each interval's width is a parameter of the residual (:meth:`Collocation.params`).
 """
 
 from __future__ import annotations

@@ -15,6 +15,12 @@ line search on |G| (one CasADi call per step, on preallocated buffers):
 The built functions are kept on disk (:mod:`cable_ocp.statics.cache`) so that another
 process solving a scene of the same structure loads them instead of building them.
 
+Mesh points on the drag's kinks (``solver.mesh``, :mod:`cable_ocp.statics.kinks`): the
+interval widths are parameters of the built functions, so Newton moves the mesh onto the
+kinks of its iterate as it converges, at no build cost (cold solves and starts from
+another solver's solution; a warm start from this solver's own solution keeps its mesh
+unless ``solver.mesh = "tracking"``).
+
 Every solution is checked by evaluating the residual at the returned point; only a
 residual within tolerance is reported as ``"solved"``.
 
