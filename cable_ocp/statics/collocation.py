@@ -247,17 +247,6 @@ class Mesh:
         """Nominal convergence order at the mesh points."""
         return 2 * self.degree if self.scheme == "legendre" else 2 * self.degree - 1
 
-    def node_interval(self) -> np.ndarray:
-        """Index of the interval (over all segments) each state node belongs to (an
-        interval end: the interval it ends, for the last node of a segment)."""
-        d = self.degree
-        parts, first = [], 0
-        for n in self.segments or (self.intervals,):
-            k = np.minimum(np.arange(n * (d + 1) + 1) // (d + 1), n - 1)
-            parts.append(first + k)
-            first += n
-        return np.concatenate(parts)
-
 
 class Collocation:
     """Residual function G(w, p) of the collocated BVP for one formulation and mesh.

@@ -7,13 +7,16 @@ of ``solver.smoothing``, a few millimetres of cable). Where a flow component rel
 the cable changes sign at an arc length s*, the tension's third derivative jumps there.
 Collocation of degree d converges at order 2d at the mesh points only for smooth
 solutions; with s* inside an interval, the error of that interval falls like h^4 whatever
-d (Ascher, Mattheij & Russell (1995), *Numerical Solution of Boundary Value Problems for
-Ordinary Differential Equations*, section 9.2: mesh points belong on the points where the
-data lose smoothness). Measured on De Zoysa's cable at psi0 = 90 deg (Wang, Cheong &
-Chucheepsakul (1993), eq. (28)), where the flow along the tangent and along e_n both change
-sign at s* ~ 140.3 m: the end forces of Gauss-Legendre degree 4 on 16 uniform intervals
-are off by 7.7e-8 of the largest tension, 2.3e-12 with a mesh point on s*; a mesh point at
-a distance e from s* leaves an error of about 0.2 (e / L)^3.
+d, and mesh points belong where the data lose smoothness (Ascher, Mattheij & Russell
+(1995), *Numerical Solution of Boundary Value Problems for Ordinary Differential
+Equations*, ch. 9, mesh selection). Measured on De Zoysa's cable at psi0 = 90 deg (Wang,
+Cheong & Chucheepsakul (1993), eq. (28)), where the flow along the tangent and along e_n
+both change sign at s* ~ 140.3 m: the end forces of Gauss-Legendre degree 4 on 16 uniform
+intervals are off by 7.7e-8 of the largest tension, by 1e-13 with a mesh point on s*. A
+mesh point at a distance e from s* leaves about (2/3) J e^3 / T_max, J = sum over the
+components vanishing there of K_c (du_c/ds)^2 (K_c the component's drag coefficient,
+1/2 rho C D): the quadrature misses the 2 x^2 part of |x| x over the stretch e; on De
+Zoysa's cable 0.2 (e / L)^3.
 
 Sources of kinks, each the zero of a *switching function* evaluated at the nodes of a
 profile (positions r, unit tangents t, the current u(z)):

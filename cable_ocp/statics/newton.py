@@ -347,8 +347,8 @@ def newton(kernel: Kernel, w0: np.ndarray, p: np.ndarray, tol: float, max_iter: 
         the mesh). The moved point is accepted while its residual is at most
         :data:`REMESH_ACCEPT` or the residual before the step (its Jacobian is the one
         evaluated there anyway); else ``unmesh()`` restores the mesh and the step is taken
-        on the old one. Once per solve (the caller checks the
-        solution); the result's ``p`` holds the parameters of the mesh it ends on.
+        on the old one. Tried once per call; the result's ``p`` holds the parameters of
+        the mesh it ends on.
 
     Returns
     -------
@@ -399,10 +399,9 @@ def newton(kernel: Kernel, w0: np.ndarray, p: np.ndarray, tol: float, max_iter: 
                 w, g, dw = trial, g_new, dw_new
                 steps += 1
                 continue
-            else:  # back to the old mesh, and the step taken there
-                if unmesh is not None:
-                    unmesh()
-                g_new, dw_new = kernel.step(trial, p)
+            if unmesh is not None:  # back to the old mesh, and the step taken there
+                unmesh()
+            g_new, dw_new = kernel.step(trial, p)
         elif predicted <= 10.0 * tol:
             g_new, dw_new = kernel.g(trial, p), None  # probably converged: no Jacobian
         else:
