@@ -386,14 +386,14 @@ class Collocation:
                 lam, dlam = lam - z[-1], -1.0
         xcols = ca.reshape(xk, nx, d + 1)
         # the right-hand side, and it with its Jacobian in (x, lam), at the collocation
-        # points: called, not inlined (never_inline: one copy of each in the interval's
-        # functions instead of d, so they build and serialise in about half the time)
+        # points (inlined: called as SX call nodes instead, with never_inline, the
+        # functions serialise in half the size but evaluate 5-20 % slower, which warm
+        # solves pay at every step)
         xs_, lam_s, cs_s = ca.SX.sym("x", nx), ca.SX.sym("lam"), ca.SX.sym("cs")
         f_s = rhs(xs_, lam_s, cs_s)
-        rhs_val = ca.Function("rhs_val", [xs_, lam_s, cs_s], [f_s], {"never_inline": True})
+        rhs_val = ca.Function("rhs_val", [xs_, lam_s, cs_s], [f_s])
         rhs_jac = ca.Function("rhs_jac", [xs_, lam_s, cs_s],
-                              [f_s, ca.jacobian(f_s, ca.vertcat(xs_, lam_s))],
-                              {"never_inline": True})
+                              [f_s, ca.jacobian(f_s, ca.vertcat(xs_, lam_s))])
         inv_h = 1.0 / h
         # X C_j / h for j = 1 .. d as the columns of one (nx, d) matrix, and the end state
         lin = ca.mtimes(xcols, ca.DM(cmat[:, 1:].tolist())) * inv_h
