@@ -116,6 +116,12 @@ def statics_summary(sol: StaticsSolution, title: str = "") -> str:
         ("smoothing bound on drag", _sci(d.get("smoothing_force_bound_N"), "N")
          + (" over the cable" if d.get("smoothing_force_bound_N") is not None else "")),
     ]
+    mesh = d.get("mesh") or {}
+    if mesh.get("kind") == "kinks":
+        # mesh points on the drag's kinks (where a relative-flow component changes sign)
+        found = mesh.get("kinks_s")
+        rows.append(("mesh points on the drag's kinks", "at s = " + ", ".join(
+            _fmt(v, 3) for v in found) + " m" if found else "kept from the warm start"))
     for b in d.get("bodies") or []:
         rows.append((f"body at joint {b['joint']} ({b['kind']})",
                      _vec(np.asarray(b["position"]), "m") + "; load "

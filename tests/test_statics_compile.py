@@ -62,7 +62,7 @@ def test_compiled_step_equals_the_interpreted_step(cache_folder: Path) -> None:
     assert fast.compiled and not plain.compiled
     w = plain.solve()._unknowns[1]
     w = w * (1.0 + 1e-3 * np.random.default_rng(5).standard_normal(w.size))
-    p = plain.form.params()
+    p = plain.params(mesh=plain.mesh)
     g1, d1 = plain._kernel.step(w, p)
     g2, d2 = fast._kernel.step(w, p)
     assert np.max(np.abs(g2 - g1)) <= 1e-14 * np.max(np.abs(g1))
@@ -80,7 +80,7 @@ def test_sparse_qr_solves_like_scipy(cache_folder: Path) -> None:
 
     solver = StaticsSolver(load_scene(DEZOYSA, OFF))
     w = solver.solve()._unknowns[1] + 1e-2
-    _, jac = solver._gj(w, solver.form.params())
+    _, jac = solver._gj(w, solver.params())
     qr = sparse_qr.SparseQR(jac.sparsity())
     qr.nz[:] = np.asarray(jac.nonzeros()).ravel()
     qr.factor()
@@ -111,7 +111,7 @@ def test_chord_newton_converges_to_the_newton_solution(cache_folder: Path,
     assert solver.compiled
     prev = solver.solve(base.with_overrides({"layout.psi0_deg": angle - 10.0}))
     scene = base.with_overrides({"layout.psi0_deg": angle})
-    p = solver.form.params(scene)
+    p = solver.params(scene, mesh=prev._unknowns[2])  # on the mesh of the start
     w0 = prev._unknowns[1]
     assert np.max(np.abs(np.asarray(solver.coll.residual(w0, p)))) > 1e-3  # a real warm start
     chord = nw.chord_newton(solver._kernel, w0, p, 1e-10)
@@ -139,8 +139,9 @@ def test_chord_refactorises_and_falls_back_on_poor_contraction(
     base = load_scene(DEZOYSA, {**OFF, "solver.compile": "auto"})
     solver = StaticsSolver(base)
     scene = base.with_overrides({"layout.psi0_deg": 60.0})
-    p = solver.form.params(scene)
-    w0 = solver.solve(base.with_overrides({"layout.psi0_deg": 50.0}))._unknowns[1]
+    start = solver.solve(base.with_overrides({"layout.psi0_deg": 50.0}))
+    w0 = start._unknowns[1]
+    p = solver.params(scene, mesh=start._unknowns[2])  # on the mesh of the start
     strict = nw.chord_newton(solver._kernel, w0, p, 1e-10, contraction=1e-300)
     assert strict.success and strict.factorizations >= strict.iterations
 

@@ -78,11 +78,13 @@ def test_smoothing_error_below_tolerance(problems, psi0):
 
 @pytest.mark.parametrize("name", ["berteaux_mooring.toml", "chucheepsakul_top_tension.toml"])
 def test_smoothing_error_other_shipped_problems(problems, name):
-    """Same check on the other shipped problems with current."""
+    """Same check on the other shipped problems with current. (Chucheepsakul's cable at
+    psi0 = 0 dips 0.34 mm below its anchor, which the mesh point on the kink there
+    resolves: "below_seabed", a converged solution, test_statics_kinks.py.)"""
     exact = solve(load_scene(problems / name, {"solver.smoothing": 1e-7,
                                                "solver.error_estimate": False}))
     s = solve(load_scene(problems / name, {"solver.error_estimate": False}))
-    assert s.success and exact.success
+    assert s.converged and exact.converged
     assert np.max(np.abs(s.force_a - exact.force_a)) / s.max_tension < 1e-10
     assert abs(s.length - exact.length) / s.length < 1e-10
 

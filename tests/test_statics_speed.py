@@ -67,7 +67,7 @@ def test_block_jacobian_equals_the_expanded_residuals(name: str, grounded: bool,
     scene = load_scene(PROBLEMS / name, {"solver.method": method})
     solver = StaticsSolver(scene, intervals=4, grounded=grounded)
     coll = solver.coll
-    n_p = len(solver.form.params())
+    n_p = coll.n_p  # the formulation's parameters and the interval widths
     gj, _ = jacobian_functions(coll.blocks, coll.n_w, n_p)
     ref = coll.residual.expand()
     ws, ps = ca.SX.sym("w", coll.n_w), ca.SX.sym("p", n_p)
@@ -75,7 +75,9 @@ def test_block_jacobian_equals_the_expanded_residuals(name: str, grounded: bool,
     full = ca.Function("full", [ws, ps], [g, ca.jacobian(g, ws)])
     rng = np.random.default_rng(3)
     w = 0.5 + rng.random(coll.n_w)
-    p = solver.form.params()
+    p = solver.params()
+    if method == "collocation":  # intervals of unequal widths
+        p[-coll.mesh.n_intervals:] *= 0.5 + rng.random(coll.mesh.n_intervals)
     g1, j1 = gj(w, p)
     g2, j2 = full(w, p)
     assert j1.sparsity() == j2.sparsity()
@@ -88,8 +90,9 @@ def test_sweep_matches_a_rootfinder_sweep() -> None:
     """The De Zoysa psi0 sweep (19 angles, 40 intervals) with the polynomial predictor and
     the buffered Newton gives the end forces of a sweep written here the way the solver
     did it before: CasADi's Newton rootfinder (CSparse) on the expanded residual, each
-    point from the previous solution. Both stop at a scaled residual of 1e-10; the forces
-    agree to 1e-9 relative (the conditioning of the collocated system)."""
+    point from the previous solution, on the mesh of the sweep's point (its mesh points
+    follow the drag's kinks). Both stop at a scaled residual of 1e-10; the forces agree to
+    1e-9 relative (the conditioning of the collocated system)."""
     base = load_scene(DEZOYSA, {"solver.intervals": 40, **OFF})
     angles = np.arange(0.0, 181.0, 10.0)
     sols = sweep(base, "layout.psi0_deg", angles, error_estimate=False)
@@ -105,7 +108,7 @@ def test_sweep_matches_a_rootfinder_sweep() -> None:
         scene = base.with_overrides({"layout.psi0_deg": float(angle)})
         if w is None:
             w = solver.solve(scene)._unknowns[1]
-        p = solver.form.params(scene)
+        p = solver.params(scene, mesh=sol._unknowns[2])
         w = np.asarray(rf(w, p)).reshape(-1)
         assert rf.stats()["success"]
         force_a = w[3:6] * scale  # +T(0) of the first node, N
@@ -172,7 +175,7 @@ def test_cached_functions_give_bit_identical_results(cache_folder: Path) -> None
     near = scene.with_overrides({"layout.psi0_deg": 95.0})
     a2, b2 = built.solve(near, warm_start=a), loaded.solve(near, warm_start=b)
     assert np.array_equal(a2.tension_vector, b2.tension_vector)
-    w, p = a._unknowns[1], built.form.params()
+    w, p = a._unknowns[1], built.params(mesh=a._unknowns[2])
     for f in (0, 1):
         assert np.array_equal(np.asarray(built._gj(w, p)[f].nonzeros()),
                               np.asarray(loaded._gj(w, p)[f].nonzeros()))
@@ -293,6 +296,19 @@ def test_an_unusable_cache_folder_is_skipped_silently(tmp_path: Path,
     assert StaticsSolver(scene).build_source == "disk cache"
 
 
+def test_meshes_share_the_interval_functions(cache_folder: Path) -> None:
+    """The interval functions do not depend on the number of intervals (the widths are
+    parameters): the N/2 and N/4 solvers of the error estimate load the entry the N
+    solver stored, and solve to the same residual tolerance."""
+    scene = load_scene(DEZOYSA, {"solver.intervals": 16, **OFF})
+    assert StaticsSolver(scene).build_source == "built"
+    for n in (8, 4):
+        coarse = StaticsSolver(scene, intervals=n)
+        assert coarse.build_source == "disk cache"
+        assert coarse.solve().success
+    assert len(_entries(cache_folder)) == 1
+
+
 def test_the_cache_keeps_to_its_size(cache_folder: Path, monkeypatch: pytest.MonkeyPatch
                                      ) -> None:
     """The least recently used entries go when the folder would exceed MAX_BYTES (an
@@ -304,7 +320,9 @@ def test_the_cache_keeps_to_its_size(cache_folder: Path, monkeypatch: pytest.Mon
     stale = cache_folder / ("0" * 40 + "-newton" + disk_cache.SUFFIX)
     stale.write_bytes(b"x" * 1000)  # an old entry: its mtime is the oldest
     os.utime(stale, (time.time() - 3600, time.time() - 3600))
-    scenes = [load_scene(DEZOYSA, {"solver.intervals": n, **OFF}) for n in (4, 5, 6)]
+    # three structures (the interval functions do not depend on the number of intervals,
+    # the smoothing enters them), entries of nearly the same size
+    scenes = [load_scene(DEZOYSA, {"solver.smoothing": v, **OFF}) for v in (1e-5, 2e-5, 3e-5)]
     StaticsSolver(scenes[0])
     (first,) = [e for e in _entries(cache_folder) if e != stale]
     size = first.stat().st_size
@@ -318,7 +336,7 @@ def test_the_cache_keeps_to_its_size(cache_folder: Path, monkeypatch: pytest.Mon
     assert StaticsSolver(scenes[2]).build_source == "disk cache"  # the newest stayed
     assert StaticsSolver(scenes[0]).build_source == "built"  # the oldest went
     monkeypatch.setattr(disk_cache, "MAX_ENTRY_BYTES", size // 2)
-    other = load_scene(DEZOYSA, {"solver.intervals": 7, **OFF})
+    other = load_scene(DEZOYSA, {"solver.smoothing": 4e-5, **OFF})
     before = set(_entries(cache_folder))
     sol = StaticsSolver(other).solve()
     assert sol.success and set(_entries(cache_folder)) == before  # nothing written

@@ -150,6 +150,18 @@ class SolverOptions:
         (:mod:`cable_ocp.compile`): a warm Newton step about 3x faster, at the price of a
         C compilation of about 2 s per scene structure and mesh the first time (a later
         process loads the library). Without a compiler it runs interpreted, silently.
+    mesh : str
+        Collocation of degree 3 and up. ``"kinks"`` (default): a mesh point on every kink
+        of the drag (where a flow component relative to the cable changes sign, and at the
+        knots of a current profile; :mod:`cable_ocp.statics.kinks`), the parts between
+        kinks divided uniformly: uniform high-order collocation loses its order at such a
+        kink. Newton moves the mesh onto the kinks of its iterate as it converges, in
+        cold solves and in solves started from another mesh's solution (refinement, the
+        error estimate, a contact switch); a warm solve from the solver's own solution
+        (a sweep, a load-case batch) keeps its start's mesh, so that it costs what it
+        did. ``"tracking"``: warm solves move the mesh with the kinks too (about 5-15 %
+        more time per warm point of the De Zoysa sweep). ``"uniform"``: ``intervals``
+        uniform intervals (per segment).
     """
 
     method: str = "collocation"
@@ -166,6 +178,7 @@ class SolverOptions:
     max_intervals: int = 2560
     initial_guess: str = "catenary"
     compile: str = "never"
+    mesh: str = "kinks"
 
 
 @dataclass(frozen=True)
@@ -268,6 +281,7 @@ _SCHEMA: dict[str, Any] = {
         "refine",
         "max_intervals",
         "compile",
+        "mesh",
     },
 }
 
@@ -418,6 +432,8 @@ def scene_from_dict(data: dict[str, Any]) -> Scene:
         initial_guess=guess,
         compile=choice(sol_t.get("compile", defaults.compile), "solver.compile",
                        ("never", "auto")),
+        mesh=choice(sol_t.get("mesh", defaults.mesh), "solver.mesh",
+                    ("kinks", "tracking", "uniform")),
         accuracy=number(sol_t.get("accuracy", defaults.accuracy), "solver.accuracy",
                         low=1e-12, high=1.0, unit="-",
                         why="a relative error: 1e-12 is near what double precision resolves; "

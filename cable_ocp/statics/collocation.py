@@ -1,8 +1,8 @@
 """Direct collocation of the static cable BVP on sigma = s/L in [0, 1].
 
-The mesh has N uniform intervals; in each, the state is a Lagrange polynomial of degree d
-through the interval start and d collocation points (Gauss-Legendre or Gauss-Radau,
-``casadi.collocation_points``). Unknowns, in order::
+The mesh has N intervals (uniform, or with points on the drag's kinks); in each, the state
+is a Lagrange polynomial of degree d through the interval start and d collocation points
+(Gauss-Legendre or Gauss-Radau, ``casadi.collocation_points``). Unknowns, in order::
 
     w = [x_0, x_0^1 .. x_0^d, x_1, x_1^1 .. x_{N-1}^d, x_N, (lam if the length is free)]
 
@@ -17,8 +17,9 @@ end of one block and the start of the next), and the joint conditions (continuou
 position, tension jump by the body load) replace the continuity across the joint.
 
 Accuracy at the mesh points: order 2d for Gauss-Legendre and 2d - 1 for Radau, for
-smooth solutions (the |u|u drag kink where a flow component changes sign lowers it;
-docs/conventions.md, "Reading the sources").
+smooth solutions (the |u|u drag kink where a flow component changes sign lowers it,
+unless a mesh point sits on it: :mod:`cable_ocp.statics.kinks`). The intervals need not
+be uniform: each interval's width is a parameter of the residual (:meth:`Collocation.params`).
 """
 
 from __future__ import annotations
@@ -89,10 +90,32 @@ def _lagrange_matrices(tau: tuple[float, ...]) -> tuple[np.ndarray, np.ndarray]:
     return cmat, dvec
 
 
+@functools.lru_cache(maxsize=32)
+def _lagrange_denominators(tau: tuple[float, ...]) -> np.ndarray:
+    """prod_{r != j} (t_j - t_r) of the Lagrange basis through 0 and the collocation
+    points, j = 0 .. d (read-only)."""
+    pts = [0.0, *tau]
+    out = np.array([math.prod(pts[j] - pts[r] for r in range(len(pts)) if r != j)
+                    for j in range(len(pts))])
+    out.setflags(write=False)
+    return out
+
+
 @functools.lru_cache(maxsize=64)
 def _mesh_sigma(mesh: Mesh) -> np.ndarray:
     """:meth:`Mesh.sigma`, cached per mesh (read-only)."""
-    if mesh.segments:
+    if mesh.edges:
+        edges = np.asarray(mesh.edges)
+        tau = np.asarray(mesh.tau)
+        parts = []
+        first = 0
+        for n in mesh.segments or (mesh.intervals,):
+            e = edges[first: first + n + 1]
+            inner = e[:-1, None] + np.diff(e)[:, None] * tau[None, :]
+            parts.append(np.concatenate([np.hstack([e[:-1, None], inner]).ravel(), e[-1:]]))
+            first += n
+        out = np.concatenate(parts)
+    elif mesh.segments:
         parts = []
         for k, n in enumerate(mesh.segments):
             lo, hi = mesh.bounds[k], mesh.bounds[k + 1]
@@ -111,9 +134,44 @@ def _mesh_sigma(mesh: Mesh) -> np.ndarray:
     return out
 
 
+@functools.lru_cache(maxsize=64)
+def _mesh_edges(mesh: Mesh) -> np.ndarray:
+    """:meth:`Mesh.interval_edges`, cached per mesh (read-only)."""
+    if mesh.edges:
+        out = np.asarray(mesh.edges, dtype=float)
+    elif mesh.segments:
+        out = np.concatenate([[0.0]] + [
+            mesh.bounds[k] + (mesh.bounds[k + 1] - mesh.bounds[k])
+            * np.arange(1, n + 1) / n for k, n in enumerate(mesh.segments)])
+        out[-1] = 1.0
+    else:
+        out = np.arange(mesh.intervals + 1) / mesh.intervals
+    out.setflags(write=False)
+    return out
+
+
+@functools.lru_cache(maxsize=64)
+def _local_widths(mesh: Mesh) -> np.ndarray:
+    """:meth:`Mesh.local_widths`, cached per mesh (read-only)."""
+    if not mesh.edges:
+        out = np.concatenate([np.full(n, 1.0 / n) for n in (mesh.segments or (mesh.intervals,))])
+    else:
+        out = np.diff(np.asarray(mesh.edges))
+        if mesh.segments:
+            out = out / np.repeat(np.diff(np.asarray(mesh.bounds)), mesh.segments)
+    out.setflags(write=False)
+    return out
+
+
 @dataclass(frozen=True)
 class Mesh:
-    """Node locations of a collocation mesh on sigma in [0, 1]."""
+    """Node locations of a collocation mesh on sigma in [0, 1].
+
+    The intervals are uniform (in each segment) unless ``edges`` gives their ends: the
+    built functions do not depend on where the interval ends lie (each interval's width
+    is a parameter of the residual, :meth:`Collocation.params`), so one solver serves
+    every mesh with the same numbers of intervals (:mod:`cable_ocp.statics.kinks` places
+    mesh points on the kinks of the drag)."""
 
     intervals: int
     degree: int
@@ -123,6 +181,38 @@ class Mesh:
     segments: tuple[int, ...] = ()
     #: sigma at the segment ends, 0 = b_0 < b_1 < ... < b_n = 1 (empty: one cable)
     bounds: tuple[float, ...] = ()
+    #: sigma at every interval end, increasing from 0 to 1 (the segment ends among them);
+    #: empty: uniform intervals in each segment
+    edges: tuple[float, ...] = ()
+
+    @property
+    def n_intervals(self) -> int:
+        """Number of intervals in all (over every segment)."""
+        return sum(self.segments) if self.segments else self.intervals
+
+    @property
+    def uniform(self) -> Mesh:
+        """The same mesh with uniform intervals (in each segment)."""
+        return replace(self, edges=()) if self.edges else self
+
+    def with_edges(self, edges: np.ndarray | None) -> Mesh:
+        """The same numbers of intervals with interval ends ``edges`` (sigma, increasing
+        from 0 to 1 through the segment ends; None: uniform)."""
+        if edges is None:
+            return self.uniform
+        edges = np.asarray(edges, dtype=float)
+        if edges.shape != (self.n_intervals + 1,) or not np.all(edges[1:] > edges[:-1]):
+            raise ValueError("edges: expected n_intervals + 1 increasing values")
+        return replace(self, edges=tuple(edges.tolist()))
+
+    def interval_edges(self) -> np.ndarray:
+        """sigma at every interval end (n_intervals + 1 values; read-only)."""
+        return _mesh_edges(self)
+
+    def local_widths(self) -> np.ndarray:
+        """Width of every interval in its segment's own coordinate (the segment's share
+        of sigma scaled to 1), in interval order: 1/N on a uniform mesh (read-only)."""
+        return _local_widths(self)
 
     @property
     def n_nodes(self) -> int:
@@ -211,9 +301,31 @@ class Collocation:
         self.i_lam = self.n_x if self.free_length else None
         self.i_g = self.n_x + (1 if self.free_length else 0) if grounded else None
         self.n_w = self.n_x + (1 if self.free_length else 0) + (1 if grounded else 0)
+        #: size of the residual's parameter vector: the formulation's parameters, then
+        #: the width of every interval (:meth:`params`)
+        self.n_p = len(self.form.params()) + len(self.mesh_params())
         self._residual: ca.Function | None = None
         self._blocks: list[Block] | None = None
         self._block_fns: list[ca.Function] | None = None
+
+    def mesh_params(self, mesh: Mesh | None = None) -> np.ndarray:
+        """The mesh's part of the residual's parameters: the width of every interval in
+        its segment's own coordinate (``mesh``: another mesh with the same numbers of
+        intervals; default the current one)."""
+        return (self.mesh if mesh is None else mesh).local_widths()
+
+    def params(self, p_form: np.ndarray, mesh: Mesh | None = None) -> np.ndarray:
+        """The residual's parameter vector: the formulation's parameters ``p_form``
+        (:meth:`Formulation.params`) and the interval widths of ``mesh`` (default: the
+        current mesh)."""
+        return np.concatenate([p_form, self.mesh_params(mesh)])
+
+    def set_mesh(self, mesh: Mesh) -> None:
+        """Use ``mesh`` (the same numbers of intervals, other interval ends) from now on:
+        nothing is rebuilt, the widths are parameters (:meth:`params`)."""
+        if mesh.uniform != self.mesh.uniform:
+            raise ValueError("set_mesh: the mesh must keep the numbers of intervals")
+        self.mesh = mesh
 
     def _lengths(self, w: ca.MX, p: ca.MX) -> tuple[ca.MX, ca.MX | float]:
         """Scaled length of the collocated (suspended) part and scaled grounded length."""
@@ -235,13 +347,14 @@ class Collocation:
         return bc
 
     def _build(self) -> ca.Function:
-        return residual_function(self.blocks, self.n_w, len(self.form.params()))
+        return residual_function(self.blocks, self.n_w, self.n_p)
 
-    def _interval_block(self, rhs: ca.Function, h: float, fraction: float | None,
+    def _interval_block(self, rhs: ca.Function, fraction: float | None,
                         with_g: bool) -> tuple[ca.Function, ca.Function]:
-        """One interval of width h (sigma): ``(z, p) -> [collocation residuals; x_end -
-        x_next]`` with z = [x_k, x_k^1 .. x_k^d, x_next, (lam | g)], and ``(z, p) -> (r,
-        dr/dz)``.
+        """One interval: ``(z, q) -> [collocation residuals; x_end - x_next]`` with
+        z = [x_k, x_k^1 .. x_k^d, x_next, (lam | g)] and q = [p; h], h the interval's width
+        in its segment's own coordinate (a parameter: one function serves every mesh),
+        and ``(z, q) -> (r, dr/dz)``.
 
         The collocation residuals are in derivative units (divided by h), so that one
         residual tolerance means the same accuracy on every mesh. The scaled length of the
@@ -258,8 +371,10 @@ class Collocation:
         cmat, dvec = _lagrange_matrices(self.mesh.tau)
         has_tail = self.free_length or with_g
         n_z = nx * (d + 2) + (1 if has_tail else 0)
+        n_p = len(self.form.params())
         z = ca.SX.sym("z", n_z)
-        p = ca.SX.sym("p", len(self.form.params()))
+        q = ca.SX.sym("q", n_p + 1)
+        p, h = q[:n_p], q[n_p]
         xk = z[: nx * (d + 1)]
         x_next = z[nx * (d + 1): nx * (d + 2)]
         if self.free_length:
@@ -270,50 +385,55 @@ class Collocation:
             if with_g:
                 lam, dlam = lam - z[-1], -1.0
         xcols = ca.reshape(xk, nx, d + 1)
-        # the right-hand side and its Jacobian in (x, lam) at the collocation points
+        # the right-hand side, and it with its Jacobian in (x, lam), at the collocation
+        # points (inlined: called as SX call nodes instead, with never_inline, the
+        # functions serialise in half the size but evaluate 5-20 % slower, which warm
+        # solves pay at every step)
         xs_, lam_s, cs_s = ca.SX.sym("x", nx), ca.SX.sym("lam"), ca.SX.sym("cs")
         f_s = rhs(xs_, lam_s, cs_s)
+        rhs_val = ca.Function("rhs_val", [xs_, lam_s, cs_s], [f_s])
         rhs_jac = ca.Function("rhs_jac", [xs_, lam_s, cs_s],
                               [f_s, ca.jacobian(f_s, ca.vertcat(xs_, lam_s))])
+        inv_h = 1.0 / h
+        # X C_j / h for j = 1 .. d as the columns of one (nx, d) matrix, and the end state
+        lin = ca.mtimes(xcols, ca.DM(cmat[:, 1:].tolist())) * inv_h
+        x_end = ca.mtimes(xcols, ca.DM(dvec.tolist()))
+        fn = ca.Function("interval", [z, q], [ca.vertcat(ca.vec(ca.horzcat(
+            *[rhs_val(xcols[:, j], lam, p[P_CURRENT]) for j in range(1, d + 1)]) - lin),
+            x_end - x_next)])
         fx, jx = [], []
         for j in range(1, d + 1):
             fj, jj = rhs_jac(xcols[:, j], lam, p[P_CURRENT])
             fx.append(fj)
             jx.append(jj)
-        coll = [fx[j - 1] - ca.mtimes(xcols, ca.DM(cmat[:, j].tolist())) / h
-                for j in range(1, d + 1)]
-        x_end = ca.mtimes(xcols, ca.DM(dvec.tolist()))
-        r = ca.vertcat(*coll, x_end - x_next)
-        fn = ca.Function("interval", [z, p], [r])
-        # constant part of dr/dz: -C[i, j]/h on the collocation rows, D_i and -1 on the
-        # last rows (sparse DMs built from lists: numpy-to-DM conversion is slow)
-        nr = nx * (d + 1)
-        rows, cols, vals = [], [], []
-        for j in range(1, d + 1):
-            for i in range(d + 1):
-                rows += range((j - 1) * nx, j * nx)
-                cols += range(i * nx, (i + 1) * nx)
-                vals += [float(-cmat[i, j] / h)] * nx
-        for i in range(d + 1):
-            rows += range(d * nx, (d + 1) * nx)
-            cols += range(i * nx, (i + 1) * nx)
-            vals += [float(dvec[i])] * nx
-        rows += range(d * nx, (d + 1) * nx)
-        cols += range((d + 1) * nx, (d + 2) * nx)
-        vals += [-1.0] * nx
-        order = sorted(range(len(rows)), key=lambda k: (cols[k], rows[k]))  # CCS order
-        jac = ca.SX(ca.DM(ca.Sparsity.triplet(nr, n_z, rows, cols), [vals[k] for k in order]))
-        tail_col = has_tail and dlam != 0.0
-        for j in range(1, d + 1):
-            # rows of coll_j; columns of x_k^j and of the tail
-            put = ca.DM(ca.Sparsity.triplet(nr, nx, list(range((j - 1) * nx, j * nx)),
-                                            list(range(nx))), [1.0] * nx)
-            sel = ca.DM(ca.Sparsity.triplet(
-                nx + 1, n_z, list(range(nx)) + ([nx] if tail_col else []),
-                list(range(j * nx, (j + 1) * nx)) + ([n_z - 1] if tail_col else [])),
-                [1.0] * nx + ([dlam] if tail_col else []))
-            jac = jac + ca.mtimes(ca.mtimes(put, jx[j - 1]), sel)
-        jac_fn = ca.Function("interval_jac", [z, p], [r, jac])
+        r = ca.vertcat(ca.vec(ca.horzcat(*fx) - lin), x_end - x_next)
+        # dr/dz: the constant part, -C[i, j]/h on the collocation rows (A/h), D_i and -1 on
+        # the last rows (B), plus the right-hand side's Jacobians: block-diagonal in the
+        # collocation points x_k^1 .. x_k^d (columns nx .. nx (d + 1) of z), and the tail
+        nr, ncoll = nx * (d + 1), nx * d
+        eye = np.arange(nx)
+        a_rows = np.concatenate([(j - 1) * nx + eye for j in range(1, d + 1)
+                                 for i in range(d + 1)])
+        a_cols = np.concatenate([i * nx + eye for j in range(1, d + 1) for i in range(d + 1)])
+        a_vals = np.concatenate([np.full(nx, -float(cmat[i, j])) for j in range(1, d + 1)
+                                 for i in range(d + 1)])
+        b_rows = np.concatenate([ncoll + eye] * (d + 2))
+        b_cols = np.concatenate([i * nx + eye for i in range(d + 2)])
+        b_vals = np.concatenate([np.full(nx, float(dvec[i])) for i in range(d + 1)]
+                                + [np.full(nx, -1.0)])
+
+        def sparse(rows: np.ndarray, cols: np.ndarray, vals: np.ndarray) -> ca.DM:
+            order = np.lexsort((rows, cols))  # compressed-column order
+            return ca.DM(ca.Sparsity.triplet(nr, n_z, rows.tolist(), cols.tolist()),
+                         vals[order].tolist())
+
+        blocks = ca.diagcat(*[jj[:, :nx] for jj in jx])
+        tail = [ca.vertcat(*[jj[:, nx] for jj in jx]) * dlam] \
+            if has_tail and dlam != 0.0 else [ca.SX(ncoll, 1)] if has_tail else []
+        varying = ca.vertcat(ca.horzcat(ca.SX(ncoll, nx), blocks, ca.SX(ncoll, nx), *tail),
+                             ca.SX(nx, n_z))
+        jac = sparse(a_rows, a_cols, a_vals) * inv_h + sparse(b_rows, b_cols, b_vals) + varying
+        jac_fn = ca.Function("interval_jac", [z, q], [r, jac])
         return fn, jac_fn
 
     def _interval_rows(self, n: int, coll0: int, cont0: int) -> np.ndarray:
@@ -364,36 +484,44 @@ class Collocation:
         given = iter(fns) if fns is not None else None
         blocks: list[Block] = []
 
+        # the parameters of each block: the formulation's (p[:n_p]); an interval also its
+        # own width (p[n_p + its index], :meth:`params`)
+        p_form = np.arange(n_p)[:, None]
+
         def add(make: Callable[[], tuple[ca.Function, ca.Function]], idx: np.ndarray,
-                rows: Callable[[int], np.ndarray]) -> int:
+                rows: Callable[[int], np.ndarray], p_idx: np.ndarray = p_form) -> int:
             if given is None:
                 fn, jac = make()
             else:
                 fn, jac = next(given), next(given)
-                if fn.size1_in(0) != idx.shape[0] or fn.size1_in(1) != n_p \
+                if fn.size1_in(0) != idx.shape[0] or fn.size1_in(1) != p_idx.shape[0] \
                         or jac.size1_out(0) != fn.size1_out(0) \
                         or jac.size_out(1) != (fn.size1_out(0), idx.shape[0]):
                     raise ValueError("stored block functions do not fit this layout")
             nr = fn.size1_out(0)
-            blocks.append(Block(fn, idx, rows(nr), jac))
+            blocks.append(Block(fn, idx, rows(nr), jac, p_idx))
             return nr
 
         segs = self.mesh.segments or (self.mesh.intervals,)
         offs = self.mesh.segment_offsets()
         row = 0
+        first = 0  # index of the segment's first interval among all intervals
         for k, n in enumerate(segs):
             with_g = self.grounded and k == 0 and not self.free_length
             use_tail = tail if (self.free_length or with_g) else None
 
-            def interval(k: int = k, n: int = n, with_g: bool = with_g
+            def interval(k: int = k, with_g: bool = with_g
                          ) -> tuple[ca.Function, ca.Function]:
                 rhs = form.rhs_list[k] if self.mesh.segments else form.rhs
-                return self._interval_block(rhs, 1.0 / n, form.fractions[k]
+                return self._interval_block(rhs, form.fractions[k]
                                             if self.mesh.segments else None, with_g)
 
+            p_idx = np.vstack([np.repeat(p_form, n, axis=1),
+                               n_p + first + np.arange(n)[None, :]])
             add(interval, self._interval_index(n, offs[k], use_tail),
-                lambda nr, n=n, row=row: self._interval_rows(n, row, row + nx * d * n))
+                lambda nr, n=n, row=row: self._interval_rows(n, row, row + nx * d * n), p_idx)
             row += nx * (d + 1) * n
+            first += n
         if self.mesh.segments:
             for k in range(len(segs)):
                 if k == 0 and nx == NX:
@@ -518,35 +646,67 @@ class Collocation:
         return r, t
 
     # -- evaluation ---------------------------------------------------------------------
-    def interpolate(self, values: np.ndarray, sigma: np.ndarray) -> np.ndarray:
+    def interpolate(self, values: np.ndarray, sigma: np.ndarray, mesh: Mesh | None = None,
+                    segment: np.ndarray | None = None) -> np.ndarray:
         """Evaluate the collocation polynomials of node values (n_nodes, k) at ``sigma``.
 
         Each interval's polynomial passes through its start and its d collocation points
         (the polynomial the collocation equations define), so this is the solution itself
-        between the nodes, not a re-interpolation.
+        between the nodes, not a re-interpolation. ``mesh``: the mesh of ``values``
+        (default the current one); ``segment``: the segment of each point (a joint belongs
+        to the segment after it unless given).
         """
-        n, d = self.mesh.intervals, self.mesh.degree
-        pts = np.array([0.0, *self.mesh.tau])
+        mesh = self.mesh if mesh is None else mesh
+        n, d = mesh.intervals, mesh.degree
+        pts = np.array([0.0, *mesh.tau])
         sigma = np.asarray(sigma, dtype=float)
-        if self.mesh.segments:
-            b = np.asarray(self.mesh.bounds)
+        if mesh.edges:
+            edges = mesh.interval_edges()
+            counts = np.asarray(mesh.segments or (n,))
+            first = np.concatenate([[0], np.cumsum(counts)])
+            i = np.searchsorted(edges, sigma, side="right") - 1
+            if segment is not None:
+                i = np.clip(i, first[segment], first[np.asarray(segment) + 1] - 1)
+            i = np.clip(i, 0, first[-1] - 1)
+            seg = np.searchsorted(first, i, side="right") - 1
+            tau = (sigma - edges[i]) / (edges[i + 1] - edges[i])
+            base = np.asarray(mesh.segment_offsets())[seg] + (i - first[seg]) * (d + 1)
+        elif mesh.segments:
+            b = np.asarray(mesh.bounds)
             seg = np.clip(np.searchsorted(b, sigma, side="right") - 1, 0, len(b) - 2)
-            nk = np.asarray(self.mesh.segments)[seg]
+            if segment is not None:
+                seg = np.asarray(segment)
+            nk = np.asarray(mesh.segments)[seg]
             local = (sigma - b[seg]) / (b[seg + 1] - b[seg])
             k = np.clip(np.floor(local * nk).astype(int), 0, nk - 1)
             tau = local * nk - k
-            base = np.asarray(self.mesh.segment_offsets())[seg] + k * (d + 1)
+            base = np.asarray(mesh.segment_offsets())[seg] + k * (d + 1)
         else:
             k = np.clip(np.floor(sigma * n).astype(int), 0, n - 1)
             tau = sigma * n - k
             base = k * (d + 1)
-        out = np.zeros((sigma.size, values.shape[1]))
-        for j in range(d + 1):  # Lagrange basis through the interval start and tau_1..tau_d
-            basis = np.ones_like(tau)
-            for r in range(d + 1):
-                if r != j:
-                    basis *= (tau - pts[r]) / (pts[j] - pts[r])
-            out += basis[:, None] * values[base + j]
+        # Lagrange basis through the interval start and tau_1..tau_d: l_j = prod_{r != j}
+        # (tau - t_r) / (t_j - t_r), the products left and right of j by cumulative products
+        diff = tau[:, None] - pts[None, :]
+        ones = np.ones((tau.size, 1))
+        left = np.hstack([ones, np.cumprod(diff[:, :-1], axis=1)])
+        right = np.hstack([np.cumprod(diff[:, :0:-1], axis=1)[:, ::-1], ones])
+        basis = left * right / _lagrange_denominators(mesh.tau)
+        idx = base[:, None] + np.arange(d + 1)[None, :]
+        return np.einsum("nj,njk->nk", basis, values[idx])
+
+    def transfer(self, w: np.ndarray, source: Mesh, target: Mesh) -> np.ndarray:
+        """Unknowns ``w`` on mesh ``source`` moved to mesh ``target`` (the same numbers of
+        intervals): every node state from the source's collocation polynomials, segment by
+        segment (a joint keeps the value of its own side); the length and the grounded
+        length as they are."""
+        w = np.asarray(w, dtype=float)
+        xs = w[: self.n_x].reshape(source.n_nodes, self.nx)
+        offs = target.segment_offsets()
+        seg = np.repeat(np.arange(len(offs) - 1), np.diff(offs))
+        out = w.copy()
+        out[: self.n_x] = self.interpolate(xs, target.sigma(), mesh=source,
+                                           segment=seg).reshape(-1)
         return out
 
     # -- packing ------------------------------------------------------------------------

@@ -28,6 +28,7 @@ evaluation.
 from __future__ import annotations
 
 import math
+from collections.abc import Callable
 from dataclasses import dataclass
 
 import casadi as ca
@@ -54,12 +55,17 @@ class Block:
     jac : casadi.Function, optional
         ``(z, p) -> (r, dr/dz)`` when the block knows its Jacobian's structure (cheaper
         to build than differentiating ``fn``); else ``fn`` is differentiated.
+    p_index : ndarray of int, shape (np, count), optional
+        Indices into the global parameter vector of each instance's ``p`` (per-instance
+        parameters, e.g. the width of each collocation interval); None: every instance
+        gets the whole parameter vector.
     """
 
     fn: ca.Function
     z_index: np.ndarray
     rows: np.ndarray
     jac: ca.Function | None = None
+    p_index: np.ndarray | None = None
 
     @property
     def count(self) -> int:
@@ -83,8 +89,17 @@ def _scatter_order(blocks: list[Block], n: int) -> list[int]:
     return order.tolist()
 
 
+def _block_params(block: Block, p: ca.MX) -> ca.MX:
+    """The block's parameters: p itself, or one column per instance (its entries of p)."""
+    if block.p_index is None:
+        return p
+    m, count = block.p_index.shape
+    return ca.reshape(p[block.p_index.ravel(order="F").tolist()], m, count)
+
+
 def _call(block: Block, fn: ca.Function, w: ca.MX, p: ca.MX) -> list[ca.MX]:
     z = _gather(w, block)
+    p = _block_params(block, p)
     if block.count == 1:
         return fn(z, p) if fn.n_out() > 1 else [fn(z, p)]
     out = fn.map(block.count)(z, p)
@@ -114,7 +129,7 @@ def jacobian_functions(blocks: list[Block], n_w: int, n_p: int,
             fj = b.jac
         else:
             z = ca.SX.sym("z", b.fn.size1_in(0))
-            ps = ca.SX.sym("p", n_p)
+            ps = ca.SX.sym("p", b.fn.size1_in(1))
             r = b.fn(z, ps)
             fj = ca.Function(b.fn.name() + "_jac", [z, ps], [r, ca.jacobian(r, z)])
         r_all, j_all = _call(b, fj, w, p)
@@ -251,6 +266,9 @@ class NewtonResult:
     success: bool
     message: str
     factorizations: int = -1  # Jacobians evaluated and factorised (-1: not counted)
+    kappa: float = math.nan  # |G| after a full step over |step|^2 (nan: not measured)
+    p: np.ndarray | None = None  # the parameters at w, when a remesh changed them
+    remeshes: int = 0  # moves onto another mesh during the iteration
 
 
 def _max_step(w: np.ndarray, dw: np.ndarray, lb: np.ndarray | None, ub: np.ndarray | None
@@ -275,9 +293,23 @@ def _decrease(g_new: np.ndarray, g_max: float, alpha: float) -> bool:
     return math.isfinite(new) and new <= (1.0 - 0.5 * alpha) * g_max
 
 
+#: a remesh is tried before evaluating a full step whose residual, predicted from the
+#: quadratic convergence, is at most this (scaled): the iterate is then close enough for
+#: its kinks to be where the solution's are (a kink found 1e-4 of the cable's length away
+#: from the solution's leaves ~2e-13 of error on De Zoysa's cable, :mod:`kinks`)
+REMESH_RESIDUAL = 1e-4
+#: a point moved onto another mesh is accepted while max|G| there is at most this (scaled)
+#: or the residual before the move: the residuals of two meshes do not compare (moving a
+#: converged 8-interval solution of De Zoysa's cable onto the fitted mesh leaves ~1e-4,
+#: from which Newton converges in two steps)
+REMESH_ACCEPT = 1e-3
+
+
 def newton(kernel: Kernel, w0: np.ndarray, p: np.ndarray, tol: float, max_iter: int = 30,
            lb: np.ndarray | None = None, ub: np.ndarray | None = None,
-           step_tol: float = 1e-14) -> NewtonResult:
+           step_tol: float = 1e-14, kappa: float = math.nan,
+           remesh: Callable[[np.ndarray], tuple[np.ndarray, np.ndarray] | None] | None = None,
+           unmesh: Callable[[], None] | None = None) -> NewtonResult:
     """Solve G(w, p) = 0 from ``w0`` to max|G| <= ``tol`` by Newton's method with a
     backtracking line search within [lb, ub]: the step length is halved until max|G| falls
     to (1 - alpha/2) of its value, as in CasADi's ``rootfinder`` "newton" (its default).
@@ -304,6 +336,19 @@ def newton(kernel: Kernel, w0: np.ndarray, p: np.ndarray, tol: float, max_iter: 
     step_tol : float
         A step shorter than this (max norm) ends the iteration as converged (CasADi
         ``rootfinder``'s ``abstolStep``); the caller checks the residual.
+    kappa : float
+        The quadratic-convergence constant (max|G| after a full step over the step's max
+        norm squared) of a previous solve of a nearby system (:attr:`NewtonResult.kappa`),
+        so that the first step too can end with a residual check alone; nan: unknown.
+    remesh, unmesh : callable, optional
+        A moving mesh (:mod:`cable_ocp.statics.kinks`): before a full step whose predicted
+        residual is at most :data:`REMESH_RESIDUAL`, ``remesh(trial)`` may move the trial
+        point onto another mesh and return it with that mesh's parameters (None: keep
+        the mesh). The moved point is accepted while its residual is at most
+        :data:`REMESH_ACCEPT` or the residual before the step (its Jacobian is the one
+        evaluated there anyway); else ``unmesh()`` restores the mesh and the step is taken
+        on the old one. Tried once per call; the result's ``p`` holds the parameters of
+        the mesh it ends on.
 
     Returns
     -------
@@ -315,42 +360,65 @@ def newton(kernel: Kernel, w0: np.ndarray, p: np.ndarray, tol: float, max_iter: 
     if lb is not None or ub is not None:
         w = np.clip(w, lb if lb is not None else -np.inf, ub if ub is not None else np.inf)
     g, dw = kernel.step(w, p)
-    steps = 0
-    kappa = math.nan  # |g_{k+1}| / |dw_k|^2: the quadratic-convergence constant
+    steps, moves, accepted = 0, 0, 0
+    p0 = p
+    # kappa = |g_{k+1}| / |dw_k|^2: the quadratic-convergence constant
+
+    def result(ok: bool, message: str) -> NewtonResult:
+        return NewtonResult(w, g, steps, ok, message, kappa=kappa,
+                            p=p if p is not p0 else None, remeshes=accepted)
+
     while True:
         gmax = float(np.max(np.abs(g))) if g.size else 0.0
         if not math.isfinite(gmax):
-            return NewtonResult(w, g, steps, False, "non-finite residual")
+            return result(False, "non-finite residual")
         if gmax <= tol:
-            return NewtonResult(w, g, steps, True, "converged")
+            return result(True, "converged")
         if steps >= max_iter:
-            return NewtonResult(w, g, steps, False, f"no convergence in {max_iter} steps")
+            return result(False, f"no convergence in {max_iter} steps")
         if dw is None:
             g, dw = kernel.step(w, p)
             continue
         if not np.all(np.isfinite(dw)):
-            return NewtonResult(w, g, steps, False, "singular Jacobian (non-finite step)")
+            return result(False, "singular Jacobian (non-finite step)")
         alpha = _max_step(w, dw, lb, ub)
         dnorm = float(np.max(np.abs(dw))) if dw.size else 0.0
         trial = w + alpha * dw
-        if alpha == 1.0 and math.isfinite(kappa) and kappa * dnorm**2 <= 10.0 * tol:
+        predicted = kappa * dnorm**2 if alpha == 1.0 and math.isfinite(kappa) else math.inf
+        moved = None
+        if remesh is not None and moves == 0 and predicted <= REMESH_RESIDUAL:
+            moves += 1
+            moved = remesh(trial)
+        if moved is not None:
+            g_new, dw_new = kernel.step(moved[0], moved[1])
+            new_max = float(np.max(np.abs(g_new))) if g_new.size else 0.0
+            if math.isfinite(new_max) and new_max <= max(REMESH_ACCEPT, gmax) \
+                    and np.all(np.isfinite(dw_new)):
+                trial, p = moved
+                accepted += 1
+                w, g, dw = trial, g_new, dw_new
+                steps += 1
+                continue
+            if unmesh is not None:  # back to the old mesh, and the step taken there
+                unmesh()
+            g_new, dw_new = kernel.step(trial, p)
+        elif predicted <= 10.0 * tol:
             g_new, dw_new = kernel.g(trial, p), None  # probably converged: no Jacobian
         else:
             g_new, dw_new = kernel.step(trial, p)
         while not _decrease(g_new, gmax, alpha):
             alpha *= 0.5
             if alpha * dnorm <= step_tol or alpha < 2.0**-60:
-                return NewtonResult(w, g, steps, False,
-                                    "line search failed (no decrease of the residual)")
+                return result(False, "line search failed (no decrease of the residual)")
             trial = w + alpha * dw
             g_new, dw_new = kernel.g(trial, p), None
         new_max = float(np.max(np.abs(g_new))) if g_new.size else 0.0
-        if alpha == 1.0 and dnorm > 0.0:
+        if alpha == 1.0 and dnorm > 0.0 and moved is None:
             kappa = new_max / dnorm**2
         w, g, dw = trial, g_new, dw_new
         steps += 1
         if alpha * dnorm <= step_tol and new_max > tol:
-            return NewtonResult(w, g, steps, True, "step below tolerance")
+            return result(True, "step below tolerance")
 
 
 #: a chord step is accepted when it cuts max|G| to this fraction or less; else the

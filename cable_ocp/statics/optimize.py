@@ -27,7 +27,7 @@ from __future__ import annotations
 
 import time
 from collections.abc import Callable, Sequence
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, replace
 from typing import Any
 
 import casadi as ca
@@ -180,7 +180,7 @@ class StaticsNLP:
         for k in range(len(self.p0)):
             hit = [j for j, (i, _) in enumerate(self.index) if i == k]
             pieces.append(v[hit[0]] if hit else ca.MX(float(self.p0[k])))
-        pv = ca.vertcat(*pieces)
+        pv = ca.vertcat(*pieces, ca.DM(self.coll.mesh_params().tolist()))
         g_eq = self.coll.residual(w, pv)
         view = self._view(w, v, pv)
         view.theta = theta
@@ -207,7 +207,9 @@ class StaticsNLP:
             "ipopt.print_level": 0, "ipopt.sb": "yes", "ipopt.max_iter": max_iter,
             "ipopt.tol": 1e-10, "ipopt.constr_viol_tol": 1e-10, "ipopt.mumps_scaling": 0,
         })
-        self._solver = StaticsSolver(self.scene)
+        # the NLP is collocated on the uniform mesh: so are the starts from this solver
+        self._uniform = replace(self.scene, solver=replace(self.scene.solver, mesh="uniform"))
+        self._solver = StaticsSolver(self._uniform)
 
     def run(self, theta: Sequence[float] = (), start: StaticsSolution | None = None,
             start_values: dict[str, float] | None = None) -> OptimizationResult:
@@ -229,7 +231,7 @@ class StaticsNLP:
             if start_values and name in start_values:
                 v0[k] = start_values[name] / self.index[k][1]
         if start is None:
-            start = self._solver.solve(self.scene, error_estimate=False)
+            start = self._solver.solve(self._uniform, error_estimate=False)
         x0 = np.concatenate([self._solver._from_solution(start),
                              np.clip(v0, self._lbx[nw:], self._ubx[nw:])])
         res = self._nlp(x0=x0, p=np.asarray(theta, float), lbx=self._lbx, ubx=self._ubx,
@@ -243,7 +245,8 @@ class StaticsNLP:
         for (i, _), val in zip(self.index, x[nw:], strict=True):
             p_opt[i] = val
         r, t, length, _ = self.coll.unpack(x[:nw], p_opt)
-        viol = float(np.max(np.abs(np.asarray(self.coll.residual(x[:nw], p_opt)))))
+        viol = float(np.max(np.abs(np.asarray(self.coll.residual(
+            x[:nw], self.coll.params(p_opt))))))
         wall = time.perf_counter() - t0
         sol = StaticsSolution(
             status=status, message=f"optimisation: ipopt ({st.get('return_status')})",

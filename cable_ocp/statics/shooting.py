@@ -72,7 +72,12 @@ class MultipleShooting(Collocation):
         self.mesh = ShootingMesh(intervals)  # type: ignore[assignment]
         self._setup(grounded)
 
-    def interpolate(self, values: np.ndarray, sigma: np.ndarray) -> np.ndarray:
+    def mesh_params(self, mesh: object = None) -> np.ndarray:
+        """No mesh parameters: the uniform step is part of the built RK4 step."""
+        return np.zeros(0)
+
+    def interpolate(self, values: np.ndarray, sigma: np.ndarray, mesh: object = None,
+                    segment: np.ndarray | None = None) -> np.ndarray:
         """Piecewise-linear between the nodes (RK4 has no dense output here); exact at the
         nodes, which is where the error estimate compares shooting solutions."""
         grid = self.mesh.sigma()

@@ -256,6 +256,7 @@ class StaticsSolution:
                 "error_estimate_position_m": est.get("position_m"),
                 "smoothing_force_bound_N": self.diagnostics.get("smoothing_force_bound_N"),
                 "continuation": self.diagnostics.get("continuation"),
+                "mesh": _mesh_dict(self.diagnostics.get("mesh")),
             },
         }
         if "bending" in self.diagnostics:
@@ -273,6 +274,16 @@ class StaticsSolution:
             items += [(k, out[k]) for k in keys[keys.index("touchdown") + 1:]]
             out = dict(items)
         return out
+
+
+def _mesh_dict(mesh: dict[str, Any] | None) -> dict[str, Any] | None:
+    """The mesh's JSON entry: its kind ("uniform", or "kinks": mesh points on the kinks
+    of the drag), the interval ends ``points_s`` (m; null on a uniform mesh) and the kinks
+    this solve found ``kinks_s`` (m; null when it did not look); null without a mesh."""
+    if not mesh or "kind" not in mesh:
+        return None
+    return {"kind": mesh["kind"], "points_s": mesh.get("points_s"),
+            "kinks_s": mesh.get("kinks_s")}
 
 
 def _num(v: Any) -> float | None:

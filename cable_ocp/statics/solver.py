@@ -15,6 +15,12 @@ line search on |G| (one CasADi call per step, on preallocated buffers):
 The built functions are kept on disk (:mod:`cable_ocp.statics.cache`) so that another
 process solving a scene of the same structure loads them instead of building them.
 
+Mesh points on the drag's kinks (``solver.mesh``, :mod:`cable_ocp.statics.kinks`): the
+interval widths are parameters of the built functions, so Newton moves the mesh onto the
+kinks of its iterate as it converges, at no build cost (cold solves and starts from
+another solver's solution; a warm start from this solver's own solution keeps its mesh
+unless ``solver.mesh = "tracking"``).
+
 Every solution is checked by evaluating the residual at the returned point; only a
 residual within tolerance is reported as ``"solved"``.
 
@@ -41,10 +47,12 @@ from cable_ocp.errors import CableOCPError
 from cable_ocp.physics import seabed
 from cable_ocp.scene import Scene, SolverOptions, apply_overrides, load_scene, scene_from_dict
 from cable_ocp.statics import cache as disk_cache
+from cable_ocp.statics import kinks as kink_points
 from cable_ocp.statics import sparse_qr
 from cable_ocp.statics.checks import check_physical
-from cable_ocp.statics.collocation import Collocation
+from cable_ocp.statics.collocation import Collocation, Mesh
 from cable_ocp.statics.formulation import (
+    NX,
     P_CURRENT,
     P_END_A,
     P_END_B,
@@ -122,6 +130,16 @@ class StaticsSolver:
         self.coll = transcription(self.form, intervals or opts.intervals, degree or opts.degree,
                                   scheme or opts.scheme, grounded=grounded)
         self.tol = opts.tolerance
+        #: mesh points on the kinks of the drag (``solver.mesh = "kinks"`` or
+        #: ``"tracking"``; collocation of order > 4 with a current): cold solves and
+        #: solves from another solver's solution fit the mesh to the kinks
+        self.fit_kinks = (opts.mesh in ("kinks", "tracking") and type(self.coll) is Collocation
+                          and scene.environment.current is not None
+                          and self.coll.mesh.order > 4)
+        #: warm solves from this solver's own solutions move the mesh with the kinks too
+        #: (``"tracking"``; with ``"kinks"`` they keep their start's mesh)
+        self.track_kinks = self.fit_kinks and opts.mesh == "tracking"
+        self._switches = kink_points.Switches(scene)
         self._lbx = -np.inf * np.ones(self.coll.n_w)
         if self.coll.free_length:
             self._lbx[self.coll.i_lam] = 1e-6
@@ -149,29 +167,38 @@ class StaticsSolver:
         self._gj, self._kernel = self._newton_functions()
         self.build_time_s = time.perf_counter() - t0
 
-    def _cache_structure(self, extra: tuple = ()) -> str:
+    def _cache_structure(self, extra: tuple = (), blocks: bool = False) -> str:
         """Text of everything the built functions depend on (the on-disk cache's key):
         the structure without the solver options that do not enter the equations, the
-        scales, the transcription and its mesh."""
+        scales, the transcription and its mesh. ``blocks``: the key of the collocation
+        interval functions, which do not depend on the numbers of intervals (their
+        widths are parameters), so that the meshes of the error estimate and of the
+        refinement share one entry."""
         opts = self.scene.solver
         key = tuple(x for x in self.form.key if not isinstance(x, SolverOptions))
+        mesh = self.coll.mesh.uniform if isinstance(self.coll.mesh, Mesh) else self.coll.mesh
+        n_w: int | None = self.coll.n_w
+        if blocks and isinstance(mesh, Mesh):
+            mesh = replace(mesh, intervals=0, segments=tuple(0 for _ in mesh.segments))
+            n_w = None
         return repr((key, ("smoothing", opts.smoothing, "vertical_blend", opts.vertical_blend),
                      self.form.scales, self.form.moment_scale, type(self.coll).__name__,
-                     self.coll.mesh, self.grounded, self.coll.n_w, LINEAR_SOLVER, *extra))
+                     mesh, self.grounded, n_w, LINEAR_SOLVER, *extra))
 
     def _newton_functions(self) -> tuple[ca.Function, Kernel]:
         """``GJ`` and the buffered Newton kernel. The transcription's block functions (the
         SX parts, whose size does not grow with the mesh) come from the on-disk cache or
         are built; the residual, its Jacobian and the Newton step are assembled from them."""
-        n_w, n_p = self.coll.n_w, len(self.form.params())
+        n_w, n_p = self.coll.n_w, self.coll.n_p
         structure = self._cache_structure()
-        stored = disk_cache.load(structure, "blocks")
+        key = self._cache_structure(blocks=True)
+        stored = disk_cache.load(key, "blocks")
         if stored is not None and self.coll.set_block_functions(
                 [stored[f"f{i}"] for i in range(len(stored))]):
             self.build_source = "disk cache"
         else:
             fns = self.coll.block_functions()
-            disk_cache.save(structure, "blocks", {f"f{i}": f for i, f in enumerate(fns)})
+            disk_cache.save(key, "blocks", {f"f{i}": f for i, f in enumerate(fns)})
         g_fn = self.coll.residual
         gj, step = jacobian_functions(self.coll.blocks, n_w, n_p)
         if self.scene.solver.compile == "auto":
@@ -216,7 +243,7 @@ class StaticsSolver:
                 self._ipopt_fn = fns["ipopt"]
             else:
                 w = ca.MX.sym("w", self.coll.n_w)
-                p = ca.MX.sym("p", len(self.form.params()))
+                p = ca.MX.sym("p", self.coll.n_p)
                 g = self.coll.residual(w, p)
                 self._ipopt_fn = ca.nlpsol("statics_ipopt", "ipopt", {
                     "x": w, "p": p, "f": 0, "g": g}, {
@@ -247,8 +274,16 @@ class StaticsSolver:
     # -- public -------------------------------------------------------------------------
     @property
     def mesh(self):  # noqa: ANN201 - Mesh
-        """The collocation mesh."""
+        """The collocation mesh (of the last solve)."""
         return self.coll.mesh
+
+    def params(self, scene: Scene | None = None, current_scale: float = 1.0,
+               mesh: Mesh | None = None) -> np.ndarray:
+        """The residual's parameter vector for ``scene`` (default the solver's) on
+        ``mesh`` (default the current one): :meth:`Formulation.params` and the interval
+        widths (:meth:`Collocation.params`)."""
+        return self.coll.params(self.form.params(self.scene if scene is None else scene,
+                                                 current_scale), mesh)
 
     def solve(self, scene: Scene | None = None, warm_start: StaticsSolution | None = None,
               error_estimate: bool | None = None, current_scale: float = 1.0
@@ -285,7 +320,7 @@ class StaticsSolver:
                 "this solver was built for another scene structure; build a new StaticsSolver "
                 "(only end values, a fixed length, the tension and the current scale may change)"
             )
-        p = self.form.params(scene, current_scale)
+        p_form = self.form.params(scene, current_scale)
         diag: dict[str, Any] = {"method": scene.solver.method, "mesh": {
             "intervals": self.mesh.intervals, "degree": self.mesh.degree,
             "scheme": self.mesh.scheme, "order": self.mesh.order}, "terms": list(self.form.terms)}
@@ -294,26 +329,46 @@ class StaticsSolver:
         t0, c0 = time.perf_counter(), time.process_time()
         late0, late0_cpu = self._late_build_s, self._late_build_cpu_s
         g_end: np.ndarray | None = None
+        kappa = math.nan  # Newton's quadratic-convergence constant, for the re-solve
+        moves = 0  # moves of the mesh onto the kinks during Newton's iteration
+        self._checked: np.ndarray | None = None  # kinks found by Newton's moving mesh
+        estimate = scene.solver.error_estimate if error_estimate is None else error_estimate
+        fit = self.fit_kinks
         if warm_start is not None:
-            w0 = self._from_solution(warm_start)
-            res = self._newton(w0, p, warm=True)
+            w0 = self._from_solution(warm_start)  # its own mesh, or fitted to its kinks
+            own = warm_start._unknowns is not None and warm_start._unknowns[0] is self._token
+            # a warm start from this solver's own solution keeps its mesh ("kinks": a
+            # sweep costs what it did), unless tracking or estimating the error (whose
+            # coarse solves fit their meshes to the kinks)
+            fit = fit and (not own or self.track_kinks or estimate)
+            p = p0 = self.coll.params(p_form)
+            res = self._newton(w0, p, warm=True, p_form=p_form if fit else None)
             w, it, ok, how, g_end = res.w, res.iterations, res.success, "newton", res.g
+            p, kappa = (res.p if res.p is not None else p), res.kappa
+            moves = res.remeshes if ok else 0
             diag["factorizations"] = res.factorizations
             if self._kernel.can_chord:
                 diag["chord"] = res.message  # "converged": chord steps alone sufficed
             if not ok:
+                p, self._checked = p0, None
                 w, it, ok, how = self._ipopt_solve(w0, p)
                 how = f"newton failed ({res.message}); " + how
                 g_end = None
             diag["start"] = "warm"
         else:
+            if self.fit_kinks:
+                self.coll.set_mesh(self.coll.mesh.uniform)
+            p = p0 = self.coll.params(p_form)
             w0, guess = self._guess(scene)
             diag["start"] = f"cold ({guess} guess)"
             if self.cold == "newton":
-                res = self._newton(w0, p)
+                res = self._newton(w0, p, p_form=p_form if fit else None)
                 w, it, ok, how, g_end = res.w, res.iterations, res.success, \
                     "newton (line search)", res.g
+                p, kappa = (res.p if res.p is not None else p), res.kappa
+                moves = res.remeshes if ok else 0
                 if not ok:
+                    p, self._checked = p0, None
                     w, it, ok, how = self._ipopt_solve(w0, p)
                     how = f"newton failed ({res.message}); " + how
                     g_end = None
@@ -322,15 +377,34 @@ class StaticsSolver:
             if not ok and scene.environment.current is not None and current_scale != 0.0:
                 w, it, ok, how = self._continuation(w0, p, current_scale)
                 diag["continuation"] = how
+        if ok and fit:
+            if self._checked is not None:  # Newton fitted the mesh near the solution
+                more, info = 0, {"re_solves": 0, "found": self._checked}
+            else:
+                # the solution's kinks decide the mesh: solve again (warm) where they lie
+                # away from the mesh points
+                w, p, g_end, more, info = self._refit(w, p, p_form, g_end, kappa)
+            it += more
+            _, _, length, g_len = self.coll.unpack(w, p)
+            diag["mesh"]["kinks_s"] = self._arc_lengths(info.pop("found"), length, g_len)
+            diag["mesh"]["moves"] = moves
+            diag["mesh"].update(info)
+        if self.fit_kinks and self.mesh.edges and np.all(np.isfinite(w)):
+            _, _, length, g_len = self.coll.unpack(w, p)
+            diag["mesh"]["points_s"] = self._arc_lengths(self.mesh.interval_edges(), length,
+                                                         g_len)
         # a solver built on first use (IPOPT) is build time, not solve time
         wall = time.perf_counter() - t0 - (self._late_build_s - late0)
         diag["cpu_time_s"] = time.process_time() - c0 - (self._late_build_cpu_s - late0_cpu)
         diag["solver"] = how
         diag["build_source"] = self.build_source
         diag["compiled"] = self.compiled
+        if self.fit_kinks:
+            # "kinks": mesh points on kinks (found by this solve, kinks_s, or kept from
+            # the warm start's solve); the interval ends in points_s
+            diag["mesh"]["kind"] = "kinks" if self.mesh.edges else "uniform"
         sol = self._make_solution(w, p, ok, how, it, wall, diag, g_end)
-        if sol.success and (scene.solver.error_estimate if error_estimate is None
-                            else error_estimate):
+        if sol.success and estimate:
             self._estimate_error(sol, scene, current_scale)
             if sol.error_estimate is not None:
                 # the iterate's own (algebraic) error, from one Newton correction: the
@@ -353,6 +427,83 @@ class StaticsSolver:
                         f"{sol.error_estimate:.1e} exceeds solver.accuracy = "
                         f"{scene.solver.accuracy:.0e}; increase solver.intervals")
         return sol
+
+    # -- mesh points on the kinks of the drag (:mod:`cable_ocp.statics.kinks`) -----------
+    def _arc_lengths(self, sigma: np.ndarray, length: float, g: float) -> list[float]:
+        """Unstretched arc lengths (m) of mesh coordinates sigma, for the total length
+        ``length`` and the grounded length ``g`` (m)."""
+        sig = np.asarray(sigma, dtype=float)
+        if not self.form.segmented:
+            return (g + sig * (length - g)).tolist()
+        # per segment: its share of sigma maps onto its arc (the first starts at g)
+        b = np.asarray(self.coll.mesh.bounds)
+        k = np.clip(np.searchsorted(b, sig, side="right") - 1, 0, len(b) - 2)
+        ss = self.coll._segment_s(length, g)
+        s0 = np.array([a for a, _ in ss])[k]
+        s1 = np.array([e for _, e in ss])[k]
+        return (s0 + (sig - b[k]) / (b[k + 1] - b[k]) * (s1 - s0)).tolist()
+
+    def _kinks_of(self, w: np.ndarray, mesh: Mesh) -> np.ndarray:
+        """Kinks (sigma) of the profile of unknowns w on ``mesh``."""
+        coll, sc = self.coll, self.form.scales
+        xs = np.asarray(w[: coll.n_x]).reshape(mesh.n_nodes, coll.nx)
+        tau = xs[:, 3:6]
+        size = np.sqrt(np.einsum("ij,ij->i", tau, tau))
+        t = tau / np.where(size > 0.0, size, 1.0)[:, None]
+        offs = mesh.segment_offsets()
+        seg = np.repeat(np.arange(len(offs) - 1), np.diff(offs)) if mesh.segments else None
+        if coll.nx > NX:  # a stiff segment's tangent is (cos theta, 0, sin theta)
+            stiff = np.asarray(self.form.stiff)[seg]
+            th = xs[:, 6]
+            t = np.where(stiff[:, None], np.stack([np.cos(th), 0.0 * th, np.sin(th)], 1), t)
+        vals = self._switches(xs[:, :3] * sc.length, t, seg)
+        return kink_points.find(mesh.sigma(), vals, offs)
+
+    def _fitted_mesh(self, found: np.ndarray) -> Mesh:
+        """The mesh with a point on each kink ``found`` (sigma; uniform without any)."""
+        base = self.coll.mesh.uniform
+        edges = kink_points.fitted_edges(base.segments or (base.intervals,),
+                                         base.bounds or (0.0, 1.0), found)
+        return base.with_edges(edges)
+
+    @staticmethod
+    def _same_mesh(a: Mesh, b: Mesh) -> bool:
+        """True when no interval end of ``a`` is farther than :data:`kinks.GAP` from
+        that of ``b`` (then ``a`` serves where ``b`` is asked for)."""
+        return a == b or float(np.max(np.abs(a.interval_edges() - b.interval_edges()))) \
+            <= kink_points.GAP
+
+    def _refit(self, w: np.ndarray, p: np.ndarray, p_form: np.ndarray,
+               g_end: np.ndarray | None, kappa: float = math.nan
+               ) -> tuple[np.ndarray, np.ndarray, np.ndarray | None, int, dict[str, Any]]:
+        """Fit the mesh to the kinks of the solution w and solve again from w (moved onto
+        the new mesh by its collocation polynomials) while they lie away from the mesh
+        points (twice at most). A failed re-solve keeps the solution on the mesh before.
+        ``kappa``: Newton's quadratic-convergence constant of the solve of w.
+        Returns (w, p, G at w, Newton steps taken, diagnostics: the kinks found (sigma),
+        the number of re-solves and a note when one failed)."""
+        steps, info = 0, {"re_solves": 0}
+        found = self._kinks_of(w, self.coll.mesh)
+        for _ in range(2):
+            target = self._fitted_mesh(found)
+            if self._same_mesh(self.coll.mesh, target):
+                break
+            old = self.coll.mesh
+            w_new = self.coll.transfer(w, old, target)
+            self.coll.set_mesh(target)
+            p_new = self.coll.params(p_form)
+            res = self._newton(w_new, p_new, warm=True, kappa=kappa)
+            steps += res.iterations
+            if not res.success:
+                self.coll.set_mesh(old)
+                info["note"] = ("the re-solve on the mesh fitted to the kinks failed "
+                                f"({res.message}); the solution on the mesh before kept")
+                break
+            w, p, g_end = res.w, p_new, res.g
+            info["re_solves"] += 1
+            found = self._kinks_of(w, self.coll.mesh)
+        info["found"] = found
+        return w, p, g_end, steps, info
 
     # -- internals ----------------------------------------------------------------------
     def _guess(self, scene: Scene) -> tuple[np.ndarray, str]:
@@ -378,10 +529,22 @@ class StaticsSolver:
         return self.coll.pack(r, t, length), kind
 
     def _from_solution(self, sol: StaticsSolution) -> np.ndarray:
-        """Unknowns from a neighbouring solution (any mesh, grounded or not)."""
+        """Unknowns from a neighbouring solution (any mesh, grounded or not). With
+        ``fit_kinks``, this solver's own solutions (and predictions from them) keep their
+        mesh; another solver's are moved onto a mesh fitted to their kinks."""
         own = sol._unknowns
         if own is not None and own[0] is self._token:
-            return own[1].copy()  # this solver's own unknowns (or a prediction of them)
+            # this solver's own unknowns (or a prediction of them), on the mesh own[2]
+            # (Newton moves a fitted mesh onto the kinks as it converges)
+            w, mesh = own[1].copy(), own[2]
+            target = mesh if self.fit_kinks else self.coll.mesh
+            if target != mesh:
+                w = self.coll.transfer(w, mesh, target)
+            if target is not self.coll.mesh:
+                self.coll.set_mesh(target)
+            return w
+        if self.fit_kinks:
+            self.coll.set_mesh(self._fitted_mesh(self._solution_kinks(sol)))
         off = sol.node_offset
         g = sol.grounded_length if self.grounded else 0.0
         if self.grounded and not off:
@@ -414,34 +577,102 @@ class StaticsSolver:
             t = np.stack([np.interp(sig, src, t_src[:, k]) for k in range(3)], axis=1)
         return self.coll.pack(r, t, sol.length, g)
 
-    def _newton(self, w0: np.ndarray, p: np.ndarray, warm: bool = False) -> NewtonResult:
+    def _solution_kinks(self, sol: StaticsSolution) -> np.ndarray:
+        """Kinks (sigma of this solver's collocated part) of another solver's solution,
+        from its node arrays (a joint between segments appears there twice)."""
+        off = sol.node_offset
+        g = sol.grounded_length if self.grounded else 0.0
+        s = sol.s[off:] if self.grounded or not off else sol.s
+        r = sol.position[len(sol.s) - len(s):]
+        tension = sol.tension_vector[len(sol.s) - len(s):]
+        size = np.linalg.norm(tension, axis=1)
+        t = tension / np.where(size > 0.0, size, 1.0)[:, None]
+        bend = sol.diagnostics.get("bending")
+        if self.form.nx > NX and bend is not None and len(bend["angle_rad"]) == len(sol.s):
+            th = np.asarray(bend["angle_rad"])[len(sol.s) - len(s):]
+            stiff_t = np.stack([np.cos(th), 0.0 * th, np.sin(th)], axis=1)
+        else:
+            stiff_t = None
+        # the segment of each node: a joint appears twice, as the end of the segment
+        # before it and the start of the next
+        cum = np.cumsum([c.length for c in self.form.lines])[:-1]
+        seg = np.searchsorted(cum, s, side="right")
+        if cum.size:
+            tol = 1e-9 * max(sol.length, 1.0)
+            at_joint = np.abs(s[:, None] - cum[None, :]).min(axis=1) <= tol
+            first = np.concatenate([at_joint[:-1] & at_joint[1:], [False]])
+            seg = np.where(first & (seg > 0), seg - 1, seg)
+        offs = [0, *np.searchsorted(seg, np.arange(1, len(self.form.lines))).tolist(), len(s)]
+        if stiff_t is not None:
+            stiff = np.asarray(self.form.stiff)[seg]
+            t = np.where(stiff[:, None], stiff_t, t)
+        vals = self._switches(r, t, seg)
+        found = kink_points.find(np.asarray(s, dtype=float), vals, offs)
+        return self.coll.sigma_of_s(found, sol.length, g) if found.size else found
+
+    def _newton(self, w0: np.ndarray, p: np.ndarray, warm: bool = False,
+                kappa: float = math.nan, p_form: np.ndarray | None = None) -> NewtonResult:
         """Newton with a line search from w0, within the bounds (a positive free length, a
         grounded part on the first segment); a free length that comes out non-positive is
         a failure. From a warm start, with a kernel that keeps its factorisation (the
         compiled one), chord steps first, then Newton from where they stopped if they
-        fail. ``factorizations`` counts the Jacobians factorised."""
+        fail. ``factorizations`` counts the Jacobians factorised.
+
+        With ``fit_kinks`` and ``p_form`` (the formulation's parameters), Newton may move
+        the mesh onto the kinks of an iterate close to the solution (``remesh`` of
+        :func:`cable_ocp.statics.newton.newton`): the result's ``p`` then holds the new
+        mesh's parameters (the solver's mesh is the new one); a failure restores the mesh
+        of w0."""
         counts = self._kernel.counts
         f0 = counts["step"] + counts["factor"]
+        mesh0 = self.coll.mesh
+        moving = {}
+        if self.fit_kinks and p_form is not None:
+            moving = {"remesh": functools.partial(self._remesh, p_form=p_form),
+                      "unmesh": functools.partial(self._unmesh, mesh0)}
         if warm and self._kernel.can_chord:
             res = chord_newton(self._kernel, w0, p, self.tol, NEWTON_MAX_STEPS,
                                lb=self._lbx, ub=self._ubx)
             if not res.success:
                 start = res.w if np.all(np.isfinite(res.w)) else w0
                 fb = newton(self._kernel, start, p, self.tol, NEWTON_MAX_STEPS,
-                            lb=self._lbx, ub=self._ubx)
+                            lb=self._lbx, ub=self._ubx, **moving)
                 fb.iterations += res.iterations
                 fb.message = f"chord steps stopped ({res.message}); newton: {fb.message}"
                 res = fb
         else:
             res = newton(self._kernel, w0, p, self.tol, NEWTON_MAX_STEPS, lb=self._lbx,
-                         ub=self._ubx)
+                         ub=self._ubx, kappa=kappa, **moving)
         res.factorizations = counts["step"] + counts["factor"] - f0
         if res.success and self.coll.free_length and res.w[self.coll.i_lam] <= 0:
             res.success, res.message = False, "non-positive free length"
+        if not res.success and self.coll.mesh is not mesh0:
+            self._unmesh(mesh0)
+            res.p = None
         return res
 
+    def _remesh(self, trial: np.ndarray, p_form: np.ndarray
+                ) -> tuple[np.ndarray, np.ndarray] | None:
+        """Newton's moving mesh: the trial point moved onto the mesh fitted to its own
+        kinks, and that mesh's parameters; None when the current mesh already fits them
+        (within :data:`kinks.GAP`). The kinks found are kept for the solution
+        (:attr:`_checked`: the trial is within Newton's :data:`REMESH_RESIDUAL` of it)."""
+        found = self._kinks_of(trial, self.coll.mesh)
+        target = self._fitted_mesh(found)
+        self._checked = found
+        if self._same_mesh(self.coll.mesh, target):
+            return None
+        moved = self.coll.transfer(trial, self.coll.mesh, target)
+        self.coll.set_mesh(target)
+        return moved, self.coll.params(p_form)
+
+    def _unmesh(self, mesh: Mesh) -> None:
+        """Back to ``mesh`` (Newton rejected the moved point): the check is void."""
+        self.coll.set_mesh(mesh)
+        self._checked = None
+
     def _newton_solve(self, w0: np.ndarray, p: np.ndarray) -> tuple[np.ndarray, int, bool, str]:
-        """Newton from w0: (w, steps, success, "newton")."""
+        """Newton from w0 on the current mesh: (w, steps, success, "newton")."""
         res = self._newton(w0, p)
         return res.w, res.iterations, res.success, "newton"
 
@@ -483,7 +714,7 @@ class StaticsSolver:
         (6 x n_w), on the MX graph of the residual (the Jacobian in the unknowns, G_w,
         comes from the Newton functions)."""
         if self._sensitivity is None:
-            n_p = len(self.form.params())
+            n_p = self.coll.n_p
             w = ca.MX.sym("w", self.coll.n_w)
             head = ca.MX.sym("p_head", P_END_A.start)
             ends = ca.MX.sym("p_ends", P_END_B.stop - P_END_A.start)
@@ -667,8 +898,8 @@ class StaticsSolver:
         if finite:
             # the end stiffness, computed on first use (StaticsSolution.stiffness)
             sol._stiffness_source = functools.partial(self.end_stiffness, w.copy(), p.copy())
-            # the unknowns themselves, for a warm start by this solver
-            sol._unknowns = (self._token, w.copy())
+            # the unknowns themselves and their mesh, for a warm start by this solver
+            sol._unknowns = (self._token, w.copy(), self.coll.mesh)
         tmax = float(np.max(np.linalg.norm(t, axis=1))) if finite else math.nan
         diag["smoothing_force_bound_N"] = self.form.smoothing_force_bound(length, tmax)
         diag["min_z"] = float(np.min(r[:, 2])) if finite else math.nan
@@ -1078,7 +1309,9 @@ def _weights(vs: list[float], v: float) -> list[float]:
 
 def _extrapolate(points: list[tuple[float, StaticsSolution]], v: float) -> StaticsSolution:
     """Lagrange extrapolation to ``v`` through (value, solution) points of one mesh, on
-    the node arrays and, when one solver produced every point, on its unknowns."""
+    the node arrays and, when one solver produced every point, on its unknowns (node by
+    node: where the mesh points moved with the kinks between the points, the interval
+    ends are extrapolated alike)."""
     weights = _weights([float(x) for x, _ in points], v)
 
     def comb(arrays: list[Any]) -> Any:
@@ -1093,7 +1326,14 @@ def _extrapolate(points: list[tuple[float, StaticsSolution]], v: float) -> Stati
     own = [x._unknowns for x in sols]
     if all(u is not None and u[0] is own[-1][0] and u[1].shape == own[-1][1].shape
            for u in own):
-        out._unknowns = (own[-1][0], comb([u[1] for u in own]))
+        mesh = own[-1][2]
+        if any(u[2] != mesh for u in own):
+            edges = comb([u[2].interval_edges() for u in own])
+            try:
+                mesh = mesh.with_edges(edges)
+            except ValueError:  # the interval ends would not increase: no prediction
+                return out
+        out._unknowns = (own[-1][0], comb([u[1] for u in own]), mesh)
     return out
 
 
