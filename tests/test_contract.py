@@ -539,3 +539,29 @@ def test_internal_error_is_one_line_and_debug_shows_the_traceback(
 def test_usage_error_exits_2(capsys: Any) -> None:
     assert run(capsys, "solve")[0] == 2
     assert run(capsys, "frobnicate")[0] == 2
+
+
+def test_a_dip_within_the_cable_radius_warns_and_beyond_it_fails() -> None:
+    """The profile is the cable's centreline: 5 mm below the seabed plane is a 23 mm cable
+    touching it (solved, a warning naming the depth and the radius); 5 mm below with a
+    6 mm cable (radius 3 mm) is through it (below_seabed). A synthetic 315 m profile, so
+    that only the check is under test (the solver's own dip: test_statics_kinks.py)."""
+    from types import SimpleNamespace
+
+    from cable_ocp.scene import load_scene
+    from cable_ocp.statics.checks import check_physical
+
+    def profile() -> SimpleNamespace:
+        s = np.concatenate([np.linspace(0.0, 1.0, 21), np.linspace(1.5, 315.0, 40)])
+        z = np.where(s <= 1.0, -0.005 * np.sin(np.pi * s), s * 0.5)
+        pos = np.column_stack([s, 0.0 * s, z])
+        return SimpleNamespace(status="solved", message="", position=pos, s=s, length=315.0,
+                               diagnostics={})
+
+    path = ROOT / "problems" / "chucheepsakul_top_tension.toml"
+    thick = check_physical(load_scene(path), profile())
+    assert thick.status == "solved"
+    assert any("within the cable's radius (11.5 mm)" in w
+               for w in thick.diagnostics["warnings"])
+    thin = check_physical(load_scene(path, {"cable.diameter": 0.006}), profile())
+    assert thin.status == "below_seabed" and "below the seabed plane" in thin.message

@@ -80,7 +80,7 @@ def test_smoothing_error_below_tolerance(problems, psi0):
 def test_smoothing_error_other_shipped_problems(problems, name):
     """Same check on the other shipped problems with current. (Chucheepsakul's cable at
     psi0 = 0 dips 0.34 mm below its anchor, which the mesh point on the kink there
-    resolves: "below_seabed", a converged solution, test_statics_kinks.py.)"""
+    resolves: within the cable's radius, a warning, test_statics_kinks.py.)"""
     exact = solve(load_scene(problems / name, {"solver.smoothing": 1e-7,
                                                "solver.error_estimate": False}))
     s = solve(load_scene(problems / name, {"solver.error_estimate": False}))

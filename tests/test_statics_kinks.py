@@ -105,7 +105,10 @@ def test_lowest_point_of_a_cable_leaving_its_anchor_downwards() -> None:
     fitted = solve(load_scene(CHUCHEEPSAKUL, OFF))
     uniform = solve(load_scene(CHUCHEEPSAKUL, {**OFF, "solver.mesh": "uniform"}))
     assert fitted.converged and uniform.success
-    assert fitted.status == "below_seabed"  # no seabed table: the dip is reported
+    # no seabed table: the dip, within the cable's 11.5 mm radius, is a warning (the
+    # cable touches the seabed plane), not a failure
+    assert fitted.success
+    assert any("dips 0.335 mm" in w for w in fitted.diagnostics["warnings"])
     assert abs(fitted.position[:, 2].min() - low.fun) < 1e-9
     assert abs(fitted.diagnostics["mesh"]["kinks_s"][0] - low.x) < 1e-3
     # the anchor (z = 0 to rounding) is the uniform mesh's lowest node: the dip falls

@@ -31,8 +31,9 @@ def check_physical(scene: Scene, sol: StaticsSolution) -> StaticsSolution:
     """Mark ``sol`` (in place, and return it) when its profile leaves the water column.
 
     * above the surface z = ``environment.water_depth``: status ``"above_surface"``;
-    * below the seabed plane z = 0 when the scene has no ``[environment.seabed]`` (no
-      contact model): status ``"below_seabed"``. With a seabed table, contact is modelled
+    * below the seabed plane z = 0 by more than the cable's radius when the scene has no
+      ``[environment.seabed]`` (no contact model): status ``"below_seabed"``; a dip within
+      the radius (the cable touching the plane) is a warning. With a seabed table, contact is modelled
       and penetration is judged by the solver's contact logic.
 
     Only results that would otherwise be used (``"solved"``, ``"inaccurate"``) are marked.
@@ -53,12 +54,26 @@ def check_physical(scene: Scene, sol: StaticsSolution) -> StaticsSolution:
         return sol
     if scene.environment.seabed is None:
         i_low = int(np.argmin(z))
-        if z[i_low] < -tol:
+        # the profile is the cable's centreline: a centreline within the cable's radius of
+        # the plane is a cable touching the seabed, not through it (e.g. an anchored line
+        # leaving its anchor a fraction of a degree below horizontal dips by fractions of
+        # a millimetre before it rises)
+        radius = 0.5 * min(c.diameter for c in (scene.segments or (scene.cable,)))
+        if z[i_low] < -max(tol, radius):
             sol.status = "below_seabed"
             sol.message = (
                 f"the profile passes {-z[i_low]:.4g} m below the seabed plane z = 0 "
                 f"{_where(sol, i_low)}; the scene has no [environment.seabed] table, so "
                 "contact is not modelled: add one (depth_offset, friction) to model contact")
+        elif z[i_low] < -tol:
+            warnings = sol.diagnostics.setdefault("warnings", [])
+            note = (
+                f"the cable's centreline dips {-z[i_low] * 1e3:.3g} mm below the seabed "
+                f"plane z = 0 {_where(sol, i_low)}, within the cable's radius "
+                f"({radius * 1e3:.3g} mm): it touches the seabed there; contact is not "
+                "modelled (no [environment.seabed] table)")
+            if note not in warnings:  # the check may run twice on one solution
+                warnings.append(note)
     return sol
 
 
