@@ -314,6 +314,11 @@ def test_bench_batch_prints_its_json_alone(capsys) -> None:
     assert 0 < rows[1]["solve_ms"] < 1e3 * one / 4
     assert sm["difference_to_bare_per_case_ms"] == pytest.approx(1e3 * (one - bare) / 4)
     assert sm["speedup_2_workers"] == pytest.approx(one / two)
+    # the machine's ceiling: two processes of the bare loop at once do at most twice the
+    # work of one (a loose lower bound: timings, not a timed test); the efficiency is derived
+    assert 0.5 < sm["ceiling_2_processes"] <= 2.2
+    assert sm["efficiency_vs_ceiling"] == pytest.approx(
+        sm["speedup_2_workers"] / sm["ceiling_2_processes"])
 
 
 def test_solve_session_warm_starts_only_from_the_solve_just_before() -> None:
@@ -344,12 +349,31 @@ def test_guided_chunks_cover_every_case_once_in_order_and_shrink() -> None:
     finish within a case or two of each other); a given chunk_size is kept."""
     from cable_ocp.batch import _chunks
 
-    cases = list(range(200))
+    cases = [Case(i, {"layout.psi0_deg": float(i)}) for i in range(200)]
     for w in (1, 2, 4):
         ch = _chunks(cases, w, None)
-        assert [c for chunk in ch for c in chunk] == cases
+        assert [c.index for chunk in ch for c in chunk] == list(range(200))
         sizes = [len(c) for c in ch]
         assert sizes[0] == 200 // (2 * w)
         assert all(a >= b for a, b in zip(sizes, sizes[1:], strict=False))
         assert max(sizes[-w:]) <= 2
     assert [len(c) for c in _chunks(cases, 2, 30)] == [30] * 6 + [20]
+
+
+def test_guided_chunks_end_at_grid_blocks() -> None:
+    """On a grid (current speed x psi0, psi0 fastest), a chunk ends where a new current
+    speed starts whenever one lies within half the chunk's size of its target end, so
+    that two workers rarely build a solver for the same speed (the current is part of a
+    statics solver's structure): every chunk but the short tail ones starts on a block."""
+    from cable_ocp.batch import _blocks, _chunks, build_cases, parse_range
+
+    cases = build_cases([parse_range("environment.current.speed=0.4:1.3:10"),
+                         parse_range("layout.psi0_deg=0:140:20")])
+    assert _blocks(cases) == list(range(0, 200, 20))
+    ch = _chunks(cases, 2, None)
+    assert [c.index for chunk in ch for c in chunk] == list(range(200))
+    starts = [chunk[0].index for chunk in ch]
+    assert starts[:7] == [0, 40, 80, 100, 120, 140, 160]
+    # without a grid (random samples: every key changes every case) the plain guided sizes
+    rand = [Case(i, {"a": float(i), "b": float(-i)}) for i in range(200)]
+    assert [len(c) for c in _chunks(rand, 2, None)][:3] == [50, 38, 28]

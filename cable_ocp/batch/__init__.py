@@ -92,22 +92,48 @@ class BatchResult:
         return pd.DataFrame(self.rows)
 
 
+def _blocks(cases: Sequence[Case]) -> list[int]:
+    """Indices where a new block of cases starts: a block is a run of consecutive cases
+    along the key that changes most often in this order (on a grid, its fastest axis),
+    the other keys held. Along a block each case warm-starts from the one before, and
+    the keys held are usually what a solver is built for (the current speed of a statics
+    scene, a cable property), so a block is best run by one worker."""
+    if len(cases) < 2:
+        return [0]
+    keys = list(cases[0].overrides)
+    changes = {k: sum(a.overrides.get(k) != b.overrides.get(k)
+                      for a, b in zip(cases, cases[1:], strict=False)) for k in keys}
+    fast = max(keys, key=lambda k: changes[k]) if keys else None
+    held = [k for k in keys if k != fast]
+    starts = [0]
+    for i in range(1, len(cases)):
+        if any(cases[i].overrides.get(k) != cases[i - 1].overrides.get(k) for k in held):
+            starts.append(i)
+    return starts
+
+
 def _chunks(cases: Sequence[Case], workers: int, chunk_size: int | None) -> list[list[Case]]:
     """Runs of consecutive cases, ``chunk_size`` each if given; else of decreasing size
-    (guided self-scheduling, Polychronopoulos & Kuck (1987)): each chunk takes 1/(2 w) of
-    the cases still unassigned, at least 2, so that the first chunks are long (warm starts
-    along the grid) and the last ones short: the workers finish within a case or two of
-    each other instead of up to a whole chunk (a quarter of a worker's share with equal
-    chunks)."""
+    (guided self-scheduling, Polychronopoulos & Kuck (1987)): each chunk takes about 1/(2 w)
+    of the cases still unassigned, at least 2, so that the first chunks are long (warm
+    starts along the grid) and the last ones short: the workers finish within a case or
+    two of each other instead of up to a whole chunk apart. A chunk ends at the start of
+    a block (:func:`_blocks`) when one lies within half its size of the target end, so
+    that two workers rarely build a solver for the same block."""
     n = len(cases)
     if chunk_size:
         return [list(cases[i:i + chunk_size]) for i in range(0, n, chunk_size)]
     w = max(1, workers)
+    starts = _blocks(cases)[1:]
     out, i = [], 0
     while i < n:
         size = max(2, math.ceil((n - i) / (2 * w)))
-        out.append(list(cases[i:i + size]))
-        i += size
+        target = i + size
+        near = [b for b in starts if i + size / 2 <= b <= i + 1.5 * size]
+        end = min(near, key=lambda b: (abs(b - target), b)) if near else target
+        end = min(max(end, i + 1), n)
+        out.append(list(cases[i:end]))
+        i = end
     return out
 
 

@@ -9,7 +9,9 @@ difference of their wall times per case (everything the batch adds, its cases' o
 run-to-run spread included), and the machinery's own share, wall time minus the cases'
 own run time (each row's ``wall_time_s``): the worker process, pipes, rows written as
 they arrive. Speed-up = batch time on one worker / batch time on two. The load average
-is recorded: the speed-up needs the cores to be free.
+is recorded: the speed-up needs the cores to be free. So is the machine's own ceiling
+(:func:`machine_ceiling`): the bare loop in one process, then in two at once, with no batch
+machinery; the batch's parallel efficiency is its speed-up over that ceiling.
 """
 
 from __future__ import annotations
@@ -58,6 +60,9 @@ def run(n_angles: int = 20, n_speeds: int = 10, workers: tuple[int, ...] = (1, 2
     rows = [{"run": "bare warm loop (this process)", "workers": 0, "wall_s": bare,
              "per_case_ms": 1e3 * bare / n, "solve_ms": 1e3 * bare / n, "speedup": None,
              "overhead_ms": None, "solved": None}]
+    if progress:
+        progress("the machine's ceiling: the bare loop in one process, then in two at once")
+    ceiling = machine_ceiling(scenes, repeats)
     times: dict[tuple[str, int], float] = {}
     solve: dict[tuple[str, int], float] = {}
 
@@ -108,5 +113,55 @@ def run(n_angles: int = 20, n_speeds: int = 10, workers: tuple[int, ...] = (1, 2
         "solve_in_batch_per_case_ms": None if one is None else 1e3 * one_solve / n,
         "difference_to_bare_per_case_ms": None if one is None else 1e3 * (one - bare) / n,
         "speedup_2_workers": None if one is None or two is None else one / two,
+        # what two processes of the bare loop reach together on this machine (no batch
+        # machinery): the speed-up no 2-worker batch can beat here
+        "ceiling_2_processes": ceiling,
+        "efficiency_vs_ceiling": None if one is None or two is None or not ceiling
+        else one / two / ceiling,
     }
     return {"rows": rows, "summary": summary}
+
+
+def _bare_child(scenes: list[Any], conn: Any) -> None:
+    """A child process: one untimed pass (builds), then the timed bare loop; sends the
+    wall time (s)."""
+    s = SolveSession()
+    for sc in scenes:
+        s.solve(sc)
+    s = SolveSession()
+    t0 = time.perf_counter()
+    for sc in scenes:
+        s.solve(sc)
+    conn.send(time.perf_counter() - t0)
+    conn.close()
+
+
+def machine_ceiling(scenes: list[Any], repeats: int = 2) -> float | None:
+    """The 2-process speed-up this machine allows: the bare warm loop over ``scenes`` in one
+    child process, then in two at once (each the whole loop), the fastest of ``repeats``;
+    2 x (time alone) / (time of the pair). 2 on two free, independent cores; less where
+    the cores share a physical core, caches or memory bandwidth, or where other jobs run.
+    None where processes cannot be forked."""
+    import multiprocessing as mp
+
+    if "fork" not in mp.get_all_start_methods():
+        return None
+    ctx = mp.get_context("fork")
+
+    def together(k: int) -> float:
+        pipes, procs = [], []
+        for _ in range(k):
+            a, b = ctx.Pipe(duplex=False)
+            p = ctx.Process(target=_bare_child, args=(scenes, b), daemon=True)
+            p.start()
+            b.close()
+            pipes.append(a)
+            procs.append(p)
+        times = [a.recv() for a in pipes]
+        for p in procs:
+            p.join()
+        return max(times)
+
+    alone = min(together(1) for _ in range(max(1, repeats)))
+    pair = min(together(2) for _ in range(max(1, repeats)))
+    return 2.0 * alone / pair

@@ -408,6 +408,11 @@ def cmd_bench_batch(args: argparse.Namespace) -> int:
                   f"{sm['difference_to_bare_per_case_ms']:+.2f} ms per case against the bare "
                   f"loop); speed-up on 2 workers {sm['speedup_2_workers']:.2f}x "
                   f"(target >= 1.8x)")
+    if sm.get("ceiling_2_processes"):
+        out.say(args, f"this machine's ceiling: two processes of the bare loop at once run "
+                      f"{sm['ceiling_2_processes']:.2f}x the work of one (2.00 on free, "
+                      "independent cores); the 2-worker batch reaches "
+                      f"{100 * sm['efficiency_vs_ceiling']:.0f} % of it")
     if sm.get("load_average"):
         out.say(args, "load average " + ", ".join(f"{x:.2f}" for x in sm["load_average"])
                 + f" on {sm['cpu_count']} cores (the speed-up needs them free)")

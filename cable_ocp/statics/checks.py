@@ -33,8 +33,8 @@ def check_physical(scene: Scene, sol: StaticsSolution) -> StaticsSolution:
     * above the surface z = ``environment.water_depth``: status ``"above_surface"``;
     * below the seabed plane z = 0 by more than the cable's radius when the scene has no
       ``[environment.seabed]`` (no contact model): status ``"below_seabed"``; a dip within
-      the radius (the cable touching the plane) is a warning. With a seabed table, contact is modelled
-      and penetration is judged by the solver's contact logic.
+      the radius (the cable touching the plane) is a warning. With a seabed table,
+      contact is modelled and penetration is judged by the solver's contact logic.
 
     Only results that would otherwise be used (``"solved"``, ``"inaccurate"``) are marked.
     """
