@@ -207,6 +207,15 @@ MUTATIONS: tuple[Mutation, ...] = (
              'return 2 * self.degree - 1 if self.scheme == "legendre" else 2 * self.degree',
              STATICS + ("tests/test_statics_convergence.py",),
              "nominal orders of Gauss-Legendre and Radau swapped"),
+    Mutation("seabed-check-ignores-radius", COLL, "cable_ocp/statics/checks.py",
+             "if z[i_low] < -max(tol, radius):", "if z[i_low] < -tol:",
+             ("tests/test_contract.py::test_a_dip_within_the_cable_radius_warns_and_beyond_it_"
+              "fails",), "a centreline within the cable's radius of the seabed plane "
+             "reported as below_seabed"),
+    Mutation("batch-chunks-ignore-grid-blocks", "batch", "cable_ocp/batch/__init__.py",
+             "near = [b for b in starts if i + size / 2 <= b <= i + 1.5 * size]",
+             "near = []", ("tests/test_batch.py::test_guided_chunks_end_at_grid_blocks",),
+             "batch chunks cut across the grid's blocks (two workers build one solver)"),
     # -- heave/ -------------------------------------------------------------------------------
     Mutation("mpc-applied-newest-command", HEAVE_A, "cable_ocp/heave/mpc.py",
              "c[n] = 1.0\n                return c, 0.0",
