@@ -98,16 +98,26 @@ class StaticsRunner(Runner):
 
         self.session = SolveSession()
         self._last = -2
+        self._last_overrides: dict[str, Any] = {}
 
     def _run(self, case: Case) -> tuple[str, str, dict[str, Any]]:
         from cable_ocp.scene import scene_from_dict
 
         # warm from the previous case only when it is this case's neighbour in the batch
         # order (a chunk that starts elsewhere in the grid starts cold: cheaper than a
-        # warm start from far)
+        # warm start from far); a continuation with a predictor where the two differ in
+        # one numeric key (a line of the grid)
         warm = case.index == self._last + 1
+        changed = [k for k in case.overrides
+                   if case.overrides[k] != self._last_overrides.get(k)]
+        along = None
+        if warm and len(changed) == 1:
+            v = case.overrides[changed[0]]
+            if isinstance(v, (int, float)) and not isinstance(v, bool):
+                along = (changed[0], float(v))
         self._last = case.index
-        sol = self.session.solve(scene_from_dict(self._data(case)), warm=warm)
+        self._last_overrides = dict(case.overrides)
+        sol = self.session.solve(scene_from_dict(self._data(case)), warm=warm, along=along)
         if not np.all(np.isfinite(sol.tension_vector)):
             return sol.status, sol.message, {}
         ta, tb = sol.tension_vector[0], sol.tension_vector[-1]

@@ -1254,11 +1254,23 @@ class SolveSession:
         self._caches: dict[tuple, dict[tuple, StaticsSolver]] = {}
         self._prev: dict[tuple, StaticsSolution] = {}
         self._last_key: tuple | None = None
+        #: (value, solution) of the last solves along one line of a continuation, and the
+        #: key that varies along it
+        self._line: list[tuple[float, StaticsSolution]] = []
+        self._line_key: str | None = None
 
-    def solve(self, scene: Scene, warm: bool = True) -> StaticsSolution:
+    def solve(self, scene: Scene, warm: bool = True,
+              along: tuple[str, float] | None = None) -> StaticsSolution:
         """Solve ``scene`` (any method; collocation and shooting reuse their solvers);
         ``warm=False`` starts cold (the previous solution is no neighbour of this scene:
-        a warm start from far costs more than a cold one)."""
+        a warm start from far costs more than a cold one).
+
+        ``along``: ``(key, value)``, the one key in which this scene differs from the
+        last ones solved and its value (a continuation along a line of a grid, as
+        :func:`sweep` does); the start is then extrapolated through up to
+        :data:`PREDICTOR_POINTS` previous solutions on that line (fewer Newton steps),
+        falling back to the previous solution where Newton fails from it. ``None``, or
+        another key, starts a new line."""
         key = (_structure_key(scene) if scene.solver.method in ("collocation",
                                                                  "multiple_shooting")
                else ("method", scene.solver.method))
@@ -1267,6 +1279,10 @@ class SolveSession:
         # start from far fails slowly (seconds) before the cold start
         prev = self._prev.get(key) if warm and key == self._last_key else None
         self._last_key = key
+        if prev is None or along is None or along[0] != self._line_key:
+            self._line = []
+        self._line_key = None if along is None else along[0]
+        start = _predicted(self._line, None if along is None else along[1], prev)
         if key[0] == "method":
             sol = solve(scene, warm_start=prev)
             if prev is not None and not sol.converged:
@@ -1280,7 +1296,9 @@ class SolveSession:
                     StaticsSolver(scene, cache=cache, grounded=grounded)
                 return cache[(n, grounded)]
 
-            sol = _solve_with_contact(scene, get, prev, self.error_estimate)
+            sol = _solve_with_contact(scene, get, start, self.error_estimate)
+            if start is not prev and not sol.converged:
+                sol = _solve_with_contact(scene, get, prev, self.error_estimate)
             if prev is not None and not sol.converged:
                 sol = _solve_with_contact(scene, get, None, self.error_estimate)
                 sol.diagnostics["start"] = "cold (the warm start failed)"
@@ -1289,7 +1307,30 @@ class SolveSession:
                 sol = solve_collocation(scene, warm_start=sol)
         if sol.converged:
             self._prev[key] = sol
+            if along is not None and not sol.node_offset and (
+                    not self._line or sol.s.shape == self._line[-1][1].s.shape):
+                self._line = [*self._line[-(PREDICTOR_POINTS - 1):], (float(along[1]), sol)]
+            else:
+                self._line = []
+        else:
+            self._line = []
         return sol
+
+
+def _predicted(line: list[tuple[float, StaticsSolution]], v: float | None,
+               prev: StaticsSolution | None) -> StaticsSolution | None:
+    """The start of a continuation step to ``v``: the Lagrange extrapolation through the
+    points of ``line`` (the last one ``prev``; points are dropped, oldest first, while the
+    prediction's gain exceeds :data:`_PREDICTOR_MAX_GAIN`), else ``prev``."""
+    if prev is None or v is None or not line or line[-1][1] is not prev:
+        return prev
+    pts = [(x, s) for x, s in line if x != v]
+    if len(pts) != len(line) or len({x for x, _ in pts}) != len(pts):
+        return prev
+    while len(pts) >= 2 and sum(abs(x) for x in _weights(
+            [x for x, _ in pts], float(v))) > _PREDICTOR_MAX_GAIN:
+        pts.pop(0)
+    return _extrapolate(pts, float(v)) if len(pts) >= 2 else prev
 
 
 #: most points of the polynomial predictor in a sweep (4: cubic extrapolation; on the De

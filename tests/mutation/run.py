@@ -216,6 +216,10 @@ MUTATIONS: tuple[Mutation, ...] = (
              "near = [b for b in starts if i + size / 2 <= b <= i + 1.5 * size]",
              "near = []", ("tests/test_batch.py::test_guided_chunks_end_at_grid_blocks",),
              "batch chunks cut across the grid's blocks (two workers build one solver)"),
+    Mutation("session-predictor-off", "batch", "cable_ocp/statics/solver.py",
+             "return _extrapolate(pts, float(v)) if len(pts) >= 2 else prev", "return prev",
+             ("tests/test_batch.py::test_solve_session_continuation_predicts_along_a_line",),
+             "the batch's continuation never predicts (plain warm starts only)"),
     # -- heave/ -------------------------------------------------------------------------------
     Mutation("mpc-applied-newest-command", HEAVE_A, "cable_ocp/heave/mpc.py",
              "c[n] = 1.0\n                return c, 0.0",
