@@ -246,24 +246,8 @@ class PlanarCablePlant(SampledCablePlant):
 
     def __init__(self, scene: DynamicScene, sample_time: float) -> None:
         sim = scene.simulation
-        if sim.model != "planar":
-            raise CableOCPError(f"PlanarCablePlant: simulation.model = {sim.model!r}; "
-                                'expected "planar"')
-        if scene.unit is None:
-            raise CableOCPError('simulation.model = "planar" as the heave plant: the cable '
-                                "scene needs a [unit] at end_a (the unit the winch lifts)")
-        ratio = sample_time / sim.time_step
-        m = int(round(ratio))
-        if m < 1 or abs(ratio - m) > 1e-9 * max(1.0, ratio):
-            raise CableOCPError(f"cable scene: [simulation] time_step = {sim.time_step} s must "
-                                f"divide the control sample time {sample_time} s")
-        self.scene = scene
-        self.h = float(sample_time)
-        self.substeps = m
-        self.dt = self.h / m
-        self.length0 = scene.length
-        self.z_top0 = float(scene.top_position[2])
-        self.tolerance = sim.tolerance
+        self._setup(scene, sample_time,
+                    f'PlanarCablePlant: simulation.model = {sim.model!r}; expected "planar"')
         # the static state: the statics solution refined to the discrete equilibrium, by
         # the model with the scene's own (time) motion at t = 0 (the static top, L0)
         base = PlanarModel(scene if sim.start == "static"
@@ -702,24 +686,8 @@ class LumpedCablePlant(SampledCablePlant):
         from cable_ocp.dynamics.lumped_scene import lumped_params, lumped_start
 
         sim = scene.simulation
-        if sim.model != "lumped3d":
-            raise CableOCPError(f"LumpedCablePlant: simulation.model = {sim.model!r}; "
-                                'expected "lumped3d"')
-        if scene.unit is None:
-            raise CableOCPError('simulation.model = "lumped3d" as the heave plant: the cable '
-                                "scene needs a [unit] at end_a (the unit the winch lifts)")
-        ratio = sample_time / sim.time_step
-        m = int(round(ratio))
-        if m < 1 or abs(ratio - m) > 1e-9 * max(1.0, ratio):
-            raise CableOCPError(f"cable scene: [simulation] time_step = {sim.time_step} s must "
-                                f"divide the control sample time {sample_time} s")
-        self.scene = scene
-        self.h = float(sample_time)
-        self.substeps = m
-        self.dt = self.h / m
-        self.length0 = scene.length
-        self.z_top0 = float(scene.top_position[2])
-        self.tolerance = sim.tolerance
+        self._setup(scene, sample_time,
+                    f'LumpedCablePlant: simulation.model = {sim.model!r}; expected "lumped3d"')
         still = still_scene(scene)
         self.model = md = _SteppedLumped(lumped_params(still), self.length0)
         x_abs, info = lumped_start(still, md)

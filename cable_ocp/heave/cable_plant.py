@@ -119,6 +119,32 @@ class SampledCablePlant:
     z_top0: float
     _chunk_name = "cable_chunk"
 
+    def _setup(self, scene: DynamicScene, sample_time: float, wrong_model: str,
+               need_unit: bool = True) -> None:
+        """Check the cable scene (its ``simulation.model`` is this plant's, else
+        ``wrong_model`` is the error; a ``[unit]`` where ``need_unit``; its time step
+        divides the control sample) and set the sampling attributes: ``scene``, ``h``,
+        ``substeps``, ``dt``, ``length0``, ``z_top0``, ``tolerance``."""
+        sim = scene.simulation
+        if sim.model != self.model_name:
+            raise CableOCPError(wrong_model)
+        if need_unit and scene.unit is None:
+            raise CableOCPError(f'simulation.model = "{self.model_name}" as the heave plant: '
+                                "the cable scene needs a [unit] at end_a (the unit the winch "
+                                "lifts)")
+        ratio = sample_time / sim.time_step
+        m = int(round(ratio))
+        if m < 1 or abs(ratio - m) > 1e-9 * max(1.0, ratio):
+            raise CableOCPError(f"cable scene: [simulation] time_step = {sim.time_step} s must "
+                                f"divide the control sample time {sample_time} s")
+        self.scene = scene
+        self.h = float(sample_time)
+        self.substeps = m
+        self.dt = self.h / m
+        self.length0 = scene.length
+        self.z_top0 = float(scene.top_position[2])
+        self.tolerance = sim.tolerance
+
     def advance(self, x: np.ndarray, lengths: np.ndarray, tops: np.ndarray
                 ) -> tuple[np.ndarray, dict[str, Any]]:
         """Advance one sample.
@@ -218,22 +244,10 @@ class AxialCablePlant(SampledCablePlant):
 
     def __init__(self, scene: DynamicScene, sample_time: float) -> None:
         sim = scene.simulation
-        if sim.model != "axial":
-            raise CableOCPError(f"cable plant: [simulation] model = {sim.model!r}; the heave "
-                                "plant uses the axial model (model = \"axial\")")
-        ratio = sample_time / sim.time_step
-        m = int(round(ratio))
-        if m < 1 or abs(ratio - m) > 1e-9 * max(1.0, ratio):
-            raise CableOCPError(f"cable scene: [simulation] time_step = {sim.time_step} s must "
-                                f"divide the control sample time {sample_time} s")
-        self.scene = scene
-        self.h = float(sample_time)
-        self.substeps = m
-        self.dt = self.h / m
+        self._setup(scene, sample_time, f"cable plant: [simulation] model = {sim.model!r}; "
+                    "the heave plant uses the axial model (model = \"axial\")",
+                    need_unit=False)
         self.model = _SteppedAxial(scene, self.dt)
-        self.length0 = scene.length
-        self.z_top0 = float(scene.top_position[2])
-        self.tolerance = sim.tolerance
         self._sample = self._build(sim.tolerance, sim.max_iterations)
         self._chunks: dict[int, ca.Function] = {}
 
