@@ -210,7 +210,34 @@ class _SteppedPlanar(PlanarModel):
         self.motion = sampled_motion(scene.top_position, p, dt)
 
 
-class PlanarCablePlant(SampledCablePlant):
+class _OneLengthPlant(SampledCablePlant):
+    """A plant that knows its static state at the cable scene's length only (the planar and
+    lumped-mass plants: their static start is the discrete equilibrium at that length),
+    from ``_z_static`` and ``_t_static``."""
+
+    model_name: str
+
+    def static_unit_height(self, length: float | np.ndarray) -> np.ndarray:
+        """Static height of the unit (m) at the scene's length (the discrete equilibrium,
+        in the current if any). Known at that length only: a deployment (another length)
+        needs the axial plant."""
+        length = np.asarray(length, dtype=float)
+        if np.any(np.abs(length - self.length0) > 1e-9 * self.length0):
+            raise CableOCPError(f'the {self.model_name} heave plant knows the static depth at '
+                                f'the cable scene\'s length ({self.length0} m) only: a '
+                                '[deployment] needs simulation.model = "axial"')
+        return np.full(length.shape, self._z_static) if length.shape else np.asarray(
+            self._z_static)
+
+    def static_tensions(self, length: float | None = None) -> tuple[float, float]:
+        """(tension at the unit, at the top) of the static line, N (the scene's length;
+        with a current the unit's includes its drag)."""
+        if length is not None and abs(length - self.length0) > 1e-9 * self.length0:
+            self.static_unit_height(length)  # raises
+        return self._t_static
+
+
+class PlanarCablePlant(_OneLengthPlant):
     """The planar cable model (Huang (1992), ch. 4) advanced one control sample per call.
 
     The boom-tip heave moves the top (end_b) vertically, the winch output ``u`` pays cable
@@ -349,25 +376,6 @@ class PlanarCablePlant(SampledCablePlant):
         unstretched line hanging from the top and material velocities ``V`` (zero) of the
         free nodes (relative to the top, so a displaced top carries it along)."""
         return self._x0.copy()
-
-    def static_unit_height(self, length: float | np.ndarray) -> np.ndarray:
-        """Static height of the unit (m) at the scene's length (the discrete equilibrium in
-        the current). Known at that length only: a deployment (another length) needs the
-        axial plant."""
-        length = np.asarray(length, dtype=float)
-        if np.any(np.abs(length - self.length0) > 1e-9 * self.length0):
-            raise CableOCPError('the planar heave plant knows the static depth at the cable '
-                                f'scene\'s length ({self.length0} m) only: a [deployment] '
-                                'needs simulation.model = "axial"')
-        return np.full(length.shape, self._z_static) if length.shape else np.asarray(
-            self._z_static)
-
-    def static_tensions(self, length: float | None = None) -> tuple[float, float]:
-        """(tension at the unit, at the top) of the static line, N (the scene's length;
-        with a current the unit's includes its drag)."""
-        if length is not None and abs(length - self.length0) > 1e-9 * self.length0:
-            self.static_unit_height(length)  # raises
-        return self._t_static
 
 
 # ------------------------------------------------------------------------------------------
@@ -638,7 +646,7 @@ class _SteppedLumped(LumpedMassModel):
         return f
 
 
-class LumpedCablePlant(SampledCablePlant):
+class LumpedCablePlant(_OneLengthPlant):
     """The three-dimensional lumped-mass line (Huang (1992), ch. 5) advanced one control
     sample per call.
 
@@ -786,21 +794,3 @@ class LumpedCablePlant(SampledCablePlant):
         velocities (zero)."""
         return self._x0.copy()
 
-    def static_unit_height(self, length: float | np.ndarray) -> np.ndarray:
-        """Static height of the unit (m) at the scene's length (the discrete equilibrium,
-        in the current if any). Known at that length only: a deployment needs the axial
-        plant."""
-        length = np.asarray(length, dtype=float)
-        if np.any(np.abs(length - self.length0) > 1e-9 * self.length0):
-            raise CableOCPError('the lumped3d heave plant knows the static depth at the cable '
-                                f'scene\'s length ({self.length0} m) only: a [deployment] '
-                                'needs simulation.model = "axial"')
-        return np.full(length.shape, self._z_static) if length.shape else np.asarray(
-            self._z_static)
-
-    def static_tensions(self, length: float | None = None) -> tuple[float, float]:
-        """(tension at the unit, at the top) of the static line, N (the scene's length;
-        with a current the unit's includes its drag)."""
-        if length is not None and abs(length - self.length0) > 1e-9 * self.length0:
-            self.static_unit_height(length)  # raises
-        return self._t_static
