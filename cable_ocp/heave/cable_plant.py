@@ -52,7 +52,7 @@ from cable_ocp.errors import CableOCPError
 from cable_ocp.heave import mpc as mpc_mod
 from cable_ocp.heave import plant as pl
 from cable_ocp.heave.discrete import DelayedDiscreteModel, discretize_delayed, discretize_noise
-from cable_ocp.heave.simulate import Comparison
+from cable_ocp.heave.simulate import Comparison, Trace
 from cable_ocp.heave.stochastic import WHITE_NOISE_INTENSITY, discrete_delay_lqr
 from cable_ocp.scene.heave import HeaveScene
 
@@ -689,7 +689,7 @@ class _Ctrl:
 # ------------------------------------------------------------------------------------------
 
 @dataclass(frozen=True)
-class CableTrace:
+class CableTrace(Trace):
     """Time histories of one closed-loop run on the plant's sub-step grid.
 
     Attributes
@@ -706,12 +706,6 @@ class CableTrace:
         Smallest element tension over each sample, N (per control sample).
     """
 
-    t: np.ndarray
-    x: np.ndarray
-    x0: np.ndarray
-    u: np.ndarray
-    u_dot: np.ndarray
-    u0: np.ndarray
     tension_unit: np.ndarray
     tension_top: np.ndarray
     length: np.ndarray
