@@ -217,6 +217,18 @@ class _OneLengthPlant(SampledCablePlant):
 
     model_name: str
 
+    def _compile_sample(self) -> None:
+        """Build the sample function (the subclass's ``_build``, with the scene's Newton
+        settings and :data:`HALVINGS`) and the static outputs at the start state
+        ``_x0``: the unit's height and the tensions at the unit and the top."""
+        sim = self.scene.simulation
+        self._sample = self._build(sim.tolerance, sim.max_iterations, HALVINGS)
+        self._chunks: dict[int, ca.Function] = {}
+        r = self._outputs_at(self._x0, np.array([self.length0, self.length0, self.z_top0,
+                                                 self.z_top0, self.dt]))
+        self._z_static = float(r[0])
+        self._t_static = (float(r[2]), float(r[3]))
+
     def static_unit_height(self, length: float | np.ndarray) -> np.ndarray:
         """Static height of the unit (m) at the scene's length (the discrete equilibrium,
         in the current if any). Known at that length only: a deployment (another length)
@@ -287,12 +299,7 @@ class PlanarCablePlant(_OneLengthPlant):
         self.model = _SteppedPlanar(scene)
         self.model.force_scale = base.force_scale
         self.nf = self.model.nf
-        self._sample = self._build(sim.tolerance, sim.max_iterations, HALVINGS)
-        self._chunks: dict[int, ca.Function] = {}
-        p_static = np.array([self.length0, self.length0, self.z_top0, self.z_top0, self.dt])
-        r = self._outputs_at(self._x0, p_static)
-        self._z_static = float(r[0])
-        self._t_static = (float(r[2]), float(r[3]))
+        self._compile_sample()
 
     def _build(self, tol: float, max_iter: int, halvings: int) -> ca.Function:
         """The sample function ``(x, P) -> (x_next, z_unit, v_unit, t_unit, t_top, t_min,
@@ -708,12 +715,7 @@ class LumpedCablePlant(_OneLengthPlant):
         q = np.asarray(x_abs, dtype=float) - np.tile(md.top0, md.n)
         self._x0 = np.concatenate([q, np.zeros(nf3)])
         self.force_scale = md.force_scale(np.asarray(x_abs, dtype=float))
-        self._sample = self._build(sim.tolerance, sim.max_iterations, HALVINGS)
-        self._chunks: dict[int, ca.Function] = {}
-        r = self._outputs_at(self._x0, np.array([self.length0, self.length0, self.z_top0,
-                                                 self.z_top0, self.dt]))
-        self._z_static = float(r[0])
-        self._t_static = (float(r[2]), float(r[3]))
+        self._compile_sample()
 
     def _build(self, tol: float, max_iter: int, halvings: int) -> ca.Function:
         """The sample function ``(x, P) -> (x_next, z_unit, v_unit, t_unit, t_top, t_min,
