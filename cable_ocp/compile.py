@@ -94,18 +94,27 @@ def _build_library(fns: list[ca.Function], name: str, cache: str, cc: list[str],
             lib = _library(cache, name, digest)
         os.makedirs(cache, exist_ok=True)
         if not os.path.exists(lib):
-            part = lib + f".{os.getpid()}.tmp"
-            try:
-                subprocess.run([*cc, opt, "-fPIC", "-shared", src, "-o", part, "-lm"],
-                               check=True, capture_output=True, timeout=600,
-                               stdin=subprocess.DEVNULL)
-                os.replace(part, lib)
-            finally:
-                if os.path.exists(part):
-                    os.remove(part)
+            compile_shared(cc, opt, src, lib)
         return lib
     finally:
         shutil.rmtree(tmp, ignore_errors=True)
+
+
+def compile_shared(cc: list[str], opt: str, src: str, lib: str, timeout: float = 600.0
+                   ) -> None:
+    """Compile the C file ``src`` into the shared library ``lib`` with ``cc`` and ``opt``,
+    atomically: into a file of this process, then renamed, so that another process never
+    loads a half-written library (and a failed compile leaves nothing). Raises on any
+    failure (the compiler's error, a timeout in seconds)."""
+    part = lib + f".{os.getpid()}.tmp"
+    try:
+        subprocess.run([*cc, opt, "-fPIC", "-shared", src, "-o", part, "-lm"],
+                       check=True, capture_output=True, timeout=timeout,
+                       stdin=subprocess.DEVNULL)
+        os.replace(part, lib)
+    finally:
+        if os.path.exists(part):
+            os.remove(part)
 
 
 def compile_function(fn: ca.Function | Callable[[], ca.Function], opt: str = "-O2",

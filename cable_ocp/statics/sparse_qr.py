@@ -20,13 +20,12 @@ import ctypes
 import functools
 import hashlib
 import os
-import subprocess
 import tempfile
 
 import casadi as ca
 import numpy as np
 
-from cable_ocp.compile import c_compiler, cache_dir
+from cable_ocp.compile import c_compiler, cache_dir, compile_shared
 
 _SOURCE = r"""
 #include <math.h>
@@ -114,15 +113,7 @@ def _load(folder: str, cc: tuple[str, ...]) -> ctypes.CDLL | None:
                 src = os.path.join(tmp, "sparse_qr.c")
                 with open(src, "w", encoding="utf-8") as fh:
                     fh.write(_SOURCE)
-                part = lib + f".{os.getpid()}.tmp"
-                try:
-                    subprocess.run([*cc, "-O2", "-fPIC", "-shared", src, "-o", part, "-lm"],
-                                   check=True, capture_output=True, timeout=120,
-                                   stdin=subprocess.DEVNULL)
-                    os.replace(part, lib)
-                finally:
-                    if os.path.exists(part):
-                        os.remove(part)
+                compile_shared(list(cc), "-O2", src, lib, timeout=120)
         dll = ctypes.CDLL(lib)
         dll.cqr_factor.restype = None
         dll.cqr_solve.restype = None
