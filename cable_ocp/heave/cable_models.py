@@ -285,8 +285,7 @@ class PlanarCablePlant(_OneLengthPlant):
 
     def __init__(self, scene: DynamicScene, sample_time: float) -> None:
         sim = scene.simulation
-        self._setup(scene, sample_time,
-                    f'PlanarCablePlant: simulation.model = {sim.model!r}; expected "planar"')
+        self._setup(scene, sample_time)
         # the static state: the statics solution refined to the discrete equilibrium, by
         # the model with the scene's own (time) motion at t = 0 (the static top, L0)
         base = PlanarModel(scene if sim.start == "static"
@@ -700,9 +699,7 @@ class LumpedCablePlant(_OneLengthPlant):
     def __init__(self, scene: DynamicScene, sample_time: float) -> None:
         from cable_ocp.dynamics.lumped_scene import lumped_params, lumped_start
 
-        sim = scene.simulation
-        self._setup(scene, sample_time,
-                    f'LumpedCablePlant: simulation.model = {sim.model!r}; expected "lumped3d"')
+        self._setup(scene, sample_time)
         still = still_scene(scene)
         self.model = md = _SteppedLumped(lumped_params(still), self.length0)
         x_abs, info = lumped_start(still, md)

@@ -119,15 +119,18 @@ class SampledCablePlant:
     z_top0: float
     _chunk_name = "cable_chunk"
 
-    def _setup(self, scene: DynamicScene, sample_time: float, wrong_model: str,
+    def _setup(self, scene: DynamicScene, sample_time: float, wrong_model: str | None = None,
                need_unit: bool = True) -> None:
         """Check the cable scene (its ``simulation.model`` is this plant's, else
-        ``wrong_model`` is the error; a ``[unit]`` where ``need_unit``; its time step
-        divides the control sample) and set the sampling attributes: ``scene``, ``h``,
-        ``substeps``, ``dt``, ``length0``, ``z_top0``, ``tolerance``."""
+        ``wrong_model`` is the error, by default "<class>: simulation.model = ...;
+        expected ..."; a ``[unit]`` where ``need_unit``; its time step divides the control
+        sample) and set the sampling attributes: ``scene``, ``h``, ``substeps``, ``dt``,
+        ``length0``, ``z_top0``, ``tolerance``."""
         sim = scene.simulation
         if sim.model != self.model_name:
-            raise CableOCPError(wrong_model)
+            raise CableOCPError(wrong_model or (
+                f"{type(self).__name__}: simulation.model = {sim.model!r}; "
+                f'expected "{self.model_name}"'))
         if need_unit and scene.unit is None:
             raise CableOCPError(f'simulation.model = "{self.model_name}" as the heave plant: '
                                 "the cable scene needs a [unit] at end_a (the unit the winch "
