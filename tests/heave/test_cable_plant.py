@@ -21,6 +21,7 @@ from pathlib import Path
 import casadi as ca
 import numpy as np
 import pytest
+from heave_files import heave_with_line
 from scipy.optimize import brentq
 
 from cable_ocp.cli import main
@@ -150,12 +151,10 @@ def short_json(tmp_path_factory: pytest.TempPathFactory) -> dict:
     stroke 0.3 m: they bind), through the CLI."""
     tmp = tmp_path_factory.mktemp("cable")
     text = (ROOT / "problems" / "dynamics" / "line_6_3_6.toml").read_text()
-    (tmp / "line.toml").write_text(text.replace("segments = 50", "segments = 10"))
-    heave = (HEAVE / "ex_6_3_6_cable.toml").read_text().replace(
-        "../dynamics/line_6_3_6.toml", "line.toml")
-    (tmp / "heave.toml").write_text(heave)
+    heave = heave_with_line(tmp, "ex_6_3_6_cable.toml",
+                            text.replace("segments = 50", "segments = 10"))
     out = tmp / "out.json"
-    rc = main(["heave", str(tmp / "heave.toml"), "--json", str(out), "--quiet",
+    rc = main(["heave", str(heave), "--json", str(out), "--quiet",
                "--set", "winch.speed_max=0.25", "--set", "winch.stroke_max=0.3", *SHORT])
     data = json.loads(out.read_text())
     data["_rc"] = rc
@@ -357,12 +356,10 @@ def test_cli_failed_controller_on_the_cable_exit_1(tmp_path: Path) -> None:
     "failed" and the controller's message, null metrics (no NaN), and the figure written."""
     text = (ROOT / "problems" / "dynamics" / "huang_6_2_6.toml").read_text()
     assert "segments = 50" in text
-    (tmp_path / "line.toml").write_text(text.replace("segments = 50", "segments = 10"))
-    heave = (HEAVE / "ex_6_2_6_cable.toml").read_text().replace(
-        "../dynamics/huang_6_2_6.toml", "line.toml")
-    (tmp_path / "heave.toml").write_text(heave)
+    heave = heave_with_line(tmp_path, "ex_6_2_6_cable.toml",
+                            text.replace("segments = 50", "segments = 10"))
     out, fig = tmp_path / "out.json", tmp_path / "fig.png"
-    rc = main(["heave", str(tmp_path / "heave.toml"), "--json", str(out), "--plot", str(fig),
+    rc = main(["heave", str(heave), "--json", str(out), "--plot", str(fig),
                "--quiet", "--duration", "40", "--set", "identification.duration=30",
                "--controllers", "passive", "lqg"])
 

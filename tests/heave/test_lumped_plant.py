@@ -24,6 +24,7 @@ from typing import Any
 
 import numpy as np
 import pytest
+from heave_files import heave_with_line
 
 from cable_ocp.cli import main
 from cable_ocp.dynamics import simulate
@@ -303,12 +304,9 @@ def test_lumped3d_without_a_unit_is_a_one_line_error(tmp_path: Path,
     text = (DYN / "line_6_3_6_lumped3d.toml").read_text()
     head, tail = text.split("[unit]")
     tail = tail.split("[end_b]")[1]
-    (tmp_path / "line.toml").write_text(
-        head + "[end_a]\nposition = [0.0, 0.0, 2880.0]\n\n[end_b]" + tail)
-    heave = (HEAVE / "ex_6_3_6_cable_lumped3d.toml").read_text().replace(
-        "../dynamics/line_6_3_6_lumped3d.toml", "line.toml")
-    (tmp_path / "heave.toml").write_text(heave)
-    rc = main(["heave", str(tmp_path / "heave.toml"), "--quiet"])
+    heave = heave_with_line(tmp_path, "ex_6_3_6_cable_lumped3d.toml",
+                            head + "[end_a]\nposition = [0.0, 0.0, 2880.0]\n\n[end_b]" + tail)
+    rc = main(["heave", str(heave), "--quiet"])
     err = capsys.readouterr().err.strip()
     assert rc == 2
     assert len(err.splitlines()) == 1 and "needs a [unit] at end_a" in err
@@ -322,12 +320,9 @@ def _cli(tmp: Path, line: str, *extra: str) -> dict:
     assert count == 1
     text = text.replace('model = "axial"', 'model = "lumped3d"').replace(
         'model = "planar"', 'model = "lumped3d"')
-    (tmp / "line.toml").write_text(text)
-    heave = (HEAVE / "ex_6_3_6_cable_lumped3d.toml").read_text().replace(
-        "../dynamics/line_6_3_6_lumped3d.toml", "line.toml")
-    (tmp / "heave.toml").write_text(heave)
+    heave = heave_with_line(tmp, "ex_6_3_6_cable_lumped3d.toml", text)
     out = tmp / "out.json"
-    rc = main(["heave", str(tmp / "heave.toml"), "--json", str(out), "--quiet",
+    rc = main(["heave", str(heave), "--json", str(out), "--quiet",
                "--set", "simulation.duration=90.0", "--set", "identification.duration=60.0",
                "--controllers", "passive", "lqr", *extra])
     data = json.loads(out.read_text())

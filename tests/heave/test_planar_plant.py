@@ -17,6 +17,7 @@ from pathlib import Path
 
 import numpy as np
 import pytest
+from heave_files import heave_with_line
 
 from cable_ocp.cli import main
 from cable_ocp.dynamics.scene import load_dynamic_scene
@@ -27,7 +28,6 @@ from cable_ocp.scene.heave import scene_from_dict
 
 ROOT = Path(__file__).resolve().parents[2]
 DYN = ROOT / "problems" / "dynamics"
-HEAVE = ROOT / "problems" / "heave"
 
 
 def _inputs(plant: AxialCablePlant, samples: int) -> tuple[np.ndarray, np.ndarray]:
@@ -141,12 +141,10 @@ def planar_json(tmp_path_factory: pytest.TempPathFactory) -> dict:
     tmp = tmp_path_factory.mktemp("planar")
     text = (DYN / "line_6_3_6_planar.toml").read_text()
     assert "segments = 20" in text
-    (tmp / "line.toml").write_text(text.replace("segments = 20", "segments = 10"))
-    heave = (HEAVE / "ex_6_3_6_cable_planar.toml").read_text().replace(
-        "../dynamics/line_6_3_6_planar.toml", "line.toml")
-    (tmp / "heave.toml").write_text(heave)
+    heave = heave_with_line(tmp, "ex_6_3_6_cable_planar.toml",
+                            text.replace("segments = 20", "segments = 10"))
     out = tmp / "out.json"
-    rc = main(["heave", str(tmp / "heave.toml"), "--json", str(out), "--quiet",
+    rc = main(["heave", str(heave), "--json", str(out), "--quiet",
                "--set", "simulation.duration=90.0", "--set", "identification.duration=60.0",
                "--controllers", "passive", "lqr"])
     data = json.loads(out.read_text())
