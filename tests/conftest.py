@@ -38,3 +38,11 @@ def _private_function_cache(tmp_path_factory: pytest.TempPathFactory) -> Iterato
             os.environ.pop(k, None)
         else:
             os.environ[k] = v
+
+@pytest.fixture
+def cache_folder(tmp_path: Path, monkeypatch: pytest.MonkeyPatch) -> Path:
+    """An empty cache folder of the test's own (function cache and compiled libraries)."""
+    folder = tmp_path / "cache"
+    monkeypatch.setenv("CABLE_OCP_CACHE_DIR", str(folder))
+    monkeypatch.delenv("CABLE_OCP_CACHE", raising=False)
+    return folder

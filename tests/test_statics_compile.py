@@ -31,15 +31,6 @@ OFF = {"solver.error_estimate": False, "solver.refine": False, "solver.intervals
 needs_cc = pytest.mark.skipif(cc.c_compiler() is None, reason="no C compiler")
 
 
-@pytest.fixture
-def cache_folder(tmp_path: Path, monkeypatch: pytest.MonkeyPatch) -> Path:
-    """An empty cache folder of the test's own (function cache and compiled libraries)."""
-    folder = tmp_path / "cache"
-    monkeypatch.setenv("CABLE_OCP_CACHE_DIR", str(folder))
-    monkeypatch.delenv("CABLE_OCP_CACHE", raising=False)
-    return folder
-
-
 def test_compile_key_is_checked() -> None:
     """``solver.compile`` defaults to "never"; another word is a CableOCPError naming the
     key and the valid values."""

@@ -40,15 +40,6 @@ DEZOYSA = PROBLEMS / "dezoysa_sea_buggy.toml"
 OFF = {"solver.error_estimate": False, "solver.refine": False}
 
 
-@pytest.fixture
-def cache_folder(tmp_path: Path, monkeypatch: pytest.MonkeyPatch) -> Path:
-    """An empty cache folder of the test's own."""
-    folder = tmp_path / "cache"
-    monkeypatch.setenv("CABLE_OCP_CACHE_DIR", str(folder))
-    monkeypatch.delenv("CABLE_OCP_CACHE", raising=False)
-    return folder
-
-
 @pytest.mark.parametrize("name, grounded, method", [
     ("dezoysa_sea_buggy.toml", False, "collocation"),    # componentwise drag, fixed length
     ("berteaux_mooring.toml", False, "collocation"),     # free length (tension prescribed)
