@@ -3,8 +3,8 @@ of the interpreted kernel, loads a cached library without generating code, and f
 to the interpreted kernel, silently, when it cannot compile (no timing here: ``cable-ocp
 bench sweep`` measures the speed).
 
-The compiled kernel factorises the Jacobian by a sparse QR whose factors are kept
-(cable_ocp.statics.sparse_qr), the interpreted one by CSparse's LU at every step: Newton
+The compiled kernel factorises the Jacobian by a sparse LU whose factors and pivot order
+are kept (cable_ocp.statics.sparse_lu), the interpreted one by CSparse's LU at every step: Newton
 steps equal to rounding. Warm solves with the compiled kernel take chord steps
 (cable_ocp.statics.newton.chord_newton), checked here against full Newton. Coarse meshes
 keep the C compilations short (about half a second each).
@@ -22,7 +22,7 @@ from cable_ocp import compile as cc
 from cable_ocp.errors import CableOCPError
 from cable_ocp.scene import load_scene
 from cable_ocp.statics import newton as nw
-from cable_ocp.statics import sparse_qr
+from cable_ocp.statics import sparse_lu
 from cable_ocp.statics.solver import StaticsSolver, sweep
 
 DEZOYSA = Path(__file__).resolve().parents[1] / "problems" / "dezoysa_sea_buggy.toml"
@@ -43,8 +43,8 @@ def test_compile_key_is_checked() -> None:
 @needs_cc
 def test_compiled_step_equals_the_interpreted_step(cache_folder: Path) -> None:
     """At a point off the solution, the compiled residual equals the interpreted one to
-    1e-14 relative (the same operations) and the compiled Newton step (sparse QR, factors
-    kept) the interpreted one (sparse LU) to 1e-9 relative (two factorisations of one
+    1e-14 relative (the same operations) and the compiled Newton step (sparse LU, factors
+    kept) the interpreted one (CSparse's LU) to 1e-9 relative (two factorisations of one
     matrix: their rounding times the condition number of the collocated Jacobian, ~1e5
     here); a chord step from the kept factors equals the compiled Newton step exactly."""
     scene = load_scene(DEZOYSA, OFF)
@@ -62,28 +62,104 @@ def test_compiled_step_equals_the_interpreted_step(cache_folder: Path) -> None:
     assert np.array_equal(fast._kernel.chord_step(g2), d2)
 
 
-@needs_cc
-def test_sparse_qr_solves_like_scipy(cache_folder: Path) -> None:
-    """The kept QR factors solve a collocated Jacobian like scipy's SuperLU (an independent
-    sparse LU) to 1e-10 relative, for several right-hand sides from one factorisation;
-    a singular matrix gives non-finite steps (not a crash)."""
+def _jacobian(solver: StaticsSolver, shift: float) -> ca.DM:
+    """The collocated Jacobian at the solution shifted by ``shift`` (scaled unknowns)."""
+    w = solver.solve()._unknowns[1] + shift
+    return solver._gj(w, solver.params())[1]
+
+
+def _superlu_step(jac: ca.DM, nz: np.ndarray, b: np.ndarray) -> np.ndarray:
+    """-A^-1 b by SciPy's SuperLU (an independent sparse LU) for the nonzeros ``nz`` of
+    ``jac``'s sparsity."""
+    import scipy.sparse as sps
     import scipy.sparse.linalg as spl
 
+    sp = jac.sparsity()
+    a = sps.csc_matrix((nz, np.asarray(sp.row()), np.asarray(sp.colind())), shape=sp.shape)
+    return -spl.splu(a).solve(b)
+
+
+@needs_cc
+def test_sparse_lu_solves_like_superlu(cache_folder: Path) -> None:
+    """The kept LU factors solve a collocated Jacobian like SciPy's SuperLU to 1e-10
+    relative (both partial-pivoting LUs of a matrix of condition ~1e5: their rounding
+    differs by ~1e-11), for several right-hand sides from one factorisation; the next
+    Jacobian of a Newton iteration is refactorised on the kept pivot order (no second
+    analysis) and solved as well; a singular matrix gives non-finite steps."""
     solver = StaticsSolver(load_scene(DEZOYSA, OFF))
-    w = solver.solve()._unknowns[1] + 1e-2
-    _, jac = solver._gj(w, solver.params())
-    qr = sparse_qr.SparseQR(jac.sparsity())
-    qr.nz[:] = np.asarray(jac.nonzeros()).ravel()
-    qr.factor()
-    lu = spl.splu(jac.sparse().tocsc())
+    jac = _jacobian(solver, 1e-2)
+    lu = sparse_lu.SparseLU(jac.sparsity())
     rng = np.random.default_rng(2)
-    for _ in range(3):
-        b = rng.standard_normal(solver.coll.n_w)
-        ref = -lu.solve(b)
-        assert np.max(np.abs(qr.newton_step(b) - ref)) <= 1e-10 * np.max(np.abs(ref))
-    qr.nz[:] = 0.0
-    qr.factor()
-    assert not np.all(np.isfinite(qr.newton_step(np.ones(solver.coll.n_w))))
+    for shift in (1e-2, 3e-3):
+        nz = np.asarray(_jacobian(solver, shift).nonzeros()).ravel()
+        lu.nz[:] = nz
+        lu.factor()
+        for _ in range(3):
+            b = rng.standard_normal(solver.coll.n_w)
+            ref = _superlu_step(jac, nz, b)
+            assert np.max(np.abs(lu.newton_step(b) - ref)) <= 1e-10 * np.max(np.abs(ref))
+    assert lu.analyses == 1
+    lu.nz[:] = 0.0
+    lu.factor()
+    assert not np.all(np.isfinite(lu.newton_step(np.ones(solver.coll.n_w))))
+
+
+@needs_cc
+def test_sparse_lu_pattern_is_the_fill_of_its_pivot_order(cache_folder: Path) -> None:
+    """The kept patterns of L and U are the fill of Gaussian elimination in the kept
+    pivot order, from the structure alone: equal to the nonzeros of a dense LU without
+    pivoting of P A Q with random values on A's pattern (SciPy's own L and U leave out
+    entries that happen to be zero, which a later matrix may need)."""
+    solver = StaticsSolver(load_scene(DEZOYSA, OFF))
+    jac = _jacobian(solver, 1e-2)
+    lu = sparse_lu.SparseLU(jac.sparsity())
+    lu.nz[:] = np.asarray(jac.nonzeros()).ravel()
+    lu.factor()
+    n = jac.size1()
+    sp = jac.sparsity()
+    a = np.zeros((n, n))
+    a[np.asarray(sp.row()), np.repeat(np.arange(n), np.diff(sp.colind()))] = \
+        np.random.default_rng(6).uniform(1.0, 2.0, sp.nnz())
+    m = np.zeros((n, n))
+    m[lu._pinv] = a  # row i of A is row pinv[i] of P A
+    m = m[:, lu._q]  # column j of P A Q is column q[j]
+    for k in range(n - 1):  # no pivoting: L below the diagonal, U on and above
+        m[k + 1:, k] /= m[k, k]
+        m[k + 1:, k + 1:] -= np.outer(m[k + 1:, k], m[k, k + 1:])
+    low = {(int(i), j) for j in range(n)
+           for i in lu._li[lu._lp[j]:lu._lp[j + 1]] if i != j}
+    up = {(int(i), j) for j in range(n) for i in lu._ui[lu._up[j]:lu._up[j + 1]]}
+    fill = set(zip(*(x.tolist() for x in np.nonzero(m)), strict=True))
+    assert low == {(i, j) for i, j in fill if i > j}
+    upper = {(i, j) for i, j in fill if i <= j}
+    assert up >= upper
+    assert up - upper <= {(j, j) for j in range(n)}  # a diagonal kept even if zero
+
+
+@needs_cc
+def test_sparse_lu_refuses_a_failed_pivot(cache_folder: Path) -> None:
+    """A kept pivot made tiny (1e-12 of its value: a growth of ~1e12 if it were used) is
+    refused and the matrix analysed again; the answer equals SuperLU's to 1e-10
+    relative."""
+    solver = StaticsSolver(load_scene(DEZOYSA, OFF))
+    jac = _jacobian(solver, 1e-2)
+    nz = np.asarray(jac.nonzeros()).ravel()
+    lu = sparse_lu.SparseLU(jac.sparsity())
+    lu.nz[:] = nz
+    lu.factor()
+    sp = jac.sparsity()
+    rows = np.asarray(sp.row())
+    cols = np.repeat(np.arange(jac.size2()), np.diff(sp.colind()))
+    # the entry of A that is the first pivot: column q[0], the row that P maps to row 0
+    first = np.flatnonzero((cols == lu._q[0]) & (lu._pinv[rows] == 0))[0]
+    bad = nz.copy()
+    bad[first] *= 1e-12
+    lu.nz[:] = bad
+    lu.factor()
+    assert lu.analyses == 2
+    b = np.random.default_rng(3).standard_normal(solver.coll.n_w)
+    ref = _superlu_step(jac, bad, b)
+    assert np.max(np.abs(lu.newton_step(b) - ref)) <= 1e-10 * np.max(np.abs(ref))
 
 
 @needs_cc

@@ -145,7 +145,7 @@ class SolverOptions:
         ``"catenary"`` (drag-free, default) or ``"straight"``.
     compile : str
         ``"never"`` (default): the Newton kernel runs in CasADi's virtual machine.
-        ``"auto"``: the residual and the Newton step (Jacobian and sparse QR solve) are
+        ``"auto"``: the residual and the Newton step (Jacobian and sparse LU solve) are
         compiled to C with the system's C compiler and the library is cached on disk
         (:mod:`cable_ocp.compile`): a warm Newton step about 3x faster, at the price of a
         C compilation of about 2 s per scene structure and mesh the first time (a later

@@ -12,8 +12,9 @@ conditions, a joint), mapped over its instances. From the blocks this module bui
 * ``step(w, p) -> (g, dw)``, the Newton step dw = -J^-1 g, with the sparse linear solve
   (CSparse's LU) inside the same call.
 
-When the kernel is compiled (``solver.compile = "auto"``), J is factorised by a sparse QR
-whose factors are kept (:mod:`cable_ocp.statics.sparse_qr`), and warm solves run
+When the kernel is compiled (``solver.compile = "auto"``), J is factorised by a sparse LU
+whose factors and pivot order are kept (:mod:`cable_ocp.statics.sparse_lu`), and warm
+solves run
 :func:`chord_newton`: one factorisation serves several steps, each a residual evaluation
 and a back-substitution.
 
@@ -167,15 +168,15 @@ class Kernel:
     step_fn : casadi.Function, optional
         ``(w, p) -> (g, dw)``.
     gj_fn : casadi.Function, optional
-        ``(w, p) -> (g, J)``, with ``qr``: the Jacobian is factorised by ``qr`` and the
+        ``(w, p) -> (g, J)``, with ``lu``: the Jacobian is factorised by ``lu`` and the
         factors are kept (:meth:`factor`, :meth:`chord_step`: the simplified Newton
         iteration of :func:`chord_newton`); :meth:`step` then factorises and solves.
-    qr : cable_ocp.statics.sparse_qr.SparseQR, optional
+    lu : cable_ocp.statics.sparse_lu.SparseLU, optional
         Factors of matrices of J's sparsity.
     """
 
     def __init__(self, g_fn: ca.Function, step_fn: ca.Function | None = None,
-                 gj_fn: ca.Function | None = None, qr: object | None = None):
+                 gj_fn: ca.Function | None = None, lu: object | None = None):
         n_w, n_p = g_fn.size1_in(0), g_fn.size1_in(1)
         self.n_w, self.n_p = n_w, n_p
         self._w = np.zeros(n_w)
@@ -187,13 +188,13 @@ class Kernel:
         self._gbuf.set_arg(0, memoryview(self._w))
         self._gbuf.set_arg(1, memoryview(self._p))
         self._gbuf.set_res(0, memoryview(self._g))
-        self._qr = qr if gj_fn is not None else None
-        if self._qr is not None:
+        self._lu = lu if gj_fn is not None else None
+        if self._lu is not None:
             self._jbuf, self._jeval = gj_fn.buffer()
             self._jbuf.set_arg(0, memoryview(self._w))
             self._jbuf.set_arg(1, memoryview(self._p))
             self._jbuf.set_res(0, memoryview(self._g2))
-            self._jbuf.set_res(1, memoryview(self._qr.nz))
+            self._jbuf.set_res(1, memoryview(self._lu.nz))
         elif step_fn is not None:
             self._sbuf, self._seval = step_fn.buffer()
             self._sbuf.set_arg(0, memoryview(self._w))
@@ -201,7 +202,7 @@ class Kernel:
             self._sbuf.set_res(0, memoryview(self._g2))
             self._sbuf.set_res(1, memoryview(self._dw))
         else:
-            raise ValueError("a kernel needs step_fn, or gj_fn with qr")
+            raise ValueError("a kernel needs step_fn, or gj_fn with lu")
         #: evaluations since construction: residuals, Newton steps (Jacobian + solve),
         #: factorisations kept for chord steps and the chord steps
         self.counts = {"g": 0, "step": 0, "factor": 0, "chord": 0}
@@ -209,7 +210,7 @@ class Kernel:
     @property
     def can_chord(self) -> bool:
         """True when the kernel keeps its factorisation (:func:`chord_newton` applies)."""
-        return self._qr is not None
+        return self._lu is not None
 
     def g(self, w: np.ndarray, p: np.ndarray) -> np.ndarray:
         """G(w, p) (a new array)."""
@@ -225,7 +226,7 @@ class Kernel:
         self._w[:] = w
         self._p[:] = p
         self._jeval()
-        self._qr.factor()
+        self._lu.factor()
         self.counts["factor"] += 1
         return self._g2.copy()
 
@@ -233,18 +234,18 @@ class Kernel:
         """``-J^-1 g`` with the kept factors (a new array; non-finite where J was
         singular)."""
         self.counts["chord"] += 1
-        return self._qr.newton_step(g)
+        return self._lu.newton_step(g)
 
     def step(self, w: np.ndarray, p: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
         """(G(w, p), -J(w, p)^-1 G(w, p)) (new arrays; the step is NaN where the sparse
         factorisation fails: a singular Jacobian)."""
-        if self._qr is not None:
+        if self._lu is not None:
             self._w[:] = w
             self._p[:] = p
             self._jeval()
-            self._qr.factor()
+            self._lu.factor()
             self.counts["step"] += 1
-            dw = self._qr.newton_step(self._g2)
+            dw = self._lu.newton_step(self._g2)
             return self._g2.copy(), dw if np.all(np.isfinite(dw)) else np.full(self.n_w, np.nan)
         self._w[:] = w
         self._p[:] = p
@@ -422,10 +423,10 @@ def newton(kernel: Kernel, w0: np.ndarray, p: np.ndarray, tol: float, max_iter: 
 
 
 #: a chord step is accepted when it cuts max|G| to this fraction or less; else the
-#: Jacobian is evaluated and factorised again. On the De Zoysa sweep (40 intervals; a
-#: factorisation costs about four chord steps there) 0.03-0.2 took the same time within
-#: the noise of a shared machine (0.1: on average 1.4 factorisations and 5.8 steps per
-#: warm point; 0.03: 2.1 and 4.4; 0.2: 1.3 and 6.5)
+#: Jacobian is evaluated and factorised again. On the De Zoysa sweep (40 intervals, the
+#: kept sparse LU: a factorisation with its Jacobian costs about three chord steps)
+#: 0.01-0.5 took the same time within the noise of a shared machine (0.1: on average 1.4
+#: factorisations and 5.8 steps per warm point; 0.01: 2.3 and 4.0; 0.5: 1.1 and 7.6)
 CHORD_CONTRACTION = 0.1
 
 

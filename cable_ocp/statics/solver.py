@@ -48,7 +48,7 @@ from cable_ocp.physics import seabed
 from cable_ocp.scene import Scene, SolverOptions, apply_overrides, load_scene, scene_from_dict
 from cable_ocp.statics import cache as disk_cache
 from cable_ocp.statics import kinks as kink_points
-from cable_ocp.statics import sparse_qr
+from cable_ocp.statics import sparse_lu
 from cable_ocp.statics.checks import check_physical
 from cable_ocp.statics.collocation import Collocation, Mesh
 from cable_ocp.statics.formulation import (
@@ -212,13 +212,13 @@ class StaticsSolver:
         cannot be compiled (no compiler, compiling off, an unwritable cache folder).
 
         The residual G and ``GJ`` (G and its sparse Jacobian) are compiled; the Jacobian
-        is factorised by a sparse QR whose factors are kept
-        (:mod:`cable_ocp.statics.sparse_qr`), so that warm solves take chord steps
+        is factorised by a sparse LU whose factors and pivot order are kept
+        (:mod:`cable_ocp.statics.sparse_lu`), so that warm solves take chord steps
         (:func:`cable_ocp.statics.newton.chord_newton`). The libraries are named by the
         full cache key (versions, sources, structure, mesh): a cached library is loaded
         without generating its code.
         """
-        if not sparse_qr.available():
+        if not sparse_lu.available():
             return None
         key = disk_cache.entry_key(structure, "compiled newton kernel")
         gj_c = compile_function(gj, COMPILE_FLAG, key=key, name=gj.name())
@@ -229,7 +229,7 @@ class StaticsSolver:
         if not is_compiled(g_fn):
             return None
         self.compiled = True
-        return Kernel(g_fn, gj_fn=gj_c, qr=sparse_qr.SparseQR(gj.sparsity_out(1)))
+        return Kernel(g_fn, gj_fn=gj_c, lu=sparse_lu.SparseLU(gj.sparsity_out(1)))
 
     @property
     def _ipopt(self) -> ca.Function:

@@ -212,6 +212,15 @@ MUTATIONS: tuple[Mutation, ...] = (
              ("tests/test_contract.py::test_a_dip_within_the_cable_radius_warns_and_beyond_it_"
               "fails",), "a centreline within the cable's radius of the seabed plane "
              "reported as below_seabed"),
+    Mutation("lu-symbolic-drops-fill", COLL, "cable_ocp/statics/sparse_lu.py",
+             "if (i > j) { if (nl + 1 > cap) return -1; li[nl++] = i; }\n      }\n    }",
+             "if (0) { if (nl + 1 > cap) return -1; li[nl++] = i; }\n      }\n    }",
+             ("tests/test_statics_compile.py",),
+             "the kept LU pattern misses the fill that columns of L spread into later ones"),
+    Mutation("lu-refactor-keeps-tiny-pivots", COLL, "cable_ocp/statics/sparse_lu.py",
+             "if (!(fabs(piv) >= tau * big) || !(fabs(piv) > 0)", "if (0",
+             ("tests/test_statics_compile.py",),
+             "the refactorisation uses the kept pivot order whatever the pivot's size"),
     Mutation("batch-chunks-ignore-grid-blocks", "batch", "cable_ocp/batch/__init__.py",
              "near = [b for b in starts if i + size / 2 <= b <= i + 1.5 * size]",
              "near = []", ("tests/test_batch.py::test_guided_chunks_end_at_grid_blocks",),
