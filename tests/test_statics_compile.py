@@ -237,6 +237,32 @@ def test_chord_refactorises_and_falls_back_on_poor_contraction(
 
 
 @needs_cc
+def test_interpreted_warm_solves_take_chord_steps(cache_folder: Path,
+                                                  monkeypatch: pytest.MonkeyPatch) -> None:
+    """The interpreted kernel keeps LU factors from its first warm solve on: its warm
+    solves from its own solutions take chord steps (fewer factorisations than steps; cold
+    solves keep CasADi's CSparse step) and land on the end forces of Newton steps from
+    the same start (the helper unavailable: a factorisation per step) to 1e-9 relative
+    (both stop at a scaled residual of 1e-10)."""
+    base = load_scene(DEZOYSA, OFF)
+    first, scene = base.with_overrides({"layout.psi0_deg": 50.0}), \
+        base.with_overrides({"layout.psi0_deg": 60.0})
+    chord_solver = StaticsSolver(base)
+    start = chord_solver.solve(first)
+    assert start.success and not chord_solver._kernel.can_chord  # cold: no LU kept
+    a = chord_solver.solve(scene, warm_start=start)
+    assert chord_solver._kernel.can_chord and not chord_solver.compiled
+    assert a.success and a.diagnostics["factorizations"] < a.iterations
+    monkeypatch.setattr(sparse_lu, "available", lambda: False)
+    newton_solver = StaticsSolver(base)
+    b = newton_solver.solve(scene, warm_start=newton_solver.solve(first))
+    assert not newton_solver._kernel.can_chord
+    assert b.success and b.diagnostics["factorizations"] >= b.iterations
+    ref = np.max(np.abs(b.force_a))
+    assert np.max(np.abs(a.force_a - b.force_a)) <= 1e-9 * ref
+
+
+@needs_cc
 def test_compiled_sweep_matches_the_interpreted_sweep(cache_folder: Path) -> None:
     """The psi0 sweep with the compiled kernel gives the end forces of the interpreted
     sweep (itself checked against CasADi's rootfinder in test_statics_speed.py) to 1e-9

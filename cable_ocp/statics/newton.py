@@ -166,11 +166,13 @@ class Kernel:
     g_fn : casadi.Function
         ``(w, p) -> g``.
     step_fn : casadi.Function, optional
-        ``(w, p) -> (g, dw)``.
+        ``(w, p) -> (g, dw)``; :meth:`step` calls it when given (the interpreted kernel:
+        CasADi's CSparse LU inside the call, which a cold solve's few steps prefer to an
+        LU analysis), else factorises with ``lu``.
     gj_fn : casadi.Function, optional
         ``(w, p) -> (g, J)``, with ``lu``: the Jacobian is factorised by ``lu`` and the
         factors are kept (:meth:`factor`, :meth:`chord_step`: the simplified Newton
-        iteration of :func:`chord_newton`); :meth:`step` then factorises and solves.
+        iteration of :func:`chord_newton`).
     lu : cable_ocp.statics.sparse_lu.SparseLU, optional
         Factors of matrices of J's sparsity.
     """
@@ -188,24 +190,31 @@ class Kernel:
         self._gbuf.set_arg(0, memoryview(self._w))
         self._gbuf.set_arg(1, memoryview(self._p))
         self._gbuf.set_res(0, memoryview(self._g))
-        self._lu = lu if gj_fn is not None else None
-        if self._lu is not None:
-            self._jbuf, self._jeval = gj_fn.buffer()
-            self._jbuf.set_arg(0, memoryview(self._w))
-            self._jbuf.set_arg(1, memoryview(self._p))
-            self._jbuf.set_res(0, memoryview(self._g2))
-            self._jbuf.set_res(1, memoryview(self._lu.nz))
-        elif step_fn is not None:
+        self._lu = None
+        if gj_fn is not None and lu is not None:
+            self.attach_lu(gj_fn, lu)
+        self._seval = None
+        if step_fn is not None:
             self._sbuf, self._seval = step_fn.buffer()
             self._sbuf.set_arg(0, memoryview(self._w))
             self._sbuf.set_arg(1, memoryview(self._p))
             self._sbuf.set_res(0, memoryview(self._g2))
             self._sbuf.set_res(1, memoryview(self._dw))
-        else:
+        elif self._lu is None:
             raise ValueError("a kernel needs step_fn, or gj_fn with lu")
         #: evaluations since construction: residuals, Newton steps (Jacobian + solve),
         #: factorisations kept for chord steps and the chord steps
         self.counts = {"g": 0, "step": 0, "factor": 0, "chord": 0}
+
+    def attach_lu(self, gj_fn: ca.Function, lu: object) -> None:
+        """Keep factorisations from now on: ``gj_fn`` ``(w, p) -> (g, J)`` and ``lu``
+        (a :class:`cable_ocp.statics.sparse_lu.SparseLU` of J's sparsity)."""
+        self._lu = lu
+        self._jbuf, self._jeval = gj_fn.buffer()
+        self._jbuf.set_arg(0, memoryview(self._w))
+        self._jbuf.set_arg(1, memoryview(self._p))
+        self._jbuf.set_res(0, memoryview(self._g2))
+        self._jbuf.set_res(1, memoryview(lu.nz))
 
     @property
     def can_chord(self) -> bool:
@@ -239,7 +248,7 @@ class Kernel:
     def step(self, w: np.ndarray, p: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
         """(G(w, p), -J(w, p)^-1 G(w, p)) (new arrays; the step is NaN where the sparse
         factorisation fails: a singular Jacobian)."""
-        if self._lu is not None:
+        if self._seval is None:
             self._w[:] = w
             self._p[:] = p
             self._jeval()

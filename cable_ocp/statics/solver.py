@@ -614,9 +614,10 @@ class StaticsSolver:
                 kappa: float = math.nan, p_form: np.ndarray | None = None) -> NewtonResult:
         """Newton with a line search from w0, within the bounds (a positive free length, a
         grounded part on the first segment); a free length that comes out non-positive is
-        a failure. From a warm start, with a kernel that keeps its factorisation (the
-        compiled one), chord steps first, then Newton from where they stopped if they
-        fail. ``factorizations`` counts the Jacobians factorised.
+        a failure. From a warm start on a fixed mesh, with a kernel that keeps its
+        factorisation (the compiled one; the interpreted one from its first warm solve
+        on, when the sparse LU helper is available), chord steps first, then Newton from
+        where they stopped if they fail. ``factorizations`` counts the Jacobians factorised.
 
         With ``fit_kinks`` and ``p_form`` (the formulation's parameters), Newton may move
         the mesh onto the kinks of an iterate close to the solution (``remesh`` of
@@ -630,7 +631,14 @@ class StaticsSolver:
         if self.fit_kinks and p_form is not None:
             moving = {"remesh": functools.partial(self._remesh, p_form=p_form),
                       "unmesh": functools.partial(self._unmesh, mesh0)}
-        if warm and self._kernel.can_chord:
+        # chord steps from a warm start on a fixed mesh (a moving mesh, which puts its
+        # points on the kinks of Newton's iterates, takes Newton steps)
+        chord = warm and not moving
+        if chord and not self._kernel.can_chord and sparse_lu.available():
+            # the interpreted kernel keeps LU factors from its first warm solve on (a cold
+            # solve's few steps do not repay the LU's analysis)
+            self._kernel.attach_lu(self._gj, sparse_lu.SparseLU(self._gj.sparsity_out(1)))
+        if chord and self._kernel.can_chord:
             res = chord_newton(self._kernel, w0, p, self.tol, NEWTON_MAX_STEPS,
                                lb=self._lbx, ub=self._ubx)
             if not res.success:

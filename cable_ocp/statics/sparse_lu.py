@@ -33,6 +33,7 @@ import ctypes
 import functools
 import hashlib
 import os
+import shutil
 import tempfile
 
 import casadi as ca
@@ -150,19 +151,32 @@ def _library() -> ctypes.CDLL | None:
     return _load(folder, tuple(cc))
 
 
+#: the helper libraries this process compiled or loaded (the newest last): a new cache
+#: folder gets a copy instead of a second compilation
+_BUILT: list[str] = []
+
+
 @functools.lru_cache(maxsize=8)
 def _load(folder: str, cc: tuple[str, ...]) -> ctypes.CDLL | None:
-    """The helper compiled by ``cc`` into ``folder`` (once per process and setting)."""
+    """The helper compiled by ``cc`` into ``folder`` (once per process and setting; once
+    per machine for one cache folder: a later folder gets a copy)."""
     digest = hashlib.sha256(_SOURCE.encode()).hexdigest()[:16]
     lib = os.path.join(folder, f"cable_ocp_sparse_lu_{digest}.so")
     try:
         if not os.path.exists(lib):
             os.makedirs(folder, exist_ok=True)
-            with tempfile.TemporaryDirectory(prefix="cable_ocp_") as tmp:
-                src = os.path.join(tmp, "sparse_lu.c")
-                with open(src, "w", encoding="utf-8") as fh:
-                    fh.write(_SOURCE)
-                compile_shared(list(cc), "-O2", src, lib, timeout=120)
+            made = [x for x in _BUILT if os.path.basename(x) == os.path.basename(lib)
+                    and os.path.exists(x)]
+            if made:  # the same source, already compiled in this process: a copy
+                part = lib + f".{os.getpid()}.tmp"
+                shutil.copyfile(made[-1], part)
+                os.replace(part, lib)
+            else:
+                with tempfile.TemporaryDirectory(prefix="cable_ocp_") as tmp:
+                    src = os.path.join(tmp, "sparse_lu.c")
+                    with open(src, "w", encoding="utf-8") as fh:
+                        fh.write(_SOURCE)
+                    compile_shared(list(cc), "-O2", src, lib, timeout=120)
         dll = ctypes.CDLL(lib)
         dll.clu_refactor.restype = ctypes.c_int
         dll.clu_refactor.argtypes = [ctypes.c_longlong] + [ctypes.c_void_p] * 12 \
@@ -172,6 +186,7 @@ def _load(folder: str, cc: tuple[str, ...]) -> ctypes.CDLL | None:
         dll.clu_symbolic.restype = ctypes.c_int
         dll.clu_symbolic.argtypes = [ctypes.c_longlong] + [ctypes.c_void_p] * 8 \
             + [ctypes.c_longlong, ctypes.c_void_p]
+        _BUILT.append(lib)
         return dll
     except Exception:  # noqa: BLE001 - no helper: callers keep CasADi's linear solvers
         return None
