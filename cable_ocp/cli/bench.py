@@ -167,7 +167,9 @@ def cmd_sweep(args: argparse.Namespace) -> int:
     out.say(args, report.table(res["headers"], res["rows"]))
     out.say(args, f"\nwarm solve median {m['warm_median_ms']:.2f} ms wall, "
                   f"{sm['warm_median_cpu_ms']:.2f} ms CPU, {sm['warm_iterations_median']:g} "
-                  f"Newton steps (target <= {t['warm_median_ms']:g} ms); each point all in "
+                  f"steps (chord and Newton) and {sm['warm_factorizations_mean']:.1f} "
+                  f"factorisations per point (mean) (target <= {t['warm_median_ms']:g} ms); "
+                  f"each point all in "
                   f"{sm['warm_point_all_in_ms']:.2f} ms; solve_bvp/collocation per point "
                   f"{sm['warm_ratio_solve_bvp_over_collocation']:.1f}x")
     second = ("" if sm["sweep_total_second_process_ms"] is None else
