@@ -240,13 +240,17 @@ def cmd_accuracy(args: argparse.Namespace) -> int:
         for _, path, _ in scenes:
             load_scene(path)  # input errors before any solve
     n_scenes = len(scenes) if scenes else len(accuracy.default_scenes())
-    total = n_scenes * accuracy.planned_rows(args.method)
+    total = n_scenes * accuracy.planned_rows(args.method, args.repeats)
     rows: list[dict[str, Any]] = []
+    calls = [0]
     try:
-        with out.progress(args, total, "bench accuracy", "row") as bar:
+        with out.progress(args, total, "bench accuracy", "timing") as bar:
             def step(row: dict[str, Any]) -> None:
-                rows.append(row)
-                bar(len(rows), postfix=f"{row['scene']}: {row['method']}")
+                # a row comes once per repeat (interleaved passes): kept once
+                if not any(r is row for r in rows):
+                    rows.append(row)
+                calls[0] += 1
+                bar(calls[0], postfix=f"{row['scene']}: {row['method']}")
 
             results = accuracy.run(scenes, args.method, repeats=args.repeats, progress=step,
                                    second_process=not args.no_subprocess)
