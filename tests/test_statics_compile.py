@@ -105,6 +105,31 @@ def test_sparse_lu_solves_like_superlu(cache_folder: Path) -> None:
 
 
 @needs_cc
+def test_a_broken_sparse_lu_helper_is_built_again(cache_folder: Path) -> None:
+    """A helper library in the cache folder that does not load (here cut to 100 bytes) is
+    removed and built again, never trusted: the next process has a working helper, which
+    solves a 2x2 system exactly. (A new process: this one keeps the library it loaded.)"""
+    import subprocess
+    import sys
+
+    assert sparse_lu.available()
+    (lib,) = cache_folder.glob("cable_ocp_sparse_lu_*.so")
+    cut = lib.with_suffix(".cut")
+    cut.write_bytes(lib.read_bytes()[:100])
+    cut.replace(lib)  # a new file: the loaded library's pages stay intact
+    code = ("import numpy as np, casadi as ca\n"
+            "from cable_ocp.statics import sparse_lu\n"
+            "lu = sparse_lu.SparseLU(ca.sparsify(ca.DM([[0.0, 2.0], [4.0, 1.0]])).sparsity())\n"
+            "lu.nz[:] = [4.0, 2.0, 1.0]\n"  # compressed columns: (1,0), (0,1), (1,1)
+            "lu.factor()\n"
+            "print(lu.newton_step(np.array([2.0, 9.0])).tolist())\n")
+    out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True,
+                         check=True, timeout=120)
+    assert out.stdout.strip() == "[-2.0, -1.0]"
+    assert lib.stat().st_size > 100
+
+
+@needs_cc
 def test_sparse_lu_pattern_is_the_fill_of_its_pivot_order(cache_folder: Path) -> None:
     """The kept patterns of L and U are the fill of Gaussian elimination in the kept
     pivot order, from the structure alone: equal to the nonzeros of a dense LU without

@@ -156,36 +156,49 @@ def _library() -> ctypes.CDLL | None:
 _BUILT: list[str] = []
 
 
+def _open(lib: str) -> ctypes.CDLL:
+    """The compiled helper at ``lib`` with its functions' signatures."""
+    dll = ctypes.CDLL(lib)
+    dll.clu_refactor.restype = ctypes.c_int
+    dll.clu_refactor.argtypes = [ctypes.c_longlong] + [ctypes.c_void_p] * 12 \
+        + [ctypes.c_double]
+    dll.clu_solve.restype = None
+    dll.clu_solve.argtypes = [ctypes.c_longlong] + [ctypes.c_void_p] * 10
+    dll.clu_symbolic.restype = ctypes.c_int
+    dll.clu_symbolic.argtypes = [ctypes.c_longlong] + [ctypes.c_void_p] * 8 \
+        + [ctypes.c_longlong, ctypes.c_void_p]
+    return dll
+
+
 @functools.lru_cache(maxsize=8)
 def _load(folder: str, cc: tuple[str, ...]) -> ctypes.CDLL | None:
     """The helper compiled by ``cc`` into ``folder`` (once per process and setting; once
-    per machine for one cache folder: a later folder gets a copy)."""
+    per machine for one cache folder: a later folder gets a copy). A library that does not
+    load (a truncated or foreign file) is removed and built again, never trusted."""
     digest = hashlib.sha256(_SOURCE.encode()).hexdigest()[:16]
     lib = os.path.join(folder, f"cable_ocp_sparse_lu_{digest}.so")
     try:
-        if not os.path.exists(lib):
-            os.makedirs(folder, exist_ok=True)
-            made = [x for x in _BUILT if os.path.basename(x) == os.path.basename(lib)
-                    and os.path.exists(x)]
-            if made:  # the same source, already compiled in this process: a copy
-                part = lib + f".{os.getpid()}.tmp"
-                shutil.copyfile(made[-1], part)
-                os.replace(part, lib)
-            else:
-                with tempfile.TemporaryDirectory(prefix="cable_ocp_") as tmp:
-                    src = os.path.join(tmp, "sparse_lu.c")
-                    with open(src, "w", encoding="utf-8") as fh:
-                        fh.write(_SOURCE)
-                    compile_shared(list(cc), "-O2", src, lib, timeout=120)
-        dll = ctypes.CDLL(lib)
-        dll.clu_refactor.restype = ctypes.c_int
-        dll.clu_refactor.argtypes = [ctypes.c_longlong] + [ctypes.c_void_p] * 12 \
-            + [ctypes.c_double]
-        dll.clu_solve.restype = None
-        dll.clu_solve.argtypes = [ctypes.c_longlong] + [ctypes.c_void_p] * 10
-        dll.clu_symbolic.restype = ctypes.c_int
-        dll.clu_symbolic.argtypes = [ctypes.c_longlong] + [ctypes.c_void_p] * 8 \
-            + [ctypes.c_longlong, ctypes.c_void_p]
+        if os.path.exists(lib):
+            try:
+                dll = _open(lib)
+                _BUILT.append(lib)
+                return dll
+            except (OSError, AttributeError):  # broken: built again below
+                os.remove(lib)
+        os.makedirs(folder, exist_ok=True)
+        made = [x for x in _BUILT if os.path.basename(x) == os.path.basename(lib)
+                and os.path.exists(x)]
+        if made:  # the same source, already compiled in this process: a copy
+            part = lib + f".{os.getpid()}.tmp"
+            shutil.copyfile(made[-1], part)
+            os.replace(part, lib)
+        else:
+            with tempfile.TemporaryDirectory(prefix="cable_ocp_") as tmp:
+                src = os.path.join(tmp, "sparse_lu.c")
+                with open(src, "w", encoding="utf-8") as fh:
+                    fh.write(_SOURCE)
+                compile_shared(list(cc), "-O2", src, lib, timeout=120)
+        dll = _open(lib)
         _BUILT.append(lib)
         return dll
     except Exception:  # noqa: BLE001 - no helper: callers keep CasADi's linear solvers
