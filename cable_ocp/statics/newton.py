@@ -12,11 +12,11 @@ conditions, a joint), mapped over its instances. From the blocks this module bui
 * ``step(w, p) -> (g, dw)``, the Newton step dw = -J^-1 g, with the sparse linear solve
   (CSparse's LU) inside the same call.
 
-When the kernel is compiled (``solver.compile = "auto"``), J is factorised by a sparse LU
-whose factors and pivot order are kept (:mod:`cable_ocp.statics.sparse_lu`), and warm
-solves run
-:func:`chord_newton`: one factorisation serves several steps, each a residual evaluation
-and a back-substitution.
+With the sparse-LU helper (:mod:`cable_ocp.statics.sparse_lu`), J is factorised by a sparse
+LU whose factors and pivot order are kept (:meth:`Kernel.attach_lu`; the compiled kernel,
+``solver.compile = "auto"``, uses it for every step, the interpreted one from its first
+warm solve on), and warm solves run :func:`chord_newton`: one factorisation serves several
+steps, each a residual evaluation and a back-substitution.
 
 :class:`Kernel` evaluates them through CasADi's ``FunctionBuffer`` on preallocated numpy
 arrays (converting a 1000-entry numpy vector to a CasADi matrix costs about as much as

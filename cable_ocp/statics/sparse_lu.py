@@ -9,7 +9,9 @@ factors and the *pivot order*:
   (``scipy.sparse.linalg.splu``) with columns in their natural order (the collocation
   unknowns are already in interval order: fill-reducing orderings gave no less fill
   here) and threshold partial pivoting (``diag_pivot_thresh`` :data:`ANALYSE_THRESHOLD`)
-  gives the row and column permutations and the patterns of L and U.
+  gives the row and column permutations; the patterns of L and U for them are the fill
+  of Gaussian elimination in that order, computed from the structure in C (SciPy's own
+  L and U leave out entries that happen to be zero for the analysed values).
 * **Refactorisation** (every Newton step): a left-looking LU without pivoting search on
   those fixed patterns and permutations (Gilbert & Peierls (1988), *SIAM J. Sci. Stat.
   Comput.* 9(5); the refactorisation of KLU, Davis & Palamadai Natarajan (2010), *ACM
