@@ -279,6 +279,7 @@ class NewtonResult:
     kappa: float = math.nan  # |G| after a full step over |step|^2 (nan: not measured)
     p: np.ndarray | None = None  # the parameters at w, when a remesh changed them
     remeshes: int = 0  # moves onto another mesh during the iteration
+    chord: bool = False  # chord steps were taken first (:func:`chord_newton`)
 
 
 def _max_step(w: np.ndarray, dw: np.ndarray, lb: np.ndarray | None, ub: np.ndarray | None

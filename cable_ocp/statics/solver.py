@@ -347,7 +347,7 @@ class StaticsSolver:
             p, kappa = (res.p if res.p is not None else p), res.kappa
             moves = res.remeshes if ok else 0
             diag["factorizations"] = res.factorizations
-            if self._kernel.can_chord:
+            if res.chord:
                 diag["chord"] = res.message  # "converged": chord steps alone sufficed
             if not ok:
                 p, self._checked = p0, None
@@ -641,12 +641,14 @@ class StaticsSolver:
         if chord and self._kernel.can_chord:
             res = chord_newton(self._kernel, w0, p, self.tol, NEWTON_MAX_STEPS,
                                lb=self._lbx, ub=self._ubx)
+            res.chord = True
             if not res.success:
                 start = res.w if np.all(np.isfinite(res.w)) else w0
                 fb = newton(self._kernel, start, p, self.tol, NEWTON_MAX_STEPS,
                             lb=self._lbx, ub=self._ubx, **moving)
                 fb.iterations += res.iterations
                 fb.message = f"chord steps stopped ({res.message}); newton: {fb.message}"
+                fb.chord = True
                 res = fb
         else:
             res = newton(self._kernel, w0, p, self.tol, NEWTON_MAX_STEPS, lb=self._lbx,

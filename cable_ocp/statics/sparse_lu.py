@@ -5,7 +5,7 @@ iteration needs one factorisation reused for several right-hand sides, and a swe
 factorises matrices of one sparsity hundreds of times. This module keeps both the
 factors and the *pivot order*:
 
-* **Analysis** (first use, and whenever a pivot fails the check below): SciPy's SuperLU
+* **Analysis** (first use, and whenever a refactorisation is refused, below): SciPy's SuperLU
   (``scipy.sparse.linalg.splu``) with columns in their natural order (the collocation
   unknowns are already in interval order: fill-reducing orderings gave no less fill
   here) and threshold partial pivoting (``diag_pivot_thresh`` :data:`ANALYSE_THRESHOLD`)
@@ -17,12 +17,14 @@ factors and the *pivot order*:
   Comput.* 9(5); the refactorisation of KLU, Davis & Palamadai Natarajan (2010), *ACM
   TOMS* 37(3)), in C: about 60 000 flops for De Zoysa's cable on 40 intervals
   (n = 966), ~0.08 ms against ~0.33 ms for the sparse Householder QR used before.
-  Each pivot is checked against the entries below it in its column: a pivot smaller
-  than :data:`REFACTOR_THRESHOLD` times the largest of them (or zero, or not finite)
-  stops the refactorisation, and the matrix is analysed again with SuperLU's pivoting
-  (:attr:`SparseLU.analyses` counts them). The growth of the entries is then bounded as
-  in threshold partial pivoting with that threshold (Duff, Erisman & Reid (2017),
-  *Direct Methods for Sparse Matrices*, 2nd ed., sec. 7.8).
+  Each pivot is checked against the entries below it in its column, as threshold
+  partial pivoting does (Duff, Erisman & Reid (2017), *Direct Methods for Sparse
+  Matrices*, 2nd ed., sec. 7.8): a pivot smaller than :data:`REFACTOR_THRESHOLD` times
+  the largest of them, zero, or a non-finite entry stops the refactorisation. As that
+  test alone lets the entries grow by up to 1 + 1/threshold per column, the largest entry
+  of U is checked too (:data:`GROWTH_LIMIT` times the largest of the matrix). A refused
+  refactorisation means a new analysis with SuperLU's pivoting (:attr:`SparseLU.analyses`
+  counts them).
 
 A singular matrix (SuperLU: "exactly singular") gives non-finite steps, not an exception.
 Without a C compiler (:mod:`cable_ocp.compile`) the helper is unavailable: :func:`available`
@@ -52,6 +54,12 @@ ANALYSE_THRESHOLD = 0.1
 #: a refactorisation pivot below this fraction of the largest entry under it in its
 #: column (after the updates) is refused, and the matrix analysed again
 REFACTOR_THRESHOLD = 0.01
+#: a refactorisation on a kept pivot order whose largest entry of U exceeds this times the
+#: largest entry of the matrix is refused, and the matrix analysed again: the threshold
+#: alone allows a growth of 101 per column (a banded matrix with a border column reached
+#: 1e16 in 8 columns); the collocated Jacobians of the shipped and extreme scenes grow by
+#: 3-23
+GROWTH_LIMIT = 1e6
 
 _SOURCE = r"""
 #include <math.h>
@@ -97,31 +105,42 @@ int clu_symbolic(cint n, const cint* ap, const cint* ai, const cint* pinv, const
   return 0;
 }
 
-/* L U = P A Q on fixed patterns (CSC, sorted): L unit lower with its diagonal stored first
-   in each column, U upper with its diagonal stored last. pinv[i]: the row of P A holding
-   row i of A; q[j]: the column of A that is column j of A Q. x: work of length n, zero on
-   entry and on return. Returns 0, or j + 1 when the pivot of column j fails the check. */
+/* L U = P A Q on fixed patterns (CSC): L unit lower with its diagonal stored first in
+   each column (the rows below it in any order), U upper with its rows ascending and its
+   diagonal last. pinv[i]: the row of P A holding row i of A; q[j]: the column of A that is
+   column j of A Q. x: work of length n, zero on return (on entry, only the rows this
+   elimination reads before writing them must be zero: the entries of A are assigned).
+   Refused (the return value): a pivot of column j below tau times the largest entry
+   under it, zero or not finite, or a non-finite entry (j + 1); with gmax > 0, a largest
+   entry of U above gmax times the largest of A (growth: n + 1). 0: factorised. */
 int clu_refactor(cint n, const cint* ap, const cint* ai, const double* ax,
                  const cint* pinv, const cint* q, const cint* lp, const cint* li,
                  double* lx, const cint* up, const cint* ui, double* ux, double* x,
-                 double tau) {
-  cint j, k, p, pe, r; double xk, piv, big, a;
+                 double tau, double gmax) {
+  cint j, k, p, pe, r; double xk, piv, big, a, amax = 0, umax = 0, chk = 0;
+  if (gmax > 0) for (p = 0; p < ap[n]; ++p) { a = fabs(ax[p]); if (a > amax) amax = a; }
   for (j = 0; j < n; ++j) {
     for (p = ap[q[j]]; p < ap[q[j] + 1]; ++p) x[pinv[ai[p]]] = ax[p];
     for (p = up[j], pe = up[j + 1] - 1; p < pe; ++p) {
       k = ui[p]; xk = x[k]; ux[p] = xk; x[k] = 0;
+      chk += 0.0 * xk;  /* NaN when an entry is not finite */
+      a = fabs(xk); if (a > umax) umax = a;
       if (xk != 0) for (r = lp[k] + 1; r < lp[k + 1]; ++r) x[li[r]] -= lx[r] * xk;
     }
     piv = x[j]; x[j] = 0; ux[up[j + 1] - 1] = piv;
     big = 0;
-    for (r = lp[j] + 1; r < lp[j + 1]; ++r) { a = fabs(x[li[r]]); if (!(a <= big)) big = a; }
-    if (!(fabs(piv) >= tau * big) || !(fabs(piv) > 0) || !isfinite(piv) || !isfinite(big)) {
-      for (r = lp[j] + 1; r < lp[j + 1]; ++r) x[li[r]] = 0;
+    for (r = lp[j] + 1; r < lp[j + 1]; ++r) {
+      a = fabs(x[li[r]]); chk += 0.0 * a; if (a > big) big = a;
+    }
+    chk += 0.0 * piv;
+    if (chk != 0 || !(fabs(piv) >= tau * big) || !(fabs(piv) > 0)) {
       for (r = 0; r < n; ++r) x[r] = 0;
       return (int)(j + 1);
     }
+    if (fabs(piv) > umax) umax = fabs(piv);
     for (r = lp[j] + 1; r < lp[j + 1]; ++r) { lx[r] = x[li[r]] / piv; x[li[r]] = 0; }
   }
+  if (gmax > 0 && umax > gmax * amax) return (int)(n + 1);
   return 0;
 }
 
@@ -163,7 +182,7 @@ def _open(lib: str) -> ctypes.CDLL:
     dll = ctypes.CDLL(lib)
     dll.clu_refactor.restype = ctypes.c_int
     dll.clu_refactor.argtypes = [ctypes.c_longlong] + [ctypes.c_void_p] * 12 \
-        + [ctypes.c_double]
+        + [ctypes.c_double, ctypes.c_double]
     dll.clu_solve.restype = None
     dll.clu_solve.argtypes = [ctypes.c_longlong] + [ctypes.c_void_p] * 10
     dll.clu_symbolic.restype = ctypes.c_int
@@ -241,8 +260,10 @@ class SparseLU:
         self._ai = _index(sparsity.row())
         self.nz = np.zeros(sparsity.nnz())  #: the matrix's nonzeros (filled by the caller)
         self.x = np.zeros(n)  #: right-hand side in, solution out
-        self._work = np.zeros(n)
+        self._work = np.zeros(n)  # the refactorisation's (zero between calls)
+        self._wsolve = np.zeros(n)  # the back-substitution's
         self._factor: functools.partial | None = None
+        self._fresh: functools.partial | None = None
         self._solve: functools.partial | None = None
         self._singular = True
         #: pivot orders computed (SuperLU analyses): the first, and one per refused pivot
@@ -258,7 +279,7 @@ class SparseLU:
         try:
             lu = spl.splu(a, permc_spec="NATURAL", diag_pivot_thresh=ANALYSE_THRESHOLD)
         except RuntimeError:  # "Factor is exactly singular"
-            self._factor = self._solve = None
+            self._factor = self._fresh = self._solve = None
             return
         # column j of A Q is column q[j] of A (SciPy: P_r A P_c = L U, P_c[i, perm_c[i]] = 1)
         q = np.empty(n, dtype=np.int64)
@@ -277,22 +298,27 @@ class SparseLU:
         self._pinv, self._q, self._lp, self._up = pinv, q, lp, up
         self._li, self._ui = li[:lp[n]].copy(), ui[:up[n]].copy()
         self._lx, self._ux = np.zeros(lp[n]), np.zeros(up[n])
-        self._factor = functools.partial(
-            self._dll.clu_refactor, n, p(self._ap), p(self._ai), p(self.nz), p(pinv), p(q),
-            p(lp), p(self._li), p(self._lx), p(up), p(self._ui), p(self._ux), p(self._work),
-            REFACTOR_THRESHOLD)
+        args = (n, p(self._ap), p(self._ai), p(self.nz), p(pinv), p(q), p(lp), p(self._li),
+                p(self._lx), p(up), p(self._ui), p(self._ux), p(self._work), REFACTOR_THRESHOLD)
+        # on the kept order with the growth check; right after the analysis without (its
+        # pivots are SuperLU's own choice for this matrix)
+        self._factor = functools.partial(self._dll.clu_refactor, *args, GROWTH_LIMIT)
+        self._fresh = functools.partial(self._dll.clu_refactor, *args, 0.0)
         self._solve = functools.partial(
             self._dll.clu_solve, n, p(pinv), p(q), p(lp), p(self._li), p(self._lx), p(up),
-            p(self._ui), p(self._ux), p(self.x), p(self._work))
+            p(self._ui), p(self._ux), p(self.x), p(self._wsolve))
 
     def factor(self) -> None:
         """Factorise the matrix whose nonzeros are in :attr:`nz`: on the kept pivot order,
-        or, when a pivot there fails the check (or on first use), on a new one."""
-        if self._factor is None or self._factor() != 0:
-            self._analyse()
-            # SuperLU's own pivots pass the check (its threshold is larger), unless the
-            # matrix is singular to working precision
-            self._singular = self._factor is None or self._factor() != 0
+        or, when that is refused (a small pivot, growth, a non-finite entry) or on first
+        use, on a new one."""
+        if self._factor is not None and self._factor() == 0:
+            self._singular = False
+            return
+        self._analyse()
+        # SuperLU's own pivots pass the check (its threshold is larger), unless the matrix
+        # is singular to working precision or has non-finite entries
+        self._singular = self._fresh is None or self._fresh() != 0
 
     def newton_step(self, g: np.ndarray) -> np.ndarray:
         """``-A^-1 g`` with the last factors (a new array; non-finite entries when the
