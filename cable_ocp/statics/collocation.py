@@ -391,22 +391,21 @@ class Collocation:
         # solves pay at every step)
         xs_, lam_s, cs_s = ca.SX.sym("x", nx), ca.SX.sym("lam"), ca.SX.sym("cs")
         f_s = rhs(xs_, lam_s, cs_s)
-        rhs_val = ca.Function("rhs_val", [xs_, lam_s, cs_s], [f_s])
         rhs_jac = ca.Function("rhs_jac", [xs_, lam_s, cs_s],
                               [f_s, ca.jacobian(f_s, ca.vertcat(xs_, lam_s))])
         inv_h = 1.0 / h
         # X C_j / h for j = 1 .. d as the columns of one (nx, d) matrix, and the end state
         lin = ca.mtimes(xcols, ca.DM(cmat[:, 1:].tolist())) * inv_h
         x_end = ca.mtimes(xcols, ca.DM(dvec.tolist()))
-        fn = ca.Function("interval", [z, q], [ca.vertcat(ca.vec(ca.horzcat(
-            *[rhs_val(xcols[:, j], lam, p[P_CURRENT]) for j in range(1, d + 1)]) - lin),
-            x_end - x_next)])
         fx, jx = [], []
         for j in range(1, d + 1):
             fj, jj = rhs_jac(xcols[:, j], lam, p[P_CURRENT])
             fx.append(fj)
             jx.append(jj)
         r = ca.vertcat(ca.vec(ca.horzcat(*fx) - lin), x_end - x_next)
+        # the residual alone from the same expressions (a function keeps only the nodes
+        # its outputs need: the Jacobians' are left out)
+        fn = ca.Function("interval", [z, q], [r])
         # dr/dz: the constant part, -C[i, j]/h on the collocation rows (A/h), D_i and -1 on
         # the last rows (B), plus the right-hand side's Jacobians: block-diagonal in the
         # collocation points x_k^1 .. x_k^d (columns nx .. nx (d + 1) of z), and the tail
@@ -537,12 +536,13 @@ class Collocation:
         return blocks
 
     @staticmethod
-    def _with_jacobian(fn: ca.Function) -> tuple[ca.Function, ca.Function]:
-        """``fn`` and ``(z, p) -> (fn(z, p), d fn / dz)`` (a small block: SX Jacobian)."""
-        z = ca.SX.sym("z", fn.size1_in(0))
-        p = ca.SX.sym("p", fn.size1_in(1))
-        r = fn(z, p)
-        return fn, ca.Function(fn.name() + "_jac", [z, p], [r, ca.jacobian(r, z)])
+    def _with_jacobian(name: str, zs: list[ca.SX], p: ca.SX, res: list[ca.SX]
+                       ) -> tuple[ca.Function, ca.Function]:
+        """``(z, p) -> r`` and ``(z, p) -> (r, dr/dz)`` for the residuals ``res`` of the
+        symbols ``zs`` (stacked into z) and ``p`` (a small block: SX Jacobian)."""
+        z, r = ca.vertcat(*zs), ca.vertcat(*res)
+        return (ca.Function(name, [z, p], [r]),
+                ca.Function(name + "_jac", [z, p], [r, ca.jacobian(r, z)]))
 
     def _ends_block(self, n_p: int) -> tuple[ca.Function, ca.Function]:
         """End conditions: ``(z, p) -> r`` with z = [x_0, x_N, (g)]."""
@@ -553,8 +553,7 @@ class Collocation:
         p = ca.SX.sym("p", n_p)
         bc = self._boundary(x0, xn, gs if gs is not None else 0.0, p)
         zs = [x0, xn] + ([gs] if gs is not None else [])
-        return self._with_jacobian(ca.Function("ends", [ca.vertcat(*zs), p],
-                                               [ca.vertcat(*bc)]))
+        return self._with_jacobian("ends", zs, p, bc)
 
     def _joint_index(self, k: int, offs: list[int]) -> np.ndarray:
         """w indices of z of the joint block of segment k (see :meth:`_joint_block`)."""
@@ -579,8 +578,7 @@ class Collocation:
             res += [x_start[0:3] - x_prev[0:3], x_start[3:6] - (x_prev[3:6] - load)]
         res += form.bending_joint_residual(k, x_prev, x_start, x_last)
         zs = ([x_prev] if k > 0 else []) + [x_start, x_last]
-        return self._with_jacobian(ca.Function(f"joint_{k}", [ca.vertcat(*zs), p],
-                                               [ca.vertcat(*res)]))
+        return self._with_jacobian(f"joint_{k}", zs, p, res)
 
     # -- arc length -----------------------------------------------------------------------
     def _segment_s(self, length: float, g: float) -> list[tuple[float, float]]:

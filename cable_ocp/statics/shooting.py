@@ -121,8 +121,9 @@ class MultipleShooting(Collocation):
             else:
                 lam = p[P_LENGTH] - z[-1] if with_g else p[P_LENGTH]
             xf = self._rk4_step()(x0=z[:nx], p=ca.vertcat(lam, p[P_CURRENT]))["xf"]
-            fn = ca.Function("shooting_interval", [z, p], [(xf - z[nx: 2 * nx]) / h])
-            fns = [*self._with_jacobian(fn), *self._ends_block(n_p)]
+            fns = [*self._with_jacobian("shooting_interval", [z], p,
+                                        [(xf - z[nx: 2 * nx]) / h]),
+                   *self._ends_block(n_p)]
         if len(fns) != 4 or fns[0].size1_in(0) != idx.shape[0] \
                 or fns[0].size1_out(0) != nx or fns[2].size1_in(0) != ends_idx.shape[0]:
             raise ValueError("stored block functions do not fit this layout")
