@@ -207,9 +207,8 @@ def _load(folder: str, cc: tuple[str, ...]) -> ctypes.CDLL | None:
             except (OSError, AttributeError):  # broken: built again below
                 os.remove(lib)
         os.makedirs(folder, exist_ok=True)
-        made = [x for x in _BUILT if os.path.basename(x) == os.path.basename(lib)
-                and os.path.exists(x)]
-        if made:  # the same source, already compiled in this process: a copy
+        made = [x for x in _BUILT if os.path.exists(x)]  # all of this one source
+        if made:  # already compiled in this process: a copy
             part = lib + f".{os.getpid()}.tmp"
             shutil.copyfile(made[-1], part)
             os.replace(part, lib)
