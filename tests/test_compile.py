@@ -1,4 +1,4 @@
-"""cable_ocp.compile.compile_functions: several CasADi functions in one cached library, and
+"""cable_ocp.numerics.compile.compile_functions: several CasADi functions in one cached library, and
 the silent fallback to the interpreted functions."""
 
 from __future__ import annotations
@@ -7,7 +7,7 @@ import casadi as ca
 import numpy as np
 import pytest
 
-from cable_ocp import compile as cc
+from cable_ocp.numerics import compile as cc
 
 
 def _fns() -> list[ca.Function]:

@@ -17,7 +17,7 @@ from pathlib import Path
 PKG = Path(__file__).resolve().parents[1] / "cable_ocp"
 FACE = ("cable_ocp.cli", "cable_ocp.report", "cable_ocp.plots", "cable_ocp.bench",
         "cable_ocp.__main__")
-LIBRARY = ("physics", "scene", "statics", "baselines", "heave", "dynamics", "batch")
+LIBRARY = ("numerics", "physics", "scene", "statics", "baselines", "heave", "dynamics", "batch")
 
 
 def _modules() -> dict[str, Path]:

@@ -4,7 +4,7 @@ to the interpreted kernel, silently, when it cannot compile (no timing here: ``c
 bench sweep`` measures the speed).
 
 The compiled kernel factorises the Jacobian by a sparse LU whose factors and pivot order
-are kept (cable_ocp.statics.sparse_lu), the interpreted one by CSparse's LU at every step: Newton
+are kept (cable_ocp.numerics.sparse_lu), the interpreted one by CSparse's LU at every step: Newton
 steps equal to rounding. Warm solves with the compiled kernel take chord steps
 (cable_ocp.statics.newton.chord_newton), checked here against full Newton. Coarse meshes
 keep the C compilations short (about half a second each).
@@ -18,11 +18,11 @@ import casadi as ca
 import numpy as np
 import pytest
 
-from cable_ocp import compile as cc
 from cable_ocp.errors import CableOCPError
+from cable_ocp.numerics import compile as cc
+from cable_ocp.numerics import sparse_lu
 from cable_ocp.scene import load_scene
 from cable_ocp.statics import newton as nw
-from cable_ocp.statics import sparse_lu
 from cable_ocp.statics.solver import StaticsSolver, sweep
 
 DEZOYSA = Path(__file__).resolve().parents[1] / "problems" / "dezoysa_sea_buggy.toml"
@@ -118,7 +118,7 @@ def test_a_broken_sparse_lu_helper_is_built_again(cache_folder: Path) -> None:
     cut.write_bytes(lib.read_bytes()[:100])
     cut.replace(lib)  # a new file: the loaded library's pages stay intact
     code = ("import numpy as np, casadi as ca\n"
-            "from cable_ocp.statics import sparse_lu\n"
+            "from cable_ocp.numerics import sparse_lu\n"
             "lu = sparse_lu.SparseLU(ca.sparsify(ca.DM([[0.0, 2.0], [4.0, 1.0]])).sparsity())\n"
             "lu.nz[:] = [4.0, 2.0, 1.0]\n"  # compressed columns: (1,0), (0,1), (1,1)
             "lu.factor()\n"

@@ -252,8 +252,8 @@ def _heave_columns(spec: RunnerSpec) -> list[str]:
 def _check_base(data: dict[str, Any], kind: str) -> None:
     """Validate the base problem before any work (exit 2 for the CLI); a case whose own
     overrides make it invalid becomes a row with status ``"invalid_input"``."""
-    from cable_ocp.dynamics.scene import dynamic_scene_from_dict
     from cable_ocp.scene import scene_from_dict
+    from cable_ocp.scene.dynamics import dynamic_scene_from_dict
     from cable_ocp.scene.heave import scene_from_dict as heave_from_dict
 
     check = {"heave": heave_from_dict, "dynamics": dynamic_scene_from_dict}

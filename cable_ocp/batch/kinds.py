@@ -210,7 +210,7 @@ class DynamicsRunner(Runner):
 
     def _run(self, case: Case) -> tuple[str, str, dict[str, Any]]:
         from cable_ocp.dynamics import simulate
-        from cable_ocp.dynamics.scene import dynamic_scene_from_dict
+        from cable_ocp.scene.dynamics import dynamic_scene_from_dict
 
         res = simulate(dynamic_scene_from_dict(self._data(case)))
         out: dict[str, Any] = {"simulation_wall_time [s]": res.wall_time_s,

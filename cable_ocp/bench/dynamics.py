@@ -41,7 +41,7 @@ from typing import Any
 
 import numpy as np
 
-from cable_ocp.dynamics.scene import DynamicScene, load_dynamic_scene
+from cable_ocp.scene.dynamics import DynamicScene, load_dynamic_scene
 
 __all__ = ["QUICK", "BenchRow", "as_dicts", "format_summary", "format_table", "linear_check",
            "moordyn_available", "plot", "planned_rows", "run", "scene", "summary"]
@@ -232,7 +232,7 @@ def _moordyn(segments: int, dtm: float, duration: float, scheme: str = "RK2",
     import casadi as ca
     import moordyn
 
-    from cable_ocp.dynamics.motion import top_offset_expr
+    from cable_ocp.scene.motion import top_offset_expr
 
     sc = scene(segments, OUTPUT_STEP, duration, linear)
     ts = ca.SX.sym("t")

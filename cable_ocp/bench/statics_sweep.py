@@ -28,8 +28,8 @@ import numpy as np
 
 from cable_ocp.baselines.solve_bvp import solve_bvp
 from cable_ocp.bench.common import cache_folder
+from cable_ocp.numerics import sparse_lu
 from cable_ocp.scene import Scene, load_scene
-from cable_ocp.statics import sparse_lu
 from cable_ocp.statics.formulation import Formulation
 from cable_ocp.statics.solver import StaticsSolver, sweep
 

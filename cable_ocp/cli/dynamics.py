@@ -62,7 +62,7 @@ def register(sub: argparse._SubParsersAction, parent: argparse.ArgumentParser) -
 
 
 def _load(args: argparse.Namespace) -> Any:
-    from cable_ocp.dynamics.scene import load_dynamic_scene
+    from cable_ocp.scene.dynamics import load_dynamic_scene
 
     return load_dynamic_scene(args.file, out.overrides(args))
 

@@ -10,13 +10,13 @@ Public entry points::
 
 from cable_ocp.dynamics.modes import modes
 from cable_ocp.dynamics.result import DeploymentChart, ModesResult, SimulationResult
-from cable_ocp.dynamics.scene import (
+from cable_ocp.dynamics.simulate import simulate
+from cable_ocp.scene.dynamics import (
     DynamicScene,
     dynamic_scene_from_dict,
     is_dynamic_dict,
     load_dynamic_scene,
 )
-from cable_ocp.dynamics.simulate import simulate
 
 __all__ = [
     "DeploymentChart",

@@ -67,11 +67,11 @@ import casadi as ca
 import numpy as np
 import scipy.linalg
 
-from cable_ocp.dynamics.motion import motion_function
 from cable_ocp.dynamics.result import ModesResult, SimulationResult
-from cable_ocp.dynamics.scene import DynamicScene
 from cable_ocp.dynamics.stepping import run_chunks
 from cable_ocp.errors import CableOCPError
+from cable_ocp.scene.dynamics import DynamicScene
+from cable_ocp.scene.motion import motion_function
 
 __all__ = ["AxialModel", "check_axial", "modes_axial", "simulate_axial", "static_profile"]
 

@@ -38,10 +38,10 @@ import casadi as ca
 import numpy as np
 
 from cable_ocp.dynamics.axial import MAX_CHUNKS, check_axial
-from cable_ocp.dynamics.motion import motion_function
 from cable_ocp.dynamics.result import SimulationResult
-from cable_ocp.dynamics.scene import DynamicScene
 from cable_ocp.errors import CableOCPError
+from cable_ocp.scene.dynamics import DynamicScene
+from cable_ocp.scene.motion import motion_function
 
 __all__ = ["ThesisAxialModel", "simulate_thesis"]
 

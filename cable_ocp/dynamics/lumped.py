@@ -51,8 +51,8 @@ from typing import Any
 import casadi as ca
 import numpy as np
 
-from cable_ocp.compile import CACHE_OFF, c_compiler, cache_dir, compile_function
 from cable_ocp.errors import CableOCPError
+from cable_ocp.numerics.compile import CACHE_OFF, c_compiler, cache_dir, compile_function
 from cable_ocp.physics.drag import DRAG_LAWS, drag_per_length
 from cable_ocp.physics.smooth import smooth_abs
 
@@ -756,7 +756,7 @@ class LumpedMassModel:
         if scheme == "trapezoidal":
             from scipy.sparse import csc_matrix
 
-            from cable_ocp.dynamics.linalg import solve_sparse
+            from cable_ocp.numerics.linalg import solve_sparse
 
             mm = csc_matrix(self.mass_matrix(x, t).sparse())
             sol = solve_sparse(mm, np.asarray(self.forces(x, v, t)).reshape(-1))
@@ -1327,7 +1327,7 @@ class LumpedMassModel:
                        max_iter: int, fscale: float) -> tuple[np.ndarray, dict[str, Any]]:
         from scipy.sparse import csc_matrix, identity
 
-        from cable_ocp.dynamics.linalg import solve_sparse
+        from cable_ocp.numerics.linalg import solve_sparse
 
         def resid(xx: np.ndarray) -> tuple[np.ndarray, Any]:
             fv, jv = self._static_fj(xx, t, lam_drag)
@@ -1813,6 +1813,6 @@ _c_compiler = c_compiler
 
 
 def _compile(fn: ca.Function, opt: str = "-O2") -> ca.Function:
-    """Compile ``fn`` to C, cached (:func:`cable_ocp.compile.compile_function`); ``fn``
+    """Compile ``fn`` to C, cached (:func:`cable_ocp.numerics.compile.compile_function`); ``fn``
     itself when compiling is off or impossible. Silent."""
     return compile_function(fn, opt)

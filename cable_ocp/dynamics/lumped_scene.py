@@ -1,6 +1,6 @@
 """The lumped-mass model (Huang (1992) ch. 5) driven by a dynamic scene.
 
-* :func:`lumped_params`: a :class:`~cable_ocp.dynamics.scene.DynamicScene` ->
+* :func:`lumped_params`: a :class:`~cable_ocp.scene.dynamics.DynamicScene` ->
   :class:`~cable_ocp.dynamics.lumped.LumpedParams` (segments shared among the
   ``[[cable.segments]]`` by length, bodies at the joints, the unit, current, top motion);
 * :func:`lumped_start`: the initial state (Huang (1992) 5.6.1): the statics solver's
@@ -29,11 +29,11 @@ from cable_ocp.dynamics.lumped import (
     UnitParams,
     run,
 )
-from cable_ocp.dynamics.motion import top_offset_expr
 from cable_ocp.dynamics.result import ModesResult, SimulationResult
-from cable_ocp.dynamics.scene import DynamicScene
 from cable_ocp.errors import CableOCPError
 from cable_ocp.physics.current import current_velocity
+from cable_ocp.scene.dynamics import DynamicScene
+from cable_ocp.scene.motion import top_offset_expr
 
 __all__ = ["check_lumped_plant", "lumped_params", "lumped_start", "modes_lumped",
            "segment_counts", "simulate_lumped"]

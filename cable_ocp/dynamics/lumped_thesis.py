@@ -40,9 +40,9 @@ import casadi as ca
 import numpy as np
 from scipy.sparse import coo_matrix
 
-from cable_ocp.dynamics.linalg import solve_sparse
 from cable_ocp.dynamics.lumped import LumpedMassModel, LumpedRun
 from cable_ocp.errors import CableOCPError
+from cable_ocp.numerics.linalg import solve_sparse
 
 __all__ = ["run_thesis", "thesis_step"]
 

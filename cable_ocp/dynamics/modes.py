@@ -17,9 +17,9 @@ from typing import Any
 import numpy as np
 
 from cable_ocp.dynamics.result import DeploymentChart, ModesResult
-from cable_ocp.dynamics.scene import DynamicScene, load_dynamic_scene
 from cable_ocp.dynamics.simulate import _resolve
 from cable_ocp.errors import CableOCPError
+from cable_ocp.scene.dynamics import DynamicScene, load_dynamic_scene
 
 __all__ = ["MODE_SOLVERS", "modes"]
 

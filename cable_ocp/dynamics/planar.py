@@ -79,12 +79,12 @@ from typing import Any
 import casadi as ca
 import numpy as np
 
-from cable_ocp.dynamics.motion import motion_function
 from cable_ocp.dynamics.result import ModesResult, SimulationResult
-from cable_ocp.dynamics.scene import DynamicScene
 from cable_ocp.dynamics.stepping import run_chunks
 from cable_ocp.errors import CableOCPError
 from cable_ocp.physics.current import current_velocity
+from cable_ocp.scene.dynamics import DynamicScene
+from cable_ocp.scene.motion import motion_function
 
 __all__ = ["PlanarModel", "check_planar", "modes_planar", "simulate_planar"]
 

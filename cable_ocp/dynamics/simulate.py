@@ -14,8 +14,8 @@ from pathlib import Path
 from typing import Any
 
 from cable_ocp.dynamics.result import SimulationResult
-from cable_ocp.dynamics.scene import DynamicScene, load_dynamic_scene
 from cable_ocp.errors import CableOCPError
+from cable_ocp.scene.dynamics import DynamicScene, load_dynamic_scene
 
 __all__ = ["SIMULATORS", "Progress", "simulate"]
 

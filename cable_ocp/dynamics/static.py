@@ -10,8 +10,8 @@ from __future__ import annotations
 
 from dataclasses import replace
 
-from cable_ocp.dynamics.scene import DynamicScene, current_at
 from cable_ocp.scene import End, Scene
+from cable_ocp.scene.dynamics import DynamicScene, current_at
 from cable_ocp.statics.solution import StaticsSolution
 
 __all__ = ["static_scene", "static_state"]

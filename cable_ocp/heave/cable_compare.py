@@ -18,7 +18,6 @@ from typing import Any
 
 import numpy as np
 
-from cable_ocp.dynamics.scene import DynamicScene
 from cable_ocp.errors import CableOCPError
 from cable_ocp.heave import identify_cable as idc
 from cable_ocp.heave import mpc as mpc_mod
@@ -41,6 +40,7 @@ from cable_ocp.heave.cable_plant import (
     run_status,
 )
 from cable_ocp.heave.deployment import deploy
+from cable_ocp.scene.dynamics import DynamicScene
 from cable_ocp.scene.heave import HeaveScene, load_cable_scene
 
 __all__ = ["compare", "compare_cable"]

@@ -34,7 +34,6 @@ import numpy as np
 
 from cable_ocp.dynamics.lumped import LumpedMassModel, LumpedParams
 from cable_ocp.dynamics.planar import PlanarModel
-from cable_ocp.dynamics.scene import DynamicScene, dynamic_scene_from_dict
 from cable_ocp.errors import CableOCPError
 from cable_ocp.heave.cable_plant import (
     AxialCablePlant,
@@ -43,6 +42,7 @@ from cable_ocp.heave.cable_plant import (
     sampled_motion,
 )
 from cable_ocp.physics.drag import drag_per_length
+from cable_ocp.scene.dynamics import DynamicScene, dynamic_scene_from_dict
 
 __all__ = ["HALVINGS", "PLANT_MODELS", "TOP_SEGMENT_RANGE", "LumpedCablePlant",
            "PlanarCablePlant", "axial_twin", "cable_plant", "lumped_axial_frequency",

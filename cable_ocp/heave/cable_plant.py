@@ -45,15 +45,15 @@ import casadi as ca
 import numpy as np
 from scipy import linalg
 
-from cable_ocp.compile import compile_functions
 from cable_ocp.dynamics.axial import AxialModel, static_profile
-from cable_ocp.dynamics.scene import DynamicScene
 from cable_ocp.errors import CableOCPError
 from cable_ocp.heave import mpc as mpc_mod
 from cable_ocp.heave import plant as pl
 from cable_ocp.heave.discrete import DelayedDiscreteModel, discretize_delayed, discretize_noise
 from cable_ocp.heave.simulate import Comparison, Trace
 from cable_ocp.heave.stochastic import WHITE_NOISE_INTENSITY, discrete_delay_lqr
+from cable_ocp.numerics.compile import compile_functions
+from cable_ocp.scene.dynamics import DynamicScene
 from cable_ocp.scene.heave import HeaveScene
 
 __all__ = [
@@ -400,7 +400,7 @@ def _block_tridiagonal_solve(jac: ca.SX, r: ca.SX, n: int) -> ca.SX:
 def _compile(fns: list[ca.Function], flags: str = "-O1") -> list[ca.Function]:
     """Compile the plant's functions to one shared library (``cc -O1``: on the generated
     straight-line code ``-O2`` is no faster and compiles as slowly), cached
-    (:func:`cable_ocp.compile.compile_functions`). Returns them unchanged when compiling is
+    (:func:`cable_ocp.numerics.compile.compile_functions`). Returns them unchanged when compiling is
     off (``CABLE_OCP_CACHE=0``), no compiler is found or anything fails (the interpreted
     functions compute the same numbers, about 5x slower)."""
     return compile_functions(fns, flags, prefix="heave_")

@@ -30,9 +30,9 @@ from typing import Any
 
 import numpy as np
 
-from cable_ocp.dynamics.scene import DynamicScene
 from cable_ocp.heave import cable_plant as cp
 from cable_ocp.heave.identify_cable import CableIdentification, identify_from_cable
+from cable_ocp.scene.dynamics import DynamicScene
 from cable_ocp.scene.heave import HeaveScene
 
 __all__ = ["deploy", "length_history"]

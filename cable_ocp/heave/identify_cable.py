@@ -44,9 +44,9 @@ from typing import Any
 
 import numpy as np
 
-from cable_ocp.dynamics.scene import DynamicScene
 from cable_ocp.errors import CableOCPError
 from cable_ocp.heave.identify import IdentificationResult, identify_unit
+from cable_ocp.scene.dynamics import DynamicScene
 from cable_ocp.scene.heave import HeaveScene
 
 __all__ = ["CableIdentification", "excitation_signal", "identified_json",

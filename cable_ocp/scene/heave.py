@@ -485,7 +485,7 @@ def load_cable_scene(sc: HeaveScene) -> Any:
     CableOCPError
         Naming the key when the file is missing, not a dynamic scene, or invalid.
     """
-    from cable_ocp.dynamics.scene import load_dynamic_scene
+    from cable_ocp.scene.dynamics import load_dynamic_scene
 
     path = sc.unit.cable_scene
     if path is None:

@@ -146,7 +146,7 @@ class SolverOptions:
     compile : str
         ``"never"`` (default): the Newton kernel runs in CasADi's virtual machine.
         ``"auto"``: the residual and its sparse Jacobian are compiled to C with the
-        system's C compiler and the library is cached on disk (:mod:`cable_ocp.compile`):
+        system's C compiler and the library is cached on disk (:mod:`cable_ocp.numerics.compile`):
         a Jacobian about 10x faster and a warm sweep point about 4x (De Zoysa, 40
         intervals: ~0.5 ms against ~2 ms), at the price of a C compilation of about 2 s
         per scene structure and mesh the first time (a later process loads the

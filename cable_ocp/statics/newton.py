@@ -12,7 +12,7 @@ conditions, a joint), mapped over its instances. From the blocks this module bui
 * ``step(w, p) -> (g, dw)``, the Newton step dw = -J^-1 g, with the sparse linear solve
   (CSparse's LU) inside the same call.
 
-With the sparse-LU helper (:mod:`cable_ocp.statics.sparse_lu`), J is factorised by a sparse
+With the sparse-LU helper (:mod:`cable_ocp.numerics.sparse_lu`), J is factorised by a sparse
 LU whose factors and pivot order are kept (:meth:`Kernel.attach_lu`; the compiled kernel,
 ``solver.compile = "auto"``, uses it for every step, the interpreted one from its first
 warm solve on), and warm solves run :func:`chord_newton`: one factorisation serves several
@@ -173,7 +173,7 @@ class Kernel:
         ``(w, p) -> (g, J)``, with ``lu``: the Jacobian is factorised by ``lu`` and the
         factors are kept (:meth:`factor`, :meth:`chord_step`: the simplified Newton
         iteration of :func:`chord_newton`).
-    lu : cable_ocp.statics.sparse_lu.SparseLU, optional
+    lu : cable_ocp.numerics.sparse_lu.SparseLU, optional
         Factors of matrices of J's sparsity.
     """
 
@@ -208,7 +208,7 @@ class Kernel:
 
     def attach_lu(self, gj_fn: ca.Function, lu: object) -> None:
         """Keep factorisations from now on: ``gj_fn`` ``(w, p) -> (g, J)`` and ``lu``
-        (a :class:`cable_ocp.statics.sparse_lu.SparseLU` of J's sparsity)."""
+        (a :class:`cable_ocp.numerics.sparse_lu.SparseLU` of J's sparsity)."""
         self._lu = lu
         self._jbuf, self._jeval = gj_fn.buffer()
         self._jbuf.set_arg(0, memoryview(self._w))

@@ -42,13 +42,13 @@ from typing import Any
 import casadi as ca
 import numpy as np
 
-from cable_ocp.compile import compile_function, is_compiled
 from cable_ocp.errors import CableOCPError
+from cable_ocp.numerics import sparse_lu
+from cable_ocp.numerics.compile import compile_function, is_compiled
 from cable_ocp.physics import seabed
 from cable_ocp.scene import Scene, SolverOptions, apply_overrides, load_scene, scene_from_dict
 from cable_ocp.statics import cache as disk_cache
 from cable_ocp.statics import kinks as kink_points
-from cable_ocp.statics import sparse_lu
 from cable_ocp.statics.checks import check_physical
 from cable_ocp.statics.collocation import Collocation, Mesh
 from cable_ocp.statics.formulation import (
@@ -213,7 +213,7 @@ class StaticsSolver:
 
         The residual G and ``GJ`` (G and its sparse Jacobian) are compiled; the Jacobian
         is factorised by a sparse LU whose factors and pivot order are kept
-        (:mod:`cable_ocp.statics.sparse_lu`), so that warm solves take chord steps
+        (:mod:`cable_ocp.numerics.sparse_lu`), so that warm solves take chord steps
         (:func:`cable_ocp.statics.newton.chord_newton`). The libraries are named by the
         full cache key (versions, sources, structure, mesh): a cached library is loaded
         without generating its code.

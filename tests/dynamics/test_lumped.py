@@ -22,8 +22,8 @@ from cable_ocp.dynamics.lumped import (
     uniform_params,
 )
 from cable_ocp.dynamics.lumped_scene import lumped_params, lumped_start
-from cable_ocp.dynamics.scene import load_dynamic_scene
 from cable_ocp.errors import CableOCPError
+from cable_ocp.scene.dynamics import load_dynamic_scene
 
 
 def _wire_in_air(n: int = 20) -> tuple[LumpedMassModel, np.ndarray]:

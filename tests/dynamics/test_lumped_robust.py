@@ -17,7 +17,7 @@ import pytest
 import scipy.sparse as sp
 
 from cable_ocp.dynamics import simulate
-from cable_ocp.dynamics.linalg import solve_sparse
+from cable_ocp.numerics.linalg import solve_sparse
 
 SAG = """
 [environment]

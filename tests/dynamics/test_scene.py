@@ -11,8 +11,8 @@ import numpy as np
 import pytest
 
 from cable_ocp.dynamics import dynamic_scene_from_dict, load_dynamic_scene
-from cable_ocp.dynamics.motion import length_numeric, motion_function
 from cable_ocp.errors import CableOCPError
+from cable_ocp.scene.motion import length_numeric, motion_function
 
 PROBLEMS = Path(__file__).resolve().parents[2] / "problems"
 

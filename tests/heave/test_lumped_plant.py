@@ -28,7 +28,6 @@ from heave_files import heave_with_line
 
 from cable_ocp.cli import main
 from cable_ocp.dynamics import simulate
-from cable_ocp.dynamics.scene import load_dynamic_scene
 from cable_ocp.errors import CableOCPError
 from cable_ocp.heave.cable_models import (
     TOP_SEGMENT_RANGE,
@@ -42,6 +41,7 @@ from cable_ocp.heave.cable_plant import (
     run_loop,
     run_status,
 )
+from cable_ocp.scene.dynamics import load_dynamic_scene
 from cable_ocp.scene.heave import load_scene, scene_from_dict
 
 ROOT = Path(__file__).resolve().parents[2]

@@ -20,10 +20,10 @@ import pytest
 from heave_files import heave_with_line
 
 from cable_ocp.cli import main
-from cable_ocp.dynamics.scene import load_dynamic_scene
 from cable_ocp.errors import CableOCPError
 from cable_ocp.heave.cable_models import PlanarCablePlant, axial_twin, cable_plant
 from cable_ocp.heave.cable_plant import AxialCablePlant
+from cable_ocp.scene.dynamics import load_dynamic_scene
 from cable_ocp.scene.heave import scene_from_dict
 
 ROOT = Path(__file__).resolve().parents[2]

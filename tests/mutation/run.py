@@ -92,7 +92,7 @@ PLANAR = tuple(_PLN + t for t in (
 PHYS, FORM, COLL, HEAVE_A = "physics", "statics/formulation", "statics/collocation", "heave"
 DYN = "dynamics"
 AX_F, LM_F, PL_F, MO_F = ("cable_ocp/dynamics/axial.py", "cable_ocp/dynamics/lumped.py",
-                          "cable_ocp/dynamics/planar.py", "cable_ocp/dynamics/motion.py")
+                          "cable_ocp/dynamics/planar.py", "cable_ocp/scene/motion.py")
 
 MUTATIONS: tuple[Mutation, ...] = (
     # -- physics/ ---------------------------------------------------------------------------
@@ -207,20 +207,20 @@ MUTATIONS: tuple[Mutation, ...] = (
              ("tests/test_contract.py::test_a_dip_within_the_cable_radius_warns_and_beyond_it_"
               "fails",), "a centreline within the cable's radius of the seabed plane "
              "reported as below_seabed"),
-    Mutation("lu-symbolic-drops-fill", COLL, "cable_ocp/statics/sparse_lu.py",
+    Mutation("lu-symbolic-drops-fill", COLL, "cable_ocp/numerics/sparse_lu.py",
              "if (i > j) { if (nl + 1 > cap) return -1; li[nl++] = i; }\n      }\n    }",
              "if (0) { if (nl + 1 > cap) return -1; li[nl++] = i; }\n      }\n    }",
              ("tests/test_statics_compile.py",),
              "the kept LU pattern misses the fill that columns of L spread into later ones"),
-    Mutation("lu-refactor-keeps-tiny-pivots", COLL, "cable_ocp/statics/sparse_lu.py",
+    Mutation("lu-refactor-keeps-tiny-pivots", COLL, "cable_ocp/numerics/sparse_lu.py",
              "chk != 0 || !(fabs(piv) >= tau * big) || !(fabs(piv) > 0)", "chk != 0",
              ("tests/test_statics_compile.py",),
              "the refactorisation uses the kept pivot order whatever the pivot's size"),
-    Mutation("lu-refactor-ignores-growth", COLL, "cable_ocp/statics/sparse_lu.py",
+    Mutation("lu-refactor-ignores-growth", COLL, "cable_ocp/numerics/sparse_lu.py",
              "if (gmax > 0 && umax > gmax * amax)", "if (0)",
              ("tests/test_statics_compile.py",),
              "no growth check on the kept pivot order (threshold pivoting alone)"),
-    Mutation("lu-singular-flag-sticky", COLL, "cable_ocp/statics/sparse_lu.py",
+    Mutation("lu-singular-flag-sticky", COLL, "cable_ocp/numerics/sparse_lu.py",
              "            self._singular = False\n            return",
              "            return", ("tests/test_statics_compile.py",),
              "after a singular matrix every later matrix gives non-finite steps"),

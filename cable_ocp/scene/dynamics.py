@@ -101,13 +101,13 @@ from dataclasses import dataclass, field, replace
 from pathlib import Path
 from typing import Any
 
-from cable_ocp.dynamics.motion import length_numeric
 from cable_ocp.errors import CableOCPError
 from cable_ocp.scene import Current, End, Scene, apply_overrides, scene_from_dict
 from cable_ocp.scene.fields import check_keys as _check_keys
 from cable_ocp.scene.fields import number as _number
 from cable_ocp.scene.fields import require as _require
 from cable_ocp.scene.files import check_kind, read_problem
+from cable_ocp.scene.motion import length_numeric
 from cable_ocp.scene.statics import TOP_LEVEL_TABLES
 
 __all__ = [
@@ -305,7 +305,7 @@ class TopMotion:
     """Prescribed motion of end_b and the pay-out law (``[top_motion]``).
 
     Offsets are from ``end_b.position`` (m); see the module docstring for the formulas and
-    :mod:`cable_ocp.dynamics.motion` for their CasADi expressions.
+    :mod:`cable_ocp.scene.motion` for their CasADi expressions.
 
     Attributes
     ----------

@@ -27,8 +27,8 @@ factors and the *pivot order*:
   counts them).
 
 A singular matrix (SuperLU: "exactly singular") gives non-finite steps, not an exception.
-Without a C compiler (:mod:`cable_ocp.compile`) the helper is unavailable: :func:`available`
-is False and callers keep CasADi's linear solvers.
+Without a C compiler (:mod:`cable_ocp.numerics.compile`) the helper is unavailable:
+:func:`available` is False and callers keep CasADi's linear solvers.
 """
 
 from __future__ import annotations
@@ -45,7 +45,7 @@ import numpy as np
 import scipy.sparse as sps
 import scipy.sparse.linalg as spl
 
-from cable_ocp.compile import c_compiler, cache_dir, compile_shared
+from cable_ocp.numerics.compile import c_compiler, cache_dir, compile_shared
 
 #: SuperLU's threshold for keeping the diagonal as pivot in the analysis: a diagonal entry
 #: at least this fraction of the largest in its column is kept (1.0: partial pivoting);
