@@ -10,8 +10,8 @@ from typing import Any
 import numpy as np
 
 from cable_ocp.cli import output as out
+from cable_ocp.cli.cost import dynamics_cost
 from cable_ocp.errors import CableOCPError
-from cable_ocp.scene.cost import dynamics_cost
 
 
 def register(sub: argparse._SubParsersAction, parent: argparse.ArgumentParser) -> None:

@@ -54,8 +54,8 @@ def _overrides(args: argparse.Namespace) -> dict[str, Any]:
 
 def cmd_heave(args: argparse.Namespace) -> int:
     """``cable-ocp heave FILE``."""
+    from cable_ocp.cli.cost import heave_cost
     from cable_ocp.heave.cable_compare import compare
-    from cable_ocp.scene.cost import heave_cost
     from cable_ocp.scene.heave import load_scene
 
     out.check_outputs(args)

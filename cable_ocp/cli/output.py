@@ -21,7 +21,7 @@ Outputs
 * Anything that runs longer than about two seconds shows a progress bar on stderr when
   stderr is a terminal; ``--quiet`` turns the bar and the confirmations off.
 * A run whose estimated cost is above 10 min of CPU or 4 GB of memory
-  (:mod:`cable_ocp.scene.cost`) is refused with exit 2 and the estimate, unless ``--force``.
+  (:mod:`cable_ocp.cli.cost`) is refused with exit 2 and the estimate, unless ``--force``.
 """
 
 from __future__ import annotations
@@ -106,9 +106,9 @@ def add_force_option(p: argparse.ArgumentParser) -> None:
 
 
 def check_cost(args: argparse.Namespace, cost: Any) -> None:
-    """Exit 2 before any work when ``cost`` (:class:`cable_ocp.scene.cost.Cost`) is above
+    """Exit 2 before any work when ``cost`` (:class:`cable_ocp.cli.cost.Cost`) is above
     the limits, unless ``--force``."""
-    from cable_ocp.scene.cost import check_cost as check
+    from cable_ocp.cli.cost import check_cost as check
 
     check(cost, force=getattr(args, "force", False))
 

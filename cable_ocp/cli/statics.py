@@ -72,8 +72,8 @@ def profile_rows(sol: Any) -> list[list[float]]:
 def cmd_solve(args: argparse.Namespace) -> int:
     """``cable-ocp solve FILE``."""
     from cable_ocp import report
+    from cable_ocp.cli.cost import statics_cost
     from cable_ocp.scene import load_scene
-    from cable_ocp.scene.cost import statics_cost
     from cable_ocp.statics.solver import solve
 
     out.check_outputs(args)
@@ -102,8 +102,8 @@ _FP_KEYS = ["theta_deg", "reach", "x", "y", "thrust_x", "thrust_y", "length", "s
 def cmd_footprint(args: argparse.Namespace) -> int:
     """``cable-ocp footprint FILE``."""
     from cable_ocp import report
+    from cable_ocp.cli.cost import statics_cost
     from cable_ocp.scene import load_scene
-    from cable_ocp.scene.cost import statics_cost
     from cable_ocp.statics.footprint import footprint
 
     out.check_outputs(args)

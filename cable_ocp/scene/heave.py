@@ -613,15 +613,6 @@ def _check_cable(sc: HeaveScene) -> None:
     if model != "axial" and dyn.unit is None:
         raise CableOCPError(f"unit.cable_scene = {sc.unit.cable_scene!r}: needs a [unit] at "
                             "end_a (the unit the winch lifts), not an anchor")
-    from cable_ocp.dynamics.axial import check_axial
-    from cable_ocp.dynamics.lumped_scene import check_lumped_plant
-    from cable_ocp.dynamics.planar import check_planar
-
-    checks = {"axial": check_axial, "planar": check_planar, "lumped3d": check_lumped_plant}
-    try:
-        checks[model](dyn)
-    except CableOCPError as exc:
-        raise CableOCPError(f"unit.cable_scene = {sc.unit.cable_scene!r}: {exc}") from None
     h = sc.controller.sample_time
     ratio = h / dyn.simulation.time_step
     if abs(ratio - round(ratio)) > 1e-9 * max(1.0, ratio) or round(ratio) < 1:
