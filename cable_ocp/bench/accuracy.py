@@ -326,15 +326,6 @@ def write_csv(results: list[dict[str, Any]], path: str | Path) -> None:
                 w.writerow({k: r.get(k) for k in keys})
 
 
-def plot(results: list[dict[str, Any]], path: str | Path) -> Path:
-    """Log-log error (the larger of force and profile error) against CPU time per solve
-    (:func:`cable_ocp.plots.bench.plot_work_precision`)."""
-    from cable_ocp.plots.bench import plot_work_precision
-
-    plot_work_precision(results, path)
-    return Path(path)
-
-
 if __name__ == "__main__":  # the second process of :func:`_second_process`
     parser = argparse.ArgumentParser()
     parser.add_argument("--child", required=True)

@@ -44,7 +44,7 @@ import numpy as np
 from cable_ocp.scene.dynamics import DynamicScene, load_dynamic_scene
 
 __all__ = ["QUICK", "BenchRow", "as_dicts", "format_summary", "format_table", "linear_check",
-           "moordyn_available", "plot", "planned_rows", "run", "scene", "summary"]
+           "moordyn_available", "planned_rows", "row_ok", "run", "scene", "summary"]
 
 PROBLEM = Path(__file__).resolve().parents[2] / "problems" / "dynamics" / "huang_5_7.toml"
 FREQUENCY = 1.256  # rad/s, Huang 5.7.1 (Figure 5.5)
@@ -468,7 +468,8 @@ def planned_rows(segments: Sequence[int], time_steps: Sequence[float],
                for n in segments)
 
 
-def _ok(r: BenchRow) -> bool:
+def row_ok(r: BenchRow) -> bool:
+    """The row ran and has a finite time and error."""
     return r.status == "ok" and math.isfinite(r.wall_per_simulated_s) and math.isfinite(r.error)
 
 
@@ -492,7 +493,7 @@ def summary(rows: Sequence[BenchRow], accuracy: float = EQUAL_ACCURACY) -> dict[
 
     def fastest(model_prefix: str, n: int) -> BenchRow | None:
         cand = [r for r in rows if r.model.startswith(model_prefix) and r.segments == n
-                and _ok(r) and r.error <= accuracy]
+                and row_ok(r) and r.error <= accuracy]
         return min(cand, key=lambda r: r.wall_per_simulated_s) if cand else None
 
     ours40 = fastest("cable_ocp", TARGET_SEGMENTS)
@@ -518,13 +519,13 @@ def summary(rows: Sequence[BenchRow], accuracy: float = EQUAL_ACCURACY) -> dict[
                                f"has no row within {accuracy:.0%}"),
             "speed_ratio": None, "met": None, "amplitude_difference": None,
             "basis": f"error <= {accuracy:.0%}"}
-        md_ok = [r for r in md_rows if _ok(r)]
+        md_ok = [r for r in md_rows if row_ok(r)]
         if md is None and md_ok:
             # MoorDyn reaches no row within the accuracy: compare at its own accuracy,
             # its fastest row against cable_ocp's fastest row that is at least as accurate
             md = min(md_ok, key=lambda r: r.wall_per_simulated_s)
             cand = [r for r in rows if r.model.startswith("cable_ocp") and r.segments == n
-                    and _ok(r) and r.error <= md.error]
+                    and row_ok(r) and r.error <= md.error]
             ours = min(cand, key=lambda r: r.wall_per_simulated_s) if cand else None
             entry.update(basis=f"MoorDyn's own accuracy ({md.error:.2g})", moordyn_status="ok",
                          moordyn={"time_step": md.time_step,
@@ -576,31 +577,3 @@ def format_summary(sm: dict[str, Any]) -> str:
             lines.append(f"    converged top-tension amplitudes differ by "
                          f"{100 * e['amplitude_difference']:+.2f} % (target within 2 %)")
     return "\n".join(lines)
-
-
-def plot(rows: Sequence[BenchRow], path: str | Path) -> Path:
-    """Work-precision figure: top-tension error against wall time per simulated second,
-    one colour per number of segments, solid cable_ocp, dashed MoorDyn."""
-    from cable_ocp.plots.common import new_figure, save
-
-    fig = new_figure(7.5, 5.2)
-    ax = fig.add_subplot(1, 1, 1)
-    for j, n in enumerate(dict.fromkeys(r.segments for r in rows)):
-        for model, style in (("cable_ocp", {"ls": "-", "marker": "o"}),
-                             ("MoorDyn", {"ls": "--", "marker": "s"})):
-            # joined in the order of the time step (largest first), not of the timings
-            pts = sorted((-r.time_step, r.wall_per_simulated_s, r.error) for r in rows
-                         if r.segments == n and r.model.startswith(model) and _ok(r))
-            if pts:
-                _, w, e = np.array(pts).T
-                ax.loglog(w * 1e3, np.maximum(e, 1e-16), color=f"C{j % 10}",
-                          label=f"{model}, {n} segments", **style)
-    ax.axhline(EQUAL_ACCURACY, color="0.5", lw=0.8, ls=":")  # the equal-accuracy level
-    ax.axvline(1e3 / TARGET_REALTIME, color="0.5", lw=0.8, ls=":")  # 100x real time
-    ax.set_xlabel("wall time per simulated second (ms)")
-    ax.set_ylabel("top-tension error / amplitude (-)")
-    ax.set_title("Huang (1992) 5.7 system at 1.256 rad/s: work-precision", fontsize=10.5)
-    ax.grid(True, which="major", alpha=0.35)
-    ax.legend(fontsize=8)
-    save(fig, path)
-    return Path(path)

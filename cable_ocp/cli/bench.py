@@ -295,7 +295,9 @@ def cmd_accuracy(args: argparse.Namespace) -> int:
     out.emit_csv(args, ACCURACY_HEADER, [[r.get(k) for k in ACCURACY_KEYS]
                                          for res in results for r in res["rows"]])
     if args.plot:
-        out.emit_plot(args, lambda path: accuracy.plot(results, path))
+        from cable_ocp.plots.bench import plot_work_precision
+
+        out.emit_plot(args, lambda path: plot_work_precision(results, path))
     return out.EXIT_OK
 
 
@@ -508,5 +510,7 @@ def cmd_bench_dynamics(args: argparse.Namespace) -> int:
         "duration_s": kw["duration"], "frequency_rad_s": bd.FREQUENCY,
         "newton_tolerance": tolerance}))
     if args.plot:
-        out.emit_plot(args, lambda path: bd.plot(rows, path))
+        from cable_ocp.plots.bench import plot_dynamics_work_precision
+
+        out.emit_plot(args, lambda path: plot_dynamics_work_precision(rows, path))
     return out.EXIT_OK if status == "ok" else out.EXIT_NOT_SUCCESS
