@@ -199,7 +199,7 @@ def cmd_sweep(args: argparse.Namespace) -> int:
         **res["summary"], "headers": res["headers"], "rows": res["rows"]}))
     out.emit_csv(args, res["headers"], res["rows"])
     if args.plot:
-        from cable_ocp.plots.statics import plot_sweep
+        from cable_ocp.plots.statics_series import plot_sweep
 
         out.emit_plot(args, lambda path: plot_sweep(
             res["angles"], res["forces"], path, "psi0 (deg)", "De Zoysa: force at the buggy",

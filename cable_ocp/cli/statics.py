@@ -137,7 +137,7 @@ def cmd_footprint(args: argparse.Namespace) -> int:
         "ship": list(scene.end_b.position[:2])}))
     out.emit_csv(args, FOOTPRINT_HEADER, [[r[k] for k in _FP_KEYS] for r in rows])
     if args.plot and not interrupted:
-        from cable_ocp.plots.statics import plot_footprint
+        from cable_ocp.plots.statics_series import plot_footprint
 
         out.emit_plot(args, lambda path: plot_footprint(res, path, _title(scene, args.file),
                                                         scene=scene))
