@@ -93,6 +93,8 @@ def register(sub: argparse._SubParsersAction, parent: argparse.ArgumentParser) -
     bb.add_argument("--dask", type=int, default=0, metavar="N",
                     help="also on a dask.distributed LocalCluster of N worker processes "
                          "(needs the cluster extra; default 0: not run)")
+    bb.add_argument("--repeats", type=int, default=2, metavar="N",
+                    help="timed runs of each loop and batch, the fastest kept (2)")
     out.add_json_option(bb, "the rows and the summary")
     bb.set_defaults(func=cmd_bench_batch)
 
@@ -394,6 +396,8 @@ def cmd_bench_batch(args: argparse.Namespace) -> int:
         raise out_error("--angles and --speeds: give 1..1000")
     if not 0 <= args.dask <= 64:
         raise out_error("--dask: give 0..64 worker processes")
+    if not 1 <= args.repeats <= 100:
+        raise out_error(f"--repeats {args.repeats}: give 1..100")
     if args.dask:
         try:
             import distributed  # noqa: F401
@@ -401,7 +405,7 @@ def cmd_bench_batch(args: argparse.Namespace) -> int:
             raise out_error("--dask needs dask.distributed: pip install -e '.[cluster]'"
                             ) from None
     res = batch.run(args.angles, args.speeds, progress=lambda what: out.note(args, what),
-                    dask_workers=args.dask)
+                    repeats=args.repeats, dask_workers=args.dask)
     keys = ["run", "wall_s", "per_case_ms", "solve_ms", "overhead_ms", "speedup", "solved"]
     out.say(args, report.table(["run", "wall [s]", "per case [ms]", "solve/case [ms]",
                                 "machinery/case [ms]", "speed-up [-]", "solved"],
