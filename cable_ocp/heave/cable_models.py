@@ -2,7 +2,7 @@
 
 :func:`cable_plant` reads the cable scene's ``[simulation] model``:
 
-* ``"axial"`` (default of a dynamic scene): :class:`cable_ocp.heave.cable_plant.AxialCablePlant`,
+* ``"axial"`` (default of a dynamic scene): :class:`cable_ocp.heave.axial_plant.AxialCablePlant`,
   the vertical line of Huang (1992), ch. 3;
 * ``"planar"``: :class:`PlanarCablePlant`, the line in a vertical plane of Huang (1992),
   ch. 4 (:class:`cable_ocp.dynamics.planar.PlanarModel`): the same heave and pay-out at
@@ -15,7 +15,7 @@
   nominal one: no re-meshing, so no ``[deployment]``); a current of any heading and
   profile swings the line out of the vertical in 3D.
 
-The plants have the interface that the closed loop (:func:`cable_ocp.heave.cable_plant.run_loop`
+The plants have the interface that the closed loop (:func:`cable_ocp.heave.closed_loop.run_loop`
 through ``_CableLoopPlant``) and the identification experiment use: ``substeps``, ``dt``,
 ``length0``, ``z_top0``, ``tolerance``, ``model.n``, :meth:`initial_state`,
 :meth:`static_unit_height`, :meth:`static_tensions`, :meth:`advance` and
@@ -37,10 +37,10 @@ from cable_ocp.dynamics.lumped import LumpedMassModel, LumpedParams
 from cable_ocp.dynamics.lumped_scene import check_lumped_plant
 from cable_ocp.dynamics.planar import PlanarModel, check_planar
 from cable_ocp.errors import CableOCPError
-from cable_ocp.heave.cable_plant import (
+from cable_ocp.heave.axial_plant import (
     AxialCablePlant,
     SampledCablePlant,
-    _compile,
+    compile_plant_functions,
     sampled_motion,
 )
 from cable_ocp.physics.drag import drag_per_length
@@ -288,7 +288,7 @@ class PlanarCablePlant(_OneLengthPlant):
     """The planar cable model (Huang (1992), ch. 4) advanced one control sample per call.
 
     The boom-tip heave moves the top (end_b) vertically, the winch output ``u`` pays cable
-    in there (``L = L_dep - u``), as :class:`cable_ocp.heave.cable_plant.AxialCablePlant`;
+    in there (``L = L_dep - u``), as :class:`cable_ocp.heave.axial_plant.AxialCablePlant`;
     the top keeps its static x. A current along x (``[environment.current]`` of the cable
     scene) inclines the line and drags on the unit and the cable as they move. Each
     sub-step is the planar model's own implicit-midpoint step with its discrete-gradient
@@ -345,7 +345,7 @@ class PlanarCablePlant(_OneLengthPlant):
         short-circuit switch, as the axial plant). The Newton matrix (block banded: the
         pay-out terms reach two nodes each way) is solved by CasADi's sparse QR, which,
         unlike the ``rootfinder``, generates C: the functions are compiled as the axial
-        plant's (:func:`cable_ocp.heave.cable_plant._compile`). Where a step does not
+        plant's (:func:`cable_ocp.heave.axial_plant.compile_plant_functions`). Where a step does not
         converge (the residual above the failure threshold ``1e3 tolerance``: a line going
         slack, where the no-compression law bends sharply), it is taken again as two steps
         of half the size, recursively up to ``halvings`` times (only then evaluated).
@@ -392,7 +392,7 @@ class PlanarCablePlant(_OneLengthPlant):
         out = ca.Function("planar_out", [qs, vs, va, p],
                           [ca.vertcat(rs[1, 0], vel[1, 0], ca.norm_2(pull), top,
                                       ca.mmin(tens))])
-        newton, resid, guess, post, out = _compile([newton, resid, guess, post, out])
+        newton, resid, guess, post, out = compile_plant_functions([newton, resid, guess, post, out])
         self._out = out
 
         # one step: two iterations, then more while the residual exceeds tol
@@ -693,7 +693,7 @@ class LumpedCablePlant(_OneLengthPlant):
 
     The boom-tip heave moves the top (end_b) vertically (its x and y stay at the static
     position), the winch output ``u`` pays cable in there (``L = L_dep - u``), as
-    :class:`cable_ocp.heave.cable_plant.AxialCablePlant`. The winch pays cable in and out
+    :class:`cable_ocp.heave.axial_plant.AxialCablePlant`. The winch pays cable in and out
     through the top segment: its unstretched length is ``l_top0 + (L - L0)``; the other
     segments keep theirs. Its length must stay within :data:`TOP_SEGMENT_RANGE` times its
     nominal length: the plant is not re-meshed, and :meth:`advance` stops the run (a
@@ -767,7 +767,7 @@ class LumpedCablePlant(_OneLengthPlant):
         resid = ca.Function("lumped_resid", [y, pars], [ca.norm_inf(e["res"])])
         guess = ca.Function("lumped_guess", [pars], [e["guess"]])
         fin = ca.Function("lumped_finish", [y, pars], [ca.vertcat(e["x1"], e["out"])])
-        newton, resid, guess, fin = _compile([newton, resid, guess, fin])
+        newton, resid, guess, fin = compile_plant_functions([newton, resid, guess, fin])
         self._fin = fin
         step = _newton_step("lumped", newton, resid, guess, fin, 2 * nf3, nf3, tol, max_iter)
         sample, self._flat, self._step = _sample_functions("lumped", step, 2 * nf3,
