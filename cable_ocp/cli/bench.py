@@ -15,7 +15,16 @@ from cable_ocp.cli import output as out
 
 
 def register(sub: argparse._SubParsersAction, parent: argparse.ArgumentParser) -> None:
-    """Add ``bench`` (with its benchmarks) and ``bench-heave``."""
+    """Add ``bench`` (with its benchmarks) and ``bench-heave``.
+
+    Parameters
+    ----------
+    sub : argparse._SubParsersAction
+        The ``cable-ocp`` parser's subparsers, to which the commands are added.
+    parent : argparse.ArgumentParser
+        The common options (``--quiet``, ``--debug``: :func:`cable_ocp.cli.output.common_parent`),
+        a parent of every parser added.
+    """
     b = sub.add_parser(
         "bench", parents=[parent], help="statics and dynamics benchmarks that print a table",
         description="Benchmarks (tables; nothing is asserted). Without a benchmark name: "

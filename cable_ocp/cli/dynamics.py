@@ -15,7 +15,16 @@ from cable_ocp.errors import CableOCPError
 
 
 def register(sub: argparse._SubParsersAction, parent: argparse.ArgumentParser) -> None:
-    """Add ``simulate`` and ``modes``."""
+    """Add ``simulate`` and ``modes``.
+
+    Parameters
+    ----------
+    sub : argparse._SubParsersAction
+        The ``cable-ocp`` parser's subparsers, to which the commands are added.
+    parent : argparse.ArgumentParser
+        The common options (``--quiet``, ``--debug``: :func:`cable_ocp.cli.output.common_parent`),
+        a parent of every parser added.
+    """
     s = sub.add_parser(
         "simulate", parents=[parent],
         help="cable dynamics in the time domain: axial, planar or 3D lumped-mass "

@@ -15,7 +15,16 @@ CONTROLLERS = ("passive", "lqr", "lqg", "mpc")
 
 
 def register(sub: argparse._SubParsersAction, parent: argparse.ArgumentParser) -> None:
-    """Add ``heave``."""
+    """Add ``heave``.
+
+    Parameters
+    ----------
+    sub : argparse._SubParsersAction
+        The ``cable-ocp`` parser's subparsers, to which the command is added.
+    parent : argparse.ArgumentParser
+        The common options (``--quiet``, ``--debug``: :func:`cable_ocp.cli.output.common_parent`),
+        a parent of every parser added.
+    """
     p = sub.add_parser(
         "heave", parents=[parent],
         help="heave compensation: passive, LQR, LQG and MPC compared on one seeded sea "

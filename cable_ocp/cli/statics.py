@@ -14,7 +14,16 @@ PROFILE_HEADER = ["s [m]", "x [m]", "y [m]", "z [m]", "Tx [N]", "Ty [N]", "Tz [N
 
 
 def register(sub: argparse._SubParsersAction, parent: argparse.ArgumentParser) -> None:
-    """Add ``solve`` and ``footprint``."""
+    """Add ``solve`` and ``footprint``.
+
+    Parameters
+    ----------
+    sub : argparse._SubParsersAction
+        The ``cable-ocp`` parser's subparsers, to which the commands are added.
+    parent : argparse.ArgumentParser
+        The common options (``--quiet``, ``--debug``: :func:`cable_ocp.cli.output.common_parent`),
+        a parent of every parser added.
+    """
     p = sub.add_parser(
         "solve", parents=[parent], help="solve a static cable problem (TOML file)",
         description="Solve a static cable problem: print a summary (length, end angles, "
