@@ -139,6 +139,16 @@ def elevation_plane(r: np.ndarray, tol: float = PLANAR_TOL) -> ElevationPlane:
     horizontal node positions) holds every node to ``tol`` times the line's largest
     extent. A planar line is drawn in that plane; a 3D line is projected on the vertical
     plane through its ends. A plane within ``tol`` of an axis direction is snapped to it.
+
+    Parameters
+    ----------
+    r : numpy.ndarray
+        Node positions, m, shape (n, 3), from end_a to end_b.
+    tol : float
+        Relative tolerance (-), default :data:`PLANAR_TOL`: the line is planar when every
+        node lies within ``tol`` times the line's largest extent of the fitted plane, and
+        a plane whose horizontal direction has an x or y component of at most ``tol`` (an
+        angle of about ``tol`` rad to an axis) is snapped to that axis.
     """
     r = np.asarray(r, float)
     xy = r[:, :2]
@@ -278,7 +288,14 @@ def _segment_slices(sol: StaticsSolution, segs: list[tuple[float, float, str, st
 
 def heading_words(ux: float, uy: float) -> str:
     """Where a current of components (ux, uy) (m/s) flows to, in words ("towards +x", or
-    the angle from +x towards +y in degrees)."""
+    the angle from +x towards +y in degrees).
+
+    Parameters
+    ----------
+    ux, uy : float
+        The current's horizontal velocity components along +x and +y, m/s (only the
+        direction matters; within 0.05 deg of an axis, the axis is named).
+    """
     ang = math.degrees(math.atan2(uy, ux)) % 360.0
     for a, name in ((0.0, "+x"), (90.0, "+y"), (180.0, "-x"), (270.0, "-y"), (360.0, "+x")):
         if abs(ang - a) < 0.05:
@@ -685,6 +702,17 @@ def statics_figure(sol: StaticsSolution, title: str = "", scene: Scene | None = 
     The figure's axes carry labels that tests and callers may inspect:
     ``"elevation"``, ``"tension"``, and for a 3D line also ``"3d"`` and ``"plan"``, and
     ``"current profile"`` when the current varies with depth.
+
+    Parameters
+    ----------
+    sol : StaticsSolution
+        The solution to draw; one with a non-finite iterate gives a figure with only its
+        status and message (an axes labelled ``"message"``).
+    title : str
+        Figure title; empty (default): the scene's ``[meta] title``, if any.
+    scene : Scene, optional
+        The scene that was solved: with it the seabed, the free surface, the current, the
+        segments and the bodies' loads are drawn too. None (default): the line alone.
     """
     head = title or (scene.meta.get("title", "") if scene is not None else "")
     if not (np.isfinite(sol.position).all() and np.isfinite(sol.tension_vector).all()):

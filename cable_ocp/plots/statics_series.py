@@ -30,6 +30,32 @@ def plot_sweep(values: Sequence[float], forces: np.ndarray, path: str | Path, xl
     ``xlabel`` names the parameter with its unit, e.g. ``"psi0 (deg)"``; ``name`` names
     the method of ``forces``; ``overlays`` maps other methods' names to their forces,
     drawn as markers in the same colours (so that agreement shows). Returns the saved figure.
+
+    Parameters
+    ----------
+    values : sequence of float
+        The swept parameter's values, shape (n,), in the unit ``xlabel`` names.
+    forces : numpy.ndarray
+        Force components, N, shape (n, 3) (one row per value; NaN where a solve failed);
+        drawn in N, kN or MN, whichever suits the largest.
+    path : str or Path
+        Where to save the figure (format from the suffix).
+    xlabel : str
+        The x axis' label: the parameter with its unit, e.g. ``"psi0 (deg)"``.
+    title : str
+        The axes' title; empty (default): none.
+    labels : sequence of str
+        Names of the components, one per column of ``forces`` that is drawn (default
+        ``("F_x", "F_y", "F_z")``).
+    overlays : dict, optional
+        Other methods' name -> forces, N, shape (n, 3), drawn as markers (at most three
+        marker shapes, then repeated). None (default): none.
+    ylabel : str
+        The y axis' label without its unit (the unit is appended); default
+        ``"force at end_a"``.
+    name : str
+        Name of the method of ``forces``, added to its legend entries; empty (default):
+        the component names alone.
     """
     forces = np.asarray(forces, float)
     div, unit = force_scale(float(np.abs(forces).max()))
