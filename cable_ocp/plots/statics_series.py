@@ -36,8 +36,8 @@ def plot_sweep(values: Sequence[float], forces: np.ndarray, path: str | Path, xl
     values : sequence of float
         The swept parameter's values, shape (n,), in the unit ``xlabel`` names.
     forces : numpy.ndarray
-        Force components, N, shape (n, 3) (one row per value; NaN where a solve failed);
-        drawn in N, kN or MN, whichever suits the largest.
+        Force components, N, shape (n, 3), one row per value; drawn in N, kN or MN,
+        whichever suits the largest magnitude.
     path : str or Path
         Where to save the figure (format from the suffix).
     xlabel : str
