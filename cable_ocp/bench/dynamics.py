@@ -123,6 +123,18 @@ def scene(segments: int, time_step: float, duration: float = DURATION,
 
     ``linear``: the closed-form check of :func:`linear_check` instead: heave only, no drag,
     internal damping 2e6 N s (a Kelvin-Voigt rod).
+
+    Parameters
+    ----------
+    segments : int
+        Number of lumped segments of the line.
+    time_step : float
+        Integration time step, s (also the output step).
+    duration : float
+        Simulated time, s (default :data:`DURATION`, 60 s).
+    linear : bool
+        Build the linear case of :func:`linear_check` (default False: the benchmark
+        scene of Huang (1992) 5.7 with drag).
     """
     ov: dict[str, Any] = {
         "top_motion.heave_frequency": FREQUENCY, "top_motion.horizontal_frequency": FREQUENCY,
@@ -430,6 +442,16 @@ def linear_check(segments: int = 20, duration: float = 60.0, with_moordyn: bool 
     -M w^2 B = EA* k C, u(L) = 1; top tension EA* u'(L)). Returns the first-harmonic
     amplitudes of the top tension (N) over the last 20 s: ``closed_form``,
     ``cable_ocp`` (dt = 0.0125 s) and ``moordyn`` (dtM = 0.25 ms; None without it).
+
+    Parameters
+    ----------
+    segments : int
+        Number of lumped segments of both models (default 20).
+    duration : float
+        Simulated time, s (default 60); the amplitudes are fitted over its last 20 s, so
+        it should be well above 20 s (the start transient must have decayed).
+    with_moordyn : bool
+        Also run MoorDyn when it is installed (default True).
     """
     import cmath
 
@@ -461,7 +483,20 @@ def linear_check(segments: int = 20, duration: float = 60.0, with_moordyn: bool 
 def planned_rows(segments: Sequence[int], time_steps: Sequence[float],
                  moordyn_steps: dict[int, Sequence[float]] | None, with_moordyn: bool
                  ) -> int:
-    """How many ``progress`` calls :func:`run` makes (references included)."""
+    """How many ``progress`` calls :func:`run` makes (references included).
+
+    Parameters
+    ----------
+    segments : sequence of int
+        Numbers of lumped segments, as given to :func:`run`.
+    time_steps : sequence of float
+        cable_ocp's time steps, s, as given to :func:`run`.
+    moordyn_steps : dict or None
+        MoorDyn's dtM (s) per number of segments, as given to :func:`run`; None: the
+        defaults :func:`run` uses (:data:`DEFAULT_MOORDYN_STEPS`).
+    with_moordyn : bool
+        As given to :func:`run`; MoorDyn rows count only when it is also installed.
+    """
     use_md = with_moordyn and moordyn_available()
     md = moordyn_steps or {n: DEFAULT_MOORDYN_STEPS.get(n, (1e-3,)) for n in segments}
     return sum(1 + len(time_steps) + ((1 + len(md.get(n, ()))) if use_md else 0)
@@ -486,6 +521,14 @@ def summary(rows: Sequence[BenchRow], accuracy: float = EQUAL_ACCURACY) -> dict[
       fastest row at least as accurate (``basis`` says which); plus the
       relative difference of the two models' converged top-tension amplitudes (the target
       is 2 %).
+
+    Parameters
+    ----------
+    rows : sequence of BenchRow
+        The rows of :func:`run`.
+    accuracy : float
+        Largest relative top-tension error (-) for "equal accuracy" (default
+        :data:`EQUAL_ACCURACY`, 0.01 = 1 %).
     """
     out: dict[str, Any] = {"accuracy": accuracy, "target_realtime": TARGET_REALTIME,
                            "target_segments": TARGET_SEGMENTS, "realtime": None,
