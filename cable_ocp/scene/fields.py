@@ -38,9 +38,10 @@ def number(value: Any, key: str, *, positive: bool = False, nonneg: bool = False
         Accept ``"inf"`` or ``"infinity"`` (any case) and an infinite float, returned as
         ``math.inf``; an infinite value passes ``high``. Default False: finite only.
     low, high : float, optional
-        Inclusive bounds, in the value's own unit; None (default): unbounded on that side.
+        Inclusive bounds; ``why`` says where the bound comes from. In the value's own
+        unit; None (default): unbounded on that side.
     unit : str
-        The unit, printed in the message (e.g. ``"m"``); empty (default): none printed.
+        The unit, printed in the message (e.g. ``"m"``; empty, the default: none).
     why : str
         Where a ``low``/``high`` bound comes from, appended to its message; empty
         (default): nothing appended.
