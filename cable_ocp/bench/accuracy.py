@@ -328,7 +328,7 @@ def planned_rows(methods: list[str] | None = None, repeats: int = 1) -> int:
         Series to run: labels of :data:`PLAN` (others are skipped) and :data:`REUSED` (the
         built-once solver). None (default): all of them.
     repeats : int
-        Timing passes, as in :func:`run_scene` (default 1; at least 1 counts).
+        Timing passes, as in :func:`run_scene` (default 1; values below 1 count as 1).
     """
     n = sum(len(PLAN[m][1]) for m in (methods or list(PLAN)) if m in PLAN) * max(repeats, 1)
     n += sum(len(PLAN[m][1]) for m in (methods or list(PLAN)) if m in OURS)  # 2nd process

@@ -270,7 +270,8 @@ def envelope(status: str, message: str, data: dict[str, Any] | None = None,
     Parameters
     ----------
     status : str
-        The run's status, e.g. ``"success"`` (exit 0) or a failure status (exit 1).
+        The run's status, e.g. ``"solved"`` or ``"ok"`` for a success, ``"interrupted"``,
+        or the command's failure status.
     message : str
         One line saying what happened or why it failed.
     data : dict, optional
