@@ -217,24 +217,6 @@ def check_outputs(args: argparse.Namespace) -> None:
         raise CableOCPError("--json - and --csv -: only one output can go to stdout")
 
 
-def reject_options(args: argparse.Namespace, names: Sequence[str], why: str) -> None:
-    """Exit 2 when one of ``names`` was given to a (sub)command that cannot honour it.
-
-    Parameters
-    ----------
-    args : argparse.Namespace
-        The parsed command line.
-    names : sequence of str
-        Attribute names of the options to reject (``"max_attempts"`` for
-        ``--max-attempts``); an option counts as given unless it is None, False or ``[]``.
-    why : str
-        Why the option cannot be honoured, the message after ``--name:``.
-    """
-    for name in names:
-        if getattr(args, name, None) not in (None, False, []):
-            raise CableOCPError(f"--{name.replace('_', '-')}: {why}")
-
-
 def stdout_free(args: argparse.Namespace) -> bool:
     """True when stdout may carry text (no ``--json -`` / ``--csv -``)."""
     return STDOUT not in (getattr(args, "json", None), getattr(args, "csv", None))
@@ -473,9 +455,9 @@ def progress(args: argparse.Namespace, total: int, desc: str, unit: str = "it"
     bar = tqdm(total=total, desc=desc, unit=unit, file=sys.stderr, leave=False,
                dynamic_ncols=True, smoothing=0.1)
 
-    def update(done: int, new_total: int | None = None, postfix: str | None = None) -> None:
-        if new_total is not None and new_total != bar.total:
-            bar.total = new_total
+    def update(done: int, total: int | None = None, postfix: str | None = None) -> None:
+        if total is not None and total != bar.total:
+            bar.total = total
         bar.n = done
         if postfix is not None:
             bar.set_postfix_str(postfix, refresh=False)
