@@ -32,7 +32,8 @@ from typing import Any
 import casadi as ca
 import numpy as np
 
-from cable_ocp.dynamics.lumped import LumpedMassModel, LumpedParams
+from cable_ocp.dynamics.lumped import LumpedMassModel
+from cable_ocp.dynamics.lumped_params import LumpedParams
 from cable_ocp.dynamics.planar import PlanarModel
 from cable_ocp.errors import CableOCPError
 from cable_ocp.heave.cable_plant import (
