@@ -152,7 +152,8 @@ def scene(segments: int, time_step: float, duration: float = DURATION,
 def _cable_ocp(segments: int, time_step: float, compile_mode: str | bool,
                duration: float, linear: bool = False, tolerance: float | None = None
                ) -> tuple[np.ndarray, np.ndarray, float, str]:
-    from cable_ocp.dynamics.lumped import LumpedMassModel, run
+    from cable_ocp.dynamics.lumped import LumpedMassModel
+    from cable_ocp.dynamics.lumped_run import run
     from cable_ocp.dynamics.lumped_scene import lumped_params, lumped_start
 
     sc = scene(segments, time_step, duration, linear)
@@ -328,7 +329,7 @@ def run(segments: Sequence[int] = (20, 40, 80),
     with_moordyn : bool
         Include MoorDyn when it is installed.
     compile_mode : {"step", "kernel", False}
-        See :func:`cable_ocp.dynamics.lumped.run` (``"step"``: a few seconds of C
+        See :func:`cable_ocp.dynamics.lumped_run.run` (``"step"``: a few seconds of C
         compilation per new scene and step, cached, not counted in the wall time).
     repeats : int
         Timed runs per row; the fastest is kept.

@@ -33,7 +33,8 @@ import casadi as ca
 import numpy as np
 
 from cable_ocp.dynamics.axial import check_axial
-from cable_ocp.dynamics.lumped import LumpedMassModel, LumpedParams
+from cable_ocp.dynamics.lumped import LumpedMassModel
+from cable_ocp.dynamics.lumped_params import LumpedParams
 from cable_ocp.dynamics.lumped_scene import check_lumped_plant
 from cable_ocp.dynamics.planar import PlanarModel, check_planar
 from cable_ocp.errors import CableOCPError
