@@ -581,7 +581,7 @@ class Collocation:
         return self._with_jacobian(f"joint_{k}", zs, p, res)
 
     # -- arc length -----------------------------------------------------------------------
-    def _segment_s(self, length: float, g: float) -> list[tuple[float, float]]:
+    def segment_s(self, length: float, g: float) -> list[tuple[float, float]]:
         """Unstretched arc length (m) at the start and end of every collocated segment."""
         if not self.mesh.segments:
             return [(g, length)]
@@ -596,7 +596,7 @@ class Collocation:
             return g + sig * (length - g)
         offs = self.mesh.segment_offsets()
         out = np.empty_like(sig)
-        for k, (s0, s1) in enumerate(self._segment_s(length, g)):
+        for k, (s0, s1) in enumerate(self.segment_s(length, g)):
             b0, b1 = self.mesh.bounds[k], self.mesh.bounds[k + 1]
             out[offs[k]: offs[k + 1]] = s0 + (sig[offs[k]: offs[k + 1]] - b0) / (b1 - b0) \
                 * (s1 - s0)
@@ -607,7 +607,7 @@ class Collocation:
         s = np.asarray(s, dtype=float)
         if not self.mesh.segments:
             return (s - g) / (length - g)
-        ss = self._segment_s(length, g)
+        ss = self.segment_s(length, g)
         ends = np.array([e for _, e in ss])
         k = np.clip(np.searchsorted(ends, s, side="left"), 0, len(ss) - 1)
         s0 = np.array([a for a, _ in ss])[k]

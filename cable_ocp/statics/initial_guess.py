@@ -17,6 +17,7 @@ Returned as node arrays in physical units, so they feed any transcription.
 from __future__ import annotations
 
 import math
+from dataclasses import replace
 
 import numpy as np
 from scipy.integrate import cumulative_trapezoid
@@ -248,3 +249,64 @@ def touchdown_guess(scene: Scene, sigma: np.ndarray
     r = ra + np.outer(g + xs, eh) + np.outer(zs, [0, 0, 1.0])
     t = np.outer(np.full_like(s, w * a), eh) + np.outer(w * s, [0, 0, 1.0])
     return r, t, length, g
+
+
+def mean_cable_scene(scene: Scene) -> Scene:
+    """A single-cable scene with the line's mean weight per length, the bodies' vertical
+    loads spread over it (for the drag-free initial guesses of a multi-segment line)."""
+    total = sum(c.length for c in scene.segments)  # type: ignore[misc]
+    weight = sum(c.weight_in_water * c.length for c in scene.segments)  # type: ignore[operator]
+    weight -= sum(b.static_load[2] for b in scene.bodies)
+    cable = replace(scene.cable, weight_in_water=weight / total)
+    return replace(scene, cable=cable, segments=(), segment_intervals=(), bodies=())
+
+
+def towed_guess(scene: Scene, s: np.ndarray) -> tuple[np.ndarray, np.ndarray, float] | None:
+    """Guess for a towed line (end_a fixed, end_b free under a given load, a uniform
+    current in the x-z plane): a straight line from end_a downstream, sloping down at
+    0.1 rad, with the tension of the tangential drag and the end load accumulated from
+    end_b; in still water a line hanging straight down. None when the scene is not of
+    that kind.
+
+    Parameters
+    ----------
+    scene : Scene
+        The statics scene (segments, ends, current).
+    s : ndarray
+        Unstretched arc lengths of the nodes, m.
+
+    Returns
+    -------
+    tuple or None
+        Positions (n, 3) in m, tension vectors (n, 3) in N and the total length in m.
+    """
+    cur, a, b = scene.environment.current, scene.end_a, scene.end_b
+    if not all(a.fixed_mask) or any(b.fixed_mask):
+        return None
+    lens = [c.length for c in scene.segments]
+    cum = np.concatenate([[0.0], np.cumsum(lens)])
+    total = float(cum[-1])
+    if cur is None or cur.max_speed == 0.0:
+        # still water: the line hangs straight down from end_a, its tension the weight
+        # below (a sinking line; an inverted start would land on the unstable branch)
+        e = np.array([0.0, 0.0, -1.0])
+        ft = [abs(c.weight_in_water) for c in scene.segments]
+    else:
+        rho = scene.environment.water_density
+        ux = cur.ux[0] if cur.ux[0] != 0.0 else cur.max_speed
+        e = np.array([math.copysign(math.cos(0.1), ux), 0.0, -math.sin(0.1)])
+        # tangential drag per metre of each segment, N/m (0.5 rho C_t pi D U^2), plus the
+        # weight's component along the 0.1 rad slope
+        ft = [0.5 * rho * c.tangential_drag * math.pi * c.diameter * ux**2 + abs(
+            c.weight_in_water) * 0.1 for c in scene.segments]
+    pull = float(np.linalg.norm([f or 0.0 for f in b.force]))
+
+    def beyond(sv: float) -> float:
+        """Drag on the line beyond arc length sv, N."""
+        return sum(f * max(0.0, min(hi, total) - max(lo, sv))
+                   for f, lo, hi in zip(ft, cum[:-1], cum[1:], strict=True))
+
+    tmag = np.array([pull + beyond(float(v)) for v in s])
+    tmag = np.maximum(tmag, 1e-6 * max(tmag.max(), 1.0))
+    r = np.asarray(a.position, dtype=float) + np.outer(s, e)
+    return r, np.outer(tmag, e), total
