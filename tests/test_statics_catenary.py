@@ -18,6 +18,8 @@ What is checked, and why each tolerance:
 * One point load, solved independently: two Irvine pieces joined at the load (the
   tension jumps by -F there), their end equations solved by scipy root: end forces,
   the load point and the jump to 1e-9 relative.
+* The catenary with touchdown: tangent to the seabed at its vertex, through the top end
+  (1e-9 of L: the parameter is found to 1e-12 in log a).
 * The two forms of the inextensible catenary in the module agree: the closed form
   through two points (catenary_parameter, catenary_nodes) and solve_line with EA = inf
   (1e-9 relative: both exact, the parameter found to 1e-14).
@@ -39,6 +41,8 @@ from cable_ocp.statics.catenary import (
     catenary_parameter_bracketed,
     piece_increments,
     solve_line,
+    touchdown_catenary,
+    vertex_nodes,
 )
 
 L, W, EA = 100.0, 10.0, 1e5
@@ -124,18 +128,23 @@ def test_irvine_elastic_catenary(ea: float) -> None:
     assert shape.end_mismatch() < 1e-12
 
 
-@pytest.mark.parametrize("lower", ["fixed", "loaded"])
-def test_taut_vertical_line(lower: str) -> None:
-    """A vertical line (h = 0) stretched between its ends, or hanging with a given load at
-    its lower end: T(s) = T_0 + w s e_z and z(s) = z_a + s + (T_0 s + w s^2 / 2)/EA."""
+@pytest.mark.parametrize("ends", ["fixed", "lower_loaded", "upper_loaded"])
+def test_taut_vertical_line(ends: str) -> None:
+    """A vertical line (h = 0) stretched between its ends (Newton on V), hanging with a
+    given load at its lower end, or held up by a given load at its upper end (V direct):
+    T(s) = T_0 + w s e_z and z(s) = z_a + s + (T_0 s + w s^2 / 2)/EA."""
     top = 101.0  # m: 1 m of stretch over L = 100 m
     t0 = (top - L) * EA / L - W * L / 2  # N at the lower end (500 N: taut everywhere)
-    end_a = _fixed(0.0, 0.0, 0.0) if lower == "fixed" else \
-        End(position=(None, None, None), force=(0.0, 0.0, -t0))
+    end_a, end_b = _fixed(0.0, 0.0, 0.0), _fixed(0.0, 0.0, top)
+    if ends == "lower_loaded":  # the external load on end_a's attachment: t0 down
+        end_a = End(position=(None, None, None), force=(0.0, 0.0, -t0))
+    elif ends == "upper_loaded":  # a buoy pulling end_b up with T(L) = t0 + w L
+        end_b = End(position=(None, None, None), force=(0.0, 0.0, t0 + W * L))
     nodes = np.linspace(0.0, L, 11)
-    shape = solve_line(L, W, EA, end_a, _fixed(0.0, 0.0, top), tolerance=1e-13,
-                       nodes_s=nodes)
+    shape = solve_line(L, W, EA, end_a, end_b, tolerance=1e-13, nodes_s=nodes)
     assert shape.converged, shape.message
+    np.testing.assert_allclose(shape.force_b, [0.0, 0.0, -(t0 + W * L)], rtol=0,
+                               atol=1e-9 * t0)
     s, r, t = shape.profile()
     np.testing.assert_allclose(shape.force_a, [0.0, 0.0, t0], rtol=0, atol=1e-9 * t0)
     np.testing.assert_allclose(t[:, 2], t0 + W * s, rtol=1e-9)
@@ -197,3 +206,23 @@ def test_the_closed_form_catenary_is_the_inextensible_line() -> None:
     np.testing.assert_allclose(np.interp(s, s_l, t[:, 0]), ht[:, 0], rtol=1e-9)
     np.testing.assert_allclose(np.interp(s, s_l, t[:, 2]), ht[:, 1], rtol=0,
                                atol=1e-9 * W * length)
+
+
+def test_touchdown_catenary_leaves_the_seabed_tangentially_and_reaches_the_top() -> None:
+    """The catenary with touchdown: from its vertex on the seabed (tension horizontal) its
+    suspended length ls reaches the top end, rise and distance away from the anchor with
+    the grounded part L - ls straight before it (to 1e-9 of L: Brent to 1e-12 in log a);
+    a line too short to touch has none."""
+    rise, distance, length = 50.0, 150.0, 180.0
+    found = touchdown_catenary(rise, distance, length)
+    assert found is not None
+    a, ls = found
+    assert 0.0 < ls < length
+    xs, zs, ht = vertex_nodes(a, np.array([0.0, ls]), W)
+    assert (length - ls) + xs[-1] == pytest.approx(distance, abs=1e-9 * length)
+    assert zs[-1] == pytest.approx(rise, abs=1e-9 * length)
+    assert zs[0] == 0.0 and ht[0, 1] == 0.0 and ht[0, 0] == pytest.approx(W * a)
+    # the suspended part is a catenary: T = w (a + z) along it
+    assert math.hypot(*ht[-1]) == pytest.approx(W * (a + rise), rel=1e-12)
+    # 178 m over a chord of 177.2 m: the suspended catenary alone is longer than the line
+    assert touchdown_catenary(rise, 170.0, 178.0) is None

@@ -2,7 +2,8 @@
 
 The mesh has N intervals (uniform, or with points on the drag's kinks); in each, the state
 is a Lagrange polynomial of degree d through the interval start and d collocation points
-(Gauss-Legendre or Gauss-Radau, ``casadi.collocation_points``). Unknowns, in order::
+(Gauss-Legendre or Gauss-Radau, :func:`cable_ocp.numerics.quadrature.collocation_points`).
+Unknowns, in order::
 
     w = [x_0, x_0^1 .. x_0^d, x_1, x_1^1 .. x_{N-1}^d, x_N, (lam if the length is free)]
 
@@ -32,6 +33,7 @@ from dataclasses import dataclass, replace
 import casadi as ca
 import numpy as np
 
+from cable_ocp.numerics.quadrature import collocation_points
 from cable_ocp.scene import Scene
 from cable_ocp.statics.formulation import (
     NX,
@@ -262,7 +264,7 @@ class Collocation:
     def __init__(self, form: Formulation, intervals: int, degree: int, scheme: str,
                  grounded: bool = False):
         self.form = form
-        tau = ca.collocation_points(degree, scheme)
+        tau = collocation_points(degree, scheme)
         segs: tuple[int, ...] = ()
         bounds: tuple[float, ...] = ()
         if form.segmented:

@@ -90,6 +90,7 @@ PLANAR = tuple(_PLN + t for t in (
     "tests/dynamics/test_axial.py::test_payout_wave_against_dalembert",)
 
 PHYS, FORM, COLL, HEAVE_A = "physics", "statics/formulation", "statics/collocation", "heave"
+CAT = "statics/catenary"
 DYN = "dynamics"
 AX_F, LM_F, PL_F, MO_F = ("cable_ocp/dynamics/axial.py", "cable_ocp/dynamics/lumped.py",
                           "cable_ocp/dynamics/planar.py", "cable_ocp/scene/motion.py")
@@ -233,6 +234,32 @@ MUTATIONS: tuple[Mutation, ...] = (
              "chord = warm and not moving", "chord = warm",
              ("tests/test_statics_kinks.py",),
              "a tracking mesh is refitted after chord steps instead of moved by Newton"),
+    # -- statics/catenary.py and numerics/quadrature.py --------------------------------------
+    Mutation("catenary-dz-elastic-sign", CAT, "cable_ocp/statics/catenary.py",
+             "dr[:, 2] = -0.5 * (xa + xb) * lin - xt", "dr[:, 2] = 0.5 * (xa + xb) * lin - xt",
+             ("tests/test_statics_catenary.py",),
+             "elastic catenary: the stretch term of the derived (2.33) with the wrong sign"),
+    Mutation("catenary-end-b-force-sign", CAT, "cable_ocp/statics/catenary.py",
+             "v[i] = -FLIP[i] * fb - total_load[i] - weight[i]",
+             "v[i] = FLIP[i] * fb - total_load[i] - weight[i]",
+             ("tests/test_statics_catenary.py",),
+             "elastic catenary: a force given at end_b enters (2.40)-(2.42) with the wrong sign"),
+    Mutation("touchdown-suspended-length-wrong", CAT, "cable_ocp/statics/catenary.py",
+             "ls = math.sqrt(h * h + 2 * h * a)\n        return",
+             "ls = math.sqrt(h * h + 3 * h * a)\n        return",
+             ("tests/test_statics_catenary.py",),
+             "touchdown guess: suspended length of a catenary that does not leave the seabed "
+             "horizontally"),
+    Mutation("radau-weights-mirrored", CAT, "cable_ocp/numerics/quadrature.py",
+             "w[:-1] = (1.0 + x[:-1]) / (n * n * p * p)",
+             "w[:-1] = (1.0 - x[:-1]) / (n * n * p * p)", ("tests/test_quadrature.py",),
+             "Radau weights of the rule that includes -1, not +1"),
+    Mutation("legendre-map-keeps-full-weights", CAT, "cable_ocp/numerics/quadrature.py",
+             "return 0.5 * (b - a) * (x + 1.0) + a, 0.5 * (b - a) * w",
+             "return 0.5 * (b - a) * (x + 1.0) + a, (b - a) * w",
+             ("tests/test_baseline_chucheepsakul.py",),
+             "Gauss-Legendre on [a, b]: the weights not scaled by (b - a)/2 (the FEM's "
+             "element integrals doubled)"),
     Mutation("batch-chunks-ignore-grid-blocks", "batch", "cable_ocp/batch/__init__.py",
              "near = [b for b in starts if i + size / 2 <= b <= i + 1.5 * size]",
              "near = []", ("tests/test_batch.py::test_guided_chunks_end_at_grid_blocks",),
@@ -491,7 +518,7 @@ def main(argv: list[str] | None = None) -> int:
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     ap.add_argument("--only", nargs="+", default=None,
                     help="mutation names or areas (physics, statics/formulation, "
-                         "statics/collocation, heave, dynamics)")
+                         "statics/collocation, statics/catenary, heave, dynamics)")
     ap.add_argument("--list", action="store_true", help="list the mutations and exit")
     ap.add_argument("--baseline", action="store_true",
                     help="first run every selected subset on the unmutated copy")
