@@ -292,8 +292,10 @@ def test_added_mass_of_vertical_and_horizontal_elements():
     np.testing.assert_allclose(a @ n, man * n, rtol=ROUND, atol=ROUND * man)  # across
     # the planar rows are the x-z entries of the 3D matrix of an in-plane element
     t2 = _unit([0.6, 0.0, -0.8])
-    axx, axz, azz = am.line_added_mass_2d(t2[0] * 5.0, t2[2] * 5.0, man, mat)
-    full = am.line_added_mass_np(t2, man, mat)
+    dd = ca.SX.sym("dd", 2, 1)
+    rows = ca.Function("r", [dd], list(am.line_added_mass_2d(dd, man, mat, 2.0)))
+    axx, axz, azz = (float(v) for v in rows([t2[0] * 5.0, t2[2] * 5.0]))
+    full = 2.0 * am.line_added_mass_np(t2, man, mat)
     np.testing.assert_allclose([axx, axz, azz], [full[0, 0], full[0, 2], full[2, 2]],
                                rtol=ROUND)
     assert am.virtual_mass(100.0, (5.0, 6.0, 7.0)) == (105.0, 106.0, 107.0)

@@ -61,6 +61,27 @@ def hooke_tension(strain: Any, axial_stiffness: Any) -> Any:
     return axial_stiffness * strain
 
 
+def kelvin_voigt_tension(strain: Any, strain_rate: Any, axial_stiffness: Any,
+                         damping: Any) -> Any:
+    """EA e + c de/dt, N: the linear law without the no-compression switch.
+
+    The axial models use it as printed in Huang (1992) (3.2)-(3.3) and report a slack
+    element (a tension <= 0) instead of smoothing it away.
+
+    Parameters
+    ----------
+    strain : float, array or casadi expression
+        Axial strain e (-).
+    strain_rate : float, array or casadi expression
+        de/dt, 1/s.
+    axial_stiffness : float
+        EA, N.
+    damping : float
+        c, N s.
+    """
+    return axial_stiffness * strain + damping * strain_rate
+
+
 def smooth_tension(strain: Any, axial_stiffness: Any, slack_smoothing: Any) -> Any:
     """Smooth no-compression tension (EA e + sqrt((EA e)^2 + delta_T^2)) / 2, N.
 

@@ -101,7 +101,12 @@ from dataclasses import dataclass, field, replace
 from pathlib import Path
 from typing import Any
 
+import numpy as np
+
 from cable_ocp.errors import CableOCPError
+from cable_ocp.physics.added_mass import added_mass_per_length, virtual_mass, weight_in_water
+from cable_ocp.physics.current import profile_velocity_np
+from cable_ocp.physics.drag import point_drag_np
 from cable_ocp.scene.fields import check_keys as _check_keys
 from cable_ocp.scene.fields import number as _number
 from cable_ocp.scene.fields import require as _require
@@ -193,12 +198,13 @@ class SegmentDynamics:
     axial_damping: float = 0.0
 
     def added_mass_per_length(self, diameter: float, rho: float) -> float:
-        """Normal added mass per unstretched length, kg/m."""
-        return self.added_mass_coefficient * rho * math.pi * diameter**2 / 4.0
+        """Normal added mass per unstretched length, kg/m
+        (:func:`cable_ocp.physics.added_mass.added_mass_per_length`)."""
+        return added_mass_per_length(self.added_mass_coefficient, rho, diameter)
 
     def tangential_added_mass_per_length(self, diameter: float, rho: float) -> float:
         """Tangential added mass per unstretched length, kg/m."""
-        return self.tangential_added_mass_coefficient * rho * math.pi * diameter**2 / 4.0
+        return added_mass_per_length(self.tangential_added_mass_coefficient, rho, diameter)
 
 
 @dataclass(frozen=True)
@@ -235,14 +241,14 @@ class Unit:
     def drag(self, relative_velocity: Any, rho: float) -> list[float]:
         """Drag force on the unit, N, for its velocity relative to the water (m/s).
 
-        ``relative_velocity`` is the unit's velocity minus the current's (3 numbers).
+        ``relative_velocity`` is the unit's velocity minus the current's (3 numbers). The
+        exact law (no smoothing) of :func:`cable_ocp.physics.drag.point_drag_np`, whose flow
+        is the current relative to the unit.
         """
-        u = [float(c) for c in relative_velocity]
+        flow = -np.asarray([float(c) for c in relative_velocity])
         cs = [self.drag_area[k] * self.drag_coefficient[k] for k in range(3)]
-        if self.drag_per_axis:
-            return [-0.5 * rho * cs[k] * abs(u[k]) * u[k] for k in range(3)]
-        speed = math.sqrt(sum(c * c for c in u))
-        return [-0.5 * rho * cs[0] * speed * u[k] for k in range(3)]
+        return [float(f) for f in point_drag_np(flow, cs, rho=rho,
+                                                per_axis=self.drag_per_axis)]
 
     def static_load(self, current: Vec3, rho: float) -> Vec3:
         """External load on end_a at rest in a current (m/s): weight in water plus drag, N."""
@@ -252,7 +258,7 @@ class Unit:
     @property
     def virtual_mass(self) -> Vec3:
         """Mass plus added mass per axis, kg."""
-        return tuple(self.mass + a for a in self.added_mass)  # type: ignore[return-value]
+        return virtual_mass(self.mass, self.added_mass)  # type: ignore[return-value]
 
 
 @dataclass(frozen=True)
@@ -499,20 +505,12 @@ def is_dynamic_dict(data: dict[str, Any]) -> bool:
 
 def current_at(current: Current | None, z: float) -> Vec3:
     """Current velocity (m/s) at height z (m): linear in the components between knots,
-    constant beyond the first and last knot (docs/conventions.md, "Frame and scene files")."""
+    constant beyond the first and last knot (docs/conventions.md, "Frame and scene files";
+    :func:`cable_ocp.physics.current.profile_velocity_np`)."""
     if current is None:
         return (0.0, 0.0, 0.0)
-    zs = current.z
-    if len(zs) == 1 or z <= zs[0]:
-        return (current.ux[0], current.uy[0], 0.0)
-    if z >= zs[-1]:
-        return (current.ux[-1], current.uy[-1], 0.0)
-    for k in range(len(zs) - 1):
-        if zs[k] <= z <= zs[k + 1]:
-            f = (z - zs[k]) / (zs[k + 1] - zs[k])
-            return (current.ux[k] + f * (current.ux[k + 1] - current.ux[k]),
-                    current.uy[k] + f * (current.uy[k + 1] - current.uy[k]), 0.0)
-    raise AssertionError("unreachable")
+    u = profile_velocity_np(z, current.z, current.ux, current.uy)
+    return (float(u[0]), float(u[1]), 0.0)
 
 
 def _int(value: Any, key: str, lo: int, hi: int | None = None) -> int:
@@ -571,13 +569,13 @@ def _parse_unit(t: Any, rho: float, g: float) -> Unit:
     if "weight_in_water" in t:
         w = _number(t["weight_in_water"], "unit.weight_in_water")
         if volume is not None:
-            w_v = (mass - rho * volume) * g
+            w_v = weight_in_water(mass, volume, rho, g)
             if abs(w - w_v) > 1e-3 * max(abs(w), mass * g, 1e-12):
                 raise CableOCPError(
                     f"unit.weight_in_water = {w} N disagrees with unit.volume = {volume} m^3: "
                     f"(mass - rho volume) g = {w_v:.6g} N; give one of them")
     elif volume is not None:
-        w = (mass - rho * volume) * g
+        w = weight_in_water(mass, volume, rho, g)
     else:
         raise CableOCPError("unit.weight_in_water is missing (N; or give unit.volume, m^3)")
     if w > mass * g * (1.0 + _ROUNDING) + 1e-12:
