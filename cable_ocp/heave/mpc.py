@@ -314,6 +314,7 @@ class LinearMPC:
         self.n_preview = int(round(s.preview_time / h))
         #: the MPC's own shift register of its last ``d`` commands (:meth:`step`)
         self.delay = DelayLine(d)
+        self._z0 = np.zeros(nz)  # the state of a step: [x; own buffer]
 
     def reset(self) -> None:
         """Back to the start of a run: the delay buffer and the last command zero, no plan
@@ -518,14 +519,16 @@ class LinearMPC:
             Known boom-tip input (see :meth:`preview_correction`), m.
         """
         t0 = time.perf_counter()
-        x = np.asarray(x, dtype=float).reshape(-1)
-        if x.size != self.n:
-            raise CableOCPError(f"LinearMPC.step: the plant state has {x.size} entries, "
-                                f"expected n = {self.n} (the MPC keeps its own delay buffer; "
-                                "LinearMPC.solve takes a whole shift-register state)")
-        z0 = np.concatenate([x, self.delay.buffer])
-        r = self._solve(z0, self.delay.last if u_prev is None else u_prev, D, t0)
-        self.delay.push(r.u0)
+        z0, n, line = self._z0, self.n, self.delay
+        try:
+            z0[:n] = x
+        except ValueError:
+            raise CableOCPError(f"LinearMPC.step: the plant state has {np.size(x)} entries, "
+                                f"expected n = {n} (the MPC keeps its own delay buffer; "
+                                "LinearMPC.solve takes a whole shift-register state)") from None
+        z0[n:] = line.buffer
+        r = self._solve(z0, line.last if u_prev is None else u_prev, D, t0)
+        line.push(r.u0)
         return r
 
     def solve(self, z0: np.ndarray, u_prev: float = 0.0, D: np.ndarray | None = None
