@@ -1,7 +1,7 @@
 """The lumped-mass model (Huang (1992) ch. 5) driven by a dynamic scene.
 
 * :func:`lumped_params`: a :class:`~cable_ocp.scene.dynamics.DynamicScene` ->
-  :class:`~cable_ocp.dynamics.lumped.LumpedParams` (segments shared among the
+  :class:`~cable_ocp.dynamics.lumped_params.LumpedParams` (segments shared among the
   ``[[cable.segments]]`` by length, bodies at the joints, the unit, current, top motion);
 * :func:`lumped_start`: the initial state (Huang (1992) 5.6.1): the statics solver's
   solution interpolated onto the nodes at their unstretched arc lengths, then the discrete
@@ -21,14 +21,9 @@ from typing import Any
 import casadi as ca
 import numpy as np
 
-from cable_ocp.dynamics.lumped import (
-    LumpedMassModel,
-    LumpedParams,
-    LumpedRun,
-    PointBody,
-    UnitParams,
-    run,
-)
+from cable_ocp.dynamics.lumped import LumpedMassModel
+from cable_ocp.dynamics.lumped_params import LumpedParams, PointBody, UnitParams
+from cable_ocp.dynamics.lumped_run import LumpedRun, run
 from cable_ocp.dynamics.result import ModesResult, SimulationResult
 from cable_ocp.errors import CableOCPError
 from cable_ocp.physics.current import current_velocity
@@ -41,7 +36,7 @@ __all__ = ["check_lumped_plant", "lumped_params", "lumped_start", "modes_lumped"
 #: at most this many progress calls (chunks) per run
 MAX_CHUNKS = 200
 #: runs with more segment-steps than this compile the whole step to C
-#: (:func:`cable_ocp.dynamics.lumped.run`, ``compile="step"``)
+#: (:func:`cable_ocp.dynamics.lumped_run.run`, ``compile="step"``)
 COMPILE_STEP_ABOVE = 1_000_000
 
 

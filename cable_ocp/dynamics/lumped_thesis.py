@@ -36,11 +36,11 @@ import time
 from collections.abc import Callable
 from typing import Any
 
-import casadi as ca
 import numpy as np
 from scipy.sparse import coo_matrix
 
-from cable_ocp.dynamics.lumped import LumpedMassModel, LumpedRun
+from cable_ocp.dynamics.lumped import LumpedMassModel
+from cable_ocp.dynamics.lumped_run import LumpedRun
 from cable_ocp.errors import CableOCPError
 from cable_ocp.numerics.linalg import solve_sparse
 
@@ -56,15 +56,8 @@ class _Thesis:
         self.n = p.segments
         self.ell = p.segment_length
         self.ea = p.axial_stiffness
-        nf3 = 3 * model.n_free
-        x = ca.SX.sym("x", nf3)
-        t = ca.SX.sym("t")
-        r = model._all_positions(x, t)
-        blocks = model._mass_blocks(r)
-        self.mass_blocks = ca.Function("mass_blocks", [x, t],
-                                       [ca.vertcat(*[ca.vec(b) for b in blocks])])
-        ends = model._ends_function()
-        self.ends = ends
+        self.mass_blocks = model.mass_blocks
+        self.ends = model.ends
         self.first = 1 if p.fixed_a else 0
         # sparsity pattern of the block-tridiagonal system (free nodes)
         nf = model.n_free
@@ -154,7 +147,7 @@ def run_thesis(model: LumpedMassModel, x0: np.ndarray, v0: np.ndarray | None,
                t0: float = 0.0, progress: Callable[[float, float], Any] | None = None
                ) -> LumpedRun:
     """Integrate with Huang's scheme (5.21) (Python once per step; see the module
-    docstring). Same arguments and result type as :func:`cable_ocp.dynamics.lumped.run`;
+    docstring). Same arguments and result type as :func:`cable_ocp.dynamics.lumped_run.run`;
     a step that produces non-finite positions stops the run with status ``"failed"``
     (the scheme is unstable for dt above about sqrt(m l / T): see the module docstring).
     """

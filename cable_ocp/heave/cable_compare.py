@@ -22,7 +22,7 @@ from cable_ocp.errors import CableOCPError
 from cable_ocp.heave import identify_cable as idc
 from cable_ocp.heave import mpc as mpc_mod
 from cable_ocp.heave import simulate as sm
-from cable_ocp.heave.cable_models import cable_plant
+from cable_ocp.heave.cable_models import cable_plant, check_plant_scene
 from cable_ocp.heave.closed_loop import make_wave, run_loop, run_status, unstable_bound
 from cable_ocp.heave.deployment import deploy
 from cable_ocp.heave.design import cable_controller, design_damping, design_scene, design_table
@@ -65,6 +65,7 @@ def compare_cable(sc: HeaveScene, controllers: tuple | None = None,
     against the design model with the same estimator for the prediction.
     """
     dyn = load_cable_scene(sc)
+    check_plant_scene(str(sc.unit.cable_scene), dyn)
     ident = idc.identify_from_cable(sc, dyn)
     sd, source = design_scene(sc, ident, dyn)
     warn = design_damping(ident.linear.b, "design model")[1] if source == "identified" else None

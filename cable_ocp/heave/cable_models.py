@@ -32,8 +32,11 @@ from typing import Any
 import casadi as ca
 import numpy as np
 
-from cable_ocp.dynamics.lumped import LumpedMassModel, LumpedParams
-from cable_ocp.dynamics.planar import PlanarModel
+from cable_ocp.dynamics.axial import check_axial
+from cable_ocp.dynamics.lumped import LumpedMassModel
+from cable_ocp.dynamics.lumped_params import LumpedParams
+from cable_ocp.dynamics.lumped_scene import check_lumped_plant
+from cable_ocp.dynamics.planar import PlanarModel, check_planar
 from cable_ocp.errors import CableOCPError
 from cable_ocp.heave.axial_plant import (
     AxialCablePlant,
@@ -45,6 +48,7 @@ from cable_ocp.physics.drag import drag_per_length
 from cable_ocp.scene.dynamics import DynamicScene, dynamic_scene_from_dict
 
 __all__ = ["HALVINGS", "PLANT_MODELS", "TOP_SEGMENT_RANGE", "LumpedCablePlant",
+           "check_plant_scene",
            "PlanarCablePlant", "axial_twin", "cable_plant", "lumped_axial_frequency",
            "still_scene"]
 
@@ -89,6 +93,38 @@ def cable_plant(scene: DynamicScene, sample_time: float) -> Any:
     raise CableOCPError(
         f"simulation.model = {model!r} in the cable scene: the heave plant takes "
         f"{', '.join(repr(m) for m in PLANT_MODELS)}")
+
+
+def check_plant_scene(path: str, scene: DynamicScene) -> None:
+    """Refuse a cable scene that its model cannot run as the heave plant, before any work.
+
+    The scene-level checks of ``[unit] cable_scene`` (readable, a dynamic scene with an
+    axial, planar or lumped3d model and a unit, a time step dividing the sample) run when
+    the heave scene is built (:func:`cable_ocp.scene.heave.check`); this one asks the model
+    itself (:func:`cable_ocp.dynamics.axial.check_axial`,
+    :func:`cable_ocp.dynamics.planar.check_planar`,
+    :func:`cable_ocp.dynamics.lumped_scene.check_lumped_plant`), so it lives with the models.
+
+    Parameters
+    ----------
+    path : str
+        The heave file's ``unit.cable_scene`` (named in the message).
+    scene : DynamicScene
+        That cable scene.
+
+    Raises
+    ------
+    CableOCPError
+        Naming ``unit.cable_scene`` and the key the model refuses.
+    """
+    checks = {"axial": check_axial, "planar": check_planar, "lumped3d": check_lumped_plant}
+    check = checks.get(scene.simulation.model)
+    if check is None:  # the heave scene's own check refuses other models first
+        return
+    try:
+        check(scene)
+    except CableOCPError as exc:
+        raise CableOCPError(f"unit.cable_scene = {path!r}: {exc}") from None
 
 
 def axial_twin(scene: DynamicScene) -> DynamicScene:

@@ -14,13 +14,9 @@ import numpy as np
 import pytest
 
 from cable_ocp.dynamics import simulate
-from cable_ocp.dynamics.lumped import (
-    LumpedMassModel,
-    PointBody,
-    UnitParams,
-    run,
-    uniform_params,
-)
+from cable_ocp.dynamics.lumped import LumpedMassModel
+from cable_ocp.dynamics.lumped_params import PointBody, UnitParams, uniform_params
+from cable_ocp.dynamics.lumped_run import run
 from cable_ocp.dynamics.lumped_scene import lumped_params, lumped_start
 from cable_ocp.errors import CableOCPError
 from cable_ocp.scene.dynamics import load_dynamic_scene
@@ -167,7 +163,7 @@ def test_newton_stop_on_the_contraction_estimate_checks_the_residual() -> None:
     tol, dt = 1e-10, 0.075
     fs = m.force_scale(x0, 0.0)
     step = m.step_function(dt, tol=tol, force_scale=fs)
-    gj = m._residual_function("midpoint", True, fs)
+    gj = m.stepper.residual_function("midpoint", True, fs)
     z = np.asarray(m.initial_state(x0, None, "midpoint", 0.0), float).ravel()
     nf3 = 3 * m.n_free
     evals = []

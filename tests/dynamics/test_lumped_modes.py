@@ -18,7 +18,8 @@ from closed_forms import hanging_cable_frequencies
 from scipy.special import jn_zeros
 
 from cable_ocp.dynamics import modes
-from cable_ocp.dynamics.lumped import LumpedMassModel, UnitParams, uniform_params
+from cable_ocp.dynamics.lumped import LumpedMassModel
+from cable_ocp.dynamics.lumped_params import UnitParams, uniform_params
 
 
 # --------------------------------------------------------------------------------------

@@ -119,8 +119,8 @@ def test_compile_falls_back_to_interpreted(case: str, tmp_path: Path,
                                            monkeypatch: pytest.MonkeyPatch) -> None:
     """No C compiler (``CC`` names a missing program, or none on the PATH), a cache
     directory that cannot be created (below a regular file: fails for root too), or
-    ``CABLE_OCP_CACHE=0``: ``_compile`` returns the function itself, silently."""
-    from cable_ocp.dynamics import lumped
+    ``CABLE_OCP_CACHE=0``: ``compile_function`` returns the function itself, silently."""
+    from cable_ocp.numerics.compile import compile_function
 
     fn = _small_function()
     monkeypatch.delenv("CABLE_OCP_CACHE", raising=False)
@@ -138,7 +138,7 @@ def test_compile_falls_back_to_interpreted(case: str, tmp_path: Path,
         monkeypatch.setenv("CABLE_OCP_CACHE", "0")
     with warnings.catch_warnings():
         warnings.simplefilter("error")
-        out = lumped._compile(fn)
+        out = compile_function(fn, "-O2")
     assert out is fn
     assert not (tmp_path / "cache").exists() or not any((tmp_path / "cache").iterdir())
 
@@ -147,7 +147,9 @@ def test_run_without_compiler_gives_the_same_numbers(tmp_path: Path,
                                                      monkeypatch: pytest.MonkeyPatch) -> None:
     """``run(compile="step")`` with no compiler reports ``compiled == "none"`` and gives the
     interpreted run's numbers (the same CasADi graph: equal to 1e-12 m, rounding only)."""
-    from cable_ocp.dynamics.lumped import LumpedMassModel, UnitParams, run, uniform_params
+    from cable_ocp.dynamics.lumped import LumpedMassModel
+    from cable_ocp.dynamics.lumped_params import UnitParams, uniform_params
+    from cable_ocp.dynamics.lumped_run import run
 
     monkeypatch.setenv("CC", str(tmp_path / "nonexistent-cc"))
     monkeypatch.setenv("CABLE_OCP_CACHE_DIR", str(tmp_path / "cache"))
@@ -163,3 +165,35 @@ def test_run_without_compiler_gives_the_same_numbers(tmp_path: Path,
     assert a.compiled == "none" and a.success and b.success
     np.testing.assert_allclose(a.positions, b.positions, rtol=0, atol=1e-12)
     assert float(np.ptp(a.positions[:, 0, 0])) > 1e-3  # it moved: the check is not vacuous
+
+
+#: the model's CasADi functions, each built on first use
+_LAZY = ("forces", "external_forces", "mass_matrix", "tensions", "nodes", "node_velocities",
+         "segment_tension", "top_force", "energy", "static_stiffness", "ends", "mass_blocks",
+         "stepper", "_static_fj", "_symbols", "_top_vel", "_a_vel")
+
+
+def test_model_builds_each_function_on_first_use() -> None:
+    """The constructor builds no CasADi function (a modal analysis needs three of them, a
+    run a few more): each is built on first use and kept on the instance (the same object
+    on the next use); the modes of a pendulum line then build only what they use."""
+    import casadi as ca
+
+    from cable_ocp.dynamics.lumped import LumpedMassModel
+    from cable_ocp.dynamics.lumped_params import UnitParams, uniform_params
+
+    p = uniform_params(40.0, 4, axial_stiffness=1.0e6, diameter=0.02, mass_per_length=1.0,
+                       weight_in_water=8.0, top_position=[0.0, 0.0, 100.0],
+                       unit=UnitParams(mass=50.0, weight_in_water=400.0))
+    m = LumpedMassModel(p)
+    assert not set(_LAZY) & set(vars(m))
+    assert not any(isinstance(v, ca.Function) for v in vars(m).values())
+    f = m.forces
+    assert m.forces is f
+    assert set(_LAZY) & set(vars(m)) == {"forces", "_symbols", "_top_vel"}
+    xg = np.zeros((4, 3))
+    xg[:, 2] = 60.0 + p.node_arc_length[:-1]
+    x, info = m.static_equilibrium(xg.reshape(-1))
+    assert info["converged"]
+    m.modes(x, 2)
+    assert "stepper" not in vars(m) and "energy" not in vars(m)

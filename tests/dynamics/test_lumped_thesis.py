@@ -22,7 +22,9 @@ import math
 import numpy as np
 import pytest
 
-from cable_ocp.dynamics.lumped import LumpedMassModel, run, uniform_params
+from cable_ocp.dynamics.lumped import LumpedMassModel
+from cable_ocp.dynamics.lumped_params import uniform_params
+from cable_ocp.dynamics.lumped_run import run
 from cable_ocp.dynamics.lumped_thesis import run_thesis, thesis_step
 
 N, LENGTH, EA, MU, TENSION = 20, 10.0, 1.0e6, 1.0, 100.0

@@ -6,7 +6,7 @@ Independent references:
   ch. 3: its own discretisation of the pay-out, over the whole line, and its own
   block-tridiagonal Newton) on the same vertical line under the same heave and winch;
 * the lumped-mass model's own time stepping (:func:`cable_ocp.dynamics.simulate`, the
-  ``cable-ocp simulate`` path: :func:`cable_ocp.dynamics.lumped.run` with the compiled
+  ``cable-ocp simulate`` path: :func:`cable_ocp.dynamics.lumped_run.run` with the compiled
   segment kernel and its Newton solver) under a harmonic top motion in a current;
 * the closed form of the static vertical line, ``z_b - L - (W L + w L^2 / 2) / EA``
   (the pay-out settles the unit lower by ``dL`` and the stretch of the paid-out cable);

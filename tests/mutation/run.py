@@ -94,6 +94,7 @@ PHYS, FORM, COLL, HEAVE_A = "physics", "statics/formulation", "statics/collocati
 DYN = "dynamics"
 AX_F, LM_F, PL_F, MO_F = ("cable_ocp/dynamics/axial.py", "cable_ocp/dynamics/lumped.py",
                           "cable_ocp/dynamics/planar.py", "cable_ocp/scene/motion.py")
+LK_F = "cable_ocp/dynamics/lumped_kernel.py"
 
 MUTATIONS: tuple[Mutation, ...] = (
     # -- physics/ ---------------------------------------------------------------------------
@@ -380,7 +381,7 @@ MUTATIONS: tuple[Mutation, ...] = (
     Mutation("lumped-unit-added-mass-dropped", DYN, LM_F,
              "out[0] += p.unit.mass + np.asarray(p.unit.added_mass)", "out[0] += p.unit.mass",
              LUMPED, "lumped: the unit's added mass left out"),
-    Mutation("lumped-added-mass-tangential-projector", DYN, LM_F,
+    Mutation("lumped-added-mass-tangential-projector", DYN, LK_F,
              "madd = 0.5 * (en * (eye - eet) + et * eet)",
              "madd = 0.5 * (en * eet + et * (eye - eet))", LUMPED,
              "lumped step: added mass (5.2) along the tangent t t^T instead of I - t t^T"),
@@ -389,25 +390,25 @@ MUTATIONS: tuple[Mutation, ...] = (
              "add = 0.5 * (en * tt + et * (ca.SX.eye(3) - tt))",
              LUMPED + ("tests/dynamics/test_planar.py::test_in_plane_modes_equal_lumped3d",),
              "lumped modes: added mass (5.2) along the tangent instead of normal"),
-    Mutation("lumped-tension-ea-over-l", DYN, LM_F,
+    Mutation("lumped-tension-ea-over-l", DYN, LK_F,
              "    def tension(eps: Any) -> Any:\n        u = ea * eps\n",
              "    def tension(eps: Any) -> Any:\n        u = ea / ell * eps\n", LUMPED,
              "lumped step: segment tension EA/l eps (a spring constant) instead of EA eps"),
-    Mutation("lumped-current-ignored", DYN, LM_F,
+    Mutation("lumped-current-ignored", DYN, LK_F,
              "urel = u_c - 0.5 * (va + vb)", "urel = -0.5 * (va + vb)", LUMPED,
              "lumped step: the segments' drag ignores the current"),
-    Mutation("lumped-newton-accepts-on-estimate-alone", DYN, LM_F,
+    Mutation("lumped-newton-accepts-on-estimate-alone", DYN, LK_F,
              "early = ca.logic_and(check, r_chk <= tol)", "early = check",
              (_LMP + "newton_stop_on_the_contraction_estimate_checks_the_residual",),
              "lumped step: Newton stops on the contraction estimate without checking the "
              "residual at the new iterate"),
-    Mutation("lumped-halving-branches-swapped", DYN, LM_F,
-             '_switch("halving_select", d1, keep, halves,',
-             '_switch("halving_select", d1, halves, keep,', LUMPED + (
+    Mutation("lumped-halving-branches-swapped", DYN, LK_F,
+             'switch("halving_select", d1, keep, halves,',
+             'switch("halving_select", d1, halves, keep,', LUMPED + (
                  _LMP + "newton_step_equals_casadi_rootfinder",),
              "lumped step: two half steps where the whole step converged (and the "
              "unconverged whole step kept)"),
-    Mutation("lumped-tangential-drag-unsigned", DYN, LM_F,
+    Mutation("lumped-tangential-drag-unsigned", DYN, LK_F,
              "ca.sqrt(ut * ut + delta * delta) * ut * tm", "ut * ut * tm", LUMPED,
              "lumped step: tangential drag u_t^2 instead of |u_t| u_t"),
     Mutation("axial-thesis-coriolis-sign", DYN, "cable_ocp/dynamics/axial_thesis.py",

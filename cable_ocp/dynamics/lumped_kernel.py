@@ -1,0 +1,655 @@
+"""The stepping kernel of the lumped-mass model: one time step as a CasADi Function.
+
+:class:`LumpedStepper` builds, on first use and cached per setting, the steps of
+:meth:`cable_ocp.dynamics.lumped.LumpedMassModel.step_function`:
+
+* the per-segment kernel (:func:`segment_kernel`: forces, added mass and the Newton
+  blocks of one segment, compiled to C once per machine and mapped over the segments);
+* the step's residual and Newton matrix assembled from it (:meth:`LumpedStepper.residual_function`);
+* Newton's method written in the CasADi graph, with a backtracking line search and the
+  contraction-estimate stop (:meth:`LumpedStepper.core_step`);
+* step halving where Newton fails (:meth:`LumpedStepper.halving_step`);
+* the reference step solved by CasADi's ``rootfinder`` (``solver = "rootfinder"``).
+"""
+
+from __future__ import annotations
+
+import math
+from typing import TYPE_CHECKING, Any
+
+import casadi as ca
+import numpy as np
+
+from cable_ocp.errors import CableOCPError
+from cable_ocp.numerics.compile import compile_function
+from cable_ocp.physics.drag import drag_per_length
+from cable_ocp.physics.smooth import smooth_abs
+
+if TYPE_CHECKING:
+    from cable_ocp.dynamics.lumped import LumpedMassModel
+
+__all__ = ["SCHEMES", "LumpedStepper", "segment_kernel", "switch"]
+
+#: time-integration schemes of :meth:`cable_ocp.dynamics.lumped.LumpedMassModel.step_function`
+SCHEMES = ("midpoint", "trapezoidal", "bdf2")
+
+# 3-point Gauss-Legendre rule on [-1, 1] (mean of the tension over a strain interval)
+_GAUSS_X = (-math.sqrt(0.6), 0.0, math.sqrt(0.6))
+_GAUSS_W = (5.0 / 18.0, 8.0 / 18.0, 5.0 / 18.0)
+
+
+def next_state(scheme: str, x1: Any, z: Any, dt: Any, nf3: int) -> tuple[Any, Any]:
+    """The stepped state from the new positions ``x1`` and the old stepped state ``z``
+    (positions, velocities, then the scheme's history: the acceleration for the midpoint
+    and trapezoidal rules, the previous positions and velocities and the start flag for
+    BDF2); returns (new stepped state, new velocities)."""
+    x0, v0 = z[0:nf3], z[nf3:2 * nf3]
+    if scheme == "midpoint":
+        v1 = 2.0 * (x1 - x0) / dt - v0
+        return ca.vertcat(x1, v1, (v1 - v0) / dt), v1
+    if scheme == "trapezoidal":
+        v1 = 2.0 * (x1 - x0) / dt - v0
+        return ca.vertcat(x1, v1, 2.0 * (v1 - v0) / dt - z[2 * nf3:3 * nf3]), v1
+    st, xp = z[4 * nf3], z[2 * nf3:3 * nf3]
+    v1 = ((1.0 + 0.5 * st) * x1 + (-1.0 - st) * x0 + 0.5 * st * xp) / dt
+    return ca.vertcat(x1, v1, x0, v0, 1.0), v1
+
+
+
+class LumpedStepper:
+    """The time steps of one :class:`~cable_ocp.dynamics.lumped.LumpedMassModel`, built on
+    first use and cached per setting (step size, scheme, tolerances, compilation, force
+    scale)."""
+
+    def __init__(self, model: LumpedMassModel) -> None:
+        self.model = model
+        self._steps: dict[tuple, ca.Function] = {}
+        self._residuals: dict[tuple, ca.Function] = {}
+        #: the scaled residual's inf-norm alone, per key of ``_residuals``
+        self._residual_norms: dict[tuple, ca.Function] = {}
+
+    def step_function(self, dt: float, scheme: str = "midpoint", *, tol: float = 1e-10,
+                      max_iter: int = 20, solver: str = "newton",
+                      linear_solver: str = "qr", compile_kernel: bool = True,
+                      force_scale: float | None = None) -> ca.Function:
+        """:meth:`LumpedMassModel.step_function` (see there)."""
+        if scheme not in SCHEMES:
+            raise CableOCPError(f"scheme = {scheme!r}: valid are {SCHEMES}")
+        if solver not in ("newton", "rootfinder"):
+            raise CableOCPError(f"solver = {solver!r}: valid are 'newton', 'rootfinder'")
+        if not dt > 0:
+            raise CableOCPError(f"time_step = {dt}: must be > 0")
+        key = (float(dt), scheme, tol, max_iter, solver, linear_solver, compile_kernel,
+               force_scale)
+        if key in self._steps:
+            return self._steps[key]
+        if solver == "newton":
+            step = self.newton_step(dt, scheme, tol, max_iter, linear_solver, compile_kernel,
+                                   force_scale)
+            self._steps[key] = step
+            return step
+        p = self.model.params
+        nf3 = 3 * self.model.n_free
+        fscale = self.model.force_scale() if force_scale is None else float(force_scale)
+        x1 = ca.SX.sym("x1", nf3)
+        x0 = ca.SX.sym("x0", nf3)
+        v0 = ca.SX.sym("v0", nf3)
+        t0 = ca.SX.sym("t0")
+        t1 = t0 + dt
+        if scheme == "midpoint":
+            a0 = ca.SX.sym("a0", nf3)
+            r0 = self.model._all_positions(x0, t0)
+            r1 = self.model._all_positions(x1, t1)
+            rm = [0.5 * (a + b) for a, b in zip(r0, r1, strict=True)]
+            vm = (x1 - x0) / dt
+
+            def velocities(vf: Any) -> list[Any]:
+                vel = [vf[3 * k:3 * k + 3] for k in range(self.model.n_free)]
+                if p.fixed_a:
+                    vel = [(r1[0] - r0[0]) / dt] + vel
+                return vel + [(r1[-1] - r0[-1]) / dt]
+
+            f_el = self.model._free(self.model._elastic(r0, r1, velocities(vm), dt))
+            drag = self.model._free(self.model._drag(rm, velocities(vm)))
+            mass = self.model._mass_expr(rm)
+            v1 = 2.0 * vm - v0
+            inert = ca.mtimes(mass, v1 - v0) / dt
+            extra = ca.vertcat(x0, v0, a0, t0)
+            guess = x0 + dt * v0 + 0.5 * dt * dt * a0
+            z = ca.vertcat(x0, v0, a0)
+        elif scheme == "trapezoidal":
+            a0 = ca.SX.sym("a0", nf3)
+            r1 = self.model._all_positions(x1, t1)
+            v1 = 2.0 * (x1 - x0) / dt - v0
+            a1 = 2.0 * (v1 - v0) / dt - a0
+            vel1 = self.model._all_velocities(v1, t1)
+            f_el = self.model._free(self.model._elastic(r1, None, vel1, None))
+            drag = self.model._free(self.model._drag(r1, vel1))
+            mass = self.model._mass_expr(r1)
+            inert = ca.mtimes(mass, a1)
+            extra = ca.vertcat(x0, v0, a0, t0)
+            guess = x0 + dt * v0 + 0.5 * dt * dt * a0
+            z = ca.vertcat(x0, v0, a0)
+        else:
+            xp = ca.SX.sym("xp", nf3)
+            vp = ca.SX.sym("vp", nf3)
+            started = ca.SX.sym("started")
+            c0 = 1.0 + 0.5 * started
+            c1 = -1.0 - started
+            c2 = 0.5 * started
+            v1 = (c0 * x1 + c1 * x0 + c2 * xp) / dt
+            a1 = (c0 * v1 + c1 * v0 + c2 * vp) / dt
+            r1 = self.model._all_positions(x1, t1)
+            vel1 = self.model._all_velocities(v1, t1)
+            f_el = self.model._free(self.model._elastic(r1, None, vel1, None))
+            drag = self.model._free(self.model._drag(r1, vel1))
+            mass = self.model._mass_expr(r1)
+            inert = ca.mtimes(mass, a1)
+            extra = ca.vertcat(x0, v0, xp, vp, started, t0)
+            guess = x0 + dt * v0 + started * (x0 - xp - dt * v0)
+            z = ca.vertcat(x0, v0, xp, vp, started)
+        f_ext = self.model._free(self.model._static_loads())
+        res = (inert - f_el - f_ext - drag) / fscale
+        g = ca.Function("g", [x1, extra], [res])
+        zin = ca.Function("split", [z, t0], [extra, guess])
+        zs = ca.MX.sym("z", z.shape[0])
+        ts = ca.MX.sym("t0")
+        extra_m, guess_m = zin(zs, ts)
+        newton = ca.rootfinder("newton_step", "newton", g, {
+            "abstol": tol, "abstolStep": 1e-14, "max_iter": max_iter,
+            "linear_solver": "csparse", "error_on_fail": False})
+        x1m = newton(guess_m, extra_m)
+        resid = ca.norm_inf(g(x1m, extra_m))
+        iters = ca.MX(math.nan)
+        z1, _ = next_state(scheme, x1m, zs, dt, nf3)
+        eps = self.model.tensions(x1m, ts + dt)[1]
+        emin = ca.mmin(eps)
+        step = ca.Function(f"step_{scheme}", [zs, ts],
+                           [z1, resid, iters, emin, ca.find(eps <= emin)],
+                           ["z", "t0"], ["z1", "residual", "iterations", "min_strain",
+                                         "slack_segment"])
+        self._steps[key] = step
+        return step
+
+
+    # -- the fast Newton step ------------------------------------------------------------
+    def segment_parameters(self) -> np.ndarray:
+        """Kernel parameters per segment, shape (12, N) (:data:`KERNEL_PARAMS`)."""
+        p = self.model.params
+        area = math.pi * p.diameter**2 / 4.0
+        rows = {
+            "l": p.segment_length, "ea": p.axial_stiffness, "c": p.axial_damping,
+            "d": p.diameter, "cn": p.normal_drag, "ct": p.tangential_drag,
+            "en": p.water_density * p.added_mass_coefficient * area * p.segment_length,
+            "et": (p.water_density * p.tangential_added_mass_coefficient * area
+                   * p.segment_length),
+            "rho": np.full(p.segments, p.water_density),
+            "delta": np.full(p.segments, p.smoothing),
+            "delta_t": np.full(p.segments, p.slack_smoothing),
+            "blend": np.full(p.segments, p.vertical_blend)}
+        return np.vstack([rows[k] for k in KERNEL_PARAMS])
+
+    def point_terms(self, r: Any, v: Any, gamma: Any, sym: Any = ca.MX) -> tuple[Any, Any]:
+        """Drag (N, 3 x (N+1)) and its Newton blocks (9 x (N+1)) of the unit and the bodies
+        at node positions r and velocities v (MX, 3 x (N+1))."""
+        p = self.model.params
+        n = p.segments
+        items = []
+        if p.unit is not None:
+            items.append((0, [a * c for a, c in zip(p.unit.drag_area, p.unit.drag_coefficient,
+                                                    strict=True)], p.unit.drag_law))
+        items += [(b.node, [b.drag_area * b.drag_coefficient] * 3, "vector")
+                  for b in p.bodies]
+        items = [it for it in items if any(it[1]) and p.water_density > 0]
+        fcols = [sym.zeros(3, 1) for _ in range(n + 1)]
+        ccols = [sym.zeros(9, 1) for _ in range(n + 1)]
+        if not items:
+            return ca.horzcat(*fcols), ca.horzcat(*ccols)
+        rs, vs, gs = ca.SX.sym("r", 3), ca.SX.sym("v", 3), ca.SX.sym("g")
+        eye = ca.SX.eye(3)
+        for node, cs, law in items:
+            u = -vs
+            if p.current is not None:
+                u = u + ca.vec(p.current(rs[2]))
+            half_rho = 0.5 * p.water_density
+            if law == "vector":
+                sp = ca.sqrt(ca.dot(u, u) + p.smoothing**2)
+                f = half_rho * sp * ca.vertcat(*[cs[k] * u[k] for k in range(3)])
+                dmat = half_rho * ca.mtimes(ca.diag(ca.DM(cs)),
+                                            sp * eye + ca.mtimes(u, u.T) / sp)
+                dmat = 0.5 * (dmat + dmat.T)
+            else:
+                f = half_rho * ca.vertcat(*[cs[k] * smooth_abs(u[k], p.smoothing) * u[k]
+                                            for k in range(3)])
+                dmat = half_rho * ca.diag(ca.vertcat(*[
+                    cs[k] * (smooth_abs(u[k], p.smoothing)
+                             + u[k] ** 2 / smooth_abs(u[k], p.smoothing)) for k in range(3)]))
+            fn = ca.Function("point_drag", [rs, vs, gs], [f, ca.vec(gs * dmat)])
+            fk, ck = fn(r[:, node], v[:, node], gamma)
+            fcols[node] = fcols[node] + fk
+            ccols[node] = ccols[node] + ck
+        return ca.horzcat(*fcols), ca.horzcat(*ccols)
+
+    def residual_function(self, scheme: str, compile_kernel: bool, fscale: float
+                           ) -> ca.Function:
+        """``gj(x1, z, t0, dt)``: the step's scaled residual and, for the MX path, the
+        Newton matrix and force residual (``(res, J, f)``), or, for the SX path, the
+        Newton update by block elimination (``(res, dx)``). Cached: one function for
+        every step size (the step halving reuses it)."""
+        key = (scheme, compile_kernel, fscale)
+        if key in self._residuals:
+            return self._residuals[key]
+        p = self.model.params
+        n = p.segments
+        nf = self.model.n_free
+        nf3 = 3 * nf
+        first = 1 if p.fixed_a else 0
+        kern = segment_kernel(p.drag_law, compile_kernel).map(n, "serial")
+        if not compile_kernel:
+            kern = segment_kernel_expr(p.drag_law).map(n, "unroll")
+        par = ca.DM(self.segment_parameters())
+        ends = self.model.ends
+        node_m = ca.DM(np.vstack([np.diag(m).T.reshape(-1) for m in self.model._node_mass]).T)
+        static = np.zeros((3, n + 1))
+        static[2] = -self.model._node_weight
+        if p.unit is not None:
+            static[:, 0] += p.unit.force
+        for b in p.bodies:
+            static[:, b.node] += b.force
+        static = ca.DM(static)
+        cur = None
+        if p.current is not None:
+            zs = ca.SX.sym("z")
+            cur = ca.Function("current", [zs], [ca.vec(p.current(zs))]).map(n, "serial")
+
+        def nodes(xf: Any, ra: Any, rb: Any) -> Any:
+            cols = [ra] if p.fixed_a else []
+            return ca.horzcat(*cols, ca.reshape(xf, 3, nf), rb)
+
+        def mat_vec(mb: Any, w: Any) -> Any:
+            """Row-major 3x3 blocks (9 x k) times vectors (3 x k), column by column."""
+            return ca.vertcat(*[mb[3 * i, :] * w[0, :] + mb[3 * i + 1, :] * w[1, :]
+                                + mb[3 * i + 2, :] * w[2, :] for i in range(3)])
+
+        # sparsity and nonzero map of the block-tridiagonal Newton matrix (free nodes)
+        rows, cols, src = [], [], []
+        for a in range(nf):
+            for r in range(3):
+                for c in range(3):
+                    rows.append(3 * a + r)
+                    cols.append(3 * a + c)
+                    src.append(9 * a + 3 * r + c)
+        off = 9 * nf
+        for a in range(nf - 1):
+            for r in range(3):
+                for c in range(3):
+                    rows += [3 * a + r, 3 * (a + 1) + r]
+                    cols += [3 * (a + 1) + c, 3 * a + c]
+                    src += [off + 9 * a + 3 * r + c, off + 9 * a + 3 * r + c]
+        sp = ca.Sparsity.triplet(nf3, nf3, rows, cols)
+        # order the values as the sparsity stores them (column-major)
+        order = np.lexsort((np.asarray(rows), np.asarray(cols)))
+        src_sorted = [src[k] for k in order]
+
+        # the residual and Newton matrix: MX around the compiled kernel, or one SX
+        # function with the kernel inlined (compiled with the whole step: no overhead)
+        sym = ca.MX if compile_kernel else ca.SX
+        x1 = sym.sym("x1", nf3)
+        zsym = sym.sym("z", self.model.state_size(scheme))
+        t0 = sym.sym("t0")
+        dt = sym.sym("dt")
+        x0 = zsym[0:nf3]
+        v0 = zsym[nf3:2 * nf3]
+        ra0, va0, rb0, vb0 = ends(t0)
+        ra1, va1, rb1, vb1 = ends(t0 + dt)
+        r1 = nodes(x1, ra1, rb1)
+        if scheme == "midpoint":
+            r0 = nodes(x0, ra0, rb0)
+            vel = (r1 - r0) / dt
+            v1 = 2.0 * (x1 - x0) / dt - v0
+            coef = (2.0 / dt**2, 0.5, 1.0 / dt)
+            mid = 1.0
+            rm = 0.5 * (r0 + r1)
+        else:
+            r0 = r1
+            rm = r1
+            mid = 0.0
+            if scheme == "trapezoidal":
+                v1 = 2.0 * (x1 - x0) / dt - v0
+                a1 = 2.0 * (v1 - v0) / dt - zsym[2 * nf3:3 * nf3]
+                coef = (4.0 / dt**2, 1.0, 2.0 / dt)
+            else:
+                st = zsym[4 * nf3]
+                c0, c1, c2 = 1.0 + 0.5 * st, -1.0 - st, 0.5 * st
+                xp = zsym[2 * nf3:3 * nf3]
+                vp = zsym[3 * nf3:4 * nf3]
+                v1 = (c0 * x1 + c1 * x0 + c2 * xp) / dt
+                a1 = (c0 * v1 + c1 * v0 + c2 * vp) / dt
+                coef = (c0 * c0 / dt**2, 1.0, c0 / dt)
+            vel = nodes(v1, va1, vb1)
+        alpha, beta, gamma = coef
+        scv = ca.vertcat(dt, mid, beta, gamma)
+        if cur is not None:
+            ucur = cur(0.5 * (rm[2, 0:n] + rm[2, 1:n + 1]))
+        else:
+            ucur = sym.zeros(3, n)
+        fa, fb, madd, kb, cb = kern(r0[:, 0:n], r0[:, 1:n + 1], r1[:, 0:n], r1[:, 1:n + 1],
+                                    vel[:, 0:n], vel[:, 1:n + 1], ucur, par, scv)
+        z3 = sym.zeros(3, 1)
+        z9 = sym.zeros(9, 1)
+        fpt, cpt = self.point_terms(rm, vel, gamma, sym)
+        force = ca.horzcat(fa, z3) + ca.horzcat(z3, fb) + static + fpt
+        mass = node_m + ca.horzcat(madd, z9) + ca.horzcat(z9, madd)
+        free = slice(first, n)
+        if scheme == "midpoint":
+            inert = mat_vec(mass[:, free], ca.reshape(v1 - v0, 3, nf)) / dt
+        else:
+            inert = mat_vec(mass[:, free], ca.reshape(a1, 3, nf))
+        fres = ca.vec(inert - force[:, free])
+        res = fres / fscale
+        kc = ca.horzcat(kb, z9) + ca.horzcat(z9, kb) + ca.horzcat(cb, z9) + ca.horzcat(
+            z9, cb) + cpt
+        diag_b = alpha * mass[:, free] + kc[:, free]
+        off_b = -kb[:, first:n - 1] + cb[:, first:n - 1]
+        vals = ca.vertcat(ca.vec(diag_b), ca.vec(off_b))
+        if compile_kernel:
+            jac = ca.MX(sp, 0)
+            jac.nz[:] = vals[src_sorted]
+            gj = ca.Function("gj", [x1, zsym, t0, dt], [res, jac, fres])
+        else:
+            # the Newton update by block-tridiagonal elimination (3x3 blocks, no pivoting:
+            # the matrix is close to symmetric positive definite), inlined in SX
+            dx_sx = _block_thomas(diag_b, off_b, ca.reshape(fres, 3, nf))
+            gj = ca.Function("gj", [x1, zsym, t0, dt], [res, dx_sx])
+        # the residual alone (the SX graph keeps only its part: about a third of gj's
+        # operations), to check an iterate accepted on the contraction estimate
+        self._residual_norms[key] = ca.Function("g", [x1, zsym, t0, dt], [ca.norm_inf(res)])
+        self._residuals[key] = gj
+        return gj
+
+    def core_step(self, dt: float, scheme: str, tol: float, max_iter: int,
+                   linear_solver: str, compile_kernel: bool, force_scale: float | None
+                   ) -> ca.Function:
+        """One Newton-solved step ``(z, t0) -> (z1, residual, iterations, converged)``."""
+        p = self.model.params
+        nf3 = 3 * self.model.n_free
+        fscale = self.model.force_scale() if force_scale is None else float(force_scale)
+        x_scale = p.length + float(np.max(np.abs(np.asarray(p.top_position(0.0)))))
+        gj4 = self.residual_function(scheme, compile_kernel, fscale)
+        zsym = ca.MX.sym("z", self.model.state_size(scheme))
+        t0 = ca.MX.sym("t0")
+        x0 = zsym[0:nf3]
+        v0 = zsym[nf3:2 * nf3]
+
+        def gj(x: Any, z: Any, t: Any) -> Any:
+            return gj4(x, z, t, dt)
+
+        # Newton with backtracking, skipped once converged: an iteration evaluates the
+        # residual at x; if it did not decrease (2-norm) from the last accepted point, x
+        # moves back along the last step (halving it, down to 1/16); else a Newton step.
+        xk = ca.MX.sym("xk", nf3)
+        xo = ca.MX.sym("xo", nf3)
+        dl = ca.MX.sym("dl", nf3)
+        rno = ca.MX.sym("rno")
+        rio = ca.MX.sym("rio")  # inf-norm residual where the last Newton step was taken
+        lam = ca.MX.sym("lam")
+        if compile_kernel:
+            rk, jk, fk = gj(xk, zsym, t0)
+        else:
+            rk, dxk = gj(xk, zsym, t0)
+        rn = ca.norm_inf(rk)
+        rn2 = ca.norm_2(rk)
+        # converged: the residual below tol, or (rounding floor: the residual of a heavy
+        # node at a small step, M eps |x| / dt^2, can exceed tol) the last Newton update
+        # at rounding level with the residual below the failure threshold
+        dln = ca.norm_inf(dl)
+        stalled = ca.logic_and(ca.logic_and(dln > 0.0, dln <= 1e-13 * x_scale),
+                               rn <= max(1e3 * tol, 1e-6))
+        conv = ca.logic_or(rn <= tol, stalled)
+        worse = ca.logic_and(ca.logic_and(rn2 > rno, lam > 1.0 / 16.0),
+                             ca.logic_not(conv))
+        x_back = xo - 0.5 * lam * dl
+        skip = ca.logic_or(conv, worse)
+        if compile_kernel:
+            # the sparse solve only when a Newton step is taken (on the values computed
+            # above: the solve's function takes J and f, not x)
+            jm = ca.MX.sym("J", jk.sparsity())
+            fm = ca.MX.sym("f", nf3)
+            solve = ca.Function("newton_solve", [jm, fm], [ca.solve(jm, fm, linear_solver)])
+            no_step = ca.Function("no_step", [jm, fm], [ca.MX.zeros(nf3)])
+            dx = switch("maybe_solve", skip, no_step, solve, jk, fk)
+        else:
+            dx = ca.if_else(skip, ca.MX.zeros(nf3), dxk)
+        # stop on the contraction estimate (after Hairer & Wanner (1996), Solving ODEs II,
+        # sec. IV.8, eq. (8.10), written for the residual): where this Newton step follows
+        # one that reduced the residual from rio to rn, the residual after it should be
+        # about rn * (rn / rio). Below tol, the new iterate is checked with the residual
+        # alone (about a third of the work of a residual-and-matrix evaluation) and
+        # accepted if it is below tol; else the iteration goes on from it. The estimate
+        # only decides when to check (it can be optimistic: near the rounding floor and
+        # where the matrix leaves out the drag's orientation terms); the reported
+        # residual is always evaluated at the accepted iterate.
+        est = rn * rn / rio
+        check = ca.logic_and(ca.logic_and(ca.logic_not(skip), rio < 1e300),
+                             ca.logic_and(rn < rio, est <= tol))
+        g_only = self._residual_norms[(scheme, compile_kernel, fscale)]
+        xs_, zs_, ts_ = ca.MX.sym("x", nf3), ca.MX.sym("z", zsym.shape[0]), ca.MX.sym("t")
+        no_chk = ca.Function("no_check", [xs_, zs_, ts_], [ca.inf])
+        chk = ca.Function("check", [xs_, zs_, ts_], [g_only(xs_, zs_, ts_, dt)])
+        r_chk = switch("maybe_check", check, chk, no_chk, xk - dx, zsym, t0)
+        early = ca.logic_and(check, r_chk <= tol)
+        x_new = ca.if_else(conv, xk, ca.if_else(worse, x_back, xk - dx))
+        xo_new = ca.if_else(ca.logic_or(conv, worse), xo, xk)
+        dl_new = ca.if_else(ca.logic_or(conv, worse), dl, dx)
+        rno_new = ca.if_else(ca.logic_or(conv, worse), rno, rn2)
+        rio_new = ca.if_else(ca.logic_or(conv, worse), rio, rn)
+        lam_new = ca.if_else(worse, 0.5 * lam, 1.0)
+        state_in = [xk, xo, dl, rno, rio, lam, zsym, t0]
+        work = ca.Function("work", state_in,
+                           [x_new, xo_new, dl_new, rno_new, rio_new, lam_new,
+                            ca.if_else(early, r_chk, rn), ca.logic_or(conv, early)])
+        rs = ca.MX.sym("r")
+        idle = ca.Function("idle", state_in + [rs], [xk, xo, dl, rno, rio, lam, rs, 1.0])
+        work_r = ca.Function("work_r", state_in + [rs], work(*state_in))
+        it = ca.Function.if_else("newton_iteration", idle, work_r)
+        if scheme in ("midpoint", "trapezoidal"):
+            guess = x0 + dt * v0 + 0.5 * dt * dt * zsym[2 * nf3:3 * nf3]
+        else:
+            st = zsym[4 * nf3]
+            guess = x0 + dt * v0 + st * (x0 - zsym[2 * nf3:3 * nf3] - dt * v0)
+        xi, xoi, dli = guess, guess, ca.MX.zeros(nf3)
+        rnoi, rioi, lami = ca.MX(ca.inf), ca.MX(ca.inf), ca.MX(1.0)
+        rni, done, count = ca.MX(ca.inf), ca.MX(0.0), ca.MX(0.0)
+        for _ in range(max_iter):
+            count = count + (1.0 - done)
+            xi, xoi, dli, rnoi, rioi, lami, rni, done = it(done, xi, xoi, dli, rnoi, rioi,
+                                                           lami, zsym, t0, rni)
+        # the residual at the last iterate where the iteration ran out of iterations
+        rs_ = ca.MX.sym("r")
+        last = ca.Function("last_residual", [rs_, xk, zsym, t0], [g_only(xk, zsym, t0, dt)])
+        known = ca.Function("known_residual", [rs_, xk, zsym, t0], [rs_])
+        resid = switch("final_residual", done, known, last, rni, xi, zsym, t0)
+        x1m = xi
+        z1, _ = next_state(scheme, x1m, zsym, dt, nf3)
+        return ca.Function(f"core_{scheme}", [zsym, t0], [z1, resid, count, done])
+
+    def halving_step(self, dt: float, scheme: str, tol: float, max_iter: int,
+                      linear_solver: str, compile_kernel: bool, force_scale: float | None,
+                      halvings: int) -> ca.Function:
+        """``(z, t0) -> (z1, residual, iterations, converged)``: the core step; where its
+        Newton iteration does not converge, two steps of dt/2 instead (recursively, at
+        most ``halvings`` times; only for the one-step schemes)."""
+        core = self.core_step(dt, scheme, tol, max_iter, linear_solver, compile_kernel,
+                               force_scale)
+        if halvings <= 0 or scheme == "bdf2":
+            return core
+        half = self.halving_step(0.5 * dt, scheme, tol, max_iter, linear_solver,
+                                  compile_kernel, force_scale, halvings - 1)
+        z = ca.MX.sym("z", self.model.state_size(scheme))
+        t0 = ca.MX.sym("t0")
+        za, ra, ia, da = half(z, t0)
+        zb, rb, ib, db = half(za, t0 + 0.5 * dt)
+        two = ca.Function("two_halves", [z, t0],
+                          [ca.vertcat(zb, ca.fmax(ra, rb), ia + ib, da * db)])
+        z1, r1, i1, d1 = core(z, t0)
+        y = ca.MX.sym("y", z.shape[0] + 3)
+        keep = ca.Function("keep", [y, z, t0], [y])
+        halves = ca.Function("halves", [y, z, t0], [two(z, t0)])
+        packed = switch("halving_select", d1, keep, halves, ca.vertcat(z1, r1, i1, d1), z, t0)
+        n = z.shape[0]
+        return ca.Function(f"halving_{scheme}", [z, t0],
+                           [packed[0:n], packed[n], packed[n + 1], packed[n + 2]])
+
+    def newton_step(self, dt: float, scheme: str, tol: float, max_iter: int,
+                   linear_solver: str, compile_kernel: bool, force_scale: float | None,
+                   halvings: int = 3) -> ca.Function:
+        """The ``"newton"`` solver of :meth:`step_function` (see there)."""
+        step = self.halving_step(dt, scheme, tol, max_iter, linear_solver, compile_kernel,
+                                  force_scale, halvings)
+        nf3 = 3 * self.model.n_free
+        z = ca.MX.sym("z", self.model.state_size(scheme))
+        t0 = ca.MX.sym("t0")
+        z1, resid, count, _ = step(z, t0)
+        eps = self.model.tensions(z1[0:nf3], t0 + dt)[1]
+        emin = ca.mmin(eps)
+        return ca.Function(f"step_{scheme}", [z, t0],
+                           [z1, resid, count, emin, ca.find(eps <= emin)],
+                           ["z", "t0"], ["z1", "residual", "iterations", "min_strain",
+                                         "slack_segment"])
+
+
+# --------------------------------------------------------------------------------------
+# Per-segment kernel of the time step (compiled once, mapped over the segments)
+# --------------------------------------------------------------------------------------
+
+#: segment parameters fed to the kernel, in this order
+KERNEL_PARAMS = ("l", "ea", "c", "d", "cn", "ct", "en", "et", "rho", "delta", "delta_t",
+                  "blend")
+
+
+def segment_kernel_expr(drag_law: str) -> ca.Function:
+    """One segment's contribution to a time step, as a CasADi Function (SX).
+
+    Inputs: node positions at the two levels ``ra0, rb0, ra1, rb1`` (m), node velocities
+    ``va, vb`` (m/s, for the drag and the material damping), the current ``u`` at the
+    segment's mid-height (m/s), the parameters ``par`` (:data:`KERNEL_PARAMS`) and
+    ``sc = (dt, mid, beta, gamma)``.
+
+    With ``mid = 1`` the tension is the discrete gradient between the levels (mean of T
+    over [eps0, eps1] along (d0 + d1) / (|d0| + |d1|)) and the damping c (|d1| - |d0|) /
+    (l dt); with ``mid = 0`` (and r0 = r1) it is T(eps1) along d1 and c d1.(vb - va) /
+    (|d1| l). Drag and added mass are taken at the mean positions (r0 + r1) / 2.
+
+    Outputs: the forces on nodes a and b (N), the added-mass share of each node (3x3,
+    kg, row-major 9-vector), and the Newton blocks ``kb`` (the tension's stiffness: the
+    derivative of the mean tension along e e^T plus T / |d| across, times beta = 1/2 for
+    the midpoint, 1 otherwise; plus gamma (c/l) H e e^T) and ``cb`` = gamma |d| D / 4
+    (N/m) of :meth:`LumpedMassModel.step_function`.
+    """
+    ra0, rb0, ra1, rb1, va, vb, u_c = (ca.SX.sym(n, 3) for n in
+                                       ("ra0", "rb0", "ra1", "rb1", "va", "vb", "u"))
+    par = ca.SX.sym("par", len(KERNEL_PARAMS))
+    sc = ca.SX.sym("sc", 4)
+    ell, ea, c, d, cn, ct, en, et, rho, delta, delta_t, blend = (par[k] for k in range(12))
+    dt, mid, beta, gamma = sc[0], sc[1], sc[2], sc[3]
+
+    def tension(eps: Any) -> Any:
+        u = ea * eps
+        return 0.5 * (u + ca.sqrt(u * u + delta_t * delta_t))
+
+    def taut(eps: Any) -> Any:
+        u = ea * eps
+        return 0.5 * (1.0 + u / ca.sqrt(u * u + delta_t * delta_t))
+
+    d0 = rb0 - ra0
+    d1 = rb1 - ra1
+    l0 = ca.norm_2(d0)
+    l1 = ca.norm_2(d1)
+    e0 = l0 / ell - 1.0
+    e1 = l1 / ell - 1.0
+    em, de = 0.5 * (e0 + e1), 0.5 * (e1 - e0)
+    tbar = sum(w * tension(em + g * de) for g, w in zip(_GAUSS_X, _GAUSS_W, strict=True))
+    # derivative of the Gauss mean with respect to eps1 (the midpoint's Newton matrix)
+    dtbar = sum(w * ea * taut(em + g * de) * 0.5 * (1.0 + g)
+                for g, w in zip(_GAUSS_X, _GAUSS_W, strict=True))
+    rate = mid * (l1 - l0) / (ell * dt) + (1.0 - mid) * ca.dot(d1, vb - va) / (l1 * ell)
+    tbar = tbar + c * rate * taut(em)
+    f_el = tbar * (d0 + d1) / (l0 + l1)
+    # drag and added mass at the mean positions
+    dm = 0.5 * (d0 + d1)
+    lm = ca.norm_2(dm)
+    tm = dm / lm
+    urel = u_c - 0.5 * (va + vb)
+    f_d = lm * drag_per_length(drag_law, urel, tm, rho=1.0, diameter=1.0, normal_drag=1.0,
+                               tangential_drag=0.0, delta=delta, blend=blend) * (rho * cn * d)
+    ut = ca.dot(urel, tm)
+    f_d = f_d + lm * 0.5 * rho * ct * math.pi * d * ca.sqrt(ut * ut + delta * delta) * ut * tm
+    eye = ca.SX.eye(3)
+    eet = ca.mtimes(tm, tm.T)
+    madd = 0.5 * (en * (eye - eet) + et * eet)
+    # Newton blocks
+    # d(T u)/d d1 with u = (d0 + d1) / (|d0| + |d1|), e1 = d1 / |d1|:
+    # (dT/deps1 / l) u e1^T + T (I - u e1^T) / (|d0| + |d1|), times 2 beta (beta = 1/2 for
+    # the midpoint, where T is the Gauss mean; 1 with r0 = r1, where dtbar = T'/2 and u =
+    # e1). Not symmetric for the midpoint: the strain at level 1 follows e1, the force u.
+    uet = ca.mtimes((d0 + d1) / (l0 + l1), (d1 / l1).T)
+    kb = 2.0 * beta * (dtbar / ell * uet + tbar / (l0 + l1) * (eye - uet)) + gamma * c / ell * (
+        taut(em) * uet)
+    un = urel - ut * tm
+    sn = ca.sqrt(ca.dot(un, un) + delta * delta)
+    st = ca.sqrt(ut * ut + delta * delta)
+    dmat = 0.5 * rho * cn * d * (sn * (eye - eet) + ca.mtimes(un, un.T) / sn)
+    dmat = dmat + 0.5 * rho * ct * math.pi * d * (st + ut * ut / st) * eet
+    cb = 0.25 * gamma * lm * dmat
+    # drag_per_length(rho=1, d=1, C_n=1) is half of |u_n| u_n: scaled by rho C_n d above
+    return ca.Function(
+        f"segment_{drag_law}", [ra0, rb0, ra1, rb1, va, vb, u_c, par, sc],
+        [f_el + 0.5 * f_d, -f_el + 0.5 * f_d, ca.vec(madd.T), ca.vec(kb.T), ca.vec(cb.T)],
+        ["ra0", "rb0", "ra1", "rb1", "va", "vb", "u", "par", "sc"],
+        ["fa", "fb", "madd", "kb", "cb"])
+
+
+_KERNELS: dict[str, ca.Function] = {}
+
+
+def switch(name: str, cond: Any, if_true: ca.Function, if_false: ca.Function,
+            *args: Any) -> Any:
+    """``if_true(*args)`` where ``cond`` holds, else ``if_false(*args)``: only one is
+    evaluated. (CasADi's ``if_else(c, a, b, True)`` on expressions builds each branch as a
+    function of the graph's *inputs*, so a branch that reuses a value computed before it
+    (a Newton iterate, a step's result) evaluates that value again: here the branches take
+    those values as arguments.)"""
+    return ca.Function.if_else(name, if_true, if_false)(cond, *args)
+
+
+def _block_thomas(diag: Any, off: Any, rhs: Any) -> Any:
+    """Solve the block-tridiagonal system with 3x3 diagonal blocks ``diag`` (9 x n,
+    row-major) and equal upper and lower blocks ``off`` (9 x (n-1)) for ``rhs`` (3 x n), by
+    block elimination without pivoting (SX). Returns the solution as a (3 n,) vector."""
+    n = rhs.shape[1]
+
+    def blk(m: Any, k: int) -> Any:
+        return ca.reshape(m[:, k], 3, 3).T
+
+    d_p = [blk(diag, 0)]
+    y = [rhs[:, 0]]
+    for i in range(1, n):
+        w = ca.mtimes(blk(off, i - 1), ca.inv(d_p[i - 1]))
+        d_p.append(blk(diag, i) - ca.mtimes(w, blk(off, i - 1)))
+        y.append(rhs[:, i] - ca.mtimes(w, y[i - 1]))
+    x = [None] * n
+    x[n - 1] = ca.solve(d_p[n - 1], y[n - 1])
+    for i in range(n - 2, -1, -1):
+        x[i] = ca.solve(d_p[i], y[i] - ca.mtimes(blk(off, i), x[i + 1]))
+    return ca.vertcat(*x)
+
+
+def segment_kernel(drag_law: str, compile_kernel: bool = True) -> ca.Function:
+    """The segment kernel of ``drag_law``, compiled to C once and cached on disk when a C
+    compiler is available (:func:`cable_ocp.numerics.compile.compile_function`), else
+    interpreted."""
+    key = f"{drag_law}:{compile_kernel}"
+    if key not in _KERNELS:
+        fn = segment_kernel_expr(drag_law)
+        _KERNELS[key] = compile_function(fn, "-O2") if compile_kernel else fn
+    return _KERNELS[key]
