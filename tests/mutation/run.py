@@ -67,7 +67,8 @@ LAWS = ("tests/test_physics_laws.py",)
 HEAVE = ("tests/heave/test_plant.py", "tests/heave/test_discrete.py", "tests/heave/test_sea.py",
          "tests/heave/test_stochastic.py", "tests/heave/test_lqr.py",
          "tests/heave/test_mpc.py", "tests/heave/test_simulate.py")
-HEAVE_SIM = ("tests/heave/test_simulate.py", "tests/heave/test_examples.py")
+HEAVE_SIM = ("tests/heave/test_simulate.py", "tests/heave/test_examples.py",
+             "tests/heave/test_closed_loop.py")
 # dynamics: whole files where every test is quick, else the non-slow test ids
 AXIAL = ("tests/dynamics/test_axial.py", "tests/dynamics/test_axial_huang.py")
 _LMP = "tests/dynamics/test_lumped.py::test_"
@@ -342,16 +343,17 @@ MUTATIONS: tuple[Mutation, ...] = (
     Mutation("lqr-crossing-phase-sign", HEAVE_A, "cable_ocp/heave/lqr.py",
              "t0 = (-np.angle(z)) % (2 * np.pi) / wc", "t0 = (np.angle(z)) % (2 * np.pi) / wc",
              HEAVE, "delay margin from the conjugate phase"),
-    Mutation("sim-quadratic-damping-unsigned", HEAVE_A, "cable_ocp/heave/simulate.py",
-             "damp = bq * s[1] * abs(s[1]) if quad else b * s[1]",
-             "damp = bq * s[1] * s[1] if quad else b * s[1]", HEAVE_SIM,
+    Mutation("sim-quadratic-damping-unsigned", HEAVE_A, "cable_ocp/heave/plant.py",
+             "damp = b_quadratic * v * abs(v) if quadratic else b * v",
+             "damp = b_quadratic * v * v if quadratic else b * v", HEAVE_SIM,
              "simulated (6.3) unit: b x'^2 instead of b |x'| x'"),
-    Mutation("sim-delay-one-fine-step-short", HEAVE_A, "cable_ocp/heave/simulate.py",
-             "nring = nd_fine + 1", "nring = nd_fine", HEAVE_SIM,
-             "simulated delay one fine step (0.01 s) short"),
-    Mutation("sim-lqg-buffer-not-reset", HEAVE_A, "cable_ocp/heave/simulate.py",
-             "xh[self.n :] = z[self.n :]", "pass", HEAVE_SIM,
-             "LQG estimate of its own past commands not reset to the known values"),
+    Mutation("sim-delay-one-sample-short", HEAVE_A, "cable_ocp/heave/delay.py",
+             "applied = self._buf[0]\n        self._buf = np.concatenate([self._buf[1:], [u0]])",
+             "self._buf = np.concatenate([self._buf[1:], [u0]])\n        applied = self._buf[0]",
+             HEAVE_SIM, "the delay line applies the command one sample (0.05 s) early"),
+    Mutation("sim-lqg-buffer-not-reset", HEAVE_A, "cable_ocp/heave/estimators.py",
+             "xh[self.n: self.n + self.d] = self.delay.buffer", "pass", HEAVE_SIM,
+             "Kalman estimate of its own past commands not reset to the known values"),
     # -- dynamics/ (Huang (1992) ch. 3-5) ------------------------------------------------------
     Mutation("axial-drag-unsigned", PHYS, "cable_ocp/physics/drag.py",
              "    return k * mod * u\n", "    return k * u * u\n", AXIAL,
