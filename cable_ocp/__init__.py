@@ -15,9 +15,10 @@ scene needs) -> :mod:`cable_ocp.statics.collocation` (transcription) ->
 """
 
 from cable_ocp.errors import CableOCPError
-from cable_ocp.scene import Scene, load_scene, scene_from_dict
+from cable_ocp.scene import Scene, load, load_scene, scene_from_dict
 from cable_ocp.statics.solution import StaticsSolution
 from cable_ocp.statics.solver import StaticsSolver, solve, sweep
+from cable_ocp.status import Status
 
 # the baseline methods register themselves (statics.registry) when imported
 from cable_ocp import baselines  # noqa: E402, F401  isort: skip
@@ -29,6 +30,8 @@ __all__ = [
     "Scene",
     "StaticsSolution",
     "StaticsSolver",
+    "Status",
+    "load",
     "load_scene",
     "scene_from_dict",
     "solve",

@@ -74,7 +74,15 @@ def _stiffness_rows(sol: StaticsSolution, end: str) -> list[tuple[str, str]]:
 def statics_summary(sol: StaticsSolution, title: str = "") -> str:
     """Summary table of one solve: length, grounded length, the ends (position, force,
     tension, angle, stiffness), max tension, solver diagnostics. Every value carries its
-    unit; a missing value is ``-``."""
+    unit; a missing value is ``-``.
+
+    Parameters
+    ----------
+    sol : StaticsSolution
+        The solve to summarise (a failed one too: its missing values print as ``-``).
+    title : str
+        First line of the text; empty (default): no title line.
+    """
     d = sol.diagnostics
     est = d.get("error_estimate_detail", {})
     rows = [
@@ -137,7 +145,16 @@ def statics_summary(sol: StaticsSolution, title: str = "") -> str:
 
 
 def table(headers: Sequence[str], rows: Sequence[Sequence[Any]]) -> str:
-    """Fixed-width text table; floats are printed with 4 significant digits."""
+    """Fixed-width text table; floats are printed with 4 significant digits.
+
+    Parameters
+    ----------
+    headers : sequence of str
+        Column headings, printed above a line of dashes.
+    rows : sequence of sequence
+        The rows, each with one value per heading (a float is printed as ``{:.4g}``,
+        anything else with ``str``); every column is right-aligned to its widest cell.
+    """
     def fmt(v: Any) -> str:
         if isinstance(v, float):
             return f"{v:.4g}"

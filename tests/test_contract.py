@@ -437,8 +437,8 @@ def test_force_lifts_the_cost_limit(monkeypatch: pytest.MonkeyPatch, capsys: Any
 
 
 def test_cost_estimates_of_the_shipped_scenes_are_within_the_limits() -> None:
+    from cable_ocp.cli.cost import heave_cost, statics_cost
     from cable_ocp.scene import load_scene
-    from cable_ocp.scene.cost import heave_cost, statics_cost
     from cable_ocp.scene.heave import load_scene as load_heave
 
     for path in sorted((ROOT / "problems").glob("*.toml")) + sorted(

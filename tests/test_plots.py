@@ -222,7 +222,7 @@ def test_statics_non_finite_iterate(buggy, tmp_path: Path) -> None:
 # --------------------------------------------------------------------------------------
 
 def test_footprint_marks_unreachable(tmp_path: Path) -> None:
-    from cable_ocp.plots.statics import plot_footprint
+    from cable_ocp.plots.statics_series import plot_footprint
     from cable_ocp.scene import load_scene
     from cable_ocp.statics.footprint import FootprintResult
 
@@ -248,7 +248,7 @@ def test_footprint_marks_unreachable(tmp_path: Path) -> None:
 
 def test_sweep_and_work_precision(tmp_path: Path) -> None:
     from cable_ocp.plots.bench import plot_work_precision, read_work_precision_csv
-    from cable_ocp.plots.statics import plot_sweep
+    from cable_ocp.plots.statics_series import plot_sweep
 
     psi = np.arange(0.0, 181.0, 30.0)
     f = np.column_stack([np.cos(np.radians(psi)), np.sin(np.radians(psi)), 0.3 + 0 * psi])

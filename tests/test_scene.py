@@ -4,11 +4,14 @@ from __future__ import annotations
 
 import math
 import tomllib
+from pathlib import Path
 
 import pytest
 
 from cable_ocp.errors import CableOCPError
 from cable_ocp.scene import load_scene, parse_override, scene_from_dict
+
+PROBLEMS = Path(__file__).resolve().parents[1] / "problems"
 
 
 @pytest.fixture()
@@ -120,3 +123,32 @@ def test_shipped_problems_load(problems):
     for f in sorted(problems.glob("*.toml")):
         sc = load_scene(f)
         assert sc.meta.get("source"), f"{f.name} must cite its source in [meta]"
+
+
+@pytest.mark.parametrize("name,loader", [
+    ("dezoysa_sea_buggy.toml", "cable_ocp.scene.statics:load_scene"),
+    ("dynamics/huang_5_7.toml", "cable_ocp.scene.dynamics:load_dynamic_scene"),
+    ("heave/ex_6_3_6_cable.toml", "cable_ocp.scene.heave:load_scene"),
+])
+def test_one_loader_reads_every_kind(name: str, loader: str) -> None:
+    """``cable_ocp.load`` (one loader for every problem file) returns the scene the kind's
+    own loader returns, with the same overrides; the kind's loader refuses the others."""
+    import importlib
+
+    import cable_ocp
+
+    mod, fn = loader.split(":")
+    own = getattr(importlib.import_module(mod), fn)
+    path = PROBLEMS / name
+    over = {"meta.title": "renamed"}
+    assert cable_ocp.load(path, over) == own(path, over)
+    assert cable_ocp.load(path) == own(path)
+    others = {"statics": PROBLEMS / "dezoysa_sea_buggy.toml",
+              "dynamics": PROBLEMS / "dynamics" / "huang_5_7.toml",
+              "heave": PROBLEMS / "heave" / "ex_6_3_6.toml"}
+    kind = {"cable_ocp.scene.statics": "statics", "cable_ocp.scene.dynamics": "dynamics",
+            "cable_ocp.scene.heave": "heave"}[mod]
+    for other, p in others.items():
+        if other != kind:
+            with pytest.raises(CableOCPError, match=f"a {other} scene"):
+                own(p)

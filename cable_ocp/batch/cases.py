@@ -141,6 +141,24 @@ def build_cases(grids: list[tuple[str, list[Any]]] | None = None,
     seeded random draws of the ``randoms`` keys (each sample combined with every grid
     point), each case with its own seed from ``seed``.
 
+    Parameters
+    ----------
+    grids : list of (str, list), optional
+        ``(dotted key, values)`` per swept key, as :func:`parse_grid` and
+        :func:`parse_range` give them, values in the problem file's units (SI); the first
+        key varies slowest. None (default): no grid (one point).
+    samples : int
+        Number of random draws (``--samples``), each combined with every grid point;
+        default 0: none (then ``randoms`` must be empty).
+    randoms : list of (str, str, (float, float)), optional
+        ``(dotted key, distribution, parameters)`` per randomly drawn key, as
+        :func:`parse_random` gives them (see :data:`DISTRIBUTIONS`). None (default): none.
+    seed : int
+        Batch seed (default 0): the draws and every case's own seed derive from it
+        (:class:`numpy.random.SeedSequence`).
+    max_cases : int
+        Largest number of cases allowed (default 1,000,000).
+
     Raises
     ------
     CableOCPError

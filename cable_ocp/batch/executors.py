@@ -63,7 +63,18 @@ class RunnerSpec:
 
 
 def error_row(case: Case, status: str, message: str) -> dict[str, Any]:
-    """The row of a case that produced no result of its own."""
+    """The row of a case that produced no result of its own.
+
+    Parameters
+    ----------
+    case : Case
+        The case; its index, identifier and overrides go into the row.
+    status : str
+        The row's status: ``"error"`` (an exception, or the runner could not be built) or
+        ``"worker_lost"`` (its worker process died too often).
+    message : str
+        One line saying what went wrong.
+    """
     return {"case": case.index, "case_id": case.case_id, "status": status,
             "message": message, "wall_time_s": None, **case.overrides}
 
@@ -83,7 +94,19 @@ def _safe_run(runner: Runner, case: Case) -> dict[str, Any]:
 # --------------------------------------------------------------------------------------
 
 def run_serial(spec: RunnerSpec, chunks: Sequence[Sequence[Case]], on_row: OnRow) -> None:
-    """Run every chunk here, in order (``workers = 0``)."""
+    """Run every chunk here, in order (``workers = 0``).
+
+    Parameters
+    ----------
+    spec : RunnerSpec
+        The runner's kind, base problem and options; one runner is built here for all chunks.
+    chunks : sequence of sequence of Case
+        Runs of consecutive cases (each case warm-starts from the one before).
+    on_row : callable
+        ``on_row(row)``, called once per case with its result row (a dict: ``case``,
+        ``case_id``, ``status``, ``message``, ``wall_time_s``, the overrides, ...), in the
+        order rows complete.
+    """
     runner = spec.make()
     for chunk in chunks:
         for case in chunk:
@@ -146,6 +169,20 @@ def run_local(spec: RunnerSpec, chunks: Sequence[Sequence[Case]], on_row: OnRow,
 
     Parameters
     ----------
+    spec : RunnerSpec
+        The runner's kind, base problem and options; each worker process builds its own runner
+        from it once.
+    chunks : sequence of sequence of Case
+        Runs of consecutive cases, each sent whole to one worker; empty chunks are skipped.
+    on_row : callable
+        ``on_row(row)``, called once per case with its result row (a dict: ``case``,
+        ``case_id``, ``status``, ``message``, ``wall_time_s``, the overrides, ...), in the
+        order rows complete.
+    workers : int
+        Number of worker processes (at least 1, at most one per chunk).
+    max_attempts : int
+        How many times a case may kill its worker before it becomes a ``"worker_lost"``
+        row (default 2: retried once, alone).
     start_method : str, optional
         ``"fork"`` (default where available: workers inherit the loaded modules, no
         re-import) or ``"spawn"``.
@@ -246,11 +283,22 @@ def run_dask(spec: RunnerSpec,
 
     Parameters
     ----------
+    spec : RunnerSpec
+        The runner's kind, base problem and options; each dask worker builds (and keeps) one
+        runner per spec (:meth:`RunnerSpec.key`). Must be picklable.
     chunks : sequence of case runs, or callable
         The chunks, or ``chunks(n)`` that makes them for the cluster's ``n`` worker
         threads (known once connected).
+    on_row : callable
+        ``on_row(row)``, called once per case with its result row (a dict: ``case``,
+        ``case_id``, ``status``, ``message``, ``wall_time_s``, the overrides, ...), in the
+        order rows complete.
     scheduler : str or distributed.Client
-        The scheduler's address (``tcp://host:8786``) or a connected client.
+        The scheduler's address (``tcp://host:8786``) or a connected client (left open;
+        a client made from an address is closed at the end).
+    max_attempts : int
+        In the second phase, how many times a case may kill its worker before it becomes
+        a ``"worker_lost"`` row (default 2).
     """
     try:
         from distributed import Client, as_completed

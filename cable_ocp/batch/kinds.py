@@ -52,7 +52,18 @@ def _num(x: Any) -> float | None:
 
 
 class Runner(ABC):
-    """Base class: ``run(case) -> row``; subclasses implement :meth:`_run`."""
+    """Base class: ``run(case) -> row``; subclasses implement :meth:`_run`.
+
+    Parameters
+    ----------
+    data : dict
+        The base problem as read from TOML (SI units); each case applies its overrides to
+        a copy of it.
+    options : dict, optional
+        The kind's options (a copy is kept): ``directions`` for the footprint runner
+        (default 36), ``controllers`` for the heave runner; the others take none. None
+        (default): no options.
+    """
 
     kind = ""
 
@@ -88,7 +99,15 @@ class Runner(ABC):
 
 class StaticsRunner(Runner):
     """``cable-ocp solve`` per case; solvers built once per structure, warm starts along
-    the batch order (:class:`cable_ocp.statics.solver.SolveSession`)."""
+    the batch order (:class:`cable_ocp.statics.solver.SolveSession`).
+
+    Parameters
+    ----------
+    data : dict
+        The base statics problem as read from TOML (SI units).
+    options : dict, optional
+        Not used by this runner (kept as :attr:`options`); None (default): none.
+    """
 
     kind = "statics"
 
@@ -157,7 +176,17 @@ class FootprintRunner(Runner):
 
 class HeaveRunner(Runner):
     """``cable-ocp heave`` per case; the sea realisation's seed is the case seed unless the
-    case sets ``simulation.seed``."""
+    case sets ``simulation.seed``.
+
+    Parameters
+    ----------
+    data : dict
+        The base heave problem as read from TOML (SI units); its ``controller.controllers``
+        is the default list of controllers (else passive, lqr, lqg and mpc).
+    options : dict, optional
+        ``controllers``: the controllers to compare, overriding the problem's list (their
+        metrics become columns). None (default): none.
+    """
 
     kind = "heave"
     METRICS = (("heave_rms", "m"), ("reduction_pct", "%"), ("peak_winch_speed", "m/s"),
@@ -240,7 +269,17 @@ RUNNERS: dict[str, Callable[..., Runner]] = {
 def runner_kind(data: dict[str, Any], command: str | None = None) -> str:
     """The runner for a problem: ``footprint`` when asked (or the scene has a [footprint]
     table and no command is given), else the scene kind (``simulate`` names the dynamics
-    runner)."""
+    runner).
+
+    Parameters
+    ----------
+    data : dict
+        The base problem as read from TOML; its tables tell its scene kind.
+    command : str, optional
+        The runner asked for (``--command``): ``"statics"``, ``"footprint"``, ``"heave"``,
+        ``"dynamics"`` or ``"simulate"`` (the dynamics runner); it must fit the scene's
+        kind. None (default): the scene's kind.
+    """
     kind = scene_kind(data)
     if command == "simulate":
         command = "dynamics"

@@ -36,7 +36,24 @@ def _clean(v: Any) -> Any:
 
 
 class Store:
-    """Append-as-you-go storage of one batch (see the module docstring)."""
+    """Append-as-you-go storage of one batch (see the module docstring).
+
+    Parameters
+    ----------
+    out : str or Path
+        Base path of the results: ``OUT.csv``, ``OUT.jsonl`` and ``OUT.meta.json`` are
+        written next to it (a ``.csv`` or ``.jsonl`` suffix is dropped first).
+    meta : dict
+        The batch definition, written to ``OUT.meta.json``: ``columns`` (the CSV header, in
+        order) is required; with ``resume``, its ``problem``, ``kind`` and ``cases`` must
+        equal those of the stored batch.
+    resume : bool
+        Continue the batch already at ``out``: keep its complete JSON lines (dropping a
+        last line cut short) and their cases (:attr:`done`). Default False.
+    overwrite : bool
+        Replace results already at ``out``; without it or ``resume`` (default False), such
+        results are an error.
+    """
 
     def __init__(self, out: str | Path, meta: dict[str, Any], resume: bool = False,
                  overwrite: bool = False) -> None:

@@ -102,7 +102,29 @@ def run_scene(label: str, scene: Scene, methods: list[str] | None = None,
 
     ``progress(row)`` is called after each row. ``source`` (problem file, overrides) lets
     a second process load the scene and time our series with the function cache the
-    first-process runs filled."""
+    first-process runs filled.
+
+    Parameters
+    ----------
+    label : str
+        The scene's name in the rows (e.g. ``"De Zoysa psi0=90"``).
+    scene : Scene
+        The statics scene; each series overrides its ``[solver]`` keys.
+    methods : list of str, optional
+        Series to run: labels of :data:`PLAN` (others are skipped) and :data:`REUSED` (the
+        built-once solver). None (default): all of them.
+    repeats : int
+        Timing passes over every row (default 3), interleaved; the fastest counts (a row
+        slower than :data:`REPEAT_BUDGET_S` over ``repeats`` is timed once).
+    progress : callable, optional
+        ``progress(row)``, called after each row and each repeat of it (see
+        :func:`planned_rows`). None (default): none.
+    source : (str or Path, dict), optional
+        The problem file and overrides that make ``scene``, for the second process. None
+        (default): no second-process rows.
+    second_process : bool
+        Time our series in a second process too (default True; needs ``source``).
+    """
     ref = reference_solution(scene)
     rows: list[dict[str, Any]] = []
     notes: dict[str, str] = {}
@@ -298,7 +320,16 @@ def versus_solve_bvp(rows: list[dict[str, Any]]) -> list[dict[str, Any]]:
 
 def planned_rows(methods: list[str] | None = None, repeats: int = 1) -> int:
     """Number of progress calls one scene gives (for a progress bar): each row once per
-    repeat (the repeats are interleaved passes), the second process's rows once."""
+    repeat (the repeats are interleaved passes), the second process's rows once.
+
+    Parameters
+    ----------
+    methods : list of str, optional
+        Series to run: labels of :data:`PLAN` (others are skipped) and :data:`REUSED` (the
+        built-once solver). None (default): all of them.
+    repeats : int
+        Timing passes, as in :func:`run_scene` (default 1; values below 1 count as 1).
+    """
     n = sum(len(PLAN[m][1]) for m in (methods or list(PLAN)) if m in PLAN) * max(repeats, 1)
     n += sum(len(PLAN[m][1]) for m in (methods or list(PLAN)) if m in OURS)  # 2nd process
     return n + (5 if methods is None or REUSED in methods else 0)
@@ -308,14 +339,39 @@ def run(scenes: list[tuple[str, Path, dict[str, Any]]] | None = None,
         methods: list[str] | None = None, repeats: int = 3,
         progress: Callable[[dict[str, Any]], None] | None = None,
         second_process: bool = True) -> list[dict[str, Any]]:
-    """Run every scene; ``progress(row)`` is called after each row."""
+    """Run every scene; ``progress(row)`` is called after each row.
+
+    Parameters
+    ----------
+    scenes : list of (str, Path, dict), optional
+        ``(label, problem file, overrides)`` per scene; None (default):
+        :func:`default_scenes`.
+    methods : list of str, optional
+        Series to run: labels of :data:`PLAN` (others are skipped) and :data:`REUSED` (the
+        built-once solver). None (default): all of them.
+    repeats : int
+        Timing passes over every row (default 3); the fastest counts.
+    progress : callable, optional
+        ``progress(row)``, called after each row and each repeat; None (default): none.
+    second_process : bool
+        Also time our series in a second process that loads the cache (default True).
+    """
     return [run_scene(label, load_scene(path, over), methods, repeats, progress,
                       source=(path, over), second_process=second_process)
             for label, path, over in (scenes or default_scenes())]
 
 
 def write_csv(results: list[dict[str, Any]], path: str | Path) -> None:
-    """One row per (scene, method, resolution)."""
+    """One row per (scene, method, resolution).
+
+    Parameters
+    ----------
+    results : list of dict
+        :func:`run`'s results, one per scene; their ``rows`` are written.
+    path : str or Path
+        The CSV file, overwritten: columns scene, method, resolution, time_s and cpu_s (s),
+        status, force_error, profile_error and estimate_ratio (-).
+    """
     keys = ["scene", "method", "resolution", "time_s", "cpu_s", "status", "force_error",
             "profile_error", "estimate_ratio"]
     with Path(path).open("w", newline="") as fh:
@@ -324,15 +380,6 @@ def write_csv(results: list[dict[str, Any]], path: str | Path) -> None:
         for res in results:
             for r in res["rows"]:
                 w.writerow({k: r.get(k) for k in keys})
-
-
-def plot(results: list[dict[str, Any]], path: str | Path) -> Path:
-    """Log-log error (the larger of force and profile error) against CPU time per solve
-    (:func:`cable_ocp.plots.bench.plot_work_precision`)."""
-    from cable_ocp.plots.bench import plot_work_precision
-
-    plot_work_precision(results, path)
-    return Path(path)
 
 
 if __name__ == "__main__":  # the second process of :func:`_second_process`

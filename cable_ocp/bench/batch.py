@@ -38,7 +38,26 @@ def run(n_angles: int = 20, n_speeds: int = 10, workers: tuple[int, ...] = (1, 2
     """Time the bare loop and the batches (the fastest of ``repeats`` runs each, after one
     untimed pass that builds the solvers); with ``dask_workers`` also on a dask.distributed
     LocalCluster of that many single-threaded worker processes (its workers' first batch,
-    which builds their solvers, untimed). Returns rows and the derived figures."""
+    which builds their solvers, untimed). Returns rows and the derived figures.
+
+    Parameters
+    ----------
+    n_angles : int
+        Number of psi0 values, evenly spaced over 0-140 deg (default 20).
+    n_speeds : int
+        Number of current speeds, evenly spaced over 0.4-1.3 m/s (default 10); the batch
+        has ``n_angles * n_speeds`` cases.
+    workers : tuple of int
+        Local worker counts to time the batch on (default (1, 2)); the speed-up and
+        overhead figures need 1 and 2.
+    progress : callable, optional
+        ``progress(text)``, called with what starts next; None (default): none.
+    repeats : int
+        Timed runs of the bare loop and of each batch (default 2); the fastest counts.
+    dask_workers : int
+        Number of single-threaded workers of a dask LocalCluster to time the batch on too;
+        0 (default): no dask run.
+    """
     ranges = [parse_range(f"environment.current.speed=0.4:1.3:{n_speeds}"),
               parse_range(f"layout.psi0_deg=0:140:{n_angles}")]
     data = read_problem(SCENE)
@@ -141,7 +160,17 @@ def machine_ceiling(scenes: list[Any], repeats: int = 2) -> float | None:
     child process, then in two at once (each the whole loop), the fastest of ``repeats``;
     2 x (time alone) / (time of the pair). 2 on two free, independent cores; less where
     the cores share a physical core, caches or memory bandwidth, or where other jobs run.
-    None where processes cannot be forked."""
+    None where processes cannot be forked.
+
+    Parameters
+    ----------
+    scenes : list of Scene
+        The statics scenes of the loop, solved in order by one SolveSession per process
+        (one untimed pass first, then the timed one).
+    repeats : int
+        Number of runs alone and as a pair (default 2, at least 1); the fastest of each
+        counts.
+    """
     import multiprocessing as mp
 
     if "fork" not in mp.get_all_start_methods():

@@ -48,7 +48,16 @@ def reference_solution(scene: Scene) -> Reference:
 
 
 def force_error(sol: StaticsSolution, ref: StaticsSolution) -> float:
-    """Largest end-force difference over the reference's largest tension (-)."""
+    """Largest end-force difference over the reference's largest tension (-).
+
+    Parameters
+    ----------
+    sol : StaticsSolution
+        The solution to measure.
+    ref : StaticsSolution
+        The reference (e.g. :func:`reference_solution`'s), a successful solve of the same
+        scene. Its ``max_tension`` (N) scales the error.
+    """
     return float(max(np.max(np.abs(sol.force_a - ref.force_a)),
                      np.max(np.abs(sol.force_b - ref.force_b))) / ref.max_tension)
 
@@ -59,6 +68,15 @@ def profile_error(sol: StaticsSolution, ref: StaticsSolution) -> float:
     The reference is interpolated with cubic splines in s/L through its nodes (320 x 6
     nodes, spline error far below the compared errors); the method is compared only where
     it computed values, so a low-order method is not charged for interpolation.
+
+    Parameters
+    ----------
+    sol : StaticsSolution
+        The solution to measure.
+    ref : StaticsSolution
+        The reference (e.g. :func:`reference_solution`'s), a successful solve of the same
+        scene. Its length (m) scales the error, and a difference in length
+        (m) counts as a position difference.
     """
     sig_r, idx = np.unique(ref.s / ref.length, return_index=True)
     spline = CubicSpline(sig_r, ref.position[idx], axis=0)
@@ -93,6 +111,16 @@ def timed_solve(scene: Scene, repeats: int = 1, budget_s: float = 2.0
 
     Returns (solution or None, seconds, note). A scene the method cannot represent gives
     None and the reason; any other exception is reported as an error note, never hidden.
+
+    Parameters
+    ----------
+    scene : Scene
+        The statics scene, solved as it is (its ``[solver]`` says how).
+    repeats : int
+        Number of timed runs (default 1); the fastest counts.
+    budget_s : float
+        Time budget, s (default 2): when the first run times ``repeats`` exceeds it, only
+        the first run is made.
     """
     sol, wall, _, note = timed_solve_cpu(scene, repeats, budget_s)
     return sol, wall, note
@@ -106,7 +134,21 @@ def timed_solve_cpu(scene: Scene, repeats: int = 1, budget_s: float = 2.0,
 
     With ``fresh_cache`` every repeat starts with an empty statics function cache (a new
     temporary folder), as a first process does: the CasADi functions are built and
-    stored inside the timed call."""
+    stored inside the timed call.
+
+    Parameters
+    ----------
+    scene : Scene
+        The statics scene, solved as it is (its ``[solver]`` says how).
+    repeats : int
+        Number of timed runs (default 1); the smallest wall and CPU times count.
+    budget_s : float
+        Time budget, s (default 2): when the first run's wall time times ``repeats``
+        exceeds it, only the first run is made.
+    fresh_cache : bool
+        Give every run an empty statics function cache (default False: the cache the
+        environment names, warm after the first run).
+    """
     best, best_cpu = np.inf, np.inf
     sol: StaticsSolution | None = None
     with tempfile.TemporaryDirectory(prefix="cable_ocp_first_") as tmp:

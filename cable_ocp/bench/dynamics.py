@@ -44,7 +44,7 @@ import numpy as np
 from cable_ocp.scene.dynamics import DynamicScene, load_dynamic_scene
 
 __all__ = ["QUICK", "BenchRow", "as_dicts", "format_summary", "format_table", "linear_check",
-           "moordyn_available", "plot", "planned_rows", "run", "scene", "summary"]
+           "moordyn_available", "planned_rows", "row_ok", "run", "scene", "summary"]
 
 PROBLEM = Path(__file__).resolve().parents[2] / "problems" / "dynamics" / "huang_5_7.toml"
 FREQUENCY = 1.256  # rad/s, Huang 5.7.1 (Figure 5.5)
@@ -123,6 +123,18 @@ def scene(segments: int, time_step: float, duration: float = DURATION,
 
     ``linear``: the closed-form check of :func:`linear_check` instead: heave only, no drag,
     internal damping 2e6 N s (a Kelvin-Voigt rod).
+
+    Parameters
+    ----------
+    segments : int
+        Number of lumped segments of the line.
+    time_step : float
+        Integration time step, s (also the output step).
+    duration : float
+        Simulated time, s (default :data:`DURATION`, 60 s).
+    linear : bool
+        Build the linear case of :func:`linear_check` (default False: the benchmark
+        scene of Huang (1992) 5.7 with drag).
     """
     ov: dict[str, Any] = {
         "top_motion.heave_frequency": FREQUENCY, "top_motion.horizontal_frequency": FREQUENCY,
@@ -431,6 +443,16 @@ def linear_check(segments: int = 20, duration: float = 60.0, with_moordyn: bool 
     -M w^2 B = EA* k C, u(L) = 1; top tension EA* u'(L)). Returns the first-harmonic
     amplitudes of the top tension (N) over the last 20 s: ``closed_form``,
     ``cable_ocp`` (dt = 0.0125 s) and ``moordyn`` (dtM = 0.25 ms; None without it).
+
+    Parameters
+    ----------
+    segments : int
+        Number of lumped segments of both models (default 20).
+    duration : float
+        Simulated time, s (default 60); the amplitudes are fitted over its last 20 s, so
+        it should be well above 20 s (the start transient must have decayed).
+    with_moordyn : bool
+        Also run MoorDyn when it is installed (default True).
     """
     import cmath
 
@@ -462,14 +484,28 @@ def linear_check(segments: int = 20, duration: float = 60.0, with_moordyn: bool 
 def planned_rows(segments: Sequence[int], time_steps: Sequence[float],
                  moordyn_steps: dict[int, Sequence[float]] | None, with_moordyn: bool
                  ) -> int:
-    """How many ``progress`` calls :func:`run` makes (references included)."""
+    """How many ``progress`` calls :func:`run` makes (references included).
+
+    Parameters
+    ----------
+    segments : sequence of int
+        Numbers of lumped segments, as given to :func:`run`.
+    time_steps : sequence of float
+        cable_ocp's time steps, s, as given to :func:`run`.
+    moordyn_steps : dict or None
+        MoorDyn's dtM (s) per number of segments, as given to :func:`run`; None: the
+        defaults :func:`run` uses (:data:`DEFAULT_MOORDYN_STEPS`).
+    with_moordyn : bool
+        As given to :func:`run`; MoorDyn rows count only when it is also installed.
+    """
     use_md = with_moordyn and moordyn_available()
     md = moordyn_steps or {n: DEFAULT_MOORDYN_STEPS.get(n, (1e-3,)) for n in segments}
     return sum(1 + len(time_steps) + ((1 + len(md.get(n, ()))) if use_md else 0)
                for n in segments)
 
 
-def _ok(r: BenchRow) -> bool:
+def row_ok(r: BenchRow) -> bool:
+    """The row ran and has a finite time and error."""
     return r.status == "ok" and math.isfinite(r.wall_per_simulated_s) and math.isfinite(r.error)
 
 
@@ -486,6 +522,14 @@ def summary(rows: Sequence[BenchRow], accuracy: float = EQUAL_ACCURACY) -> dict[
       fastest row at least as accurate (``basis`` says which); plus the
       relative difference of the two models' converged top-tension amplitudes (the target
       is 2 %).
+
+    Parameters
+    ----------
+    rows : sequence of BenchRow
+        The rows of :func:`run`.
+    accuracy : float
+        Largest relative top-tension error (-) for "equal accuracy" (default
+        :data:`EQUAL_ACCURACY`, 0.01 = 1 %).
     """
     out: dict[str, Any] = {"accuracy": accuracy, "target_realtime": TARGET_REALTIME,
                            "target_segments": TARGET_SEGMENTS, "realtime": None,
@@ -493,7 +537,7 @@ def summary(rows: Sequence[BenchRow], accuracy: float = EQUAL_ACCURACY) -> dict[
 
     def fastest(model_prefix: str, n: int) -> BenchRow | None:
         cand = [r for r in rows if r.model.startswith(model_prefix) and r.segments == n
-                and _ok(r) and r.error <= accuracy]
+                and row_ok(r) and r.error <= accuracy]
         return min(cand, key=lambda r: r.wall_per_simulated_s) if cand else None
 
     ours40 = fastest("cable_ocp", TARGET_SEGMENTS)
@@ -519,13 +563,13 @@ def summary(rows: Sequence[BenchRow], accuracy: float = EQUAL_ACCURACY) -> dict[
                                f"has no row within {accuracy:.0%}"),
             "speed_ratio": None, "met": None, "amplitude_difference": None,
             "basis": f"error <= {accuracy:.0%}"}
-        md_ok = [r for r in md_rows if _ok(r)]
+        md_ok = [r for r in md_rows if row_ok(r)]
         if md is None and md_ok:
             # MoorDyn reaches no row within the accuracy: compare at its own accuracy,
             # its fastest row against cable_ocp's fastest row that is at least as accurate
             md = min(md_ok, key=lambda r: r.wall_per_simulated_s)
             cand = [r for r in rows if r.model.startswith("cable_ocp") and r.segments == n
-                    and _ok(r) and r.error <= md.error]
+                    and row_ok(r) and r.error <= md.error]
             ours = min(cand, key=lambda r: r.wall_per_simulated_s) if cand else None
             entry.update(basis=f"MoorDyn's own accuracy ({md.error:.2g})", moordyn_status="ok",
                          moordyn={"time_step": md.time_step,
@@ -577,31 +621,3 @@ def format_summary(sm: dict[str, Any]) -> str:
             lines.append(f"    converged top-tension amplitudes differ by "
                          f"{100 * e['amplitude_difference']:+.2f} % (target within 2 %)")
     return "\n".join(lines)
-
-
-def plot(rows: Sequence[BenchRow], path: str | Path) -> Path:
-    """Work-precision figure: top-tension error against wall time per simulated second,
-    one colour per number of segments, solid cable_ocp, dashed MoorDyn."""
-    from cable_ocp.plots.common import new_figure, save
-
-    fig = new_figure(7.5, 5.2)
-    ax = fig.add_subplot(1, 1, 1)
-    for j, n in enumerate(dict.fromkeys(r.segments for r in rows)):
-        for model, style in (("cable_ocp", {"ls": "-", "marker": "o"}),
-                             ("MoorDyn", {"ls": "--", "marker": "s"})):
-            # joined in the order of the time step (largest first), not of the timings
-            pts = sorted((-r.time_step, r.wall_per_simulated_s, r.error) for r in rows
-                         if r.segments == n and r.model.startswith(model) and _ok(r))
-            if pts:
-                _, w, e = np.array(pts).T
-                ax.loglog(w * 1e3, np.maximum(e, 1e-16), color=f"C{j % 10}",
-                          label=f"{model}, {n} segments", **style)
-    ax.axhline(EQUAL_ACCURACY, color="0.5", lw=0.8, ls=":")  # the equal-accuracy level
-    ax.axvline(1e3 / TARGET_REALTIME, color="0.5", lw=0.8, ls=":")  # 100x real time
-    ax.set_xlabel("wall time per simulated second (ms)")
-    ax.set_ylabel("top-tension error / amplitude (-)")
-    ax.set_title("Huang (1992) 5.7 system at 1.256 rad/s: work-precision", fontsize=10.5)
-    ax.grid(True, which="major", alpha=0.35)
-    ax.legend(fontsize=8)
-    save(fig, path)
-    return Path(path)

@@ -58,7 +58,15 @@ def default_scenes() -> list[tuple[str, Path, dict[str, Any]]]:
 
 def true_error(sol: StaticsSolution, ref: StaticsSolution) -> float:
     """Larger of the end-force error over the largest tension and the position (at the
-    method's nodes) and length error over the length (-)."""
+    method's nodes) and length error over the length (-).
+
+    Parameters
+    ----------
+    sol : StaticsSolution
+        The baseline's solution.
+    ref : StaticsSolution
+        The converged reference of the same scene (:func:`reference_solution`'s).
+    """
     return max(force_error(sol, ref), profile_error(sol, ref))
 
 
@@ -66,7 +74,26 @@ def run_scene(label: str, scene: Scene, ref: StaticsSolution, floor: float,
               methods: list[str] | None = None,
               progress: Callable[[dict[str, Any]], None] | None = None
               ) -> list[dict[str, Any]]:
-    """Rows (scene, method, resolution, status, estimate, true error, ratio, time)."""
+    """Rows (scene, method, resolution, status, estimate, true error, ratio, time).
+
+    Parameters
+    ----------
+    label : str
+        The scene's name in the rows.
+    scene : Scene
+        The statics scene; each row overrides its method, resolution and
+        ``solver.refine = false``.
+    ref : StaticsSolution
+        The scene's converged reference (the true errors are measured against it).
+    floor : float
+        True errors (-) at or below it are reported but not judged (the reference's own
+        uncertainty).
+    methods : list of str, optional
+        Baseline methods to check, keys of :data:`PLAN` (another name raises
+        ``KeyError``); None (default): all four.
+    progress : callable, optional
+        ``progress(row)``, called after each row; None (default): none.
+    """
     rows = []
     for method in methods or list(PLAN):
         key, resolutions, fixed = PLAN[method]
@@ -98,7 +125,19 @@ def run_scene(label: str, scene: Scene, ref: StaticsSolution, floor: float,
 def run(scenes: list[tuple[str, Path, dict[str, Any]]] | None = None,
         methods: list[str] | None = None,
         progress: Callable[[dict[str, Any]], None] | None = None) -> list[dict[str, Any]]:
-    """All scenes; each row also carries the reference's agreement with its check."""
+    """All scenes; each row also carries the reference's agreement with its check.
+
+    Parameters
+    ----------
+    scenes : list of (str, Path, dict), optional
+        ``(label, problem file, overrides)`` per scene; None (default):
+        :func:`default_scenes`.
+    methods : list of str, optional
+        Baseline methods to check, keys of :data:`PLAN` (another name raises
+        ``KeyError``); None (default): all four.
+    progress : callable, optional
+        ``progress(row)``, called after each row; None (default): none.
+    """
     rows = []
     for label, path, over in scenes or default_scenes():
         scene = load_scene(path, over)

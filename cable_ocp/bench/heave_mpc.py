@@ -41,7 +41,18 @@ def bench_scene() -> HeaveScene:
 
 
 def bench_settings(sc: HeaveScene, horizon: int, solver: str) -> mpc_mod.MPCSettings:
-    """MPC settings from the scene's ``[controller]`` and ``[winch]`` tables."""
+    """MPC settings from the scene's ``[controller]`` and ``[winch]`` tables.
+
+    Parameters
+    ----------
+    sc : HeaveScene
+        The heave scene: sample time, weights, winch limits, unit mass and static tension.
+    horizon : int
+        Prediction horizon, samples of the scene's sample time.
+    solver : str
+        The MPC's solver, one of :data:`cable_ocp.heave.mpc.SOLVERS` (``"daqp"``,
+        ``"qpoases"``, ``"osqp"``, ``"qrqp"``, ``"ipopt"``).
+    """
     c, w, u = sc.controller, sc.winch, sc.unit
     return mpc_mod.MPCSettings(
         horizon=horizon, sample_time=c.sample_time, q=c.q, r=c.r, solver=solver,
@@ -102,6 +113,24 @@ def time_cas(solver: str, horizon: int, steps: int, seed: int = 0, sea_scale: fl
     ``steps`` closed-loop steps are run; the first (one-off set-up) is left out of the median
     and p99. ``sea_scale`` multiplies the sea's process noise (1: the scene's sea);
     ``overrides`` replaces MPC settings (e.g. :data:`ACTIVE_LIMITS`).
+
+    Parameters
+    ----------
+    solver : str
+        The MPC's solver, one of :data:`cable_ocp.heave.mpc.SOLVERS` (``"daqp"``,
+        ``"qpoases"``, ``"osqp"``, ``"qrqp"``, ``"ipopt"``).
+    horizon : int
+        Prediction horizon, samples (of the scene's 0.05 s sample time).
+    steps : int
+        Closed-loop steps to run; the first (one-off set-up) is left out of the times.
+    seed : int
+        Seed of the sea's process noise (default 0).
+    sea_scale : float
+        Factor on the sea's process noise (-); default 1: the scene's sea.
+    overrides : dict, optional
+        :class:`~cable_ocp.heave.mpc.MPCSettings` fields to replace (e.g.
+        :data:`ACTIVE_LIMITS`: stroke in m, speed in m/s, command rate in m per sample,
+        tension in N). None (default): the scene's settings.
     """
     sc = bench_scene()
     p = bench_plant(sc)
@@ -142,6 +171,22 @@ def profile_daqp(horizon: int = 50, steps: int = 300, seed: int = 0, sea_scale: 
     median of the per-step sum of the phases and ``other`` = ``step`` - ``phases`` (argument
     handling, the plan copy, the result object). Also: DAQP iterations of the reduced QP per
     step (median, max) and the steps that changed its working set (more than one iteration).
+
+    Parameters
+    ----------
+    horizon : int
+        Prediction horizon, samples of the scene's 0.05 s sample time (default 50).
+    steps : int
+        Closed-loop steps to run (default 300); the first (one-off set-up) is left out of
+        the times.
+    seed : int
+        Seed of the sea's process noise (default 0).
+    sea_scale : float
+        Factor on the sea's process noise (-); default 1: the scene's sea.
+    overrides : dict, optional
+        :class:`~cable_ocp.heave.mpc.MPCSettings` fields to replace (e.g.
+        :data:`ACTIVE_LIMITS`: stroke in m, speed in m/s, command rate in m per sample,
+        tension in N). None (default): the scene's settings.
     """
     sc = bench_scene()
     p = bench_plant(sc)
@@ -216,6 +261,20 @@ def time_do_mpc(horizon: int, steps: int, seed: int = 0) -> BenchRow:
 
     do-mpc's own warnings (optional features not installed, CasADi's notice about numpy
     functions on CasADi values inside do-mpc) are silenced: they are not about this problem.
+
+    Parameters
+    ----------
+    horizon : int
+        Prediction horizon, samples (of the scene's 0.05 s sample time).
+    steps : int
+        Closed-loop steps to run; the first (one-off set-up) is left out of the times.
+    seed : int
+        Seed of the sea's process noise (default 0).
+
+    Raises
+    ------
+    ImportError
+        When do-mpc is not installed.
     """
     with warnings.catch_warnings():
         warnings.simplefilter("ignore")
@@ -299,6 +358,26 @@ def run(horizons: list[int] | tuple = (20, 50, 100), steps: int = 300,
     do-mpc's row has ``steps = 0`` and NaN times when it is not installed; it runs only on the
     scene as it is (``sea_scale = 1``, no ``overrides``). ``progress(done, total, row)`` is
     called after each row.
+
+    Parameters
+    ----------
+    horizons : list or tuple of int
+        Prediction horizons, samples of 0.05 s (default (20, 50, 100)).
+    steps : int
+        Closed-loop steps per row (default 300; IPOPT and do-mpc run ``max(20, steps // 5)``).
+    solvers : list or tuple of str
+        Solvers to time (default all of :data:`cable_ocp.heave.mpc.SOLVERS`).
+    with_do_mpc : bool
+        Add a do-mpc row per horizon (default True; only with the scene's own sea and
+        settings).
+    sea_scale : float
+        Factor on the sea's process noise (-); default 1: the scene's sea.
+    overrides : dict, optional
+        :class:`~cable_ocp.heave.mpc.MPCSettings` fields to replace (e.g.
+        :data:`ACTIVE_LIMITS`: stroke in m, speed in m/s, command rate in m per sample,
+        tension in N). None (default): the scene's settings.
+    progress : callable, optional
+        ``progress(done, total, row)``, called after each row; None (default): none.
     """
     rows: list[BenchRow] = []
     dompc = with_do_mpc and sea_scale == 1.0 and not overrides
@@ -356,5 +435,17 @@ def json_data(rows: list[BenchRow]) -> dict:
 
 def bench_json(horizons: list[int] | tuple = (20, 50, 100), steps: int = 300,
                solvers: list[str] | tuple = mpc_mod.SOLVERS, with_do_mpc: bool = True) -> dict:
-    """Run the benchmark (:func:`run`) and return :func:`json_data` of its rows."""
+    """Run the benchmark (:func:`run`) and return :func:`json_data` of its rows.
+
+    Parameters
+    ----------
+    horizons : list or tuple of int
+        Prediction horizons, samples of 0.05 s (default (20, 50, 100)).
+    steps : int
+        Closed-loop steps per row (default 300; IPOPT and do-mpc run ``max(20, steps // 5)``).
+    solvers : list or tuple of str
+        Solvers to time (default all of :data:`cable_ocp.heave.mpc.SOLVERS`).
+    with_do_mpc : bool
+        Add a do-mpc row per horizon when it is installed (default True).
+    """
     return json_data(run(horizons, steps, solvers, with_do_mpc))

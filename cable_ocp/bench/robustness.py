@@ -40,7 +40,20 @@ def default_scenes() -> list[Path]:
 
 
 def classify(sol: Any, note: str, ref: Any) -> tuple[str, float | None, str]:
-    """Cell category, error against the reference, and the detail message."""
+    """Cell category, error against the reference, and the detail message.
+
+    Parameters
+    ----------
+    sol : StaticsSolution or None
+        The method's solution; None when it raised (see ``note``).
+    note : str
+        :func:`~cable_ocp.bench.common.timed_solve`'s note: ``"unsupported: ..."`` (the
+        method cannot represent the scene: ``n/a``) or ``"crashed: ..."`` (``CRASH``).
+    ref : StaticsSolution or None
+        The scene's reference; None or a failed one gives ``"ok?"`` for a success. The
+        error is the larger of the end-force error over its largest tension and the
+        length error over its length (-).
+    """
     if sol is None:
         return ("n/a" if note.startswith("unsupported") else "CRASH"), None, note
     if not sol.success:
@@ -62,6 +75,20 @@ def run(scenes: list[Path] | None = None, methods: list[str] | None = None,
     ``progress(done, total, detail)`` is called after each cell; ``details``, if given, is
     the list the cell details are appended to (so that a caller keeps the finished cells
     when the run is interrupted).
+
+    Parameters
+    ----------
+    scenes : list of Path, optional
+        Problem files, one row each; None (default): :func:`default_scenes`.
+    methods : list of str, optional
+        Statics methods, one column each (names of :data:`cable_ocp.scene.METHODS`); None
+        (default): all of them.
+    progress : callable, optional
+        ``progress(done, total, detail)``, called after each cell, ``done`` the length of
+        ``details``; None (default): none.
+    details : list of dict, optional
+        The list the cell details are appended to (scene, method, category, error, time_s
+        in s, message); None (default): a new one.
     """
     scenes = scenes or default_scenes()
     methods = methods or list(METHODS)

@@ -72,7 +72,20 @@ def _best(runs: list[dict[str, Any]]) -> dict[str, Any]:
 def first_process(base: Scene, angles: np.ndarray, repeats: int, folder: Path
                   ) -> dict[str, Any]:
     """Sweeps with an empty cache (a fresh folder each repeat: build and store); the
-    last folder is left filled in ``folder`` for the second process."""
+    last folder is left filled in ``folder`` for the second process.
+
+    Parameters
+    ----------
+    base : Scene
+        The statics scene swept over ``layout.psi0_deg`` (its ``solver.intervals`` set).
+    angles : numpy.ndarray
+        psi0 values of the sweep, deg, in sweep order.
+    repeats : int
+        Number of sweeps; the least disturbed (smallest CPU total) is returned.
+    folder : Path
+        Cache folder the last repeat fills; the earlier repeats use fresh folders next to
+        it (in ``folder.parent``).
+    """
     runs = []
     for k in range(repeats):
         sub = folder if k == repeats - 1 else Path(tempfile.mkdtemp(dir=folder.parent))
@@ -88,7 +101,25 @@ def second_process(scene_path: str | Path, angles: np.ndarray, intervals: int, r
                    folder: Path, compile_mode: str = "never") -> dict[str, Any]:
     """The same sweep in a new Python process whose cache is ``folder`` (filled by the
     first process): each repeat loads the functions (and, with ``compile_mode`` "auto",
-    the compiled libraries) instead of building them."""
+    the compiled libraries) instead of building them.
+
+    Parameters
+    ----------
+    scene_path : str or Path
+        Problem file the child process loads (with a ``layout.psi0_deg`` key).
+    angles : numpy.ndarray
+        psi0 values of the sweep, deg, in sweep order.
+    intervals : int
+        Collocation intervals (``solver.intervals``).
+    repeats : int
+        Number of sweeps; the least disturbed (smallest CPU total) is returned.
+    folder : Path
+        The cache folder filled by :func:`first_process` (``CABLE_OCP_CACHE_DIR`` of the
+        child).
+    compile_mode : str
+        The child's ``solver.compile``: ``"never"`` (default) or ``"auto"`` (load the
+        compiled Newton kernel from the cache).
+    """
     args = json.dumps({"scene": str(scene_path), "angles": [float(a) for a in angles],
                        "intervals": intervals, "repeats": repeats,
                        "compile": compile_mode})

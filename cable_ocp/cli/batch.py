@@ -12,7 +12,16 @@ from cable_ocp.errors import CableOCPError
 
 
 def register(sub: argparse._SubParsersAction, parent: argparse.ArgumentParser) -> None:
-    """Add ``batch``."""
+    """Add ``batch``.
+
+    Parameters
+    ----------
+    sub : argparse._SubParsersAction
+        The ``cable-ocp`` parser's subparsers, to which the command is added.
+    parent : argparse.ArgumentParser
+        The common options (``--quiet``, ``--debug``: :func:`cable_ocp.cli.output.common_parent`),
+        a parent of every parser added.
+    """
     p = sub.add_parser(
         "batch", parents=[parent],
         help="load-case study: a grid, ranges or random samples of any key, on all cores "

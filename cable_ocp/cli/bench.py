@@ -15,7 +15,16 @@ from cable_ocp.cli import output as out
 
 
 def register(sub: argparse._SubParsersAction, parent: argparse.ArgumentParser) -> None:
-    """Add ``bench`` (with its benchmarks) and ``bench-heave``."""
+    """Add ``bench`` (with its benchmarks) and ``bench-heave``.
+
+    Parameters
+    ----------
+    sub : argparse._SubParsersAction
+        The ``cable-ocp`` parser's subparsers, to which the commands are added.
+    parent : argparse.ArgumentParser
+        The common options (``--quiet``, ``--debug``: :func:`cable_ocp.cli.output.common_parent`),
+        a parent of every parser added.
+    """
     b = sub.add_parser(
         "bench", parents=[parent], help="statics and dynamics benchmarks that print a table",
         description="Benchmarks (tables; nothing is asserted). Without a benchmark name: "
@@ -93,6 +102,8 @@ def register(sub: argparse._SubParsersAction, parent: argparse.ArgumentParser) -
     bb.add_argument("--dask", type=int, default=0, metavar="N",
                     help="also on a dask.distributed LocalCluster of N worker processes "
                          "(needs the cluster extra; default 0: not run)")
+    bb.add_argument("--repeats", type=int, default=2, metavar="N",
+                    help="timed runs of each loop and batch, the fastest kept (2)")
     out.add_json_option(bb, "the rows and the summary")
     bb.set_defaults(func=cmd_bench_batch)
 
@@ -199,7 +210,7 @@ def cmd_sweep(args: argparse.Namespace) -> int:
         **res["summary"], "headers": res["headers"], "rows": res["rows"]}))
     out.emit_csv(args, res["headers"], res["rows"])
     if args.plot:
-        from cable_ocp.plots.statics import plot_sweep
+        from cable_ocp.plots.statics_series import plot_sweep
 
         out.emit_plot(args, lambda path: plot_sweep(
             res["angles"], res["forces"], path, "psi0 (deg)", "De Zoysa: force at the buggy",
@@ -295,7 +306,9 @@ def cmd_accuracy(args: argparse.Namespace) -> int:
     out.emit_csv(args, ACCURACY_HEADER, [[r.get(k) for k in ACCURACY_KEYS]
                                          for res in results for r in res["rows"]])
     if args.plot:
-        out.emit_plot(args, lambda path: accuracy.plot(results, path))
+        from cable_ocp.plots.bench import plot_work_precision
+
+        out.emit_plot(args, lambda path: plot_work_precision(results, path))
     return out.EXIT_OK
 
 
@@ -392,6 +405,8 @@ def cmd_bench_batch(args: argparse.Namespace) -> int:
         raise out_error("--angles and --speeds: give 1..1000")
     if not 0 <= args.dask <= 64:
         raise out_error("--dask: give 0..64 worker processes")
+    if not 1 <= args.repeats <= 100:
+        raise out_error(f"--repeats {args.repeats}: give 1..100")
     if args.dask:
         try:
             import distributed  # noqa: F401
@@ -399,7 +414,7 @@ def cmd_bench_batch(args: argparse.Namespace) -> int:
             raise out_error("--dask needs dask.distributed: pip install -e '.[cluster]'"
                             ) from None
     res = batch.run(args.angles, args.speeds, progress=lambda what: out.note(args, what),
-                    dask_workers=args.dask)
+                    repeats=args.repeats, dask_workers=args.dask)
     keys = ["run", "wall_s", "per_case_ms", "solve_ms", "overhead_ms", "speedup", "solved"]
     out.say(args, report.table(["run", "wall [s]", "per case [ms]", "solve/case [ms]",
                                 "machinery/case [ms]", "speed-up [-]", "solved"],
@@ -508,5 +523,7 @@ def cmd_bench_dynamics(args: argparse.Namespace) -> int:
         "duration_s": kw["duration"], "frequency_rad_s": bd.FREQUENCY,
         "newton_tolerance": tolerance}))
     if args.plot:
-        out.emit_plot(args, lambda path: bd.plot(rows, path))
+        from cable_ocp.plots.bench import plot_dynamics_work_precision
+
+        out.emit_plot(args, lambda path: plot_dynamics_work_precision(rows, path))
     return out.EXIT_OK if status == "ok" else out.EXIT_NOT_SUCCESS

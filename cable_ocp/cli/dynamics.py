@@ -10,12 +10,21 @@ from typing import Any
 import numpy as np
 
 from cable_ocp.cli import output as out
+from cable_ocp.cli.cost import dynamics_cost
 from cable_ocp.errors import CableOCPError
-from cable_ocp.scene.cost import dynamics_cost
 
 
 def register(sub: argparse._SubParsersAction, parent: argparse.ArgumentParser) -> None:
-    """Add ``simulate`` and ``modes``."""
+    """Add ``simulate`` and ``modes``.
+
+    Parameters
+    ----------
+    sub : argparse._SubParsersAction
+        The ``cable-ocp`` parser's subparsers, to which the commands are added.
+    parent : argparse.ArgumentParser
+        The common options (``--quiet``, ``--debug``: :func:`cable_ocp.cli.output.common_parent`),
+        a parent of every parser added.
+    """
     s = sub.add_parser(
         "simulate", parents=[parent],
         help="cable dynamics in the time domain: axial, planar or 3D lumped-mass "

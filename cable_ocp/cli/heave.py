@@ -15,7 +15,16 @@ CONTROLLERS = ("passive", "lqr", "lqg", "mpc")
 
 
 def register(sub: argparse._SubParsersAction, parent: argparse.ArgumentParser) -> None:
-    """Add ``heave``."""
+    """Add ``heave``.
+
+    Parameters
+    ----------
+    sub : argparse._SubParsersAction
+        The ``cable-ocp`` parser's subparsers, to which the command is added.
+    parent : argparse.ArgumentParser
+        The common options (``--quiet``, ``--debug``: :func:`cable_ocp.cli.output.common_parent`),
+        a parent of every parser added.
+    """
     p = sub.add_parser(
         "heave", parents=[parent],
         help="heave compensation: passive, LQR, LQG and MPC compared on one seeded sea "
@@ -54,8 +63,8 @@ def _overrides(args: argparse.Namespace) -> dict[str, Any]:
 
 def cmd_heave(args: argparse.Namespace) -> int:
     """``cable-ocp heave FILE``."""
+    from cable_ocp.cli.cost import heave_cost
     from cable_ocp.heave.cable_compare import compare
-    from cable_ocp.scene.cost import heave_cost
     from cable_ocp.scene.heave import load_scene
 
     out.check_outputs(args)

@@ -21,7 +21,7 @@ Outputs
 * Anything that runs longer than about two seconds shows a progress bar on stderr when
   stderr is a terminal; ``--quiet`` turns the bar and the confirmations off.
 * A run whose estimated cost is above 10 min of CPU or 4 GB of memory
-  (:mod:`cable_ocp.scene.cost`) is refused with exit 2 and the estimate, unless ``--force``.
+  (:mod:`cable_ocp.cli.cost`) is refused with exit 2 and the estimate, unless ``--force``.
 """
 
 from __future__ import annotations
@@ -81,19 +81,43 @@ def add_set_option(p: argparse.ArgumentParser) -> None:
 
 
 def add_json_option(p: argparse.ArgumentParser, what: str) -> None:
-    """``--json PATH`` ('-' = stdout)."""
+    """``--json PATH`` ('-' = stdout).
+
+    Parameters
+    ----------
+    p : argparse.ArgumentParser
+        The (sub)command's parser the option is added to.
+    what : str
+        What the JSON holds, for the help text (``"write {what} as JSON"``).
+    """
     p.add_argument("--json", metavar="PATH",
                    help=f"write {what} as JSON; '-' prints the JSON alone on stdout")
 
 
 def add_csv_option(p: argparse.ArgumentParser, what: str) -> None:
-    """``--csv PATH`` ('-' = stdout)."""
+    """``--csv PATH`` ('-' = stdout).
+
+    Parameters
+    ----------
+    p : argparse.ArgumentParser
+        The (sub)command's parser the option is added to.
+    what : str
+        What the table holds, for the help text (``"write {what} as CSV"``).
+    """
     p.add_argument("--csv", metavar="PATH",
                    help=f"write {what} as CSV (units in the header); '-' = stdout")
 
 
 def add_plot_option(p: argparse.ArgumentParser, what: str) -> None:
-    """``--plot PATH`` (format from the suffix)."""
+    """``--plot PATH`` (format from the suffix).
+
+    Parameters
+    ----------
+    p : argparse.ArgumentParser
+        The (sub)command's parser the option is added to.
+    what : str
+        What the figure shows, for the help text (``"save {what}"``).
+    """
     p.add_argument("--plot", metavar="PATH",
                    help=f"save {what}; the format follows the suffix (png, pdf, svg, ...)")
 
@@ -106,9 +130,18 @@ def add_force_option(p: argparse.ArgumentParser) -> None:
 
 
 def check_cost(args: argparse.Namespace, cost: Any) -> None:
-    """Exit 2 before any work when ``cost`` (:class:`cable_ocp.scene.cost.Cost`) is above
-    the limits, unless ``--force``."""
-    from cable_ocp.scene.cost import check_cost as check
+    """Exit 2 before any work when ``cost`` (:class:`cable_ocp.cli.cost.Cost`) is above
+    the limits, unless ``--force``.
+
+    Parameters
+    ----------
+    args : argparse.Namespace
+        The parsed command line; its ``force`` attribute (``--force``, False when absent)
+        lets a costly run go ahead.
+    cost : Cost
+        The run's estimated CPU time and memory (:mod:`cable_ocp.cli.cost`).
+    """
+    from cable_ocp.cli.cost import check_cost as check
 
     check(cost, force=getattr(args, "force", False))
 
@@ -139,6 +172,18 @@ def check_output_path(path: str | None, option: str, *, allow_stdout: bool = Tru
     ``-`` (stdout) is accepted where ``allow_stdout``; otherwise the parent directory must
     exist and be writable, the path must not be a directory, and, with ``formats``, the
     suffix must be one of them.
+
+    Parameters
+    ----------
+    path : str or None
+        The output path as given; None (option not given) passes, ``"-"`` is stdout.
+    option : str
+        The option's name for the message, e.g. ``"--json"``.
+    allow_stdout : bool
+        Accept ``"-"`` (default True); False for outputs that must be files (figures).
+    formats : sequence of str, optional
+        Valid file suffixes, lower case without the dot (e.g. :func:`plot_formats`); None
+        (default): any suffix.
     """
     if path is None:
         return
@@ -172,13 +217,6 @@ def check_outputs(args: argparse.Namespace) -> None:
         raise CableOCPError("--json - and --csv -: only one output can go to stdout")
 
 
-def reject_options(args: argparse.Namespace, names: Sequence[str], why: str) -> None:
-    """Exit 2 when one of ``names`` was given to a (sub)command that cannot honour it."""
-    for name in names:
-        if getattr(args, name, None) not in (None, False, []):
-            raise CableOCPError(f"--{name.replace('_', '-')}: {why}")
-
-
 def stdout_free(args: argparse.Namespace) -> bool:
     """True when stdout may carry text (no ``--json -`` / ``--csv -``)."""
     return STDOUT not in (getattr(args, "json", None), getattr(args, "csv", None))
@@ -209,7 +247,21 @@ def strict(obj: Any) -> Any:
 def envelope(status: str, message: str, data: dict[str, Any] | None = None,
              warnings: Sequence[str] = ()) -> dict[str, Any]:
     """The top level of every JSON output: status, message, warnings, version, then
-    ``data`` (whose own ``status``/``message``/``warnings`` keys, if any, are replaced)."""
+    ``data`` (whose own ``status``/``message``/``warnings`` keys, if any, are replaced).
+
+    Parameters
+    ----------
+    status : str
+        The run's status, e.g. ``"solved"`` or ``"ok"`` for a success, ``"interrupted"``,
+        or the command's failure status.
+    message : str
+        One line saying what happened or why it failed.
+    data : dict, optional
+        The command's results, appended after the envelope's keys; its ``status``,
+        ``message``, ``warnings`` and ``version`` keys are dropped. None (default): none.
+    warnings : sequence of str
+        Warnings of the run, as a list in the JSON (default none).
+    """
     out: dict[str, Any] = {"status": status, "message": message,
                            "warnings": list(warnings), "version": version()}
     for key, value in (data or {}).items():
@@ -224,13 +276,37 @@ def json_text(obj: Any) -> str:
 
 
 def confirm(args: argparse.Namespace, path: str, what: str = "") -> None:
-    """``wrote PATH`` on stderr (not with ``--quiet``)."""
+    """``wrote PATH`` on stderr (not with ``--quiet``).
+
+    Parameters
+    ----------
+    args : argparse.Namespace
+        The parsed command line; its ``quiet`` attribute (False when absent) silences the line.
+    path : str
+        The file written.
+    what : str
+        What the file is (``"JSON"``, ``"CSV"``, ``"figure"``), shown in parentheses; empty
+        (default): nothing shown.
+    """
     if not getattr(args, "quiet", False):
         print(f"wrote {path}" + (f" ({what})" if what else ""), file=sys.stderr)
 
 
 def emit_json(args: argparse.Namespace, obj: dict[str, Any], path: str | None = None) -> None:
-    """Write ``obj`` as strict JSON to ``path`` (default ``args.json``); '-' = stdout."""
+    """Write ``obj`` as strict JSON to ``path`` (default ``args.json``); '-' = stdout.
+
+    Parameters
+    ----------
+    args : argparse.Namespace
+        The parsed command line: ``json`` is the default path, ``quiet`` silences the
+        confirmation.
+    obj : dict
+        The output, usually an :func:`envelope`; NaN and infinities become null
+        (:func:`strict`).
+    path : str, optional
+        Where to write (``"-"``: stdout, without a confirmation); None (default):
+        ``args.json``, and nothing is written when that is not set either.
+    """
     path = path or args.json
     if not path:
         return
@@ -244,7 +320,16 @@ def emit_json(args: argparse.Namespace, obj: dict[str, Any], path: str | None = 
 
 
 def csv_text(header: Sequence[str], rows: Sequence[Sequence[Any]]) -> str:
-    """CSV text; non-finite numbers are written as empty cells."""
+    """CSV text; non-finite numbers are written as empty cells.
+
+    Parameters
+    ----------
+    header : sequence of str
+        Column names, each with its unit (e.g. ``"t [s]"``).
+    rows : sequence of sequence
+        The rows; a finite float is written with ``repr`` (full precision), None and a
+        non-finite float as an empty cell, anything else as ``csv`` writes it.
+    """
     buf = io.StringIO()
     w = csv.writer(buf, lineterminator="\n")
     w.writerow(header)
@@ -258,7 +343,21 @@ def csv_text(header: Sequence[str], rows: Sequence[Sequence[Any]]) -> str:
 
 def emit_csv(args: argparse.Namespace, header: Sequence[str], rows: Sequence[Sequence[Any]],
              path: str | None = None) -> None:
-    """Write a CSV table to ``path`` (default ``args.csv``); '-' = stdout."""
+    """Write a CSV table to ``path`` (default ``args.csv``); '-' = stdout.
+
+    Parameters
+    ----------
+    args : argparse.Namespace
+        The parsed command line: ``csv`` is the default path, ``quiet`` silences the
+        confirmation.
+    header : sequence of str
+        Column names, each with its unit.
+    rows : sequence of sequence
+        The rows, as :func:`csv_text` writes them.
+    path : str, optional
+        Where to write (``"-"``: stdout, without a confirmation); None (default):
+        ``args.csv``, and nothing is written when that is not set either.
+    """
     path = path or args.csv
     if not path:
         return
@@ -273,7 +372,19 @@ def emit_csv(args: argparse.Namespace, header: Sequence[str], rows: Sequence[Seq
 
 def emit_plot(args: argparse.Namespace, draw: Callable[[str], Any],
               path: str | None = None) -> None:
-    """Call ``draw(path)`` (which saves the figure) and confirm it."""
+    """Call ``draw(path)`` (which saves the figure) and confirm it.
+
+    Parameters
+    ----------
+    args : argparse.Namespace
+        The parsed command line: ``plot`` is the default path, ``quiet`` silences the
+        confirmation.
+    draw : callable
+        ``draw(path)`` draws and saves the figure at ``path`` (format from the suffix).
+    path : str, optional
+        Where to save; None (default): ``args.plot``, and nothing is drawn when that is not
+        set either.
+    """
     path = path or args.plot
     if not path:
         return
@@ -282,13 +393,29 @@ def emit_plot(args: argparse.Namespace, draw: Callable[[str], Any],
 
 
 def say(args: argparse.Namespace, text: str) -> None:
-    """Human-readable text on stdout, unless stdout carries JSON or CSV."""
+    """Human-readable text on stdout, unless stdout carries JSON or CSV.
+
+    Parameters
+    ----------
+    args : argparse.Namespace
+        The parsed command line (``--json -`` or ``--csv -`` keep stdout for themselves).
+    text : str
+        The text, printed with a newline.
+    """
     if stdout_free(args):
         print(text)
 
 
 def note(args: argparse.Namespace, text: str) -> None:
-    """A remark on stderr (not with ``--quiet``)."""
+    """A remark on stderr (not with ``--quiet``).
+
+    Parameters
+    ----------
+    args : argparse.Namespace
+        The parsed command line; its ``quiet`` attribute (False when absent) silences the remark.
+    text : str
+        The remark, printed with a newline.
+    """
     if not getattr(args, "quiet", False):
         print(text, file=sys.stderr)
 
@@ -306,6 +433,18 @@ def progress(args: argparse.Namespace, total: int, desc: str, unit: str = "it"
     optionally a new total, and a short text shown after the bar (e.g. failures). The bar
     shows what runs, done/total, elapsed and remaining time. It is silent when stderr is
     not a terminal or with ``--quiet``.
+
+    Parameters
+    ----------
+    args : argparse.Namespace
+        The parsed command line; its ``quiet`` attribute (False when absent) turns the
+        bar off.
+    total : int
+        Number of steps expected (the callback may change it).
+    desc : str
+        What runs, shown before the bar.
+    unit : str
+        Name of one step, shown in the rate (default ``"it"``).
     """
     enabled = sys.stderr.isatty() and not getattr(args, "quiet", False)
     if not enabled:
@@ -316,9 +455,9 @@ def progress(args: argparse.Namespace, total: int, desc: str, unit: str = "it"
     bar = tqdm(total=total, desc=desc, unit=unit, file=sys.stderr, leave=False,
                dynamic_ncols=True, smoothing=0.1)
 
-    def update(done: int, new_total: int | None = None, postfix: str | None = None) -> None:
-        if new_total is not None and new_total != bar.total:
-            bar.total = new_total
+    def update(done: int, total: int | None = None, postfix: str | None = None) -> None:
+        if total is not None and total != bar.total:
+            bar.total = total
         bar.n = done
         if postfix is not None:
             bar.set_postfix_str(postfix, refresh=False)

@@ -14,7 +14,16 @@ PROFILE_HEADER = ["s [m]", "x [m]", "y [m]", "z [m]", "Tx [N]", "Ty [N]", "Tz [N
 
 
 def register(sub: argparse._SubParsersAction, parent: argparse.ArgumentParser) -> None:
-    """Add ``solve`` and ``footprint``."""
+    """Add ``solve`` and ``footprint``.
+
+    Parameters
+    ----------
+    sub : argparse._SubParsersAction
+        The ``cable-ocp`` parser's subparsers, to which the commands are added.
+    parent : argparse.ArgumentParser
+        The common options (``--quiet``, ``--debug``: :func:`cable_ocp.cli.output.common_parent`),
+        a parent of every parser added.
+    """
     p = sub.add_parser(
         "solve", parents=[parent], help="solve a static cable problem (TOML file)",
         description="Solve a static cable problem: print a summary (length, end angles, "
@@ -72,8 +81,8 @@ def profile_rows(sol: Any) -> list[list[float]]:
 def cmd_solve(args: argparse.Namespace) -> int:
     """``cable-ocp solve FILE``."""
     from cable_ocp import report
+    from cable_ocp.cli.cost import statics_cost
     from cable_ocp.scene import load_scene
-    from cable_ocp.scene.cost import statics_cost
     from cable_ocp.statics.solver import solve
 
     out.check_outputs(args)
@@ -102,8 +111,8 @@ _FP_KEYS = ["theta_deg", "reach", "x", "y", "thrust_x", "thrust_y", "length", "s
 def cmd_footprint(args: argparse.Namespace) -> int:
     """``cable-ocp footprint FILE``."""
     from cable_ocp import report
+    from cable_ocp.cli.cost import statics_cost
     from cable_ocp.scene import load_scene
-    from cable_ocp.scene.cost import statics_cost
     from cable_ocp.statics.footprint import footprint
 
     out.check_outputs(args)
@@ -137,7 +146,7 @@ def cmd_footprint(args: argparse.Namespace) -> int:
         "ship": list(scene.end_b.position[:2])}))
     out.emit_csv(args, FOOTPRINT_HEADER, [[r[k] for k in _FP_KEYS] for r in rows])
     if args.plot and not interrupted:
-        from cable_ocp.plots.statics import plot_footprint
+        from cable_ocp.plots.statics_series import plot_footprint
 
         out.emit_plot(args, lambda path: plot_footprint(res, path, _title(scene, args.file),
                                                         scene=scene))

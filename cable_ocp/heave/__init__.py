@@ -24,9 +24,14 @@ stochastic  Lyapunov (6.31) and spectral (6.33)-(6.35) variances, LQG, winch-gai
 mpc         condensed linear MPC (CasADi ``conic``) and nonlinear MPC (IPOPT), built once
 simulate    closed-loop simulation on one seeded wave realisation, metrics
 identify_cable  the identification experiment (6.2.3) on a cable scene's line
-cable_plant     the axial line as the plant, the Kalman estimate from depth/winch/boom-tip
+axial_plant     the axial line as the plant, stepped one control sample per call
 cable_models    the planar and 3D lumped-mass lines as the plant; cable_plant(): the plant by
                 the scene's model
+design      design scene, design table (gains, Kalman gains, sampled model over lengths)
+estimators  the Kalman estimate from depth/winch/boom-tip
+controllers the controllers on the estimate
+closed_loop the closed loop on the cable plant or the design model
+metrics     the cable's metrics and comparison
 deployment  lowering the unit through resonance, with gain scheduling
 cable_compare   :func:`compare` for every scene: on the design model, or on the cable
 (the scene schema lives in :mod:`cable_ocp.scene.heave`)

@@ -22,24 +22,18 @@ from cable_ocp.errors import CableOCPError
 from cable_ocp.heave import identify_cable as idc
 from cable_ocp.heave import mpc as mpc_mod
 from cable_ocp.heave import simulate as sm
-from cable_ocp.heave.cable_models import cable_plant
-from cable_ocp.heave.cable_plant import (
-    CABLE_FIELDS,
-    CableComparison,
-    CableMetrics,
+from cable_ocp.heave.cable_models import cable_plant, check_plant_scene
+from cable_ocp.heave.closed_loop import (
     _CableLoopPlant,
-    _Ctrl,
-    _metrics_cable,
     _ModelLoopPlant,
-    _mpc_settings,
-    design_damping,
-    design_scene,
-    design_table,
     make_wave,
     run_loop,
     run_status,
 )
+from cable_ocp.heave.controllers import _Ctrl
 from cable_ocp.heave.deployment import deploy
+from cable_ocp.heave.design import _mpc_settings, design_damping, design_scene, design_table
+from cable_ocp.heave.metrics import CABLE_FIELDS, CableComparison, CableMetrics, _metrics_cable
 from cable_ocp.scene.dynamics import DynamicScene
 from cable_ocp.scene.heave import HeaveScene, load_cable_scene
 
@@ -52,7 +46,7 @@ def compare(sc: HeaveScene, controllers: tuple | None = None,
     ``[unit] cable_scene`` goes to :func:`compare_cable`, the others to
     :func:`cable_ocp.heave.simulate.compare`. Returns a
     :class:`~cable_ocp.heave.simulate.Comparison` or a
-    :class:`~cable_ocp.heave.cable_plant.CableComparison` (the same fields, and the
+    :class:`~cable_ocp.heave.metrics.CableComparison` (the same fields, and the
     cable's)."""
     if sc.unit.cable_scene is not None:
         return compare_cable(sc, controllers, progress)
@@ -71,6 +65,7 @@ def compare_cable(sc: HeaveScene, controllers: tuple | None = None,
     against the design model with the same estimator for the prediction.
     """
     dyn = load_cable_scene(sc)
+    check_plant_scene(str(sc.unit.cable_scene), dyn)
     ident = idc.identify_from_cable(sc, dyn)
     sd, source = design_scene(sc, ident, dyn)
     warn = design_damping(ident.linear.b, "design model")[1] if source == "identified" else None

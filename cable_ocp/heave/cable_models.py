@@ -2,7 +2,7 @@
 
 :func:`cable_plant` reads the cable scene's ``[simulation] model``:
 
-* ``"axial"`` (default of a dynamic scene): :class:`cable_ocp.heave.cable_plant.AxialCablePlant`,
+* ``"axial"`` (default of a dynamic scene): :class:`cable_ocp.heave.axial_plant.AxialCablePlant`,
   the vertical line of Huang (1992), ch. 3;
 * ``"planar"``: :class:`PlanarCablePlant`, the line in a vertical plane of Huang (1992),
   ch. 4 (:class:`cable_ocp.dynamics.planar.PlanarModel`): the same heave and pay-out at
@@ -15,7 +15,7 @@
   nominal one: no re-meshing, so no ``[deployment]``); a current of any heading and
   profile swings the line out of the vertical in 3D.
 
-The plants have the interface that the closed loop (:func:`cable_ocp.heave.cable_plant.run_loop`
+The plants have the interface that the closed loop (:func:`cable_ocp.heave.closed_loop.run_loop`
 through ``_CableLoopPlant``) and the identification experiment use: ``substeps``, ``dt``,
 ``length0``, ``z_top0``, ``tolerance``, ``model.n``, :meth:`initial_state`,
 :meth:`static_unit_height`, :meth:`static_tensions`, :meth:`advance` and
@@ -32,19 +32,22 @@ from typing import Any
 import casadi as ca
 import numpy as np
 
+from cable_ocp.dynamics.axial import check_axial
 from cable_ocp.dynamics.lumped import LumpedMassModel
 from cable_ocp.dynamics.lumped_driven import DrivenLumpedStep
-from cable_ocp.dynamics.planar import PlanarModel
+from cable_ocp.dynamics.lumped_scene import check_lumped_plant
+from cable_ocp.dynamics.planar import PlanarModel, check_planar
 from cable_ocp.errors import CableOCPError
-from cable_ocp.heave.cable_plant import (
+from cable_ocp.heave.axial_plant import (
     AxialCablePlant,
     SampledCablePlant,
-    _compile,
+    compile_plant_functions,
     sampled_motion,
 )
 from cable_ocp.scene.dynamics import DynamicScene, dynamic_scene_from_dict
 
 __all__ = ["HALVINGS", "PLANT_MODELS", "TOP_SEGMENT_RANGE", "LumpedCablePlant",
+           "check_plant_scene",
            "PlanarCablePlant", "axial_twin", "cable_plant", "lumped_axial_frequency",
            "still_scene"]
 
@@ -85,6 +88,38 @@ def cable_plant(scene: DynamicScene, sample_time: float) -> Any:
     raise CableOCPError(
         f"simulation.model = {model!r} in the cable scene: the heave plant takes "
         f"{', '.join(repr(m) for m in PLANT_MODELS)}")
+
+
+def check_plant_scene(path: str, scene: DynamicScene) -> None:
+    """Refuse a cable scene that its model cannot run as the heave plant, before any work.
+
+    The scene-level checks of ``[unit] cable_scene`` (readable, a dynamic scene with an
+    axial, planar or lumped3d model and a unit, a time step dividing the sample) run when
+    the heave scene is built (:func:`cable_ocp.scene.heave.check`); this one asks the model
+    itself (:func:`cable_ocp.dynamics.axial.check_axial`,
+    :func:`cable_ocp.dynamics.planar.check_planar`,
+    :func:`cable_ocp.dynamics.lumped_scene.check_lumped_plant`), so it lives with the models.
+
+    Parameters
+    ----------
+    path : str
+        The heave file's ``unit.cable_scene`` (named in the message).
+    scene : DynamicScene
+        That cable scene.
+
+    Raises
+    ------
+    CableOCPError
+        Naming ``unit.cable_scene`` and the key the model refuses.
+    """
+    checks = {"axial": check_axial, "planar": check_planar, "lumped3d": check_lumped_plant}
+    check = checks.get(scene.simulation.model)
+    if check is None:  # the heave scene's own check refuses other models first
+        return
+    try:
+        check(scene)
+    except CableOCPError as exc:
+        raise CableOCPError(f"unit.cable_scene = {path!r}: {exc}") from None
 
 
 def axial_twin(scene: DynamicScene) -> DynamicScene:
@@ -249,7 +284,7 @@ class PlanarCablePlant(_OneLengthPlant):
     """The planar cable model (Huang (1992), ch. 4) advanced one control sample per call.
 
     The boom-tip heave moves the top (end_b) vertically, the winch output ``u`` pays cable
-    in there (``L = L_dep - u``), as :class:`cable_ocp.heave.cable_plant.AxialCablePlant`;
+    in there (``L = L_dep - u``), as :class:`cable_ocp.heave.axial_plant.AxialCablePlant`;
     the top keeps its static x. A current along x (``[environment.current]`` of the cable
     scene) inclines the line and drags on the unit and the cable as they move. Each
     sub-step is the planar model's own implicit-midpoint step with its discrete-gradient
@@ -306,7 +341,7 @@ class PlanarCablePlant(_OneLengthPlant):
         short-circuit switch, as the axial plant). The Newton matrix (block banded: the
         pay-out terms reach two nodes each way) is solved by CasADi's sparse QR, which,
         unlike the ``rootfinder``, generates C: the functions are compiled as the axial
-        plant's (:func:`cable_ocp.heave.cable_plant._compile`). Where a step does not
+        plant's (:func:`cable_ocp.heave.axial_plant.compile_plant_functions`). Where a step does not
         converge (the residual above the failure threshold ``1e3 tolerance``: a line going
         slack, where the no-compression law bends sharply), it is taken again as two steps
         of half the size, recursively up to ``halvings`` times (only then evaluated).
@@ -353,7 +388,7 @@ class PlanarCablePlant(_OneLengthPlant):
         out = ca.Function("planar_out", [qs, vs, va, p],
                           [ca.vertcat(rs[1, 0], vel[1, 0], ca.norm_2(pull), top,
                                       ca.mmin(tens))])
-        newton, resid, guess, post, out = _compile([newton, resid, guess, post, out])
+        newton, resid, guess, post, out = compile_plant_functions([newton, resid, guess, post, out])
         self._out = out
 
         # one step: two iterations, then more while the residual exceeds tol
@@ -424,7 +459,7 @@ class LumpedCablePlant(_OneLengthPlant):
 
     The boom-tip heave moves the top (end_b) vertically (its x and y stay at the static
     position), the winch output ``u`` pays cable in there (``L = L_dep - u``), as
-    :class:`cable_ocp.heave.cable_plant.AxialCablePlant`. The winch pays cable in and out
+    :class:`cable_ocp.heave.axial_plant.AxialCablePlant`. The winch pays cable in and out
     through the top segment: its unstretched length is ``l_top0 + (L - L0)``; the other
     segments keep theirs. Its length must stay within :data:`TOP_SEGMENT_RANGE` times its
     nominal length: the plant is not re-meshed, and :meth:`advance` stops the run (a
@@ -500,7 +535,7 @@ class LumpedCablePlant(_OneLengthPlant):
         resid = ca.Function("lumped_resid", [y, pars], [ca.norm_inf(e["res"])])
         guess = ca.Function("lumped_guess", [pars], [e["guess"]])
         fin = ca.Function("lumped_finish", [y, pars], [ca.vertcat(e["x1"], e["out"])])
-        newton, resid, guess, fin = _compile([newton, resid, guess, fin])
+        newton, resid, guess, fin = compile_plant_functions([newton, resid, guess, fin])
         self._fin = fin
         step = _newton_step("lumped", newton, resid, guess, fin, 2 * nf3, nf3, tol, max_iter)
         sample, self._flat, self._step = _sample_functions("lumped", step, 2 * nf3,

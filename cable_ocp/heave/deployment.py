@@ -3,7 +3,7 @@
 The heave scene's ``[deployment]`` table lowers the unit of ``[unit] cable_scene`` from the
 cable scene's length to ``final_length`` at ``payout_speed`` (after the warm-up, the speed
 ramped in and out over ``ramp_time``, 20 s held at the end) in the scene's sea, on the cable plant
-(:mod:`cable_ocp.heave.cable_plant`). On the way the first axial natural frequency
+(:mod:`cable_ocp.heave.closed_loop`). On the way the first axial natural frequency
 ``omega_1(L)`` falls through the wave band (Huang (1992), section 3.3.5 lowers through resonance
 without control), and the design model (6.2) changes with it: ``a(L) ~ 1 / omega_1(L)^2``.
 
@@ -30,8 +30,12 @@ from typing import Any
 
 import numpy as np
 
-from cable_ocp.heave import cable_plant as cp
+from cable_ocp.heave.axial_plant import AxialCablePlant
+from cable_ocp.heave.closed_loop import LoopRun, _CableLoopPlant, make_wave, run_loop, run_status
+from cable_ocp.heave.controllers import _Ctrl
+from cable_ocp.heave.design import design_damping, design_table
 from cable_ocp.heave.identify_cable import CableIdentification, identify_from_cable
+from cable_ocp.heave.metrics import CableComparison, CableMetrics, _metrics_cable
 from cable_ocp.scene.dynamics import DynamicScene
 from cable_ocp.scene.heave import HeaveScene
 
@@ -77,12 +81,12 @@ def _schedule(sc: HeaveScene, dyn: DynamicScene, ident0: CableIdentification,
 
 def deploy(sc: HeaveScene, sd: HeaveScene, dyn: DynamicScene, ident0: CableIdentification,
            extra: dict, progress: Callable[[int, int, Any], None] | None = None
-           ) -> cp.CableComparison:
+           ) -> CableComparison:
     """Run the deployment of ``sc.deployment`` (module docstring).
 
-    ``sd`` is the design scene (:func:`cable_ocp.heave.cable_plant.design_scene`), ``ident0``
+    ``sd`` is the design scene (:func:`cable_ocp.heave.design.design_scene`), ``ident0``
     the identification at the start. Returns a
-    :class:`~cable_ocp.heave.cable_plant.CableComparison` whose ``json_extra["deployment"]``
+    :class:`~cable_ocp.heave.metrics.CableComparison` whose ``json_extra["deployment"]``
     holds the schedule and the per-length table.
     """
     from cable_ocp.heave import simulate as sm
@@ -101,51 +105,51 @@ def deploy(sc: HeaveScene, sd: HeaveScene, dyn: DynamicScene, ident0: CableIdent
     warnings: list[str] = []
     b_tab = np.empty(len(idents))
     for j, (i, L) in enumerate(zip(idents, lengths, strict=True)):
-        b_tab[j], w = cp.design_damping(i.linear.b, f"schedule at {L:g} m")
+        b_tab[j], w = design_damping(i.linear.b, f"schedule at {L:g} m")
         if w:
             warnings.append(w)
     fixed_ident = next((i for i, L in zip(idents, lengths, strict=True) if abs(L - lf) < 1e-9),
                        None) or identify_from_cable(sc, dyn, length=lf)
-    sched, p = cp.design_table(sd, lengths, a_tab, b_tab)
-    b_fixed, w = cp.design_damping(fixed_ident.linear.b, f"fixed design at {lf:g} m")
+    sched, p = design_table(sd, lengths, a_tab, b_tab)
+    b_fixed, w = design_damping(fixed_ident.linear.b, f"fixed design at {lf:g} m")
     if w and w not in warnings:
         warnings.append(w)
-    fixed, _ = cp.design_table(sd, np.array([lf]), np.array([fixed_ident.linear.a]),
+    fixed, _ = design_table(sd, np.array([lf]), np.array([fixed_ident.linear.a]),
                                np.array([b_fixed]))
 
     warm = sc.simulation.warmup
     T = warm + abs(L1 - L0) / dep.payout_speed + dep.ramp_time + 20.0
     n_ctrl = int(math.ceil(T / h))
     models = sm.build_models(sd)
-    plant = cp.AxialCablePlant(dyn, h)
+    plant = AxialCablePlant(dyn, h)
     m = plant.substeps
     t_f, x0_f, _ = sm.wave_realisation(models.plant, n_ctrl * h + 2 * h, h / sc.simulation.substeps,
                                        sc.simulation.seed)
-    wave = cp.make_wave(t_f, x0_f, h, m, n_ctrl,
+    wave = make_wave(t_f, x0_f, h, m, n_ctrl,
                         lambda t: length_history(t, L0, L1, dep.payout_speed, warm,
                                                  dep.ramp_time), 0.5 * warm)
     rng = np.random.default_rng(sc.simulation.seed + 1000)
     noise = rng.standard_normal((n_ctrl + 1, 3)) * np.array(
         [c.measurement_noise, c.winch_noise, c.boom_tip_noise])
     total = n_ctrl * len(CONTROLLERS)
-    runs: dict[str, cp.LoopRun] = {}
+    runs: dict[str, LoopRun] = {}
     for idx, name in enumerate(CONTROLLERS):
         table = {"passive": None, "lqr_fixed": fixed, "lqr_scheduled": sched}[name]
-        ctrl = cp._Ctrl(name, table, None)
+        ctrl = _Ctrl(name, table, None)
 
         def prog(k: int, base: int = idx * n_ctrl) -> None:
             if progress is not None:
                 progress(base + k, total, None)
 
-        runs[name] = cp.run_loop(sc, cp._CableLoopPlant(plant), ctrl, wave, noise, n_ctrl, prog)
+        runs[name] = run_loop(sc, _CableLoopPlant(plant), ctrl, wave, noise, n_ctrl, prog)
     if progress is not None:
         progress(total, total, None)
 
     metrics, statuses, messages = {}, {}, {}
     base = None
     for name, run in runs.items():
-        statuses[name], messages[name] = cp.run_status(run)
-        d = cp._metrics_cable(sd, run, "lqr" if name != "passive" else "passive",
+        statuses[name], messages[name] = run_status(run)
+        d = _metrics_cable(sd, run, "lqr" if name != "passive" else "passive",
                               fixed.G[0] if name == "lqr_fixed" else sched.G[0])
         if name == "passive":
             base = d["heave_rms"]
@@ -153,7 +157,7 @@ def deploy(sc: HeaveScene, sd: HeaveScene, dyn: DynamicScene, ident0: CableIdent
         d["reduction_pct"] = float(100.0 * (1.0 - d["heave_rms"] / base)) if ok else None
         if name == "lqr_scheduled":
             d["energy_index"] = None  # the gain changes with the length
-        metrics[name] = cp.CableMetrics(d)
+        metrics[name] = CableMetrics(d)
 
     window = dep.window if dep.window is not None else (hi - lo) / 40.0
     table = _per_length(runs, sc, lo, hi, window)
@@ -172,11 +176,11 @@ def deploy(sc: HeaveScene, sd: HeaveScene, dyn: DynamicScene, ident0: CableIdent
     }
     extra["cable_plant"] = {"segments": plant.model.n, "time_step": plant.dt, "substeps": m}
     traces = {k: r.trace for k, r in runs.items()}
-    return cp.CableComparison(models.sigma_uncontrolled, metrics, traces, models, None, 0,
+    return CableComparison(models.sigma_uncontrolled, metrics, traces, models, None, 0,
                               statuses, messages, base, warnings, json_extra=extra)
 
 
-def _per_length(runs: dict[str, cp.LoopRun], sc: HeaveScene, lo: float, hi: float,
+def _per_length(runs: dict[str, LoopRun], sc: HeaveScene, lo: float, hi: float,
                 window: float) -> dict[str, Any]:
     """Per window of paid-out length: centre (m) and, per controller, the unit's heave from
     the static depth at the paid-out length (RMS, mean, standard deviation about the mean,

@@ -105,7 +105,22 @@ def compile_shared(cc: list[str], opt: str, src: str, lib: str, timeout: float =
     """Compile the C file ``src`` into the shared library ``lib`` with ``cc`` and ``opt``,
     atomically: into a file of this process, then renamed, so that another process never
     loads a half-written library (and a failed compile leaves nothing). Raises on any
-    failure (the compiler's error, a timeout in seconds)."""
+    failure (the compiler's error, a timeout in seconds).
+
+    Parameters
+    ----------
+    cc : list of str
+        The compiler command as words, e.g. ``["ccache", "gcc"]`` (:func:`c_compiler`).
+    opt : str
+        Optimisation flag passed to the compiler, e.g. ``"-O2"``.
+    src : str
+        Path of the C source file.
+    lib : str
+        Path of the shared library to write (replaced if it exists).
+    timeout : float
+        Longest the compiler may run, s (default 600); longer raises
+        ``subprocess.TimeoutExpired``.
+    """
     part = lib + f".{os.getpid()}.tmp"
     try:
         subprocess.run([*cc, opt, "-fPIC", "-shared", src, "-o", part, "-lm"],
@@ -183,6 +198,16 @@ def compile_functions(fns: list[ca.Function], opt: str = "-O1",
     (interpreted: the same numbers, slower) whenever :func:`compile_function` would fall
     back: compiling off, no compiler, an unwritable cache, a failing compiler or loading.
     Silent.
+
+    Parameters
+    ----------
+    fns : list of casadi.Function
+        The functions, compiled into one C file; an empty list is returned as is.
+    opt : str
+        Optimisation flag of the C compiler (default ``"-O1"``: a large graph compiles
+        much faster than with ``-O2``).
+    prefix : str
+        Prefix of the library's name, before the first function's name (default none).
     """
     cache = cache_dir()
     cc = c_compiler()

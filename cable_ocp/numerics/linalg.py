@@ -14,6 +14,13 @@ __all__ = ["solve_sparse"]
 def solve_sparse(mat: Any, rhs: np.ndarray) -> np.ndarray | None:
     """Solve ``mat x = rhs`` (a scipy sparse matrix) with ``spsolve``.
 
+    Parameters
+    ----------
+    mat : scipy.sparse matrix
+        Square matrix, shape (n, n) (CSC or CSR is best; other formats are converted).
+    rhs : numpy.ndarray
+        Right-hand side, shape (n,) (or (n, k) for k right-hand sides).
+
     Returns
     -------
     ndarray or None

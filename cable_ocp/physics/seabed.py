@@ -18,41 +18,121 @@ it would go negative the cable lies slack with zero tension. The lateral compone
 weight on a slope is assumed carried by the seabed (embedment), not modelled.
 
 The TDP lies at r_a + e (g + (1/EA) integral of T ds') (stretch of the grounded part).
+
+Every law here takes numbers: the plane is its slope (deg), the heading in which it rises
+(deg from +x towards +y) and its height at x = y = 0 (m); the friction coefficient is a
+number. :func:`normal`, :func:`height`, :func:`gap` and :func:`axial_gradient` are the same
+laws for an object that carries those numbers as attributes (:class:`SeabedPlane`, e.g. the
+scene's ``Seabed``).
 """
 
 from __future__ import annotations
 
 import math
-from typing import Any
+from typing import Any, Protocol
 
 import casadi as ca
 import numpy as np
 
-from cable_ocp.scene import Seabed
+
+class SeabedPlane(Protocol):
+    """What the conveniences read: the plane's numbers and the friction coefficient."""
+
+    depth_offset: float
+    friction: float
+    slope_deg: float
+    slope_heading_deg: float
 
 
-def normal(seabed: Seabed) -> np.ndarray:
-    """Unit normal of the seabed plane, pointing up into the water."""
-    a, h = math.radians(seabed.slope_deg), math.radians(seabed.slope_heading_deg)
+def plane_normal(slope_deg: float, heading_deg: float) -> np.ndarray:
+    """Unit normal of the seabed plane, pointing up into the water (-).
+
+    Parameters
+    ----------
+    slope_deg : float
+        Slope of the plane, deg.
+    heading_deg : float
+        Direction in which the plane rises, deg from +x towards +y.
+    """
+    a, h = math.radians(slope_deg), math.radians(heading_deg)
     return np.array([-math.sin(a) * math.cos(h), -math.sin(a) * math.sin(h), math.cos(a)])
 
 
-def height(seabed: Seabed, x: Any, y: Any) -> Any:
-    """Seabed height z at (x, y), m."""
-    t = math.tan(math.radians(seabed.slope_deg))
-    h = math.radians(seabed.slope_heading_deg)
-    return seabed.depth_offset + t * (x * math.cos(h) + y * math.sin(h))
+def plane_height(x: Any, y: Any, slope_deg: float, heading_deg: float,
+                 offset: float) -> Any:
+    """Seabed height z at (x, y), m (floats, arrays or CasADi expressions).
+
+    Parameters
+    ----------
+    x, y : float or array
+        Horizontal position, m.
+    slope_deg : float
+        Slope of the plane, deg.
+    heading_deg : float
+        Direction in which the plane rises, deg.
+    offset : float
+        Height of the plane at x = y = 0, m.
+    """
+    t = math.tan(math.radians(slope_deg))
+    h = math.radians(heading_deg)
+    return offset + t * (x * math.cos(h) + y * math.sin(h))
 
 
-def gap(seabed: Seabed, r: np.ndarray) -> np.ndarray:
-    """Signed distance of points (n, 3) above the seabed plane, m (negative = below)."""
+def plane_gap(r: np.ndarray, slope_deg: float, heading_deg: float,
+              offset: float) -> np.ndarray:
+    """Signed distance of points (n, 3) above the seabed plane, m (negative = below).
+
+    Parameters
+    ----------
+    r : ndarray, shape (n, 3) or (3,)
+        Points, m.
+    slope_deg : float
+        Slope of the plane, deg.
+    heading_deg : float
+        Direction in which the plane rises, deg.
+    offset : float
+        Height of the plane at x = y = 0, m.
+    """
     r = np.atleast_2d(r)
-    return (r[:, 2] - height(seabed, r[:, 0], r[:, 1])) * normal(seabed)[2]
+    z0 = plane_height(r[:, 0], r[:, 1], slope_deg, heading_deg, offset)
+    return (r[:, 2] - z0) * plane_normal(slope_deg, heading_deg)[2]
 
 
-def axial_gradient(seabed: Seabed, w: float, e: Any) -> Any:
-    """k = w e_z + mu w n_z: tension drop per metre from the TDP towards the anchor, N/m."""
-    return w * e[2] + seabed.friction * w * float(normal(seabed)[2])
+def friction_gradient(w: float, e: Any, friction: float, normal_z: float) -> Any:
+    """k = w e_z + mu w n_z: tension drop per metre from the TDP towards the anchor, N/m.
+
+    Parameters
+    ----------
+    w : float
+        Weight in water per length, N/m.
+    e : array or casadi expression, shape (3,)
+        Unit direction of the grounded line, anchor to TDP (-).
+    friction : float
+        Axial friction coefficient mu (-).
+    normal_z : float
+        Vertical component of the plane's unit normal (:func:`plane_normal`) (-).
+    """
+    return w * e[2] + friction * w * normal_z
+
+
+def normal(seabed: SeabedPlane) -> np.ndarray:
+    """:func:`plane_normal` of a seabed object."""
+    return plane_normal(seabed.slope_deg, seabed.slope_heading_deg)
+
+
+def height(seabed: SeabedPlane, x: Any, y: Any) -> Any:
+    """:func:`plane_height` of a seabed object, m."""
+    return plane_height(x, y, seabed.slope_deg, seabed.slope_heading_deg, seabed.depth_offset)
+
+
+def gap(seabed: SeabedPlane, r: np.ndarray) -> np.ndarray:
+    """:func:`plane_gap` of a seabed object, m."""
+    return plane_gap(r, seabed.slope_deg, seabed.slope_heading_deg, seabed.depth_offset)
+
+
+def axial_gradient(seabed: SeabedPlane, w: float, e: Any) -> Any:
+    """:func:`friction_gradient` of a seabed object, N/m."""
+    return friction_gradient(w, e, seabed.friction, float(normal(seabed)[2]))
 
 
 def grounded_tension_integral(t_td: Any, k: Any, g: Any) -> Any:

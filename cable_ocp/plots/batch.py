@@ -18,6 +18,18 @@ def plot_batch(res: Any, column: str, path: str | Path, title: str = "") -> Figu
     One swept key: the output against it, with the cases that are not a success marked by
     their status. Two: a heat map over the grid (cases that are not a success hatched
     out). More: the first two keys, the others' values ignored (say so in the title).
+
+    Parameters
+    ----------
+    res : BatchResult
+        The batch's rows and swept input keys; only keys that take more than one value
+        count as swept.
+    column : str
+        The output to plot, a column name with its unit, e.g. ``"max_tension [N]"``.
+    path : str or Path
+        Where to save the figure (format from the suffix).
+    title : str
+        Start of the title (``"{title}: {column}"``); empty (default): the column alone.
     """
     keys = [k for k in res.inputs if len({r.get(k) for r in res.rows}) > 1] or res.inputs
     ok = np.array([r["status"] == "solved" for r in res.rows])

@@ -1,13 +1,16 @@
-"""Figures of the benchmarks: the work-precision diagram of the statics methods."""
+"""Figures of the benchmarks: the work-precision diagrams of the statics methods and of
+the dynamics beside MoorDyn."""
 
 from __future__ import annotations
 
 import csv
+from collections.abc import Sequence
 from pathlib import Path
 from typing import Any
 
 import numpy as np
 
+from cable_ocp.bench.dynamics import EQUAL_ACCURACY, TARGET_REALTIME, BenchRow, row_ok
 from cable_ocp.plots.common import legend_below, new_figure, save
 
 #: methods built on this package's collocation or multiple shooting (drawn solid)
@@ -106,3 +109,38 @@ def read_work_precision_csv(path: str | Path) -> list[dict[str, Any]]:
                 "force_error": num("force_error", "force error [-]"),
                 "profile_error": num("profile_error", "profile error [-]")})
     return [{"scene": k, "rows": v} for k, v in scenes.items()]
+
+
+def plot_dynamics_work_precision(rows: Sequence[BenchRow], path: str | Path) -> Path:
+    """Work-precision figure: top-tension error against wall time per simulated second,
+    one colour per number of segments, solid cable_ocp, dashed MoorDyn
+    (:func:`cable_ocp.bench.dynamics.run`'s rows).
+
+    Parameters
+    ----------
+    rows : sequence of BenchRow
+        The benchmark's rows (failed rows are left out).
+    path : str or Path
+        Output file; the format follows the suffix.
+    """
+    fig = new_figure(7.5, 5.2)
+    ax = fig.add_subplot(1, 1, 1)
+    for j, n in enumerate(dict.fromkeys(r.segments for r in rows)):
+        for model, style in (("cable_ocp", {"ls": "-", "marker": "o"}),
+                             ("MoorDyn", {"ls": "--", "marker": "s"})):
+            # joined in the order of the time step (largest first), not of the timings
+            pts = sorted((-r.time_step, r.wall_per_simulated_s, r.error) for r in rows
+                         if r.segments == n and r.model.startswith(model) and row_ok(r))
+            if pts:
+                _, w, e = np.array(pts).T
+                ax.loglog(w * 1e3, np.maximum(e, 1e-16), color=f"C{j % 10}",
+                          label=f"{model}, {n} segments", **style)
+    ax.axhline(EQUAL_ACCURACY, color="0.5", lw=0.8, ls=":")  # the equal-accuracy level
+    ax.axvline(1e3 / TARGET_REALTIME, color="0.5", lw=0.8, ls=":")  # 100x real time
+    ax.set_xlabel("wall time per simulated second (ms)")
+    ax.set_ylabel("top-tension error / amplitude (-)")
+    ax.set_title("Huang (1992) 5.7 system at 1.256 rad/s: work-precision", fontsize=10.5)
+    ax.grid(True, which="major", alpha=0.35)
+    ax.legend(fontsize=8)
+    save(fig, path)
+    return Path(path)

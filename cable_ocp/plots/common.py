@@ -24,7 +24,13 @@ DPI = 110
 
 
 def new_figure(width: float, height: float) -> Figure:
-    """A figure of ``width`` x ``height`` inches with constrained layout."""
+    """A figure of ``width`` x ``height`` inches with constrained layout.
+
+    Parameters
+    ----------
+    width, height : float
+        Size of the figure, inches (at :data:`DPI` dots per inch).
+    """
     fig = Figure(figsize=(width, height), dpi=DPI, layout="constrained")
     FigureCanvasAgg(fig)  # a renderer to measure text with (any format can still be saved)
     fig.get_layout_engine().set(h_pad=0.06, w_pad=0.06, hspace=0.04, wspace=0.04)
@@ -32,7 +38,17 @@ def new_figure(width: float, height: float) -> Figure:
 
 
 def save(fig: Figure, path: str | Path, dpi: int = DPI) -> Path:
-    """Write ``fig`` to ``path``; the format follows the suffix (PNG, PDF, SVG, ...)."""
+    """Write ``fig`` to ``path``; the format follows the suffix (PNG, PDF, SVG, ...).
+
+    Parameters
+    ----------
+    fig : matplotlib.figure.Figure
+        The figure to write.
+    path : str or Path
+        The file, overwritten if it exists; its suffix picks the format.
+    dpi : int
+        Resolution of raster formats, dots per inch (default :data:`DPI`).
+    """
     path = Path(path)
     fig.savefig(path, dpi=dpi)
     return path
@@ -42,7 +58,22 @@ def legend_below(fig: Figure, handles: Sequence[Artist], labels: Sequence[str] |
                  ncols: int | None = None, fontsize: float = 8.5) -> Any:
     """One figure legend below all panels (outside every axes), duplicates removed.
 
-    The number of columns is reduced until the legend fits the figure's width."""
+    The number of columns is reduced until the legend fits the figure's width.
+
+    Parameters
+    ----------
+    fig : matplotlib.figure.Figure
+        The figure; the legend goes below all its panels.
+    handles : sequence of matplotlib.artist.Artist
+        The artists to list (lines, patches, ...).
+    labels : sequence of str, optional
+        One label per handle; None (default): each handle's own label. Empty labels,
+        labels starting with ``_`` and repeated labels are left out.
+    ncols : int, optional
+        Largest number of columns (default 5, never more than the entries).
+    fontsize : float
+        Font size of the entries, points (default 8.5).
+    """
     if labels is None:
         labels = [h.get_label() for h in handles]
     seen: dict[str, Artist] = {}
@@ -65,7 +96,17 @@ def legend_below(fig: Figure, handles: Sequence[Artist], labels: Sequence[str] |
 
 
 def wrap(text: str, width_in: float, fontsize: float = 9.5) -> str:
-    """Wrap each line of a title to fit ``width_in`` inches at ``fontsize`` points."""
+    """Wrap each line of a title to fit ``width_in`` inches at ``fontsize`` points.
+
+    Parameters
+    ----------
+    text : str
+        The title; its own line breaks are kept, each line wrapped on its own.
+    width_in : float
+        Width available, inches (at least 20 characters are allowed per line).
+    fontsize : float
+        Font size of the title, points (default 9.5).
+    """
     chars = max(20, int(width_in * 125.0 / fontsize))
     return "\n".join(textwrap.fill(line, chars) for line in text.split("\n"))
 
@@ -81,7 +122,17 @@ def force_scale(max_abs: float) -> tuple[float, str]:
 
 def nice_factor(needed: float, choices: Iterable[float] = (2, 3, 5, 10, 20, 50, 100, 200, 500,
                                                           1000)) -> float:
-    """The smallest of ``choices`` that is at least ``needed`` (1 when ``needed`` <= 1)."""
+    """The smallest of ``choices`` that is at least ``needed`` (1 when ``needed`` <= 1).
+
+    Parameters
+    ----------
+    needed : float
+        The least factor wanted (-), e.g. the magnification that makes a small deflection
+        visible.
+    choices : iterable of float
+        The round factors (-) to pick from, in increasing order; above the last, the
+        largest is returned.
+    """
     if needed <= 1.0:
         return 1.0
     for c in choices:
@@ -91,13 +142,32 @@ def nice_factor(needed: float, choices: Iterable[float] = (2, 3, 5, 10, 20, 50, 
 
 
 def shade(ax: Axes, t0: float, t1: float, label: str = "warm-up (not in the metrics)") -> Artist:
-    """Grey band over ``t0 <= t <= t1`` (e.g. a simulation's warm-up)."""
+    """Grey band over ``t0 <= t <= t1`` (e.g. a simulation's warm-up).
+
+    Parameters
+    ----------
+    ax : matplotlib.axes.Axes
+        Axes whose x axis is time.
+    t0, t1 : float
+        Start and end of the band, in the x axis' unit (s for a time axis).
+    label : str
+        The band's legend label (default: a warm-up not counted in the metrics).
+    """
     return ax.axvspan(t0, t1, color="0.88", zorder=0, lw=0, label=label, gid="warmup")
 
 
 def plain_log_ticks(ax: Axes, which: str = "x") -> None:
     """Label a log axis with plain numbers (40, 60, 0.002) rather than 4x10^1, including the
-    minor ticks when the axis spans less than a decade."""
+    minor ticks when the axis spans less than a decade.
+
+    Parameters
+    ----------
+    ax : matplotlib.axes.Axes
+        Axes with a log axis; call it after the limits are set (they decide the minor
+        ticks).
+    which : str
+        ``"x"`` (default) or ``"y"``: the axis to label (anything but ``"x"`` means y).
+    """
     fmt = FuncFormatter(lambda v, _pos: f"{v:g}")
     axis = ax.xaxis if which == "x" else ax.yaxis
     lo, hi = ax.get_xlim() if which == "x" else ax.get_ylim()

@@ -14,7 +14,19 @@ from cable_ocp.plots.common import force_scale, legend_below, new_figure, save, 
 
 
 def simulation_figure(res: Any, title: str = "", scene: Any = None) -> Figure:
-    """The four panels of a :class:`cable_ocp.dynamics.result.SimulationResult`."""
+    """The four panels of a :class:`cable_ocp.dynamics.result.SimulationResult`.
+
+    Parameters
+    ----------
+    res : SimulationResult
+        The simulation: unit and top positions (m), segment and top tensions (N), length
+        (m), slack record, status; a failed run is drawn too, its status in red.
+    title : str
+        First line of the figure's title (the model and simulated time follow); empty
+        (default): an empty first line.
+    scene : DynamicScene, optional
+        Not used by the figure (accepted so that callers can pass the scene); default None.
+    """
     fig = new_figure(12.0, 8.0)
     ax = fig.subplots(2, 2)
     t = res.t
@@ -94,7 +106,19 @@ def simulation_figure(res: Any, title: str = "", scene: Any = None) -> Figure:
 
 
 def plot_simulation(res: Any, path: str | Path, title: str = "", scene: Any = None) -> Figure:
-    """Save :func:`simulation_figure` to ``path``."""
+    """Save :func:`simulation_figure` to ``path``.
+
+    Parameters
+    ----------
+    res : SimulationResult
+        The simulation to draw.
+    path : str or Path
+        Where to save the figure (format from the suffix).
+    title : str
+        First line of the figure's title; empty (default): none.
+    scene : DynamicScene, optional
+        Passed on to :func:`simulation_figure` (which does not use it); default None.
+    """
     fig = simulation_figure(res, title, scene)
     save(fig, path)
     return fig
@@ -102,7 +126,20 @@ def plot_simulation(res: Any, path: str | Path, title: str = "", scene: Any = No
 
 def plot_modes(res: Any, path: str | Path, title: str = "", max_modes: int = 6) -> Figure:
     """The first mode shapes in the vertical plane of the line (shape components along the
-    line's horizontal direction and vertically, against the static profile)."""
+    line's horizontal direction and vertically, against the static profile).
+
+    Parameters
+    ----------
+    res : ModesResult
+        The modal analysis: frequencies (rad/s), mode shapes and static node positions
+        (m). Each shape is drawn scaled to 12 % of the line's extent.
+    path : str or Path
+        Where to save the figure (format from the suffix).
+    title : str
+        Start of the title (``"{title}: natural modes of ..."``); default empty.
+    max_modes : int
+        Largest number of modes drawn, one panel each, lowest first (default 6).
+    """
     n = min(max_modes, len(res.frequencies))
     fig = new_figure(3.0 * max(n, 1), 4.6)
     axes = np.atleast_1d(fig.subplots(1, max(n, 1), sharey=True))
@@ -134,7 +171,18 @@ def plot_modes(res: Any, path: str | Path, title: str = "", max_modes: int = 6) 
 
 def plot_deployment(chart: Any, path: str | Path, title: str = "") -> Figure:
     """Natural frequencies against paid-out length, the wave band shaded, crossings marked:
-    the lengths at which lowering the unit passes through a resonance."""
+    the lengths at which lowering the unit passes through a resonance.
+
+    Parameters
+    ----------
+    chart : DeploymentChart
+        Natural frequencies (rad/s) against unstretched paid-out length (m), and the wave
+        band (rad/s).
+    path : str or Path
+        Where to save the figure (format from the suffix).
+    title : str
+        Start of the title (``"{title}: deployment resonance chart ..."``); default empty.
+    """
     fig = new_figure(9.0, 5.6)
     a = fig.subplots()
     lo, hi = chart.wave_band

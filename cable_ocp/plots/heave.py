@@ -86,7 +86,18 @@ def _name(name: str) -> str:
 
 
 def running_rms(t: np.ndarray, x: np.ndarray, window: float) -> tuple[np.ndarray, np.ndarray]:
-    """RMS of ``x`` over the trailing ``window`` seconds, from ``t[0] + window`` on."""
+    """RMS of ``x`` over the trailing ``window`` seconds, from ``t[0] + window`` on.
+
+    Parameters
+    ----------
+    t : numpy.ndarray
+        Sample times, s, shape (n,), evenly spaced (the median step is used).
+    x : numpy.ndarray
+        The signal, shape (n,), in its own unit (the RMS has the same unit, e.g. m).
+    window : float
+        Length of the trailing window, s; a window as long as the record gives one value,
+        the RMS of all of ``x`` at ``t[-1]``.
+    """
     t, x = np.asarray(t, float), np.asarray(x, float)
     dt = float(np.median(np.diff(t)))
     n = max(1, int(round(window / dt)))
@@ -120,6 +131,22 @@ def comparison_figure(res: Comparison, tradeoff: dict | None = None, scene: Any 
     Its axes are labelled ``"spectrum"``, ``"passive"``, ``"controlled <name>"`` (one per
     controller), ``"rms"``, ``"stroke"``, ``"speed"`` and, with ``tradeoff``,
     ``"tradeoff_d"`` and ``"tradeoff_v"``.
+
+    Parameters
+    ----------
+    res : Comparison
+        The result of :func:`cable_ocp.heave.simulate.compare`: traces (t in s, heave in
+        m, winch output in m and speed in m/s), metrics, sea models.
+    tradeoff : dict, optional
+        ``{label: array of rows [J_w, J_d, J_v, ...]}`` from
+        :func:`cable_ocp.heave.lqr.tradeoff_data` (m^2/s, m^2 s, m^2/s): two more
+        panels. None (default): none.
+    scene : HeaveScene, optional
+        The scene: its title, warm-up (s, shaded) and winch stroke (m) and speed (m/s)
+        limits (drawn as lines). None (default): no title, warm-up or limits.
+    references : dict, optional
+        Thesis figure per panel (keys as in :data:`THESIS_FIGURES`); None (default): those
+        of the thesis section the scene's ``[meta]`` names, if any.
     """
     refs = references_for(scene) if references is None else references
     warmup = float(scene.simulation.warmup) if scene is not None else 0.0

@@ -27,7 +27,20 @@ STYLE = {
 def boom_tip_band(res: Any, fraction: float = 0.5, count: int = 4000
                   ) -> tuple[float, float, float]:
     """(low, peak, high) rad/s: where the boom-tip heave spectrum of the result's sea and
-    vessel is above ``fraction`` of its peak."""
+    vessel is above ``fraction`` of its peak.
+
+    Parameters
+    ----------
+    res : Comparison
+        A heave result whose ``models.plant`` has the sea and vessel blocks and the
+        boom-tip output ``x0`` (e.g. a :func:`cable_ocp.heave.deployment.deploy` result).
+    fraction : float
+        Level of the band's edges as a fraction of the spectrum's peak (-), in (0, 1];
+        default 0.5: the half-power band.
+    count : int
+        Number of frequencies on the evaluation grid, evenly spaced over 0.05-3.0 rad/s
+        (default 4000); the band's edges and peak are grid points.
+    """
     p = res.models.plant
     lo = p.blocks["vessel"].start
     A, B = p.A[lo:, lo:], p.B2[lo:, 0]
@@ -41,7 +54,18 @@ def boom_tip_band(res: Any, fraction: float = 0.5, count: int = 4000
 
 
 def plot_deployment(res: Any, path: str | Path, title: str = "") -> Path:
-    """Write the deployment figure of a :func:`cable_ocp.heave.deployment.deploy` result."""
+    """Write the deployment figure of a :func:`cable_ocp.heave.deployment.deploy` result.
+
+    Parameters
+    ----------
+    res : CableComparison
+        The deployment result; its ``json_extra["deployment"]`` holds the schedule and the
+        per-length windows (lengths in m, heave in m, tensions in N, slack in samples).
+    path : str or Path
+        Where to save the figure (format from the suffix).
+    title : str
+        The figure's title; empty (default): "Controlled deployment through resonance".
+    """
     dep = res.json_extra["deployment"]
     sch = dep["schedule"]
     tab = dep["per_length"]

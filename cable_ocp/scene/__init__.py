@@ -12,7 +12,10 @@ fields   validation of single values (numbers with ranges, integers, choices, ve
 parts    what the scene kinds share: environment, current, seabed, cable, segments,
          bodies, end conditions
 statics  the statics scene (:class:`Scene`), its schema and :func:`load_scene`
+dynamics the dynamic scene (:class:`~cable_ocp.scene.dynamics.DynamicScene`) and its
+         prescribed top motion (``motion``)
 heave    the heave-compensation scene (:class:`HeaveScene`)
+loader   :func:`load`: any problem file -> its scene (statics, dynamics or heave)
 """
 
 from cable_ocp.scene.fields import FREE
@@ -27,6 +30,9 @@ from cable_ocp.scene.statics import (
     scene_from_dict,
 )
 
+# last: the dynamic and heave scenes import the modules above
+from cable_ocp.scene.loader import load  # noqa: E402  isort: skip
+
 __all__ = [
     "FREE",
     "METHODS",
@@ -40,9 +46,11 @@ __all__ = [
     "Seabed",
     "SolverOptions",
     "apply_overrides",
+    "load",
     "load_scene",
     "parse_override",
     "read_problem",
     "scene_from_dict",
     "scene_kind",
 ]
+

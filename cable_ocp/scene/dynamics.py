@@ -102,13 +102,13 @@ from pathlib import Path
 from typing import Any
 
 from cable_ocp.errors import CableOCPError
-from cable_ocp.scene import Current, End, Scene, apply_overrides, scene_from_dict
 from cable_ocp.scene.fields import check_keys as _check_keys
 from cable_ocp.scene.fields import number as _number
 from cable_ocp.scene.fields import require as _require
-from cable_ocp.scene.files import check_kind, read_problem
+from cable_ocp.scene.files import apply_overrides, check_kind, read_problem
 from cable_ocp.scene.motion import length_numeric
-from cable_ocp.scene.statics import TOP_LEVEL_TABLES
+from cable_ocp.scene.parts import Current, End
+from cable_ocp.scene.statics import TOP_LEVEL_TABLES, Scene, scene_from_dict
 
 __all__ = [
     "DEFAULT_SCHEME",

@@ -34,10 +34,17 @@ def number(value: Any, key: str, *, positive: bool = False, nonneg: bool = False
         Dotted key for the message, e.g. ``"cable.length"``.
     positive, nonneg : bool
         Require > 0 or >= 0.
+    allow_inf : bool
+        Accept ``"inf"`` or ``"infinity"`` (any case) and an infinite float, returned as
+        ``math.inf``; an infinite value passes ``high``. Default False: finite only.
     low, high : float, optional
-        Inclusive bounds; ``why`` says where the bound comes from.
+        Inclusive bounds; ``why`` says where the bound comes from. In the value's own
+        unit; None (default): unbounded on that side.
     unit : str
-        The unit, printed in the message.
+        The unit, printed in the message (e.g. ``"m"``; empty, the default: none).
+    why : str
+        Where a ``low``/``high`` bound comes from, appended to its message; empty
+        (default): nothing appended.
     """
     if isinstance(value, bool) or not isinstance(value, (int, float, str)):
         raise CableOCPError(f"{key} = {value!r}: expected a number{_unit(unit)}")
@@ -65,7 +72,21 @@ def number(value: Any, key: str, *, positive: bool = False, nonneg: bool = False
 
 
 def integer(value: Any, key: str, low: int, high: int | None = None, why: str = "") -> int:
-    """An integer in ``[low, high]`` (TOML integers only, not floats or booleans)."""
+    """An integer in ``[low, high]`` (TOML integers only, not floats or booleans).
+
+    Parameters
+    ----------
+    value : Any
+        The value as read from TOML.
+    key : str
+        Dotted key for the message, e.g. ``"solver.degree"``.
+    low : int
+        Smallest valid value (inclusive).
+    high : int, optional
+        Largest valid value (inclusive); None (default): no upper bound.
+    why : str
+        Why the range is what it is, appended to the message; empty (default): nothing.
+    """
     ok = not isinstance(value, bool) and isinstance(value, int)
     if ok and value >= low and (high is None or value <= high):
         return int(value)
@@ -75,14 +96,33 @@ def integer(value: Any, key: str, low: int, high: int | None = None, why: str = 
 
 
 def boolean(value: Any, key: str) -> bool:
-    """``true`` or ``false``."""
+    """``true`` or ``false``.
+
+    Parameters
+    ----------
+    value : Any
+        The value as read from TOML; only a TOML boolean passes (not 0/1 or a string).
+    key : str
+        Dotted key for the message.
+    """
     if not isinstance(value, bool):
         raise CableOCPError(f"{key} = {value!r}: expected true or false")
     return value
 
 
 def choice(value: Any, key: str, options: Iterable[str]) -> str:
-    """One of ``options`` (listed plainly in the message)."""
+    """One of ``options`` (listed plainly in the message).
+
+    Parameters
+    ----------
+    value : Any
+        The value as read from TOML; must be a string equal to one of ``options``
+        (case-sensitive).
+    key : str
+        Dotted key for the message.
+    options : iterable of str
+        The valid strings, in the order the message lists them.
+    """
     options = list(options)
     if not isinstance(value, str) or value not in options:
         raise CableOCPError(f"{key} = {value!r}: valid are "
@@ -91,7 +131,18 @@ def choice(value: Any, key: str, options: Iterable[str]) -> str:
 
 
 def require(table: dict[str, Any], key: str, where: str) -> Any:
-    """``table[key]``, or an error naming ``where.key`` as missing."""
+    """``table[key]``, or an error naming ``where.key`` as missing.
+
+    Parameters
+    ----------
+    table : dict
+        The TOML table to read from.
+    key : str
+        The key that must be present.
+    where : str
+        Dotted name of ``table`` for the message, e.g. ``"end_b"``; ``"problem"`` means the
+        top level, and the message then names ``[key]`` as a missing table.
+    """
     if key not in table:
         if where == "problem":
             raise CableOCPError(f"the [{key}] table is missing (required)")
@@ -100,7 +151,17 @@ def require(table: dict[str, Any], key: str, where: str) -> Any:
 
 
 def check_keys(table: Any, allowed: set[str], where: str) -> dict[str, Any]:
-    """``table`` itself, after checking that it is a table with only ``allowed`` keys."""
+    """``table`` itself, after checking that it is a table with only ``allowed`` keys.
+
+    Parameters
+    ----------
+    table : Any
+        The value read for the table; anything but a dict is an error.
+    allowed : set of str
+        The valid keys; the message for an unknown key lists them.
+    where : str
+        Dotted name of the table for the message, e.g. ``"environment.current"``.
+    """
     if not isinstance(table, dict):
         raise CableOCPError(f"[{where}] must be a table, got {table!r}")
     unknown = sorted(set(table) - allowed)
@@ -115,7 +176,22 @@ def check_keys(table: Any, allowed: set[str], where: str) -> dict[str, Any]:
 def vector3(value: Any, key: str, *, bound: float | None = None, unit: str = "",
             why: str = "") -> tuple[float | None, float | None, float | None]:
     """``[x, y, z]`` numbers, each entry a number in ``[-bound, bound]`` or ``"free"``
-    (returned as None)."""
+    (returned as None).
+
+    Parameters
+    ----------
+    value : Any
+        The value as read from TOML: a list of 3 entries, each a number or ``"free"`` (any
+        case).
+    key : str
+        Dotted key for the message; an entry's message names ``key[i]``.
+    bound : float, optional
+        Largest magnitude of each entry (inclusive), in ``unit``; None (default): unbounded.
+    unit : str
+        The unit, printed in the message (e.g. ``"m"``, ``"N"``); empty (default): none.
+    why : str
+        Where ``bound`` comes from, appended to its message; empty (default): nothing.
+    """
     if not isinstance(value, (list, tuple)) or len(value) != 3:
         raise CableOCPError(f"{key} = {value!r}: expected a list of 3 entries [x, y, z]")
     out: list[float | None] = []

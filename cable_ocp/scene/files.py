@@ -73,7 +73,18 @@ def scene_kind(data: dict[str, Any]) -> str:
 
 
 def check_kind(data: dict[str, Any], expected: str, path: str | Path | None = None) -> None:
-    """Raise when a problem of another kind is given to the command for ``expected``."""
+    """Raise when a problem of another kind is given to the command for ``expected``.
+
+    Parameters
+    ----------
+    data : dict
+        The problem as read by :func:`read_problem`. A problem with no table of any kind
+        passes (its scene parser names what is missing).
+    expected : str
+        The kind the command runs: ``"statics"``, ``"heave"`` or ``"dynamics"``.
+    path : str or Path, optional
+        The problem file, named in the message; None (default): the message says "this is".
+    """
     kind = scene_kind(data)
     if kind == "statics" and not _STATICS_TABLES & set(data):
         return  # no table of any kind: the scene's own parser names what is missing
@@ -103,7 +114,16 @@ def parse_override(text: str) -> tuple[str, Any]:
 
 def apply_overrides(data: dict[str, Any], overrides: dict[str, Any]) -> dict[str, Any]:
     """Return a copy of ``data`` with dotted-key overrides set (tables are created; an
-    integer part indexes an array of tables, e.g. ``cable.segments.0.length``)."""
+    integer part indexes an array of tables, e.g. ``cable.segments.0.length``).
+
+    Parameters
+    ----------
+    data : dict
+        The problem as read by :func:`read_problem`; not modified (deep-copied).
+    overrides : dict
+        Dotted key -> value, e.g. from :func:`parse_override`; the value replaces (or adds)
+        the entry as is, in the units of the problem file (SI).
+    """
     out = copy.deepcopy(data)
     for key, value in overrides.items():
         parts = key.split(".")

@@ -436,6 +436,16 @@ def scene_from_dict(data: dict[str, Any], base_dir: str | Path | None = None) ->
     ``base_dir`` is the directory that a relative ``[unit] cable_scene`` is read from (the
     heave file's; default the working directory); the scene keeps the resolved path.
 
+    Parameters
+    ----------
+    data : dict
+        The heave problem as read from TOML (tables ``meta``, ``sea``, ``vessel``,
+        ``winch``, ``unit``, ``controller``, ``simulation``, ``identification``,
+        ``deployment``), SI units; not modified.
+    base_dir : str or Path, optional
+        Directory a relative ``[unit] cable_scene`` path is taken from; None (default): the
+        working directory.
+
     Raises
     ------
     CableOCPError
@@ -465,7 +475,16 @@ def scene_from_dict(data: dict[str, Any], base_dir: str | Path | None = None) ->
 
 def resolve_cable_scene(data: dict[str, Any], base_dir: str | Path | None) -> dict[str, Any]:
     """``[unit] cable_scene`` made absolute (relative to ``base_dir``, else the working
-    directory), so that the scene and its overrides keep pointing at the same file."""
+    directory), so that the scene and its overrides keep pointing at the same file.
+
+    Parameters
+    ----------
+    data : dict
+        The heave problem as read from TOML. Returned as is when it has no string
+        ``[unit] cable_scene``, else a deep copy with that path resolved.
+    base_dir : str or Path or None
+        Directory a relative path is taken from; None: the working directory.
+    """
     unit = data.get("unit")
     if not isinstance(unit, dict) or not isinstance(unit.get("cable_scene"), str):
         return data
@@ -613,15 +632,6 @@ def _check_cable(sc: HeaveScene) -> None:
     if model != "axial" and dyn.unit is None:
         raise CableOCPError(f"unit.cable_scene = {sc.unit.cable_scene!r}: needs a [unit] at "
                             "end_a (the unit the winch lifts), not an anchor")
-    from cable_ocp.dynamics.axial import check_axial
-    from cable_ocp.dynamics.lumped_scene import check_lumped_plant
-    from cable_ocp.dynamics.planar import check_planar
-
-    checks = {"axial": check_axial, "planar": check_planar, "lumped3d": check_lumped_plant}
-    try:
-        checks[model](dyn)
-    except CableOCPError as exc:
-        raise CableOCPError(f"unit.cable_scene = {sc.unit.cable_scene!r}: {exc}") from None
     h = sc.controller.sample_time
     ratio = h / dyn.simulation.time_step
     if abs(ratio - round(ratio)) > 1e-9 * max(1.0, ratio) or round(ratio) < 1:
@@ -651,6 +661,15 @@ def _check_cable(sc: HeaveScene) -> None:
 
 def load_scene(path: str | Path, overrides: dict[str, Any] | None = None) -> HeaveScene:
     """Read and validate a heave TOML file, with optional dotted-key ``overrides``.
+
+    Parameters
+    ----------
+    path : str or Path
+        The heave problem file (UTF-8 TOML, SI units); a relative ``[unit] cable_scene`` in
+        it is read from this file's directory.
+    overrides : dict, optional
+        Dotted key -> value (as ``--set`` gives them, e.g. ``{"winch.delay": 0.2}``),
+        applied before validation; None (default): none.
 
     Raises
     ------

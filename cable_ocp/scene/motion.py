@@ -74,7 +74,16 @@ def _tow_offset(tow: Tow, d: ca.SX) -> tuple[ca.SX, ca.SX]:
 
 
 def top_offset_expr(tm: TopMotion, t: ca.SX) -> ca.SX:
-    """Offset of end_b from its static position, m, as a 3-vector expression of t (s)."""
+    """Offset of end_b from its static position, m, as a 3-vector expression of t (s).
+
+    Parameters
+    ----------
+    tm : TopMotion
+        The scene's ``[top_motion]``: the heave, horizontal, circular, tow and series
+        components are summed (see the module docstring for the formulas).
+    t : casadi.SX
+        Scalar symbolic time, s (t = 0 the start of the motion).
+    """
     r, big_r = _ramp(tm, t)
     dx = ca.SX(0.0)
     dy = ca.SX(0.0)
@@ -119,7 +128,19 @@ def top_offset_expr(tm: TopMotion, t: ca.SX) -> ca.SX:
 
 
 def length_expr(tm: TopMotion, length0: float, t: ca.SX) -> ca.SX:
-    """Unstretched length L(t), m, of the pay-out law (Huang (1992) 3.1)."""
+    """Unstretched length L(t), m, of the pay-out law (Huang (1992) 3.1).
+
+    Parameters
+    ----------
+    tm : TopMotion
+        The scene's ``[top_motion]``: its ``payout_law`` (``"linear"``, ``"quadratic"``
+        or ``"periodic"``), speed (m/s), acceleration (m/s^2), amplitude (m), frequency
+        (rad/s) and ``ramp_time`` (s).
+    length0 : float
+        Unstretched length at t = 0, m.
+    t : casadi.SX
+        Scalar symbolic time, s.
+    """
     r, big_r = _ramp(tm, t)
     if tm.payout_law == "periodic":
         return length0 + r * tm.payout_amplitude * ca.sin(tm.payout_frequency * t)
@@ -149,7 +170,17 @@ def motion_function(scene: DynamicScene) -> ca.Function:
 
 def length_numeric(tm: TopMotion, length0: float, times: Sequence[float] | np.ndarray
                    ) -> tuple[np.ndarray, np.ndarray]:
-    """(L(t), L_t(t)) on a grid of times (s), as numpy arrays (m, m/s)."""
+    """(L(t), L_t(t)) on a grid of times (s), as numpy arrays (m, m/s).
+
+    Parameters
+    ----------
+    tm : TopMotion
+        The scene's ``[top_motion]`` (its pay-out law, as in :func:`length_expr`).
+    length0 : float
+        Unstretched length at t = 0, m.
+    times : sequence of float or numpy.ndarray
+        Times, s, any shape (flattened); the outputs have one entry per time, in order.
+    """
     t = ca.SX.sym("t")
     length = length_expr(tm, length0, t)
     f = ca.Function("L", [t], [length, ca.jacobian(length, t)])

@@ -308,6 +308,20 @@ def parse_seabed(table: Any) -> Seabed:
 
 
 def parse_end(table: Any, name: str) -> End:
+    """``[end_a]`` or ``[end_b]`` -> :class:`End`: per component exactly one of a position
+    and a force, and an optional tension.
+
+    Parameters
+    ----------
+    table : Any
+        The end's TOML table: ``position = [x, y, z]`` (m) and/or ``force = [Fx, Fy, Fz]``
+        (N, the external load on the attachment), entries ``"free"`` where not
+        prescribed, and optionally ``tension`` (N, > 0), which needs a fully fixed
+        position.
+    name : str
+        ``"end_a"`` (the lower end, s = 0) or ``"end_b"`` (the ship, s = L): the table's
+        name in messages.
+    """
     table = check_keys(table, END_KEYS, name)
     pos = (vector3(table["position"], f"{name}.position", bound=COORD_MAX, unit="m",
                    why=COORD_WHY) if "position" in table else None)
@@ -362,11 +376,37 @@ CABLE_RULES: dict[str, dict[str, Any]] = {
 
 
 def cable_number(value: Any, key: str, name: str) -> float:
-    """A cable or segment number ``name`` (a key of :data:`CABLE_RULES`) at ``key``."""
+    """A cable or segment number ``name`` (a key of :data:`CABLE_RULES`) at ``key``.
+
+    Parameters
+    ----------
+    value : Any
+        The value as read from TOML, in the unit :data:`CABLE_RULES` gives for ``name``
+        (m, N/m, N, N m^2 or (-)).
+    key : str
+        Dotted key for the message, e.g. ``"cable.segments[1].diameter"``.
+    name : str
+        The quantity: a key of :data:`CABLE_RULES` (``"length"``, ``"diameter"``,
+        ``"weight_in_water"``, ``"axial_stiffness"``, ``"normal_drag"``,
+        ``"tangential_drag"`` or ``"bending_stiffness"``), whose bounds and unit apply.
+    """
     return number(value, key, **CABLE_RULES[name])
 
 
 def parse_single_cable(cab_t: dict[str, Any], need_drag: bool) -> Cable:
+    """``[cable]`` without segments -> one uniform :class:`Cable`.
+
+    Parameters
+    ----------
+    cab_t : dict
+        The ``[cable]`` table (keys already checked): ``length`` (m, or ``"free"`` for a
+        length set by a prescribed end tension, then None), ``weight_in_water`` (N/m),
+        optional ``axial_stiffness`` (N, default ``inf``: inextensible), ``diameter`` (m),
+        ``normal_drag`` and ``tangential_drag`` (-), ``drag_law``.
+    need_drag : bool
+        True when the scene has a current: ``diameter``, ``normal_drag`` and
+        ``tangential_drag`` are then required; otherwise each defaults to 0.
+    """
     if "bending_stiffness" in cab_t:
         raise CableOCPError(
             "cable.bending_stiffness: bending stiffness is given per segment; put the stiff "
@@ -398,7 +438,19 @@ def parse_single_cable(cab_t: dict[str, Any], need_drag: bool) -> Cable:
 
 def parse_segments(cab_t: dict[str, Any], need_drag: bool
                     ) -> tuple[Cable, tuple[Cable, ...], tuple[int | None, ...]]:
-    """``[[cable.segments]]`` -> (summary cable, segments, per-segment intervals)."""
+    """``[[cable.segments]]`` -> (summary cable, segments, per-segment intervals).
+
+    Parameters
+    ----------
+    cab_t : dict
+        The ``[cable]`` table, holding only ``segments`` (a non-empty array of tables,
+        from end_a to end_b, each with its ``length`` (m), ``weight_in_water`` (N/m) and
+        optional ``axial_stiffness`` (N), ``bending_stiffness`` (N m^2), drag keys and
+        ``intervals``) and optionally ``drag_law``.
+    need_drag : bool
+        True when the scene has a current: every segment then needs ``diameter``,
+        ``normal_drag`` and ``tangential_drag``; otherwise each defaults to 0.
+    """
     law = parse_law(cab_t)
     for key in sorted(set(cab_t) - {"segments", "drag_law"}):
         raise CableOCPError(
@@ -450,7 +502,22 @@ def parse_segments(cab_t: dict[str, Any], need_drag: bool
 def check_planar_bending(segments: tuple[Cable, ...], env: Environment, end_a: End,
                           end_b: End, bodies: tuple[Body, ...]) -> None:
     """Bending stiffness is modelled in the vertical x-z plane only (a planar beam-cable):
-    reject any scene that could leave that plane, naming the key."""
+    reject any scene that could leave that plane, naming the key.
+
+    Parameters
+    ----------
+    segments : tuple of Cable
+        The cable's segments, from end_a; empty (a single cable) or no segment with
+        ``bending_stiffness > 0`` passes without checks.
+    env : Environment
+        The environment: its current must lie in the x-z plane at every knot, and a seabed
+        needs a flexible first segment.
+    end_a, end_b : End
+        The lower end (s = 0) and the ship's end (s = L): any prescribed y position (m) or
+        y force (N) must be 0.
+    bodies : tuple of Body
+        The point bodies at the joints: any thrust's y component (N) must be 0.
+    """
     stiff = [i for i, c in enumerate(segments) if c.bending_stiffness > 0.0]
     if not stiff:
         return
@@ -478,7 +545,17 @@ def check_planar_bending(segments: tuple[Cable, ...], env: Environment, end_a: E
 
 
 def parse_bodies(value: Any, n_segments: int) -> tuple[Body, ...]:
-    """``[[bodies]]`` -> point bodies at the joints between segments."""
+    """``[[bodies]]`` -> point bodies at the joints between segments.
+
+    Parameters
+    ----------
+    value : Any
+        The ``bodies`` array of tables as read from TOML; each has ``joint`` (an integer
+        1 .. n_segments - 1: the number of segments between end_a and the body) and
+        ``kind`` (``"clump"``, ``"buoy"`` or ``"unit"``) with that kind's keys (N, m^2, (-)).
+    n_segments : int
+        Number of ``[[cable.segments]]`` (0 for a single cable); bodies need at least 2.
+    """
     if not isinstance(value, list):
         raise CableOCPError("bodies: expected an array of tables ([[bodies]])")
     if value and n_segments < 2:

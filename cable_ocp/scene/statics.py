@@ -483,6 +483,14 @@ def _parse_footprint(table: Any, end_a: End, end_b: End) -> Footprint:
 def load_scene(path: str | Path, overrides: dict[str, Any] | None = None) -> Scene:
     """Read a TOML problem file, apply ``overrides`` (dotted keys) and validate it.
 
+    Parameters
+    ----------
+    path : str or Path
+        The statics problem file (UTF-8 TOML, SI units).
+    overrides : dict, optional
+        Dotted key -> value (as ``--set`` gives them, e.g. ``{"cable.length": 305.0}``),
+        applied before validation; None (default): none.
+
     Raises
     ------
     CableOCPError

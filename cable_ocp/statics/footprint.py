@@ -67,8 +67,8 @@ class FootprintResult:
 
 
 def footprint(scene: Scene, directions: int = 72,
-              progress: Callable[[int, int, dict[str, Any]], None] | None = None
-              ) -> FootprintResult:
+              progress: Callable[[int, int, dict[str, Any]], None] | None = None,
+              max_iterations: int = 300) -> FootprintResult:
     """Compute the footprint of ``scene`` (which needs a ``[footprint]`` table).
 
     Parameters
@@ -81,6 +81,9 @@ def footprint(scene: Scene, directions: int = 72,
         Called after each direction as ``progress(done, total, row)`` with that direction's
         result (``theta_deg``, ``reach``, ``x``, ``y`` in m, ``thrust_x``, ``thrust_y`` in N,
         ``length`` in m, ``status``).
+    max_iterations : int
+        IPOPT's iteration cap per direction (``ipopt.max_iter``): a direction the unit
+        cannot reach ends as IPOPT's infeasibility or this cap, whichever comes first.
     """
     fp = scene.footprint
     if fp is None:
@@ -118,7 +121,7 @@ def footprint(scene: Scene, directions: int = 72,
             cons.append(((fx * fx + fy * fy) / fp.thrust_max**2, -np.inf, 1.0))
         return cons
 
-    nlp.build(objective, constraints, n_theta=1)
+    nlp.build(objective, constraints, n_theta=1, max_iter=max_iterations)
     thetas = np.linspace(0.0, 360.0, directions, endpoint=False)
     reach = np.full(directions, np.nan)
     points = np.full((directions, 2), np.nan)

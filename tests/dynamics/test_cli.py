@@ -81,8 +81,8 @@ def test_a_run_that_would_take_hours_is_refused_before_any_work(
     """100 000 lumped-mass segments: exit 2 at once with the estimate and the key (the run
     itself would build for hours and need tens of GB); every shipped dynamic scene is far
     below the limits (checked by the same estimate)."""
+    from cable_ocp.cli.cost import dynamics_cost
     from cable_ocp.dynamics import load_dynamic_scene
-    from cable_ocp.scene.cost import dynamics_cost
 
     src = ROOT / "problems" / "dynamics" / "huang_5_7.toml"
     rc = main([command, str(src), "--set", "simulation.segments=100000", "--quiet"])

@@ -29,7 +29,8 @@ from cable_ocp.dynamics import dynamic_scene_from_dict, simulate
 from cable_ocp.dynamics.axial import AxialModel
 from cable_ocp.errors import CableOCPError
 from cable_ocp.heave import cable_compare as cc
-from cable_ocp.heave import cable_plant as cp
+from cable_ocp.heave.axial_plant import AxialCablePlant
+from cable_ocp.heave.design import design_scene, design_table
 from cable_ocp.heave.identify_cable import identify_line
 from cable_ocp.scene.heave import load_cable_scene, load_scene, scene_from_dict
 
@@ -77,7 +78,7 @@ def test_stepped_plant_equals_axial_simulator() -> None:
         "ramp_time": 1.0}, simulation={"duration": 2.0, "time_step": 0.005})
     sc = dynamic_scene_from_dict(d)
     ref = simulate(sc)
-    plant = cp.AxialCablePlant(sc, 0.05)
+    plant = AxialCablePlant(sc, 0.05)
     m = plant.substeps
     motion = AxialModel(sc).motion
     tf = np.arange(int(round(2.0 / plant.dt)) + 1) * plant.dt
@@ -222,7 +223,7 @@ def long_run() -> tuple:
     from cable_ocp.heave.identify_cable import identify_from_cable
 
     ident = identify_from_cable(sc, dyn)
-    sd, _ = cp.design_scene(sc, ident, dyn)
+    sd, _ = design_scene(sc, ident, dyn)
     res = cc._compare_on_cable(sc, sd, dyn, None, None, {})
     return sc, dyn, ident, res
 
@@ -293,7 +294,7 @@ def test_long_line_plant_replayed_by_idas(long_run: tuple) -> None:
     rates = np.vstack([np.diff(lg), np.diff(zg)]) / np.diff(tg)
     integ = ca.integrator("replay", "idas", {"x": xs, "u": us, "ode": rhs}, 0.0, tg[1:],
                           {"reltol": 1e-9, "abstol": 1e-10, "max_num_steps": 1000000})
-    plant = cp.AxialCablePlant(dyn, 0.05)
+    plant = AxialCablePlant(dyn, 0.05)
     xf = np.asarray(integ(x0=np.concatenate([plant.initial_state(), [lg[0] - l0, zg[0] - z0]]),
                           u=rates)["xf"])
     heave = np.concatenate([[tr.x[0]], xf[0] + zg[1:] - lg[1:] - plant.static_unit_height(
@@ -341,7 +342,7 @@ def test_design_table_interpolates_linearly() -> None:
     physical states at every length, so entry-wise interpolation is meaningful)."""
     sc = load_scene(HEAVE / "ex_6_3_6.toml")
     sd = replace(sc, unit=replace(sc.unit, a=1.0, b=0.05))
-    tab, _ = cp.design_table(sd, np.array([100.0, 200.0]), np.array([1.0, 2.0]),
+    tab, _ = design_table(sd, np.array([100.0, 200.0]), np.array([1.0, 2.0]),
                              np.array([0.05, 0.08]))
     lo, hi, mid = tab.at(100.0), tab.at(200.0), tab.at(150.0)
     for k in range(5):

@@ -2,7 +2,7 @@
 
 Independent references:
 
-* the axial plant (:class:`cable_ocp.heave.cable_plant.AxialCablePlant`, Huang (1992),
+* the axial plant (:class:`cable_ocp.heave.axial_plant.AxialCablePlant`, Huang (1992),
   ch. 3: its own discretisation of the pay-out, over the whole line, and its own
   block-tridiagonal Newton) on the same vertical line under the same heave and winch;
 * the lumped-mass model's own time stepping (:func:`cable_ocp.dynamics.simulate`, the
@@ -29,18 +29,13 @@ from heave_files import heave_with_line
 from cable_ocp.cli import main
 from cable_ocp.dynamics import simulate
 from cable_ocp.errors import CableOCPError
+from cable_ocp.heave.axial_plant import AxialCablePlant
 from cable_ocp.heave.cable_models import (
     TOP_SEGMENT_RANGE,
     LumpedCablePlant,
     cable_plant,
 )
-from cable_ocp.heave.cable_plant import (
-    AxialCablePlant,
-    _CableLoopPlant,
-    make_wave,
-    run_loop,
-    run_status,
-)
+from cable_ocp.heave.closed_loop import _CableLoopPlant, make_wave, run_loop, run_status
 from cable_ocp.scene.dynamics import load_dynamic_scene
 from cable_ocp.scene.heave import load_scene, scene_from_dict
 

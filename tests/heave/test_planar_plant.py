@@ -2,7 +2,7 @@
 
 Independent references:
 
-* the axial plant (:class:`cable_ocp.heave.cable_plant.AxialCablePlant`, Huang (1992),
+* the axial plant (:class:`cable_ocp.heave.axial_plant.AxialCablePlant`, Huang (1992),
   ch. 3: a separate discretisation and solver, its own block-tridiagonal Newton) on the
   same vertical line under the same boom-tip heave and winch pay-in;
 * closed forms of the static line in a uniform current (the unit's drag at rest);
@@ -21,8 +21,8 @@ from heave_files import heave_with_line
 
 from cable_ocp.cli import main
 from cable_ocp.errors import CableOCPError
+from cable_ocp.heave.axial_plant import AxialCablePlant
 from cable_ocp.heave.cable_models import PlanarCablePlant, axial_twin, cable_plant
-from cable_ocp.heave.cable_plant import AxialCablePlant
 from cable_ocp.scene.dynamics import load_dynamic_scene
 from cable_ocp.scene.heave import scene_from_dict
 

@@ -69,7 +69,21 @@ class Cost:
     parts: list[tuple[str, float, float, str]] = field(default_factory=list)
 
     def add(self, what: str, seconds: float, nbytes: float, keys: str) -> None:
-        """Add a part."""
+        """Add a part.
+
+        Parameters
+        ----------
+        what : str
+            What the part is, for the message (e.g. ``"a collocation solve on 640
+            intervals of degree 3"``).
+        seconds : float
+            Its estimated CPU time, s (added to :attr:`seconds`).
+        nbytes : float
+            Its estimated memory, bytes (added to :attr:`bytes`).
+        keys : str
+            The scene keys or options that drive it, named in a refusal as what to change
+            (e.g. ``"solver.intervals = 640 with solver.degree = 3"``).
+        """
         self.seconds += seconds
         self.bytes += nbytes
         self.parts.append((what, seconds, nbytes, keys))
@@ -106,7 +120,16 @@ def _size(b: float) -> str:
 
 
 def check_cost(cost: Cost, force: bool = False) -> None:
-    """Raise :class:`CableOCPError` when ``cost`` is above the limits and not ``force``."""
+    """Raise :class:`CableOCPError` when ``cost`` is above the limits and not ``force``.
+
+    Parameters
+    ----------
+    cost : Cost
+        The run's estimate; refused above :data:`TIME_LIMIT_S` (s of CPU) or
+        :data:`MEMORY_LIMIT_B` (bytes), the message naming its largest part's keys.
+    force : bool
+        Run anyway (``--force``); default False.
+    """
     if force or not cost.too_much:
         return
     raise CableOCPError(
@@ -129,7 +152,18 @@ def _mesh_total(scene: Any, n: int) -> int:
 
 def statics_cost(scene: Any, directions: int | None = None) -> Cost:
     """Estimate of the largest statics solve a scene allows (its mesh, or the refinement's
-    ``max_intervals``), with its error estimate; with ``directions``, of a footprint."""
+    ``max_intervals``), with its error estimate; with ``directions``, of a footprint.
+
+    Parameters
+    ----------
+    scene : Scene
+        The validated statics scene (:class:`cable_ocp.scene.Scene`): its ``solver``
+        options and segments set the mesh.
+    directions : int, optional
+        Number of footprint directions (``--directions``): the estimate is then of that
+        many footprint NLPs on the scene's mesh (no refinement, no error estimate). None
+        (default): one solve.
+    """
     opts = scene.solver
     n = opts.intervals
     if opts.refine and opts.error_estimate and directions is None:
@@ -253,7 +287,17 @@ EIG_S_CUBE = 1e-9
 
 def dynamics_cost(scene: Any, lengths: int = 0) -> Cost:
     """Estimate of a dynamic scene's simulation (``lengths = 0``) or of its modal analysis
-    (``lengths`` = the number of lengths of a deployment chart, 1 for one length)."""
+    (``lengths`` = the number of lengths of a deployment chart, 1 for one length).
+
+    Parameters
+    ----------
+    scene : DynamicScene
+        The validated dynamic scene: its ``simulation`` model, segments, steps and output
+        interval drive the estimate.
+    lengths : int
+        0 (default): a time simulation; n > 0: a modal analysis at n cable lengths (one
+        eigenproblem each).
+    """
     sim = scene.simulation
     n = sim.segments
     model = sim.model

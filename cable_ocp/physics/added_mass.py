@@ -1,0 +1,139 @@
+"""Inertia and weight in water: added mass of a line element and of a body, weight, buoyancy.
+
+Line element (Huang (1992) eq. (5.2), the matrix A of the lumped-mass model with
+e = rho k l sigma): accelerating across the element entrains C_a rho pi d^2 / 4 per length,
+along it C_at rho pi d^2 / 4 (0 for a smooth cable), so its added mass per length is the
+direction-dependent
+
+    A = m_an (I - t t^T) + m_at t t^T,   m_an = C_a rho pi d^2 / 4,  m_at = C_at rho pi d^2/4,
+
+with t the unit tangent (:func:`line_added_mass`, the planar rows
+:func:`line_added_mass_2d`); each end node of a lumped element carries half of it. A body
+(the subsea unit, Huang (1992) (4.11)-(4.12), (5.6)) has added mass per axis:
+:func:`virtual_mass`. Weight in water: (m - rho V) g (:func:`weight_in_water`), the
+buoyancy rho V g (:func:`buoyancy`).
+"""
+
+from __future__ import annotations
+
+import math
+from collections.abc import Sequence
+from typing import Any
+
+import casadi as ca
+import numpy as np
+
+
+def added_mass_per_length(coefficient: float, rho: float, diameter: float) -> float:
+    """C rho pi d^2 / 4, kg/m: a line's added mass per unstretched length.
+
+    Parameters
+    ----------
+    coefficient : float
+        Added-mass coefficient C_a (normal) or C_at (tangential) (-).
+    rho : float
+        Water density, kg/m^3.
+    diameter : float
+        Hydrodynamic diameter, m.
+    """
+    return coefficient * rho * math.pi * diameter**2 / 4.0
+
+
+def line_added_mass(d: Any, normal: Any, tangential: Any) -> Any:
+    """m_an (I - t t^T) + m_at t t^T with t = d / |d| (CasADi, 3 x 3), as ``normal``.
+
+    Parameters
+    ----------
+    d : casadi expression, shape (3, 1)
+        Element chord (any length; only its direction is used), m.
+    normal : float or casadi expression
+        Normal added mass (per length, kg/m, or of the element, kg).
+    tangential : float or casadi expression
+        Tangential added mass, same unit.
+    """
+    tt = ca.mtimes(d, d.T) / ca.dot(d, d)
+    return normal * (ca.SX.eye(3) - tt) + tangential * tt
+
+
+def line_added_mass_np(t: np.ndarray, normal: float, tangential: float) -> np.ndarray:
+    """:func:`line_added_mass` in numpy for unit tangents ``t`` (..., 3): (..., 3, 3).
+
+    Parameters
+    ----------
+    t : ndarray, shape (..., 3)
+        Unit tangents (-).
+    normal : float
+        Normal added mass, kg/m or kg.
+    tangential : float
+        Tangential added mass, same unit.
+    """
+    t = np.asarray(t, dtype=float)
+    tt = t[..., :, None] * t[..., None, :]
+    return normal * (np.eye(3) - tt) + tangential * tt
+
+
+def line_added_mass_2d(dx: Any, dz: Any, normal: Any, tangential: Any
+                       ) -> tuple[Any, Any, Any]:
+    """(A_xx, A_xz, A_zz) of :func:`line_added_mass` in the x-z plane, elementwise.
+
+    For rows of chord components (the planar model's 1 x N rows): with t_ij = d_i d_j /
+    |d|^2, A_xx = m_an (1 - t_xx) + m_at t_xx, A_xz = (m_at - m_an) t_xz, A_zz likewise.
+
+    Parameters
+    ----------
+    dx, dz : casadi expression
+        Chord components, m (any common length).
+    normal : float
+        Normal added mass, kg/m or kg.
+    tangential : float
+        Tangential added mass, same unit.
+    """
+    l2 = dx * dx + dz * dz
+    txx, txz, tzz = dx**2 / l2, dx * dz / l2, dz**2 / l2
+    return (normal * (1.0 - txx) + tangential * txx, (tangential - normal) * txz,
+            normal * (1.0 - tzz) + tangential * tzz)
+
+
+def virtual_mass(mass: float, added_mass: Sequence[float]) -> tuple[float, ...]:
+    """Mass plus added mass per axis, kg.
+
+    Parameters
+    ----------
+    mass : float
+        Mass in air, kg.
+    added_mass : sequence of float
+        Added mass per axis, kg.
+    """
+    return tuple(mass + a for a in added_mass)
+
+
+def buoyancy(volume: float, rho: float, gravity: float) -> float:
+    """rho V g, N.
+
+    Parameters
+    ----------
+    volume : float
+        Displaced volume, m^3.
+    rho : float
+        Water density, kg/m^3.
+    gravity : float
+        g, m/s^2.
+    """
+    return rho * volume * gravity
+
+
+def weight_in_water(mass: float, volume: float, rho: float, gravity: float) -> float:
+    """(m - rho V) g, N (negative = buoyant).
+
+    Parameters
+    ----------
+    mass : float
+        Mass in air, kg.
+    volume : float
+        Displaced volume, m^3.
+    rho : float
+        Water density, kg/m^3.
+    gravity : float
+        g, m/s^2.
+    """
+    return (mass - rho * volume) * gravity
