@@ -10,17 +10,19 @@ segment's length as inputs (:mod:`cable_ocp.dynamics.lumped_driven`, the heave p
 
 * a segment's pull (:func:`segment_tension`): the smooth no-compression Hooke's law (5.3)
   ``T = (EA eps + sqrt((EA eps)^2 + delta_T^2)) / 2`` plus the material damping
-  ``c deps/dt`` while taut, along the chord (one level), or, over a time step, the
-  discrete gradient of Simo & Tarnow (1992) / Gonzalez (1996): the mean of T over
-  ``[eps0, eps1]`` (3-point Gauss) along ``(d0 + d1) / (|d0| + |d1|)``;
+  ``c deps/dt`` while taut (:mod:`cable_ocp.physics.elasticity`), along the chord (one
+  level), or, over a time step, the discrete gradient of Simo & Tarnow (1992) / Gonzalez
+  (1996): the mean of T over ``[eps0, eps1]`` (3-point Gauss) along ``(d0 + d1) / (|d0| + |d1|)``;
 * a segment's drag (:func:`segment_drag`): the drag per stretched length of
-  :func:`cable_ocp.physics.drag.drag_per_length` in the relative flow ``U(z) - (v_a +
+  :func:`cable_ocp.physics.drag.drag_per_length` (in the kernel its form with the
+  Jacobian, :func:`cable_ocp.physics.drag.line_drag_kernel`) in the relative flow ``U(z) - (v_a +
   v_b) / 2`` times the chord's length, half to each end node, and its added mass
-  (:func:`added_mass_share`, eq. (5.2)): ``e/2 (I - t t^T) + e_t/2 t t^T`` on each end;
+  (:func:`added_mass_share`, eq. (5.2), :mod:`cable_ocp.physics.added_mass`):
+  ``e/2 (I - t t^T) + e_t/2 t t^T`` on each end;
 * the nodes' own terms (:func:`node_masses`, :func:`node_weights`, :func:`node_loads`,
   :func:`point_drag`): half of each adjacent segment's mass and weight in water per
   unstretched length, the unit's (eq. (5.6)) and the point bodies' mass, added mass,
-  weight, load and drag.
+  weight, load and drag (:func:`cable_ocp.physics.drag.point_drag`).
 """
 
 from __future__ import annotations
@@ -32,13 +34,14 @@ import casadi as ca
 import numpy as np
 
 from cable_ocp.dynamics.lumped_params import LumpedParams
+from cable_ocp.physics.added_mass import added_mass_per_length, line_added_mass
 from cable_ocp.physics.drag import drag_per_length
-from cable_ocp.physics.smooth import smooth_abs
+from cable_ocp.physics.drag import point_drag as physics_point_drag
+from cable_ocp.physics.elasticity import material_damping, smooth_tension
 
 __all__ = ["GAUSS_W", "GAUSS_X", "LumpedEquations", "added_mass_share", "node_loads",
            "node_masses", "node_weights", "point_drag", "point_drag_items", "segment_drag",
-           "segment_drag_kernel", "segment_tension", "strain_energy", "taut",
-           "tension_of_strain"]
+           "segment_tension", "strain_energy"]
 
 #: 3-point Gauss-Legendre rule on [-1, 1] (the mean of the tension over a strain interval)
 GAUSS_X = (-math.sqrt(0.6), 0.0, math.sqrt(0.6))
@@ -49,33 +52,9 @@ GAUSS_W = (5.0 / 18.0, 8.0 / 18.0, 5.0 / 18.0)
 # The laws on one segment
 # --------------------------------------------------------------------------------------
 
-def tension_of_strain(eps: Any, ea: Any, delta_t: Any) -> Any:
-    """Smooth no-compression Hooke's law (Huang (1992), eq. (5.3)), N.
-
-    Parameters
-    ----------
-    eps : float or casadi expression
-        Strain (-).
-    ea : float or casadi expression
-        Axial stiffness EA, N.
-    delta_t : float or casadi expression
-        Force scale of the smoothing, N: ``T = (EA eps + sqrt((EA eps)^2 + delta_T^2)) / 2``
-        changes a taut segment's tension by at most ``delta_T^2 / (4 T)``.
-    """
-    u = ea * eps
-    return 0.5 * (u + ca.sqrt(u * u + delta_t * delta_t))
-
-
-def taut(eps: Any, ea: Any, delta_t: Any) -> Any:
-    """Smooth switch 0 (slack) .. 1 (taut) of a segment (-): dT/d(EA eps) of
-    :func:`tension_of_strain` (same parameters)."""
-    u = ea * eps
-    return 0.5 * (1.0 + u / ca.sqrt(u * u + delta_t * delta_t))
-
-
 def strain_energy(eps: Any, ea: float, delta_t: float, ell: float) -> Any:
-    """Strain energy ``ell * int_0^eps T de`` of a segment with the tension of
-    :func:`tension_of_strain`, J.
+    """Strain energy ``ell * int_0^eps T de`` of a segment with the smooth no-compression
+    tension (:func:`cable_ocp.physics.elasticity.smooth_tension`), J.
 
     Parameters
     ----------
@@ -143,20 +122,20 @@ def segment_tension(d1: Any, ell1: Any, ea: Any, c: Any, delta_t: Any, *,
     e1 = l1 / ell1 - 1.0
     out: dict[str, Any] = {"strain": e1, "l1": l1}
     if d0 is None:
-        tens = tension_of_strain(e1, ea, delta_t)
+        tens = smooth_tension(e1, ea, delta_t)
         damp: Any = 0.0
         if dv is not None:
             rate = ca.dot(d1, dv) / (l1 * ell1)
             if length_rate is not None:
                 rate = rate - l1 * length_rate / ell1**2  # d/dt (|d| / l) with l changing
-            damp = c * rate * taut(e1, ea, delta_t)
+            damp = material_damping(rate, e1, c, ea, delta_t)
             tens = tens + damp
         out.update(tension=tens, num=d1, den=l1, damping=damp)
         return out
     l0 = ca.norm_2(d0)
     e0 = l0 / (ell1 if ell0 is None else ell0) - 1.0
     em, de = 0.5 * (e0 + e1), 0.5 * (e1 - e0)
-    tbar = sum(w * tension_of_strain(em + g * de, ea, delta_t)
+    tbar = sum(w * smooth_tension(em + g * de, ea, delta_t)
                for g, w in zip(GAUSS_X, GAUSS_W, strict=True))
     if ell0 is None:  # a constant unstretched length
         step_rate = (l1 - l0) / (ell1 * dt)
@@ -166,18 +145,19 @@ def segment_tension(d1: Any, ell1: Any, ea: Any, c: Any, delta_t: Any, *,
         rate = mid * (l1 - l0) / (ell1 * dt) + (1.0 - mid) * ca.dot(d1, dv) / (l1 * ell1)
     else:
         rate = step_rate
-    damp = c * rate * taut(em, ea, delta_t)
+    damp = material_damping(rate, em, c, ea, delta_t)
     tbar = tbar + damp
     out.update(tension=tbar, num=d0 + d1, den=l0 + l1, damping=damp, l0=l0, em=em, de=de)
     return out
 
 
-def segment_drag(drag_law: str, dm: Any, urel: Any, *, rho: Any, diameter: Any,
-                 normal_drag: Any, tangential_drag: Any, delta: Any, blend: Any) -> Any:
+def segment_drag(drag_law: str, dm: Any, urel: Any, *, rho: float, diameter: float,
+                 normal_drag: float, tangential_drag: float, delta: float,
+                 blend: float) -> Any:
     """Drag on a segment of chord ``dm`` (m) in the relative flow ``urel`` (m/s), N: the
-    drag per stretched length of :func:`cable_ocp.physics.drag.drag_per_length` (normal,
-    on the diameter; tangential, on the perimeter pi d) times the chord's length. Each end
-    node takes half.
+    drag per stretched length (:func:`cable_ocp.physics.drag.drag_per_length`) times the
+    chord's length. Each end node takes half. The compiled kernel's form of the same law,
+    with its Jacobian, is :func:`cable_ocp.physics.drag.line_drag_kernel`.
 
     Parameters
     ----------
@@ -187,82 +167,38 @@ def segment_drag(drag_law: str, dm: Any, urel: Any, *, rho: Any, diameter: Any,
         The chord, m.
     urel : casadi expression (3,)
         Flow relative to the segment, m/s.
-    rho, diameter, normal_drag, tangential_drag : float or casadi expression
+    rho, diameter, normal_drag, tangential_drag : float
         Water density (kg/m^3), diameter d (m), C_n and C_t (-).
-    delta, blend : float or casadi expression
+    delta, blend : float
         Smoothing velocity of the moduli (m/s) and the componentwise law's vertical blend
         (-).
     """
     lm = ca.norm_2(dm)
-    tm = dm / lm
-    f = drag_per_length(drag_law, urel, tm, rho=rho, diameter=diameter,
-                        normal_drag=normal_drag, tangential_drag=0.0, delta=delta,
-                        blend=blend)
-    if not (isinstance(tangential_drag, (int, float)) and tangential_drag == 0.0):
-        # the tangential term of drag_per_length, written here for a symbolic C_t too
-        ut = ca.dot(urel, tm)
-        k_t = 0.5 * rho * tangential_drag * math.pi * diameter
-        f = f + k_t * smooth_abs(ut, delta) * ut * tm
-    return lm * f
-
-
-def segment_drag_kernel(drag_law: str, lm: Any, tm: Any, urel: Any, *, rho: Any,
-                        diameter: Any, normal_drag: Any, tangential_drag: Any, delta: Any,
-                        blend: Any) -> tuple[Any, Any]:
-    """:func:`segment_drag` in the compiled kernel's form, with its Newton matrix: the
-    value (N) as ``lm`` times the normal law at unit coefficients scaled by ``rho C_n d``
-    plus the tangential term, and ``D = -d f / d u`` per length at fixed orientation (the
-    normal part ``rho C_n d / 2 (|u_n| (I - t t^T) + u_n u_n^T / |u_n|)``, the tangential
-    ``rho C_t pi d / 2 (|u_t| + u_t^2 / |u_t|) t t^T``, N s/m^2). Same parameters as
-    :func:`segment_drag`, with the chord's length ``lm`` (m) and unit tangent ``tm``
-    instead of the chord; the moduli smoothed by ``delta``."""
-    # drag_per_length(rho=1, d=1, C_n=1) is half of |u_n| u_n: scaled by rho C_n d
-    f_d = lm * drag_per_length(drag_law, urel, tm, rho=1.0, diameter=1.0, normal_drag=1.0,
-                               tangential_drag=0.0, delta=delta, blend=blend) * (
-        rho * normal_drag * diameter)
-    ut = ca.dot(urel, tm)
-    st = ca.sqrt(ut * ut + delta * delta)
-    k_t = 0.5 * rho * tangential_drag * math.pi * diameter
-    f_d = f_d + lm * 0.5 * rho * tangential_drag * math.pi * diameter * st * ut * tm
-    eye = ca.SX.eye(3)
-    eet = ca.mtimes(tm, tm.T)
-    un = urel - ut * tm
-    sn = ca.sqrt(ca.dot(un, un) + delta * delta)
-    dmat = 0.5 * rho * normal_drag * diameter * (sn * (eye - eet) + ca.mtimes(un, un.T) / sn)
-    dmat = dmat + k_t * (st + ut * ut / st) * eet
-    return f_d, dmat
+    return lm * drag_per_length(drag_law, urel, dm / lm, rho=rho, diameter=diameter,
+                                normal_drag=normal_drag, tangential_drag=tangential_drag,
+                                delta=delta, blend=blend)
 
 
 def added_mass_share(dm: Any, en: Any, et: Any, eet: Any = None) -> Any:
     """Each end node's share of a segment's added mass (Huang (1992), eq. (5.2)), 3x3, kg:
-    ``(e_n (I - t t^T) + e_t t t^T) / 2`` with the segment's normal and tangential added
-    masses ``en``, ``et`` (kg) and its chord ``dm`` (m): ``t t^T = dm dm^T / |dm|^2``, or
-    ``eet`` where the caller has it (the kernel, from the unit tangent)."""
-    tt = ca.mtimes(dm, dm.T) / ca.dot(dm, dm) if eet is None else eet
-    return 0.5 * (en * (ca.SX.eye(3) - tt) + et * tt)
+    half of :func:`cable_ocp.physics.added_mass.line_added_mass` with the segment's normal
+    and tangential added masses ``en``, ``et`` (kg) at its chord ``dm`` (m).
+
+    ``eet``: the compiled kernel's ``t t^T`` from its unit tangent (it has it for the drag's
+    Jacobian); the law is then written on it, ``(en (I - t t^T) + et t t^T) / 2``, as
+    ``line_added_mass`` writes it on ``dm dm^T / |dm|^2`` (the two differ by rounding, and
+    the kernel's steps are kept bitwise)."""
+    if eet is None:
+        return 0.5 * line_added_mass(dm, en, et)
+    return 0.5 * (en * (ca.SX.eye(3) - eet) + et * eet)
 
 
 def point_drag(u: Any, cs: list[float], law: str, rho: float, delta: float) -> Any:
-    """Drag of a point body (the unit, eq. (5.6), or a body on the line), N.
-
-    Parameters
-    ----------
-    u : casadi expression (3,)
-        Flow relative to the body, m/s.
-    cs : list of 3 float
-        Drag area times drag coefficient per axis, m^2.
-    law : {"vector", "per_axis"}
-        ``"vector"``: 1/2 rho |u| diag(cs) u; ``"per_axis"``: 1/2 rho cs_k |u_k| u_k.
-    rho : float
-        Water density, kg/m^3.
-    delta : float
-        Smoothing velocity of the moduli, m/s.
-    """
-    half_rho = 0.5 * rho
-    if law == "vector":
-        speed = ca.sqrt(ca.dot(u, u) + delta**2)
-        return half_rho * speed * ca.vertcat(*[cs[k] * u[k] for k in range(3)])
-    return half_rho * ca.vertcat(*[cs[k] * smooth_abs(u[k], delta) * u[k] for k in range(3)])
+    """Drag of a point body (the unit, eq. (5.6), or a body on the line), N:
+    :func:`cable_ocp.physics.drag.point_drag` of the flow ``u`` relative to it (m/s), with
+    the drag areas ``cs`` (m^2 per axis), the law ``"vector"`` or ``"per_axis"``, the
+    water density ``rho`` (kg/m^3) and the smoothing velocity ``delta`` (m/s)."""
+    return physics_point_drag(u, cs, rho=rho, delta=delta, per_axis=law == "per_axis")
 
 
 def point_drag_items(p: LumpedParams) -> list[tuple[int, list[float], str]]:
@@ -339,11 +275,11 @@ class LumpedEquations:
         self.node_mass = node_masses(p)
         self.node_weight = node_weights(p)
         self.loads = node_loads(p, self.node_weight)
-        area = math.pi * p.diameter**2 / 4.0
         #: normal and tangential added mass per unstretched length of each segment, kg/m
-        self.added_mass_per_length = (p.water_density * p.added_mass_coefficient * area,
-                                      p.water_density * p.tangential_added_mass_coefficient
-                                      * area)
+        self.added_mass_per_length = tuple(
+            np.array([added_mass_per_length(float(c), p.water_density, float(d))
+                      for c, d in zip(coef, p.diameter, strict=True)])
+            for coef in (p.added_mass_coefficient, p.tangential_added_mass_coefficient))
         #: normal and tangential added mass of each segment, kg
         self.added_mass = tuple(a * p.segment_length for a in self.added_mass_per_length)
 

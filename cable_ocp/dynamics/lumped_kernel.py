@@ -26,13 +26,13 @@ from cable_ocp.dynamics.lumped_equations import (
     added_mass_share,
     point_drag,
     point_drag_items,
-    segment_drag_kernel,
     segment_tension,
-    taut,
 )
 from cable_ocp.errors import CableOCPError
+from cable_ocp.numerics.block_tridiagonal import block_tridiagonal_solve
 from cable_ocp.numerics.compile import compile_function
-from cable_ocp.physics.smooth import smooth_abs
+from cable_ocp.physics.drag import line_drag_kernel, point_drag_jacobian
+from cable_ocp.physics.elasticity import taut_switch
 
 if TYPE_CHECKING:
     from cable_ocp.dynamics.lumped import LumpedMassModel
@@ -201,21 +201,15 @@ class LumpedStepper:
         if not items:
             return ca.horzcat(*fcols), ca.horzcat(*ccols)
         rs, vs, gs = ca.SX.sym("r", 3), ca.SX.sym("v", 3), ca.SX.sym("g")
-        eye = ca.SX.eye(3)
         for node, cs, law in items:
             u = self.model.eq.current(rs[2]) - vs
-            half_rho = 0.5 * p.water_density
             f = point_drag(u, cs, law, p.water_density, p.smoothing)
-            # its Newton block: -dF/dv (the current's dependence on the height left out)
+            # its Newton block: -dF/dv = dF/du (the current's dependence on the height left
+            # out), symmetrised
+            dmat = point_drag_jacobian(u, cs, rho=p.water_density, delta=p.smoothing,
+                                       per_axis=law == "per_axis")
             if law == "vector":
-                sp = ca.sqrt(ca.dot(u, u) + p.smoothing**2)
-                dmat = half_rho * ca.mtimes(ca.diag(ca.DM(cs)),
-                                            sp * eye + ca.mtimes(u, u.T) / sp)
                 dmat = 0.5 * (dmat + dmat.T)
-            else:
-                dmat = half_rho * ca.diag(ca.vertcat(*[
-                    cs[k] * (smooth_abs(u[k], p.smoothing)
-                             + u[k] ** 2 / smooth_abs(u[k], p.smoothing)) for k in range(3)]))
             fn = ca.Function("point_drag", [rs, vs, gs], [f, ca.vec(gs * dmat)])
             fk, ck = fn(r[:, node], v[:, node], gamma)
             fcols[node] = fcols[node] + fk
@@ -345,7 +339,14 @@ class LumpedStepper:
         else:
             # the Newton update by block-tridiagonal elimination (3x3 blocks, no pivoting:
             # the matrix is close to symmetric positive definite), inlined in SX
-            dx_sx = _block_thomas(diag_b, off_b, ca.reshape(fres, 3, nf))
+            def blk(m: Any, k: int) -> Any:  # row-major 3x3 block k of the 9 x k rows
+                return ca.reshape(m[:, k], 3, 3).T
+
+            offs = [blk(off_b, k) for k in range(nf - 1)]
+            rhs = ca.reshape(fres, 3, nf)
+            dx_sx = ca.vertcat(*block_tridiagonal_solve(
+                [blk(diag_b, k) for k in range(nf)], offs, offs,
+                [rhs[:, k] for k in range(nf)]))
             gj = ca.Function("gj", [x1, zsym, t0, dt], [res, dx_sx])
         # the residual alone (the SX graph keeps only its part: about a third of gj's
         # operations), to check an iterate accepted on the contraction estimate
@@ -546,19 +547,19 @@ def segment_kernel_expr(drag_law: str) -> ca.Function:
     l0, l1, em, de, tbar = st_["l0"], st_["l1"], st_["em"], st_["de"], st_["tension"]
     f_el = tbar * st_["num"] / st_["den"]
     # derivative of the Gauss mean with respect to eps1 (the midpoint's Newton matrix)
-    dtbar = sum(w * ea * taut(em + g * de, ea, delta_t) * 0.5 * (1.0 + g)
+    dtbar = sum(w * ea * taut_switch(em + g * de, ea, delta_t) * 0.5 * (1.0 + g)
                 for g, w in zip(GAUSS_X, GAUSS_W, strict=True))
     # drag and added mass at the mean positions
     dm = 0.5 * (d0 + d1)
     lm = ca.norm_2(dm)
     tm = dm / lm
     urel = u_c - 0.5 * (va + vb)
-    f_d, dmat = segment_drag_kernel(drag_law, lm, tm, urel, rho=rho, diameter=d,
-                                    normal_drag=cn, tangential_drag=ct, delta=delta,
-                                    blend=blend)
+    # the drag's kernel form: its value and Jacobian (physics.drag)
+    f_d, dmat = line_drag_kernel(drag_law, urel, tm, lm, rho=rho, diameter=d,
+                                 normal_drag=cn, tangential_drag=ct, delta=delta,
+                                 blend=blend)
     eye = ca.SX.eye(3)
-    eet = ca.mtimes(tm, tm.T)
-    madd = added_mass_share(dm, en, et, eet)
+    madd = added_mass_share(dm, en, et, ca.mtimes(tm, tm.T))
     # Newton blocks
     # d(T u)/d d1 with u = (d0 + d1) / (|d0| + |d1|), e1 = d1 / |d1|:
     # (dT/deps1 / l) u e1^T + T (I - u e1^T) / (|d0| + |d1|), times 2 beta (beta = 1/2 for
@@ -566,7 +567,7 @@ def segment_kernel_expr(drag_law: str) -> ca.Function:
     # e1). Not symmetric for the midpoint: the strain at level 1 follows e1, the force u.
     uet = ca.mtimes((d0 + d1) / (l0 + l1), (d1 / l1).T)
     kb = 2.0 * beta * (dtbar / ell * uet + tbar / (l0 + l1) * (eye - uet)) + gamma * c / ell * (
-        taut(em, ea, delta_t) * uet)
+        taut_switch(em, ea, delta_t) * uet)
     cb = 0.25 * gamma * lm * dmat
     return ca.Function(
         f"segment_{drag_law}", [ra0, rb0, ra1, rb1, va, vb, u_c, par, sc],
@@ -586,28 +587,6 @@ def switch(name: str, cond: Any, if_true: ca.Function, if_false: ca.Function,
     (a Newton iterate, a step's result) evaluates that value again: here the branches take
     those values as arguments.)"""
     return ca.Function.if_else(name, if_true, if_false)(cond, *args)
-
-
-def _block_thomas(diag: Any, off: Any, rhs: Any) -> Any:
-    """Solve the block-tridiagonal system with 3x3 diagonal blocks ``diag`` (9 x n,
-    row-major) and equal upper and lower blocks ``off`` (9 x (n-1)) for ``rhs`` (3 x n), by
-    block elimination without pivoting (SX). Returns the solution as a (3 n,) vector."""
-    n = rhs.shape[1]
-
-    def blk(m: Any, k: int) -> Any:
-        return ca.reshape(m[:, k], 3, 3).T
-
-    d_p = [blk(diag, 0)]
-    y = [rhs[:, 0]]
-    for i in range(1, n):
-        w = ca.mtimes(blk(off, i - 1), ca.inv(d_p[i - 1]))
-        d_p.append(blk(diag, i) - ca.mtimes(w, blk(off, i - 1)))
-        y.append(rhs[:, i] - ca.mtimes(w, y[i - 1]))
-    x = [None] * n
-    x[n - 1] = ca.solve(d_p[n - 1], y[n - 1])
-    for i in range(n - 2, -1, -1):
-        x[i] = ca.solve(d_p[i], y[i] - ca.mtimes(blk(off, i), x[i + 1]))
-    return ca.vertcat(*x)
 
 
 def segment_kernel(drag_law: str, compile_kernel: bool = True) -> ca.Function:

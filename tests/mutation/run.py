@@ -380,11 +380,17 @@ MUTATIONS: tuple[Mutation, ...] = (
              "out[0] += p.unit.mass + np.asarray(p.unit.added_mass)", "out[0] += p.unit.mass",
              LUMPED, "lumped: the unit's added mass left out"),
     Mutation("lumped-added-mass-tangential-projector", DYN, LE_F,
-             "return 0.5 * (en * (ca.SX.eye(3) - tt) + et * tt)",
-             "return 0.5 * (en * tt + et * (ca.SX.eye(3) - tt))",
+             "return 0.5 * (en * (ca.SX.eye(3) - eet) + et * eet)",
+             "return 0.5 * (en * eet + et * (ca.SX.eye(3) - eet))", LUMPED,
+             "lumped step (the kernel's form): added mass (5.2) along the tangent t t^T "
+             "instead of I - t t^T"),
+    Mutation("lumped-modes-added-mass-tangential-projector", DYN,
+             "cable_ocp/physics/added_mass.py",
+             "return normal * (ca.SX.eye(3) - tt) + tangential * tt",
+             "return normal * tt + tangential * (ca.SX.eye(3) - tt)",
              LUMPED + ("tests/dynamics/test_planar.py::test_in_plane_modes_equal_lumped3d",),
-             "lumped step, modes and plant (one law): added mass (5.2) along the tangent "
-             "t t^T instead of I - t t^T"),
+             "lumped modes, statics and plant (physics.added_mass.line_added_mass): added "
+             "mass (5.2) along the tangent instead of normal"),
     Mutation("lumped-tension-ea-over-l", DYN, LK_F,
              "segment_tension(d1, ell, ea, c, delta_t,",
              "segment_tension(d1, ell, ea / ell, c, delta_t,", LUMPED,
@@ -403,8 +409,9 @@ MUTATIONS: tuple[Mutation, ...] = (
                  _LMP + "newton_step_equals_casadi_rootfinder",),
              "lumped step: two half steps where the whole step converged (and the "
              "unconverged whole step kept)"),
-    Mutation("lumped-tangential-drag-unsigned", DYN, LE_F,
-             "math.pi * diameter * st * ut * tm", "math.pi * diameter * ut * ut * tm", LUMPED,
+    Mutation("lumped-tangential-drag-unsigned", DYN, "cable_ocp/physics/drag.py",
+             "ut * ut + delta * delta) * ut * t\n",
+             "ut * ut + delta * delta) * ca.fabs(ut) * t\n", LUMPED,
              "lumped step: tangential drag u_t^2 instead of |u_t| u_t"),
     Mutation("axial-thesis-coriolis-sign", DYN, "cable_ocp/dynamics/axial_thesis.py",
              "                -2 * mu * v * y / ell,", "                2 * mu * v * y / ell,",
