@@ -95,7 +95,7 @@ PHYS, FORM, COLL, HEAVE_A = "physics", "statics/formulation", "statics/collocati
 DYN = "dynamics"
 AX_F, LM_F, PL_F, MO_F = ("cable_ocp/dynamics/axial.py", "cable_ocp/dynamics/lumped.py",
                           "cable_ocp/dynamics/planar.py", "cable_ocp/scene/motion.py")
-LK_F = "cable_ocp/dynamics/lumped_kernel.py"
+LK_F, LE_F = "cable_ocp/dynamics/lumped_kernel.py", "cable_ocp/dynamics/lumped_equations.py"
 
 MUTATIONS: tuple[Mutation, ...] = (
     # -- physics/ ---------------------------------------------------------------------------
@@ -397,27 +397,30 @@ MUTATIONS: tuple[Mutation, ...] = (
              "dz = dz + r * tm.heave_amplitude * ca.sin(tm.heave_frequency * t)",
              "dz = dz + r * tm.heave_amplitude * ca.cos(tm.heave_frequency * t)", AXIAL,
              "top heave A cos(w t) instead of A sin(w t) (a jump at t = 0)"),
-    Mutation("lumped-node-mass-off-by-one", DYN, LM_F,
+    Mutation("lumped-node-mass-off-by-one", DYN, LE_F,
              "m[1:] += half\n", "m[:-1] += half\n", LUMPED,
              "lumped: each segment's mass at its lower node instead of half at each end"),
-    Mutation("lumped-unit-weight-missing", DYN, LM_F,
+    Mutation("lumped-unit-weight-missing", DYN, LE_F,
              "w[0] += p.unit.weight_in_water", "pass", LUMPED,
              "lumped: the unit's weight in water missing (5.6)"),
-    Mutation("lumped-unit-added-mass-dropped", DYN, LM_F,
+    Mutation("lumped-unit-added-mass-dropped", DYN, LE_F,
              "out[0] += p.unit.mass + np.asarray(p.unit.added_mass)", "out[0] += p.unit.mass",
              LUMPED, "lumped: the unit's added mass left out"),
-    Mutation("lumped-added-mass-tangential-projector", DYN, LK_F,
-             "madd = 0.5 * (en * (eye - eet) + et * eet)",
-             "madd = 0.5 * (en * eet + et * (eye - eet))", LUMPED,
-             "lumped step: added mass (5.2) along the tangent t t^T instead of I - t t^T"),
-    Mutation("lumped-modes-added-mass-tangential-projector", DYN, LM_F,
-             "add = 0.5 * (en * (ca.SX.eye(3) - tt) + et * tt)",
-             "add = 0.5 * (en * tt + et * (ca.SX.eye(3) - tt))",
+    Mutation("lumped-added-mass-tangential-projector", DYN, LE_F,
+             "return 0.5 * (en * (ca.SX.eye(3) - eet) + et * eet)",
+             "return 0.5 * (en * eet + et * (ca.SX.eye(3) - eet))", LUMPED,
+             "lumped step (the kernel's form): added mass (5.2) along the tangent t t^T "
+             "instead of I - t t^T"),
+    Mutation("lumped-modes-added-mass-tangential-projector", DYN,
+             "cable_ocp/physics/added_mass.py",
+             "return normal * (ca.SX.eye(3) - tt) + tangential * tt",
+             "return normal * tt + tangential * (ca.SX.eye(3) - tt)",
              LUMPED + ("tests/dynamics/test_planar.py::test_in_plane_modes_equal_lumped3d",),
-             "lumped modes: added mass (5.2) along the tangent instead of normal"),
+             "lumped modes, statics and plant (physics.added_mass.line_added_mass): added "
+             "mass (5.2) along the tangent instead of normal"),
     Mutation("lumped-tension-ea-over-l", DYN, LK_F,
-             "    def tension(eps: Any) -> Any:\n        u = ea * eps\n",
-             "    def tension(eps: Any) -> Any:\n        u = ea / ell * eps\n", LUMPED,
+             "segment_tension(d1, ell, ea, c, delta_t,",
+             "segment_tension(d1, ell, ea / ell, c, delta_t,", LUMPED,
              "lumped step: segment tension EA/l eps (a spring constant) instead of EA eps"),
     Mutation("lumped-current-ignored", DYN, LK_F,
              "urel = u_c - 0.5 * (va + vb)", "urel = -0.5 * (va + vb)", LUMPED,
@@ -433,8 +436,9 @@ MUTATIONS: tuple[Mutation, ...] = (
                  _LMP + "newton_step_equals_casadi_rootfinder",),
              "lumped step: two half steps where the whole step converged (and the "
              "unconverged whole step kept)"),
-    Mutation("lumped-tangential-drag-unsigned", DYN, LK_F,
-             "ca.sqrt(ut * ut + delta * delta) * ut * tm", "ut * ut * tm", LUMPED,
+    Mutation("lumped-tangential-drag-unsigned", DYN, "cable_ocp/physics/drag.py",
+             "ut * ut + delta * delta) * ut * t\n",
+             "ut * ut + delta * delta) * ca.fabs(ut) * t\n", LUMPED,
              "lumped step: tangential drag u_t^2 instead of |u_t| u_t"),
     Mutation("axial-thesis-coriolis-sign", DYN, "cable_ocp/dynamics/axial_thesis.py",
              "                -2 * mu * v * y / ell,", "                2 * mu * v * y / ell,",
