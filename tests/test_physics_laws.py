@@ -268,6 +268,14 @@ def test_smooth_tension_bound_switch_and_material():
     assert mat.tension(1e-3) == el.smooth_tension(1e-3, ea, dt_)
     assert float(mat.stiffness(1e-3)) == pytest.approx(ea, rel=1e-12)
     assert el.hooke_tension(-1e-3, ea) == -ea * 1e-3
+    # the stored energy: 0 unstrained, its derivative the tension (AD)
+    en = ca.Function("en", [e], [ca.jacobian(mat.energy(e), e), mat.tension(e)])
+    assert el.smooth_strain_energy(0.0, ea, dt_) == 0.0
+    for x in (-1e-3, -1e-11, 0.0, 2e-11, 1e-3):
+        d_ad, t_law = (float(v) for v in en(x))
+        # slack, the derivative is EA e / 2 + ~(-EA e / 2): cancellation of terms of size
+        # EA |e| / 2, rounding 4 eps of that
+        assert d_ad == pytest.approx(t_law, rel=1e-9, abs=4e-16 * ea * abs(x) + 1e-15)
     # CasADi expressions, the same numbers
     g = ca.Function("g", [e], [mat.tension(e, 0.2)])
     assert float(g(1e-3)) == pytest.approx(mat.tension(1e-3, 0.2), rel=1e-15)

@@ -215,6 +215,13 @@ class FemProblem:
         Exact moduli (Wang et al. 1993, eqs (4)-(6)): the law of
         :func:`cable_ocp.physics.drag.drag_per_length_np` (the componentwise law blends into
         the vector law within ``solver.vertical_blend`` of vertical).
+
+        Parameters
+        ----------
+        z : ndarray
+            Heights above end_a, m.
+        g : ndarray, shape z.shape + (2,)
+            Slopes (x'(z), y'(z)) (-).
         """
         if self.current is None:
             return np.zeros((*z.shape, 3))

@@ -154,6 +154,19 @@ def drag_error_bound(
     Each smoothed product u*sqrt(u^2 + delta^2) differs from u|u| by at most delta^2/2
     (:mod:`cable_ocp.physics.smooth`); the componentwise law has two orthogonal normal
     terms (factor sqrt(2)), the vector law one.
+
+    Parameters
+    ----------
+    law : {"vector", "componentwise"}
+        Drag law.
+    rho : float
+        Water density, kg/m^3.
+    diameter : float
+        Hydrodynamic diameter, m.
+    normal_drag, tangential_drag : float
+        C_n, C_t (-).
+    delta : float
+        Smoothing velocity, m/s.
     """
     e = smooth_abs_error_bound(delta)
     k = math.sqrt(2.0) if law == "componentwise" else 1.0

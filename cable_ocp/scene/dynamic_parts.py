@@ -91,11 +91,27 @@ class SegmentDynamics:
 
     def added_mass_per_length(self, diameter: float, rho: float) -> float:
         """Normal added mass per unstretched length, kg/m
-        (:func:`cable_ocp.physics.added_mass.added_mass_per_length`)."""
+        (:func:`cable_ocp.physics.added_mass.added_mass_per_length`).
+
+        Parameters
+        ----------
+        diameter : float
+            Hydrodynamic diameter, m.
+        rho : float
+            Water density, kg/m^3.
+        """
         return added_mass_per_length(self.added_mass_coefficient, rho, diameter)
 
     def tangential_added_mass_per_length(self, diameter: float, rho: float) -> float:
-        """Tangential added mass per unstretched length, kg/m."""
+        """Tangential added mass per unstretched length, kg/m.
+
+        Parameters
+        ----------
+        diameter : float
+            Hydrodynamic diameter, m.
+        rho : float
+            Water density, kg/m^3.
+        """
         return added_mass_per_length(self.tangential_added_mass_coefficient, rho, diameter)
 
 
@@ -136,6 +152,13 @@ class Unit:
         ``relative_velocity`` is the unit's velocity minus the current's (3 numbers). The
         exact law (no smoothing) of :func:`cable_ocp.physics.drag.point_drag_np`, whose flow
         is the current relative to the unit.
+
+        Parameters
+        ----------
+        relative_velocity : sequence of 3 float
+            The unit's velocity minus the current's, m/s.
+        rho : float
+            Water density, kg/m^3.
         """
         flow = -np.asarray([float(c) for c in relative_velocity])
         cs = [self.drag_area[k] * self.drag_coefficient[k] for k in range(3)]
@@ -143,7 +166,15 @@ class Unit:
                                                 per_axis=self.drag_per_axis)]
 
     def static_load(self, current: Vec3, rho: float) -> Vec3:
-        """External load on end_a at rest in a current (m/s): weight in water plus drag, N."""
+        """External load on end_a at rest in a current: weight in water plus drag, N.
+
+        Parameters
+        ----------
+        current : sequence of 3 float
+            Current velocity at the unit, m/s.
+        rho : float
+            Water density, kg/m^3.
+        """
         d = self.drag([-c for c in current], rho)
         return (d[0], d[1], d[2] - self.weight_in_water)
 

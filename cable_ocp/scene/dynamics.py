@@ -217,7 +217,15 @@ def is_dynamic_dict(data: dict[str, Any]) -> bool:
 def current_at(current: Current | None, z: float) -> Vec3:
     """Current velocity (m/s) at height z (m): linear in the components between knots,
     constant beyond the first and last knot (docs/conventions.md, "Frame and scene files";
-    :func:`cable_ocp.physics.current.profile_velocity_np`)."""
+    :func:`cable_ocp.physics.current.profile_velocity_np`).
+
+    Parameters
+    ----------
+    current : Current or None
+        The scene's current (None: still water).
+    z : float
+        Height, m.
+    """
     if current is None:
         return (0.0, 0.0, 0.0)
     u = profile_velocity_np(z, current.z, current.ux, current.uy)

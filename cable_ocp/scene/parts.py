@@ -113,7 +113,13 @@ class Seabed:
         return _seabed.plane_normal(self.slope_deg, self.slope_heading_deg)
 
     def height(self, x: Any, y: Any) -> Any:
-        """Seabed height z (m) at (x, y) (m)."""
+        """Seabed height z (m) at (x, y).
+
+        Parameters
+        ----------
+        x, y : float or array
+            Horizontal position, m.
+        """
         return _seabed.plane_height(x, y, self.slope_deg, self.slope_heading_deg,
                                     self.depth_offset)
 
