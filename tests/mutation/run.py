@@ -471,6 +471,25 @@ MUTATIONS: tuple[Mutation, ...] = (
              "self.unit_mass = (unit.virtual_mass[0], unit.virtual_mass[2])",
              "self.unit_mass = (unit.virtual_mass[2], unit.virtual_mass[2])",
              PLANAR, "planar: the unit's z added mass used for x too"),
+    # -- bookkeeping: numbers the code derives for its own records (issue 21, item 9) ------
+    Mutation("surface-tolerance-10x", "bookkeeping", "cable_ocp/statics/checks.py",
+             "    if z[i_top] > depth + tol:", "    if z[i_top] > depth + 10.0 * tol:",
+             ("tests/test_contract.py::test_the_above_surface_boundary_is_the_stated_tolerance",),
+             "the above-surface check 10x looser than its stated tolerance"),
+    Mutation("retry-one-attempt-more", "bookkeeping", "cable_ocp/batch/executors.py",
+             "        if attempts[crashed.index] >= max_attempts:",
+             "        if attempts[crashed.index] > max_attempts:",
+             ("tests/test_batch.py::test_a_case_is_tried_exactly_max_attempts_times",),
+             "a case that kills its workers is tried max_attempts + 1 times"),
+    Mutation("store-keeps-lines-after-a-cut", "bookkeeping", "cable_ocp/batch/store.py",
+             "                    break  # a line cut short",
+             "                    continue  # a line cut short",
+             ("tests/test_batch.py::test_resume_drops_a_cut_line_and_what_follows",),
+             "resume keeps the rows after a line cut short (out of order, not re-run)"),
+    Mutation("store-line-not-ended", "bookkeeping", "cable_ocp/batch/store.py",
+             'good.append(line if line.endswith("\\n") else line + "\\n")', "good.append(line)",
+             ("tests/test_batch.py::test_resume_drops_a_cut_line_and_what_follows",),
+             "a kept last line without its newline: the next row is written onto it"),
 )
 
 
