@@ -490,6 +490,12 @@ MUTATIONS: tuple[Mutation, ...] = (
              'good.append(line if line.endswith("\\n") else line + "\\n")', "good.append(line)",
              ("tests/test_batch.py::test_resume_drops_a_cut_line_and_what_follows",),
              "a kept last line without its newline: the next row is written onto it"),
+    Mutation("current-first-knot-not-a-kink", "bookkeeping", "cable_ocp/physics/current.py",
+             "slope = np.concatenate([[0.0], np.diff(comp) / np.diff(z), [0.0]])",
+             "slope = np.concatenate([np.diff(comp)[:1] / np.diff(z)[:1], np.diff(comp) / "
+             "np.diff(z), [0.0]])", ("tests/test_physics_laws.py",),
+             "the first knot of a profile that starts above the seabed is not a kink (the "
+             "current is constant below it)"),
 )
 
 
