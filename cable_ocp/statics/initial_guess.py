@@ -30,6 +30,7 @@ import numpy as np
 from scipy.integrate import cumulative_trapezoid
 from scipy.optimize import brentq
 
+from cable_ocp.physics.drag import line_drag_factors
 from cable_ocp.scene import Scene
 from cable_ocp.statics.catenary import (
     catenary_nodes,
@@ -261,8 +262,8 @@ def towed_guess(scene: Scene, s: np.ndarray) -> tuple[np.ndarray, np.ndarray, fl
         e = np.array([math.copysign(math.cos(0.1), ux), 0.0, -math.sin(0.1)])
         # tangential drag per metre of each segment, N/m (0.5 rho C_t pi D U^2), plus the
         # weight's component along the 0.1 rad slope
-        ft = [0.5 * rho * c.tangential_drag * math.pi * c.diameter * ux**2 + abs(
-            c.weight_in_water) * 0.1 for c in scene.segments]
+        ft = [line_drag_factors(rho, c.diameter, c.normal_drag, c.tangential_drag)[1] * ux**2
+              + abs(c.weight_in_water) * 0.1 for c in scene.segments]
     pull = float(np.linalg.norm([f or 0.0 for f in b.force]))
 
     def beyond(sv: float) -> float:
