@@ -649,6 +649,13 @@ def solve(scene: Scene, warm_start: StaticsSolution | None = None) -> StaticsSol
     reach the accuracy (first-order lumping needs about N = 40 x (estimate at 40 /
     accuracy) segments: ~10^5 for 1e-6 on De Zoysa). A result above the accuracy is
     ``"inaccurate"`` (:func:`cable_ocp.baselines.common.refine_to_accuracy`).
+
+    Parameters
+    ----------
+    scene : Scene
+        The statics problem (project frame).
+    warm_start : StaticsSolution, optional
+        A neighbouring solution (see :func:`solve_huang`).
     """
     cache = MeshCache(lambda n, warm: solve_huang(scene, warm, intervals=n))
 

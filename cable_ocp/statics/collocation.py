@@ -584,7 +584,15 @@ class Collocation:
 
     # -- arc length -----------------------------------------------------------------------
     def segment_s(self, length: float, g: float) -> list[tuple[float, float]]:
-        """Unstretched arc length (m) at the start and end of every collocated segment."""
+        """Unstretched arc length (m) at the start and end of every collocated segment.
+
+        Parameters
+        ----------
+        length : float
+            Total unstretched length, m.
+        g : float
+            Grounded length at end_a, m (the first segment starts there).
+        """
         if not self.mesh.segments:
             return [(g, length)]
         lens = [c.length for c in self.form.lines]

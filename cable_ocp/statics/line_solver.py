@@ -263,7 +263,17 @@ class StaticsSolver:
                mesh: Mesh | None = None) -> np.ndarray:
         """The residual's parameter vector for ``scene`` (default the solver's) on
         ``mesh`` (default the current one): :meth:`Formulation.params` and the interval
-        widths (:meth:`Collocation.params`)."""
+        widths (:meth:`Collocation.params`).
+
+        Parameters
+        ----------
+        scene : Scene, optional
+            A scene of this solver's structure.
+        current_scale : float
+            Multiplier on the current, 1 = as specified.
+        mesh : Mesh, optional
+            A mesh with this solver's numbers of intervals.
+        """
         return self.coll.params(self.form.params(self.scene if scene is None else scene,
                                                  current_scale), mesh)
 
