@@ -496,6 +496,10 @@ MUTATIONS: tuple[Mutation, ...] = (
              "np.diff(z), [0.0]])", ("tests/test_physics_laws.py",),
              "the first knot of a profile that starts above the seabed is not a kink (the "
              "current is constant below it)"),
+    Mutation("identify-rk4-third-stage-slip", "bookkeeping", "cable_ocp/heave/identify.py",
+             "k3 = f(s + dt / 2 * k2, p, xm)", "k3 = f(s + dt / 2 * k1, p, xm)",
+             ("tests/heave/test_identify.py::test_the_design_models_integrator_is_fourth_order",),
+             "the design model's RK4 takes its third stage from the first (order < 4)"),
 )
 
 
