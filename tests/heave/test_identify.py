@@ -87,3 +87,25 @@ def test_the_design_models_integrator_is_fourth_order() -> None:
         fd = (np.asarray(sim([a, b] + dp, x0, [0.0, 0.0])[0])
               - np.asarray(sim([a, b] - dp, x0, [0.0, 0.0])[0])) / (2 * h)
         np.testing.assert_allclose(np.asarray(jac)[:, k], fd.ravel(), atol=1e-6)
+
+
+def test_the_chirp_sweeps_exactly_the_band() -> None:
+    """The identification's chirp sin(w0 t + (w1 - w0) t^2 / (2 T)) sweeps its band: its
+    instantaneous frequency is w0 at t = 0 and w1 at t = T. Between two zero crossings
+    the phase advances by pi, and for a linear sweep the mean frequency over that stretch
+    is the instantaneous one at its midpoint, so pi / (crossing interval) against the
+    midpoint is the sweep itself: a line through (0, w0) and (T, w1) to 1e-6 (the linear
+    interpolation of the crossings on a 1 ms grid). The fade-in and the RMS scaling move
+    no crossing."""
+    from cable_ocp.heave.identify_cable import excitation_signal
+
+    lo, hi, dur = 0.5, 2.0, 120.0
+    t = np.linspace(0.0, dur, 120_001)
+    x = excitation_signal("chirp", t, 0.1, (lo, hi))
+    k = np.nonzero(np.signbit(x[1:]) != np.signbit(x[:-1]))[0]
+    k = k[x[k] != 0.0]
+    zeros = t[k] - x[k] * (t[k + 1] - t[k]) / (x[k + 1] - x[k])
+    mid, freq = 0.5 * (zeros[1:] + zeros[:-1]), np.pi / np.diff(zeros)
+    slope, w0 = np.polyfit(mid, freq, 1)
+    assert w0 == pytest.approx(lo, rel=1e-6)
+    assert w0 + slope * dur == pytest.approx(hi, rel=1e-6)
