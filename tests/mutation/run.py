@@ -524,6 +524,15 @@ MUTATIONS: tuple[Mutation, ...] = (
              "np.diff(z), [0.0]])", ("tests/test_physics_laws.py",),
              "the first knot of a profile that starts above the seabed is not a kink (the "
              "current is constant below it)"),
+    Mutation("identify-rk4-third-stage-slip", "bookkeeping", "cable_ocp/heave/identify.py",
+             "k3 = f(s + dt / 2 * k2, p, xm)", "k3 = f(s + dt / 2 * k1, p, xm)",
+             ("tests/heave/test_identify.py::test_the_design_models_integrator_is_fourth_order",),
+             "the design model's RK4 takes its third stage from the first (order < 4)"),
+    Mutation("chirp-sweeps-half-the-band", "bookkeeping", "cable_ocp/heave/identify_cable.py",
+             "x = np.sin(lo * t + 0.5 * (hi - lo) * t**2 / duration)",
+             "x = np.sin(lo * t + 0.25 * (hi - lo) * t**2 / duration)",
+             ("tests/heave/test_identify.py::test_the_chirp_sweeps_exactly_the_band",),
+             "the identification's chirp ends at the middle of its band"),
 )
 
 
