@@ -55,17 +55,11 @@ from typing import Any
 import casadi as ca
 import numpy as np
 
+from cable_ocp.dynamics.lumped_equations import LumpedEquations
 from cable_ocp.dynamics.lumped_kernel import SCHEMES, LumpedStepper
-from cable_ocp.dynamics.lumped_params import LumpedParams, TimeFunction, Vec3
-from cable_ocp.physics.drag import drag_per_length
-from cable_ocp.physics.smooth import smooth_abs
+from cable_ocp.dynamics.lumped_params import LumpedParams, TimeFunction
 
 __all__ = ["SCHEMES", "LumpedMassModel"]
-
-# 3-point Gauss-Legendre rule on [-1, 1] (mean of the tension over a strain interval)
-_GAUSS_X = (-math.sqrt(0.6), 0.0, math.sqrt(0.6))
-_GAUSS_W = (5.0 / 18.0, 8.0 / 18.0, 5.0 / 18.0)
-
 
 class LumpedMassModel:
     """CasADi functions of the lumped-mass model built from :class:`LumpedParams`.
@@ -114,8 +108,8 @@ class LumpedMassModel:
         n = p.segments
         self.free_nodes = np.arange(1 if p.fixed_a else 0, n)
         self.n_free = int(self.free_nodes.size)
-        self._node_mass = self._lumped_masses()
-        self._node_weight = self._lumped_weights()
+        #: the terms of the equations of motion (:mod:`cable_ocp.dynamics.lumped_equations`)
+        self.eq = LumpedEquations(p)
 
     # -- the CasADi functions, each built on first use -----------------------------------
     @cached_property
@@ -143,14 +137,14 @@ class LumpedMassModel:
         x = ca.SX.sym("x", nf3)
         v = ca.SX.sym("v", nf3)
         t = ca.SX.sym("t")
-        return x, v, t, self._all_positions(x, t), self._all_velocities(v, t)
+        return x, v, t, self.all_positions(x, t), self.all_velocities(v, t)
 
     @cached_property
     def forces(self) -> ca.Function:
         """``forces(x, v, t) -> F`` (N), the right-hand side of (5.2) at the free nodes."""
         x, v, t, r, vel = self._symbols
-        f = self._free(self._sum(self._elastic(r, None, vel, None), self._static_loads(),
-                                 self._drag(r, vel)))
+        f = self.free(self.eq.total(self.eq.elastic(r, None, vel, None), self.eq.static_loads(),
+                                 self.eq.drag(r, vel)))
         return ca.Function("forces", [x, v, t], [f], ["x", "v", "t"], ["F"])
 
     @cached_property
@@ -160,21 +154,21 @@ class LumpedMassModel:
         x, v, t, r, vel = self._symbols
         return ca.Function(
             "external_forces", [x, v, t],
-            [self._free(self._sum(self._static_loads(), self._drag(r, vel)))],
+            [self.free(self.eq.total(self.eq.static_loads(), self.eq.drag(r, vel)))],
             ["x", "v", "t"], ["F"])
 
     @cached_property
     def mass_matrix(self) -> ca.Function:
         """``mass_matrix(x, t) -> M`` (kg), sparse block diagonal (3x3 per node)."""
         x, _, t, r, _ = self._symbols
-        return ca.Function("mass_matrix", [x, t], [self._mass_expr(r)], ["x", "t"], ["M"])
+        return ca.Function("mass_matrix", [x, t], [self.mass_expr(r)], ["x", "t"], ["M"])
 
     @cached_property
     def tensions(self) -> ca.Function:
         """``tensions(x, t) -> (T, strain)``: elastic tension (N) and strain (-) per
         segment."""
         x, _, t, r, _ = self._symbols
-        tens, strain = self._tension_expr(r)
+        tens, strain = self.eq.tensions(r)
         return ca.Function("tensions", [x, t], [tens, strain], ["x", "t"], ["T", "strain"])
 
     @cached_property
@@ -193,7 +187,7 @@ class LumpedMassModel:
     def segment_tension(self) -> ca.Function:
         """``segment_tension(x, v, t) -> T`` (N), with the material damping term."""
         x, v, t, r, vel = self._symbols
-        return ca.Function("segment_tension", [x, v, t], [self._tension_expr(r, vel)[0]],
+        return ca.Function("segment_tension", [x, v, t], [self.eq.tensions(r, vel)[0]],
                            ["x", "v", "t"], ["T"])
 
     @cached_property
@@ -202,24 +196,24 @@ class LumpedMassModel:
         x, v, t, r, vel = self._symbols
         # the force the attachment applies to node N: M_N a_b - (cable, weight, drag)
         acc_b = ca.jacobian(vel[-1], t)
-        f_n = self._sum(self._elastic(r, None, vel, None), self._static_loads(),
-                        self._drag(r, vel))[-1]
+        f_n = self.eq.total(self.eq.elastic(r, None, vel, None), self.eq.static_loads(),
+                        self.eq.drag(r, vel))[-1]
         return ca.Function(
-            "top_force", [x, v, t], [ca.mtimes(self._mass_blocks(r)[-1], acc_b) - f_n],
+            "top_force", [x, v, t], [ca.mtimes(self.eq.mass_blocks(r)[-1], acc_b) - f_n],
             ["x", "v", "t"], ["F"])
 
     @cached_property
     def energy(self) -> ca.Function:
         """``energy(x, v, t) -> (kinetic, potential)`` (J)."""
         x, v, t, r, _ = self._symbols
-        return ca.Function("energy", [x, v, t], list(self._energy_expr(v, r)),
+        return ca.Function("energy", [x, v, t], list(self.eq.energy(v, self.mass_expr(r), r)),
                            ["x", "v", "t"], ["kinetic", "potential"])
 
     @cached_property
     def static_stiffness(self) -> ca.Function:
         """``static_stiffness(x, t) -> K`` (N/m): -dF/dx of the forces without drag."""
         x, _, t, r, _ = self._symbols
-        f0 = self._free(self._sum(self._elastic(r, None, None, None), self._static_loads()))
+        f0 = self.free(self.eq.total(self.eq.elastic(r, None, None, None), self.eq.static_loads()))
         return ca.Function("static_stiffness", [x, t], [-ca.jacobian(f0, x)], ["x", "t"],
                            ["K"])
 
@@ -230,8 +224,8 @@ class LumpedMassModel:
         # at rest: every node, the prescribed ends included, has zero velocity
         still = [ca.SX.zeros(3) for _ in r]
         lam = ca.SX.sym("lam")  # load factor on the drag (continuation)
-        fs = self._free(self._sum(self._elastic(r, None, None, None), self._static_loads(),
-                                  [lam * fd for fd in self._drag(r, still)]))
+        fs = self.free(self.eq.total(self.eq.elastic(r, None, None, None), self.eq.static_loads(),
+                                  [lam * fd for fd in self.eq.drag(r, still)]))
         return ca.Function("static_fj", [x, t, lam], [fs, ca.jacobian(fs, x)])
 
     @cached_property
@@ -252,7 +246,7 @@ class LumpedMassModel:
         """``mass_blocks(x, t) -> B`` (kg): the 3x3 mass block of every node (with the
         added mass of (5.2)), each stored column-major, stacked, shape (9 (N+1),)."""
         x, _, t, r, _ = self._symbols
-        blocks = self._mass_blocks(r)
+        blocks = self.eq.mass_blocks(r)
         return ca.Function("mass_blocks", [x, t], [ca.vertcat(*[ca.vec(b) for b in blocks])])
 
     # -- parameters ---------------------------------------------------------------------
@@ -266,251 +260,52 @@ class LumpedMassModel:
 
         return vel
 
-    def _lumped_masses(self) -> np.ndarray:
-        """Node masses per axis (kg), shape (N+1, 3): half of each adjacent segment's mass
-        plus the unit's or body's mass and added mass."""
-        p = self.params
-        half = 0.5 * p.mass_per_length * p.segment_length
-        m = np.zeros(p.segments + 1)
-        m[:-1] += half
-        m[1:] += half
-        out = np.repeat(m[:, None], 3, axis=1)
-        if p.unit is not None:
-            out[0] += p.unit.mass + np.asarray(p.unit.added_mass)
-        for b in p.bodies:
-            out[b.node] += b.mass + np.asarray(b.added_mass)
-        return out
-
-    def _lumped_weights(self) -> np.ndarray:
-        """Downward weight in water at the nodes, N, shape (N+1,)."""
-        p = self.params
-        half = 0.5 * p.weight_in_water * p.segment_length
-        w = np.zeros(p.segments + 1)
-        w[:-1] += half
-        w[1:] += half
-        if p.unit is not None:
-            w[0] += p.unit.weight_in_water
-        for b in p.bodies:
-            w[b.node] += b.weight_in_water
-        return w
-
     @property
     def node_mass(self) -> np.ndarray:
         """Mass plus the added mass of units and bodies per node and axis, kg, shape
         (N+1, 3) (the cable's own added mass depends on the configuration: see
         :attr:`mass_matrix`)."""
-        return self._node_mass.copy()
+        return self.eq.node_mass.copy()
 
     @property
     def node_weight(self) -> np.ndarray:
         """Weight in water lumped at each node, N (positive down), shape (N+1,)."""
-        return self._node_weight.copy()
+        return self.eq.node_weight.copy()
 
-    # -- assembling expressions ----------------------------------------------------------
-    def _all_positions(self, x: Any, t: Any) -> list[Any]:
+    # -- the nodes -----------------------------------------------------------------------
+    def all_positions(self, x: Any, t: Any) -> list[Any]:
+        """Every node's position (m): the free nodes' from ``x``, the prescribed ends' at
+        time ``t`` (s)."""
         p = self.params
         r = [x[3 * k:3 * k + 3] for k in range(self.n_free)]
         if p.fixed_a:
             r = [ca.vec(p.end_a_position(t))] + r
         return r + [ca.vec(p.top_position(t))]
 
-    def _all_velocities(self, v: Any, t: Any) -> list[Any]:
+    def all_velocities(self, v: Any, t: Any) -> list[Any]:
+        """Every node's velocity (m/s): the free nodes' from ``v``, the prescribed ends' at
+        time ``t`` (s)."""
         p = self.params
         u = [v[3 * k:3 * k + 3] for k in range(self.n_free)]
         if p.fixed_a:
             u = [ca.vec(self._a_vel(t))] + u
         return u + [ca.vec(self._top_vel(t))]
 
-    def _free(self, f: list[Any]) -> Any:
+    def free(self, f: list[Any]) -> Any:
+        """The free nodes' entries of a list of node terms, stacked."""
         return ca.vertcat(*[f[i] for i in self.free_nodes])
 
-    @staticmethod
-    def _sum(*parts: list[Any]) -> list[Any]:
-        return [sum(c[i] for c in parts) for i in range(len(parts[0]))]
-
-    def _zero_list(self) -> list[Any]:
-        return [ca.SX.zeros(3) for _ in range(self.params.segments + 1)]
-
-    def _tension_of_strain(self, eps: Any, j: int) -> Any:
-        """Smooth no-compression Hooke's law (5.3), N."""
-        ea = float(self.params.axial_stiffness[j])
-        dd = self.params.slack_smoothing
-        u = ea * eps
-        return 0.5 * (u + ca.sqrt(u * u + dd * dd))
-
-    def _taut(self, eps: Any, j: int) -> Any:
-        """Smooth switch 0 (slack) .. 1 (taut) of a segment, -."""
-        ea = float(self.params.axial_stiffness[j])
-        dd = self.params.slack_smoothing
-        u = ea * eps
-        return 0.5 * (1.0 + u / ca.sqrt(u * u + dd * dd))
-
-    def _tension_expr(self, r: list[Any], vel: list[Any] | None = None) -> tuple[Any, Any]:
-        """Segment tensions (N; with the material damping when velocities are given) and
-        strains (-)."""
-        p = self.params
-        ts, es = [], []
-        for j in range(p.segments):
-            d = r[j + 1] - r[j]
-            big_l = ca.norm_2(d)
-            ell = float(p.segment_length[j])
-            eps = big_l / ell - 1.0
-            tens = self._tension_of_strain(eps, j)
-            c = float(p.axial_damping[j])
-            if vel is not None and c > 0:
-                tens = tens + c * ca.dot(d, vel[j + 1] - vel[j]) / (big_l * ell) * self._taut(
-                    eps, j)
-            ts.append(tens)
-            es.append(eps)
-        return ca.vertcat(*ts), ca.vertcat(*es)
-
-    def _elastic(self, r0: list[Any], r1: list[Any] | None, vel: list[Any] | None,
-                 dt: float | None) -> list[Any]:
-        """Segment tensions on the nodes, N.
-
-        With ``r1 is None``: T(eps) along the segment at the positions r0 (material damping
-        from the velocities ``vel``, none if ``vel`` is None). Else the discrete gradient
-        between r0 and r1 over ``dt``: the mean of T over [eps0, eps1] (3-point Gauss)
-        along (d0 + d1) / (|d0| + |d1|), and the damping c (|d1| - |d0|) / (l dt).
-        """
-        p = self.params
-        f = self._zero_list()
-        for j in range(p.segments):
-            ell = float(p.segment_length[j])
-            c = float(p.axial_damping[j])
-            if r1 is None:
-                d = r0[j + 1] - r0[j]
-                big_l = ca.norm_2(d)
-                eps = big_l / ell - 1.0
-                tens = self._tension_of_strain(eps, j)
-                if c > 0 and vel is not None:
-                    rate = ca.dot(d, vel[j + 1] - vel[j]) / (big_l * ell)
-                    tens = tens + c * rate * self._taut(eps, j)
-                fe = tens * d / big_l
-            else:
-                d0 = r0[j + 1] - r0[j]
-                d1 = r1[j + 1] - r1[j]
-                l0 = ca.norm_2(d0)
-                l1 = ca.norm_2(d1)
-                e0 = l0 / ell - 1.0
-                e1 = l1 / ell - 1.0
-                em, de = 0.5 * (e0 + e1), 0.5 * (e1 - e0)
-                tens = sum(w * self._tension_of_strain(em + g * de, j)
-                           for g, w in zip(_GAUSS_X, _GAUSS_W, strict=True))
-                if c > 0:
-                    tens = tens + c * (l1 - l0) / (ell * dt) * self._taut(em, j)
-                fe = tens * (d0 + d1) / (l0 + l1)
-            f[j] = f[j] + fe
-            f[j + 1] = f[j + 1] - fe
-        return f
-
-    def _static_loads(self) -> list[Any]:
-        """Weights in water and the external loads of the unit and bodies, N."""
-        p = self.params
-        f = [ca.SX(ca.vertcat(0, 0, -float(w))) for w in self._node_weight]
-        if p.unit is not None:
-            f[0] = f[0] + ca.DM(p.unit.force)
-        for b in p.bodies:
-            f[b.node] = f[b.node] + ca.DM(b.force)
-        return f
-
-    def _drag(self, r: list[Any], vel: list[Any]) -> list[Any]:
-        """Hydrodynamic drag with current on segments (half to each node), unit and bodies,
-        N, at positions r and node velocities vel."""
-        p = self.params
-        f = self._zero_list()
-        rho = p.water_density
-        if rho == 0:
-            return f
-        for j in range(p.segments):
-            if p.normal_drag[j] == 0 and p.tangential_drag[j] == 0:
-                continue
-            dm = r[j + 1] - r[j]
-            lm = ca.norm_2(dm)
-            u = -0.5 * (vel[j] + vel[j + 1])
-            if p.current is not None:
-                u = u + ca.vec(p.current(0.5 * (r[j][2] + r[j + 1][2])))
-            fd = lm * drag_per_length(
-                p.drag_law, u, dm / lm, rho=rho, diameter=float(p.diameter[j]),
-                normal_drag=float(p.normal_drag[j]),
-                tangential_drag=float(p.tangential_drag[j]), delta=p.smoothing,
-                blend=p.vertical_blend)
-            f[j] = f[j] + 0.5 * fd
-            f[j + 1] = f[j + 1] + 0.5 * fd
-        if p.unit is not None:
-            un = p.unit
-            f[0] = f[0] + self._point_drag(r[0], vel[0], un.drag_area, un.drag_coefficient,
-                                           un.drag_law)
-        for b in p.bodies:
-            f[b.node] = f[b.node] + self._point_drag(
-                r[b.node], vel[b.node], (b.drag_area,) * 3, (b.drag_coefficient,) * 3,
-                "vector")
-        return f
-
-    def _point_drag(self, r: Any, v: Any, area: Vec3, coef: Vec3, law: str) -> Any:
-        p = self.params
-        cs = [a * c for a, c in zip(area, coef, strict=True)]
-        if not any(cs):
-            return ca.SX.zeros(3)
-        u = -v
-        if p.current is not None:
-            u = u + ca.vec(p.current(r[2]))
-        half_rho = 0.5 * p.water_density
-        if law == "vector":
-            speed = ca.sqrt(ca.dot(u, u) + p.smoothing**2)
-            return half_rho * speed * ca.vertcat(*[cs[k] * u[k] for k in range(3)])
-        return half_rho * ca.vertcat(*[cs[k] * smooth_abs(u[k], p.smoothing) * u[k]
-                                       for k in range(3)])
-
-    def _mass_expr(self, r: list[Any]) -> Any:
+    def mass_expr(self, r: list[Any]) -> Any:
         """Block-diagonal mass matrix of the free nodes with the direction-dependent added
         mass of (5.2), kg."""
-        blocks = self._mass_blocks(r)
+        blocks = self.eq.mass_blocks(r)
         return ca.diagcat(*[blocks[i] for i in self.free_nodes])
-
-    def _mass_blocks(self, r: list[Any]) -> list[Any]:
-        """3x3 mass blocks of every node (kg), with the added mass of (5.2)."""
-        p = self.params
-        n = p.segments
-        blocks = [ca.SX(ca.diag(ca.DM(self._node_mass[i]))) for i in range(n + 1)]
-        area = math.pi * p.diameter**2 / 4.0
-        for j in range(n):
-            en = p.water_density * p.added_mass_coefficient[j] * area[j] * p.segment_length[j]
-            et = (p.water_density * p.tangential_added_mass_coefficient[j] * area[j]
-                  * p.segment_length[j])
-            if en == 0 and et == 0:
-                continue
-            d = r[j + 1] - r[j]
-            tt = ca.mtimes(d, d.T) / ca.dot(d, d)
-            add = 0.5 * (en * (ca.SX.eye(3) - tt) + et * tt)
-            blocks[j] = blocks[j] + add
-            blocks[j + 1] = blocks[j + 1] + add
-        return blocks
-
-    def _energy_expr(self, v: Any, r: list[Any]) -> tuple[Any, Any]:
-        """Kinetic energy 1/2 v^T M v and potential energy (strain + weight), J."""
-        p = self.params
-        kin = 0.5 * ca.dot(v, ca.mtimes(self._mass_expr(r), v))
-        pot = 0
-        dd = p.slack_smoothing
-        for j in range(p.segments):
-            ell = float(p.segment_length[j])
-            ea = float(p.axial_stiffness[j])
-            eps = ca.norm_2(r[j + 1] - r[j]) / ell - 1.0
-            u = ea * eps
-            # ell * int_0^eps T de with T = (EA e + sqrt((EA e)^2 + dd^2)) / 2
-            pot = pot + ell * (ea * eps**2 / 4.0
-                             + (u * ca.sqrt(u * u + dd * dd) + dd * dd * ca.asinh(u / dd))
-                             / (4.0 * ea))
-        for i in range(p.segments + 1):
-            pot = pot + float(self._node_weight[i]) * r[i][2]
-        return kin, pot
 
     # -- reference scales --------------------------------------------------------------
     def force_scale(self, x: np.ndarray | None = None, t: float = 0.0) -> float:
         """Force scale F of the scaled residual, N: the largest of the total weight in
         water, the largest segment tension at the positions ``x`` (if given) and 1 N."""
-        f = max(float(np.abs(self._node_weight).sum()), 1.0)
+        f = max(float(np.abs(self.eq.node_weight).sum()), 1.0)
         if x is not None:
             f = max(f, float(np.max(np.asarray(self.tensions(x, t)[0]))))
         return f
@@ -641,7 +436,7 @@ class LumpedMassModel:
         """
         x = np.asarray(x_guess, float).reshape(-1).copy()
         tens = np.asarray(self.tensions(x, t)[0]).reshape(-1)
-        fscale = max(float(np.abs(self._node_weight).max()), float(np.abs(tens).max()), 1.0)
+        fscale = max(float(np.abs(self.eq.node_weight).max()), float(np.abs(tens).max()), 1.0)
         x1, info = self._static_newton(x, t, 1.0, tol, max_iter, fscale)
         if info["converged"]:
             return x1, info

@@ -20,10 +20,19 @@ from typing import TYPE_CHECKING, Any
 import casadi as ca
 import numpy as np
 
+from cable_ocp.dynamics.lumped_equations import (
+    GAUSS_W,
+    GAUSS_X,
+    added_mass_share,
+    point_drag,
+    point_drag_items,
+    segment_tension,
+)
 from cable_ocp.errors import CableOCPError
+from cable_ocp.numerics.block_tridiagonal import block_tridiagonal_solve
 from cable_ocp.numerics.compile import compile_function
-from cable_ocp.physics.drag import drag_per_length
-from cable_ocp.physics.smooth import smooth_abs
+from cable_ocp.physics.drag import line_drag_kernel, point_drag_jacobian
+from cable_ocp.physics.elasticity import taut_switch
 
 if TYPE_CHECKING:
     from cable_ocp.dynamics.lumped import LumpedMassModel
@@ -32,11 +41,6 @@ __all__ = ["SCHEMES", "LumpedStepper", "segment_kernel", "switch"]
 
 #: time-integration schemes of :meth:`cable_ocp.dynamics.lumped.LumpedMassModel.step_function`
 SCHEMES = ("midpoint", "trapezoidal", "bdf2")
-
-# 3-point Gauss-Legendre rule on [-1, 1] (mean of the tension over a strain interval)
-_GAUSS_X = (-math.sqrt(0.6), 0.0, math.sqrt(0.6))
-_GAUSS_W = (5.0 / 18.0, 8.0 / 18.0, 5.0 / 18.0)
-
 
 def next_state(scheme: str, x1: Any, z: Any, dt: Any, nf3: int) -> tuple[Any, Any]:
     """The stepped state from the new positions ``x1`` and the old stepped state ``z``
@@ -98,8 +102,8 @@ class LumpedStepper:
         t1 = t0 + dt
         if scheme == "midpoint":
             a0 = ca.SX.sym("a0", nf3)
-            r0 = self.model._all_positions(x0, t0)
-            r1 = self.model._all_positions(x1, t1)
+            r0 = self.model.all_positions(x0, t0)
+            r1 = self.model.all_positions(x1, t1)
             rm = [0.5 * (a + b) for a, b in zip(r0, r1, strict=True)]
             vm = (x1 - x0) / dt
 
@@ -109,9 +113,9 @@ class LumpedStepper:
                     vel = [(r1[0] - r0[0]) / dt] + vel
                 return vel + [(r1[-1] - r0[-1]) / dt]
 
-            f_el = self.model._free(self.model._elastic(r0, r1, velocities(vm), dt))
-            drag = self.model._free(self.model._drag(rm, velocities(vm)))
-            mass = self.model._mass_expr(rm)
+            f_el = self.model.free(self.model.eq.elastic(r0, r1, velocities(vm), dt))
+            drag = self.model.free(self.model.eq.drag(rm, velocities(vm)))
+            mass = self.model.mass_expr(rm)
             v1 = 2.0 * vm - v0
             inert = ca.mtimes(mass, v1 - v0) / dt
             extra = ca.vertcat(x0, v0, a0, t0)
@@ -119,13 +123,13 @@ class LumpedStepper:
             z = ca.vertcat(x0, v0, a0)
         elif scheme == "trapezoidal":
             a0 = ca.SX.sym("a0", nf3)
-            r1 = self.model._all_positions(x1, t1)
+            r1 = self.model.all_positions(x1, t1)
             v1 = 2.0 * (x1 - x0) / dt - v0
             a1 = 2.0 * (v1 - v0) / dt - a0
-            vel1 = self.model._all_velocities(v1, t1)
-            f_el = self.model._free(self.model._elastic(r1, None, vel1, None))
-            drag = self.model._free(self.model._drag(r1, vel1))
-            mass = self.model._mass_expr(r1)
+            vel1 = self.model.all_velocities(v1, t1)
+            f_el = self.model.free(self.model.eq.elastic(r1, None, vel1, None))
+            drag = self.model.free(self.model.eq.drag(r1, vel1))
+            mass = self.model.mass_expr(r1)
             inert = ca.mtimes(mass, a1)
             extra = ca.vertcat(x0, v0, a0, t0)
             guess = x0 + dt * v0 + 0.5 * dt * dt * a0
@@ -139,16 +143,16 @@ class LumpedStepper:
             c2 = 0.5 * started
             v1 = (c0 * x1 + c1 * x0 + c2 * xp) / dt
             a1 = (c0 * v1 + c1 * v0 + c2 * vp) / dt
-            r1 = self.model._all_positions(x1, t1)
-            vel1 = self.model._all_velocities(v1, t1)
-            f_el = self.model._free(self.model._elastic(r1, None, vel1, None))
-            drag = self.model._free(self.model._drag(r1, vel1))
-            mass = self.model._mass_expr(r1)
+            r1 = self.model.all_positions(x1, t1)
+            vel1 = self.model.all_velocities(v1, t1)
+            f_el = self.model.free(self.model.eq.elastic(r1, None, vel1, None))
+            drag = self.model.free(self.model.eq.drag(r1, vel1))
+            mass = self.model.mass_expr(r1)
             inert = ca.mtimes(mass, a1)
             extra = ca.vertcat(x0, v0, xp, vp, started, t0)
             guess = x0 + dt * v0 + started * (x0 - xp - dt * v0)
             z = ca.vertcat(x0, v0, xp, vp, started)
-        f_ext = self.model._free(self.model._static_loads())
+        f_ext = self.model.free(self.model.eq.static_loads())
         res = (inert - f_el - f_ext - drag) / fscale
         g = ca.Function("g", [x1, extra], [res])
         zin = ca.Function("split", [z, t0], [extra, guess])
@@ -176,13 +180,10 @@ class LumpedStepper:
     def segment_parameters(self) -> np.ndarray:
         """Kernel parameters per segment, shape (12, N) (:data:`KERNEL_PARAMS`)."""
         p = self.model.params
-        area = math.pi * p.diameter**2 / 4.0
+        en, et = self.model.eq.added_mass
         rows = {
             "l": p.segment_length, "ea": p.axial_stiffness, "c": p.axial_damping,
-            "d": p.diameter, "cn": p.normal_drag, "ct": p.tangential_drag,
-            "en": p.water_density * p.added_mass_coefficient * area * p.segment_length,
-            "et": (p.water_density * p.tangential_added_mass_coefficient * area
-                   * p.segment_length),
+            "d": p.diameter, "cn": p.normal_drag, "ct": p.tangential_drag, "en": en, "et": et,
             "rho": np.full(p.segments, p.water_density),
             "delta": np.full(p.segments, p.smoothing),
             "delta_t": np.full(p.segments, p.slack_smoothing),
@@ -194,36 +195,21 @@ class LumpedStepper:
         at node positions r and velocities v (MX, 3 x (N+1))."""
         p = self.model.params
         n = p.segments
-        items = []
-        if p.unit is not None:
-            items.append((0, [a * c for a, c in zip(p.unit.drag_area, p.unit.drag_coefficient,
-                                                    strict=True)], p.unit.drag_law))
-        items += [(b.node, [b.drag_area * b.drag_coefficient] * 3, "vector")
-                  for b in p.bodies]
-        items = [it for it in items if any(it[1]) and p.water_density > 0]
+        items = point_drag_items(p)
         fcols = [sym.zeros(3, 1) for _ in range(n + 1)]
         ccols = [sym.zeros(9, 1) for _ in range(n + 1)]
         if not items:
             return ca.horzcat(*fcols), ca.horzcat(*ccols)
         rs, vs, gs = ca.SX.sym("r", 3), ca.SX.sym("v", 3), ca.SX.sym("g")
-        eye = ca.SX.eye(3)
         for node, cs, law in items:
-            u = -vs
-            if p.current is not None:
-                u = u + ca.vec(p.current(rs[2]))
-            half_rho = 0.5 * p.water_density
+            u = self.model.eq.current(rs[2]) - vs
+            f = point_drag(u, cs, law, p.water_density, p.smoothing)
+            # its Newton block: -dF/dv = dF/du (the current's dependence on the height left
+            # out), symmetrised
+            dmat = point_drag_jacobian(u, cs, rho=p.water_density, delta=p.smoothing,
+                                       per_axis=law == "per_axis")
             if law == "vector":
-                sp = ca.sqrt(ca.dot(u, u) + p.smoothing**2)
-                f = half_rho * sp * ca.vertcat(*[cs[k] * u[k] for k in range(3)])
-                dmat = half_rho * ca.mtimes(ca.diag(ca.DM(cs)),
-                                            sp * eye + ca.mtimes(u, u.T) / sp)
                 dmat = 0.5 * (dmat + dmat.T)
-            else:
-                f = half_rho * ca.vertcat(*[cs[k] * smooth_abs(u[k], p.smoothing) * u[k]
-                                            for k in range(3)])
-                dmat = half_rho * ca.diag(ca.vertcat(*[
-                    cs[k] * (smooth_abs(u[k], p.smoothing)
-                             + u[k] ** 2 / smooth_abs(u[k], p.smoothing)) for k in range(3)]))
             fn = ca.Function("point_drag", [rs, vs, gs], [f, ca.vec(gs * dmat)])
             fk, ck = fn(r[:, node], v[:, node], gamma)
             fcols[node] = fcols[node] + fk
@@ -249,14 +235,8 @@ class LumpedStepper:
             kern = segment_kernel_expr(p.drag_law).map(n, "unroll")
         par = ca.DM(self.segment_parameters())
         ends = self.model.ends
-        node_m = ca.DM(np.vstack([np.diag(m).T.reshape(-1) for m in self.model._node_mass]).T)
-        static = np.zeros((3, n + 1))
-        static[2] = -self.model._node_weight
-        if p.unit is not None:
-            static[:, 0] += p.unit.force
-        for b in p.bodies:
-            static[:, b.node] += b.force
-        static = ca.DM(static)
+        node_m = ca.DM(np.vstack([np.diag(m).T.reshape(-1) for m in self.model.eq.node_mass]).T)
+        static = ca.DM(self.model.eq.loads)
         cur = None
         if p.current is not None:
             zs = ca.SX.sym("z")
@@ -359,7 +339,14 @@ class LumpedStepper:
         else:
             # the Newton update by block-tridiagonal elimination (3x3 blocks, no pivoting:
             # the matrix is close to symmetric positive definite), inlined in SX
-            dx_sx = _block_thomas(diag_b, off_b, ca.reshape(fres, 3, nf))
+            def blk(m: Any, k: int) -> Any:  # row-major 3x3 block k of the 9 x k rows
+                return ca.reshape(m[:, k], 3, 3).T
+
+            offs = [blk(off_b, k) for k in range(nf - 1)]
+            rhs = ca.reshape(fres, 3, nf)
+            dx_sx = ca.vertcat(*block_tridiagonal_solve(
+                [blk(diag_b, k) for k in range(nf)], offs, offs,
+                [rhs[:, k] for k in range(nf)]))
             gj = ca.Function("gj", [x1, zsym, t0, dt], [res, dx_sx])
         # the residual alone (the SX graph keeps only its part: about a third of gj's
         # operations), to check an iterate accepted on the contraction estimate
@@ -552,41 +539,27 @@ def segment_kernel_expr(drag_law: str) -> ca.Function:
     sc = ca.SX.sym("sc", 4)
     ell, ea, c, d, cn, ct, en, et, rho, delta, delta_t, blend = (par[k] for k in range(12))
     dt, mid, beta, gamma = sc[0], sc[1], sc[2], sc[3]
-
-    def tension(eps: Any) -> Any:
-        u = ea * eps
-        return 0.5 * (u + ca.sqrt(u * u + delta_t * delta_t))
-
-    def taut(eps: Any) -> Any:
-        u = ea * eps
-        return 0.5 * (1.0 + u / ca.sqrt(u * u + delta_t * delta_t))
-
+    # the segment's terms of the equations of motion (lumped_equations: one law for every
+    # form of the model), then their Newton blocks
     d0 = rb0 - ra0
     d1 = rb1 - ra1
-    l0 = ca.norm_2(d0)
-    l1 = ca.norm_2(d1)
-    e0 = l0 / ell - 1.0
-    e1 = l1 / ell - 1.0
-    em, de = 0.5 * (e0 + e1), 0.5 * (e1 - e0)
-    tbar = sum(w * tension(em + g * de) for g, w in zip(_GAUSS_X, _GAUSS_W, strict=True))
+    st_ = segment_tension(d1, ell, ea, c, delta_t, d0=d0, dt=dt, dv=vb - va, mid=mid)
+    l0, l1, em, de, tbar = st_["l0"], st_["l1"], st_["em"], st_["de"], st_["tension"]
+    f_el = tbar * st_["num"] / st_["den"]
     # derivative of the Gauss mean with respect to eps1 (the midpoint's Newton matrix)
-    dtbar = sum(w * ea * taut(em + g * de) * 0.5 * (1.0 + g)
-                for g, w in zip(_GAUSS_X, _GAUSS_W, strict=True))
-    rate = mid * (l1 - l0) / (ell * dt) + (1.0 - mid) * ca.dot(d1, vb - va) / (l1 * ell)
-    tbar = tbar + c * rate * taut(em)
-    f_el = tbar * (d0 + d1) / (l0 + l1)
+    dtbar = sum(w * ea * taut_switch(em + g * de, ea, delta_t) * 0.5 * (1.0 + g)
+                for g, w in zip(GAUSS_X, GAUSS_W, strict=True))
     # drag and added mass at the mean positions
     dm = 0.5 * (d0 + d1)
     lm = ca.norm_2(dm)
     tm = dm / lm
     urel = u_c - 0.5 * (va + vb)
-    f_d = lm * drag_per_length(drag_law, urel, tm, rho=1.0, diameter=1.0, normal_drag=1.0,
-                               tangential_drag=0.0, delta=delta, blend=blend) * (rho * cn * d)
-    ut = ca.dot(urel, tm)
-    f_d = f_d + lm * 0.5 * rho * ct * math.pi * d * ca.sqrt(ut * ut + delta * delta) * ut * tm
+    # the drag's kernel form: its value and Jacobian (physics.drag)
+    f_d, dmat = line_drag_kernel(drag_law, urel, tm, lm, rho=rho, diameter=d,
+                                 normal_drag=cn, tangential_drag=ct, delta=delta,
+                                 blend=blend)
     eye = ca.SX.eye(3)
-    eet = ca.mtimes(tm, tm.T)
-    madd = 0.5 * (en * (eye - eet) + et * eet)
+    madd = added_mass_share(dm, en, et, ca.mtimes(tm, tm.T))
     # Newton blocks
     # d(T u)/d d1 with u = (d0 + d1) / (|d0| + |d1|), e1 = d1 / |d1|:
     # (dT/deps1 / l) u e1^T + T (I - u e1^T) / (|d0| + |d1|), times 2 beta (beta = 1/2 for
@@ -594,14 +567,8 @@ def segment_kernel_expr(drag_law: str) -> ca.Function:
     # e1). Not symmetric for the midpoint: the strain at level 1 follows e1, the force u.
     uet = ca.mtimes((d0 + d1) / (l0 + l1), (d1 / l1).T)
     kb = 2.0 * beta * (dtbar / ell * uet + tbar / (l0 + l1) * (eye - uet)) + gamma * c / ell * (
-        taut(em) * uet)
-    un = urel - ut * tm
-    sn = ca.sqrt(ca.dot(un, un) + delta * delta)
-    st = ca.sqrt(ut * ut + delta * delta)
-    dmat = 0.5 * rho * cn * d * (sn * (eye - eet) + ca.mtimes(un, un.T) / sn)
-    dmat = dmat + 0.5 * rho * ct * math.pi * d * (st + ut * ut / st) * eet
+        taut_switch(em, ea, delta_t) * uet)
     cb = 0.25 * gamma * lm * dmat
-    # drag_per_length(rho=1, d=1, C_n=1) is half of |u_n| u_n: scaled by rho C_n d above
     return ca.Function(
         f"segment_{drag_law}", [ra0, rb0, ra1, rb1, va, vb, u_c, par, sc],
         [f_el + 0.5 * f_d, -f_el + 0.5 * f_d, ca.vec(madd.T), ca.vec(kb.T), ca.vec(cb.T)],
@@ -620,28 +587,6 @@ def switch(name: str, cond: Any, if_true: ca.Function, if_false: ca.Function,
     (a Newton iterate, a step's result) evaluates that value again: here the branches take
     those values as arguments.)"""
     return ca.Function.if_else(name, if_true, if_false)(cond, *args)
-
-
-def _block_thomas(diag: Any, off: Any, rhs: Any) -> Any:
-    """Solve the block-tridiagonal system with 3x3 diagonal blocks ``diag`` (9 x n,
-    row-major) and equal upper and lower blocks ``off`` (9 x (n-1)) for ``rhs`` (3 x n), by
-    block elimination without pivoting (SX). Returns the solution as a (3 n,) vector."""
-    n = rhs.shape[1]
-
-    def blk(m: Any, k: int) -> Any:
-        return ca.reshape(m[:, k], 3, 3).T
-
-    d_p = [blk(diag, 0)]
-    y = [rhs[:, 0]]
-    for i in range(1, n):
-        w = ca.mtimes(blk(off, i - 1), ca.inv(d_p[i - 1]))
-        d_p.append(blk(diag, i) - ca.mtimes(w, blk(off, i - 1)))
-        y.append(rhs[:, i] - ca.mtimes(w, y[i - 1]))
-    x = [None] * n
-    x[n - 1] = ca.solve(d_p[n - 1], y[n - 1])
-    for i in range(n - 2, -1, -1):
-        x[i] = ca.solve(d_p[i], y[i] - ca.mtimes(blk(off, i), x[i + 1]))
-    return ca.vertcat(*x)
 
 
 def segment_kernel(drag_law: str, compile_kernel: bool = True) -> ca.Function:

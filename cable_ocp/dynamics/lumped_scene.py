@@ -24,15 +24,24 @@ import numpy as np
 from cable_ocp.dynamics.lumped import LumpedMassModel
 from cable_ocp.dynamics.lumped_params import LumpedParams, PointBody, UnitParams
 from cable_ocp.dynamics.lumped_run import LumpedRun, run
-from cable_ocp.dynamics.result import ModesResult, SimulationResult
+from cable_ocp.dynamics.model import DrivenStep
+from cable_ocp.dynamics.result import (
+    ModesResult,
+    SimulationResult,
+    slack_report,
+    until_slack,
+)
 from cable_ocp.errors import CableOCPError
 from cable_ocp.physics.current import current_velocity
 from cable_ocp.scene.dynamics import DynamicScene
 from cable_ocp.scene.motion import top_offset_expr
 
-__all__ = ["check_lumped_plant", "lumped_params", "lumped_start", "modes_lumped",
-           "segment_counts", "simulate_lumped"]
+__all__ = ["LumpedSceneModel", "check_lumped_plant", "lumped_params", "lumped_start",
+           "modes_lumped", "segment_counts", "simulate_lumped"]
 
+#: the slack message of the lumped-mass model (:func:`cable_ocp.dynamics.result.slack_report`)
+SLACK_MESSAGE = ("slack: segment {segment} (s = {location:.4g} m from end_a) first went slack "
+                 "at t = {t:.6g} s; Huang (1992) ch. 5 excludes slack cable: {action}")
 #: at most this many progress calls (chunks) per run
 MAX_CHUNKS = 200
 #: runs with more segment-steps than this compile the whole step to C
@@ -221,50 +230,10 @@ def _failed_result(scene: DynamicScene, model: LumpedMassModel, message: str,
         t=np.zeros(0), length=np.zeros(0), top_position=empty, unit_position=empty,
         top_tension=np.zeros(0), node_positions=np.zeros((0, n + 1, 3)),
         segment_tensions=np.zeros((0, n)), min_tension=math.nan,
-        slack={"occurred": False, "first_time": None, "location": None, "segment": None},
+        slack=slack_report(None, None, None, status="failed", message=message,
+                           on_slack=scene.simulation.on_slack, template=SLACK_MESSAGE)[0],
         status="failed", message=message, model="lumped3d", scheme=scene.simulation.scheme,
         diagnostics={"start": info})
-
-
-def simulate_lumped(scene: DynamicScene, progress: Callable[[int, int], None] | None = None
-                    ) -> SimulationResult:
-    """Time-domain simulation of the lumped-mass model (dispatched by
-    :func:`cable_ocp.dynamics.simulate`).
-
-    ``simulation.scheme``: ``"midpoint"`` (default), ``"trapezoidal"``, ``"bdf2"``
-    (:meth:`~cable_ocp.dynamics.lumped.LumpedMassModel.step_function`) or ``"thesis"``
-    (Huang's (5.21), :mod:`cable_ocp.dynamics.lumped_thesis`). ``simulation.tolerance``
-    is the Newton tolerance on the nodal force residual over the force scale (the largest
-    of the total weight in water and the largest static tension).
-    """
-    sim = scene.simulation
-    model = LumpedMassModel(lumped_params(scene))
-    x0, info = lumped_start(scene, model)
-    if x0 is None:
-        return _failed_result(scene, model, info["message"], info)
-    total = sim.steps
-
-    def prog(t_done: float, duration: float) -> None:
-        if progress is not None:
-            progress(min(total, int(round(t_done / sim.time_step))), total)
-
-    every = sim.output_every
-    n_out = sim.steps // every
-    if sim.scheme == "thesis":
-        from cable_ocp.dynamics.lumped_thesis import run_thesis
-
-        out = run_thesis(model, x0, None, sim.duration, sim.time_step, record_every=every,
-                         progress=prog)
-    else:
-        # long runs: compile the whole step to C (a few seconds, cached) - about 3-5x
-        # faster per step than the compiled kernel alone
-        compile_mode = "step" if sim.steps * model.params.segments > COMPILE_STEP_ABOVE \
-            else "kernel"
-        out = run(model, x0, None, sim.duration, sim.time_step, scheme=sim.scheme,
-                  record_every=every, chunk_records=max(1, math.ceil(n_out / MAX_CHUNKS)),
-                  tol=sim.tolerance, max_iter=sim.max_iterations, compile=compile_mode,
-                  progress=prog)
-    return _result(scene, model, out, info)
 
 
 def _result(scene: DynamicScene, model: LumpedMassModel, out: LumpedRun,
@@ -276,23 +245,16 @@ def _result(scene: DynamicScene, model: LumpedMassModel, out: LumpedRun,
     tens = out.tension
     top = np.linalg.norm(out.top_force, axis=1)
     s_mid = 0.5 * (p.node_arc_length[:-1] + p.node_arc_length[1:])
-    slack: dict[str, Any] = {"occurred": out.slack is not None, "first_time": None,
-                             "location": None, "segment": None}
-    if out.slack is not None:
-        t_slack, seg = out.slack
-        slack.update(first_time=t_slack, segment=seg, location=float(s_mid[seg]))
-        if sim.on_slack == "stop":
-            keep = ts <= t_slack + sim.output_step * (1.0 + 1e-9)
-            ts, tens, top = ts[keep], tens[keep], top[keep]
-        if status == "solved":
-            status = "slack"
-            action = ("the run stopped there" if sim.on_slack == "stop" else
-                      "the run continued: a slack segment carries no tension (the smooth "
-                      "no-compression law) and the line may fold there, which the model "
-                      "follows only approximately")
-            message = (f"slack: segment {seg} (s = {slack['location']:.4g} m from end_a) first "
-                       f"went slack at t = {t_slack:.6g} s; Huang (1992) ch. 5 excludes "
-                       f"slack cable: {action}")
+    t_slack, seg = out.slack if out.slack is not None else (None, None)
+    keep = until_slack(ts, t_slack, sim.output_step, sim.on_slack)
+    if keep is not None:
+        ts, tens, top = ts[keep], tens[keep], top[keep]
+    slack, status, message = slack_report(
+        t_slack, seg, None if seg is None else float(s_mid[seg]), status=status,
+        message=message, on_slack=sim.on_slack, template=SLACK_MESSAGE,
+        continued="the run continued: a slack segment carries no tension (the smooth "
+                  "no-compression law) and the line may fold there, which the model follows "
+                  "only approximately")
     positions = out.positions[:ts.size]
     velocities = out.velocities[:ts.size] if out.velocities is not None else None
     warnings = []
@@ -325,33 +287,169 @@ def _result(scene: DynamicScene, model: LumpedMassModel, out: LumpedRun,
         model="lumped3d", scheme=sim.scheme, diagnostics=diagnostics)
 
 
-def modes_lumped(scene: DynamicScene, count: int) -> ModesResult:
-    """Natural frequencies and mode shapes of the lumped-mass model about its static
-    state (dispatched by :func:`cable_ocp.dynamics.modes`).
+class LumpedSceneModel:
+    """The lumped-mass model of a dynamic scene, as :class:`cable_ocp.dynamics.model.CableModel`.
 
-    K = -dF/dx of the tension, weight and body loads at the static state (the current
-    shapes that state but its drag is left out of K), M with the direction-dependent added
-    mass (5.2): K phi = omega^2 M phi. A fixed end_b (and an anchored end_a) has zero
-    displacement in every shape.
+    Parameters
+    ----------
+    scene : DynamicScene
+        A lumped3d scene (:func:`lumped_params` checks it).
+    segments : int, optional
+        Lumped segments (default ``simulation.segments``).
+
+    Attributes
+    ----------
+    model : LumpedMassModel
+        The model of :func:`lumped_params`; its state is the free nodes' positions (m) and
+        velocities (m/s), node-major (x, y, z).
+    free : list of int
+        The free nodes (0..N-1 with a unit, 1..N-1 with an anchored end_a).
     """
-    model = LumpedMassModel(lumped_params(scene))
-    x0, info = lumped_start(scene, model)
-    n = model.params.segments
-    if x0 is None:
-        return ModesResult(frequencies=np.zeros(0), shapes=np.zeros((0, n + 1, 3)),
-                           node_positions=np.zeros((n + 1, 3)), length=model.params.length,
-                           model="lumped3d", status="failed", message=info["message"],
-                           diagnostics={"start": info})
-    omega, shapes, lam = model.modes(x0, count)
-    nodes = np.asarray(model.nodes(x0, 0.0)).T
-    msg = f"{omega.size} modes, {n} segments"
-    status = "solved"
-    if np.any(lam < 0):
-        status = "failed"
-        msg = (f"the static state is unstable: {int(np.sum(lam < 0))} negative eigenvalues "
-               "of K (a compressed or slack line)")
-    return ModesResult(frequencies=omega, shapes=shapes, node_positions=nodes,
-                       length=model.params.length, model="lumped3d", status=status,
-                       message=msg, diagnostics={"segments": n, "start": info,
-                                                 "stiffness": "tension, weight and body "
-                                                 "loads; drag neglected"})
+
+    name = "lumped3d"
+
+    def __init__(self, scene: DynamicScene, segments: int | None = None) -> None:
+        self.scene = scene
+        self.params = lumped_params(scene, segments)
+        self.model = LumpedMassModel(self.params)
+        self.n = self.params.segments
+        self.free = [int(i) for i in self.model.free_nodes]
+        self._static: tuple[np.ndarray | None, dict[str, Any]] | None = None
+
+    def state_size(self) -> int:
+        """Positions and velocities of the free nodes: ``6 n_free``."""
+        return 6 * self.model.n_free
+
+    def static_positions(self) -> tuple[np.ndarray | None, dict[str, Any]]:
+        """The free nodes' positions at rest (m), :func:`lumped_start` (computed once)."""
+        if self._static is None:
+            self._static = lumped_start(self.scene, self.model)
+        return self._static
+
+    def static_state(self) -> tuple[np.ndarray | None, dict[str, Any]]:
+        """The state at rest: :meth:`static_positions` and zero velocities."""
+        x0, info = self.static_positions()
+        return (None if x0 is None else np.concatenate([x0, np.zeros_like(x0)])), info
+
+    def driven_step(self, dt: float | None = None) -> DrivenStep:
+        """The midpoint step with the top's height and the top segment's length as inputs
+        (:class:`~cable_ocp.dynamics.lumped_driven.DrivenLumpedStep`, in coordinates
+        relative to the top; ``dt`` a symbol unless given, s). Needs a unit at end_a.
+
+        Raises
+        ------
+        CableOCPError
+            When end_a is anchored, or the static state failed.
+        """
+        from cable_ocp.dynamics.lumped_driven import DrivenLumpedStep
+
+        step = DrivenLumpedStep(self.model, self.scene.length)
+        x_abs, info = self.static_positions()
+        if x_abs is None:
+            raise CableOCPError(f"the lumped-mass line's static state failed: "
+                                f"{info.get('message', '')}")
+        e = step.expressions(self.model.force_scale(np.asarray(x_abs, dtype=float)))
+        q = np.asarray(x_abs, dtype=float) - np.tile(step.top0, step.n)
+        if dt is not None:
+            e = dict(e)
+            for key in ("res", "x1", "guess", "out"):
+                e[key] = ca.substitute(e[key], e["dt"], ca.SX(float(dt)))
+            e["dt"] = float(dt)
+        return DrivenStep(unknown=e["y"], state=ca.vertcat(e["q0"], e["v0"]),
+                          inputs=e["p"], dt=e["dt"], residual=e["res"],
+                          next_state=e["x1"], guess=e["guess"], outputs=e["out"],
+                          start=np.concatenate([q, np.zeros(q.size)]))
+
+    def linearize(self) -> tuple[np.ndarray, np.ndarray]:
+        """Stiffness (N/m) and mass (kg) about the static positions
+        (:meth:`~cable_ocp.dynamics.lumped.LumpedMassModel.linearize`).
+
+        Raises
+        ------
+        CableOCPError
+            When the static state failed.
+        """
+        x0, info = self.static_positions()
+        if x0 is None:
+            raise CableOCPError(info["message"])
+        return self.model.linearize(x0)
+
+    def simulate(self, progress: Callable[[int, int], None] | None = None
+                 ) -> SimulationResult:
+        """Time-domain simulation of the scene.
+
+        ``simulation.scheme``: ``"midpoint"`` (default), ``"trapezoidal"``, ``"bdf2"``
+        (:meth:`~cable_ocp.dynamics.lumped.LumpedMassModel.step_function`) or ``"thesis"``
+        (Huang's (5.21), :mod:`cable_ocp.dynamics.lumped_thesis`). ``simulation.tolerance``
+        is the Newton tolerance on the nodal force residual over the force scale (the
+        largest of the total weight in water and the largest static tension).
+        """
+        scene, model = self.scene, self.model
+        sim = scene.simulation
+        x0, info = self.static_positions()
+        if x0 is None:
+            return _failed_result(scene, model, info["message"], info)
+        total = sim.steps
+
+        def prog(t_done: float, duration: float) -> None:
+            if progress is not None:
+                progress(min(total, int(round(t_done / sim.time_step))), total)
+
+        every = sim.output_every
+        n_out = sim.steps // every
+        if sim.scheme == "thesis":
+            from cable_ocp.dynamics.lumped_thesis import run_thesis
+
+            out = run_thesis(model, x0, None, sim.duration, sim.time_step, record_every=every,
+                             progress=prog)
+        else:
+            # long runs: compile the whole step to C (a few seconds, cached) - about 3-5x
+            # faster per step than the compiled kernel alone
+            compile_mode = "step" if sim.steps * model.params.segments > COMPILE_STEP_ABOVE \
+                else "kernel"
+            out = run(model, x0, None, sim.duration, sim.time_step, scheme=sim.scheme,
+                      record_every=every, chunk_records=max(1, math.ceil(n_out / MAX_CHUNKS)),
+                      tol=sim.tolerance, max_iter=sim.max_iterations, compile=compile_mode,
+                      progress=prog)
+        return _result(scene, model, out, info)
+
+    def modes(self, count: int) -> ModesResult:
+        """Natural frequencies and mode shapes about the static state.
+
+        K = -dF/dx of the tension, weight and body loads at the static state (the current
+        shapes that state but its drag is left out of K), M with the direction-dependent
+        added mass (5.2): K phi = omega^2 M phi. A fixed end_b (and an anchored end_a) has
+        zero displacement in every shape.
+        """
+        model = self.model
+        x0, info = self.static_positions()
+        n = model.params.segments
+        if x0 is None:
+            return ModesResult(frequencies=np.zeros(0), shapes=np.zeros((0, n + 1, 3)),
+                               node_positions=np.zeros((n + 1, 3)), length=model.params.length,
+                               model="lumped3d", status="failed", message=info["message"],
+                               diagnostics={"start": info})
+        omega, shapes, lam = model.modes(x0, count)
+        nodes = np.asarray(model.nodes(x0, 0.0)).T
+        msg = f"{omega.size} modes, {n} segments"
+        status = "solved"
+        if np.any(lam < 0):
+            status = "failed"
+            msg = (f"the static state is unstable: {int(np.sum(lam < 0))} negative eigenvalues "
+                   "of K (a compressed or slack line)")
+        return ModesResult(frequencies=omega, shapes=shapes, node_positions=nodes,
+                           length=model.params.length, model="lumped3d", status=status,
+                           message=msg, diagnostics={"segments": n, "start": info,
+                                                     "stiffness": "tension, weight and body "
+                                                     "loads; drag neglected"})
+
+
+def simulate_lumped(scene: DynamicScene, progress: Callable[[int, int], None] | None = None
+                    ) -> SimulationResult:
+    """:meth:`LumpedSceneModel.simulate` of the scene."""
+    return LumpedSceneModel(scene).simulate(progress)
+
+
+def modes_lumped(scene: DynamicScene, count: int) -> ModesResult:
+    """:meth:`LumpedSceneModel.modes` of the scene."""
+    return LumpedSceneModel(scene).modes(count)

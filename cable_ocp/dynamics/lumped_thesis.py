@@ -43,6 +43,7 @@ from cable_ocp.dynamics.lumped import LumpedMassModel
 from cable_ocp.dynamics.lumped_run import LumpedRun
 from cable_ocp.errors import CableOCPError
 from cable_ocp.numerics.linalg import solve_sparse
+from cable_ocp.physics.elasticity import hooke_tension
 
 __all__ = ["run_thesis", "thesis_step"]
 
@@ -201,7 +202,7 @@ def run_thesis(model: LumpedMassModel, x0: np.ndarray, v0: np.ndarray | None,
     velocities = vel.reshape(3, n, model.params.segments + 1).transpose(1, 2, 0)
     d = positions[:, 1:] - positions[:, :-1]
     strain = np.linalg.norm(d, axis=2) / model.params.segment_length - 1.0
-    tension = model.params.axial_stiffness * strain  # (5.3): compression allowed
+    tension = hooke_tension(strain, model.params.axial_stiffness)  # (5.3): compression allowed
     ftop = np.asarray(model.top_force.map(n)(xa.T, va.T, ta[None, :])).T
     slack = None
     bad = np.argwhere(strain <= 0.0)

@@ -13,7 +13,8 @@ from typing import Any
 
 import numpy as np
 
-__all__ = ["DeploymentChart", "ModesResult", "SimulationResult", "json_safe"]
+__all__ = ["DeploymentChart", "ModesResult", "SimulationResult", "json_safe", "slack_report",
+           "until_slack"]
 
 
 def json_safe(value: Any) -> Any:
@@ -32,6 +33,82 @@ def json_safe(value: Any) -> Any:
         x = float(value)
         return x if math.isfinite(x) else None
     return value
+
+
+#: what the slack message says when ``simulation.on_slack = "stop"``
+SLACK_STOPPED = "the run stopped there"
+
+
+def until_slack(t: np.ndarray, first_time: float | None, sample_step: float,
+                on_slack: str) -> np.ndarray | None:
+    """The samples a run keeps when it stops at slack: those up to the first sample after
+    the first slack time (boolean mask over ``t``), or None when nothing is cut (no slack,
+    or ``on_slack = "continue"``).
+
+    Parameters
+    ----------
+    t : ndarray (n,)
+        Sample times, s.
+    first_time : float or None
+        End time of the first step with slack, s (None or inf: none).
+    sample_step : float
+        The output interval, s.
+    on_slack : {"stop", "continue"}
+        ``simulation.on_slack``.
+    """
+    if on_slack != "stop" or first_time is None or not math.isfinite(first_time):
+        return None
+    return t <= first_time + sample_step * (1.0 + 1e-9)
+
+
+def slack_report(first_time: float | None, segment: int | None, location: float | None, *,
+                 status: str, message: str, on_slack: str, template: str,
+                 continued: str = "", **fields: Any) -> tuple[dict[str, Any], str, str]:
+    """The ``slack`` entry of a :class:`SimulationResult` and the status and message it
+    implies, for every model.
+
+    A run that went slack and otherwise succeeded gets the status ``"slack"`` and the
+    model's message ``template`` formatted with ``t`` (the first slack time, s),
+    ``segment``, ``location`` (m from end_a), ``action`` (:data:`SLACK_STOPPED` where
+    ``on_slack = "stop"``, else ``continued``: what the model does with a slack line) and
+    any further ``fields``; a failed run keeps its status and message.
+
+    Parameters
+    ----------
+    first_time : float or None
+        End time of the first step with slack, s (None or inf: no slack).
+    segment : int or None
+        The first slack element or segment from end_a.
+    location : float or None
+        Its middle's unstretched arc length from end_a, m.
+    status, message : str
+        The run's status and message so far.
+    on_slack : {"stop", "continue"}
+        ``simulation.on_slack``.
+    template : str
+        The model's slack message (``str.format`` fields as above).
+    continued : str
+        The model's words for a run that continues through slack.
+    **fields
+        Further fields of ``template``.
+
+    Returns
+    -------
+    (slack, status, message)
+        ``slack``: ``occurred``, ``first_time`` (s), ``location`` (m), ``segment``.
+    """
+    occurred = first_time is not None and math.isfinite(first_time)
+    slack: dict[str, Any] = {"occurred": bool(occurred), "first_time": None,
+                             "location": None, "segment": None}
+    if not occurred:
+        return slack, status, message
+    slack.update(first_time=first_time, segment=segment, location=location)
+    if status == "solved":
+        status = "slack"
+        action = SLACK_STOPPED if on_slack == "stop" else continued
+        message = template.format(t=first_time, segment=segment, location=location,
+                                  action=action, **fields)
+    return slack, status, message
 
 
 @dataclass(frozen=True)

@@ -30,6 +30,7 @@ import numpy as np
 
 from cable_ocp.dynamics.axial import AxialModel, static_profile
 from cable_ocp.errors import CableOCPError
+from cable_ocp.numerics.block_tridiagonal import block_tridiagonal_solve
 from cable_ocp.numerics.compile import compile_functions
 from cable_ocp.scene.dynamics import DynamicScene
 
@@ -229,7 +230,8 @@ class AxialCablePlant(SampledCablePlant):
         Each midpoint step ``x1 - x0 - dt f(dt/2, (x0 + x1)/2) = 0`` takes two Newton
         iterations from ``x1 = x0``. The Jacobian is block tridiagonal in the node order
         (zeta_i, V_i) (each node couples to its neighbours only: checked when built), so an
-        iteration is a block Thomas elimination of 2 x 2 blocks written in SX, about 140
+        iteration is a block Thomas elimination of 2 x 2 blocks written in SX
+        (:func:`cable_ocp.numerics.block_tridiagonal.block_tridiagonal_solve`), about 140
         operations per node: no sparse LU, no Python. The line is nearly linear (the drag
         and the pay-out terms are the only nonlinearities), so one iteration is already
         exact up to them and the second squares that error; the scaled residual of the
@@ -257,7 +259,13 @@ class AxialCablePlant(SampledCablePlant):
         if rows.size and np.max(np.abs(rows // 2 - cols // 2)) > 1:
             raise CableOCPError("cable plant: the axial model's Jacobian is not block "
                                 "tridiagonal (internal error)")
-        step = _block_tridiagonal_solve(jac, res[perm], n)
+        def blk(i: int, j: int) -> ca.SX:
+            return jac[2 * i: 2 * i + 2, 2 * j: 2 * j + 2]
+
+        rp = res[perm]
+        step = ca.vertcat(*block_tridiagonal_solve(
+            [blk(i, i) for i in range(n)], [blk(i + 1, i) for i in range(n - 1)],
+            [blk(i, i + 1) for i in range(n - 1)], [rp[2 * i: 2 * i + 2] for i in range(n)]))
         newton = ca.Function("axial_newton", [x1, x0, p], [x1 - step[back]])
         resid = ca.Function("axial_resid", [x1, x0, p], [ca.norm_inf(res * scale)])
         heights, tens, top, length, vel = md.outputs(t, x)
@@ -339,31 +347,6 @@ class AxialCablePlant(SampledCablePlant):
         md = self.model
         length = self.length0 if length is None else length
         return md.unit_weight, md.unit_weight + md.w * length
-
-def _inv2(m: ca.SX) -> ca.SX:
-    a, b, c, d = m[0, 0], m[0, 1], m[1, 0], m[1, 1]
-    return ca.vertcat(ca.horzcat(d, -b), ca.horzcat(-c, a)) / (a * d - b * c)
-
-
-def _block_tridiagonal_solve(jac: ca.SX, r: ca.SX, n: int) -> ca.SX:
-    """``jac^-1 r`` for a block-tridiagonal ``jac`` of ``n`` 2 x 2 blocks (block Thomas
-    elimination without pivoting: here ``jac = I - dt/2 df/dx`` of the midpoint rule, whose
-    Schur complements stay close to ``I + dt^2/4 M^-1 K``, well conditioned)."""
-    def blk(i: int, j: int) -> ca.SX:
-        return jac[2 * i: 2 * i + 2, 2 * j: 2 * j + 2]
-
-    piv = [blk(0, 0)]
-    rhs = [r[0:2]]
-    for i in range(1, n):
-        w = ca.mtimes(blk(i, i - 1), _inv2(piv[i - 1]))
-        piv.append(blk(i, i) - ca.mtimes(w, blk(i - 1, i)))
-        rhs.append(r[2 * i: 2 * i + 2] - ca.mtimes(w, rhs[i - 1]))
-    sol: list[ca.SX] = [ca.SX()] * n
-    sol[n - 1] = ca.mtimes(_inv2(piv[n - 1]), rhs[n - 1])
-    for i in range(n - 2, -1, -1):
-        sol[i] = ca.mtimes(_inv2(piv[i]), rhs[i] - ca.mtimes(blk(i, i + 1), sol[i + 1]))
-    return ca.vertcat(*sol)
-
 
 def compile_plant_functions(fns: list[ca.Function], flags: str = "-O1") -> list[ca.Function]:
     """Compile the plant's functions to one shared library (``cc -O1``: on the generated

@@ -34,7 +34,7 @@ import numpy as np
 
 from cable_ocp.dynamics.axial import check_axial
 from cable_ocp.dynamics.lumped import LumpedMassModel
-from cable_ocp.dynamics.lumped_params import LumpedParams
+from cable_ocp.dynamics.lumped_driven import DrivenLumpedStep
 from cable_ocp.dynamics.lumped_scene import check_lumped_plant
 from cable_ocp.dynamics.planar import PlanarModel, check_planar
 from cable_ocp.errors import CableOCPError
@@ -44,17 +44,12 @@ from cable_ocp.heave.axial_plant import (
     compile_plant_functions,
     sampled_motion,
 )
-from cable_ocp.physics.drag import drag_per_length
 from cable_ocp.scene.dynamics import DynamicScene, dynamic_scene_from_dict
 
 __all__ = ["HALVINGS", "PLANT_MODELS", "TOP_SEGMENT_RANGE", "LumpedCablePlant",
            "check_plant_scene",
            "PlanarCablePlant", "axial_twin", "cable_plant", "lumped_axial_frequency",
            "still_scene"]
-
-# 3-point Gauss-Legendre rule on [-1, 1] (the discrete-gradient tension, as the models')
-_GAUSS_X = (-math.sqrt(0.6), 0.0, math.sqrt(0.6))
-_GAUSS_W = (5.0 / 18.0, 8.0 / 18.0, 5.0 / 18.0)
 
 #: the cable scene's ``simulation.model`` values that can be the heave plant
 PLANT_MODELS = ("axial", "planar", "lumped3d")
@@ -458,236 +453,6 @@ def lumped_axial_frequency(scene: DynamicScene) -> float:
     share = np.sum(shapes[:, :, 2] ** 2, axis=1) / np.sum(shapes**2, axis=(1, 2))
     return float(omega[np.flatnonzero(share > 0.99)[0]])
 
-class _SteppedLumped(LumpedMassModel):
-    """The lumped-mass model with the top segment's unstretched length and the top's
-    height as parameters of a step.
-
-    The base model (built on the scene's line at its length ``L0``, the top at rest)
-    gives the static equilibrium, the force scale, the node masses and weights of the
-    fixed segments and the loads of the unit and bodies. :meth:`step_expressions` builds
-    the implicit-midpoint step with, over the step ``(0, dt)``, the unstretched length
-    ``L`` and the top's height linear between ``p = [L_a, L_b, z_a, z_b]`` (m); the top
-    keeps its static x and y. The top segment (node N-1 to the top, node N) has the
-    unstretched length ``l_top = l_top0 + (L - L0)``: the winch pays cable in and out
-    there; the other segments keep theirs.
-    """
-
-    def __init__(self, params: LumpedParams, length0: float) -> None:
-        super().__init__(params)
-        if params.fixed_a:
-            raise CableOCPError("the lumped-mass heave plant needs a [unit] at end_a (the "
-                                "unit the winch lifts), not an anchor")
-        self.length0 = float(length0)
-        self.l_top0 = float(params.segment_length[-1])
-        self.top0 = np.asarray(params.top_position(0.0), dtype=float).ravel()
-
-    @property
-    def n(self) -> int:
-        """Number of lumped segments N."""
-        return self.params.segments
-
-    # -- one segment ---------------------------------------------------------------------
-    def _seg_drag(self, j: int, d: Any, urel: Any) -> Any:
-        """Drag on segment ``j`` (N) with chord ``d`` and relative flow ``urel``: the drag
-        per stretched length (:func:`cable_ocp.physics.drag.drag_per_length`) times
-        ``|d|``, as :class:`~cable_ocp.dynamics.lumped.LumpedMassModel`."""
-        p = self.params
-        if p.water_density == 0 or (p.normal_drag[j] == 0 and p.tangential_drag[j] == 0):
-            return ca.SX.zeros(3)
-        lm = ca.norm_2(d)
-        return lm * drag_per_length(
-            p.drag_law, urel, d / lm, rho=p.water_density, diameter=float(p.diameter[j]),
-            normal_drag=float(p.normal_drag[j]),
-            tangential_drag=float(p.tangential_drag[j]), delta=p.smoothing,
-            blend=p.vertical_blend)
-
-    def _seg_added_mass(self, j: int, d: Any, ell: Any) -> Any:
-        """Each end node's share (3x3, kg) of segment ``j``'s added mass at chord ``d`` and
-        unstretched length ``ell`` (Huang (1992), eq. (5.2))."""
-        p = self.params
-        area = math.pi * float(p.diameter[j]) ** 2 / 4.0
-        cn = p.water_density * float(p.added_mass_coefficient[j]) * area
-        ct = p.water_density * float(p.tangential_added_mass_coefficient[j]) * area
-        if cn == 0 and ct == 0:
-            return ca.SX.zeros(3, 3)
-        tt = ca.mtimes(d, d.T) / ca.dot(d, d)
-        return 0.5 * ell * (cn * (ca.SX.eye(3) - tt) + ct * tt)
-
-    def _seg_tension(self, j: int, d: Any, ell: Any, rate: Any) -> tuple[Any, Any]:
-        """(tension (N): the smooth no-compression law plus the material damping at the
-        strain rate ``rate`` (1/s); the Hooke tension ``EA eps`` plus the same damping,
-        negative where the segment is slack)."""
-        eps = ca.norm_2(d) / ell - 1.0
-        damp = float(self.params.axial_damping[j]) * rate * self._taut(eps, j)
-        return (self._tension_of_strain(eps, j) + damp,
-                float(self.params.axial_stiffness[j]) * eps + damp)
-
-    # -- the step ------------------------------------------------------------------------
-    def step_expressions(self, fscale: float) -> dict[str, Any]:
-        """The midpoint step of the plant as SX expressions.
-
-        Unknown ``y``: the free nodes' displacement over the step relative to the top
-        (``q1 - q0``, ``3 N``: small numbers, so the residual has no round-off from the
-        positions). State: ``q`` the free nodes' positions relative to the top (m) and
-        ``v`` their velocities (m/s). Equations at node i::
-
-            M_i(r_m, l_m) (v1 - v0) / dt = F_T + W_i(l_m) + D(r_m, (r1 - r0) / dt) + ...
-            r1 - r0 = dt (v0 + v1) / 2
-
-        with the discrete-gradient tension of each segment: the mean of T over
-        ``[eps0, eps1]`` (3-point Gauss) along ``(d0 + d1) / (|d0| + |d1|)``, where the
-        strain of each level is taken with that level's unstretched length
-        (``eps_k = |d_k| / l_k - 1``), and the material damping at the strain rate
-        ``(eps1 - eps0) / dt``. For the fixed segments this is the model's own scheme
-        (:meth:`LumpedMassModel.step_function`, ``"midpoint"``). For the top segment it
-        is the same form, second order (``eps`` and the direction are midpoint values up
-        to ``O(dt^2)``); it does not balance the strain energy exactly while ``l``
-        changes, which is not required: cable paid out carries energy in and out with
-        it, and with the winch still (``l_a = l_b``) the step is the model's own,
-        energy-conserving one.
-
-        The node below the top carries half of the top segment's mass, added mass and
-        weight in water at its length in the middle of the step, ``l_m``: the mass
-        changes as cable is paid out and joins the node at the node's own velocity, for
-        which ``M(l_m) (v1 - v0) = m1 v1 - m0 v0 - (m1 - m0) (v0 + v1) / 2`` is exactly
-        the discrete momentum balance ``d(m v)/dt = F + m' v`` (no thrust). The
-        momentum that the paid-out cable brings in at the sheave's velocity is left
-        out: ``mu L' (v_sheave - v) / 2``, a few newtons against the tensions.
-
-        Returns a dict: symbols ``y``, ``q0``, ``v0``, ``p`` (4), ``dt``; ``res``
-        (scaled by ``fscale``, N), ``x1`` (the state at the end), ``guess`` (the
-        explicit predictor ``r1 = r0 + dt v0``) and ``out``: ``[z_unit, v_unit, t_unit,
-        t_top, t_min]`` at the end of the step.
-        """
-        p = self.params
-        n = p.segments
-        nf3 = 3 * n
-        y = ca.SX.sym("y", nf3)
-        q0 = ca.SX.sym("q0", nf3)
-        v0 = ca.SX.sym("v0", nf3)
-        par = ca.SX.sym("p", 4)
-        dt = ca.SX.sym("dt")
-        la = self.l_top0 + (par[0] - self.length0)
-        lb = self.l_top0 + (par[1] - self.length0)
-        lm = 0.5 * (la + lb)
-        drt = ca.vertcat(0.0, 0.0, par[3] - par[2])  # the top's displacement over the step
-        ztm = 0.5 * (par[2] + par[3])
-        top_xy = ca.DM(self.top0[:2])
-
-        def node(v: Any, i: int) -> Any:
-            return v[3 * i:3 * i + 3] if i < n else ca.SX.zeros(3)
-
-        q1 = q0 + y
-        dq = [node(y, i) + drt for i in range(n)] + [drt]  # r1 - r0 of every node
-        vel = [d / dt for d in dq]  # the step's mean velocities
-        v1 = 2.0 * (y + ca.repmat(drt, n, 1)) / dt - v0
-        ell0 = [float(v) for v in p.segment_length[:-1]] + [la]
-        ell1 = [float(v) for v in p.segment_length[:-1]] + [lb]
-        ellm = [float(v) for v in p.segment_length[:-1]] + [lm]
-
-        def absolute(q: Any, i: int, zt: Any) -> Any:  # a node's position, m
-            return ca.vertcat(top_xy, zt) + node(q, i)
-
-        def current(z: Any) -> Any:
-            return ca.vec(p.current(z)) if p.current is not None else ca.SX.zeros(3)
-
-        force = [ca.SX.zeros(3) for _ in range(n + 1)]
-        madd = []
-        for j in range(n):
-            d0 = node(q0, j + 1) - node(q0, j)
-            d1 = node(q1, j + 1) - node(q1, j)
-            n0, n1 = ca.norm_2(d0), ca.norm_2(d1)
-            e0, e1 = n0 / ell0[j] - 1.0, n1 / ell1[j] - 1.0
-            em, de = 0.5 * (e0 + e1), 0.5 * (e1 - e0)
-            tbar = sum(w * self._tension_of_strain(em + g * de, j)
-                       for g, w in zip(_GAUSS_X, _GAUSS_W, strict=True))
-            c = float(p.axial_damping[j])
-            if c > 0:
-                tbar = tbar + c * (e1 - e0) / dt * self._taut(em, j)
-            fe = tbar * (d0 + d1) / (n0 + n1)
-            dm = 0.5 * (d0 + d1)
-            zm = 0.25 * (node(q0, j)[2] + node(q1, j)[2] + node(q0, j + 1)[2]
-                         + node(q1, j + 1)[2]) + ztm
-            fd = self._seg_drag(j, dm, current(zm) - 0.5 * (vel[j] + vel[j + 1]))
-            force[j] = force[j] + fe + 0.5 * fd
-            force[j + 1] = force[j + 1] - fe + 0.5 * fd
-            madd.append(self._seg_added_mass(j, dm, ellm[j]))
-        loads = self._static_loads()
-        # the top segment's share of mass and weight at its length in the middle of the step
-        extra_l = lm - self.l_top0
-        loads[n - 1] = loads[n - 1] - ca.vertcat(0.0, 0.0, 0.5 * float(p.weight_in_water[-1])
-                                                 * extra_l)
-        mu_top = float(p.mass_per_length[-1])
-        rows = []
-        for i in range(n):
-            mass = ca.SX(ca.diag(ca.DM(self._node_mass[i]))) + madd[i]
-            if i > 0:
-                mass = mass + madd[i - 1]
-            if i == n - 1:
-                mass = mass + 0.5 * mu_top * extra_l * ca.SX.eye(3)
-            fi = force[i] + loads[i]
-            rm = 0.5 * (absolute(q0, i, par[2]) + absolute(q1, i, par[3]))
-            fi = fi + self._point_force(i, rm, vel[i])
-            rows.append(ca.mtimes(mass, node(v1, i) - node(v0, i)) / dt - fi)
-        res = ca.vertcat(*rows) / fscale
-
-        # outputs at the end of the step (the top's velocity: its mean over the step)
-        vend = [node(v1, i) for i in range(n)] + [drt / dt]
-        ldot = (lb - la) / dt
-        tens, hooke, chords = [], [], []
-        for j in range(n):
-            d1 = node(q1, j + 1) - node(q1, j)
-            n1 = ca.norm_2(d1)
-            rate = ca.dot(d1, vend[j + 1] - vend[j]) / (n1 * ell1[j])
-            if j == n - 1:
-                rate = rate - n1 * ldot / ell1[j] ** 2  # d/dt (|d| / l) with l changing
-            t_j, h_j = self._seg_tension(j, d1, ell1[j], rate)
-            tens.append(t_j)
-            hooke.append(h_j)
-            chords.append(d1)
-
-        def end_drag(j: int) -> Any:
-            zm = 0.5 * (node(q1, j)[2] + node(q1, j + 1)[2]) + par[3]
-            return self._seg_drag(j, chords[j], current(zm) - 0.5 * (vend[j] + vend[j + 1]))
-
-        ez = ca.DM([0.0, 0.0, 1.0])
-        # the pull of the cable on the unit: segment 0's tension less the half segment
-        # that node 0 carries (weight in water, drag, inertia at the step's mean
-        # acceleration)
-        e_0 = chords[0] / ca.norm_2(chords[0])
-        half = (0.5 * float(p.mass_per_length[0]) * ell1[0] * ca.SX.eye(3)
-                + self._seg_added_mass(0, chords[0], ell1[0]))
-        acc0 = (node(v1, 0) - node(v0, 0)) / dt
-        pull = (tens[0] * e_0 + 0.5 * end_drag(0)
-                - 0.5 * float(p.weight_in_water[0]) * ell1[0] * ez - ca.mtimes(half, acc0))
-        # the top: the force of the attachment on the cable, node N's balance without its
-        # acceleration (the top is linear within a step)
-        e_t = chords[n - 1] / ca.norm_2(chords[n - 1])
-        top = (tens[n - 1] * e_t - 0.5 * end_drag(n - 1)
-               + 0.5 * float(p.weight_in_water[-1]) * lb * ez)
-        out = ca.vertcat(node(q1, 0)[2] + par[3], node(v1, 0)[2], ca.norm_2(pull),
-                         ca.norm_2(top), ca.mmin(ca.vertcat(*hooke)))
-        guess = dt * v0 - ca.repmat(drt, n, 1)
-        return {"y": y, "q0": q0, "v0": v0, "p": par, "dt": dt, "res": res,
-                "x1": ca.vertcat(q1, v1), "guess": guess, "out": out}
-
-    def _point_force(self, i: int, r: Any, v: Any) -> Any:
-        """Drag (N) of the unit (node 0) or of a body at node ``i`` at position ``r`` and
-        velocity ``v`` (the model's ``_point_drag``)."""
-        p = self.params
-        f = ca.SX.zeros(3)
-        if p.water_density == 0:
-            return f
-        if i == 0 and p.unit is not None:
-            u = p.unit
-            f = f + self._point_drag(r, v, u.drag_area, u.drag_coefficient, u.drag_law)
-        for b in p.bodies:
-            if b.node == i:
-                f = f + self._point_drag(r, v, (b.drag_area,) * 3, (b.drag_coefficient,) * 3,
-                                         "vector")
-        return f
-
-
 class LumpedCablePlant(_OneLengthPlant):
     """The three-dimensional lumped-mass line (Huang (1992), ch. 5) advanced one control
     sample per call.
@@ -703,8 +468,9 @@ class LumpedCablePlant(_OneLengthPlant):
     the cable as they move; without a current the vertical line is the axial one.
 
     Each sub-step is the lumped-mass model's implicit-midpoint step with its
-    discrete-gradient tension (:meth:`_SteppedLumped.step_expressions`), ``L``, the top
-    height and the step as parameters, solved by Newton's method with the exact Jacobian
+    discrete-gradient tension with ``L``, the top height and the step as inputs
+    (:class:`cable_ocp.dynamics.lumped_driven.DrivenLumpedStep`: the model's own equations
+    of motion), solved by Newton's method with the exact Jacobian
     (block tridiagonal; CasADi's sparse QR, compiled), a step that does not converge
     halved as the planar plant's. The static start is the model's own equilibrium
     (:func:`cable_ocp.dynamics.lumped_scene.lumped_start`).
@@ -737,8 +503,9 @@ class LumpedCablePlant(_OneLengthPlant):
 
         self._setup(scene, sample_time)
         still = still_scene(scene)
-        self.model = md = _SteppedLumped(lumped_params(still), self.length0)
-        x_abs, info = lumped_start(still, md)
+        base = LumpedMassModel(lumped_params(still))
+        self.model = md = DrivenLumpedStep(base, self.length0)
+        x_abs, info = lumped_start(still, base)
         if x_abs is None:
             raise CableOCPError(f"cable scene: the lumped-mass line's static state failed: "
                                 f"{info.get('message', '')}")
@@ -747,7 +514,7 @@ class LumpedCablePlant(_OneLengthPlant):
         nf3 = 3 * md.n
         q = np.asarray(x_abs, dtype=float) - np.tile(md.top0, md.n)
         self._x0 = np.concatenate([q, np.zeros(nf3)])
-        self.force_scale = md.force_scale(np.asarray(x_abs, dtype=float))
+        self.force_scale = base.force_scale(np.asarray(x_abs, dtype=float))
         self._compile_sample()
 
     def _build(self, tol: float, max_iter: int, halvings: int) -> ca.Function:
@@ -757,7 +524,7 @@ class LumpedCablePlant(_OneLengthPlant):
         exceeds the tolerance; a failing step halved)."""
         md = self.model
         nf3 = 3 * md.n
-        e = md.step_expressions(self.force_scale)
+        e = md.expressions(self.force_scale)
         pars = ca.vertcat(e["q0"], e["v0"], e["p"], e["dt"])
         y = e["y"]
         fj = ca.Function("lumped_fj", [y, pars], [e["res"], ca.jacobian(e["res"], y)])

@@ -1,6 +1,7 @@
 """Numerical building blocks below the physics: the C compile helper for CasADi functions
 (:mod:`~cable_ocp.numerics.compile`), the kept sparse LU (:mod:`~cable_ocp.numerics.sparse_lu`)
-and sparse solves that never warn (:mod:`~cable_ocp.numerics.linalg`).
+sparse solves that never warn (:mod:`~cable_ocp.numerics.linalg`) and block-tridiagonal
+elimination in CasADi SX (:mod:`~cable_ocp.numerics.block_tridiagonal`).
 
 Nothing here knows about cables: these modules import no other part of the package.
 """
