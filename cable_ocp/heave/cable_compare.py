@@ -47,7 +47,17 @@ def compare(sc: HeaveScene, controllers: tuple | None = None,
     :func:`cable_ocp.heave.simulate.compare`. Returns a
     :class:`~cable_ocp.heave.metrics.Comparison` or a
     :class:`~cable_ocp.heave.metrics.CableComparison` (the same fields, and the
-    cable's)."""
+    cable's).
+
+    Parameters
+    ----------
+    sc : HeaveScene
+        Any heave scene.
+    controllers : tuple of str, optional
+        The controllers (default the scene's).
+    progress : callable, optional
+        ``progress(done, total, None)`` every 100 samples.
+    """
     if sc.unit.cable_scene is not None:
         return compare_cable(sc, controllers, progress)
     return sm.compare(sc, controllers, progress)
@@ -63,6 +73,15 @@ def compare_cable(sc: HeaveScene, controllers: tuple | None = None,
     with ``"cable"`` every controller runs against the cable (the cable scene's axial,
     planar or lumped3d model, :func:`cable_ocp.heave.cable_models.cable_plant`), and
     against the design model with the same estimator for the prediction.
+
+    Parameters
+    ----------
+    sc : HeaveScene
+        A heave scene with ``[unit] cable_scene``.
+    controllers : tuple of str, optional
+        The controllers (default the scene's).
+    progress : callable, optional
+        ``progress(done, total, None)`` every 100 samples.
     """
     dyn = load_cable_scene(sc)
     check_plant_scene(str(sc.unit.cable_scene), dyn)

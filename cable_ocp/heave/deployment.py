@@ -55,7 +55,21 @@ def length_history(t: np.ndarray, start: float, final: float, speed: float, t0: 
     ``final`` with the speed ``v (r(s) - r(s - T_c))``, ``s = t - t0``, ``T_c = |final -
     start| / v`` and ``r`` the ramp ``10 x^3 - 15 x^4 + 6 x^5`` over ``ramp`` s: the speed
     rises smoothly to ``v`` and falls smoothly to 0 (no acceleration step at either end),
-    covering exactly the distance. ``ramp`` is cut to ``T_c`` if longer."""
+    covering exactly the distance. ``ramp`` is cut to ``T_c`` if longer.
+
+    Parameters
+    ----------
+    t : numpy.ndarray
+        Times, s.
+    start, final : float
+        Paid-out length at the start and the end, m.
+    speed : float
+        Pay-out speed, m/s.
+    t0 : float
+        Start of the pay-out, s.
+    ramp : float
+        Ramp time of the speed, s.
+    """
     dist = abs(final - start)
     tc = dist / speed
     ramp = min(ramp, tc)
@@ -93,6 +107,21 @@ def deploy(sc: HeaveScene, sd: HeaveScene, dyn: DynamicScene, ident0: CableIdent
     the identification at the start. Returns a
     :class:`~cable_ocp.heave.metrics.CableComparison` whose ``json_extra["deployment"]``
     holds the schedule and the per-length table.
+
+    Parameters
+    ----------
+    sc : HeaveScene
+        The heave scene with ``[deployment]``.
+    sd : HeaveScene
+        The design scene.
+    dyn : DynamicScene
+        The cable scene (axial).
+    ident0 : CableIdentification
+        The identification at the start.
+    extra : dict
+        Top-level JSON fields so far (``plant``, ``design_model``, ``identified``).
+    progress : callable, optional
+        ``progress(done, total, None)`` every 100 samples.
     """
     from cable_ocp.heave import simulate as sm
     from cable_ocp.heave.identify_cable import first_frequency, identified_json
@@ -234,7 +263,15 @@ def _per_length(runs: dict[str, LoopRun], sc: HeaveScene, lo: float, hi: float,
 
 
 def design_lengths(sc: HeaveScene, dyn: DynamicScene) -> np.ndarray:
-    """The schedule's lengths (m): ``[deployment] schedule_lengths`` or 7 from start to end."""
+    """The schedule's lengths (m): ``[deployment] schedule_lengths`` or 7 from start to end.
+
+    Parameters
+    ----------
+    sc : HeaveScene
+        The heave scene with ``[deployment]``.
+    dyn : DynamicScene
+        Its cable scene (the start length).
+    """
     dep = sc.deployment
     assert dep is not None and dep.final_length is not None
     if dep.schedule_lengths:

@@ -37,7 +37,15 @@ B_MIN = 1e-6
 
 def design_damping(b: float, where: str) -> tuple[float, str | None]:
     """``(b used by the design, warning or None)``: an identified ``b`` below :data:`B_MIN`
-    is raised to it (the unit model (6.2) needs b >= 0)."""
+    is raised to it (the unit model (6.2) needs b >= 0).
+
+    Parameters
+    ----------
+    b : float
+        The identified damping, s.
+    where : str
+        What the warning names.
+    """
     if b >= B_MIN:
         return float(b), None
     return B_MIN, (f"{where}: the identified b = {b:.3g} s is below {B_MIN:g} s (a line with "
@@ -49,7 +57,17 @@ def design_scene(sc: HeaveScene, identification: Any | None, dyn: DynamicScene
                  ) -> tuple[HeaveScene, str]:
     """The heave scene with its design model: identified ``a, b`` (and ``b_quadratic``)
     unless ``[unit] a`` and ``b`` are given in the file; the unit's mass and static tension
-    from the cable scene when not given. Returns ``(scene, source)``."""
+    from the cable scene when not given. Returns ``(scene, source)``.
+
+    Parameters
+    ----------
+    sc : HeaveScene
+        The heave scene.
+    identification : CableIdentification or None
+        The identification (needed unless ``[unit] a, b`` are given).
+    dyn : DynamicScene
+        The cable scene (the unit's mass and weight when not given).
+    """
     given = isinstance(sc.raw.get("unit"), dict) and {"a", "b"} <= set(sc.raw["unit"])
     unit = sc.unit
     kw: dict[str, Any] = {"cable_scene": None}
@@ -208,7 +226,17 @@ def _design(sc: HeaveScene, a: float, b: float) -> tuple[pl.HeavePlant, np.ndarr
 
 def design_table(sc: HeaveScene, lengths: np.ndarray, a: np.ndarray, b: np.ndarray
                  ) -> tuple[DesignTable, pl.HeavePlant]:
-    """Designs (LQR gain, Kalman gains, sampled model) at each ``(length, a, b)``."""
+    """Designs (LQR gain, Kalman gains, sampled model) at each ``(length, a, b)``.
+
+    Parameters
+    ----------
+    sc : HeaveScene
+        The design scene (weights, noises, winch, sea).
+    lengths : numpy.ndarray
+        Deployment lengths of the designs, m.
+    a, b : numpy.ndarray
+        The design model's coefficients there, s^2 and s.
+    """
     rows = [_design(sc, float(ai), float(bi)) for ai, bi in zip(a, b, strict=True)]
     p = rows[0][0]
     return DesignTable(lengths=np.asarray(lengths, dtype=float), a=np.asarray(a, dtype=float),

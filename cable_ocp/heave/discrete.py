@@ -26,7 +26,15 @@ def _phi_gamma(A: np.ndarray, B: np.ndarray, t: float) -> tuple[np.ndarray, np.n
 
 
 def delay_steps(tau: float, h: float) -> int:
-    """Number of buffered past commands needed for a delay ``tau`` at sample time ``h``."""
+    """Number of buffered past commands needed for a delay ``tau`` at sample time ``h``.
+
+    Parameters
+    ----------
+    tau : float
+        Delay, s (>= 0).
+    h : float
+        Sample time, s (> 0).
+    """
     if h <= 0:
         raise CableOCPError(f"controller.sample_time = {h!r}: must be > 0 (s)")
     if tau < 0:
@@ -126,6 +134,19 @@ def discretize_cost(A: np.ndarray, B: np.ndarray, Q: np.ndarray, R: float, h: fl
     ``W = int_0^h e^{F^T t} blkdiag(Q, 0) e^{F t} dt`` with ``F = [[A, B], [0, 0]]`` (Van Loan)
     gives ``x^T Q x`` integrated exactly.
 
+    Parameters
+    ----------
+    A, B : numpy.ndarray
+        Continuous plant and its command column.
+    Q : numpy.ndarray
+        State weight, shape (n, n).
+    R : float
+        Command weight, 1/m^2.
+    h : float
+        Sample time, s.
+    d : int
+        Delay in samples (buffered commands).
+
     Returns
     -------
     tuple of numpy.ndarray
@@ -167,6 +188,17 @@ def discretize_noise(A: np.ndarray, G: np.ndarray, W: float, h: float) -> np.nda
 
     ``W`` is the noise intensity (``pi`` for unit one-sided spectral density, see
     :mod:`cable_ocp.heave.sea`).
+
+    Parameters
+    ----------
+    A : numpy.ndarray
+        Continuous state matrix, shape (n, n).
+    G : numpy.ndarray
+        Noise input columns, shape (n, m).
+    W : float
+        Noise intensity.
+    h : float
+        Sample time, s.
     """
     A = np.asarray(A, dtype=float)
     n = A.shape[0]

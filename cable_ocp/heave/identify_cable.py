@@ -106,6 +106,19 @@ def excitation_signal(kind: str, t: np.ndarray, amplitude: float, band: tuple[fl
 
     ``amplitude``: the RMS (m) of the multisine, chirp and sea over the record after the
     fade-in; the step's height is twice it. ``sea``: the boom-tip record for ``"sea"``.
+
+    Parameters
+    ----------
+    kind : str
+        ``[identification] excitation``: multisine, chirp, step or sea.
+    t : numpy.ndarray
+        Times, s.
+    amplitude : float
+        RMS of the motion, m.
+    band : tuple of float
+        Frequency band (low, high), rad/s.
+    sea : numpy.ndarray, optional
+        The boom-tip record at ``t`` for ``"sea"``, m.
     """
     duration = float(t[-1])
     fade = _fade(t, min(FADE_IN, duration / 4))
@@ -145,7 +158,17 @@ def run_experiment(dyn: DynamicScene, x0: np.ndarray, sample_time: float
     """Move the top of the cable scene's line by ``x0`` (m, samples every ``sample_time``
     s, from rest) at its length; return the unit's heave ``z`` (m, relative to the static
     depth, on the sample grid), the tensions at the unit and the top, and the Newton
-    residual (:meth:`AxialCablePlant.run_open_loop`)."""
+    residual (:meth:`AxialCablePlant.run_open_loop`).
+
+    Parameters
+    ----------
+    dyn : DynamicScene
+        The cable scene.
+    x0 : numpy.ndarray
+        The top's motion per sample, m.
+    sample_time : float
+        Sample time, s.
+    """
     from cable_ocp.heave.cable_models import cable_plant
 
     plant = cable_plant(dyn, sample_time)
@@ -185,6 +208,27 @@ def identify_line(dyn: DynamicScene, *, excitation: str, amplitude: float,
     critical damping (``b = 0.1 / omega_1``); the fit of (6.3) starts from the linear fit,
     ``b_q = b / (sqrt(8 / pi) sigma_v)`` (equivalent linearisation for a Gaussian velocity of
     std ``sigma_v``, that of the linear fit's response).
+
+    Parameters
+    ----------
+    dyn : DynamicScene
+        The cable scene.
+    excitation : str
+        The top motion (:func:`excitation_signal`).
+    amplitude : float
+        Its RMS, m.
+    band : tuple of float
+        Its band (low, high), rad/s.
+    duration : float
+        Length of the record, s.
+    sample_time : float
+        Sample time, s.
+    noise : float
+        Standard deviation of the depth sensor's noise, m.
+    seed : int
+        Seed of that noise.
+    sea : numpy.ndarray, optional
+        ``(t, x0)`` rows of a boom-tip record for ``excitation = "sea"`` (s, m).
     """
     n = int(round(duration / sample_time)) + 1
     t = np.arange(n) * sample_time
@@ -226,7 +270,17 @@ def _sea_band_amplitude(sc: HeaveScene) -> tuple[float, float, Any]:
 def identify_from_cable(sc: HeaveScene, dyn: DynamicScene, length: float | None = None
                         ) -> CableIdentification:
     """The experiment of ``[identification]`` on the heave scene's cable scene (module
-    docstring), optionally at another unstretched ``length`` (m)."""
+    docstring), optionally at another unstretched ``length`` (m).
+
+    Parameters
+    ----------
+    sc : HeaveScene
+        The heave scene (``[identification]``).
+    dyn : DynamicScene
+        Its cable scene.
+    length : float, optional
+        Unstretched length of the experiment, m (default the cable scene's).
+    """
     from cable_ocp.heave.simulate import wave_realisation
 
     if length is not None and length != dyn.length:

@@ -100,6 +100,15 @@ class UnitWinchPlant(LoopPlant):
         return Observation(y=np.array([self.s[0] + self.noise[k]]), state=z, forecast=fore)
 
     def advance(self, k: int, v: float) -> Sample:
+        """As :meth:`cable_ocp.heave.closed_loop.LoopPlant.advance`.
+
+        Parameters
+        ----------
+        k : int
+            The sample.
+        v : float
+            The applied (delayed) command, m.
+        """
         m, hs, f, x0 = self.substeps, self.hs, self._f, self.x0
         i = k * m
         s = self.s
@@ -126,6 +135,17 @@ class UnitWinchPlant(LoopPlant):
 
     def trace(self, x: np.ndarray, u: np.ndarray, u_dot: np.ndarray, u0: np.ndarray,
               channels: dict[str, np.ndarray], per_sample: np.ndarray) -> Trace:  # noqa: ARG002
+        """As :meth:`cable_ocp.heave.closed_loop.LoopPlant.trace`.
+
+        Parameters
+        ----------
+        x, u, u_dot, u0 : numpy.ndarray
+            The loop's histories (:meth:`cable_ocp.heave.closed_loop.LoopPlant.trace`).
+        channels : dict
+            Empty: this plant has no channels.
+        per_sample : numpy.ndarray
+            Not used.
+        """
         n = self.nfine + 1
         return Trace(self.t[:n], x, self.x0[:n], u, u_dot, u0)
 
@@ -210,6 +230,15 @@ class WinchedLine(LoopPlant):
         return Observation(y=y, length=float(self.wave.ldep[i]), forecast=fore)
 
     def advance(self, k: int, v: float) -> Sample:
+        """As :meth:`cable_ocp.heave.closed_loop.LoopPlant.advance`.
+
+        Parameters
+        ----------
+        k : int
+            The sample.
+        v : float
+            The applied (delayed) command, m.
+        """
         m = self.substeps
         i = k * m
         Phi, Gam, Cw, Dw = self.Phi, self.Gam, self.Cw, self.Dw
@@ -232,6 +261,17 @@ class WinchedLine(LoopPlant):
 
     def trace(self, x: np.ndarray, u: np.ndarray, u_dot: np.ndarray, u0: np.ndarray,
               channels: dict[str, np.ndarray], per_sample: np.ndarray) -> CableTrace:
+        """As :meth:`cable_ocp.heave.closed_loop.LoopPlant.trace`.
+
+        Parameters
+        ----------
+        x, u, u_dot, u0 : numpy.ndarray
+            The loop's histories (:meth:`cable_ocp.heave.closed_loop.LoopPlant.trace`).
+        channels : dict
+            The tensions at the unit and the top, N.
+        per_sample : numpy.ndarray
+            The smallest element tension per sample, N.
+        """
         wave = self.wave
         return CableTrace(t=wave.t, x=x, x0=wave.x0, u=u, u_dot=u_dot, u0=u0,
                           tension_unit=channels["tension_unit"],
@@ -356,7 +396,17 @@ class ModelLine:
 
     def advance(self, k: int, u: np.ndarray, x0: np.ndarray, ldep: np.ndarray  # noqa: ARG002
                 ) -> tuple[np.ndarray, np.ndarray, np.ndarray, float]:
-        """As :meth:`CableLine.advance`."""
+        """As :meth:`CableLine.advance`.
+
+        Parameters
+        ----------
+        k : int
+            The sample (not used).
+        u, x0 : numpy.ndarray, shape (m + 1,)
+            Winch output and boom-tip heave at the sub-step points, m.
+        ldep : numpy.ndarray
+            Deployment length there, m (not used).
+        """
         m, dt = self.substeps, self.dt
         x, v = self.s
         inp = (x0 + u).tolist()

@@ -87,7 +87,19 @@ class LQRDesign:
 
 def regulator_plant(a: float, b: float, K: float = 1.0, winch: ct.StateSpace | None = None,
                     delay: ct.StateSpace | None = None) -> HeavePlant:
-    """The regulator plant (6.6), or (6.14) with a delay block: boom-tip motion as input."""
+    """The regulator plant (6.6), or (6.14) with a delay block: boom-tip motion as input.
+
+    Parameters
+    ----------
+    a, b : float
+        Unit coefficients (6.2), s^2 and s.
+    K : float
+        First-order winch gain, 1/s (when ``winch`` is not given).
+    winch : control.StateSpace, optional
+        Winch block (default :func:`cable_ocp.heave.plant.winch_first` with ``K``).
+    delay : control.StateSpace, optional
+        Delay block (:func:`cable_ocp.heave.plant.delay_block`), default none.
+    """
     return assemble_plant(a, b, winch if winch is not None else winch_first(K), delay=delay)
 
 
@@ -191,7 +203,21 @@ def design_lqr(a: float, b: float, Q: np.ndarray, R: float = 1.0, *, tau: float 
 
 def design_from_gains(a: float, b: float, G: np.ndarray, *, tau: float = 0.0,
                       method: str = "none", K: float = 1.0) -> LQRDesign:
-    """Wrap printed gains (e.g. :data:`cable_ocp.heave.thesis.G3_626`, ``G5_626``) as a design."""
+    """Wrap printed gains (e.g. :data:`cable_ocp.heave.thesis.G3_626`, ``G5_626``) as a design.
+
+    Parameters
+    ----------
+    a, b : float
+        Unit coefficients (6.2), s^2 and s.
+    G : numpy.ndarray
+        The printed gains.
+    tau : float
+        Delay, s.
+    method : str
+        Delay handling of the design (:func:`design_lqr`).
+    K : float
+        First-order winch gain, 1/s.
+    """
     base = regulator_plant(a, b, K)
     G = np.atleast_2d(np.asarray(G, dtype=float))
     if method == "none":
@@ -233,6 +259,13 @@ def crossing_delays(des: LQRDesign, tau_max: float = 5.0) -> np.ndarray:
     At a crossing ``s = i w``: ``|L1(i w)| = |1 + L2(i w)|`` and ``e^{-i w tau} =
     -(1 + L2)/L1``, so ``tau = (-arg(-(1+L2)/L1) mod 2 pi + 2 pi k) / w``. Crossing frequencies
     are bracketed on a fine log grid and refined with Brent's method.
+
+    Parameters
+    ----------
+    des : LQRDesign
+        The design.
+    tau_max : float
+        Largest delay searched, s.
     """
     _check_continuous(des)
 
@@ -266,6 +299,13 @@ def unstable_roots(des: LQRDesign, tau: float) -> int:
     pi`` with ``Delta`` the net phase change of ``f(i w)`` over ``w`` in ``[0, inf)`` and ``P = 0``
     (plant and delay model are stable). Independent of :func:`crossing_delays`; at ``tau = 0`` it
     must agree with the eigenvalues of the delay-free closed loop.
+
+    Parameters
+    ----------
+    des : LQRDesign
+        The design.
+    tau : float
+        True delay, s.
     """
     _check_continuous(des)
     if max(np.linalg.eigvals(des.Ap).real.max(),
@@ -308,6 +348,13 @@ def delay_interval(des: LQRDesign, tau_max: float = 5.0) -> DelayInterval:
 
     Roots cross the imaginary axis only at :func:`crossing_delays`; the number of unstable roots
     is constant in between and is counted with :func:`unstable_roots`.
+
+    Parameters
+    ----------
+    des : LQRDesign
+        The design.
+    tau_max : float
+        Largest delay searched, s.
     """
     cr = crossing_delays(des, tau_max)
     edges = np.concatenate([[0.0], cr, [tau_max]])
@@ -323,7 +370,15 @@ def delay_interval(des: LQRDesign, tau_max: float = 5.0) -> DelayInterval:
 
 
 def delay_margin(des: LQRDesign, tau_max: float = 5.0) -> float:
-    """Largest true delay the design tolerates (upper end of the stable interval), s."""
+    """Largest true delay the design tolerates (upper end of the stable interval), s.
+
+    Parameters
+    ----------
+    des : LQRDesign
+        The design.
+    tau_max : float
+        Largest delay searched, s.
+    """
     if des.method == "discrete":
         return discrete_delay_margin(des, tau_max)
     return delay_interval(des, tau_max).upper
@@ -337,6 +392,15 @@ def true_discrete_loop(des: LQRDesign, tau_true: float, h: float | None = None
     ZOH (a sampled-data approximation, error O(h)); discrete designs at their own ``h`` with
     their own command buffer. The plant sees ``u0(t - tau_true)`` exactly, for any
     ``tau_true``.
+
+    Parameters
+    ----------
+    des : LQRDesign
+        The design.
+    tau_true : float
+        True delay, s.
+    h : float, optional
+        Sample time of a continuous design's loop, s (default 0.01 s).
     """
     if des.method == "discrete":
         h = des.h
@@ -397,6 +461,13 @@ def discrete_delay_margin(des: LQRDesign, tau_max: float = 5.0) -> float:
 
     The spectral radius of :func:`true_discrete_loop` is scanned in steps of ``h / 4`` from the
     design delay and the first crossing of 1 refined by bisection to 1e-6 s.
+
+    Parameters
+    ----------
+    des : LQRDesign
+        The design.
+    tau_max : float
+        Largest delay searched, s.
     """
     def rho(t: float) -> float:
         return float(np.max(np.abs(np.linalg.eigvals(true_discrete_loop(des, t).A))))
@@ -457,6 +528,19 @@ def indices(des: LQRDesign, tau_true: float, t: np.ndarray, x0: np.ndarray,
 
     ``t`` must be uniform with the loop's sample time (0.01 s for continuous designs unless
     ``h`` is given, ``des.h`` for discrete ones).
+
+    Parameters
+    ----------
+    des : LQRDesign
+        The design.
+    tau_true : float
+        True delay, s.
+    t : numpy.ndarray
+        Uniform times, s.
+    x0 : numpy.ndarray
+        Boom-tip heave at ``t``, m.
+    h : float, optional
+        Sample time of a continuous design's loop, s.
     """
     sys = true_discrete_loop(des, tau_true, h)
     dt = float(sys.dt)
@@ -478,6 +562,13 @@ def return_difference_min(A: np.ndarray, B: np.ndarray, G: np.ndarray) -> float:
 
     A stabilising SISO state feedback is an LQR gain for some ``Q >= 0`` and ``R = 1`` only if
     this is >= 1 (Kalman 1964; Anderson & Moore, *Optimal Control*, section 5.2).
+
+    Parameters
+    ----------
+    A, B : numpy.ndarray
+        Plant and command column.
+    G : numpy.ndarray
+        State-feedback gain, ``u0 = -G x``.
     """
     w = np.concatenate([[0.0], np.logspace(-4, 4, 20000)])
     n = A.shape[0]
@@ -503,6 +594,15 @@ def diagonal_weights_for_gain(A: np.ndarray, B: np.ndarray, G: np.ndarray,  # no
     ``n (n + 1) / 2 + n`` equations for the ``n (n + 1) / 2`` entries of ``P`` and the ``n``
     diagonal entries of ``Q``: square, solved directly. ``G`` is an LQR gain of a diagonal
     ``Q >= 0`` only if the returned ``Q`` is PSD (and ``P > 0``).
+
+    Parameters
+    ----------
+    A, B : numpy.ndarray
+        Plant and command column.
+    G : numpy.ndarray
+        State-feedback gain.
+    R : float
+        Command weight, 1/m^2.
 
     Raises
     ------
@@ -541,6 +641,25 @@ def tradeoff_curve(a: float, b: float, q_values: np.ndarray, t: np.ndarray, x0: 
     """J_d, J_v, J_c and J_w for ``Q = diag(q, 0, 0)``, ``R = 1`` (Figs. 6.18-6.19).
 
     Each design is evaluated on the true loop with the delay ``tau``.
+
+    Parameters
+    ----------
+    a, b : float
+        Unit coefficients (6.2), s^2 and s.
+    q_values : numpy.ndarray
+        Heave weights, 1/m^2.
+    t : numpy.ndarray
+        Uniform times, s.
+    x0 : numpy.ndarray
+        Boom-tip heave at ``t``, m.
+    tau : float
+        Delay, s.
+    method : str
+        Delay handling (:func:`design_lqr`).
+    K : float
+        First-order winch gain, 1/s.
+    pade_order : int
+        Pade order for ``"pade"``.
     """
     out = []
     for q in np.asarray(q_values, dtype=float):
@@ -559,6 +678,21 @@ def tradeoff_data(a: float, b: float, K: float, tau: float, t: np.ndarray, x0: n
     designs (:class:`cable_ocp.heave.lqr.Indices`). The effort axis is ``J_w = int u'^2 dt``
     (m^2/s), not the thesis' ``J_c = sum G_i^2`` (6.18): ``J_c`` of the Pade design depends on
     the arbitrary state realisation of the Pade filter, ``J_w`` on nothing but the loop.
+
+    Parameters
+    ----------
+    a, b : float
+        Unit coefficients (6.2), s^2 and s.
+    K : float
+        First-order winch gain, 1/s.
+    tau : float
+        Delay, s.
+    t : numpy.ndarray
+        Uniform times, s.
+    x0 : numpy.ndarray
+        Boom-tip heave at ``t``, m.
+    q_values : numpy.ndarray, optional
+        Heave weights, 1/m^2 (default a log grid).
     """
     q_values = np.logspace(1, 5, 7) if q_values is None else q_values
     out = {}

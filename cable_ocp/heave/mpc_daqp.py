@@ -165,7 +165,15 @@ class DaqpWorkspace:
             raise CableOCPError(f"DAQP could not set up the MPC problem (exit flag {flag})")
 
     def solve(self, g: np.ndarray, c: np.ndarray) -> tuple[np.ndarray, bool]:
-        """As :meth:`DaqpQP.solve` on this workspace (a retry from the cold working set)."""
+        """As :meth:`DaqpQP.solve` on this workspace (a retry from the cold working set).
+
+        Parameters
+        ----------
+        g : numpy.ndarray
+            The QP's gradient.
+        c : numpy.ndarray
+            The rows' offsets (bounds ``lb0 - c``, ``ub0 - c``).
+        """
         nv = self.nv
         np.subtract(self.ub0, c, out=self.bu[nv:])
         np.subtract(self.lb0, c, out=self.bl[nv:])

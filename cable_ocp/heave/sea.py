@@ -210,7 +210,15 @@ def thesis_shaping_filter(hs: float, omega_m: float) -> ct.StateSpace:
 
 
 def filter_spectrum(sys: ct.StateSpace, omega: np.ndarray) -> np.ndarray:
-    """``|H(i w)|^2`` of a SISO filter, in output units squared per unit noise spectral density."""
+    """``|H(i w)|^2`` of a SISO filter, in output units squared per unit noise spectral density.
+
+    Parameters
+    ----------
+    sys : control.StateSpace
+        The SISO filter.
+    omega : numpy.ndarray
+        Frequencies, rad/s.
+    """
     resp = np.asarray(sys(1j * np.asarray(omega, dtype=float)))
     return np.abs(resp.reshape(-1)) ** 2
 
@@ -248,6 +256,13 @@ def fit_quality(sys: ct.StateSpace, spectrum: SeaSpectrum) -> tuple[float, float
 
     The filter variance is the Lyapunov value ``pi C P C^T`` (see module docstring); the spectrum
     variance is by quadrature.
+
+    Parameters
+    ----------
+    sys : control.StateSpace
+        The shaping filter.
+    spectrum : SeaSpectrum
+        The sea spectrum it approximates.
 
     Returns
     -------
@@ -342,6 +357,15 @@ def make_shaping_filter(spectrum: SeaSpectrum, kind: str = "thesis",
 
     The thesis filter (6.21)-(6.23) is tied to the Bretschneider shape; for a JONSWAP sea it still
     uses the Bretschneider constants (its errors are reported against the JONSWAP spectrum).
+
+    Parameters
+    ----------
+    spectrum : SeaSpectrum
+        The sea spectrum.
+    kind : {"thesis", "fit"}
+        The thesis filter (6.21)-(6.23) or a least-squares fit of second-order sections.
+    n_sections : int
+        Second-order sections of the ``"fit"`` filter.
     """
     if kind == "thesis":
         return thesis_fit(spectrum)

@@ -118,6 +118,17 @@ def wave_realisation(plant: pl.HeavePlant, t_end: float, h_sim: float, seed: int
     (ZOH transition, Van Loan noise covariance with intensity ``pi``); stationary start (initial
     state drawn from the Lyapunov covariance (6.31)).
 
+    Parameters
+    ----------
+    plant : HeavePlant
+        The plant (6.28) (its vessel and sea blocks).
+    t_end : float
+        Length of the record, s.
+    h_sim : float
+        Step of the record, s.
+    seed : int
+        Seed of the noise.
+
     Returns
     -------
     t : numpy.ndarray
@@ -163,6 +174,15 @@ def compare(sc: HeaveScene, controllers: tuple | None = None,
     A scene with ``[unit] cable_scene`` is compared by :func:`cable_ocp.heave.compare`
     (:mod:`cable_ocp.heave.cable_compare`: identification from the cable, the cable as the
     plant); here it raises.
+
+    Parameters
+    ----------
+    sc : HeaveScene
+        A heave scene without a cable scene.
+    controllers : tuple of str, optional
+        The controllers (default the scene's).
+    progress : callable, optional
+        ``progress(done, total, None)`` every 100 samples.
     """
     if sc.unit.cable_scene is not None:
         raise CableOCPError(

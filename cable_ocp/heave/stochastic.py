@@ -33,6 +33,13 @@ WHITE_NOISE_INTENSITY = np.pi
 def state_covariance(A0: np.ndarray, B2: np.ndarray) -> np.ndarray:  # noqa: N803
     """Solution ``P`` of the Lyapunov equation (Huang 1992, eq. (6.31)) as printed (unit intensity).
 
+    Parameters
+    ----------
+    A0 : numpy.ndarray
+        Closed-loop (or open-loop) state matrix, shape (n, n).
+    B2 : numpy.ndarray
+        Noise input columns, shape (n, m).
+
     Raises
     ------
     CableOCPError
@@ -51,7 +58,17 @@ def state_covariance(A0: np.ndarray, B2: np.ndarray) -> np.ndarray:  # noqa: N80
 
 
 def output_variance_lyapunov(A0: np.ndarray, B2: np.ndarray, C: np.ndarray) -> float:  # noqa: N803
-    """``sigma^2 = pi C P C^T`` (m^2 for a position output), ``P`` from (6.31)."""
+    """``sigma^2 = pi C P C^T`` (m^2 for a position output), ``P`` from (6.31).
+
+    Parameters
+    ----------
+    A0 : numpy.ndarray
+        State matrix of the loop, shape (n, n).
+    B2 : numpy.ndarray
+        Noise input columns (intensity ``pi``).
+    C : numpy.ndarray
+        Output row, shape (n,) or (1, n).
+    """
     P = state_covariance(A0, B2)
     C = np.asarray(C, dtype=float).reshape(1, -1)
     return float(WHITE_NOISE_INTENSITY * (C @ P @ C.T)[0, 0])
@@ -66,6 +83,17 @@ def output_variance_spectral(A0: np.ndarray, B2: np.ndarray, C: np.ndarray,  # n
     quadrature on ``(0, inf)`` mapped to ``(0, pi/2)`` by ``w = w_s tan(theta)``, split at the
     poles' natural frequencies. The tolerance is relative (``epsabs = 0``), since a controlled
     variance is ~1e-7 m^2.
+
+    Parameters
+    ----------
+    A0 : numpy.ndarray
+        State matrix of the loop, shape (n, n).
+    B2 : numpy.ndarray
+        Noise input columns.
+    C : numpy.ndarray
+        Output row.
+    rtol : float
+        Relative tolerance of the quadrature.
     """
     A0 = np.asarray(A0, dtype=float)
     n = A0.shape[0]
@@ -95,7 +123,17 @@ def output_variance_spectral(A0: np.ndarray, B2: np.ndarray, C: np.ndarray,  # n
 
 def lqr_continuous(A: np.ndarray, B: np.ndarray, Q: np.ndarray, R: np.ndarray  # noqa: N803
                    ) -> np.ndarray:
-    """Continuous LQR gain ``G`` (``u0 = -G x``, Huang (1992) (6.10)/(6.30)) via ``control.lqr``."""
+    """Continuous LQR gain ``G`` (``u0 = -G x``, Huang (1992) (6.10)/(6.30)) via ``control.lqr``.
+
+    Parameters
+    ----------
+    A, B : numpy.ndarray
+        Continuous plant and command column.
+    Q : numpy.ndarray
+        State weight.
+    R : numpy.ndarray
+        Command weight, 1/m^2.
+    """
     G, _, _ = ct.lqr(A, B, Q, R)
     return np.asarray(G)
 
@@ -165,6 +203,19 @@ def weight_for_sigma(A: np.ndarray, B1: np.ndarray, B2: np.ndarray, c_x: np.ndar
 
     Bisection in ``log q`` (sigma decreases monotonically with ``q`` for this plant); relative
     tolerance 1e-10 on ``q``.
+
+    Parameters
+    ----------
+    A, B1, B2 : numpy.ndarray
+        Plant (6.28): state matrix, command and noise columns.
+    c_x : numpy.ndarray
+        Row of the unit's heave.
+    sigma_target : float
+        Closed-loop heave sigma to reach, m.
+    r : float
+        Command weight, 1/m^2.
+    q_lo, q_hi : float
+        Bracket of the bisection in ``q``, 1/m^2.
     """
     def f(lq: float) -> float:
         return np.log(stochastic_lqr(A, B1, B2, c_x, float(np.exp(lq)), r).sigma / sigma_target)
@@ -188,6 +239,17 @@ def lqg_kalman(A: np.ndarray, B2: np.ndarray, c_meas: np.ndarray,  # noqa: N803
     QN, RN)`` would assume the noise enters through the control input. A sensor sampled every
     ``sample_time`` seconds with white noise of standard deviation ``noise_std`` (m) is the
     continuous measurement noise of intensity ``noise_std^2 * sample_time`` (m^2 s).
+
+    Parameters
+    ----------
+    A, B2 : numpy.ndarray
+        Plant (6.28): state matrix and noise columns.
+    c_meas : numpy.ndarray
+        Row of the measured position.
+    noise_std : float
+        Standard deviation of the sensor's white noise per sample, m.
+    sample_time : float
+        The sensor's sample time, s.
 
     Returns
     -------
@@ -216,6 +278,19 @@ def lqg_closed_loop_sigma(A: np.ndarray, B1: np.ndarray, B2: np.ndarray,  # noqa
     from the Lyapunov equation of that pair. Built with python-control: the compensator
     ``x_hat' = (A - B1 G - L C) x_hat + L y``, ``u0 = -G x_hat`` already contains the minus
     sign, so it closes with ``feedback(..., sign=+1)``.
+
+    Parameters
+    ----------
+    A, B1, B2 : numpy.ndarray
+        Plant (6.28): state matrix, command and noise columns.
+    c_x : numpy.ndarray
+        Row of the unit's heave (also the measured output).
+    G : numpy.ndarray
+        LQR gain, ``u0 = -G x_hat``.
+    L : numpy.ndarray
+        Continuous Kalman gain (:func:`lqg_kalman`).
+    noise_intensity : float
+        Intensity of the measurement noise, m^2 s.
     """
     n = A.shape[0]
     c_x = np.asarray(c_x, dtype=float).reshape(1, n)
@@ -275,6 +350,21 @@ def sampled_loop_sigma(A: np.ndarray, B1: np.ndarray, B2: np.ndarray,  # noqa: N
     (``G_buf`` for an exact discrete-delay design with ``d`` buffered commands, which must match
     the plant's buffer). Sampled stationary variance = continuous stationary variance at the
     sample instants; ``sigma^2 = C P C^T`` with ``P`` from the discrete Lyapunov equation.
+
+    Parameters
+    ----------
+    A, B1, B2 : numpy.ndarray
+        Plant (6.28): state matrix, command and noise columns.
+    c_x : numpy.ndarray
+        Row of the unit's heave.
+    h : float
+        Sample time, s.
+    tau_true : float
+        The plant's true delay, s.
+    G_x : numpy.ndarray
+        Gain on the plant's states.
+    G_buf : numpy.ndarray, optional
+        Gain on the buffered commands (exact discrete-delay designs).
     """
     n = A.shape[0]
     mdl = discretize_delayed(A, B1, h, tau_true)
@@ -305,6 +395,21 @@ def discrete_delay_lqr(A: np.ndarray, B1: np.ndarray, c_x: np.ndarray, q: float,
     (:func:`cable_ocp.heave.lqr.exact_delay_dlqr`: ``dlqr`` on the shift-register model with
     the continuous cost ``int (q x^2 + r u0^2) dt`` sampled exactly); ``tau/h`` must be an
     integer.
+
+    Parameters
+    ----------
+    A, B1 : numpy.ndarray
+        Plant (6.28): state matrix and command column.
+    c_x : numpy.ndarray
+        Row of the unit's heave.
+    q : float
+        Heave weight, 1/m^2.
+    r : float
+        Command weight, 1/m^2.
+    h : float
+        Sample time, s.
+    tau : float
+        Delay, s (a whole number of samples).
 
     Returns
     -------
