@@ -16,9 +16,10 @@ computed, not a success (exit 1)
     could not be built, a plant step failed), ``partial`` (some cases or directions
     failed), ``slack`` (a dynamic line went slack: its tensions past that are not
     physical), ``unstable`` and ``non_finite`` (a closed loop), ``wrong`` (a benchmark found
-    an answer off by more than its tolerance); the baselines' own: ``not_converged``,
-    ``infeasible``, ``max_iterations``, ``diverged``, ``not_equilibrium``, ``seabed_contact``,
-    ``unresolved``, ``max_nodes``, ``singular``.
+    an answer off by more than its tolerance); the baselines' and optimisers' own:
+    ``not_converged``, ``infeasible``, ``max_iterations``, ``diverged``, ``not_equilibrium``,
+    ``seabed_contact``, ``length_root_failed``, ``max_nodes``, ``singular`` (IPOPT's return
+    statuses map onto these: :func:`from_ipopt`).
 interrupted (exit 130)
     ``interrupted``: Ctrl-C; what finished is written.
 rows of a batch
@@ -31,7 +32,7 @@ from __future__ import annotations
 
 from enum import StrEnum
 
-__all__ = ["SUCCESS", "Status"]
+__all__ = ["SUCCESS", "Status", "from_ipopt"]
 
 
 class Status(StrEnum):
@@ -54,7 +55,7 @@ class Status(StrEnum):
     DIVERGED = "diverged"
     NOT_EQUILIBRIUM = "not_equilibrium"
     SEABED_CONTACT = "seabed_contact"
-    UNRESOLVED = "unresolved"
+    LENGTH_ROOT_FAILED = "length_root_failed"
     MAX_NODES = "max_nodes"
     SINGULAR = "singular"
     INTERRUPTED = "interrupted"
@@ -65,3 +66,32 @@ class Status(StrEnum):
 
 #: the statuses a command exits 0 with
 SUCCESS = frozenset({Status.SOLVED, Status.OK})
+
+#: IPOPT's return statuses (``nlpsol(...).stats()["return_status"]``) that have a status of
+#: their own; every other failure is ``failed`` (the IPOPT string goes into the message)
+_IPOPT = {"Solve_Succeeded": Status.SOLVED, "Solved_To_Acceptable_Level": Status.SOLVED,
+          "Infeasible_Problem_Detected": Status.INFEASIBLE,
+          "Maximum_Iterations_Exceeded": Status.MAX_ITERATIONS,
+          "Maximum_CpuTime_Exceeded": Status.MAX_ITERATIONS,
+          "User_Requested_Stop": Status.INTERRUPTED}
+
+
+def from_ipopt(return_status: str | None, success: bool) -> Status:
+    """The status of an IPOPT solve.
+
+    Parameters
+    ----------
+    return_status : str or None
+        IPOPT's ``return_status`` (e.g. ``"Infeasible_Problem_Detected"``).
+    success : bool
+        CasADi's ``stats()["success"]``: a success is ``solved`` whatever the string.
+
+    Returns
+    -------
+    Status
+        ``solved``, ``infeasible``, ``max_iterations``, ``interrupted`` (Ctrl-C inside
+        IPOPT) or ``failed``.
+    """
+    if success:
+        return Status.SOLVED
+    return _IPOPT.get(str(return_status), Status.FAILED) if return_status else Status.FAILED

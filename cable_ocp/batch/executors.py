@@ -35,6 +35,7 @@ from typing import Any
 
 from cable_ocp.batch.cases import Case
 from cable_ocp.batch.kinds import RUNNERS, Runner
+from cable_ocp.status import Status
 
 OnRow = Callable[[dict[str, Any]], None]
 
@@ -75,7 +76,7 @@ def error_row(case: Case, status: str, message: str) -> dict[str, Any]:
     message : str
         One line saying what went wrong.
     """
-    return {"case": case.index, "case_id": case.case_id, "status": status,
+    return {"case": case.index, "case_id": case.case_id, "status": Status(status),
             "message": message, "wall_time_s": None, **case.overrides}
 
 

@@ -41,6 +41,7 @@ from typing import Any
 import numpy as np
 
 from cable_ocp.errors import CableOCPError
+from cable_ocp.status import Status
 
 EXIT_OK = 0
 EXIT_NOT_SUCCESS = 1
@@ -253,7 +254,8 @@ def envelope(status: str, message: str, data: dict[str, Any] | None = None,
     ----------
     status : str
         The run's status, e.g. ``"solved"`` or ``"ok"`` for a success, ``"interrupted"``,
-        or the command's failure status.
+        or the command's failure status: a member of :class:`cable_ocp.status.Status`
+        (anything else is a bug and raises ``ValueError``).
     message : str
         One line saying what happened or why it failed.
     data : dict, optional
@@ -262,7 +264,7 @@ def envelope(status: str, message: str, data: dict[str, Any] | None = None,
     warnings : sequence of str
         Warnings of the run, as a list in the JSON (default none).
     """
-    out: dict[str, Any] = {"status": status, "message": message,
+    out: dict[str, Any] = {"status": Status(status), "message": message,
                            "warnings": list(warnings), "version": version()}
     for key, value in (data or {}).items():
         if key not in out:

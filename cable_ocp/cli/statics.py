@@ -45,7 +45,8 @@ def register(sub: argparse._SubParsersAction, parent: argparse.ArgumentParser) -
         description="Reach of a tethered seabed unit in N directions: one NLP per direction "
                     "over the thrust and the cable length, built once and warm-started from "
                     "the neighbouring direction. Exit 0 when every direction is solved, 1 "
-                    "when some is not (unreachable directions report the optimiser's status).")
+                    "when some is not (unreachable directions report the optimiser's status, "
+                    "e.g. infeasible).")
     f.add_argument("file", help="problem file with a [footprint] table, e.g. "
                                 "problems/footprint_tethered_unit.toml")
     f.add_argument("--directions", type=int, default=72, metavar="N",

@@ -33,12 +33,14 @@ import numpy as np
 from cable_ocp.heave.controllers import Controller
 from cable_ocp.heave.delay import DelayLine
 from cable_ocp.heave.estimators import Observation
+from cable_ocp.status import Status
 
 __all__ = ["STATUSES", "UNSTABLE_FACTOR", "CableTrace", "LoopPlant", "LoopRun", "Sample",
            "Trace", "Wave", "make_wave", "run_loop", "run_status", "unstable_bound"]
 
 #: per-controller statuses (:mod:`cable_ocp.heave.simulate`)
-STATUSES = ("solved", "unstable", "non_finite", "failed")
+#: the statuses of a run (members of :class:`cable_ocp.status.Status`)
+STATUSES = (Status.SOLVED, Status.UNSTABLE, Status.NON_FINITE, Status.FAILED)
 
 #: bound on the simulated unit heave and winch output, times the largest boom-tip heave of
 #: the realisation (at least 1 mm): beyond it the loop is declared unstable

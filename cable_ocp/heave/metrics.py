@@ -18,6 +18,7 @@ import numpy as np
 
 from cable_ocp.heave.closed_loop import LoopRun, Trace, run_status
 from cable_ocp.scene.heave import HeaveScene
+from cable_ocp.status import Status
 
 if TYPE_CHECKING:
     from cable_ocp.heave.simulate import Models
@@ -85,8 +86,13 @@ class Comparison:
     passive_heave_rms: float | None = None
     warnings: list = field(default_factory=list)
 
+    def __post_init__(self) -> None:
+        # every controller's status is one of the package's vocabulary (cable_ocp.status)
+        for name, st in self.statuses.items():
+            self.statuses[name] = Status(st)
+
     @property
-    def status(self) -> str:
+    def status(self) -> Status:
         """``"solved"`` when every controller is, else the first other status."""
         bad = [s for s in self.statuses.values() if s != "solved"]
         return bad[0] if bad else "solved"

@@ -12,8 +12,9 @@ ship along theta,
 
 over the thrust components and the cable length (:class:`~cable_ocp.statics.optimize.
 StaticsNLP`, built once with theta as a parameter). Each direction starts from its
-neighbour's optimum. A direction with no feasible configuration is reported with IPOPT's
-status (e.g. ``Infeasible_Problem_Detected``), never as a reach.
+neighbour's optimum. A direction with no feasible configuration is reported with the
+optimiser's status (``"infeasible"``, or ``"max_iterations"`` at the iteration cap:
+:func:`cable_ocp.status.from_ipopt`), never as a reach.
 """
 
 from __future__ import annotations

@@ -46,6 +46,7 @@ from cable_ocp.statics.formulation import (
 )
 from cable_ocp.statics.line_solver import StaticsSolver
 from cable_ocp.statics.solution import StaticsSolution
+from cable_ocp.status import Status, from_ipopt
 
 __all__ = ["OptimizationResult", "StaticsNLP", "View"]
 
@@ -85,8 +86,10 @@ class OptimizationResult:
 
     Attributes
     ----------
-    status : str
-        ``"solved"`` or IPOPT's failure status (e.g. ``"Infeasible_Problem_Detected"``).
+    status : Status
+        ``"solved"``, or IPOPT's failure in the package's vocabulary
+        (:func:`cable_ocp.status.from_ipopt`: ``"infeasible"``, ``"max_iterations"``,
+        ``"interrupted"``, ``"failed"``); IPOPT's own string is in the solution's message.
     variables : dict
         Optimal decision variables, physical units.
     objective : float
@@ -97,7 +100,7 @@ class OptimizationResult:
     wall_time_s : float
     """
 
-    status: str
+    status: Status
     variables: dict[str, float]
     objective: float
     solution: StaticsSolution
@@ -240,7 +243,7 @@ class StaticsNLP:
         x = np.asarray(res["x"]).ravel()
         vals = {n: float(x[nw + k] * s)
                 for k, (n, (_, s)) in enumerate(zip(self.names, self.index, strict=True))}
-        status = "solved" if st.get("success") else str(st.get("return_status"))
+        status = from_ipopt(st.get("return_status"), bool(st.get("success")))
         p_opt = self.p0.copy()
         for (i, _), val in zip(self.index, x[nw:], strict=True):
             p_opt[i] = val

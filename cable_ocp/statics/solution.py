@@ -14,6 +14,8 @@ from typing import Any
 
 import numpy as np
 
+from cable_ocp.status import Status
+
 #: statuses whose iterate solves the discretised equations (see :attr:`StaticsSolution.converged`)
 CONVERGED = ("solved", "inaccurate", "below_seabed", "above_surface")
 
@@ -24,8 +26,10 @@ class StaticsSolution:
 
     Attributes
     ----------
-    status : str
-        ``"solved"`` or a failure code (``"failed"``, ``"max_iterations"``, ...).
+    status : Status
+        ``"solved"`` or a failure code (``"failed"``, ``"max_iterations"``, ...), a member
+        of :class:`cable_ocp.status.Status` (a string; setting any other raises
+        ``ValueError``).
     message : str
         Human-readable detail of the status.
     s : ndarray, shape (n,)
@@ -49,7 +53,7 @@ class StaticsSolution:
         Everything else: solver used, continuation steps, smoothing bound, mesh, ...
     """
 
-    status: str
+    status: Status
     message: str
     s: np.ndarray
     position: np.ndarray
@@ -70,6 +74,10 @@ class StaticsSolution:
     #: warm-start from its own unknowns without interpolating the node arrays
     _unknowns: tuple[object, np.ndarray] | None = field(default=None, repr=False,
                                                          compare=False)
+
+    def __setattr__(self, name: str, value: Any) -> None:
+        # the status is one of the package's vocabulary (cable_ocp.status), however set
+        object.__setattr__(self, name, Status(value) if name == "status" else value)
 
     @property
     def grounded_length(self) -> float:
