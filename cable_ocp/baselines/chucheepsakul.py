@@ -154,6 +154,9 @@ class FemProblem:
         Both ends fully fixed, end_b above end_a.
     elements : int
         Number of equal elements in z.
+    tangential_in_tension : bool, default True
+        Keep the tangential-drag integral in the tension, Chucheepsakul (1991) eq. (13) as
+        derived (see the module docstring); False drops it, eq. (14).
     """
 
     def __init__(self, scene: Scene, elements: int, tangential_in_tension: bool = True):
@@ -192,7 +195,18 @@ class FemProblem:
 
     # -- geometry and loads -------------------------------------------------------------
     def slopes(self, q: np.ndarray, xi: np.ndarray | None = None) -> np.ndarray:
-        """(x', y') at the Gauss points (n, g, 2) or at local points ``xi`` (n, m, 2)."""
+        """(x', y') at the Gauss points (n, g, 2) or at local points ``xi`` (n, m, 2).
+
+        Parameters
+        ----------
+        q : numpy.ndarray, shape (2, ndof)
+            Nodal dofs of x (row 0) and y (row 1), each (value_i, slope_i) per node i =
+            0 .. n: values in m relative to end_a, slopes dx/dz, dy/dz (-).
+        xi : numpy.ndarray, optional
+            Local coordinates in [0, 1] (-) at which to evaluate in every element, any
+            shape; the result then has shape (n, *xi.shape, 2). Default: the element
+            Gauss points.
+        """
         _, dn = (self.shape, self.dshape) if xi is None else _hermite(xi.ravel(), self.h)
         out = []
         for c in range(2):
@@ -249,6 +263,28 @@ class FemProblem:
         dT/dz = W_e/eps - P_t S, integrated from the end with the known tension with the
         element Gauss rule (partial integrals by a mapped Gauss rule). eps = 1 + T/EA uses
         the previous iterate's tension (``t_prev``), or 1 for an inextensible cable.
+
+        Parameters
+        ----------
+        q : numpy.ndarray, shape (2, ndof)
+            Nodal dofs of x and y (see :meth:`slopes`); their slopes set the drag.
+        t_top : float or None
+            Tension magnitude at end_b (the top, z = H), N; the integration starts there
+            when given.
+        t_bottom : float or None
+            Tension magnitude at end_a (z = 0), N; used only when ``t_top`` is None (then
+            it must be given).
+        t_prev : tuple of numpy.ndarray or None
+            The previous iterate's (T at the Gauss points (n, g), T at the nodes (n + 1)),
+            N; its Gauss-point values set eps for an elastic cable. None: eps = 1 (the
+            first iterate, or EA = inf).
+
+        Returns
+        -------
+        gauss : numpy.ndarray, shape (n, g)
+            Tension at the Gauss points, N.
+        nodes : numpy.ndarray, shape (n + 1,)
+            Tension at the nodes, N.
         """
         n, hh = self.n, self.h
         pts_up = self.slopes(q, self.up_xi)       # (n, g, g', 2)
@@ -286,6 +322,20 @@ class FemProblem:
         1991, (20)), all dofs.
 
         Dof layout: x dofs 0..ndof-1, then y dofs. T and the loads are held fixed.
+
+        Parameters
+        ----------
+        q : numpy.ndarray, shape (2, ndof)
+            Nodal dofs of x and y (see :meth:`slopes`), the current iterate.
+        tg : numpy.ndarray, shape (n, g)
+            Tension magnitude at the Gauss points, N (from :meth:`tension`).
+
+        Returns
+        -------
+        K : scipy.sparse.csc_matrix, shape (2 ndof, 2 ndof)
+            Tangent dR/dq (with T and the loads held fixed).
+        R : numpy.ndarray, shape (2 ndof,)
+            Residual, N on the value dofs and N m on the slope dofs.
         """
         g = self.slopes(q)
         s = np.sqrt(1.0 + g[..., 0] ** 2 + g[..., 1] ** 2)
@@ -320,14 +370,37 @@ class FemProblem:
         return np.concatenate([self.free, self.ndof + self.free])
 
     def length(self, q: np.ndarray, tg: np.ndarray) -> float:
-        """Unstretched length int S/eps dz, m (Gauss rule)."""
+        """Unstretched length int S/eps dz, m (Gauss rule).
+
+        Parameters
+        ----------
+        q : numpy.ndarray, shape (2, ndof)
+            Nodal dofs of x and y (see :meth:`slopes`).
+        tg : numpy.ndarray, shape (n, g)
+            Tension magnitude at the Gauss points, N, for eps = 1 + T/EA (not used when
+            EA = inf).
+        """
         g = self.slopes(q)
         s = np.sqrt(1.0 + g[..., 0] ** 2 + g[..., 1] ** 2)
         eps = 1.0 + tg / self.ea if math.isfinite(self.ea) else 1.0
         return float(self.h * np.sum(_WG * s / eps))
 
     def arc_length_nodes(self, q: np.ndarray, tg: np.ndarray) -> np.ndarray:
-        """Unstretched arc length at the nodes, m."""
+        """Unstretched arc length at the nodes, m.
+
+        Parameters
+        ----------
+        q : numpy.ndarray, shape (2, ndof)
+            Nodal dofs of x and y (see :meth:`slopes`).
+        tg : numpy.ndarray, shape (n, g)
+            Tension magnitude at the Gauss points, N, for eps = 1 + T/EA (not used when
+            EA = inf).
+
+        Returns
+        -------
+        numpy.ndarray, shape (n + 1,)
+            s at every node from end_a (s = 0), m.
+        """
         g = self.slopes(q)
         s = np.sqrt(1.0 + g[..., 0] ** 2 + g[..., 1] ** 2)
         eps = 1.0 + tg / self.ea if math.isfinite(self.ea) else 1.0
@@ -460,6 +533,15 @@ def solve(scene: Scene, warm_start: StaticsSolution | None = None) -> StaticsSol
     A result above the accuracy is ``"inaccurate"``
     (:func:`cable_ocp.baselines.common.refine_to_accuracy`). A solved result then passes
     the independent equilibrium check (:func:`cable_ocp.baselines.common.equilibrium_check`).
+
+    Parameters
+    ----------
+    scene : Scene
+        The statics problem (project frame): both ends fully fixed, end_b above end_a,
+        the length or one end tension given (see :func:`solve_fem`).
+    warm_start : StaticsSolution, optional
+        A neighbouring solution whose profile starts the first level's iteration (see
+        :func:`solve_fem`); default the drag-free catenary.
     """
     cache = MeshCache(
         lambda n, warm: solve_fem(scene.with_overrides({"solver.intervals": n}), warm))

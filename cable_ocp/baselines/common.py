@@ -22,14 +22,38 @@ if TYPE_CHECKING:
     from cable_ocp.statics.solution import StaticsSolution
 
 def unsupported(method: str, reason: str) -> CableOCPError:
-    """The error a method raises for a scene it cannot represent (names solver.method)."""
+    """The error a method raises for a scene it cannot represent (names solver.method).
+
+    Parameters
+    ----------
+    method : str
+        The method's ``solver.method`` name, quoted in the message.
+    reason : str
+        What about the scene the method cannot represent, appended to the message.
+
+    Returns
+    -------
+    CableOCPError
+        The error (returned, not raised: the caller raises it).
+    """
     return CableOCPError(f"solver.method = {method!r} cannot represent this scene: {reason}")
 
 
 def rising_fixed_ends(scene: Scene, method: str, why: str) -> tuple[float, float]:
     """Heights (m) of end_a and end_b for the z-parametrised methods (Wang et al. (1993),
     Chucheepsakul (1991)), which
-    need both ends fixed and end_b above end_a; ``why`` cites the method's equations."""
+    need both ends fixed and end_b above end_a; ``why`` cites the method's equations.
+
+    Parameters
+    ----------
+    scene : Scene
+        The scene; both ends must have all three position components fixed and end_b
+        must lie strictly above end_a, else :func:`unsupported` is raised.
+    method : str
+        The method's ``solver.method`` name, for the error message.
+    why : str
+        The method's reason for fixed ends (its equations), for the error message.
+    """
     ea, eb = scene.end_a, scene.end_b
     if not all(ea.fixed_mask) or not all(eb.fixed_mask):
         raise unsupported(method, f"both end_a and end_b need a fully fixed position ({why})")
@@ -82,6 +106,16 @@ def compare(fine: StaticsSolution, coarse: StaticsSolution, param: str = "s"
     cubic spline: exact where the nodes are shared) or of the lengths. ``param`` says how nodes are
     matched: ``"s"`` by s/L (methods discretised in arc length), ``"z"`` by the height
     above end_a (methods discretised in z: Wang's RK4 steps, the FEM's elements).
+
+    Parameters
+    ----------
+    fine : StaticsSolution
+        The solution at the finer resolution; interpolated at the coarse one's nodes.
+        Its largest tension is the third value returned.
+    coarse : StaticsSolution
+        The solution at the coarser resolution.
+    param : {"s", "z"}, default "s"
+        How nodes are matched (any value other than ``"z"`` matches by s/L).
     """
     dforce = max(float(np.max(np.abs(fine.force_a - coarse.force_a))),
                  float(np.max(np.abs(fine.force_b - coarse.force_b))))
@@ -106,7 +140,21 @@ def compare(fine: StaticsSolution, coarse: StaticsSolution, param: str = "s"
 def observed_order(rel_fine: float, rel_coarse: float, low: float, high: float,
                    fallback: float) -> float:
     """log2(rel_coarse / rel_fine) clipped to [low, high]; ``fallback`` when either
-    difference is zero or not finite (nothing to observe: e.g. an exact method)."""
+    difference is zero or not finite (nothing to observe: e.g. an exact method).
+
+    Parameters
+    ----------
+    rel_fine : float
+        Relative difference (-) between the finer pair of solutions (e.g. N and N/2).
+    rel_coarse : float
+        Relative difference (-) between the coarser pair, one halving of the resolution
+        further (e.g. N/2 and N/4).
+    low, high : float
+        Clip range of the order (-).
+    fallback : float
+        The order (-) returned when either difference is zero or not finite (not
+        clipped).
+    """
     if rel_fine > 0 and rel_coarse > 0 and math.isfinite(rel_fine) and math.isfinite(rel_coarse):
         return float(np.clip(math.log2(rel_coarse / rel_fine), low, high))
     return fallback
@@ -127,6 +175,17 @@ class MeshCache:
         self.solutions: dict[int, StaticsSolution] = {}
 
     def solve_at(self, n: int, warm: StaticsSolution | None) -> StaticsSolution:
+        """The solution at resolution ``n``: the cached one when no warm start is given
+        and ``n`` was solved, else a new solve (cached when it succeeds).
+
+        Parameters
+        ----------
+        n : int
+            The resolution (elements, segments or steps: the method's unit).
+        warm : StaticsSolution or None
+            Warm start passed to the method's solve; None: reuse the cached solution at
+            ``n`` if there is one, else solve cold.
+        """
         if warm is None and n in self.solutions:
             return self.solutions[n]
         sol = self._solve(n, warm)
@@ -156,6 +215,25 @@ def richardson_coarser(n: int, sol: StaticsSolution, get: Callable[[int], Static
     FEM's order looked like 1.6 and the estimate was 2.8x too small, Huang's method on the
     high-speed tow 3.8x), q = ``low`` from two solutions, the conservative end of the range.
     ``get(m)`` returns the method's (success) solution on m units, or None.
+
+    Parameters
+    ----------
+    n : int
+        The resolution N of ``sol`` (in ``unit``).
+    sol : StaticsSolution
+        The method's solution on N units, the one estimated.
+    get : callable
+        ``get(m) -> StaticsSolution or None``: the method's successful solution on m
+        units (e.g. :meth:`MeshCache.get`), or None when that solve fails.
+    param : {"s", "z"}
+        How nodes are matched in :func:`compare`.
+    low, high : float
+        Clip range of the observed order (-); ``high`` is the nominal order.
+    unit : str
+        Name of the resolution's unit in messages (e.g. ``"elements"``).
+    min_coarse : int, default 4
+        Fewest units N/4 from which the order is observed; below it (N >= 4), q =
+        ``low``.
     """
     if n < 2:
         return Estimate(math.inf, {"note": f"no estimate below 2 {unit}"})
@@ -207,6 +285,41 @@ def refine_to_accuracy(scene: Scene, method: str, start: Any,
     lists the levels tried (``wall_time_s`` then covers all of them and their estimates),
     ``describe(level)`` gives the ``diagnostics["mesh"]`` entry and ``label(level)`` names
     a level in messages (e.g. "40 segments").
+
+    Parameters
+    ----------
+    scene : Scene
+        The scene; its ``solver.accuracy``, ``solver.error_estimate`` and
+        ``solver.refine`` set the contract.
+    method : str
+        The method's ``solver.method`` name, for messages.
+    start : object
+        The first resolution level (a number of intervals, or solve_bvp's tolerance).
+    solve_at : callable
+        ``solve_at(level, warm) -> StaticsSolution``: the method's solve at ``level``
+        from the warm start ``warm`` (None: cold).
+    estimate : callable
+        ``estimate(level, sol) -> Estimate``: the method's error estimate of ``sol``.
+    finer : callable
+        ``finer(level, estimate) -> (next_level, why)``: the next level, or
+        ``(None, why)`` at the method's limit (``why`` goes into the message).
+    warm_start : StaticsSolution, optional
+        Warm start of the first solve.
+    describe : callable, optional
+        ``describe(level) -> dict``, the ``diagnostics["mesh"]`` entry of a level;
+        default ``{"intervals": level}``.
+    label : callable, default str
+        ``label(level) -> str``, a level's name in messages.
+    retry_cold : bool, default True
+        Retry a failed refined solve once from a cold start.
+
+    Returns
+    -------
+    StaticsSolution
+        The last level that succeeded (or the first level's failed solve), with
+        ``error_estimate`` and ``diagnostics["error_estimate_detail"]`` set (unless the
+        first solve failed or ``solver.error_estimate`` is false); ``"inaccurate"`` when
+        the estimate exceeds the accuracy.
     """
     opts = scene.solver
     describe = describe or (lambda level: {"intervals": level})
@@ -274,6 +387,24 @@ def double_within(n: int, est: Estimate, accuracy: float, limit: int, limit_text
     highest order ``top_order`` predicts that ``limit`` cannot reach the accuracy:
     N (estimate / accuracy)^(1/top_order) > limit (doubling towards it would only cost
     time; the message gives the predicted N).
+
+    Parameters
+    ----------
+    n : int
+        The current resolution N (in ``unit``).
+    est : Estimate
+        The error estimate at N; its ``value`` (relative, -) predicts the N needed and
+        its ``order`` is quoted in the message.
+    accuracy : float
+        The accuracy to reach (``solver.accuracy``, relative, -).
+    limit : int
+        Largest resolution allowed (in ``unit``).
+    limit_text : str
+        What sets ``limit``, for the message (e.g. ``"solver.max_intervals = 640"``).
+    top_order : float
+        The method's highest convergence order (-), for the prediction.
+    unit : str
+        Name of the resolution's unit in messages (e.g. ``"elements"``).
     """
     if 2 * n > limit:
         return None, f"N = {n} {unit}, and 2N would exceed {limit_text}"
@@ -293,7 +424,19 @@ def equilibrium_check(scene: Scene, sol: Any, method: str) -> Any:
     shot lands with the method's end_b. A method whose parametrisation cannot represent the
     true equilibrium (e.g. x(z) for a cable that dips below its anchor) can converge to a
     profile that is no equilibrium at all; a landing error over ``EQUILIBRIUM_LIMIT`` (1 %)
-    of L (or of the largest tension) marks it ``"not_equilibrium"``."""
+    of L (or of the largest tension) marks it ``"not_equilibrium"``.
+
+    Parameters
+    ----------
+    scene : Scene
+        The scene solved (its equations are rebuilt here, the current at full scale).
+    sol : StaticsSolution
+        The method's answer, checked only when it succeeded; ``status``, ``message`` and
+        ``diagnostics["equilibrium_check"]`` (the relative landing error, -) are set in
+        place, and it is returned.
+    method : str
+        The method's ``solver.method`` name, for the message.
+    """
     if not sol.success:
         return sol
     from scipy.integrate import solve_ivp
@@ -325,7 +468,18 @@ def equilibrium_check(scene: Scene, sol: Any, method: str) -> Any:
 
 
 def seabed_check(scene: Scene, sol: Any, method: str) -> Any:
-    """Mark a method's solution that passes below a modelled seabed as a failure."""
+    """Mark a method's solution that passes below a modelled seabed as a failure.
+
+    Parameters
+    ----------
+    scene : Scene
+        The scene solved; only a scene with ``[environment.seabed]`` is checked.
+    sol : StaticsSolution
+        The method's answer, checked only when it succeeded; a penetration deeper than
+        1e-6 of its length (m) makes it ``"seabed_contact"`` in place, and it is returned.
+    method : str
+        The method's ``solver.method`` name, for the message.
+    """
     sb = scene.environment.seabed
     if sb is None or not sol.success:
         return sol

@@ -140,6 +140,15 @@ def solve(scene: Scene, warm_start: StaticsSolution | None = None) -> StaticsSol
     above the accuracy is ``"inaccurate"``
     (:func:`cable_ocp.baselines.common.refine_to_accuracy`). It has no seabed contact: a
     profile through a modelled seabed is reported as ``"seabed_contact"``.
+
+    Parameters
+    ----------
+    scene : Scene
+        The statics problem (project frame).
+    warm_start : StaticsSolution, optional
+        Start of the first solve (resampled on ``solver.intervals + 1`` uniform nodes,
+        :func:`solve_bvp`) instead of ``solver.initial_guess``; later levels start from
+        the previous one.
     """
     form = Formulation(scene)
     cache: dict[float, StaticsSolution] = {}

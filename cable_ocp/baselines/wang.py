@@ -372,7 +372,25 @@ class WangProblem:
 
     def objective(self, v: np.ndarray, n: int) -> float:
         """L1 objective Phi (Wang et al. 1993, eq. (24) or (25)); PENALTY + (1 - zbar) when
-        infeasible."""
+        infeasible.
+
+        Parameters
+        ----------
+        v : numpy.ndarray
+            The optimisation variables (:meth:`unknowns_to_zeta`), in order: Tbar(0) =
+            T(0) / (W H) (-; left out when the tension at end_a is given), theta(0) (rad,
+            the tangent's heading from +x towards +y; left out on a planar scene, where it
+            is the chord's heading) and phi(0) (rad, the tangent's elevation above the
+            horizontal).
+        n : int
+            Number of RK4 steps over zbar in [0, 1] (h = 1/n).
+
+        Returns
+        -------
+        float
+            Phi (-), the sum of the absolute end mismatches of :meth:`residuals`; at least
+            ``PENALTY`` when a stage leaves the domain 0 < phi < pi, Tbar > 0.
+        """
         end, reached = self.integrate(self.unknowns_to_zeta(v), n)
         if end is None:
             return PENALTY + (1.0 - reached)

@@ -379,7 +379,23 @@ def _choice(value: Any, key: str, valid: tuple[str, ...]) -> str:
 
 
 def vec_or_scalar(value: Any, key: str) -> tuple[Vec3, bool]:
-    """A nonnegative number or [x, y, z] -> (triple, given per axis)."""
+    """A nonnegative number or [x, y, z] -> (triple, given per axis).
+
+    Parameters
+    ----------
+    value : float or list of 3 float
+        The key's value from the scene file, in the key's unit: one nonnegative number
+        for all three axes, or one per axis.
+    key : str
+        The dotted key (e.g. ``"unit.drag_area"``), for error messages.
+
+    Returns
+    -------
+    triple : tuple of 3 float
+        The value per axis x, y, z.
+    per_axis : bool
+        True when ``value`` was a list.
+    """
     if isinstance(value, list):
         if len(value) != 3:
             raise CableOCPError(f"{key} = {value!r}: expected a number or [x, y, z]")
@@ -391,6 +407,23 @@ def vec_or_scalar(value: Any, key: str) -> tuple[Vec3, bool]:
 
 def parse_segment_dynamics(t: dict[str, Any], where: str, diameter: float,
                             need_diameter: bool) -> SegmentDynamics:
+    """A segment's dynamic properties from its table (keys :data:`CABLE_DYN_KEYS`).
+
+    Parameters
+    ----------
+    t : dict
+        The segment's dynamic keys (``[cable]`` or one ``[[cable.segments]]`` entry):
+        ``mass_per_length`` (kg/m, required), ``added_mass_coefficient`` (-, default 1.0),
+        ``tangential_added_mass_coefficient`` (-, default 0.0), ``axial_damping`` (N s,
+        default 0.0).
+    where : str
+        The table's name (e.g. ``"cable"``, ``"cable.segments[1]"``), for error messages.
+    diameter : float
+        The segment's hydrodynamic diameter, m (from the statics part of the scene).
+    need_diameter : bool
+        True: a nonzero added-mass coefficient with ``diameter`` <= 0 is an error (the
+        added mass is C_a rho pi d^2 / 4 per metre); False: accepted.
+    """
     mass = _number(_require(t, "mass_per_length", where), f"{where}.mass_per_length",
                    positive=True)
     ca_n = _number(t.get("added_mass_coefficient", 1.0), f"{where}.added_mass_coefficient",
@@ -410,6 +443,23 @@ def parse_segment_dynamics(t: dict[str, Any], where: str, diameter: float,
 
 
 def parse_unit(t: Any, rho: float, g: float) -> Unit:
+    """The subsea unit at end_a from the ``[unit]`` table.
+
+    ``weight_in_water`` (N) or ``volume`` (m^3) must be given; with both, the weight in
+    water must match (m - rho V) g to 1e-3 of the larger of its magnitude and m g, and it
+    may not exceed the weight in air m g (by more than :data:`ROUNDING`).
+
+    Parameters
+    ----------
+    t : dict
+        The ``[unit]`` table: ``mass`` (kg, required), ``added_mass`` (kg, a number or
+        [x, y, z]), ``weight_in_water`` (N), ``volume`` (m^3), ``drag_area`` (m^2) and
+        ``drag_coefficient`` (-) (each a number or [x, y, z], both or neither per axis).
+    rho : float
+        Water density, kg/m^3 (for the weight in water from the volume).
+    g : float
+        Gravitational acceleration, m/s^2.
+    """
     t = _check_keys(t, _UNIT_KEYS, "unit")
     mass = _number(_require(t, "mass", "unit"), "unit.mass", nonneg=True)
     added, _ = vec_or_scalar(t.get("added_mass", 0.0), "unit.added_mass")

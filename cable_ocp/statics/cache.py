@@ -90,7 +90,17 @@ def code_version() -> str:
 
 
 def entry_key(structure: str, role: str) -> str:
-    """The full key of an entry: format, versions, role and the caller's structure text."""
+    """The full key of an entry: format, versions, role and the caller's structure text.
+
+    Parameters
+    ----------
+    structure : str
+        The caller's text of everything the functions depend on (the scene's structure,
+        scales, transcription and mesh; e.g. a ``repr`` of a tuple), stored verbatim.
+    role : str
+        What the functions are for (e.g. ``"blocks"``, ``"ipopt"``); it also names the
+        entry's file, so that one structure can hold several entries.
+    """
     return f"format {FORMAT}\n{code_version()}\nrole {role}\n{structure}"
 
 
@@ -100,7 +110,15 @@ def _path(folder: Path, key: str, role: str) -> Path:
 
 def load(structure: str, role: str) -> dict[str, ca.Function] | None:
     """The functions stored for (structure, role), or None (miss, cache off, or an entry
-    that fails any check: it is never deserialised then)."""
+    that fails any check: it is never deserialised then).
+
+    Parameters
+    ----------
+    structure : str
+        The structure text the entry was saved under (see :func:`entry_key`).
+    role : str
+        The role the entry was saved under (e.g. ``"blocks"``, ``"ipopt"``).
+    """
     folder = cache_dir()
     if folder is None:
         return None
@@ -133,7 +151,19 @@ def load(structure: str, role: str) -> dict[str, ca.Function] | None:
 
 def save(structure: str, role: str, functions: dict[str, ca.Function]) -> bool:
     """Store the functions for (structure, role) as one serialised bundle (shared parts
-    once); True when written."""
+    once); True when written.
+
+    Parameters
+    ----------
+    structure : str
+        The structure text to file the entry under (see :func:`entry_key`).
+    role : str
+        The role to file the entry under (e.g. ``"blocks"``, ``"ipopt"``).
+    functions : dict of str to casadi.Function
+        The functions by name; :func:`load` returns them under the same names. Nothing
+        is stored (False) when they cannot be serialised, the bundle exceeds
+        :data:`MAX_ENTRY_BYTES`, the cache is off or the folder cannot be written.
+    """
     folder = cache_dir()
     if folder is None:
         return False

@@ -37,6 +37,17 @@ def check_physical(scene: Scene, sol: StaticsSolution) -> StaticsSolution:
       contact is modelled and penetration is judged by the solver's contact logic.
 
     Only results that would otherwise be used (``"solved"``, ``"inaccurate"``) are marked.
+
+    Parameters
+    ----------
+    scene : Scene
+        The scene solved: ``environment.water_depth`` (m, the free surface's z), whether it
+        has an ``[environment.seabed]`` table, and its cables' diameters (m; the smallest
+        one's radius is the allowance below the plane z = 0).
+    sol : StaticsSolution
+        The answer to check; ``status``, ``message`` and ``diagnostics["warnings"]`` are
+        updated in place. The tolerance is :data:`REL_TOL` times its length (m, at
+        least 1 m).
     """
     if sol.status not in ("solved", "inaccurate") or not np.all(np.isfinite(sol.position)):
         return sol

@@ -54,6 +54,15 @@ def segment_intervals(scene: Scene, intervals: int) -> tuple[int, ...]:
     ``intervals`` key, else a share of ``solver.intervals`` proportional to its length,
     at least 2. Other meshes scale the base mesh by ``intervals / solver.intervals``
     (halving and doubling give nested meshes), at least 1 per segment.
+
+    Parameters
+    ----------
+    scene : Scene
+        A multi-segment scene: its ``segments`` (lengths, m), ``segment_intervals`` (the
+        segments' own ``intervals`` keys, None where not given) and ``solver.intervals``.
+    intervals : int
+        Number of intervals of the whole mesh; equal to ``scene.solver.intervals`` for
+        the base mesh.
     """
     lines = scene.segments
     total = sum(c.length for c in lines)  # type: ignore[misc]
@@ -253,6 +262,23 @@ class Mesh:
 class Collocation:
     """Residual function G(w, p) of the collocated BVP for one formulation and mesh.
 
+    Parameters
+    ----------
+    form : Formulation
+        The scene's scaled equations (right-hand sides, end conditions, parameters).
+    intervals : int
+        Number of intervals in all; a multi-segment line shares them out by
+        :func:`segment_intervals`.
+    degree : int
+        Degree d of the collocation polynomial, 1..9 (d collocation points per interval).
+    scheme : {"legendre", "radau"}
+        Gauss-Legendre or right Gauss-Radau collocation points
+        (:func:`cable_ocp.numerics.quadrature.collocation_points`).
+    grounded : bool, default False
+        Seabed contact at end_a: the unknowns end with the scaled grounded length g, the
+        collocated part starts at the touchdown point, and end_a's conditions are those
+        of :meth:`Formulation.touchdown_residual`.
+
     Attributes
     ----------
     residual : casadi.Function
@@ -319,7 +345,17 @@ class Collocation:
     def params(self, p_form: np.ndarray, mesh: Mesh | None = None) -> np.ndarray:
         """The residual's parameter vector: the formulation's parameters ``p_form``
         (:meth:`Formulation.params`) and the interval widths of ``mesh`` (default: the
-        current mesh)."""
+        current mesh).
+
+        Parameters
+        ----------
+        p_form : numpy.ndarray, shape (NP,)
+            The formulation's scaled parameters (:meth:`Formulation.params`).
+        mesh : Mesh, optional
+            A mesh with the same numbers of intervals as the current one, whose interval
+            widths (in each segment's own coordinate, -) to append; default the current
+            mesh.
+        """
         return np.concatenate([p_form, self.mesh_params(mesh)])
 
     def set_mesh(self, mesh: Mesh) -> None:
@@ -600,7 +636,21 @@ class Collocation:
         return [(g if k == 0 else float(cum[k]), float(cum[k + 1])) for k in range(len(lens))]
 
     def node_s(self, length: float, g: float = 0.0) -> np.ndarray:
-        """Unstretched arc length of every state node, m (total length L, grounded g)."""
+        """Unstretched arc length of every state node, m (total length L, grounded g).
+
+        Parameters
+        ----------
+        length : float
+            Total unstretched length L, m.
+        g : float, default 0.0
+            Grounded length at end_a, m: the nodes cover the suspended part from s = g
+            to s = L (on a multi-segment line the first segment starts there).
+
+        Returns
+        -------
+        numpy.ndarray, shape (n_nodes,)
+            s of every node in unknown order, m.
+        """
         sig = self.mesh.sigma()
         if not self.mesh.segments:
             return g + sig * (length - g)
@@ -613,7 +663,18 @@ class Collocation:
         return out
 
     def sigma_of_s(self, s: np.ndarray, length: float, g: float = 0.0) -> np.ndarray:
-        """sigma (mesh coordinate) of arc lengths s (m), the inverse of :meth:`node_s`."""
+        """sigma (mesh coordinate) of arc lengths s (m), the inverse of :meth:`node_s`.
+
+        Parameters
+        ----------
+        s : array_like
+            Unstretched arc lengths from end_a, m (any shape; g <= s <= L).
+        length : float
+            Total unstretched length L, m.
+        g : float, default 0.0
+            Grounded length at end_a, m (sigma = 0 at s = g). On a multi-segment line a
+            point at a joint maps to the end of the segment before it.
+        """
         s = np.asarray(s, dtype=float)
         if not self.mesh.segments:
             return (s - g) / (length - g)
@@ -630,7 +691,28 @@ class Collocation:
         """Node arrays r (m), T (N) of a multi-segment line at this mesh's nodes from
         another solution's nodes (arc length s_src, m), segment by segment: the tension
         jumps at a joint, so each segment takes only its own nodes (at a joint listed
-        twice: the end of the segment before, the start of the segment after)."""
+        twice: the end of the segment before, the start of the segment after).
+
+        Parameters
+        ----------
+        s_src : numpy.ndarray, shape (n,)
+            Unstretched arc length of the source nodes from end_a, m, increasing (a joint
+            may appear twice).
+        r_src : numpy.ndarray, shape (n, 3)
+            Positions at the source nodes, m.
+        t_src : numpy.ndarray, shape (n, 3)
+            Tension vectors at the source nodes, N (any three-column node quantity is
+            interpolated the same way, e.g. the bending angle and moment).
+        length : float
+            Total unstretched length L, m.
+        g : float, default 0.0
+            Grounded length at end_a, m (the target nodes start there).
+
+        Returns
+        -------
+        r, t : numpy.ndarray, shape (n_nodes, 3)
+            ``r_src`` and ``t_src`` linearly interpolated in s at this mesh's nodes.
+        """
         tol = 1e-9 * max(length, 1.0)
         s_tgt = self.node_s(length, g)
         offs = self.mesh.segment_offsets()
@@ -663,6 +745,23 @@ class Collocation:
         between the nodes, not a re-interpolation. ``mesh``: the mesh of ``values``
         (default the current one); ``segment``: the segment of each point (a joint belongs
         to the segment after it unless given).
+
+        Parameters
+        ----------
+        values : numpy.ndarray, shape (n_nodes, k)
+            Values at the state nodes of ``mesh``, in unknown order (e.g. the scaled
+            states).
+        sigma : array_like, shape (m,)
+            Points in the mesh coordinate sigma in [0, 1] (-).
+        mesh : Mesh, optional
+            The mesh of ``values``; default the current one.
+        segment : array_like of int, shape (m,), optional
+            The segment of each point (0 at end_a); default: found from ``sigma``.
+
+        Returns
+        -------
+        numpy.ndarray, shape (m, k)
+            The polynomials' values at ``sigma``.
         """
         mesh = self.mesh if mesh is None else mesh
         n, d = mesh.intervals, mesh.degree
@@ -707,7 +806,17 @@ class Collocation:
         """Unknowns ``w`` on mesh ``source`` moved to mesh ``target`` (the same numbers of
         intervals): every node state from the source's collocation polynomials, segment by
         segment (a joint keeps the value of its own side); the length and the grounded
-        length as they are."""
+        length as they are.
+
+        Parameters
+        ----------
+        w : numpy.ndarray, shape (n_w,)
+            Scaled unknowns on ``source``.
+        source : Mesh
+            The mesh of ``w``.
+        target : Mesh
+            The mesh to move to, with the same numbers of intervals (other interval ends).
+        """
         w = np.asarray(w, dtype=float)
         xs = w[: self.n_x].reshape(source.n_nodes, self.nx)
         offs = target.segment_offsets()
@@ -723,7 +832,29 @@ class Collocation:
         """Scaled unknowns from the suspended part's node arrays r (n, 3) [m], T (n, 3) [N],
         the total unstretched length L [m] and the grounded length g [m]; with bending
         stiffness also (theta [rad], M [N m]) per node in ``bending`` (n, 2), by default
-        theta along the chord of each stiff segment, M = 0 (dummies 0 elsewhere)."""
+        theta along the chord of each stiff segment, M = 0 (dummies 0 elsewhere).
+
+        Parameters
+        ----------
+        r : numpy.ndarray, shape (n_nodes, 3)
+            Positions of the suspended part's nodes, m, in unknown order.
+        tension : numpy.ndarray, shape (n_nodes, 3)
+            Tension vectors at those nodes, N.
+        length : float
+            Total unstretched length L, m (stored as the unknown lam = (L - g) / ell when
+            the length is free; otherwise not used).
+        grounded_length : float, default 0.0
+            Grounded length g at end_a, m (stored as g / ell when ``grounded``).
+        bending : numpy.ndarray, shape (n_nodes, 2), optional
+            Per node the tangent angle theta (rad, from +x towards +z) and the bending
+            moment M (N m); only read with bending stiffness. Default: theta along the
+            chord of each stiff segment, M = 0.
+
+        Returns
+        -------
+        numpy.ndarray, shape (n_w,)
+            The scaled unknowns w.
+        """
         sc = self.form.scales
         cols = [r / sc.length, tension / sc.force]
         if self.nx > NX:
@@ -748,7 +879,17 @@ class Collocation:
     def unpack(self, w: np.ndarray, p: np.ndarray
                ) -> tuple[np.ndarray, np.ndarray, float, float]:
         """Suspended-part node arrays r (n, 3) [m], T (n, 3) [N], the total length L [m]
-        and the grounded length g [m] from the unknowns."""
+        and the grounded length g [m] from the unknowns.
+
+        Parameters
+        ----------
+        w : numpy.ndarray, shape (n_w,)
+            Scaled unknowns.
+        p : numpy.ndarray
+            The residual's scaled parameters (:meth:`params`, or the formulation's alone):
+            the fixed length is read from ``p[P_LENGTH]`` (L / ell) when the length is not
+            an unknown.
+        """
         sc = self.form.scales
         w = np.asarray(w, dtype=float).reshape(-1)
         xs = w[: self.n_x].reshape(self.mesh.n_nodes, self.nx)

@@ -236,7 +236,19 @@ class Formulation:
 
     def body_load(self, index: int, position: np.ndarray, current_scale: float = 1.0
                   ) -> np.ndarray:
-        """External load of ``scene.bodies[index]`` at ``position`` (m), N."""
+        """External load of ``scene.bodies[index]`` at ``position`` (m), N.
+
+        Parameters
+        ----------
+        index : int
+            Index of the body in ``scene.bodies``.
+        position : array_like, shape (3,)
+            The body's position (its joint), m; only its height z sets the current, and
+            hence the drag.
+        current_scale : float, default 1.0
+            Factor on the current velocities (-), the homotopy parameter
+            (``P_CURRENT``); 1 is the current as specified, 0 none.
+        """
         x = np.concatenate([np.asarray(position, float) / self.scales.length, np.ones(3)])
         return np.asarray(self.body_loads[index](x, current_scale)).reshape(-1) \
             * self.scales.force
@@ -280,7 +292,19 @@ class Formulation:
         """Conditions on (theta, m) of segment k (scaled), given its first and last node
         and the last node of segment k - 1 (None for k = 0): a flexible segment's dummies
         are 0 at its start; a stiff one has M = 0 where it meets a flexible segment, a body
-        or an end, and continuous theta, M after a stiff segment without a body between."""
+        or an end, and continuous theta, M after a stiff segment without a body between.
+
+        Parameters
+        ----------
+        k : int
+            Index of the segment (0 at end_a).
+        x_prev : casadi.MX or None
+            Scaled state (``nx`` values) of the last node of segment k - 1; None (not
+            read) for k = 0.
+        x_start, x_end : casadi.MX
+            Scaled states (``nx`` values) of the first and last node of segment k; theta
+            (index 6) in rad, M / M_ref (index 7) with M_ref = :attr:`moment_scale`.
+        """
         if self.nx == NX:
             return []
         if not self.stiff[k]:
@@ -327,7 +351,23 @@ class Formulation:
 
     # -- end conditions -----------------------------------------------------------------
     def end_residual(self, end: End, x: ca.SX, values: ca.SX, at_a: bool) -> list[ca.SX]:
-        """Residuals of the end conditions at one end (scaled)."""
+        """Residuals of the end conditions at one end (scaled).
+
+        Parameters
+        ----------
+        end : End
+            The end; its ``fixed_mask`` says per component whether the position (residual
+            r_i - p_i) or the external load (residual T_i + F_i at end_a, T_i - F_i at
+            end_b) is prescribed.
+        x : casadi.SX
+            Scaled state at that end, (rho, tau) = (r / ell, T / F) first.
+        values : casadi.SX, shape (3,)
+            Scaled prescribed values per component, position / ell or load / F (the
+            ``P_END_A`` or ``P_END_B`` part of the parameters).
+        at_a : bool
+            True at end_a (s = 0), where the cable's tension is minus the external load;
+            False at end_b (s = L), where it equals it.
+        """
         res = []
         sign = -1.0 if at_a else 1.0
         for i, fixed in enumerate(end.fixed_mask):
@@ -341,7 +381,18 @@ class Formulation:
         """End conditions at end_a when its cable lies on the seabed for a length g
         (scaled): the touchdown point is where the anchor's straight grounded line ends
         (stretched), and the cable is tangent to the seabed there (T . n = 0).
-        See :mod:`cable_ocp.physics.seabed`."""
+        See :mod:`cable_ocp.physics.seabed`.
+
+        Parameters
+        ----------
+        x0 : casadi.MX
+            Scaled state at the touchdown point, the first node of the suspended part:
+            (r / ell, T / F) first.
+        g : casadi.MX
+            Scaled grounded (unstretched) length, g / ell, from end_a to the touchdown.
+        anchor : casadi.MX, shape (3,)
+            Scaled position of end_a, r_a / ell (the ``P_END_A`` parameters).
+        """
         sb = self.scene.environment.seabed
         cab, sc = self.scene.cable, self.scales
         n = plane_normal(sb.slope_deg, sb.slope_heading_deg)
@@ -358,12 +409,40 @@ class Formulation:
         return res
 
     def tension_residual(self, x: ca.SX, tension: ca.SX) -> ca.SX:
-        """|tau|^2 - tau0^2 (scaled)."""
+        """|tau|^2 - tau0^2 (scaled).
+
+        Parameters
+        ----------
+        x : casadi.SX
+            Scaled state at the end whose tension is prescribed; tau = T / F is
+            ``x[3:6]``.
+        tension : casadi.SX
+            Scaled prescribed tension magnitude tau0 = T0 / F (the ``P_TENSION``
+            parameter).
+        """
         return ca.dot(x[3:6], x[3:6]) - tension * tension
 
     # -- parameters ---------------------------------------------------------------------
     def params(self, scene: Scene | None = None, current_scale: float = 1.0) -> np.ndarray:
-        """Numeric parameter vector for ``scene`` (which must share this structure)."""
+        """Numeric parameter vector for ``scene`` (which must share this structure).
+
+        Parameters
+        ----------
+        scene : Scene, optional
+            The scene whose values to take (the length, the end values, the prescribed
+            tension); it must have this formulation's structure, else ValueError.
+            Default: the scene the formulation was built from.
+        current_scale : float, default 1.0
+            Factor on the current velocities (-), the homotopy parameter stored at
+            ``P_CURRENT``; 1 is the current as specified.
+
+        Returns
+        -------
+        numpy.ndarray, shape (NP,)
+            Scaled parameters: L / ell (1 when the length is free), the end values
+            (position / ell or load / F), T0 / F (0 when no tension is prescribed) and
+            the current scale.
+        """
         scene = self.scene if scene is None else scene
         if scene is not self.scene and _structure_key(scene) != self.key:
             raise ValueError("scene structure differs from the one this formulation was built for")
@@ -379,7 +458,17 @@ class Formulation:
         return p
 
     def smoothing_force_bound(self, length: float, max_tension: float) -> float:
-        """Bound (N) on the total drag error from the smooth modulus over the cable."""
+        """Bound (N) on the total drag error from the smooth modulus over the cable.
+
+        Parameters
+        ----------
+        length : float
+            Unstretched length of the cable, m. Not used on a multi-segment line, where
+            each segment's own length is taken (and each body's point-drag bound added).
+        max_tension : float
+            Largest tension magnitude along the cable, N; it bounds the stretch factor
+            (1 + T/EA) that converts the drag to per unstretched length.
+        """
         env, cab = self.scene.environment, self.scene.cable
         if env.current is None:
             return 0.0

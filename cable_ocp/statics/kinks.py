@@ -267,7 +267,30 @@ def fitted_edges(counts: tuple[int, ...], bounds: tuple[float, ...], kinks: np.n
     """Interval ends (sigma) of the mesh fitted to ``kinks``: each segment (``counts``
     intervals between ``bounds``) split at its kinks, each part uniform, unless that
     widens the segment's widest interval by more than ``widen``; None when no kink gets a
-    mesh point (the uniform mesh)."""
+    mesh point (the uniform mesh).
+
+    Parameters
+    ----------
+    counts : tuple of int
+        Number of intervals of each segment, from end_a (one entry for a single cable).
+    bounds : tuple of float
+        sigma at the segment ends, 0 = b_0 < ... < b_n = 1 (``(0.0, 1.0)`` for a single
+        cable); ``len(counts) + 1`` values.
+    kinks : numpy.ndarray, shape (m,)
+        sigma of the kinks, increasing (as :func:`find` returns them). A segment takes at
+        most ``counts[k] - 1`` of them, in order.
+    gap : float, default GAP
+        Least distance in sigma (-) of a kink from its segment's ends and from the
+        previous kink kept; closer kinks get no mesh point of their own.
+    widen : float, default WIDEN
+        Largest relative growth (-) of a segment's widest interval over its uniform
+        width (hi - lo) / n that fitting may cause; beyond it the segment stays uniform.
+
+    Returns
+    -------
+    numpy.ndarray, shape (sum(counts) + 1,), or None
+        sigma at every interval end, increasing from 0 to 1.
+    """
     if len(kinks) == 0:
         return None
     edges = [np.zeros(1)]

@@ -109,7 +109,20 @@ def _call(block: Block, fn: ca.Function, w: ca.MX, p: ca.MX) -> list[ca.MX]:
 
 def residual_function(blocks: list[Block], n_w: int, n_p: int, name: str = "G"
                       ) -> ca.Function:
-    """``G(w, p) -> g`` from the blocks (rows in the blocks' declared order)."""
+    """``G(w, p) -> g`` from the blocks (rows in the blocks' declared order).
+
+    Parameters
+    ----------
+    blocks : list of Block
+        The residual's blocks; together their ``rows`` cover every row 0 .. n_w - 1 of G
+        exactly once (else ValueError).
+    n_w : int
+        Number of unknowns, and of equations (the system is square).
+    n_p : int
+        Length of the parameter vector p.
+    name : str, default "G"
+        Name of the CasADi function.
+    """
     w, p = ca.MX.sym("w", n_w), ca.MX.sym("p", n_p)
     parts = [ca.vec(_call(b, b.fn, w, p)[0]) for b in blocks]
     g = ca.vertcat(*parts)[_scatter_order(blocks, n_w)]
@@ -122,6 +135,19 @@ def jacobian_functions(blocks: list[Block], n_w: int, n_p: int,
 
     J is assembled from each block's SX Jacobian dr/dz (its structural nonzeros, in
     compressed-column order of the global pattern); dw = -J^-1 g by ``linear_solver``.
+
+    Parameters
+    ----------
+    blocks : list of Block
+        The residual's blocks, as for :func:`residual_function`; a block without ``jac``
+        is differentiated here. Two blocks writing the same entry of J raise ValueError.
+    n_w : int
+        Number of unknowns, and of equations.
+    n_p : int
+        Length of the parameter vector p.
+    linear_solver : str, default LINEAR_SOLVER
+        CasADi linear-solver plugin of the Newton step (``casadi.solve``), e.g.
+        ``"csparse"`` or ``"qr"``.
     """
     w, p = ca.MX.sym("w", n_w), ca.MX.sym("p", n_p)
     g_parts, values, rows, cols = [], [], [], []
@@ -208,7 +234,16 @@ class Kernel:
 
     def attach_lu(self, gj_fn: ca.Function, lu: object) -> None:
         """Keep factorisations from now on: ``gj_fn`` ``(w, p) -> (g, J)`` and ``lu``
-        (a :class:`cable_ocp.numerics.sparse_lu.SparseLU` of J's sparsity)."""
+        (a :class:`cable_ocp.numerics.sparse_lu.SparseLU` of J's sparsity).
+
+        Parameters
+        ----------
+        gj_fn : casadi.Function
+            ``(w, p) -> (g, J)``, the residual and its sparse Jacobian (``GJ`` of
+            :func:`jacobian_functions`); J's nonzeros are written straight into ``lu.nz``.
+        lu : cable_ocp.numerics.sparse_lu.SparseLU
+            The sparse LU of matrices of J's sparsity whose factors are kept.
+        """
         self._lu = lu
         self._jbuf, self._jeval = gj_fn.buffer()
         self._jbuf.set_arg(0, memoryview(self._w))
@@ -222,7 +257,15 @@ class Kernel:
         return self._lu is not None
 
     def g(self, w: np.ndarray, p: np.ndarray) -> np.ndarray:
-        """G(w, p) (a new array)."""
+        """G(w, p) (a new array).
+
+        Parameters
+        ----------
+        w : numpy.ndarray, shape (n_w,)
+            Scaled unknowns.
+        p : numpy.ndarray, shape (n_p,)
+            Scaled parameters.
+        """
         self._w[:] = w
         self._p[:] = p
         self._geval()
@@ -231,7 +274,15 @@ class Kernel:
 
     def factor(self, w: np.ndarray, p: np.ndarray) -> np.ndarray:
         """Evaluate G and J at (w, p), factorise J and keep the factors; return G (a new
-        array). Only when :attr:`can_chord`."""
+        array). Only when :attr:`can_chord`.
+
+        Parameters
+        ----------
+        w : numpy.ndarray, shape (n_w,)
+            Scaled unknowns, the point of the factorisation.
+        p : numpy.ndarray, shape (n_p,)
+            Scaled parameters.
+        """
         self._w[:] = w
         self._p[:] = p
         self._jeval()
@@ -247,7 +298,15 @@ class Kernel:
 
     def step(self, w: np.ndarray, p: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
         """(G(w, p), -J(w, p)^-1 G(w, p)) (new arrays; the step is NaN where the sparse
-        factorisation fails: a singular Jacobian)."""
+        factorisation fails: a singular Jacobian).
+
+        Parameters
+        ----------
+        w : numpy.ndarray, shape (n_w,)
+            Scaled unknowns.
+        p : numpy.ndarray, shape (n_p,)
+            Scaled parameters.
+        """
         if self._seval is None:
             self._w[:] = w
             self._p[:] = p
@@ -460,6 +519,26 @@ def chord_newton(kernel: Kernel, w0: np.ndarray, p: np.ndarray, tol: float,
     ``max_iter`` steps end the iteration unsuccessfully at the best point reached (the
     caller then runs :func:`newton` from there). The answer is
     accepted on the same test as :func:`newton`'s: max|G| <= ``tol``.
+
+    Parameters
+    ----------
+    kernel : Kernel
+        A kernel that keeps its factorisation (:attr:`Kernel.can_chord`; else ValueError).
+    w0 : numpy.ndarray, shape (n_w,)
+        Warm start (scaled), clipped to [lb, ub]; the first factorisation is made there.
+    p : numpy.ndarray, shape (n_p,)
+        Parameters (scaled).
+    tol : float
+        Tolerance on the largest absolute residual (scaled).
+    max_iter : int, default 30
+        Most steps (linear solves, chord or Newton).
+    lb, ub : numpy.ndarray, optional
+        Bounds on w: a full step that would go more than 99 % of the way to a finite
+        bound (:func:`newton`'s step limit) ends the iteration; None or all infinite: no
+        bound.
+    contraction : float, optional
+        Fraction (-) to which a chord step must cut max|G| to be accepted without a new
+        factorisation; default :data:`CHORD_CONTRACTION`.
 
     Returns
     -------

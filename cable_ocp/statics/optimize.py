@@ -174,6 +174,20 @@ class StaticsNLP:
 
         ``objective``: View -> scalar CasADi expression (keep it O(1): scale it yourself);
         ``constraints``: View -> list of (expression, lower, upper).
+
+        Parameters
+        ----------
+        objective : callable
+            ``objective(view) -> casadi.MX``, a scalar to minimise, in the units the user
+            chooses (scale it to O(1): IPOPT's tolerance is 1e-10).
+        constraints : callable, optional
+            ``constraints(view) -> [(expression, lower, upper), ...]``; each bound a number
+            or an array broadcast to the expression's entries (``numpy.inf`` for none),
+            in the expression's units. Default: the statics equations only.
+        n_theta : int, default 0
+            Length of ``view.theta``, the user parameters whose values :meth:`run` takes.
+        max_iter : int, default 300
+            IPOPT's iteration limit (``ipopt.max_iter``).
         """
         self.p0 = self.form.params()
         w = ca.MX.sym("w", self.coll.n_w)
@@ -264,7 +278,24 @@ class StaticsNLP:
               constraints: Callable[[View], Sequence[tuple[Any, Any, Any]]] | None = None,
               start: StaticsSolution | None = None,
               start_values: dict[str, float] | None = None) -> OptimizationResult:
-        """Build and run once (see :meth:`build` and :meth:`run`)."""
+        """Build and run once (see :meth:`build` and :meth:`run`).
+
+        Parameters
+        ----------
+        objective : callable
+            ``objective(view) -> casadi.MX``, a scalar to minimise (see :meth:`build`).
+        constraints : callable, optional
+            ``constraints(view) -> [(expression, lower, upper), ...]`` (see :meth:`build`).
+        start : StaticsSolution, optional
+            Starting cable (default: a statics solve of the scene as given).
+        start_values : dict of str to float, optional
+            Starting values of the variables, physical units (default: the scene's).
+
+        Notes
+        -----
+        Built without user parameters (``n_theta = 0``) and with IPOPT's default limit of
+        :meth:`build` (300 iterations).
+        """
         self.build(objective, constraints)
         return self.run((), start, start_values)
 

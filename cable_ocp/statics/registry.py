@@ -20,7 +20,18 @@ _REGISTRY: dict[str, Callable[..., Any]] = {}
 
 
 def register(name: str, solve: Callable[..., Any]) -> Callable[..., Any]:
-    """Register ``solve`` under ``name`` (one of :data:`cable_ocp.scene.METHODS`)."""
+    """Register ``solve`` under ``name`` (one of :data:`cable_ocp.scene.METHODS`).
+
+    Parameters
+    ----------
+    name : str
+        The method's name, as ``[solver] method`` gives it; a name not in
+        :data:`cable_ocp.scene.METHODS` raises ValueError. A name registered before is
+        replaced.
+    solve : callable
+        The method's solve function, ``solve(scene, warm_start=None) -> StaticsSolution``;
+        returned unchanged.
+    """
     if name not in METHODS:  # a programming error, not a user's
         raise ValueError(f"{name!r} is not in cable_ocp.scene.METHODS")
     _REGISTRY[name] = solve

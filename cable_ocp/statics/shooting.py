@@ -64,6 +64,21 @@ class MultipleShooting(Collocation):
     """Residual G(w, p) of the multiple-shooting transcription (RK4, one step/interval).
 
     Shares packing and unpacking with :class:`Collocation` (node arrays in sigma order).
+
+    Parameters
+    ----------
+    form : Formulation
+        The scene's scaled equations (one cable: no segments, no bending states).
+    intervals : int
+        Number N of uniform intervals (one RK4 step each).
+    degree : int, default 0
+        Not used (the signature of :class:`Collocation`, so that the solver builds
+        either the same way).
+    scheme : str, default "rk4"
+        Not used, as ``degree``.
+    grounded : bool, default False
+        Seabed contact at end_a: the unknowns end with the scaled grounded length, as in
+        :class:`Collocation`.
     """
 
     def __init__(self, form: Formulation, intervals: int, degree: int = 0,
@@ -79,7 +94,23 @@ class MultipleShooting(Collocation):
     def interpolate(self, values: np.ndarray, sigma: np.ndarray, mesh: object = None,
                     segment: np.ndarray | None = None) -> np.ndarray:
         """Piecewise-linear between the nodes (RK4 has no dense output here); exact at the
-        nodes, which is where the error estimate compares shooting solutions."""
+        nodes, which is where the error estimate compares shooting solutions.
+
+        Parameters
+        ----------
+        values : numpy.ndarray, shape (N + 1, k)
+            Values at the nodes of the current mesh, in sigma order.
+        sigma : array_like, shape (m,)
+            Points in sigma in [0, 1] (-).
+        mesh : object, optional
+            Not used: ``values`` must be on the current (uniform) mesh.
+        segment : numpy.ndarray, optional
+            Not used (one cable).
+
+        Returns
+        -------
+        numpy.ndarray, shape (m, k)
+        """
         grid = self.mesh.sigma()
         return np.stack([np.interp(sigma, grid, values[:, k]) for k in range(values.shape[1])],
                         axis=1)
