@@ -53,3 +53,15 @@ def test_bad_variable_names(problems):
         StaticsNLP(sc, {"cable.diameter": (0.01, 0.03)})
     with pytest.raises(CableOCPError, match="not prescribed"):
         StaticsNLP(sc, {"end_a.force.x": (-1.0, 1.0)})
+
+
+def test_a_method_the_optimisation_cannot_transcribe_is_refused() -> None:
+    """The optimisation NLP collocates the statics whatever the scene's method: a scene
+    asking for multiple shooting is refused by name (it was optimised by collocation
+    without a word)."""
+    from cable_ocp.scene import load_scene
+
+    sc = load_scene(Path(__file__).resolve().parents[1] / "problems" / "berteaux_mooring.toml",
+                    {"solver.method": "multiple_shooting"})
+    with pytest.raises(CableOCPError, match="solver.method = 'multiple_shooting'"):
+        StaticsNLP(sc, {"cable.length": (2000.0, 4000.0)})

@@ -125,8 +125,11 @@ class StaticsNLP:
     """
 
     def __init__(self, scene: Scene, variables: dict[str, tuple[float, float]]):
-        if scene.solver.method not in ("collocation", "multiple_shooting"):
-            raise CableOCPError("optimisation needs solver.method = \"collocation\"")
+        if scene.solver.method != "collocation":
+            raise CableOCPError(
+                f"solver.method = {scene.solver.method!r}: the optimisation (and the "
+                "footprint) transcribe the statics by collocation; give solver.method = "
+                '"collocation"')
         if scene.segments:
             raise CableOCPError("optimisation is not supported for multi-segment lines "
                                 "([[cable.segments]]) yet")
