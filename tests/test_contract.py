@@ -301,14 +301,15 @@ def test_state_bound_catches_an_unstable_run(monkeypatch: pytest.MonkeyPatch) ->
     import dataclasses
 
     from cable_ocp.heave import simulate
+    from cable_ocp.heave.controllers import Controller
     from cable_ocp.scene.heave import load_scene
 
-    class Doubling(simulate._Controller):
+    class Doubling(Controller):
         def __init__(self) -> None:
             super().__init__()
             self.u = 1e-3
 
-        def __call__(self, z, up, y, fore):  # noqa: ANN001, ANN204
+        def step(self, obs):  # noqa: ANN001, ANN201, ARG002
             self.u *= 2.0
             return self.u
 
@@ -332,10 +333,11 @@ def test_non_finite_command_is_a_status(monkeypatch: pytest.MonkeyPatch) -> None
     import dataclasses
 
     from cable_ocp.heave import simulate
+    from cable_ocp.heave.controllers import Controller
     from cable_ocp.scene.heave import load_scene
 
-    class Nan(simulate._Controller):
-        def __call__(self, z, up, y, fore):  # noqa: ANN001, ANN204
+    class Nan(Controller):
+        def step(self, obs):  # noqa: ANN001, ANN201, ARG002
             return math.nan
 
     real = simulate._make_controller

@@ -51,6 +51,7 @@ from hypothesis import HealthCheck, given, settings
 from hypothesis import strategies as st
 
 from cable_ocp.cli import main
+from cable_ocp.physics.current import profile_velocity_np
 from cable_ocp.scene import load_scene
 
 ROOT = Path(__file__).resolve().parents[1]
@@ -255,14 +256,12 @@ def cases(draw: Any) -> dict[str, Any]:
 
 def current_at(scene: Any, z: np.ndarray) -> np.ndarray:
     """Current velocity (m/s) at heights z: components linear between knots, constant
-    beyond (docs/conventions.md, "Frame and scene files")."""
+    beyond (docs/conventions.md, "Frame and scene files"; the one profile law,
+    cable_ocp.physics.current, is tested on its own in tests/test_physics_laws.py)."""
     cur = scene.environment.current
-    u = np.zeros((len(z), 3))
     if cur is None:
-        return u
-    u[:, 0] = np.interp(z, cur.z, cur.ux)
-    u[:, 1] = np.interp(z, cur.z, cur.uy)
-    return u
+        return np.zeros((len(z), 3))
+    return profile_velocity_np(z, cur.z, cur.ux, cur.uy)
 
 
 def drag(law: str, rho: float, d: float, cn: float, ct: float, u: np.ndarray,

@@ -123,3 +123,106 @@ def test_the_graph_sees_known_edges() -> None:
     assert "cable_ocp.scene" in GRAPH["cable_ocp.statics.registry"]
     assert "cable_ocp.cli.output" in GRAPH["cable_ocp.cli.statics"]
     assert "cable_ocp.heave.mpc" in GRAPH["cable_ocp.heave.simulate"]
+
+
+# -- the layer order ---------------------------------------------------------------------
+#: each package's layer: a module imports only from lower layers, from its own package, and
+#: ``cable_ocp.errors`` (the one exception type, below everything). baselines and dynamics
+#: are peers (neither imports the other), so are plots and report.
+LAYERS = {"numerics": 0, "physics": 1, "scene": 2, "statics": 3, "baselines": 4,
+          "dynamics": 4, "heave": 5, "batch": 6, "bench": 7, "plots": 8, "report": 8,
+          "cli": 9, "__main__": 10}
+#: modules that sit outside the layers: the error type and the status vocabulary (imported
+#: by every layer) and the package's own __init__ (the public face of ``import cable_ocp``,
+#: which only the CLI imports, for its version)
+OUTSIDE = ("cable_ocp", "cable_ocp.errors", "cable_ocp.status")
+#: the modules of OUTSIDE that every layer may import
+EVERYWHERE = ("cable_ocp.errors", "cable_ocp.status")
+#: the largest module a newcomer should have to read whole (lines)
+MAX_LINES = 900
+#: modules allowed beyond MAX_LINES, each with its reason
+LONG_MODULES: dict[str, str] = {}
+
+
+def _package(module: str) -> str | None:
+    """The layer package of ``cable_ocp.<pkg>[.<mod>]``, None outside the layers."""
+    if module in OUTSIDE:
+        return None
+    return module.split(".")[1]
+
+
+def test_every_package_has_a_layer() -> None:
+    """A new package must be placed in LAYERS (else the order below would not see it)."""
+    missing = sorted({p for m in MODULES if (p := _package(m)) is not None} - set(LAYERS))
+    assert not missing, f"packages without a layer in LAYERS: {missing}"
+
+
+def test_imports_follow_the_layer_order() -> None:
+    """numerics < physics < scene < statics < {baselines, dynamics} < heave < batch < bench <
+    {plots, report} < cli: every import (module level or inside a function) goes to a lower
+    layer or stays in its package."""
+    bad = []
+    for m, targets in GRAPH.items():
+        pm = _package(m)
+        if pm is None:
+            continue
+        for t in sorted(targets):
+            pt = _package(t)
+            if pt is None:  # errors, status: anyone; the package (its version): the CLI only
+                if t not in EVERYWHERE and not (t == "cable_ocp" and LAYERS[pm] >= 9):
+                    bad.append(f"{m} imports {t} (the package's face)")
+                continue
+            if pt != pm and LAYERS[pt] >= LAYERS[pm]:
+                bad.append(f"{m} ({pm}, layer {LAYERS[pm]}) imports {t} ({pt}, layer "
+                           f"{LAYERS[pt]})")
+    assert not bad, "\n".join(bad)
+
+
+def _private_imports(name: str, path: Path) -> list[str]:
+    """``from cable_ocp.<other package>... import _name`` in module ``name``."""
+    tree = ast.parse(path.read_text(encoding="utf-8"))
+    pkg = name if path.name == "__init__.py" else name.rpartition(".")[0]
+    out = []
+    for node in ast.walk(tree):
+        if not isinstance(node, ast.ImportFrom):
+            continue
+        base = node.module or ""
+        if node.level:
+            up = pkg.split(".")[: len(pkg.split(".")) - node.level + 1]
+            base = ".".join(up + ([base] if base else []))
+        if not base.startswith("cable_ocp"):
+            continue
+        for alias in node.names:
+            if alias.name.startswith("_") and not alias.name.startswith("__"):
+                if base.split(".")[:2] != name.split(".")[:2]:
+                    out.append(f"{name} imports {alias.name} from {base}")
+    return out
+
+
+def test_no_private_name_is_imported_across_packages() -> None:
+    """A leading underscore means "this package's own": another package that needs it needs
+    a public name (tests are not checked: they may reach into a module they test)."""
+    bad = [line for m, p in MODULES.items() for line in _private_imports(m, p)]
+    assert not bad, "\n".join(bad)
+
+
+def test_private_import_check_sees_one() -> None:
+    """The check above is not blind: a constructed module that imports a private name
+    from another package is reported, one from its own package is not."""
+    import tempfile
+
+    with tempfile.TemporaryDirectory() as tmp:
+        f = Path(tmp) / "m.py"
+        f.write_text("from cable_ocp.statics.solver import _x\nfrom cable_ocp.heave.a import _y\n")
+        assert _private_imports("cable_ocp.heave.m", f) == [
+            "cable_ocp.heave.m imports _x from cable_ocp.statics.solver"]
+
+
+def test_no_module_is_longer_than_a_newcomer_reads() -> None:
+    """Every module has at most MAX_LINES lines, or a reason in LONG_MODULES."""
+    long = {m: len(p.read_text(encoding="utf-8").splitlines()) for m, p in MODULES.items()}
+    bad = [f"{m}: {n} lines" for m, n in sorted(long.items())
+           if n > MAX_LINES and m not in LONG_MODULES]
+    assert not bad, "\n".join(bad)
+    stale = [m for m in LONG_MODULES if long.get(m, 0) <= MAX_LINES]
+    assert not stale, f"LONG_MODULES lists modules that are short now: {stale}"

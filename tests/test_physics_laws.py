@@ -268,6 +268,14 @@ def test_smooth_tension_bound_switch_and_material():
     assert mat.tension(1e-3) == el.smooth_tension(1e-3, ea, dt_)
     assert float(mat.stiffness(1e-3)) == pytest.approx(ea, rel=1e-12)
     assert el.hooke_tension(-1e-3, ea) == -ea * 1e-3
+    # the stored energy: 0 unstrained, its derivative the tension (AD)
+    en = ca.Function("en", [e], [ca.jacobian(mat.energy(e), e), mat.tension(e)])
+    assert el.smooth_strain_energy(0.0, ea, dt_) == 0.0
+    for x in (-1e-3, -1e-11, 0.0, 2e-11, 1e-3):
+        d_ad, t_law = (float(v) for v in en(x))
+        # slack, the derivative is EA e / 2 + ~(-EA e / 2): cancellation of terms of size
+        # EA |e| / 2, rounding 4 eps of that
+        assert d_ad == pytest.approx(t_law, rel=1e-9, abs=4e-16 * ea * abs(x) + 1e-15)
     # CasADi expressions, the same numbers
     g = ca.Function("g", [e], [mat.tension(e, 0.2)])
     assert float(g(1e-3)) == pytest.approx(mat.tension(1e-3, 0.2), rel=1e-15)
@@ -292,8 +300,10 @@ def test_added_mass_of_vertical_and_horizontal_elements():
     np.testing.assert_allclose(a @ n, man * n, rtol=ROUND, atol=ROUND * man)  # across
     # the planar rows are the x-z entries of the 3D matrix of an in-plane element
     t2 = _unit([0.6, 0.0, -0.8])
-    axx, axz, azz = am.line_added_mass_2d(t2[0] * 5.0, t2[2] * 5.0, man, mat)
-    full = am.line_added_mass_np(t2, man, mat)
+    dd = ca.SX.sym("dd", 2, 1)
+    rows = ca.Function("r", [dd], list(am.line_added_mass_2d(dd, man, mat, 2.0)))
+    axx, axz, azz = (float(v) for v in rows([t2[0] * 5.0, t2[2] * 5.0]))
+    full = 2.0 * am.line_added_mass_np(t2, man, mat)
     np.testing.assert_allclose([axx, axz, azz], [full[0, 0], full[0, 2], full[2, 2]],
                                rtol=ROUND)
     assert am.virtual_mass(100.0, (5.0, 6.0, 7.0)) == (105.0, 106.0, 107.0)

@@ -301,7 +301,9 @@ def test_sweep_and_work_precision(tmp_path: Path) -> None:
 
 def test_heave_comparison(tmp_path: Path) -> None:
     from cable_ocp.heave import sea
-    from cable_ocp.heave.simulate import Comparison, Metrics, Models, Trace
+    from cable_ocp.heave.closed_loop import Trace
+    from cable_ocp.heave.metrics import Comparison, Metrics
+    from cable_ocp.heave.simulate import Models
     from cable_ocp.plots.heave import plot_comparison, running_rms
     from cable_ocp.scene.heave import load_scene
 

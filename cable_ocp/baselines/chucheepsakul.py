@@ -110,6 +110,8 @@ from cable_ocp.baselines.common import (
     unsupported,
 )
 from cable_ocp.errors import CableOCPError
+from cable_ocp.physics.current import profile_velocity_np
+from cable_ocp.physics.drag import drag_per_length_np
 from cable_ocp.scene import Scene
 from cable_ocp.statics.initial_guess import initial_guess
 from cable_ocp.statics.registry import register
@@ -184,10 +186,9 @@ class FemProblem:
         cab, env = scene.cable, scene.environment
         self.w = cab.weight_in_water
         self.ea = cab.axial_stiffness
-        self.cn = 0.5 * env.water_density * cab.diameter * cab.normal_drag
-        self.ct = 0.5 * env.water_density * math.pi * cab.diameter * cab.tangential_drag
+        self.rho = env.water_density
+        self.cable = cab
         self.blend = scene.solver.vertical_blend
-        self.law = cab.drag_law
         self.current = env.current
 
     # -- geometry and loads -------------------------------------------------------------
@@ -203,48 +204,33 @@ class FemProblem:
 
     def velocity(self, z: np.ndarray) -> np.ndarray:
         """Current (ux, uy, 0) at heights z above end_a, m/s, shape z.shape + (3,)."""
-        out = np.zeros((*z.shape, 3))
         cur = self.current
         if cur is None:
-            return out
-        zz = self.origin[2] + z
-        if cur.uniform:
-            out[..., 0], out[..., 1] = cur.ux[0], cur.uy[0]
-        else:
-            out[..., 0] = np.interp(zz, cur.z, cur.ux)
-            out[..., 1] = np.interp(zz, cur.z, cur.uy)
-        return out
+            return np.zeros((*z.shape, 3))
+        return profile_velocity_np(self.origin[2] + z, cur.z, cur.ux, cur.uy)
 
     def drag(self, z: np.ndarray, g: np.ndarray) -> np.ndarray:
         """Drag per unit stretched length, N/m, at heights z with slopes g = (x', y').
 
-        Exact moduli (Wang et al. 1993, eqs (4)-(6)); the componentwise law uses e_b = e_z x t /
-        |.|, e_n = t x e_b and blends into the vector law within ``solver.vertical_blend`` of
-        vertical, like :func:`cable_ocp.physics.drag.drag_per_length`.
+        Exact moduli (Wang et al. 1993, eqs (4)-(6)): the law of
+        :func:`cable_ocp.physics.drag.drag_per_length_np` (the componentwise law blends into
+        the vector law within ``solver.vertical_blend`` of vertical).
+
+        Parameters
+        ----------
+        z : ndarray
+            Heights above end_a, m.
+        g : ndarray, shape z.shape + (2,)
+            Slopes (x'(z), y'(z)) (-).
         """
         if self.current is None:
             return np.zeros((*z.shape, 3))
         s = np.sqrt(1.0 + g[..., 0] ** 2 + g[..., 1] ** 2)
         t = np.stack([g[..., 0] / s, g[..., 1] / s, 1.0 / s], axis=-1)
-        u = self.velocity(z)
-        ut = np.sum(u * t, axis=-1)
-        un_vec = u - ut[..., None] * t
-        vec = np.linalg.norm(un_vec, axis=-1)[..., None] * un_vec
-        if self.law == "componentwise":
-            b = np.stack([-t[..., 1], t[..., 0], np.zeros_like(ut)], axis=-1)
-            nvec = np.cross(t, b)
-            sig2 = b[..., 0] ** 2 + b[..., 1] ** 2
-            sig = np.sqrt(sig2 + (1e-6 * self.blend) ** 2)[..., None]
-            eb, en = b / sig, nvec / sig
-            ub, un = np.sum(u * eb, axis=-1), np.sum(u * en, axis=-1)
-            comp = (np.abs(ub) * ub)[..., None] * eb + (np.abs(un) * un)[..., None] * en
-            lo2 = 0.25 * self.blend**2
-            x = np.clip((sig2 - lo2) / (self.blend**2 - lo2), 0.0, 1.0)[..., None]
-            wgt = x * x * (3.0 - 2.0 * x)
-            normal = wgt * comp + (1.0 - wgt) * vec
-        else:
-            normal = vec
-        return self.cn * normal + self.ct * (np.abs(ut) * ut)[..., None] * t
+        cab = self.cable
+        return drag_per_length_np(cab.drag_law, self.velocity(z), t, rho=self.rho,
+                                  diameter=cab.diameter, normal_drag=cab.normal_drag,
+                                  tangential_drag=cab.tangential_drag, blend=self.blend)
 
     def _dtdz_parts(self, z: np.ndarray, g: np.ndarray) -> np.ndarray:
         """P_t S (N/m per unit height): the drag part of -dT/dz (Chucheepsakul 1991, eq. (13)); zero

@@ -329,9 +329,7 @@ def seabed_check(scene: Scene, sol: Any, method: str) -> Any:
     sb = scene.environment.seabed
     if sb is None or not sol.success:
         return sol
-    from cable_ocp.physics.seabed import gap
-
-    depth = float(-np.min(gap(sb, sol.position)))
+    depth = float(-np.min(sb.gap(sol.position)))
     if depth > 1e-6 * sol.length:
         sol.status = "seabed_contact"
         sol.message = (f"{method}: the profile passes {depth:.3g} m below the seabed and this "

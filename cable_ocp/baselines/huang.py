@@ -105,6 +105,8 @@ from cable_ocp.baselines.common import (
     richardson_coarser,
 )
 from cable_ocp.errors import CableOCPError
+from cable_ocp.physics.current import profile_velocity_np
+from cable_ocp.physics.drag import drag_per_length_np
 from cable_ocp.scene import Scene
 from cable_ocp.statics.initial_guess import free_length_guess
 from cable_ocp.statics.registry import register
@@ -676,62 +678,29 @@ def _make_solution(scene: Scene, inner: _Inner, wall: float, iterations: int, ok
 # Drag: (2.46)-(2.47), the outer iteration (Figure 2.3) and the current ramp (2.5)
 # --------------------------------------------------------------------------------------
 
-def _current_at(scene: Scene, z: np.ndarray) -> np.ndarray:
-    """Current velocity (m/s, project frame) at heights z (linear in ux, uy;
-    docs/conventions.md)."""
-    cur = scene.environment.current
-    out = np.zeros((z.size, 3))
-    if cur is None:
-        return out
-    out[:, 0] = np.interp(z, cur.z, cur.ux)
-    out[:, 1] = np.interp(z, cur.z, cur.uy)
-    return out
-
-
-def _drag_per_length(scene: Scene, u: np.ndarray, t: np.ndarray) -> np.ndarray:
-    """Drag per stretched length, N/m, project frame: (2.46)-(2.47) or Wang's split.
-
-    ``u`` the segments' mean flow (m/s), ``t`` their unit chord directions, shape (n, 3).
-    """
-    cab, env = scene.cable, scene.environment
-    rho, d = env.water_density, cab.diameter
-    ut = np.sum(u * t, axis=1)
-    u_tan = ut[:, None] * t
-    u_n = u - u_tan
-    vec = np.linalg.norm(u_n, axis=1)[:, None] * u_n
-    if cab.drag_law == "componentwise":
-        beta = scene.solver.vertical_blend
-        b = np.stack([-t[:, 1], t[:, 0], np.zeros(len(t))], axis=1)  # e_z x t
-        n = np.cross(t, b)
-        sig2 = b[:, 0] ** 2 + b[:, 1] ** 2
-        floor = 1e-6 * beta
-        sig = np.sqrt(sig2 + floor * floor)[:, None]
-        eb, en = b / sig, n / sig
-        ub = np.sum(u * eb, axis=1)[:, None]
-        un = np.sum(u * en, axis=1)[:, None]
-        comp = np.abs(ub) * ub * eb + np.abs(un) * un * en
-        lo2 = 0.25 * beta * beta
-        x = np.clip((sig2 - lo2) / (beta * beta - lo2), 0.0, 1.0)[:, None]
-        wgt = x * x * (3.0 - 2.0 * x)
-        normal = wgt * comp + (1.0 - wgt) * vec
-    else:
-        normal = vec
-    return (0.5 * rho * cab.normal_drag * d * normal
-            + 0.5 * rho * cab.tangential_drag * math.pi * d * (np.abs(ut) * ut)[:, None] * t)
-
-
 def _drag_loads(scene: Scene, nodes: np.ndarray, factor: float) -> np.ndarray:
     """Lumped drag of every segment (N, 3), project frame, N: l x per-length drag.
 
     Segment i has end nodes i-1, i; its mean flow is the mean of the current at the two
-    nodes times ``factor`` (the ramp); l is the strained chord length (2.46).
+    nodes times ``factor`` (the ramp); l is the strained chord length (2.46). The drag per
+    stretched length is (2.46)-(2.47) or Wang's split with the exact modulus
+    (:func:`cable_ocp.physics.drag.drag_per_length_np`), the current
+    :func:`cable_ocp.physics.current.profile_velocity_np`.
     """
+    cab, env = scene.cable, scene.environment
     chord = np.diff(nodes, axis=0)
     ell = np.linalg.norm(chord, axis=1)
     t = chord / np.where(ell > 0, ell, 1.0)[:, None]
-    cur = _current_at(scene, nodes[:, 2])
-    u = factor * 0.5 * (cur[:-1] + cur[1:])
-    return ell[:, None] * _drag_per_length(scene, u, t)
+    cur = env.current
+    if cur is None:
+        vel = np.zeros((len(nodes), 3))
+    else:
+        vel = profile_velocity_np(nodes[:, 2], cur.z, cur.ux, cur.uy)
+    u = factor * 0.5 * (vel[:-1] + vel[1:])
+    return ell[:, None] * drag_per_length_np(
+        cab.drag_law, u, t, rho=env.water_density, diameter=cab.diameter,
+        normal_drag=cab.normal_drag, tangential_drag=cab.tangential_drag,
+        blend=scene.solver.vertical_blend)
 
 
 @dataclass

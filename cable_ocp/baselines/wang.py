@@ -139,6 +139,8 @@ from cable_ocp.baselines.common import (
     unsupported,
 )
 from cable_ocp.errors import CableOCPError
+from cable_ocp.physics.current import profile_components_np
+from cable_ocp.physics.drag import drag_in_local_basis
 from cable_ocp.scene import Scene
 from cable_ocp.statics.initial_guess import initial_guess
 from cable_ocp.statics.registry import register
@@ -236,9 +238,9 @@ class WangProblem:
         alpha, wbar, ea_bar = self.alpha, self.wbar, self.ea_bar
         kn = alpha * cab.normal_drag
         kt = math.pi * alpha * cab.tangential_drag
-        vector = cab.drag_law == "vector"
+        law = cab.drag_law
         elastic = math.isfinite(ea_bar)
-        sin, cos, sqrt = math.sin, math.cos, math.sqrt
+        sin, cos = math.sin, math.cos
         if cur is None:
             def vel(_z: float) -> tuple[float, float]:
                 return 0.0, 0.0
@@ -254,8 +256,8 @@ class WangProblem:
             z_a, h_ = float(self.origin[2]), self.height
 
             def vel(z: float) -> tuple[float, float]:
-                zz = z_a + h_ * z
-                return float(np.interp(zz, kz, kx)), float(np.interp(zz, kz, ky))
+                ux_, uy_ = profile_components_np(z_a + h_ * z, kz, kx, ky)
+                return float(ux_), float(uy_)
 
         def rhs(z: float, tb: float, th: float, ph: float) -> tuple[float, ...]:
             sp, cp, st, ct = sin(ph), cos(ph), sin(th), cos(th)
@@ -267,12 +269,7 @@ class WangProblem:
             ut = cp * uh
             ub = -ux * st + uy * ct
             un = -sp * uh
-            pt = kt * abs(ut) * ut
-            if vector:
-                mag = sqrt(ub * ub + un * un)
-                pb, pn = kn * mag * ub, kn * mag * un
-            else:
-                pb, pn = kn * abs(ub) * ub, kn * abs(un) * un
+            pt, pb, pn = drag_in_local_basis(law, ut, ub, un, kn, kt)
             we = wbar / eps
             cot = cp / sp
             return (we - pt / sp,                       # (7)

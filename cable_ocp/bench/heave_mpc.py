@@ -1,18 +1,18 @@
 """MPC timing benchmark: solve time per step, median and p99, with the delay.
 
-Problem: example 6.3.6 of Huang (1992) as in ``problems/heave/ex_6_3_6.toml`` (plant (6.28) with
-11 states, first-order winch, 0.2 s delay = 4 samples at 0.05 s, weights q, r,
-stroke/speed/command-rate limits and the soft tension limit, all read from that file), closed
-loop on the exactly sampled plant driven by the seeded sea. Each solver's problem is built once
-and warm-started; the timing covers the whole ``step`` (gradient/bound assembly + solve), the
-first step (one-off set-up) excluded. With the file's limits and sea no limit is active after the
-first steps (not even under a 12x sea in the 15 s of a 300-step run); :data:`ACTIVE_LIMITS` with
-``sea_scale = 3`` makes every limit active on many steps (:func:`profile_daqp` counts the steps
-that change the working set). do-mpc (optional, never a test
-dependency) is given the same problem when installed: the same sampled model and stage cost
-(state, cross and input terms), DARE terminal cost, command bounds, stroke, speed and
-command-rate limits and the soft tension limit (do-mpc's soft constraints have a linear penalty
-only; ours add a quadratic one).
+Problem: example 6.3.6 of Huang (1992) as in ``problems/heave/ex_6_3_6.toml`` (plant (6.28) with 11
+states, first-order winch, 0.2 s delay = 4 samples at 0.05 s, weights q, r,
+stroke/speed/command-rate limits and the soft tension limit, all read from that file), closed loop
+on the exactly sampled plant driven by the seeded sea. Each solver's problem is built once and
+warm-started; the timing covers the whole ``step`` (the state with the MPC's own delay buffer,
+gradient/bound assembly + solve), the first step (one-off set-up) excluded. With the file's limits
+and sea no limit is active after the first steps (not even under a 12x sea in the 15 s of a
+300-step run); :data:`ACTIVE_LIMITS` with ``sea_scale = 3`` makes every limit active on many steps
+(:func:`profile_daqp` counts the steps that change the working set). do-mpc (optional, never a test
+dependency) is given the same problem when installed: the same sampled model and stage cost (state,
+cross and input terms), DARE terminal cost, command bounds, stroke, speed and command-rate limits
+and the soft tension limit (do-mpc's soft constraints have a linear penalty only; ours add a
+quadratic one).
 """
 
 from __future__ import annotations
@@ -142,7 +142,7 @@ def time_cas(solver: str, horizon: int, steps: int, seed: int = 0, sea_scale: fl
     ts, cpu, fails = [], [], 0
     for k in range(steps):
         c0 = time.thread_time()
-        r = m.step(z, up)
+        r = m.step(z[: p.n], up)  # the MPC keeps the delay buffer (equal to z's)
         cpu.append(time.thread_time() - c0)
         ts.append(r.solve_time)
         fails += not r.success

@@ -70,6 +70,8 @@ import scipy.linalg
 from cable_ocp.dynamics.result import ModesResult, SimulationResult
 from cable_ocp.dynamics.stepping import run_chunks
 from cable_ocp.errors import CableOCPError
+from cable_ocp.physics.drag import body_drag_factor, line_drag_factors, quadratic_drag
+from cable_ocp.physics.elasticity import kelvin_voigt_tension
 from cable_ocp.scene.dynamics import DynamicScene
 from cable_ocp.scene.motion import motion_function
 
@@ -166,10 +168,11 @@ class AxialModel:
         self.mu = dyn.mass_per_length + dyn.tangential_added_mass_per_length(cab.diameter, rho)
         self.w = float(cab.weight_in_water)
         self.c = float(dyn.axial_damping)
-        self.k_drag = 0.5 * rho * cab.tangential_drag * math.pi * cab.diameter
-        self.unit_mass = unit.mass + unit.added_mass[2]
+        self.k_drag = line_drag_factors(rho, cab.diameter, cab.normal_drag,
+                                        cab.tangential_drag)[1]
+        self.unit_mass = unit.virtual_mass[2]
         self.unit_weight = unit.weight_in_water
-        self.unit_drag = 0.5 * rho * unit.drag_coefficient[2] * unit.drag_area[2]
+        self.unit_drag = body_drag_factor(rho, unit.drag_coefficient[2], unit.drag_area[2])
         self.z_top0 = float(scene.top_position[2])
         self.length0 = scene.length
         self.motion = motion_function(scene)
@@ -207,7 +210,7 @@ class AxialModel:
         v_top = vb[2] - dl * (1.0 + zeta_y_top / length)
         v_full = ca.vertcat(vel, v_top)
         eps_dot = (v_full[1:] - v_full[:-1]) / h
-        tension = self.ea * eps + self.c * eps_dot
+        tension = kelvin_voigt_tension(eps, eps_dot, self.ea, self.c)
         y = ca.DM(np.arange(n + 1) / n)
         heights = z_full + xb[2] - length * (1.0 - y)
         return dict(zeta=zeta, vel=vel, length=length, dl=dl, ddl=ddl, vb=vb, ab=ab, h=h,
@@ -225,11 +228,11 @@ class AxialModel:
         ref_rate = f["dl"] - f["vb"][2]  # L_t - z_b': zeta_t = V + L_t - z_b' + adv zeta_y
         # strain at the nodes (mean of the neighbouring elements; the end element at node 0)
         eps_node = ca.vertcat(eps[0], 0.5 * (eps[:-1] + eps[1:])) if n >= 2 else eps[0]
-        drag = self.k_drag * (1.0 + eps_node) * ca.fabs(vel) * vel
+        drag = quadratic_drag(self.k_drag * (1.0 + eps_node), vel)
         # node 0: the unit plus half an element
         m0 = self.unit_mass + 0.5 * self.mu * h
         f0 = (ten[0] - self.unit_weight - 0.5 * h * (self.w + drag[0])
-              - self.unit_drag * ca.fabs(vel[0]) * vel[0])
+              - quadratic_drag(self.unit_drag, vel[0]))
         acc = [f0 / m0]
         dz = [vel[0] + ref_rate]
         for i in range(1, n):
@@ -247,7 +250,7 @@ class AxialModel:
         eps_top = f["eps"][self.n - 1]
         v_top = f["v_full"][self.n]
         a_top = f["ab"][2] - f["ddl"] * (1.0 + eps_top)
-        drag_top = self.k_drag * (1.0 + eps_top) * ca.fabs(v_top) * v_top
+        drag_top = quadratic_drag(self.k_drag * (1.0 + eps_top), v_top)
         top = f["tension"][self.n - 1] + 0.5 * f["h"] * (self.w + self.mu * a_top + drag_top)
         return f["heights"], f["tension"], top, f["length"], f["v_full"]
 

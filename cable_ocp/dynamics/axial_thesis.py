@@ -40,6 +40,7 @@ import numpy as np
 from cable_ocp.dynamics.axial import MAX_CHUNKS, check_axial
 from cable_ocp.dynamics.result import SimulationResult
 from cable_ocp.errors import CableOCPError
+from cable_ocp.physics.drag import body_drag_factor, line_drag_factors
 from cable_ocp.scene.dynamics import DynamicScene
 from cable_ocp.scene.motion import motion_function
 
@@ -82,10 +83,12 @@ class ThesisAxialModel:
         self.ea = float(cab.axial_stiffness)
         self.mu = dyn.mass_per_length + dyn.tangential_added_mass_per_length(cab.diameter, rho)
         self.w1 = float(cab.weight_in_water)
-        self.kappa = 0.5 * math.pi * rho * cab.diameter * cab.tangential_drag
-        self.mass = unit.mass + unit.added_mass[2]
+        # kappa = 1/2 rho C_t pi d, the drag of (3.1) linearised about the lagged modulus
+        self.kappa = line_drag_factors(rho, cab.diameter, cab.normal_drag,
+                                       cab.tangential_drag)[1]
+        self.mass = unit.virtual_mass[2]
         self.w2 = unit.weight_in_water
-        self.unit_drag = 0.5 * rho * unit.drag_coefficient[2] * unit.drag_area[2]
+        self.unit_drag = body_drag_factor(rho, unit.drag_coefficient[2], unit.drag_area[2])
         self.v = tm.payout_speed
         self.length0 = scene.length
         self.z_top0 = float(scene.top_position[2])

@@ -82,7 +82,10 @@ import numpy as np
 from cable_ocp.dynamics.result import ModesResult, SimulationResult
 from cable_ocp.dynamics.stepping import run_chunks
 from cable_ocp.errors import CableOCPError
-from cable_ocp.physics.current import current_velocity
+from cable_ocp.physics.added_mass import added_mass_per_length, line_added_mass_2d
+from cable_ocp.physics.current import profile_velocity
+from cable_ocp.physics.drag import line_drag_factors, point_drag, vector_drag_columns
+from cable_ocp.physics.elasticity import SLACK_SMOOTHING, smooth_tension, taut_switch
 from cable_ocp.scene.dynamics import DynamicScene
 from cable_ocp.scene.motion import motion_function
 
@@ -90,8 +93,6 @@ __all__ = ["PlanarModel", "check_planar", "modes_planar", "simulate_planar"]
 
 #: at most this many progress calls (chunks) per run
 MAX_CHUNKS = 200
-#: force scale of the smooth no-compression law, N (as the lumped-mass model)
-SLACK_SMOOTHING = 1e-2
 # 3-point Gauss-Legendre rule on [-1, 1] (mean of the tension over a strain interval)
 _GAUSS_X = (-math.sqrt(0.6), 0.0, math.sqrt(0.6))
 _GAUSS_W = (5.0 / 18.0, 8.0 / 18.0, 5.0 / 18.0)
@@ -186,15 +187,16 @@ class PlanarModel:
         if self.nf == 0:
             raise CableOCPError("simulation.segments = 1 with an anchored end_a leaves no "
                                 "free node: give at least 2")
-        area = math.pi * cab.diameter**2 / 4.0
         self.mu = dyn.mass_per_length
-        self.man = dyn.added_mass_coefficient * rho * area  # normal added mass, kg/m
-        self.mat = dyn.tangential_added_mass_coefficient * rho * area
+        # normal and tangential added mass, kg/m (Huang (1992) (5.2))
+        self.man = added_mass_per_length(dyn.added_mass_coefficient, rho, cab.diameter)
+        self.mat = added_mass_per_length(dyn.tangential_added_mass_coefficient, rho,
+                                         cab.diameter)
         self.w = float(cab.weight_in_water)
         self.ea = float(cab.axial_stiffness)
         self.c = float(dyn.axial_damping)
-        self.kn = 0.5 * rho * cab.normal_drag * cab.diameter
-        self.kt = 0.5 * rho * cab.tangential_drag * math.pi * cab.diameter
+        self.kn, self.kt = line_drag_factors(rho, cab.diameter, cab.normal_drag,
+                                             cab.tangential_drag)
         self.delta = st.solver.smoothing
         self.delta_t = SLACK_SMOOTHING
         self.rho = rho
@@ -203,7 +205,7 @@ class PlanarModel:
         self.y_plane = float(scene.top_position[1])
         unit = scene.unit
         if unit is not None:
-            self.unit_mass = (unit.mass + unit.added_mass[0], unit.mass + unit.added_mass[2])
+            self.unit_mass = (unit.virtual_mass[0], unit.virtual_mass[2])
             self.unit_weight = unit.weight_in_water
             self.unit_cs = (unit.drag_area[0] * unit.drag_coefficient[0],
                             unit.drag_area[2] * unit.drag_coefficient[2])
@@ -230,14 +232,14 @@ class PlanarModel:
 
     # ------------------------------------------------------------------ pieces
     def _tension(self, eps: Any) -> Any:
-        """Smooth no-compression Hooke's law, N (elementwise)."""
-        u = self.ea * eps
-        return 0.5 * (u + ca.sqrt(u * u + self.delta_t**2))
+        """Smooth no-compression Hooke's law, N (elementwise;
+        :func:`cable_ocp.physics.elasticity.smooth_tension`)."""
+        return smooth_tension(eps, self.ea, self.delta_t)
 
     def _taut(self, eps: Any) -> Any:
-        """Smooth switch 0 (slack) .. 1 (taut), - (elementwise)."""
-        u = self.ea * eps
-        return 0.5 * (1.0 + u / ca.sqrt(u * u + self.delta_t**2))
+        """Smooth switch 0 (slack) .. 1 (taut), - (elementwise;
+        :func:`cable_ocp.physics.elasticity.taut_switch`)."""
+        return taut_switch(eps, self.ea, self.delta_t)
 
     # The expressions below work on 2 x K matrices (columns = nodes or elements, rows =
     # x, z): a few dozen whole-matrix operations per expression, whatever N is.
@@ -250,7 +252,8 @@ class PlanarModel:
         if self.current.uniform:
             return ca.repmat(ca.vertcat(self.current.ux[0], 0.0), 1, k)
         zs = ca.SX.sym("z")
-        fn = ca.Function("current_x", [zs], [current_velocity(self.current, zs)[0]])
+        cur = self.current
+        fn = ca.Function("current_x", [zs], [profile_velocity(zs, cur.z, cur.ux, cur.uy)[0]])
         return ca.vertcat(fn.map(k)(z), ca.SX.zeros(1, k))
 
     def _motion(self, t: Any) -> dict[str, Any]:
@@ -294,17 +297,14 @@ class PlanarModel:
 
     def _element_drag(self, dd: Any, urel: Any) -> Any:
         """Drag on the elements of chords dd (m) in the relative flows urel (m/s), N
-        (2 x N): per stretched length |d| times the normal and tangential laws."""
+        (2 x N): per stretched length |d| times the vector law
+        (:func:`cable_ocp.physics.drag.vector_drag_columns`)."""
         k = dd.shape[1]
         if self.kn == 0.0 and self.kt == 0.0:
             return ca.SX.zeros(2, k)
         ll = self._norms(dd)
         tt = dd / ca.repmat(ll, 2, 1)
-        ut = ca.sum1(urel * tt)
-        un = urel - ca.repmat(ut, 2, 1) * tt
-        f = self.kn * ca.repmat(ca.sqrt(ca.sum1(un * un) + self.delta**2), 2, 1) * un
-        if self.kt != 0.0:
-            f = f + self.kt * ca.repmat(ca.sqrt(ut * ut + self.delta**2) * ut, 2, 1) * tt
+        f = vector_drag_columns(urel, tt, self.kn, self.kt, self.delta)
         return ca.repmat(ll, 2, 1) * f
 
     def _unit_drag(self, z0: Any, v0: Any) -> Any:
@@ -312,13 +312,8 @@ class PlanarModel:
         if self.anchored or not any(self.unit_cs):
             return ca.SX.zeros(2, 1)
         u = self._current(z0) - v0
-        half = 0.5 * self.rho
-        cs = self.unit_cs
-        if self.unit_per_axis:
-            return half * ca.vertcat(*[cs[k] * ca.sqrt(u[k] ** 2 + self.delta**2) * u[k]
-                                       for k in range(2)])
-        speed = ca.sqrt(ca.dot(u, u) + self.delta**2)
-        return half * speed * ca.vertcat(cs[0] * u[0], cs[1] * u[1])
+        return point_drag(u, self.unit_cs, rho=self.rho, delta=self.delta,
+                          per_axis=self.unit_per_axis)
 
     def _share(self) -> np.ndarray:
         """Share of an element length lumped at each node (1/2 at the ends)."""
@@ -334,11 +329,7 @@ class PlanarModel:
         base = self.mu * h * ca.DM(self._share()).T
         mxx, mxz, mzz = base, ca.SX.zeros(1, n + 1), base
         if self.man != 0.0 or self.mat != 0.0:
-            l2 = ca.sum1(dd * dd)
-            txx, txz, tzz = dd[0, :] ** 2 / l2, dd[0, :] * dd[1, :] / l2, dd[1, :] ** 2 / l2
-            axx = 0.5 * h * (self.man * (1.0 - txx) + self.mat * txx)
-            axz = 0.5 * h * (self.mat - self.man) * txz
-            azz = 0.5 * h * (self.man * (1.0 - tzz) + self.mat * tzz)
+            axx, axz, azz = line_added_mass_2d(dd, self.man, self.mat, 0.5 * h)
             z1 = ca.SX.zeros(1, 1)
             mxx = mxx + ca.horzcat(axx, z1) + ca.horzcat(z1, axx)
             mxz = mxz + ca.horzcat(axz, z1) + ca.horzcat(z1, axz)
@@ -762,8 +753,7 @@ class PlanarModel:
         top = top.reshape(n_t)
         length = length.reshape(n_t)
         min_strain = float(min(emin, np.min(eps)))
-        u = self.ea * min_strain
-        min_t = float(min(0.5 * (u + math.sqrt(u * u + self.delta_t**2)), np.min(tens)))
+        min_t = float(min(smooth_tension(min_strain, self.ea, self.delta_t), np.min(tens)))
         slack: dict[str, Any] = {"occurred": bool(np.isfinite(t_slack)), "first_time": None,
                                  "location": None, "segment": None}
         if np.isfinite(t_slack):

@@ -12,7 +12,7 @@ In a few lines::
 
     models = hv.build_models(sc)                           # spectrum, filter, plant (6.28)
     mpc = hv.LinearMPC(models.plant, sc.winch.delay, hv.settings_from_scene(sc))
-    step = mpc.step(z0)                                    # z0: plant state + buffered commands
+    step = mpc.step(x)                 # x: the plant's state; the MPC keeps the delay buffer
 
 Modules
 -------
@@ -22,16 +22,20 @@ identify    Gauss-Newton identification of (6.2) and (6.3) (section 6.2.3)
 lqr         LQR designs with the delay handled three ways, delay margins, indices (6.16)-(6.18)
 stochastic  Lyapunov (6.31) and spectral (6.33)-(6.35) variances, LQG, winch-gain study (6.3.5)
 mpc         condensed linear MPC (CasADi ``conic``) and nonlinear MPC (IPOPT), built once
-simulate    closed-loop simulation on one seeded wave realisation, metrics
+mpc_daqp    the DAQP backend of the linear MPC
+simulate    closed-loop comparison on one seeded wave realisation (the design model)
 identify_cable  the identification experiment (6.2.3) on a cable scene's line
 axial_plant     the axial line as the plant, stepped one control sample per call
 cable_models    the planar and 3D lumped-mass lines as the plant; cable_plant(): the plant by
                 the scene's model
 design      design scene, design table (gains, Kalman gains, sampled model over lengths)
-estimators  the Kalman estimate from depth/winch/boom-tip
-controllers the controllers on the estimate
-closed_loop the closed loop on the cable plant or the design model
-metrics     the cable's metrics and comparison
+estimators  the observation, the full-state estimator and the one Kalman filter
+controllers the controller interface: passive, state feedback (LQR, LQG, scheduled), MPC
+delay       the delay line of the winch command (plant side and prediction side)
+loop_plants the plants of the closed loop: the design model with its winch, a line under the
+            winch (the cable or the design model)
+closed_loop the closed loop: any plant with any controller
+metrics     the results and metrics of a comparison
 deployment  lowering the unit through resonance, with gain scheduling
 cable_compare   :func:`compare` for every scene: on the design model, or on the cable
 (the scene schema lives in :mod:`cable_ocp.scene.heave`)
@@ -39,9 +43,10 @@ cable_compare   :func:`compare` for every scene: on the design model, or on the 
 
 from cable_ocp.heave.cable_compare import compare
 from cable_ocp.heave.lqr import LQRDesign, design_lqr, regulator_plant
+from cable_ocp.heave.metrics import Comparison, Metrics
 from cable_ocp.heave.mpc import LinearMPC, MPCSettings, MPCStep, settings_from_scene
 from cable_ocp.heave.plant import HeavePlant, assemble_plant
-from cable_ocp.heave.simulate import Comparison, Metrics, build_models
+from cable_ocp.heave.simulate import build_models
 from cable_ocp.scene.heave import HeaveScene, load_scene, scene_from_dict
 
 __all__ = [

@@ -353,6 +353,14 @@ def compile_plant_functions(fns: list[ca.Function], flags: str = "-O1") -> list[
     straight-line code ``-O2`` is no faster and compiles as slowly), cached
     (:func:`cable_ocp.numerics.compile.compile_functions`). Returns them unchanged when compiling is
     off (``CABLE_OCP_CACHE=0``), no compiler is found or anything fails (the interpreted
-    functions compute the same numbers, about 5x slower)."""
+    functions compute the same numbers, about 5x slower).
+
+    Parameters
+    ----------
+    fns : list of casadi.Function
+        The plant's functions.
+    flags : str
+        The C compiler's flags.
+    """
     return compile_functions(fns, flags, prefix="heave_")
 

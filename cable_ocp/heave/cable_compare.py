@@ -23,17 +23,17 @@ from cable_ocp.heave import identify_cable as idc
 from cable_ocp.heave import mpc as mpc_mod
 from cable_ocp.heave import simulate as sm
 from cable_ocp.heave.cable_models import cable_plant, check_plant_scene
-from cable_ocp.heave.closed_loop import (
-    _CableLoopPlant,
-    _ModelLoopPlant,
-    make_wave,
-    run_loop,
-    run_status,
-)
-from cable_ocp.heave.controllers import _Ctrl
+from cable_ocp.heave.closed_loop import make_wave, run_loop, run_status, unstable_bound
 from cable_ocp.heave.deployment import deploy
-from cable_ocp.heave.design import _mpc_settings, design_damping, design_scene, design_table
-from cable_ocp.heave.metrics import CABLE_FIELDS, CableComparison, CableMetrics, _metrics_cable
+from cable_ocp.heave.design import cable_controller, design_damping, design_scene, design_table
+from cable_ocp.heave.loop_plants import CableLine, ModelLine, WinchedLine
+from cable_ocp.heave.metrics import (
+    CABLE_FIELDS,
+    CableComparison,
+    CableMetrics,
+    cable_run_metrics,
+    reduction_pct,
+)
 from cable_ocp.scene.dynamics import DynamicScene
 from cable_ocp.scene.heave import HeaveScene, load_cable_scene
 
@@ -45,7 +45,7 @@ def compare(sc: HeaveScene, controllers: tuple | None = None,
     """:func:`cable_ocp.heave.simulate.compare` for any heave scene: a scene with
     ``[unit] cable_scene`` goes to :func:`compare_cable`, the others to
     :func:`cable_ocp.heave.simulate.compare`. Returns a
-    :class:`~cable_ocp.heave.simulate.Comparison` or a
+    :class:`~cable_ocp.heave.metrics.Comparison` or a
     :class:`~cable_ocp.heave.metrics.CableComparison` (the same fields, and the
     cable's)."""
     if sc.unit.cable_scene is not None:
@@ -118,13 +118,14 @@ def _compare_on_cable(sc: HeaveScene, sd: HeaveScene, dyn: DynamicScene,
         with np.errstate(all="ignore"):
             table, p = design_table(sd, np.array([L0]), np.array([sd.unit.a]),
                                     np.array([sd.unit.b]))
-        G, design_error = table.G[0], None
+        design_error = None
     except CableOCPError:
         raise
     except sm._DESIGN_ERRORS as exc:  # a Riccati equation without a stabilising solution
-        table, p, G = None, models.plant, None
+        table, p = None, models.plant
         design_error = f"the design on the design model failed: {type(exc).__name__}: {exc}"
-    settings = _mpc_settings(sd)
+    settings = mpc_mod.settings_from_scene(sd)
+    bound = unstable_bound(wave.x0)
     t_u0, t_t0 = plant_c.static_tensions()
     quad = sd.unit.model == "quadratic"
     total = 2 * n_ctrl * len(runs_of)
@@ -158,15 +159,16 @@ def _compare_on_cable(sc: HeaveScene, sd: HeaveScene, dyn: DynamicScene,
                     progress(base + k, total, None)
 
             mpc = (mpc_mod.LinearMPC(p, sc.winch.delay, settings) if name == "mpc" else None)
-            ctrl = _Ctrl(name, None if name == "passive" else table, mpc)
+            ctrl = cable_controller(name, None if name == "passive" else table, mpc)
             if kind == "model":
-                plant: Any = _ModelLoopPlant(sd.unit.a, sd.unit.b, sd.unit.b_quadratic, quad, m,
-                                             h / m, sd.unit.mass, t_u0, t_t0)
+                line: Any = ModelLine(sd.unit.a, sd.unit.b, sd.unit.b_quadratic, quad, m,
+                                      h / m, sd.unit.mass, t_u0, t_t0)
             else:
-                plant = _CableLoopPlant(plant_c)
-            runs[kind] = run_loop(sc, plant, ctrl, wave, noise, n_ctrl, prog)
-        mc = _metrics_cable(sd, runs["cable"], name, G)
-        mm = _metrics_cable(sd, runs["model"], name, G)
+                line = CableLine(plant_c)
+            runs[kind] = run_loop(WinchedLine(sc, line, wave, noise), ctrl, n_ctrl, bound,
+                                  prog)
+        mc = cable_run_metrics(sd, runs["cable"], ctrl.energy_index)
+        mm = cable_run_metrics(sd, runs["model"], ctrl.energy_index)
         metrics[name] = (mc, mm)
         if name not in controllers:
             continue
@@ -196,16 +198,12 @@ def _compare_on_cable(sc: HeaveScene, sd: HeaveScene, dyn: DynamicScene,
     base_c = metrics["passive"][0]["heave_rms"]
     base_m = metrics["passive"][1]["heave_rms"]
 
-    def reduction(rms: float | None, base: float | None) -> float | None:
-        ok = rms is not None and base is not None and base > 0
-        return float(100.0 * (1.0 - rms / base)) if ok else None
-
     for name in controllers:
         mc, mm = metrics[name]
         d = dict(mc)
-        d["reduction_pct"] = reduction(mc["heave_rms"], base_c)
+        d["reduction_pct"] = reduction_pct(mc["heave_rms"], base_c)
         d["heave_rms_predicted"] = mm["heave_rms"]
-        d["reduction_predicted_pct"] = reduction(mm["heave_rms"], base_m)
+        d["reduction_predicted_pct"] = reduction_pct(mm["heave_rms"], base_m)
         d["tension_unit_min_predicted"] = mm["tension_unit_min"]
         d["tension_unit_max_predicted"] = mm["tension_unit_max"]
         out[name] = CableMetrics(d)

@@ -16,10 +16,10 @@
   profile swings the line out of the vertical in 3D.
 
 The plants have the interface that the closed loop (:func:`cable_ocp.heave.closed_loop.run_loop`
-through ``_CableLoopPlant``) and the identification experiment use: ``substeps``, ``dt``,
-``length0``, ``z_top0``, ``tolerance``, ``model.n``, :meth:`initial_state`,
-:meth:`static_unit_height`, :meth:`static_tensions`, :meth:`advance` and
-:meth:`run_open_loop`.
+through :class:`cable_ocp.heave.loop_plants.CableLine`) and the identification experiment
+use: ``substeps``, ``dt``, ``length0``, ``z_top0``, ``tolerance``, ``model.n``,
+:meth:`initial_state`, :meth:`static_unit_height`, :meth:`static_tensions`, :meth:`advance`
+and :meth:`run_open_loop`.
 """
 
 from __future__ import annotations

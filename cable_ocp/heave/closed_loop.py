@@ -1,141 +1,87 @@
-"""The closed loop on the cable plant (or on the design model as the plant): the boom-tip
-wave, the loop plants, the run and its status.
+"""The closed loop: any plant with any controller, and the run's trace and status.
 
-The controllers do not see the plant's state. They see what a real system measures, once per
-sample, each with its own white noise: the unit's depth (``[controller] measurement_noise``),
-the winch position (``winch_noise``) and the boom-tip heave from the vessel's motion sensor
-(``boom_tip_noise``). The state of the design model (unit, winch, vessel and sea filters, the
-delay buffer) is estimated by the LQG's discrete Kalman filter (current estimator) on the
-design model, extended to the three measurements; LQR and MPC both use that estimate
-(certainty equivalence). ``lqg`` keeps its own sensor set: the unit's depth only, as on the
-design model. The delay buffer (the controller's own past commands) is known exactly.
+:func:`run_loop` runs one :class:`Controller <cable_ocp.heave.controllers.Controller>` on one
+:class:`LoopPlant` for ``n_ctrl`` control samples of ``h`` seconds. Per sample: the plant's
+observation (:meth:`LoopPlant.observe`), the controller's command (held over the sample,
+ZOH), the command the winch applies, delayed by exactly ``tau = d h``
+(:class:`cable_ocp.heave.delay.DelayLine`), and the plant advanced over the sample on its
+``m`` sub-steps (:meth:`LoopPlant.advance`). The plants (:mod:`cable_ocp.heave.loop_plants`):
+the design model (6.2)/(6.3) with its winch, integrated by RK4 on the sub-steps in the sea
+sampled exactly (:func:`cable_ocp.heave.simulate.compare`); and a line under the winch: the
+cable (axial, planar or lumped3d) or the design model, with the winch integrated exactly
+(:func:`cable_ocp.heave.cable_compare.compare_cable`, the deployment).
 
-Every controller also runs, with the same estimator, sensors, noise and sea, against the
-design model as the plant: the reduction that model predicts sits beside the one the cable
-achieves (:class:`CableMetrics`). The comparison itself, with the identification and the
-deployment, is :mod:`cable_ocp.heave.cable_compare`.
+The run stops (the rest of the trace NaN) where
+
+* the command is not finite (``"non_finite"``; before it is applied);
+* the plant's step fails or the plant refuses the sample (``"failed"``, with the plant's
+  reason: :func:`run_status`);
+* the unit heave or winch output at a sub-step is not finite (``"non_finite"``) or leaves
+  ``bound`` (``"unstable"``; by default :data:`UNSTABLE_FACTOR` times the largest boom-tip
+  heave: a stable loop moves them by at most its resonance amplification times the boom tip,
+  ~1/(2 zeta) = 14 for the shipped units).
 """
 
 from __future__ import annotations
 
+from abc import ABC, abstractmethod
 from collections.abc import Callable
-from dataclasses import dataclass
-from typing import Any
+from dataclasses import dataclass, field
 
 import numpy as np
-from scipy import linalg
 
-from cable_ocp.heave import plant as pl
-from cable_ocp.heave.axial_plant import AxialCablePlant
-from cable_ocp.heave.controllers import _Ctrl
-from cable_ocp.heave.simulate import Trace
-from cable_ocp.scene.heave import HeaveScene
+from cable_ocp.heave.controllers import Controller
+from cable_ocp.heave.delay import DelayLine
+from cable_ocp.heave.estimators import Observation
 
-__all__ = ["CableTrace", "LoopRun", "Wave", "make_wave", "run_loop", "run_status"]
+__all__ = ["STATUSES", "UNSTABLE_FACTOR", "CableTrace", "LoopPlant", "LoopRun", "Sample",
+           "Trace", "Wave", "make_wave", "run_loop", "run_status", "unstable_bound"]
 
+#: per-controller statuses (:mod:`cable_ocp.heave.simulate`)
+STATUSES = ("solved", "unstable", "non_finite", "failed")
 
-# ------------------------------------------------------------------------------------------
-# Plants seen by the closed loop
-# ------------------------------------------------------------------------------------------
-
-class _CableLoopPlant:
-    """The cable plant in the loop: heave relative to the static depth at ``L_dep``."""
-
-    def __init__(self, plant: AxialCablePlant) -> None:
-        self.p = plant
-        self.substeps = plant.substeps
-        self.x = plant.initial_state()
-        self.heave = 0.0
-        self.failed_at: int | None = None
-        self.max_residual = 0.0
-        #: (status, message) where the plant refused a sample (its ``out["stop"]``)
-        self.stop: tuple[str, str] | None = None
-
-    def start(self, x0_start: float, ldep0: float) -> tuple[float, float]:
-        self.x = self.p.initial_state()
-        self.heave = x0_start  # the static line hangs from the displaced top, at rest
-        self.stop = None
-        return self.p.static_tensions(ldep0)
-
-    def advance(self, k: int, u: np.ndarray, x0: np.ndarray, ldep: np.ndarray
-                ) -> tuple[np.ndarray, np.ndarray, np.ndarray, float]:
-        x, out = self.p.advance(self.x, ldep - u, self.p.z_top0 + x0)
-        if "stop" in out and self.stop is None:
-            self.stop = ("failed", f"at t = {k * self.p.h:.2f} s {out['stop']}; the run "
-                         "stops there")
-        if "stop" not in out:
-            self.max_residual = max(self.max_residual, out["residual"])
-        if not (out["residual"] <= max(1e3 * self.p.tolerance, 1e-6)) and self.failed_at is None:
-            self.failed_at = k
-        self.x = x
-        heave = out["z_unit"] - self.p.static_unit_height(ldep[1:])
-        self.heave = float(heave[-1])
-        return heave, out["t_unit"], out["t_top"], out["t_min"]
+#: bound on the simulated unit heave and winch output, times the largest boom-tip heave of
+#: the realisation (at least 1 mm): beyond it the loop is declared unstable
+UNSTABLE_FACTOR = 1000.0
 
 
-class _ModelLoopPlant:
-    """The design model (6.2) or (6.3) as the plant, RK4 with ``x0 + u`` linear per step.
+def unstable_bound(x0: np.ndarray) -> float:
+    """The bound of a stable run (m): :data:`UNSTABLE_FACTOR` times the largest boom-tip heave
+    ``x0`` (m) of the run, at least 1 mm."""
+    return UNSTABLE_FACTOR * max(float(np.max(np.abs(x0))), 1e-3)
 
-    Tension at the unit ``T0 + (m/a)(x0 + u - x)`` (the model's own, :mod:`.mpc`); the
-    model has no top tension (reported as the same dynamic part on the static top tension).
+
+@dataclass(frozen=True)
+class Trace:
+    """Time histories of one closed-loop run (the plant's sub-step grid).
+
+    Attributes
+    ----------
+    t : numpy.ndarray
+        Time, s.
+    x, x0, u, u_dot, u0 : numpy.ndarray
+        Unit heave (m), boom-tip heave (m), winch output (m), winch speed (m/s), applied
+        (delayed) command (m).
     """
 
-    def __init__(self, a: float, b: float, b_quadratic: float, quadratic: bool,
-                 substeps: int, dt: float, mass: float, t_unit0: float, t_top0: float) -> None:
-        self.a, self.b, self.bq, self.quad = a, b, b_quadratic, quadratic
-        self.substeps, self.dt = substeps, dt
-        self.k = mass / a
-        self.t0, self.tt0 = t_unit0, t_top0
-        self.s = [0.0, 0.0]
-        self.heave = 0.0
-        self.failed_at: int | None = None
-        self.max_residual = 0.0
+    t: np.ndarray
+    x: np.ndarray
+    x0: np.ndarray
+    u: np.ndarray
+    u_dot: np.ndarray
+    u0: np.ndarray
 
-    def start(self, x0_start: float, ldep0: float) -> tuple[float, float]:  # noqa: ARG002
-        self.s = [x0_start, 0.0]
-        self.heave = x0_start
-        return self.t0, self.tt0
-
-    def _f(self, x: float, v: float, inp: float) -> tuple[float, float]:
-        damp = self.bq * v * abs(v) if self.quad else self.b * v
-        return v, (inp - x - damp) / self.a
-
-    def advance(self, k: int, u: np.ndarray, x0: np.ndarray, ldep: np.ndarray  # noqa: ARG002
-                ) -> tuple[np.ndarray, np.ndarray, np.ndarray, float]:
-        m, dt = self.substeps, self.dt
-        x, v = self.s
-        inp = (x0 + u).tolist()
-        xs = np.empty(m)
-        for j in range(m):
-            ia, ib = inp[j], inp[j + 1]
-            im = 0.5 * (ia + ib)
-            k1 = self._f(x, v, ia)
-            k2 = self._f(x + 0.5 * dt * k1[0], v + 0.5 * dt * k1[1], im)
-            k3 = self._f(x + 0.5 * dt * k2[0], v + 0.5 * dt * k2[1], im)
-            k4 = self._f(x + dt * k3[0], v + dt * k3[1], ib)
-            x += dt / 6 * (k1[0] + 2 * k2[0] + 2 * k3[0] + k4[0])
-            v += dt / 6 * (k1[1] + 2 * k2[1] + 2 * k3[1] + k4[1])
-            xs[j] = x
-        self.s = [x, v]
-        self.heave = x
-        dyn = self.k * (x0[1:] + u[1:] - xs)
-        return xs, self.t0 + dyn, self.tt0 + dyn, float(np.min(self.t0 + dyn))
-
-
-# ------------------------------------------------------------------------------------------
-# The closed loop
-# ------------------------------------------------------------------------------------------
 
 @dataclass(frozen=True)
 class CableTrace(Trace):
-    """Time histories of one closed-loop run on the plant's sub-step grid.
+    """Time histories of one closed-loop run of a line under the winch (sub-step grid).
 
     Attributes
     ----------
     t, x, x0, u, u_dot, u0 : numpy.ndarray
-        As :class:`cable_ocp.heave.simulate.Trace`: time (s), unit heave relative to the
-        static depth at the deployment length (m), boom-tip heave (m), winch output (m),
-        winch speed (m/s), applied (delayed) command (m).
+        As :class:`Trace`: time (s), unit heave relative to the static depth at the
+        deployment length (m), boom-tip heave (m), winch output (m), winch speed (m/s),
+        applied (delayed) command (m).
     tension_unit, tension_top : numpy.ndarray
         Tension at the unit and at the top, N.
     length : numpy.ndarray
@@ -152,9 +98,15 @@ class CableTrace(Trace):
 
 @dataclass
 class LoopRun:
-    """One closed-loop run: trace, commands, solver statistics and the plant's health."""
+    """One closed-loop run: trace, commands, solver statistics and the plant's health.
 
-    trace: CableTrace
+    ``times`` are the controller's solve times (s; the MPC's), ``failures`` its solver
+    failures, ``plant_failed_at`` the time (s) where the plant's step failed (or None),
+    ``max_residual`` the plant's largest scaled Newton residual, ``stop`` the ``(status,
+    message)`` where the run stopped for another reason (or None).
+    """
+
+    trace: Trace
     commands: np.ndarray
     times: np.ndarray
     failures: int
@@ -164,10 +116,18 @@ class LoopRun:
 
 
 def run_status(run: LoopRun, plant: str = "cable") -> tuple[str, str]:
-    """``(status, message)`` of a run, in the statuses of :mod:`cable_ocp.heave.simulate`:
-    ``"unstable"`` / ``"non_finite"`` where the run left its bound or turned non-finite,
-    ``"failed"`` where a step of the cable plant did not converge (the axial model cannot
-    follow the line from there: a diverging loop or a slack line), else ``"solved"``."""
+    """``(status, message)`` of a run, in :data:`STATUSES`: where it stopped, why
+    (``"unstable"``, ``"non_finite"``, or ``"failed"`` with the plant's reason); ``"failed"``
+    where a Newton step of the plant did not converge (the cable model cannot follow the line
+    from there: a diverging loop or a slack line); else ``"solved"``.
+
+    Parameters
+    ----------
+    run : LoopRun
+        The run.
+    plant : str
+        The plant's name in the message (``"cable"``, ``"design-model"``).
+    """
     if run.stop is not None:
         return run.stop
     if run.plant_failed_at is not None:
@@ -203,6 +163,21 @@ def make_wave(t_fine: np.ndarray, x0_fine: np.ndarray, h: float, substeps: int, 
     line), and an estimator that first sees a displaced unit answers with commands of tens
     of metres (no limits on LQR and LQG). Faded in, both plants start smoothly; the fade-in
     ends inside the warm-up, before any metric is taken.
+
+    Parameters
+    ----------
+    t_fine, x0_fine : numpy.ndarray
+        The sea's grid (s) and boom-tip heave there (m).
+    h : float
+        Control sample, s.
+    substeps : int
+        The plant's sub-steps per sample.
+    n_ctrl : int
+        Control samples.
+    ldep : callable
+        Deployment length (m) at given times (s).
+    fade_in : float
+        Length of the ramp, s (0: none).
     """
     t = np.arange(n_ctrl * substeps + 1) * (h / substeps)
     x = np.clip(t / fade_in, 0.0, 1.0) if fade_in > 0 else np.ones_like(t)
@@ -211,111 +186,181 @@ def make_wave(t_fine: np.ndarray, x0_fine: np.ndarray, h: float, substeps: int, 
                 ldep=np.asarray(ldep(t), dtype=float), substeps=substeps)
 
 
-def _winch_maps(sc: HeaveScene, dt: float) -> tuple[np.ndarray, np.ndarray, np.ndarray,
-                                                     np.ndarray]:
-    """Exact ZOH map of the winch over ``dt``: ``w+ = Phi w + Gam v``; rows for u and u'."""
-    w = sc.winch
-    blk = pl.winch_first(w.gain) if w.model == "first_order" else pl.winch_second(
-        w.natural_frequency, w.damping_ratio)
-    A, B = np.asarray(blk.A), np.asarray(blk.B)
-    C, D = np.asarray(blk.C), np.asarray(blk.D)
-    nw = A.shape[0]
-    Mx = np.zeros((nw + 1, nw + 1))
-    Mx[:nw, :nw] = A
-    Mx[:nw, nw:] = B
-    E = linalg.expm(Mx * dt)
-    # outputs: row 0 u, row 1 u_dot (C, D of the block)
-    return E[:nw, :nw], E[:nw, nw], np.vstack([C[0], C[1]]), np.array([D[0, 0], D[1, 0]])
+@dataclass(frozen=True)
+class Sample:
+    """What a plant's :meth:`LoopPlant.advance` returns for one control sample of ``m``
+    sub-steps.
 
-
-def run_loop(sc: HeaveScene, plant: Any, ctrl: _Ctrl, wave: Wave, noise: np.ndarray,
-             n_ctrl: int, progress: Callable[[int], None] | None = None,
-             bound: float | None = None) -> LoopRun:
-    """Simulate one controller on one plant (``_CableLoopPlant`` or ``_ModelLoopPlant``).
-
-    ``noise``: shape (n_ctrl + 1, 3), the measurement noise of depth, winch and boom tip
-    (m) per sample (the same for every controller and plant). The run stops (the rest of
-    the trace NaN) where the plant's step fails (or the plant refuses the sample, with its
-    reason as the run's status), a state or command turns non-finite, or
-    the unit heave or winch output leaves ``bound`` (m; default
-    :data:`cable_ocp.heave.simulate.UNSTABLE_FACTOR` times the largest boom-tip heave, as
-    :func:`cable_ocp.heave.simulate.compare`).
+    Attributes
+    ----------
+    x : numpy.ndarray, shape (m,)
+        Unit heave at the ends of the sub-steps, m.
+    u : numpy.ndarray, shape (m + 1,)
+        Winch output at the sub-step points, the sample's start included, m.
+    u_dot : numpy.ndarray, shape (m,)
+        Winch speed at the starts of the sub-steps (with the new applied command), m/s.
+    channels : dict
+        The plant's further histories at the ends of the sub-steps (name -> shape (m,)).
+    per_sample : float or None
+        The plant's value per sample (the smallest element tension, N), or None.
     """
-    if bound is None:
-        from cable_ocp.heave.simulate import UNSTABLE_FACTOR
 
-        bound = UNSTABLE_FACTOR * max(float(np.max(np.abs(wave.x0))), 1e-3)
-    stop = None
-    c = sc.controller
-    h = c.sample_time
-    d = int(round(sc.winch.delay / h))
-    m = wave.substeps
-    dt = h / m
-    Phi, Gam, Cw, Dw = _winch_maps(sc, dt)
-    nw = Phi.shape[0]
+    x: np.ndarray
+    u: np.ndarray
+    u_dot: np.ndarray
+    channels: dict = field(default_factory=dict)
+    per_sample: float | None = None
+
+
+class LoopPlant(ABC):
+    """The interface of a plant in the closed loop (:func:`run_loop`).
+
+    Attributes
+    ----------
+    sample_time : float
+        Control sample ``h``, s.
+    substeps : int
+        Sub-steps ``m`` per sample (the trace's grid).
+    delay : int
+        The winch command's delay in samples, ``d = tau / h``.
+    channels : tuple of str
+        Names of the further histories of :attr:`Sample.channels`.
+    failed_at : int or None
+        The sample where the plant's step failed (or it refused the sample), else None.
+    stop : tuple or None
+        ``(status, message)`` where the plant refused a sample, else None.
+    max_residual : float
+        Largest scaled Newton residual of the plant's steps (0 for an explicit one).
+    """
+
+    sample_time: float
+    substeps: int
+    delay: int
+    channels: tuple[str, ...] = ()
+    failed_at: int | None = None
+    stop: tuple[str, str] | None = None
+    max_residual: float = 0.0
+
+    @abstractmethod
+    def start(self) -> dict[str, float]:
+        """Back to the initial state; returns the unit heave ``"x"`` (m) and the channels at
+        ``t = 0``."""
+
+    @abstractmethod
+    def observe(self, k: int) -> Observation:
+        """What the controller gets at sample ``k`` (sensors with their noise, ...)."""
+
+    @abstractmethod
+    def advance(self, k: int, v: float) -> Sample:
+        """Advance over one sample.
+
+        Parameters
+        ----------
+        k : int
+            The sample (from ``t = k h`` to ``(k + 1) h``).
+        v : float
+            The applied (delayed) command, m, held over the sample.
+        """
+
+    @abstractmethod
+    def end_speed(self, v: float) -> float:
+        """Winch speed (m/s) at the end of the run, the command ``v`` (m) still applied."""
+
+    @abstractmethod
+    def trace(self, x: np.ndarray, u: np.ndarray, u_dot: np.ndarray, u0: np.ndarray,
+              channels: dict[str, np.ndarray], per_sample: np.ndarray) -> Trace:
+        """The run's trace from the histories the loop recorded.
+
+        Parameters
+        ----------
+        x, u, u_dot, u0 : numpy.ndarray, shape (n_ctrl m + 1,)
+            Unit heave (m), winch output (m), winch speed (m/s) and applied command (m) on
+            the sub-step grid (NaN where the run stopped).
+        channels : dict
+            The plant's :attr:`channels` on that grid.
+        per_sample : numpy.ndarray, shape (n_ctrl,)
+            The plant's value per sample (:attr:`Sample.per_sample`).
+        """
+
+
+def run_loop(plant: LoopPlant, ctrl: Controller, n_ctrl: int, bound: float,
+             progress: Callable[[int], None] | None = None) -> LoopRun:
+    """Simulate one controller on one plant (module docstring).
+
+    Parameters
+    ----------
+    plant : LoopPlant
+        The plant, started here.
+    ctrl : Controller
+        The controller, reset here.
+    n_ctrl : int
+        Control samples.
+    bound : float
+        Largest unit heave and winch output (m) of a stable run (:func:`unstable_bound`).
+    progress : callable, optional
+        Called as ``progress(k)`` every 100 samples.
+    """
+    h = plant.sample_time
+    m = plant.substeps
     nfine = n_ctrl * m
-    # NaN where a run that failed (a cable step that did not converge) stops
-    xs, us, uds, vs, tu, tt = (np.full(nfine + 1, np.nan) for _ in range(6))
-    tmin = np.full(n_ctrl, np.nan)
+    ctrl.reset()
+    line = DelayLine(plant.delay)  # the plant side of the delay
+    # NaN where a run that stopped has no value
+    xs, us, uds, vs = (np.full(nfine + 1, np.nan) for _ in range(4))
+    chans = {c: np.full(nfine + 1, np.nan) for c in plant.channels}
+    per_sample = np.full(n_ctrl, np.nan)
     cmds = np.zeros(n_ctrl)
-    w = np.zeros(nw)
-    t_u0, t_t0 = plant.start(float(wave.x0[0]), float(wave.ldep[0]))
-    xs[0], tu[0], tt[0] = plant.heave, t_u0, t_t0
-    buf = np.zeros(d)
-    u_prev = 0.0
-    npv = int(round(c.preview_time / h))
-    x0_samples = wave.x0[::m]
-    for k in range(n_ctrl):
-        if progress is not None and k % 100 == 0:
-            progress(k)
-        i = k * m
-        u_now = float(Cw[0] @ w)
-        y = np.array([plant.heave, u_now, wave.x0[i]]) + noise[k]
-        fore = x0_samples[k: k + npv + 1] if npv > 0 else None
-        u0 = ctrl(y, u_prev, buf.copy(), float(wave.ldep[i]), fore)
-        cmds[k] = u0
-        u_prev = u0
-        if d:
-            v = buf[0]
-            buf = np.concatenate([buf[1:], [u0]])
-        else:
-            v = u0
-        upts = np.empty(m + 1)
-        upts[0] = u_now
-        for j in range(m):
-            uds[i + j] = float(Cw[1] @ w + Dw[1] * v)
-            us[i + j] = upts[j]
-            vs[i + j] = v
-            w = Phi @ w + Gam * v
-            upts[j + 1] = float(Cw[0] @ w)
-        heave, t_unit, t_top, t_mn = plant.advance(k, upts, wave.x0[i: i + m + 1],
-                                                    wave.ldep[i: i + m + 1])
-        xs[i + 1: i + m + 1] = heave
-        tu[i + 1: i + m + 1] = t_unit
-        tt[i + 1: i + m + 1] = t_top
-        tmin[k] = t_mn
-        if plant.failed_at is not None:
-            stop = getattr(plant, "stop", None)  # a reason the plant gave, if any
-            break
-        last = np.concatenate([heave, upts, [u0]])
-        if not np.all(np.isfinite(last)):
-            stop = ("non_finite", f"a state or command became non-finite at t = "
-                    f"{(k + 1) * h:.2f} s; the run stops there")
-        elif float(np.max(np.abs(last[:-1]))) > bound:
-            stop = ("unstable", f"the unit heave or winch output left {bound:.4g} m "
-                    f"(1000 times the largest boom-tip heave) at t = {(k + 1) * h:.2f} s: "
-                    "the closed loop is unstable; the run stops there")
-        if stop is not None:
-            xs[i + 1: i + m + 1] = np.nan
-            break
-    if plant.failed_at is None and stop is None:
-        # the last point: the command applied over the last step (as simulate.compare)
-        us[nfine] = float(Cw[0] @ w)
-        uds[nfine] = float(Cw[1] @ w + Dw[1] * vs[nfine - 1])
-        vs[nfine] = vs[nfine - 1]
-    tr = CableTrace(t=wave.t, x=xs, x0=wave.x0, u=us, u_dot=uds, u0=vs, tension_unit=tu,
-                    tension_top=tt, length=wave.ldep, min_element_tension=tmin)
+    first = plant.start()
+    xs[0] = first["x"]
+    for c in plant.channels:
+        chans[c][0] = first[c]
+    stop = None
+    smp = None
+    v = 0.0
+    with np.errstate(all="ignore"):
+        for k in range(n_ctrl):
+            if progress is not None and k % 100 == 0:
+                progress(k)
+            i = k * m
+            u0 = ctrl.step(plant.observe(k))
+            if not np.isfinite(u0):
+                stop = ("non_finite", f"the command became {u0} at t = {k * h:.2f} s; the "
+                        "run stops there")
+                break
+            cmds[k] = u0
+            v = line.push(u0)
+            smp = plant.advance(k, v)
+            xs[i + 1: i + m + 1] = smp.x
+            us[i: i + m] = smp.u[:m]
+            uds[i: i + m] = smp.u_dot
+            vs[i: i + m] = v
+            for c in plant.channels:
+                chans[c][i + 1: i + m + 1] = smp.channels[c]
+            if smp.per_sample is not None:
+                per_sample[k] = smp.per_sample
+            if plant.failed_at is not None:
+                stop = plant.stop  # a reason the plant gave, if any
+                break
+            last = np.concatenate([smp.x, smp.u])
+            if not np.all(np.isfinite(last)):
+                stop = ("non_finite", f"a state or command became non-finite at t = "
+                        f"{(k + 1) * h:.2f} s; the run stops there")
+            elif float(np.max(np.abs(last))) > bound:
+                stop = ("unstable", f"the unit heave or winch output left {bound:.4g} m "
+                        f"({UNSTABLE_FACTOR:g} times the largest boom-tip heave) at t = "
+                        f"{(k + 1) * h:.2f} s: the closed loop is unstable; the run stops "
+                        "there")
+            if stop is not None:
+                xs[i + 1: i + m + 1] = np.nan
+                break
+    if plant.failed_at is None and stop is None and smp is not None:
+        # the last point: the command applied over the last step is still applied (the
+        # newest command is inside the delay line), so u'(T) is the left limit
+        us[nfine] = smp.u[m]
+        uds[nfine] = plant.end_speed(v)
+        vs[nfine] = v
+    tr = plant.trace(xs, us, uds, vs, chans, per_sample)
     failed = None if plant.failed_at is None else float(plant.failed_at * h)
-    return LoopRun(trace=tr, commands=cmds, times=np.array(ctrl.times), failures=ctrl.failures,
-                   plant_failed_at=failed, max_residual=plant.max_residual, stop=stop)
-
+    return LoopRun(trace=tr, commands=cmds, times=np.array(ctrl.solve_times),
+                   failures=ctrl.failures, plant_failed_at=failed,
+                   max_residual=plant.max_residual, stop=stop)

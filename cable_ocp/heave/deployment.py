@@ -31,11 +31,16 @@ from typing import Any
 import numpy as np
 
 from cable_ocp.heave.axial_plant import AxialCablePlant
-from cable_ocp.heave.closed_loop import LoopRun, _CableLoopPlant, make_wave, run_loop, run_status
-from cable_ocp.heave.controllers import _Ctrl
-from cable_ocp.heave.design import design_damping, design_table
+from cable_ocp.heave.closed_loop import LoopRun, make_wave, run_loop, run_status, unstable_bound
+from cable_ocp.heave.design import cable_controller, design_damping, design_table
 from cable_ocp.heave.identify_cable import CableIdentification, identify_from_cable
-from cable_ocp.heave.metrics import CableComparison, CableMetrics, _metrics_cable
+from cable_ocp.heave.loop_plants import CableLine, WinchedLine
+from cable_ocp.heave.metrics import (
+    CableComparison,
+    CableMetrics,
+    cable_run_metrics,
+    reduction_pct,
+)
 from cable_ocp.scene.dynamics import DynamicScene
 from cable_ocp.scene.heave import HeaveScene
 
@@ -132,16 +137,20 @@ def deploy(sc: HeaveScene, sd: HeaveScene, dyn: DynamicScene, ident0: CableIdent
     noise = rng.standard_normal((n_ctrl + 1, 3)) * np.array(
         [c.measurement_noise, c.winch_noise, c.boom_tip_noise])
     total = n_ctrl * len(CONTROLLERS)
+    bound = unstable_bound(wave.x0)
     runs: dict[str, LoopRun] = {}
+    energy: dict[str, float | None] = {}
     for idx, name in enumerate(CONTROLLERS):
         table = {"passive": None, "lqr_fixed": fixed, "lqr_scheduled": sched}[name]
-        ctrl = _Ctrl(name, table, None)
+        ctrl = cable_controller(name, table, None)
+        energy[name] = ctrl.energy_index  # None for the schedule: the gain changes with L
 
         def prog(k: int, base: int = idx * n_ctrl) -> None:
             if progress is not None:
                 progress(base + k, total, None)
 
-        runs[name] = run_loop(sc, _CableLoopPlant(plant), ctrl, wave, noise, n_ctrl, prog)
+        runs[name] = run_loop(WinchedLine(sc, CableLine(plant), wave, noise), ctrl, n_ctrl,
+                              bound, prog)
     if progress is not None:
         progress(total, total, None)
 
@@ -149,14 +158,10 @@ def deploy(sc: HeaveScene, sd: HeaveScene, dyn: DynamicScene, ident0: CableIdent
     base = None
     for name, run in runs.items():
         statuses[name], messages[name] = run_status(run)
-        d = _metrics_cable(sd, run, "lqr" if name != "passive" else "passive",
-                              fixed.G[0] if name == "lqr_fixed" else sched.G[0])
+        d = cable_run_metrics(sd, run, energy[name])
         if name == "passive":
             base = d["heave_rms"]
-        ok = d["heave_rms"] is not None and base is not None and base > 0
-        d["reduction_pct"] = float(100.0 * (1.0 - d["heave_rms"] / base)) if ok else None
-        if name == "lqr_scheduled":
-            d["energy_index"] = None  # the gain changes with the length
+        d["reduction_pct"] = reduction_pct(d["heave_rms"], base)
         metrics[name] = CableMetrics(d)
 
     window = dep.window if dep.window is not None else (hi - lo) / 40.0

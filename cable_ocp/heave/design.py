@@ -1,10 +1,11 @@
-"""The controllers' designs on the unit model (6.2): the design scene, the design table
-(exact discrete-delay LQR gains, Kalman gains and the estimator's sampled model at each
-deployment length, interpolated in the length: gain scheduling) and the MPC settings.
+"""The controllers' designs on the unit model (6.2) for a line under the winch: the design
+scene, the design table (exact discrete-delay LQR gains, Kalman gains and the estimator's
+sampled model at each deployment length, interpolated in the length: gain scheduling) and
+the controllers on it (:func:`cable_controller`).
 
 The estimator's model is the delayed design model extended by a depth offset
 (:func:`_design`); the Kalman gains are those of the current estimator
-(:func:`kalman_gain`).
+(:func:`cable_ocp.heave.estimators.kalman_gain`).
 """
 
 from __future__ import annotations
@@ -13,18 +14,19 @@ from dataclasses import dataclass, replace
 from typing import Any
 
 import numpy as np
-from scipy import linalg
 
 from cable_ocp.errors import CableOCPError
 from cable_ocp.heave import mpc as mpc_mod
 from cable_ocp.heave import plant as pl
-from cable_ocp.heave.discrete import DelayedDiscreteModel, discretize_delayed, discretize_noise
-from cable_ocp.heave.stochastic import WHITE_NOISE_INTENSITY, discrete_delay_lqr
+from cable_ocp.heave.controllers import Controller, MPCController, Passive, StateFeedback
+from cable_ocp.heave.discrete import DelayedDiscreteModel, discretize_delayed
+from cable_ocp.heave.estimators import KalmanFilter, kalman_gain, process_noise
+from cable_ocp.heave.stochastic import discrete_delay_lqr
 from cable_ocp.scene.dynamics import DynamicScene
 from cable_ocp.scene.heave import HeaveScene
 
-__all__ = ["B_MIN", "DesignTable", "design_damping", "design_scene", "design_table",
-           "kalman_gain"]
+__all__ = ["B_MIN", "DesignTable", "cable_controller", "design_damping", "design_scene",
+           "design_table"]
 
 
 #: the smallest damping b (s) a design takes: an identified b below it (a line without drag
@@ -110,28 +112,47 @@ class DesignTable:
     n: int
     nz: int
 
-    def at(self, length: float) -> tuple[np.ndarray, ...]:
-        """``(Ad, Bd, G, M3, M1)`` linearly interpolated in the length (held outside)."""
+    def _interp(self, arrays: tuple[np.ndarray, ...], length: float | None
+                ) -> tuple[np.ndarray, ...]:
+        """The entries of ``arrays`` linearly interpolated at ``length`` (m; held outside the
+        table; None or a one-entry table: the first design)."""
         L = self.lengths
-        if L.size == 1 or length <= L[0]:
+        if L.size == 1 or length is None:
+            return tuple(arr[0] for arr in arrays)
+        if length <= L[0]:
             i, w = 0, 0.0
         elif length >= L[-1]:
             i, w = L.size - 2, 1.0
         else:
             i = int(np.searchsorted(L, length) - 1)
             w = (length - L[i]) / (L[i + 1] - L[i])
-        if L.size == 1:
-            return self.Ad[0], self.Bd[0], self.G[0], self.M3[0], self.M1[0]
-        return tuple((1 - w) * arr[i] + w * arr[i + 1]
-                     for arr in (self.Ad, self.Bd, self.G, self.M3, self.M1))
+        return tuple((1 - w) * arr[i] + w * arr[i + 1] for arr in arrays)
 
+    def at(self, length: float) -> tuple[np.ndarray, ...]:
+        """``(Ad, Bd, G, M3, M1)`` linearly interpolated in the length (m; held outside)."""
+        return self._interp((self.Ad, self.Bd, self.G, self.M3, self.M1), length)
 
-def kalman_gain(Ad: np.ndarray, C: np.ndarray, Qw: np.ndarray, R: np.ndarray  # noqa: N803
-                ) -> np.ndarray:
-    """Steady-state gain ``M = P C^T (C P C^T + R)^-1`` of the current estimator
-    (``x_hat = x_pred + M (y - C x_pred)``), ``P`` the a-priori covariance from the DARE."""
-    P = linalg.solve_discrete_are(Ad.T, C.T, Qw, R)
-    return P @ C.T @ np.linalg.inv(C @ P @ C.T + R)
+    def gain_at(self, length: float | None) -> np.ndarray:
+        """The LQR gain ``G`` at the deployment length ``length`` (m): the scheduled gain."""
+        return self._interp((self.G,), length)[0]
+
+    def filter_at(self, length: float | None, sensors: int) -> tuple[np.ndarray, ...]:
+        """``(Ad, Bd, M)`` of the scheduled Kalman filter
+        (:class:`cable_ocp.heave.estimators.KalmanFilter`).
+
+        Parameters
+        ----------
+        length : float or None
+            Deployment length, m (None: the first design).
+        sensors : int
+            3: depth, winch and boom tip; 1: the depth alone.
+        """
+        return self._interp((self.Ad, self.Bd, self.M3 if sensors == 3 else self.M1), length)
+
+    def kalman_filter(self, sensors: int) -> KalmanFilter:
+        """The (scheduled) Kalman filter with the first ``sensors`` measurements (3 or 1)."""
+        return KalmanFilter(lambda length: self.filter_at(length, sensors), self.C3[:sensors],
+                            self.n, self.nz - self.n)
 
 
 def _design(sc: HeaveScene, a: float, b: float) -> tuple[pl.HeavePlant, np.ndarray,
@@ -163,9 +184,7 @@ def _design(sc: HeaveScene, a: float, b: float) -> tuple[pl.HeavePlant, np.ndarr
     Ad[:nz, :nz] = mdl.Ad
     Bd = np.zeros((ne, 1))
     Bd[:nz] = mdl.Bd
-    Qw = np.zeros((ne, ne))
-    Qw[:n, :n] = discretize_noise(p.A, p.B2, WHITE_NOISE_INTENSITY, h)
-    Qw += 1e-14 * np.eye(ne) * np.max(np.abs(Qw))
+    Qw = process_noise(p, h, ne)
     tb = c.depth_bias_time
     Qw[nz, nz] = (c.measurement_noise * h / tb) ** 2 if tb > 0 else 0.0
     C3 = np.zeros((3, ne))
@@ -200,14 +219,26 @@ def design_table(sc: HeaveScene, lengths: np.ndarray, a: np.ndarray, b: np.ndarr
                        nz=rows[0][7]), p
 
 
-def _mpc_settings(sd: HeaveScene) -> mpc_mod.MPCSettings:
-    c = sd.controller
-    return mpc_mod.MPCSettings(
-        horizon=c.horizon, sample_time=c.sample_time, q=c.q, r=c.r, solver=c.solver,
-        stroke_max=sd.winch.stroke_max, speed_max=sd.winch.speed_max,
-        command_rate_max=sd.winch.command_rate_max, accel_max=sd.winch.accel_max,
-        tension_min=sd.winch.tension_min, unit_mass=sd.unit.mass,
-        static_tension=sd.unit.static_tension, tension_penalty=c.tension_penalty,
-        preview_time=c.preview_time, terminal=c.terminal,
-        nonlinear_b=sd.unit.b_quadratic if sd.unit.model == "quadratic" else 0.0)
+def cable_controller(name: str, table: DesignTable | None, mpc: mpc_mod.LinearMPC | None
+                     ) -> Controller:
+    """The controller ``name`` on a line under the winch, on the Kalman estimate of the
+    design model (:meth:`DesignTable.kalman_filter`): ``passive``; ``lqg`` (its own sensor
+    set: the unit's depth only, as on the design model) and the others (the three sensors:
+    depth, winch and boom tip) with the table's (scheduled) gain, or the MPC ``mpc`` on the
+    estimate (certainty equivalence).
 
+    Parameters
+    ----------
+    name : str
+        ``"passive"``, ``"lqr"``, ``"lqg"``, ``"mpc"``, ``"lqr_fixed"``, ``"lqr_scheduled"``.
+    table : DesignTable or None
+        The design (None for ``passive``).
+    mpc : LinearMPC or None
+        The MPC of a ``"mpc"`` run.
+    """
+    if table is None:
+        return Passive()
+    est = table.kalman_filter(1 if name == "lqg" else 3)
+    if mpc is not None:
+        return MPCController(mpc, est, name)
+    return StateFeedback(name, table, est)

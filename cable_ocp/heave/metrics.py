@@ -1,33 +1,106 @@
-"""The comparison on the cable plant and its per-controller metrics."""
+"""The results of a heave comparison and the metrics of a run, one home for both loops.
+
+Every metric is taken over the same window ``t >= [simulation] warmup`` (:func:`run_metrics`);
+``reduction_pct`` is relative to a passive run on the same sea and plant
+(:func:`reduction_pct`). :class:`Comparison` is the result of
+:func:`cable_ocp.heave.simulate.compare`, :class:`CableComparison` that of
+:func:`cable_ocp.heave.cable_compare.compare_cable` (on the cable plant the metrics add the
+tensions, the slack samples and the prediction of the design model: :class:`CableMetrics`,
+:func:`cable_run_metrics`).
+"""
 
 from __future__ import annotations
 
-import math
 from dataclasses import dataclass, field
-from typing import Any
+from typing import TYPE_CHECKING, Any
 
 import numpy as np
 
-from cable_ocp.heave.closed_loop import LoopRun, run_status
-from cable_ocp.heave.simulate import Comparison
+from cable_ocp.heave.closed_loop import LoopRun, Trace, run_status
 from cable_ocp.scene.heave import HeaveScene
 
-__all__ = ["CABLE_FIELDS", "CableComparison", "CableMetrics", "heave_rms"]
+if TYPE_CHECKING:
+    from cable_ocp.heave.simulate import Models
+
+__all__ = ["CABLE_FIELDS", "CableComparison", "CableMetrics", "Comparison", "Metrics",
+           "cable_run_metrics", "reduction_pct", "run_metrics", "with_reduction"]
 
 
-# ------------------------------------------------------------------------------------------
-# compare() on the cable
-# ------------------------------------------------------------------------------------------
+@dataclass(frozen=True)
+class Metrics:
+    """JSON metrics of one controller (field names as in docs/conventions.md, "Heave compensation").
+
+    Every field is None (JSON null) where the number does not exist: all but
+    ``energy_index`` and ``solve_time_median_s`` for a controller whose status is not
+    ``"solved"``; ``reduction_pct`` when the passive baseline has no heave.
+    """
+
+    heave_rms: float | None
+    reduction_pct: float | None
+    peak_winch_speed: float | None
+    max_stroke: float | None
+    energy_index: float | None
+    max_constraint_violation: float | None
+    solve_time_median_s: float | None
+    winch_speed_rms: float | None
+
+    def as_dict(self) -> dict:
+        """Plain dict for JSON."""
+        return {k: getattr(self, k) for k in self.__dataclass_fields__}
+
+
+@dataclass(frozen=True)
+class Comparison:
+    """Result of :func:`cable_ocp.heave.simulate.compare`.
+
+    Attributes
+    ----------
+    sigma_uncontrolled : float or None
+        Lyapunov standard deviation of the uncontrolled unit heave, m (None if it does not
+        exist).
+    metrics : dict
+        Controller name -> :class:`Metrics`.
+    traces : dict
+        Controller name -> :class:`Trace` (NaN after the sample where a run was stopped).
+    statuses, messages : dict
+        Controller name -> status (:data:`cable_ocp.heave.closed_loop.STATUSES`) and its
+        explanation.
+    passive_heave_rms : float
+        Heave RMS of the passive run on the same realisation (the baseline of
+        ``reduction_pct``), m.
+    mpc_failures : int
+        MPC samples at which the QP failed and the shifted previous plan was applied.
+    warnings : list of str
+        Remarks that do not change a status (MPC fallbacks, a missing sigma_uncontrolled).
+    """
+
+    sigma_uncontrolled: float | None
+    metrics: dict
+    traces: dict
+    models: Models
+    mpc_solve_times: np.ndarray | None
+    mpc_failures: int
+    statuses: dict = field(default_factory=dict)
+    messages: dict = field(default_factory=dict)
+    passive_heave_rms: float | None = None
+    warnings: list = field(default_factory=list)
+
+    @property
+    def status(self) -> str:
+        """``"solved"`` when every controller is, else the first other status."""
+        bad = [s for s in self.statuses.values() if s != "solved"]
+        return bad[0] if bad else "solved"
+
 
 @dataclass(frozen=True)
 class CableComparison(Comparison):
     """Result of :func:`cable_ocp.heave.cable_compare.compare_cable` (the fields of
-    :class:`cable_ocp.heave.simulate.Comparison` plus the cable's).
+    :class:`Comparison` plus the cable's).
 
     Attributes
     ----------
     statuses, messages : dict
-        Controller name -> status (:data:`cable_ocp.heave.simulate.STATUSES`) of its run on
+        Controller name -> status (:data:`cable_ocp.heave.closed_loop.STATUSES`) of its run on
         the plant, and its explanation.
     passive_heave_rms : float or None
         Heave RMS of the passive run on the same plant and sea (the baseline of
@@ -45,20 +118,114 @@ class CableComparison(Comparison):
     predicted_traces: dict = field(default_factory=dict)
 
 
+def reduction_pct(rms: float | None, base: float | None) -> float | None:
+    """``100 (1 - rms / base)`` (%): the heave reduction against the passive run's RMS
+    ``base`` (m); None where either does not exist (or ``base`` is not positive).
+
+    Parameters
+    ----------
+    rms : float or None
+        The controller's heave RMS, m.
+    base : float or None
+        The passive run's heave RMS on the same sea and plant, m.
+    """
+    ok = rms is not None and base is not None and base > 0
+    return float(100.0 * (1.0 - rms / base)) if ok else None
+
+
+def with_reduction(mt: Metrics, base: float | None) -> Metrics:
+    """``mt`` with its ``reduction_pct`` (:func:`reduction_pct`).
+
+    Parameters
+    ----------
+    mt : Metrics
+        A controller's metrics.
+    base : float or None
+        The passive run's heave RMS, m.
+    """
+    d = mt.as_dict()
+    d["reduction_pct"] = reduction_pct(mt.heave_rms, base)
+    return Metrics(**d)
+
+
+def run_metrics(sc: HeaveScene, tr: Trace, cmds: np.ndarray, energy: float | None,
+                times: np.ndarray | None, h: float) -> Metrics:
+    """Metrics of one run, all over the same window ``t >= [simulation] warmup``.
+
+    The run starts with the unit and winch at rest while the sea starts in a stationary random
+    state, so the first seconds are an artificial start-up transient. Every metric (RMS values,
+    peaks, stroke, constraint violations, including the command change per sample and the
+    second-order winch's acceleration) is taken after the warm-up only, so that they describe
+    the same stationary operation.
+
+    Parameters
+    ----------
+    sc : HeaveScene
+        The scene (warm-up, winch limits).
+    tr : Trace
+        The run's trace.
+    cmds : numpy.ndarray
+        The commands per sample, m.
+    energy : float or None
+        The controller's energy index.
+    times : numpy.ndarray or None
+        The solver's times per sample, s (the MPC's).
+    h : float
+        Sample time, s.
+    """
+    warm = sc.simulation.warmup
+    keep = tr.t >= warm - 1e-12
+    u, ud = tr.u[keep], tr.u_dot[keep]
+    w = sc.winch
+    viol = 0.0
+    for val, lim in [(np.max(np.abs(u)), w.stroke_max), (np.max(np.abs(ud)), w.speed_max)]:
+        if lim is not None:
+            viol = max(viol, max(0.0, val - lim) / lim)
+    if w.command_rate_max is not None and cmds.size > 1:
+        # Command k is issued at t = k h (command -1 is the initial 0); its change from
+        # command k - 1 counts if k h >= warm-up.
+        k0 = max(0, int(np.ceil(warm / h - 1e-9)))
+        dcmd = np.diff(np.concatenate([[0.0], cmds]))[k0:]
+        if dcmd.size:
+            dr = float(np.max(np.abs(dcmd)))
+            viol = max(viol, max(0.0, dr - w.command_rate_max) / w.command_rate_max)
+    if w.accel_max is not None and w.model == "second_order":
+        acc = np.gradient(tr.u_dot, tr.t)[keep]
+        viol = max(viol, max(0.0, float(np.max(np.abs(acc))) - w.accel_max) / w.accel_max)
+    return Metrics(
+        heave_rms=float(np.sqrt(np.mean(tr.x[keep] ** 2))),
+        reduction_pct=None,
+        peak_winch_speed=float(np.max(np.abs(ud))),
+        max_stroke=float(np.max(np.abs(u))),
+        energy_index=energy,
+        max_constraint_violation=float(viol),
+        solve_time_median_s=float(np.median(times)) if times is not None and times.size
+        else None,
+        winch_speed_rms=float(np.sqrt(np.mean(ud**2))),
+    )
+
+
 #: the cable-plant fields of a controller's metrics (None where the run is not solved)
 CABLE_FIELDS = ("tension_unit_min", "tension_unit_max", "tension_top_min", "tension_top_max",
                 "slack_samples", "slack_first_time_s", "plant_failed_at_s")
 
 
-def _metrics_cable(sc: HeaveScene, run: LoopRun, name: str, G: np.ndarray | None) -> dict:
-    """The metrics of :func:`cable_ocp.heave.simulate.compare` and the cable's; every value
-    None (JSON null) but ``energy_index``, the solve time and ``plant_failed_at_s`` when
-    the run is not solved."""
-    from cable_ocp.heave.simulate import _metrics
+def cable_run_metrics(sc: HeaveScene, run: LoopRun, energy: float | None) -> dict:
+    """The metrics of :func:`run_metrics` and the cable's for a run of a line under the
+    winch; every value None (JSON null) but ``energy_index``, the solve time and
+    ``plant_failed_at_s`` when the run is not solved.
 
-    energy = (float(np.sqrt(np.sum(G**2))) if name in ("lqr", "lqg") and G is not None
-              else None)
-    times = run.times if name == "mpc" else None
+    Parameters
+    ----------
+    sc : HeaveScene
+        The design scene (warm-up, sample time, winch limits).
+    run : LoopRun
+        The run (a :class:`cable_ocp.heave.closed_loop.CableTrace`).
+    energy : float or None
+        The controller's energy index (:attr:`cable_ocp.heave.controllers.Controller.
+        energy_index`).
+    """
+    times = run.times
     if run_status(run)[0] != "solved":
         d = dict.fromkeys(("heave_rms", "reduction_pct", "peak_winch_speed", "max_stroke",
                            "max_constraint_violation", "winch_speed_rms") + CABLE_FIELDS)
@@ -67,7 +234,7 @@ def _metrics_cable(sc: HeaveScene, run: LoopRun, name: str, G: np.ndarray | None
                                     and times.size else None)
         d["plant_failed_at_s"] = run.plant_failed_at
         return d
-    base = _metrics(sc, run.trace, run.commands, energy, times, sc.controller.sample_time)
+    base = run_metrics(sc, run.trace, run.commands, energy, times, sc.controller.sample_time)
     tr = run.trace
     keep = tr.t >= sc.simulation.warmup - 1e-12
     h = sc.controller.sample_time
@@ -88,7 +255,7 @@ def _metrics_cable(sc: HeaveScene, run: LoopRun, name: str, G: np.ndarray | None
 class CableMetrics:
     """Per-controller metrics on the cable plant (JSON fields).
 
-    The fields of :class:`cable_ocp.heave.simulate.Metrics` for the run on the cable, and:
+    The fields of :class:`Metrics` for the run on the cable, and:
     ``heave_rms_predicted`` (m) and ``reduction_predicted_pct`` (%) of the same controller
     (estimator, sensors, noise, sea) on the design model; ``tension_unit_min/max``,
     ``tension_top_min/max`` (N, after the warm-up); ``slack_samples`` (samples after the
@@ -107,9 +274,3 @@ class CableMetrics:
             return self.__dict__["values"][key]
         except KeyError as exc:
             raise AttributeError(key) from exc
-
-
-def heave_rms(t: np.ndarray, x: np.ndarray, warmup: float) -> float:
-    """RMS of ``x`` over ``t >= warmup``, m."""
-    keep = t >= warmup - 1e-12
-    return float(math.sqrt(np.mean(x[keep] ** 2)))

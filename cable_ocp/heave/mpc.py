@@ -3,7 +3,9 @@
 Prediction model: the assembled plant (Huang 1992, eq. (6.28), or the regulator plant (6.6)) sampled
 exactly (ZOH) at ``h``, with the winch-command delay ``tau = d h`` as an **exact shift register**
 of the last ``d`` commands: ``z = [x; u0_{k-d}, ..., u0_{k-1}]``
-(:func:`cable_ocp.heave.discrete.discretize_delayed`). The cost is the continuous LQR cost
+(:func:`cable_ocp.heave.discrete.discretize_delayed`), which the MPC keeps itself: the control
+loop passes the plant's state to :meth:`LinearMPC.step` (:class:`cable_ocp.heave.delay.DelayLine`
+holds the commands it sent). The cost is the continuous LQR cost
 ``int (q x^2 + r u0^2) dt`` sampled exactly, with the DARE solution as terminal cost, so that
 without active constraints and delay the MPC reproduces the discrete LQR.
 
@@ -30,13 +32,13 @@ precomputed matrix-vector product. ``"daqp"`` is the dual active-set solver of A
 & Axehill (2022), called directly: its workspace keeps the Cholesky factor of the Hessian, the
 constraint matrix in its factored (LDP) form and the working set between steps, so a step costs
 ``O(N^2)`` with no refactorisation; while the tension limit does not bind it solves the smaller
-QP without tension rows and slacks, exactly (:class:`_DaqpQP`). The others go through CasADi's
-``conic`` interface, which sets the solver up again at every call (cost growing as ``N^3``);
-they are kept for comparison. ``"ipopt"`` solves a multiple-shooting NLP built once with CasADi
-``nlpsol`` with exactly the QP's cost, limit rows and bounds (with the linear unit the two are
-the same convex problem); it can use the nonlinear unit model (6.3). Every solver is built
-once and warm-started: DAQP from the previous working set, the others with the shifted
-previous solution.
+QP without tension rows and slacks, exactly (:class:`cable_ocp.heave.mpc_daqp.DaqpQP`). The
+others go through CasADi's ``conic`` interface, which sets the solver up again at every call
+(cost growing as ``N^3``); they are kept for comparison. ``"ipopt"`` solves a multiple-shooting
+NLP built once with CasADi ``nlpsol`` with exactly the QP's cost, limit rows and bounds (with
+the linear unit the two are the same convex problem); it can use the nonlinear unit model
+(6.3). Every solver is built once and warm-started: DAQP from the previous working set, the
+others with the shifted previous solution.
 """
 
 from __future__ import annotations
@@ -56,7 +58,9 @@ import numpy as np
 from scipy import linalg
 
 from cable_ocp.errors import CableOCPError
+from cable_ocp.heave.delay import DelayLine
 from cable_ocp.heave.discrete import discretize_cost, discretize_delayed
+from cable_ocp.heave.mpc_daqp import DaqpQP
 from cable_ocp.heave.plant import HeavePlant
 
 QP_SOLVERS = ("qpoases", "osqp", "qrqp")  # condensed QP through CasADi's ``conic``
@@ -296,17 +300,34 @@ class LinearMPC:
         self._Pu = np.concatenate([np.zeros(nv), self.Cup])
         self._p0 = np.concatenate([self.g_slack, np.zeros(self.Ac.shape[0])])
         self._solver = None
-        self._daqp: _DaqpQP | None = None
+        self._daqp: DaqpQP | None = None
         if s.solver in QP_SOLVERS:
             self._build_qp()
         elif s.solver == "daqp":
-            self._daqp = _DaqpQP(self)
+            self._daqp = DaqpQP(self, SOLVERS[1:])
         else:
             self._nlp = _NonlinearMPC(self)
         self._warm = None
         self._first = True
         self._last_plan: np.ndarray | None = None
+        self._solves = 0
         self.n_preview = int(round(s.preview_time / h))
+        #: the MPC's own shift register of its last ``d`` commands (:meth:`step`)
+        self.delay = DelayLine(d)
+        self._z0 = np.zeros(nz)  # the state of a step: [x; own buffer]
+
+    def reset(self) -> None:
+        """Back to the start of a run: the delay buffer and the last command zero, no plan
+        to fall back on, the solver's warm start and working set cleared."""
+        self.delay.reset()
+        self._last_plan = None
+        self._warm = None
+        if self._solves:
+            if self._daqp is not None:
+                self._daqp.reset()
+            elif self._solver is None:
+                self._nlp.warm = None
+        self._solves = 0
 
     # ---------------------------------------------------------------------------------------
     def _build_constraints(self, plant: HeavePlant) -> None:
@@ -439,14 +460,23 @@ class LinearMPC:
         self._Adm = cs.DM(self.Ac) if m else cs.DM(0, nv)
 
     # ---------------------------------------------------------------------------------------
-    def preview_correction(self, z0: np.ndarray, x0_forecast: np.ndarray) -> np.ndarray:
+    def preview_correction(self, x: np.ndarray, x0_forecast: np.ndarray) -> np.ndarray:
         """Known boom-tip input ``D`` that makes the prediction follow a forecast.
 
         For the full plant, ``D_k = forecast_k - (model's predicted x0)_k`` for the first
         ``n_preview`` steps and 0 after; for the regulator plant (boom tip exogenous), ``D`` is
         the forecast itself, held at its last value beyond the preview.
+
+        Parameters
+        ----------
+        x : numpy.ndarray, shape (n,) or (nz,)
+            The plant's state (the MPC's own delay buffer is appended, as in :meth:`step`),
+            or a whole shift-register state ``z`` as :meth:`solve` takes.
+        x0_forecast : numpy.ndarray
+            Boom-tip heave at the next samples, m.
         """
         N = self.N
+        z0 = self._state(x)
         D = np.zeros(N)
         f = np.asarray(x0_forecast, dtype=float)
         npv = min(self.n_preview if self.n_preview else N, N, f.size)
@@ -462,8 +492,50 @@ class LinearMPC:
             D[k] = f[k] - c @ self._S[k] @ z0
         return D
 
-    def step(self, z0: np.ndarray, u_prev: float = 0.0, D: np.ndarray | None = None) -> MPCStep:
-        """Solve the MPC problem at augmented state ``z0`` and return the first command.
+    def _state(self, x: np.ndarray) -> np.ndarray:
+        """``[x; own buffer]`` for a plant state ``x``; a state of size ``nz`` as it is."""
+        x = np.asarray(x, dtype=float).reshape(-1)
+        if x.size == self.nz:
+            return x
+        return np.concatenate([x, self.delay.buffer])
+
+    def step(self, x: np.ndarray, u_prev: float | None = None, D: np.ndarray | None = None
+             ) -> MPCStep:
+        """One sample of the control loop: the first command of the plan from the plant's
+        state ``x``; the MPC keeps the delay buffer itself.
+
+        The state of the prediction is ``z0 = [x; u0_{k-d} .. u0_{k-1}]``, the buffer being the
+        MPC's own past commands (:attr:`delay`, zero at the start and after :meth:`reset`);
+        the command returned is shifted into it.
+
+        Parameters
+        ----------
+        x : numpy.ndarray, shape (n,)
+            The plant's state (measured or estimated).
+        u_prev : float, optional
+            Previous command (for the command-rate limit), m; default the MPC's own last
+            command (0 at the start).
+        D : numpy.ndarray, shape (N,), optional
+            Known boom-tip input (see :meth:`preview_correction`), m.
+        """
+        t0 = time.perf_counter()
+        z0, n, line = self._z0, self.n, self.delay
+        try:
+            z0[:n] = x
+        except ValueError:
+            raise CableOCPError(f"LinearMPC.step: the plant state has {np.size(x)} entries, "
+                                f"expected n = {n} (the MPC keeps its own delay buffer; "
+                                "LinearMPC.solve takes a whole shift-register state)") from None
+        z0[n:] = line.buffer
+        r = self._solve(z0, line.last if u_prev is None else u_prev, D, t0)
+        line.push(r.u0)
+        return r
+
+    def solve(self, z0: np.ndarray, u_prev: float = 0.0, D: np.ndarray | None = None
+              ) -> MPCStep:
+        """Solve the MPC problem at a given shift-register state ``z0`` and return the first
+        command; the MPC's own delay buffer is neither read nor changed (the control loop
+        calls :meth:`step`).
 
         Parameters
         ----------
@@ -475,8 +547,13 @@ class LinearMPC:
             Known boom-tip input (see :meth:`preview_correction`), m.
         """
         t0 = time.perf_counter()
+        return self._solve(np.asarray(z0, dtype=float).reshape(-1), u_prev, D, t0)
+
+    def _solve(self, z0: np.ndarray, u_prev: float, D: np.ndarray | None, t0: float
+               ) -> MPCStep:
+        """The QP (or NLP) at ``z0``; ``t0`` the start of the timed step."""
+        self._solves += 1
         N = self.N
-        z0 = np.asarray(z0, dtype=float).reshape(-1)
         v = self._Pz @ z0
         v += self._p0
         if D is not None:
@@ -527,126 +604,6 @@ class LinearMPC:
         dt = time.perf_counter() - t0
         return MPCStep(u0=float(x[0]), success=ok, solve_time=dt, plan=x[:N].copy(),
                        max_slack=float(np.max(x[N:])) if x.size > N else 0.0)
-
-
-class _DaqpQP:
-    """The condensed QP of :class:`LinearMPC` in persistent DAQP workspaces (``"daqp"``).
-
-    DAQP (Arnström, Bemporad & Axehill (2022), "A dual active-set solver for embedded quadratic
-    programming using recursive LDL^T updates", IEEE Trans. Automatic Control) is set up once:
-    the Cholesky factor ``R`` of the constant Hessian and the constant constraint matrix in its
-    least-distance form ``A R^-1`` stay in the workspace. A step only updates the gradient and
-    the bounds (``O(N^2)``) and starts from the previous step's working set (warm start), so an
-    unchanged active set costs one iteration.
-
-    The problem is the very QP the CasADi solvers get (``H``, ``A_c``, ``lbx``, ``ubx``, rows
-    ``lb0 - c <= A_c [U; S] <= ub0 - c``); infinite bounds are passed as DAQP's ``1e30``. With a
-    tension limit it is solved in two stages, exactly: first the QP in the commands alone with
-    the hard limits (no tension rows, no slacks); if its solution keeps every tension row, it
-    is the solution of the whole QP with zero slacks (the KKT conditions of the whole QP hold
-    with zero tension multipliers: the slack bounds take the multipliers equal to the positive
-    linear slack penalty). Only when a tension row would be violated is the whole QP solved
-    (its own workspace, slack bounds starting in the working set), and then again at the next
-    steps, directly, until no slack is positive. The reduced QP has half the variables and no
-    slack bounds in its working set, which makes a step about 2-3x cheaper.
-    """
-
-    def __init__(self, mpc: LinearMPC) -> None:
-        try:
-            import daqp
-        except ImportError as exc:  # a hard dependency, but say what to do if it is missing
-            raise CableOCPError(
-                "[controller] solver = 'daqp' needs the daqp package (pip install daqp); "
-                f"the other solvers are {SOLVERS[1:]}"
-            ) from exc
-        N, nv, m, ns = mpc.N, mpc.H.shape[0], mpc.Ac.shape[0], mpc.ns
-        st = daqp.Model().settings
-        # Violations above primal_tol enter the working set. DAQP's default 1e-6 would let a
-        # limit be exceeded by up to 1e-6 (m, m/s) and the moves differ from an exact QP
-        # solution by as much; 1e-10 is far above round-off on these well-scaled rows.
-        st["primal_tol"] = 1e-10
-        unknown = set(mpc.settings.solver_options) - set(st)
-        if unknown:
-            raise CableOCPError(f"[controller] solver_options {sorted(unknown)} are not DAQP "
-                                f"settings; valid: {sorted(st)}")
-        st.update(mpc.settings.solver_options)
-        self.tol = float(st["primal_tol"])
-        sense = np.zeros(nv + m, dtype=np.intc)
-        sense[N:nv] = _DaqpWorkspace.ACTIVE_LOWER  # slacks are zero unless the tension binds
-        self.full = _DaqpWorkspace(daqp, st, mpc.H, mpc.Ac, mpc.lbx, mpc.ubx, mpc.lb0,
-                                   mpc.ub0, sense)
-        # Tension rows are built last (LinearMPC._build_constraints): rows [mh:] are soft.
-        soft = mpc.slack_of_row >= 0
-        mh = m - ns
-        self.reduced: _DaqpWorkspace | None = None
-        self.binding = False  # the tension limit bound at the last step
-        if ns and not soft[:mh].any() and soft[mh:].all():
-            self.N, self.mh = N, mh
-            self.reduced = _DaqpWorkspace(
-                daqp, st, mpc.H[:N, :N], mpc.Ac[:mh, :N], mpc.lbx[:N], mpc.ubx[:N],
-                mpc.lb0[:mh], mpc.ub0[:mh], np.zeros(N + mh, dtype=np.intc))
-            self.A_soft = np.ascontiguousarray(mpc.Ac[mh:, :N])
-            self.lb_soft = mpc.lb0[mh:] - self.tol
-            self.zeros_s = np.zeros(ns)
-
-    def solve(self, g: np.ndarray, c: np.ndarray) -> tuple[np.ndarray, bool]:
-        """Solve with gradient ``g`` and row offsets ``c``; returns ``(x, success)``."""
-        red = self.reduced
-        if red is not None and not self.binding:
-            N, mh = self.N, self.mh
-            u, ok = red.solve(g[:N], c[:mh])
-            if ok:
-                t = self.A_soft @ u
-                t += c[mh:]
-                if (t >= self.lb_soft).all():
-                    return np.concatenate([u, self.zeros_s]), True
-        x, ok = self.full.solve(g, c)
-        if red is not None:
-            # While the tension binds, stay on the whole QP (its working set stays fresh
-            # from step to step); back to the reduced QP once every slack is zero again.
-            self.binding = ok and bool(np.max(x[self.N :]) > self.tol)
-        return x, ok
-
-
-class _DaqpWorkspace:
-    """One DAQP workspace: ``min 0.5 x'Hx + g'x``, ``lbx <= x <= ubx``,
-    ``lb0 - c <= A x <= ub0 - c``, set up once; :meth:`solve` updates ``g`` and ``c``."""
-
-    INF = 1e30  # DAQP's infinity (DAQP_INF)
-    ACTIVE_LOWER = 3  # sense flags: ACTIVE (1) | LOWER (2)
-
-    def __init__(self, daqp: Any, settings: dict, H: np.ndarray, A: np.ndarray,
-                 lbx: np.ndarray, ubx: np.ndarray, lb0: np.ndarray, ub0: np.ndarray,
-                 sense: np.ndarray) -> None:
-        nv, m = H.shape[0], A.shape[0]
-        inf = self.INF
-        self.nv = nv
-        self.ub0 = np.minimum(ub0, inf)
-        self.lb0 = np.maximum(lb0, -inf)
-        # Bounds on the variables first (DAQP's simple bounds), then the rows.
-        self.bu = np.concatenate([np.minimum(ubx, inf), self.ub0])
-        self.bl = np.concatenate([np.maximum(lbx, -inf), self.lb0])
-        self.sense0 = sense
-        self.model = daqp.Model()
-        self.model.settings = settings
-        A = np.ascontiguousarray(A) if m else np.zeros((0, nv))
-        flag, _ = self.model.setup(np.ascontiguousarray(H), np.zeros(nv), A, self.bu, self.bl,
-                                   sense.copy())
-        if flag < 0:  # H is positive definite by construction (r > 0, slack penalty > 0)
-            raise CableOCPError(f"DAQP could not set up the MPC problem (exit flag {flag})")
-
-    def solve(self, g: np.ndarray, c: np.ndarray) -> tuple[np.ndarray, bool]:
-        nv = self.nv
-        np.subtract(self.ub0, c, out=self.bu[nv:])
-        np.subtract(self.lb0, c, out=self.bl[nv:])
-        self.model.update(f=g, bupper=self.bu, blower=self.bl)
-        x, _, flag, _ = self.model.solve()
-        if flag < 0:
-            # A stale working set (e.g. after a jump in the state) could stall the dual
-            # active-set iteration: retry once from the cold working set.
-            self.model.update(sense=self.sense0.copy())
-            x, _, flag, _ = self.model.solve()
-        return x, flag > 0
 
 
 def _check_settings(s: MPCSettings) -> None:

@@ -64,6 +64,31 @@ def unit_block(a: float, b: float) -> ct.StateSpace:
                  states=["x", "x_dot"], name="unit")
 
 
+def unit_acceleration(x: float, v: float, inp: float, a: float, b: float,
+                      b_quadratic: float = 0.0, quadratic: bool = False) -> float:
+    """The unit model's acceleration ``x''`` (m/s^2), on numbers: (6.2)
+    ``a x'' + b x' + x = x0 + u`` or, with ``quadratic``, (6.3) ``a x'' + b_q |x'| x' + x =
+    x0 + u`` (Huang (1992), 004_7da4a1ee8042db40.txt, eqs. (6.2)-(6.4)).
+
+    Parameters
+    ----------
+    x, v : float
+        The unit's heave (m) and its rate (m/s).
+    inp : float
+        ``x0 + u``: boom-tip heave plus winch output, m.
+    a : float
+        ``a``, s^2.
+    b : float
+        Linear damping ``b``, s (used without ``quadratic``).
+    b_quadratic : float
+        Quadratic damping ``b_q``, s^2/m (used with ``quadratic``).
+    quadratic : bool
+        (6.3) instead of (6.2).
+    """
+    damp = b_quadratic * v * abs(v) if quadratic else b * v
+    return (inp - x - damp) / a
+
+
 def winch_first(K: float) -> ct.StateSpace:
     """First-order winch (Huang 1992, eqs. (6.1), (6.5), (6.12)): ``u' + K u = K u0d``.
 

@@ -72,26 +72,30 @@ def line_added_mass_np(t: np.ndarray, normal: float, tangential: float) -> np.nd
     return normal * (np.eye(3) - tt) + tangential * tt
 
 
-def line_added_mass_2d(dx: Any, dz: Any, normal: Any, tangential: Any
+def line_added_mass_2d(dd: Any, normal: Any, tangential: Any, scale: Any = 1.0
                        ) -> tuple[Any, Any, Any]:
-    """(A_xx, A_xz, A_zz) of :func:`line_added_mass` in the x-z plane, elementwise.
+    """(A_xx, A_xz, A_zz) of :func:`line_added_mass` in the x-z plane, per element column.
 
-    For rows of chord components (the planar model's 1 x N rows): with t_ij = d_i d_j /
-    |d|^2, A_xx = m_an (1 - t_xx) + m_at t_xx, A_xz = (m_at - m_an) t_xz, A_zz likewise.
+    For the chords of K elements as the columns of a 2 x K matrix (the planar model): with
+    t_ij = d_i d_j / |d|^2, A_xx = m_an (1 - t_xx) + m_at t_xx, A_xz = (m_at - m_an) t_xz,
+    A_zz likewise; each 1 x K, times ``scale``.
 
     Parameters
     ----------
-    dx, dz : casadi expression
-        Chord components, m (any common length).
+    dd : casadi SX, shape (2, K)
+        Chords (x, z rows), m (any common length).
     normal : float
-        Normal added mass, kg/m or kg.
+        Normal added mass per length, kg/m.
     tangential : float
-        Tangential added mass, same unit.
+        Tangential added mass per length, kg/m.
+    scale : float or casadi expression
+        Multiplier, e.g. the share of an element length at a node, m (then kg).
     """
-    l2 = dx * dx + dz * dz
-    txx, txz, tzz = dx**2 / l2, dx * dz / l2, dz**2 / l2
-    return (normal * (1.0 - txx) + tangential * txx, (tangential - normal) * txz,
-            normal * (1.0 - tzz) + tangential * tzz)
+    l2 = ca.sum1(dd * dd)
+    txx, txz, tzz = dd[0, :] ** 2 / l2, dd[0, :] * dd[1, :] / l2, dd[1, :] ** 2 / l2
+    return (scale * (normal * (1.0 - txx) + tangential * txx),
+            scale * (tangential - normal) * txz,
+            scale * (normal * (1.0 - tzz) + tangential * tzz))
 
 
 def virtual_mass(mass: float, added_mass: Sequence[float]) -> tuple[float, ...]:

@@ -11,7 +11,8 @@ Forms (every model, plant and baseline calls one of them):
 * :func:`profile_velocity`: CasADi, (u_x, u_y, 0) with a homotopy scale (statics, planar
   and lumped models);
 * :func:`profile_velocity_np`: numpy (``np.interp``), any shape of z (baselines, the switch
-  functions of the statics mesh, the dynamic scene's unit load);
+  functions of the statics mesh, the dynamic scene's unit load), and its bare interpolation
+  :func:`profile_components_np` (an inner loop);
 * :func:`profile_knots`: the heights where the velocity has a kink (a knot where the slope
   of a component changes), which a mesh should place a node on.
 
@@ -107,9 +108,27 @@ def profile_velocity_np(z: Any, knots: Sequence[float], ux: Sequence[float],
     if is_uniform(knots, ux, uy):
         out[..., 0], out[..., 1] = ux[0], uy[0]
     else:
-        out[..., 0] = np.interp(zz, knots, ux)
-        out[..., 1] = np.interp(zz, knots, uy)
+        out[..., 0], out[..., 1] = profile_components_np(zz, knots, ux, uy)
     return out
+
+
+def profile_components_np(z: Any, knots: Sequence[float], ux: Sequence[float],
+                          uy: Sequence[float]) -> tuple[Any, Any]:
+    """(u_x, u_y) at heights ``z``: the interpolation of :func:`profile_velocity_np` alone.
+
+    No uniform-current shortcut and no output array: for a caller that evaluates one
+    height at a time in an inner loop (a shooting ODE) and has checked the profile once.
+
+    Parameters
+    ----------
+    z : float or array
+        Heights, m.
+    knots : sequence of float
+        Knot heights, m, increasing.
+    ux, uy : sequence of float
+        Components at the knots (m/s, or the same scaled).
+    """
+    return np.interp(z, knots, ux), np.interp(z, knots, uy)
 
 
 def profile_knots(knots: Sequence[float], ux: Sequence[float],

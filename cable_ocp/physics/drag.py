@@ -137,10 +137,10 @@ def drag_per_length(
         normal = _normal_componentwise(u, t, delta, blend)
     else:  # validated in scene.py; guard for API users
         raise ValueError(f"unknown drag law {law!r}; valid: {DRAG_LAWS}")
-    out = 0.5 * rho * normal_drag * diameter * normal
+    cn, ct = line_drag_factors(rho, diameter, normal_drag, tangential_drag)
+    out = cn * normal
     if tangential_drag != 0.0:
         ut = ca.dot(u, t)
-        ct = 0.5 * rho * tangential_drag * math.pi * diameter
         out = out + ct * smooth_abs(ut, delta) * ut * t
     return out
 
@@ -154,6 +154,19 @@ def drag_error_bound(
     Each smoothed product u*sqrt(u^2 + delta^2) differs from u|u| by at most delta^2/2
     (:mod:`cable_ocp.physics.smooth`); the componentwise law has two orthogonal normal
     terms (factor sqrt(2)), the vector law one.
+
+    Parameters
+    ----------
+    law : {"vector", "componentwise"}
+        Drag law.
+    rho : float
+        Water density, kg/m^3.
+    diameter : float
+        Hydrodynamic diameter, m.
+    normal_drag, tangential_drag : float
+        C_n, C_t (-).
+    delta : float
+        Smoothing velocity, m/s.
     """
     e = smooth_abs_error_bound(delta)
     k = math.sqrt(2.0) if law == "componentwise" else 1.0
@@ -243,9 +256,9 @@ def vector_drag_columns(u: Any, t: Any, kn: float, kt: float, delta: float) -> A
     dim = u.shape[0]
     ut = ca.sum1(u * t)
     un = u - ca.repmat(ut, dim, 1) * t
-    f = kn * ca.repmat(ca.sqrt(ca.sum1(un * un) + delta**2), dim, 1) * un
+    f = kn * ca.repmat(ca.sqrt(ca.sum1(un * un) + delta * delta), dim, 1) * un
     if kt != 0.0:
-        f = f + kt * ca.repmat(ca.sqrt(ut * ut + delta**2) * ut, dim, 1) * t
+        f = f + kt * ca.repmat(ca.sqrt(ut * ut + delta * delta) * ut, dim, 1) * t
     return f
 
 
@@ -506,10 +519,10 @@ def point_drag_np(u: Any, drag_areas: Any, *, rho: float, delta: float = 0.0,
     cs = np.asarray(drag_areas, dtype=float)
     half_rho = 0.5 * rho
     if not per_axis:
-        speed = np.sqrt(np.sum(u * u, axis=-1) + delta * delta)[..., None]
-        return half_rho * speed * (cs * u)
-    mod = np.abs(u) if delta == 0.0 else np.sqrt(u * u + delta * delta)
-    return half_rho * (cs * mod * u)
+        mod = np.sqrt(np.sum(u * u, axis=-1) + delta * delta)[..., None]
+    else:
+        mod = np.abs(u) if delta == 0.0 else np.sqrt(u * u + delta * delta)
+    return half_rho * cs * mod * u
 
 
 def point_drag_error_bound(drag_areas: Any, *, rho: float, delta: float,

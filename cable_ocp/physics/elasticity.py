@@ -48,6 +48,12 @@ def _sqrt(x: Any) -> Any:
     return np.sqrt(x)
 
 
+def _asinh(x: Any) -> Any:
+    if isinstance(x, (ca.SX, ca.MX, ca.DM)):
+        return ca.asinh(x)
+    return np.arcsinh(x)
+
+
 def hooke_tension(strain: Any, axial_stiffness: Any) -> Any:
     """Linear tension EA e, N (negative in compression).
 
@@ -59,6 +65,27 @@ def hooke_tension(strain: Any, axial_stiffness: Any) -> Any:
         EA, N.
     """
     return axial_stiffness * strain
+
+
+def kelvin_voigt_tension(strain: Any, strain_rate: Any, axial_stiffness: Any,
+                         damping: Any) -> Any:
+    """EA e + c de/dt, N: the linear law without the no-compression switch.
+
+    The axial models use it as printed in Huang (1992) (3.2)-(3.3) and report a slack
+    element (a tension <= 0) instead of smoothing it away.
+
+    Parameters
+    ----------
+    strain : float, array or casadi expression
+        Axial strain e (-).
+    strain_rate : float, array or casadi expression
+        de/dt, 1/s.
+    axial_stiffness : float
+        EA, N.
+    damping : float
+        c, N s.
+    """
+    return axial_stiffness * strain + damping * strain_rate
 
 
 def smooth_tension(strain: Any, axial_stiffness: Any, slack_smoothing: Any) -> Any:
@@ -115,6 +142,28 @@ def material_damping(strain_rate: Any, strain: Any, damping: Any, axial_stiffnes
     return damping * strain_rate * taut_switch(strain, axial_stiffness, slack_smoothing)
 
 
+def smooth_strain_energy(strain: Any, axial_stiffness: Any, slack_smoothing: Any) -> Any:
+    """Stored energy per unstretched length of :func:`smooth_tension`, J/m.
+
+    The integral of T over [0, e]: with x = EA e and d = delta_T,
+    EA e^2 / 4 + (x sqrt(x^2 + d^2) + d^2 asinh(x / d)) / (4 EA) (0 at e = 0; its
+    derivative in e is the tension).
+
+    Parameters
+    ----------
+    strain : float, array or casadi expression
+        Axial strain e (-).
+    axial_stiffness : float
+        EA, N.
+    slack_smoothing : float
+        delta_T, N.
+    """
+    u = axial_stiffness * strain
+    dd = slack_smoothing
+    return (axial_stiffness * strain**2 / 4.0
+            + (u * _sqrt(u * u + dd * dd) + dd * dd * _asinh(u / dd)) / (4.0 * axial_stiffness))
+
+
 def no_compression_bound(slack_smoothing: float) -> float:
     """sup_e (smooth_tension(e) - max(EA e, 0)) = delta_T / 2, N (attained at e = 0).
 
@@ -133,8 +182,9 @@ class AxialMaterial(Protocol):
     """The interface a model asks of a cable material (per element).
 
     ``tension(strain, strain_rate)`` (N), ``stiffness(strain)`` = dT/de (N) at zero strain
-    rate, ``taut(strain)`` in [0, 1] (the share of the tension law in force: 0 slack), and
-    ``bound`` (N): how far ``tension`` may lie above the material's non-smooth law.
+    rate, ``taut(strain)`` in [0, 1] (the share of the tension law in force: 0 slack),
+    ``energy(strain)`` (J/m, for energy checks) and ``bound`` (N): how far ``tension`` may
+    lie above the material's non-smooth law.
     """
 
     @property
@@ -143,7 +193,15 @@ class AxialMaterial(Protocol):
         ...
 
     def tension(self, strain: Any, strain_rate: Any = None) -> Any:
-        """Axial tension, N."""
+        """Axial tension, N.
+
+        Parameters
+        ----------
+        strain : float, array or casadi expression
+            Axial strain (-).
+        strain_rate : float, array, casadi expression or None
+            Strain rate, 1/s (None: no rate-dependent part).
+        """
         ...
 
     def stiffness(self, strain: Any) -> Any:
@@ -152,6 +210,10 @@ class AxialMaterial(Protocol):
 
     def taut(self, strain: Any) -> Any:
         """0 (slack) .. 1 (taut), -."""
+        ...
+
+    def energy(self, strain: Any) -> Any:
+        """Stored energy per unstretched length, J/m (0 at zero strain)."""
         ...
 
 
@@ -179,7 +241,15 @@ class LinearElastic:
         return no_compression_bound(self.slack_smoothing)
 
     def tension(self, strain: Any, strain_rate: Any = None) -> Any:
-        """Smooth tension plus c (de/dt) s(e) when a strain rate is given, N."""
+        """Smooth tension plus c (de/dt) s(e) when a strain rate is given, N.
+
+        Parameters
+        ----------
+        strain : float, array or casadi expression
+            Axial strain (-).
+        strain_rate : float, array, casadi expression or None
+            Strain rate, 1/s (None: no damping term).
+        """
         out = smooth_tension(strain, self.axial_stiffness, self.slack_smoothing)
         if strain_rate is not None and self.damping != 0.0:
             out = out + material_damping(strain_rate, strain, self.damping,
@@ -193,3 +263,7 @@ class LinearElastic:
     def taut(self, strain: Any) -> Any:
         """:func:`taut_switch`."""
         return taut_switch(strain, self.axial_stiffness, self.slack_smoothing)
+
+    def energy(self, strain: Any) -> Any:
+        """:func:`smooth_strain_energy`, J/m."""
+        return smooth_strain_energy(strain, self.axial_stiffness, self.slack_smoothing)

@@ -121,17 +121,43 @@ def normal(seabed: SeabedPlane) -> np.ndarray:
 
 
 def height(seabed: SeabedPlane, x: Any, y: Any) -> Any:
-    """:func:`plane_height` of a seabed object, m."""
+    """:func:`plane_height` of a seabed object, m.
+
+    Parameters
+    ----------
+    seabed : SeabedPlane
+        The plane's numbers.
+    x, y : float or array
+        Horizontal position, m.
+    """
     return plane_height(x, y, seabed.slope_deg, seabed.slope_heading_deg, seabed.depth_offset)
 
 
 def gap(seabed: SeabedPlane, r: np.ndarray) -> np.ndarray:
-    """:func:`plane_gap` of a seabed object, m."""
+    """:func:`plane_gap` of a seabed object, m.
+
+    Parameters
+    ----------
+    seabed : SeabedPlane
+        The plane's numbers.
+    r : ndarray, shape (n, 3) or (3,)
+        Points, m.
+    """
     return plane_gap(r, seabed.slope_deg, seabed.slope_heading_deg, seabed.depth_offset)
 
 
 def axial_gradient(seabed: SeabedPlane, w: float, e: Any) -> Any:
-    """:func:`friction_gradient` of a seabed object, N/m."""
+    """:func:`friction_gradient` of a seabed object, N/m.
+
+    Parameters
+    ----------
+    seabed : SeabedPlane
+        The plane's numbers and friction coefficient.
+    w : float
+        Weight in water per length, N/m.
+    e : array or casadi expression, shape (3,)
+        Unit direction of the grounded line, anchor to TDP (-).
+    """
     return friction_gradient(w, e, seabed.friction, float(normal(seabed)[2]))
 
 
@@ -139,6 +165,15 @@ def grounded_tension_integral(t_td: Any, k: Any, g: Any) -> Any:
     """Integral of T over the grounded length (N m), with the slack floor at T = 0.
 
     Works on CasADi expressions and floats; k may be 0 (no friction, flat seabed).
+
+    Parameters
+    ----------
+    t_td : float or casadi expression
+        Tension at the touchdown point, N.
+    k : float or casadi expression
+        Tension drop per metre towards the anchor (:func:`friction_gradient`), N/m.
+    g : float or casadi expression
+        Grounded length, m.
     """
     if isinstance(k, (int, float)) and k <= 0:
         return t_td * g - 0.5 * k * g * g
@@ -151,7 +186,30 @@ def grounded_tension_integral(t_td: Any, k: Any, g: Any) -> Any:
 
 def grounded_nodes(anchor: np.ndarray, e: np.ndarray, t_td: float, k: float, g: float,
                    ea: float, n: int) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
-    """Arc length (from the anchor), positions and tension vectors of n grounded nodes."""
+    """Arc length (from the anchor), positions and tension vectors of n grounded nodes.
+
+    Parameters
+    ----------
+    anchor : ndarray, shape (3,)
+        Anchor position, m.
+    e : ndarray, shape (3,)
+        Unit direction of the grounded line, anchor to TDP (-).
+    t_td : float
+        Tension at the touchdown point, N.
+    k : float
+        Tension drop per metre towards the anchor, N/m.
+    g : float
+        Grounded (unstretched) length, m.
+    ea : float
+        EA, N (``inf``: inextensible).
+    n : int
+        Number of nodes.
+
+    Returns
+    -------
+    tuple of ndarray
+        s' (n,) in m, positions (n, 3) in m, tension vectors (n, 3) in N.
+    """
     sp = np.linspace(0.0, g, n)
     tens = np.maximum(t_td - k * (g - sp), 0.0)
     if math.isfinite(ea):

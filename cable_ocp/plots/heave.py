@@ -20,8 +20,8 @@ import numpy as np
 from matplotlib.axes import Axes
 from matplotlib.figure import Figure
 
+from cable_ocp.heave.metrics import Comparison
 from cable_ocp.heave.sea import filter_spectrum
-from cable_ocp.heave.simulate import Comparison
 from cable_ocp.plots.common import (
     legend_below,
     new_figure,

@@ -27,6 +27,7 @@ from matplotlib.figure import Figure
 from matplotlib.ticker import MaxNLocator
 
 from cable_ocp.physics import seabed as seabed_mod
+from cable_ocp.physics.current import profile_components_np
 from cable_ocp.plots.common import (
     force_scale,
     legend_below,
@@ -311,8 +312,8 @@ class _CurrentInfo:
     uniform: bool
 
     def at(self, z: float) -> tuple[float, float]:
-        return (float(np.interp(z, self.z, self.ux)), float(np.interp(z, self.z, self.uy)))
-
+        ux, uy = profile_components_np(z, self.z, self.ux, self.uy)
+        return float(ux), float(uy)
 
 
 def _current(scene: Scene | None) -> _CurrentInfo | None:
@@ -672,7 +673,7 @@ def _draw_profile(ax: Axes, dr: _Drawing, z_lim: tuple[float, float]) -> None:
     z_lo = max(z_lim[0], 0.0 if dr.seabed is None else z_lim[0])
     z_hi = min(z_lim[1], dr.surface) if dr.surface is not None else z_lim[1]
     z = np.linspace(z_lo, z_hi, 200)
-    ux, uy = np.interp(z, cur.z, cur.ux), np.interp(z, cur.z, cur.uy)
+    ux, uy = profile_components_np(z, cur.z, cur.ux, cur.uy)
     if dr.plane.planar:
         e, n = dr.plane.e, dr.plane.normal
         comps = [(ux * e[0] + uy * e[1], "in the plane"), (ux * n[0] + uy * n[1], "across")]

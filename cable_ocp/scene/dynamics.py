@@ -96,13 +96,35 @@ without a current) and ``weight_in_water`` to the weight in air.
 from __future__ import annotations
 
 import copy
-import math
 from dataclasses import dataclass, field, replace
 from pathlib import Path
 from typing import Any
 
 from cable_ocp.errors import CableOCPError
-from cable_ocp.scene.fields import check_keys as _check_keys
+from cable_ocp.physics.current import profile_velocity_np
+from cable_ocp.scene.dynamic_parts import (
+    BODY_DYN_KEYS,
+    CABLE_DYN_KEYS,
+    DEFAULT_SCHEME,
+    DYNAMIC_TABLES,
+    MODELS,
+    ROUNDING,
+    SCHEMES,
+    BodyDynamics,
+    ModesOptions,
+    SegmentDynamics,
+    Simulation,
+    TopMotion,
+    Tow,
+    Unit,
+    Vec3,
+    parse_modes,
+    parse_segment_dynamics,
+    parse_simulation,
+    parse_top_motion,
+    parse_unit,
+    vec_or_scalar,
+)
 from cable_ocp.scene.fields import number as _number
 from cable_ocp.scene.fields import require as _require
 from cable_ocp.scene.files import apply_overrides, check_kind, read_problem
@@ -127,311 +149,6 @@ __all__ = [
     "is_dynamic_dict",
     "load_dynamic_scene",
 ]
-
-MODELS = ("axial", "planar", "lumped3d")
-#: Time-integration schemes offered by each model (the first is the default).
-SCHEMES: dict[str, tuple[str, ...]] = {
-    "axial": ("midpoint", "gauss4", "trapezoidal", "bdf2", "thesis"),
-    "planar": ("midpoint",),
-    "lumped3d": ("midpoint", "trapezoidal", "bdf2", "thesis"),
-}
-DEFAULT_SCHEME = {m: s[0] for m, s in SCHEMES.items()}
-
-#: Top-level tables that only dynamic scenes have (their presence marks a dynamic scene).
-DYNAMIC_TABLES = ("unit", "top_motion", "simulation", "modes")
-_CABLE_DYN_KEYS = {"mass_per_length", "added_mass_coefficient",
-                   "tangential_added_mass_coefficient", "axial_damping"}
-_UNIT_KEYS = {"mass", "added_mass", "weight_in_water", "volume", "drag_area",
-              "drag_coefficient"}
-_BODY_DYN_KEYS = {"mass", "added_mass"}
-_TOP_KEYS = {"heave_amplitude", "heave_frequency", "horizontal_amplitude",
-             "horizontal_frequency", "horizontal_heading_deg", "circular_radius",
-             "circular_frequency", "circular_heading_deg", "series", "ramp_time",
-             "payout_law", "payout_speed", "payout_acceleration", "payout_amplitude",
-             "payout_frequency", "tow"}
-_LAW_KEYS = {"linear": {"payout_speed"},
-             "quadratic": {"payout_speed", "payout_acceleration"},
-             "periodic": {"payout_amplitude", "payout_frequency"}}
-_TOW_KEYS = {"speed", "heading_deg", "straight_length", "turn_diameter", "turn_angle_deg",
-             "turn_direction"}
-_SIM_KEYS = {"model", "duration", "time_step", "output_step", "segments", "start", "scheme",
-             "tolerance", "max_iterations", "on_slack"}
-_MODES_KEYS = {"count", "wave_band"}
-#: Relative slack allowed for rounded inputs when a weight in water is checked against
-#: the weight in air (the buoyancy must not be negative).
-_ROUNDING = 1e-3
-#: The largest number of time steps a scene may ask for (memory of the outputs).
-MAX_STEPS = 20_000_000
-
-Vec3 = tuple[float, float, float]
-
-
-# --------------------------------------------------------------------------------------
-# Dataclasses
-# --------------------------------------------------------------------------------------
-
-@dataclass(frozen=True)
-class SegmentDynamics:
-    """Dynamic properties of one cable segment (``[cable]`` or ``[[cable.segments]]``).
-
-    Attributes
-    ----------
-    mass_per_length : float
-        Mass in air per unstretched length, kg/m.
-    added_mass_coefficient : float
-        Normal added-mass coefficient C_a (-): added mass C_a rho pi d^2/4 per length
-        for acceleration normal to the cable.
-    tangential_added_mass_coefficient : float
-        Tangential added-mass coefficient (-), same form, for acceleration along the cable.
-    axial_damping : float
-        Internal damping coefficient c, N s: the tension is EA e + c de/dt (e the strain).
-    """
-
-    mass_per_length: float
-    added_mass_coefficient: float = 1.0
-    tangential_added_mass_coefficient: float = 0.0
-    axial_damping: float = 0.0
-
-    def added_mass_per_length(self, diameter: float, rho: float) -> float:
-        """Normal added mass per unstretched length, kg/m."""
-        return self.added_mass_coefficient * rho * math.pi * diameter**2 / 4.0
-
-    def tangential_added_mass_per_length(self, diameter: float, rho: float) -> float:
-        """Tangential added mass per unstretched length, kg/m."""
-        return self.tangential_added_mass_coefficient * rho * math.pi * diameter**2 / 4.0
-
-
-@dataclass(frozen=True)
-class Unit:
-    """The subsea unit hanging at end_a (``[unit]``).
-
-    Attributes
-    ----------
-    mass : float
-        Mass in air, kg.
-    added_mass : tuple of float
-        Added masses along x, y, z, kg (Huang (1992) 5.2.2: M_ax, M_ay, M_az).
-    weight_in_water : float
-        Weight minus buoyancy, N (negative = buoyant).
-    volume : float or None
-        Displaced volume, m^3, when given.
-    drag_area : tuple of float
-        Projected areas S_x, S_y, S_z, m^2.
-    drag_coefficient : tuple of float
-        Drag coefficients C_Dx, C_Dy, C_Dz (-).
-    drag_per_axis : bool
-        True: each velocity component has its own quadratic drag (Huang (1992) 5.2.2);
-        False (scalar keys): the vector law -1/2 rho C_D S |u| u.
-    """
-
-    mass: float
-    added_mass: Vec3 = (0.0, 0.0, 0.0)
-    weight_in_water: float = 0.0
-    volume: float | None = None
-    drag_area: Vec3 = (0.0, 0.0, 0.0)
-    drag_coefficient: Vec3 = (0.0, 0.0, 0.0)
-    drag_per_axis: bool = False
-
-    def drag(self, relative_velocity: Any, rho: float) -> list[float]:
-        """Drag force on the unit, N, for its velocity relative to the water (m/s).
-
-        ``relative_velocity`` is the unit's velocity minus the current's (3 numbers).
-        """
-        u = [float(c) for c in relative_velocity]
-        cs = [self.drag_area[k] * self.drag_coefficient[k] for k in range(3)]
-        if self.drag_per_axis:
-            return [-0.5 * rho * cs[k] * abs(u[k]) * u[k] for k in range(3)]
-        speed = math.sqrt(sum(c * c for c in u))
-        return [-0.5 * rho * cs[0] * speed * u[k] for k in range(3)]
-
-    def static_load(self, current: Vec3, rho: float) -> Vec3:
-        """External load on end_a at rest in a current (m/s): weight in water plus drag, N."""
-        d = self.drag([-c for c in current], rho)
-        return (d[0], d[1], d[2] - self.weight_in_water)
-
-    @property
-    def virtual_mass(self) -> Vec3:
-        """Mass plus added mass per axis, kg."""
-        return tuple(self.mass + a for a in self.added_mass)  # type: ignore[return-value]
-
-
-@dataclass(frozen=True)
-class BodyDynamics:
-    """Mass data of one ``[[bodies]]`` entry (same order as ``statics.bodies``).
-
-    Attributes
-    ----------
-    mass : float
-        Mass in air, kg.
-    added_mass : tuple of float
-        Added masses along x, y, z, kg.
-    """
-
-    mass: float
-    added_mass: Vec3 = (0.0, 0.0, 0.0)
-
-
-@dataclass(frozen=True)
-class Tow:
-    """A towing path for end_b (``[top_motion.tow]``): straight, a turn, straight again
-    (Huang (1992) section 5.7.4).
-
-    Attributes
-    ----------
-    speed : float
-        Speed along the path, m/s.
-    heading_deg : float
-        Initial direction, deg from +x towards +y.
-    straight_length : float
-        Distance before the turn, m (``math.inf``: never turns).
-    turn_diameter : float
-        Diameter of the turning circle, m.
-    turn_angle_deg : float
-        Angle turned, deg; then straight on along the new heading.
-    turn_direction : str
-        ``"left"`` (counter-clockwise seen from above) or ``"right"``.
-    """
-
-    speed: float
-    heading_deg: float = 0.0
-    straight_length: float = math.inf
-    turn_diameter: float = 0.0
-    turn_angle_deg: float = 360.0
-    turn_direction: str = "left"
-
-
-@dataclass(frozen=True)
-class TopMotion:
-    """Prescribed motion of end_b and the pay-out law (``[top_motion]``).
-
-    Offsets are from ``end_b.position`` (m); see the module docstring for the formulas and
-    :mod:`cable_ocp.scene.motion` for their CasADi expressions.
-
-    Attributes
-    ----------
-    heave_amplitude, heave_frequency : float
-        m, rad/s: z offset A sin(w t).
-    horizontal_amplitude, horizontal_frequency, horizontal_heading_deg : float
-        m, rad/s, deg: horizontal offset A sin(w t) along the heading.
-    circular_radius, circular_frequency, circular_heading_deg : float
-        m, rad/s, deg: a vertical circle, z += r sin(w t), horizontal r (1 - cos(w t)).
-    series : tuple of (t, dx, dy, dz)
-        s, m: tabulated offsets (linear interpolation, held after the last row).
-    ramp_time : float
-        s, smooth start of amplitudes and speeds (0 = none).
-    payout_law : str
-        ``"linear"``, ``"quadratic"`` or ``"periodic"`` (Huang (1992) 3.1).
-    payout_speed : float
-        v, m/s of unstretched cable (> 0 lowers the unit).
-    payout_acceleration : float
-        a, m/s^2 (quadratic law).
-    payout_amplitude, payout_frequency : float
-        p (m), w (rad/s) of the periodic law.
-    tow : Tow or None
-        Towing path.
-    """
-
-    heave_amplitude: float = 0.0
-    heave_frequency: float = 0.0
-    horizontal_amplitude: float = 0.0
-    horizontal_frequency: float = 0.0
-    horizontal_heading_deg: float = 0.0
-    circular_radius: float = 0.0
-    circular_frequency: float = 0.0
-    circular_heading_deg: float = 0.0
-    series: tuple[tuple[float, float, float, float], ...] = ()
-    ramp_time: float = 0.0
-    payout_law: str = "linear"
-    payout_speed: float = 0.0
-    payout_acceleration: float = 0.0
-    payout_amplitude: float = 0.0
-    payout_frequency: float = 0.0
-    tow: Tow | None = None
-
-    @property
-    def varying_length(self) -> bool:
-        """True when the unstretched length changes with time."""
-        return (self.payout_speed != 0.0 or self.payout_acceleration != 0.0
-                or self.payout_amplitude != 0.0)
-
-    @property
-    def horizontal(self) -> bool:
-        """True when end_b moves horizontally (horizontal, circular, tow or series)."""
-        return (self.horizontal_amplitude != 0.0 or self.circular_radius != 0.0
-                or self.tow is not None
-                or any(r[1] != 0.0 or r[2] != 0.0 for r in self.series))
-
-    @property
-    def moves(self) -> bool:
-        """True when end_b moves at all."""
-        return (self.horizontal or self.heave_amplitude != 0.0
-                or any(r[3] != 0.0 for r in self.series))
-
-
-@dataclass(frozen=True)
-class Simulation:
-    """Time-domain settings (``[simulation]``).
-
-    Attributes
-    ----------
-    model : str
-        ``"axial"``, ``"planar"`` or ``"lumped3d"``.
-    duration : float
-        Simulated time, s.
-    time_step : float
-        Integration step, s.
-    output_step : float
-        Interval between stored samples, s (a multiple of ``time_step``).
-    segments : int
-        Elements along the line.
-    start : str
-        ``"static"`` or ``"unstrained"``.
-    scheme : str
-        Time-integration scheme (:data:`SCHEMES`).
-    tolerance : float
-        Newton tolerance of an implicit step (scaled residual, -).
-    max_iterations : int
-        Newton iterations per step.
-    on_slack : str
-        ``"continue"`` or ``"stop"``.
-    """
-
-    model: str
-    duration: float
-    time_step: float
-    output_step: float
-    segments: int = 20
-    start: str = "static"
-    scheme: str = "midpoint"
-    tolerance: float = 1e-10
-    max_iterations: int = 20
-    on_slack: str = "continue"
-
-    @property
-    def steps(self) -> int:
-        """Number of integration steps."""
-        return int(round(self.duration / self.time_step))
-
-    @property
-    def output_every(self) -> int:
-        """Integration steps per stored sample."""
-        return int(round(self.output_step / self.time_step))
-
-
-@dataclass(frozen=True)
-class ModesOptions:
-    """Modal-analysis settings (``[modes]``).
-
-    Attributes
-    ----------
-    count : int
-        Number of modes.
-    wave_band : tuple of float
-        Wave-frequency band (low, high), rad/s, shaded on the deployment chart.
-    """
-
-    count: int = 6
-    wave_band: tuple[float, float] = (2.0 * math.pi / 20.0, 2.0 * math.pi / 4.0)
 
 
 @dataclass(frozen=True)
@@ -499,236 +216,20 @@ def is_dynamic_dict(data: dict[str, Any]) -> bool:
 
 def current_at(current: Current | None, z: float) -> Vec3:
     """Current velocity (m/s) at height z (m): linear in the components between knots,
-    constant beyond the first and last knot (docs/conventions.md, "Frame and scene files")."""
+    constant beyond the first and last knot (docs/conventions.md, "Frame and scene files";
+    :func:`cable_ocp.physics.current.profile_velocity_np`).
+
+    Parameters
+    ----------
+    current : Current or None
+        The scene's current (None: still water).
+    z : float
+        Height, m.
+    """
     if current is None:
         return (0.0, 0.0, 0.0)
-    zs = current.z
-    if len(zs) == 1 or z <= zs[0]:
-        return (current.ux[0], current.uy[0], 0.0)
-    if z >= zs[-1]:
-        return (current.ux[-1], current.uy[-1], 0.0)
-    for k in range(len(zs) - 1):
-        if zs[k] <= z <= zs[k + 1]:
-            f = (z - zs[k]) / (zs[k + 1] - zs[k])
-            return (current.ux[k] + f * (current.ux[k + 1] - current.ux[k]),
-                    current.uy[k] + f * (current.uy[k + 1] - current.uy[k]), 0.0)
-    raise AssertionError("unreachable")
-
-
-def _int(value: Any, key: str, lo: int, hi: int | None = None) -> int:
-    if isinstance(value, bool) or not isinstance(value, int) or value < lo or (
-            hi is not None and value > hi):
-        rng = f"{lo}..{hi}" if hi is not None else f">= {lo}"
-        raise CableOCPError(f"{key} = {value!r}: expected an integer {rng}")
-    return value
-
-
-def _choice(value: Any, key: str, valid: tuple[str, ...]) -> str:
-    if value not in valid:
-        raise CableOCPError(f"{key} = {value!r}: valid are "
-                            + ", ".join(f'"{v}"' for v in valid))
-    return value
-
-
-def _vec_or_scalar(value: Any, key: str) -> tuple[Vec3, bool]:
-    """A nonnegative number or [x, y, z] -> (triple, given per axis)."""
-    if isinstance(value, list):
-        if len(value) != 3:
-            raise CableOCPError(f"{key} = {value!r}: expected a number or [x, y, z]")
-        return tuple(_number(v, f"{key}[{i}]", nonneg=True)  # type: ignore[return-value]
-                     for i, v in enumerate(value)), True
-    x = _number(value, key, nonneg=True)
-    return (x, x, x), False
-
-
-def _parse_segment_dynamics(t: dict[str, Any], where: str, diameter: float,
-                            need_diameter: bool) -> SegmentDynamics:
-    mass = _number(_require(t, "mass_per_length", where), f"{where}.mass_per_length",
-                   positive=True)
-    ca_n = _number(t.get("added_mass_coefficient", 1.0), f"{where}.added_mass_coefficient",
-                   nonneg=True)
-    ca_t = _number(t.get("tangential_added_mass_coefficient", 0.0),
-                   f"{where}.tangential_added_mass_coefficient", nonneg=True)
-    damping = _number(t.get("axial_damping", 0.0), f"{where}.axial_damping", nonneg=True)
-    if (ca_n > 0.0 or ca_t > 0.0) and diameter <= 0.0 and need_diameter:
-        key = "added_mass_coefficient" if ca_n > 0.0 else "tangential_added_mass_coefficient"
-        default = " (default 1.0)" if ca_n > 0.0 and "added_mass_coefficient" not in t else ""
-        raise CableOCPError(
-            f"{where}.diameter is missing: the added mass ({where}.{key} = {ca_n if ca_n else ca_t}"
-            f"{default}) is C_a rho pi d^2 / 4 per metre; give {where}.diameter (m) or set "
-            f"{where}.{key} = 0 (e.g. in air)")
-    return SegmentDynamics(mass_per_length=mass, added_mass_coefficient=ca_n,
-                           tangential_added_mass_coefficient=ca_t, axial_damping=damping)
-
-
-def _parse_unit(t: Any, rho: float, g: float) -> Unit:
-    t = _check_keys(t, _UNIT_KEYS, "unit")
-    mass = _number(_require(t, "mass", "unit"), "unit.mass", nonneg=True)
-    added, _ = _vec_or_scalar(t.get("added_mass", 0.0), "unit.added_mass")
-    volume = None
-    if "volume" in t:
-        volume = _number(t["volume"], "unit.volume", nonneg=True)
-    if "weight_in_water" in t:
-        w = _number(t["weight_in_water"], "unit.weight_in_water")
-        if volume is not None:
-            w_v = (mass - rho * volume) * g
-            if abs(w - w_v) > 1e-3 * max(abs(w), mass * g, 1e-12):
-                raise CableOCPError(
-                    f"unit.weight_in_water = {w} N disagrees with unit.volume = {volume} m^3: "
-                    f"(mass - rho volume) g = {w_v:.6g} N; give one of them")
-    elif volume is not None:
-        w = (mass - rho * volume) * g
-    else:
-        raise CableOCPError("unit.weight_in_water is missing (N; or give unit.volume, m^3)")
-    if w > mass * g * (1.0 + _ROUNDING) + 1e-12:
-        raise CableOCPError(
-            f"unit.weight_in_water = {w} N exceeds the weight in air mass g = {mass * g:.6g} N "
-            "(buoyancy cannot be negative): check unit.mass and unit.weight_in_water")
-    area, area_axes = _vec_or_scalar(t.get("drag_area", 0.0), "unit.drag_area")
-    cd, cd_axes = _vec_or_scalar(t.get("drag_coefficient", 0.0), "unit.drag_coefficient")
-    for k in range(3):
-        if (area[k] > 0.0) != (cd[k] > 0.0):
-            raise CableOCPError("unit: give both drag_area (m^2) and drag_coefficient (-) "
-                                "for every axis that has drag, or neither")
-    return Unit(mass=mass, added_mass=added, weight_in_water=w, volume=volume,
-                drag_area=area, drag_coefficient=cd, drag_per_axis=area_axes or cd_axes)
-
-
-def _parse_tow(t: Any) -> Tow:
-    where = "top_motion.tow"
-    t = _check_keys(t, _TOW_KEYS, where)
-    speed = _number(_require(t, "speed", where), f"{where}.speed", positive=True)
-    straight = _number(t.get("straight_length", math.inf), f"{where}.straight_length",
-                       nonneg=True, allow_inf=True)
-    diameter = _number(t.get("turn_diameter", 0.0), f"{where}.turn_diameter", nonneg=True)
-    angle = _number(t.get("turn_angle_deg", 360.0), f"{where}.turn_angle_deg", nonneg=True)
-    direction = _choice(t.get("turn_direction", "left"), f"{where}.turn_direction",
-                        ("left", "right"))
-    if math.isfinite(straight) and diameter <= 0.0 and angle > 0.0:
-        raise CableOCPError(f"{where}.turn_diameter is missing: a turn after straight_length "
-                            f"= {straight} m needs turn_diameter > 0 (m)")
-    return Tow(speed=speed, heading_deg=_number(t.get("heading_deg", 0.0),
-                                                f"{where}.heading_deg"),
-               straight_length=straight, turn_diameter=diameter, turn_angle_deg=angle,
-               turn_direction=direction)
-
-
-def _parse_top_motion(t: Any) -> TopMotion:
-    where = "top_motion"
-    t = _check_keys(t, _TOP_KEYS, where)
-    kw: dict[str, Any] = {}
-    for amp, freq in (("heave_amplitude", "heave_frequency"),
-                      ("horizontal_amplitude", "horizontal_frequency"),
-                      ("circular_radius", "circular_frequency")):
-        a = _number(t.get(amp, 0.0), f"{where}.{amp}",
-                    nonneg=amp == "circular_radius")
-        kw[amp] = a
-        if freq in t:
-            kw[freq] = _number(t[freq], f"{where}.{freq}", positive=True)
-        elif a != 0.0:
-            raise CableOCPError(f"{where}.{freq} is missing: {where}.{amp} = {a} needs a "
-                                "frequency (rad/s)")
-    for key in ("horizontal_heading_deg", "circular_heading_deg"):
-        kw[key] = _number(t.get(key, 0.0), f"{where}.{key}")
-    kw["ramp_time"] = _number(t.get("ramp_time", 0.0), f"{where}.ramp_time", nonneg=True)
-    if "series" in t:
-        rows = t["series"]
-        if not isinstance(rows, list) or len(rows) < 2:
-            raise CableOCPError(f"{where}.series: expected at least two rows [t, dx, dy, dz] "
-                                "(s, m)")
-        out = []
-        for i, r in enumerate(rows):
-            if not isinstance(r, list) or len(r) != 4:
-                raise CableOCPError(f"{where}.series[{i}] = {r!r}: expected [t, dx, dy, dz] "
-                                    "(s, m)")
-            out.append(tuple(_number(v, f"{where}.series[{i}][{k}]") for k, v in enumerate(r)))
-        if out[0][0] != 0.0:
-            raise CableOCPError(f"{where}.series[0][0] = {out[0][0]}: the series starts at "
-                                "t = 0 s")
-        if any(b[0] <= a[0] for a, b in zip(out, out[1:], strict=False)):
-            raise CableOCPError(f"{where}.series: times must increase strictly")
-        if any(v != 0.0 for v in out[0][1:]):
-            raise CableOCPError(f"{where}.series[0]: the offsets at t = 0 must be 0 (end_b "
-                                "starts at end_b.position)")
-        kw["series"] = tuple(out)
-    law = _choice(t.get("payout_law", "linear"), f"{where}.payout_law",
-                  ("linear", "quadratic", "periodic"))
-    kw["payout_law"] = law
-    all_law_keys = set().union(*_LAW_KEYS.values())
-    for key in sorted(all_law_keys & set(t)):
-        if key not in _LAW_KEYS[law]:
-            raise CableOCPError(
-                f"{where}.{key} does not belong to payout_law = \"{law}\"; its keys are "
-                f"{', '.join(sorted(_LAW_KEYS[law]))}")
-    kw["payout_speed"] = _number(t.get("payout_speed", 0.0), f"{where}.payout_speed")
-    kw["payout_acceleration"] = _number(t.get("payout_acceleration", 0.0),
-                                        f"{where}.payout_acceleration")
-    kw["payout_amplitude"] = _number(t.get("payout_amplitude", 0.0),
-                                     f"{where}.payout_amplitude")
-    if law == "periodic":
-        if "payout_frequency" not in t:
-            raise CableOCPError(f"{where}.payout_frequency is missing (rad/s; payout_law = "
-                                "\"periodic\": L = L0 + p sin(w t))")
-        kw["payout_frequency"] = _number(t["payout_frequency"], f"{where}.payout_frequency",
-                                         positive=True)
-    if "tow" in t:
-        kw["tow"] = _parse_tow(t["tow"])
-    return TopMotion(**kw)
-
-
-def _parse_simulation(t: Any) -> Simulation:
-    where = "simulation"
-    t = _check_keys(t, _SIM_KEYS, where)
-    model = _choice(_require(t, "model", where), f"{where}.model", MODELS)
-    duration = _number(_require(t, "duration", where), f"{where}.duration", positive=True)
-    dt = _number(_require(t, "time_step", where), f"{where}.time_step", positive=True)
-    if dt > duration:
-        raise CableOCPError(f"{where}.time_step = {dt} s exceeds {where}.duration = "
-                            f"{duration} s")
-    steps = duration / dt
-    if abs(steps - round(steps)) > 1e-6 * steps:
-        raise CableOCPError(f"{where}.duration = {duration} s is not a whole number of "
-                            f"time steps ({where}.time_step = {dt} s, {steps:.6g} steps)")
-    if steps > MAX_STEPS:
-        raise CableOCPError(f"{where}.time_step = {dt} s: {steps:.3g} steps over {duration} s "
-                            f"exceed the limit {MAX_STEPS:.0e}; take a larger time step")
-    out = _number(t.get("output_step", dt), f"{where}.output_step", positive=True)
-    ratio = out / dt
-    if ratio < 1.0 - 1e-9 or abs(ratio - round(ratio)) > 1e-6 * ratio:
-        raise CableOCPError(f"{where}.output_step = {out} s: must be a whole multiple of "
-                            f"{where}.time_step = {dt} s")
-    if round(steps) % round(ratio) != 0:
-        raise CableOCPError(f"{where}.output_step = {out} s: duration = {duration} s must be "
-                            "a whole number of output steps")
-    scheme = _choice(t.get("scheme", DEFAULT_SCHEME[model]), f"{where}.scheme "
-                     f"(model \"{model}\")", SCHEMES[model])
-    return Simulation(
-        model=model, duration=duration, time_step=dt, output_step=out,
-        segments=_int(t.get("segments", 20), f"{where}.segments", 1, 100_000),
-        start=_choice(t.get("start", "static"), f"{where}.start", ("static", "unstrained")),
-        scheme=scheme,
-        tolerance=_number(t.get("tolerance", 1e-10), f"{where}.tolerance", positive=True),
-        max_iterations=_int(t.get("max_iterations", 20), f"{where}.max_iterations", 1, 1000),
-        on_slack=_choice(t.get("on_slack", "continue"), f"{where}.on_slack",
-                         ("continue", "stop")),
-    )
-
-
-def _parse_modes(t: Any) -> ModesOptions:
-    t = _check_keys(t, _MODES_KEYS, "modes")
-    d = ModesOptions()
-    band = d.wave_band
-    if "wave_band" in t:
-        v = t["wave_band"]
-        if not isinstance(v, list) or len(v) != 2:
-            raise CableOCPError(f"modes.wave_band = {v!r}: expected [low, high] (rad/s)")
-        lo = _number(v[0], "modes.wave_band[0]", positive=True)
-        hi = _number(v[1], "modes.wave_band[1]", positive=True)
-        if hi <= lo:
-            raise CableOCPError(f"modes.wave_band = {v!r}: expected low < high (rad/s)")
-        band = (lo, hi)
-    return ModesOptions(count=_int(t.get("count", d.count), "modes.count", 1, 10_000),
-                        wave_band=band)
+    u = profile_velocity_np(z, current.z, current.ux, current.uy)
+    return (float(u[0]), float(u[1]), 0.0)
 
 
 def _length_history_min(tm: TopMotion, length0: float, duration: float) -> tuple[float, float]:
@@ -746,15 +247,15 @@ def _strip_dynamic(data: dict[str, Any]) -> tuple[dict[str, Any], dict[str, Any]
     dyn: dict[str, Any] = {k: stat.pop(k) for k in DYNAMIC_TABLES if k in stat}
     cab = stat.get("cable")
     if isinstance(cab, dict):
-        dyn["cable"] = {k: cab.pop(k) for k in list(cab) if k in _CABLE_DYN_KEYS}
+        dyn["cable"] = {k: cab.pop(k) for k in list(cab) if k in CABLE_DYN_KEYS}
         segs = cab.get("segments")
         if isinstance(segs, list):
             dyn["segments"] = [
-                {k: s.pop(k) for k in list(s) if k in _CABLE_DYN_KEYS} if isinstance(s, dict)
+                {k: s.pop(k) for k in list(s) if k in CABLE_DYN_KEYS} if isinstance(s, dict)
                 else {} for s in segs]
     bodies = stat.get("bodies")
     if isinstance(bodies, list):
-        dyn["bodies"] = [{k: b.pop(k) for k in list(b) if k in _BODY_DYN_KEYS}
+        dyn["bodies"] = [{k: b.pop(k) for k in list(b) if k in BODY_DYN_KEYS}
                          if isinstance(b, dict) else {} for b in bodies]
     return stat, dyn
 
@@ -805,7 +306,7 @@ def dynamic_scene_from_dict(data: dict[str, Any]) -> DynamicScene:
             raise CableOCPError("[end_a] and [unit] both given: in a dynamic scene [unit] "
                                 "replaces end_a (the unit hangs at end_a); remove [end_a], or "
                                 "remove [unit] for an anchored end_a")
-        unit = _parse_unit(dyn["unit"], rho, g)
+        unit = parse_unit(dyn["unit"], rho, g)
         stat["end_a"] = {"force": [0.0, 0.0, -unit.weight_in_water]}  # current added below
     elif "end_a" in stat:
         ea = stat["end_a"]
@@ -848,15 +349,15 @@ def dynamic_scene_from_dict(data: dict[str, Any]) -> DynamicScene:
         if extra:
             raise CableOCPError(f"cable.{extra[0]}: with [[cable.segments]] every segment "
                                 f"gives its own {extra[0]}")
-        cable = tuple(_parse_segment_dynamics(seg_t[i], f"cable.segments[{i}]",
+        cable = tuple(parse_segment_dynamics(seg_t[i], f"cable.segments[{i}]",
                                               lines[i].diameter, True)
                       for i in range(len(lines)))
     else:
-        cable = (_parse_segment_dynamics(dyn.get("cable", {}), "cable", lines[0].diameter,
+        cable = (parse_segment_dynamics(dyn.get("cable", {}), "cable", lines[0].diameter,
                                          True),)
     for i, (c, d) in enumerate(zip(lines, cable, strict=True)):
         where = f"cable.segments[{i}]" if statics.segments else "cable"
-        if c.weight_in_water > d.mass_per_length * g * (1.0 + _ROUNDING):
+        if c.weight_in_water > d.mass_per_length * g * (1.0 + ROUNDING):
             raise CableOCPError(
                 f"{where}.weight_in_water = {c.weight_in_water} N/m exceeds the weight in air "
                 f"mass_per_length g = {d.mass_per_length * g:.6g} N/m (buoyancy cannot be "
@@ -876,17 +377,17 @@ def dynamic_scene_from_dict(data: dict[str, Any]) -> DynamicScene:
             raise CableOCPError(f"bodies[{i}].mass is missing (kg, mass in air; a dynamic "
                                 "scene needs the mass of every body)")
         mass = _number(b["mass"], f"bodies[{i}].mass", nonneg=True)
-        added, _ = _vec_or_scalar(b.get("added_mass", 0.0), f"bodies[{i}].added_mass")
+        added, _ = vec_or_scalar(b.get("added_mass", 0.0), f"bodies[{i}].added_mass")
         sb = statics.bodies[i]
         w = sb.weight_in_water - sb.net_buoyancy
-        if w > mass * g * (1.0 + _ROUNDING) + 1e-12:
+        if w > mass * g * (1.0 + ROUNDING) + 1e-12:
             raise CableOCPError(f"bodies[{i}].mass = {mass} kg: the weight in water {w} N "
                                 f"exceeds the weight in air {mass * g:.6g} N")
         bodies.append(BodyDynamics(mass=mass, added_mass=added))
 
-    top = _parse_top_motion(dyn.get("top_motion", {}))
-    sim = _parse_simulation(dyn["simulation"])
-    modes = _parse_modes(dyn.get("modes", {}))
+    top = parse_top_motion(dyn.get("top_motion", {}))
+    sim = parse_simulation(dyn["simulation"])
+    modes = parse_modes(dyn.get("modes", {}))
 
     if top.varying_length:
         lmin, tmin = _length_history_min(top, statics.cable.length, sim.duration)  # type: ignore[arg-type]

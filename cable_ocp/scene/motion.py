@@ -29,7 +29,8 @@ import casadi as ca
 import numpy as np
 
 if TYPE_CHECKING:  # types only: the scene module uses this one at run time
-    from cable_ocp.scene.dynamics import DynamicScene, TopMotion, Tow
+    from cable_ocp.scene.dynamic_parts import TopMotion, Tow
+    from cable_ocp.scene.dynamics import DynamicScene
 
 
 __all__ = ["length_expr", "length_numeric", "motion_function", "top_offset_expr"]

@@ -12,6 +12,8 @@ from dataclasses import dataclass, replace
 from typing import Any
 
 from cable_ocp.errors import CableOCPError
+from cable_ocp.physics import seabed as _seabed
+from cable_ocp.physics.current import is_uniform, profile_velocity_np
 from cable_ocp.scene.fields import FREE, check_keys, number, require, vector3
 
 END_KEYS = {"position", "force", "tension"}
@@ -72,7 +74,12 @@ class Current:
     @property
     def uniform(self) -> bool:
         """True when the velocity does not depend on z."""
-        return len(self.z) == 1 or (len(set(self.ux)) == 1 and len(set(self.uy)) == 1)
+        return is_uniform(self.z, self.ux, self.uy)
+
+    def velocity(self, z: Any) -> Any:
+        """Velocity (m/s) at heights z (m), shape ``z.shape + (3,)``
+        (:func:`cable_ocp.physics.current.profile_velocity_np`)."""
+        return profile_velocity_np(z, self.z, self.ux, self.uy)
 
     @property
     def max_speed(self) -> float:
@@ -100,6 +107,25 @@ class Seabed:
     friction: float = 0.0
     slope_deg: float = 0.0
     slope_heading_deg: float = 0.0
+
+    def normal(self) -> Any:
+        """Unit normal of the plane, up into the water (:mod:`cable_ocp.physics.seabed`)."""
+        return _seabed.plane_normal(self.slope_deg, self.slope_heading_deg)
+
+    def height(self, x: Any, y: Any) -> Any:
+        """Seabed height z (m) at (x, y).
+
+        Parameters
+        ----------
+        x, y : float or array
+            Horizontal position, m.
+        """
+        return _seabed.plane_height(x, y, self.slope_deg, self.slope_heading_deg,
+                                    self.depth_offset)
+
+    def gap(self, r: Any) -> Any:
+        """Signed distance (m) of points r (n, 3) above the plane (negative = below)."""
+        return _seabed.plane_gap(r, self.slope_deg, self.slope_heading_deg, self.depth_offset)
 
 
 @dataclass(frozen=True)

@@ -58,10 +58,14 @@ from dataclasses import dataclass
 import casadi as ca
 import numpy as np
 
-from cable_ocp.physics.current import current_velocity
-from cable_ocp.physics.drag import drag_error_bound, drag_per_length
-from cable_ocp.physics.seabed import axial_gradient, grounded_tension_integral
-from cable_ocp.physics.seabed import normal as seabed_normal
+from cable_ocp.physics.current import profile_velocity
+from cable_ocp.physics.drag import (
+    drag_error_bound,
+    drag_per_length,
+    point_drag,
+    point_drag_error_bound,
+)
+from cable_ocp.physics.seabed import friction_gradient, grounded_tension_integral, plane_normal
 from cable_ocp.scene import Body, Cable, End, Scene
 
 NX = 6
@@ -224,10 +228,10 @@ class Formulation:
         env, sc = self.scene.environment, self.scales
         load = ca.DM(body.static_load)
         if body.has_drag and env.current is not None:
-            u = current_velocity(env.current, sc.length * x[2], cscale)
-            speed = ca.sqrt(ca.dot(u, u) + self.scene.solver.smoothing**2)
-            load = load + 0.5 * env.water_density * body.drag_coefficient * body.drag_area \
-                * speed * u
+            cur = env.current
+            u = profile_velocity(sc.length * x[2], cur.z, cur.ux, cur.uy, cscale)
+            load = load + point_drag(u, (body.drag_coefficient * body.drag_area,) * 3,
+                                     rho=env.water_density, delta=self.scene.solver.smoothing)
         return load / sc.force
 
     def body_load(self, index: int, position: np.ndarray, current_scale: float = 1.0
@@ -255,7 +259,8 @@ class Formulation:
             stretch = 1.0 + sc.force * ca.dot(tau, t) / cab.axial_stiffness
         f = ca.vertcat(0, 0, -cab.weight_in_water)
         if env.current is not None:
-            u = current_velocity(env.current, sc.length * x[2], cscale)
+            cur = env.current
+            u = profile_velocity(sc.length * x[2], cur.z, cur.ux, cur.uy, cscale)
             opts = self.scene.solver
             f = f + stretch * drag_per_length(
                 cab.drag_law, u, t, rho=env.water_density, diameter=cab.diameter,
@@ -307,7 +312,8 @@ class Formulation:
         # loads per unstretched length, N/m
         f = ca.vertcat(0, 0, -cab.weight_in_water)
         if env.current is not None:
-            u = current_velocity(env.current, sc.length * rho_[2], cscale)
+            cur = env.current
+            u = profile_velocity(sc.length * rho_[2], cur.z, cur.ux, cur.uy, cscale)
             opts = self.scene.solver
             fd = drag_per_length(
                 cab.drag_law, u, t, rho=env.water_density, diameter=cab.diameter,
@@ -338,11 +344,12 @@ class Formulation:
         See :mod:`cable_ocp.physics.seabed`."""
         sb = self.scene.environment.seabed
         cab, sc = self.scene.cable, self.scales
-        n = seabed_normal(sb)
+        n = plane_normal(sb.slope_deg, sb.slope_heading_deg)
         tau = x0[3:6]
         tmag = ca.sqrt(ca.dot(tau, tau))
         e = tau / tmag
-        k = axial_gradient(sb, cab.weight_in_water, e) * sc.length / sc.force
+        k = friction_gradient(cab.weight_in_water, e, sb.friction, float(n[2])) \
+            * sc.length / sc.force
         dist = g
         if cab.elastic:
             dist = g + sc.force / cab.axial_stiffness * grounded_tension_integral(tmag, k, g)
@@ -388,8 +395,8 @@ class Formulation:
             delta = self.scene.solver.smoothing
             for b in self.scene.bodies:
                 if b.has_drag:  # |sqrt(u^2 + d^2) u - |u| u| <= d^2 / 2
-                    total += 0.25 * env.water_density * b.drag_coefficient * b.drag_area \
-                        * delta**2
+                    total += point_drag_error_bound((b.drag_coefficient * b.drag_area,),
+                                                    rho=env.water_density, delta=delta)
             return total
         per_len = drag_error_bound(
             cab.drag_law, rho=env.water_density, diameter=cab.diameter,

@@ -46,6 +46,8 @@ from __future__ import annotations
 
 import numpy as np
 
+from cable_ocp.physics.current import profile_knots as current_knots
+from cable_ocp.physics.current import profile_velocity_np
 from cable_ocp.scene import Scene
 
 #: kinks closer than this to a segment end or to another kink (as a fraction of the
@@ -63,31 +65,21 @@ WIDEN = 0.1
 
 
 def _current(scene: Scene, z: np.ndarray) -> np.ndarray:
-    """Current velocity at heights z (m), (n, 3) m/s, interpolated as
-    :func:`cable_ocp.physics.current.current_velocity` does."""
+    """Current velocity at heights z (m), (n, 3) m/s
+    (:func:`cable_ocp.physics.current.profile_velocity_np`)."""
     cur = scene.environment.current
-    out = np.zeros((len(z), 3))
     if cur is None:
-        return out
-    if cur.uniform:
-        out[:, 0], out[:, 1] = cur.ux[0], cur.uy[0]
-    else:
-        out[:, 0] = np.interp(z, cur.z, cur.ux)
-        out[:, 1] = np.interp(z, cur.z, cur.uy)
-    return out
+        return np.zeros((len(z), 3))
+    return profile_velocity_np(z, cur.z, cur.ux, cur.uy)
 
 
 def profile_knots(scene: Scene) -> list[float]:
-    """Heights (m) of the knots of the current profile where its velocity has a kink."""
+    """Heights (m) of the knots of the current profile where its velocity has a kink
+    (:func:`cable_ocp.physics.current.profile_knots`)."""
     cur = scene.environment.current
-    if cur is None or cur.uniform:
+    if cur is None:
         return []
-    z = np.asarray(cur.z)
-    out = []
-    for comp in (np.asarray(cur.ux), np.asarray(cur.uy)):
-        slope = np.concatenate([[0.0], np.diff(comp) / np.diff(z), [0.0]])
-        out += [float(z[j]) for j in range(len(z)) if slope[j] != slope[j + 1]]
-    return sorted(set(out))
+    return current_knots(cur.z, cur.ux, cur.uy)
 
 
 class Switches:

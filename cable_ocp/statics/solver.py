@@ -46,6 +46,7 @@ from cable_ocp.errors import CableOCPError
 from cable_ocp.numerics import sparse_lu
 from cable_ocp.numerics.compile import compile_function, is_compiled
 from cable_ocp.physics import seabed
+from cable_ocp.physics.drag import line_drag_factors
 from cable_ocp.scene import Scene, SolverOptions, apply_overrides, load_scene, scene_from_dict
 from cable_ocp.statics import cache as disk_cache
 from cable_ocp.statics import kinks as kink_points
@@ -1088,8 +1089,8 @@ def _towed_guess(scene: Scene, s: np.ndarray) -> tuple[np.ndarray, np.ndarray, f
         e = np.array([math.copysign(math.cos(0.1), ux), 0.0, -math.sin(0.1)])
         # tangential drag per metre of each segment, N/m (0.5 rho C_t pi D U^2), plus the
         # weight's component along the 0.1 rad slope
-        ft = [0.5 * rho * c.tangential_drag * math.pi * c.diameter * ux**2 + abs(
-            c.weight_in_water) * 0.1 for c in scene.segments]
+        ft = [line_drag_factors(rho, c.diameter, c.normal_drag, c.tangential_drag)[1] * ux**2
+              + abs(c.weight_in_water) * 0.1 for c in scene.segments]
     pull = float(np.linalg.norm([f or 0.0 for f in b.force]))
 
     def beyond(sv: float) -> float:

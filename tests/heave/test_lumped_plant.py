@@ -35,7 +35,9 @@ from cable_ocp.heave.cable_models import (
     LumpedCablePlant,
     cable_plant,
 )
-from cable_ocp.heave.closed_loop import _CableLoopPlant, make_wave, run_loop, run_status
+from cable_ocp.heave.closed_loop import make_wave, run_loop, run_status
+from cable_ocp.heave.controllers import Controller
+from cable_ocp.heave.loop_plants import CableLine, WinchedLine
 from cable_ocp.scene.dynamics import load_dynamic_scene
 from cable_ocp.scene.heave import load_scene, scene_from_dict
 
@@ -260,14 +262,10 @@ def test_lumped3d_deployment_and_out_of_range_lengths_are_refused() -> None:
         p.run_open_loop(np.full(t.size, p.length0 - 8.0), np.full(t.size, p.z_top0))
 
 
-class _Haul:
+class _Haul(Controller):
     """A controller commanding the winch to haul 9 m in (the loop's interface)."""
 
-    def __init__(self) -> None:
-        self.times: list[float] = []
-        self.failures = 0
-
-    def __call__(self, *args: Any) -> float:
+    def step(self, obs: Any) -> float:  # noqa: ARG002
         return 9.0
 
 
@@ -282,7 +280,7 @@ def test_a_winch_leaving_the_top_segment_range_stops_the_run_with_the_reason() -
     n = 100
     tf = np.arange(n * m + 1) * (h / m)
     wave = make_wave(tf, np.zeros_like(tf), h, m, n, lambda t: np.full_like(t, 113.0), 0.0)
-    run = run_loop(sc, _CableLoopPlant(plant), _Haul(), wave, np.zeros((n + 1, 3)), n,
+    run = run_loop(WinchedLine(sc, CableLine(plant), wave, np.zeros((n + 1, 3))), _Haul(), n,
                    bound=100.0)
     status, message = run_status(run)
     assert status == "failed"

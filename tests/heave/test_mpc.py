@@ -34,7 +34,7 @@ def test_unconstrained_mpc_equals_dlqr(plant_636: pl.HeavePlant, solver: str, op
     rng = np.random.default_rng(0)
     for _ in range(2):
         z0 = rng.standard_normal(m.nz) * 0.1
-        r = m.step(z0)
+        r = m.solve(z0)
         assert r.success
         assert r.u0 == pytest.approx(-(G @ z0)[0], abs=1e-12)
 
@@ -65,7 +65,7 @@ def _run(plant: pl.HeavePlant, m: mpc.LinearMPC, steps: int, seed: int, scale: f
     us, speeds, dus, fails = [], [], [], 0
     iu = plant.blocks["winch"].start
     for _ in range(steps):
-        r = m.step(z, up)
+        r = m.solve(z, up)
         fails += not r.success
         v = z[m.n] if m.model.d else r.u0
         speeds.append(plant.K * (v - z[iu]))
@@ -109,7 +109,7 @@ def test_second_order_winch_accel_limit() -> None:
     iu = p.blocks["winch"].start
     acc = []
     for _ in range(400):
-        r = m.step(z)
+        r = m.solve(z)
         assert r.success
         acc.append(1.4**2 * (z[m.n] - z[iu]) - 2 * 0.7 * 1.4 * z[iu + 1])
         z = m.model.Ad @ z + m.model.Bd[:, 0] * r.u0
@@ -179,7 +179,7 @@ def test_wave_preview_lets_the_regulator_cancel_a_known_wave() -> None:
         xs = []
         for k in range(int(round(60.0 / h))):
             D = m.preview_correction(z, x0[k : k + N]) if pv > 0 else None
-            r = m.step(z, 0.0, D)
+            r = m.solve(z, 0.0, D)
             z = m.model.Ad @ z + m.model.Bd[:, 0] * r.u0 + m.model.Ed[:, 0] * x0[k]
             xs.append(z[0])
         rms[pv] = float(np.sqrt(np.mean(np.array(xs[200:]) ** 2)))  # after 10 s
@@ -211,7 +211,7 @@ def test_ipopt_and_qp_give_the_same_moves_with_active_limits(plant_636: pl.Heave
     up = 0.0
     diffs, active = [], 0
     for _ in range(130):
-        rq, ri = mq.step(z, up), mi.step(z, up)
+        rq, ri = mq.solve(z, up), mi.solve(z, up)
         assert rq.success and ri.success
         diffs.append(abs(rq.u0 - ri.u0))
         used = max(abs(z[iu]) / 0.3, abs(z[mq.n] - z[iu]) / 0.15, abs(rq.u0 - up) / 0.01)
@@ -236,7 +236,7 @@ def test_rows_fixed_by_sent_commands_do_not_make_ipopt_infeasible(plant_636: pl.
     z = np.zeros(mq.nz)
     z[plant_636.blocks["winch"].start] = 0.31
     z[mq.n :] = 0.3
-    rq, ri = mq.step(z, 0.3), mi.step(z, 0.3)
+    rq, ri = mq.solve(z, 0.3), mi.solve(z, 0.3)
     assert rq.success and ri.success
     assert ri.u0 == pytest.approx(rq.u0, abs=5e-7)
     assert abs(ri.u0) <= 0.3 * (1 + 1e-9)  # the command bound |u0| <= stroke_max
@@ -256,7 +256,7 @@ def test_mpc_steps_print_nothing(plant_636: pl.HeavePlant, capfd: pytest.Capture
                                                      solver_options=opts, **limits))
     rng = np.random.default_rng(0)
     for _ in range(4):
-        assert m.step(rng.standard_normal(m.nz) * 0.01).success
+        assert m.solve(rng.standard_normal(m.nz) * 0.01).success
     out, err = capfd.readouterr()
     assert out == "" and err == ""
 
@@ -300,7 +300,7 @@ def test_speed_limit_alone_holds_on_an_independent_plant_with_the_true_delay() -
     for k in range(300):
         t = k * h
         z = np.concatenate([y, sent])
-        r = m.step(z, 0.0, m.preview_correction(z, _boom_tip(t + h * np.arange(N))))
+        r = m.solve(z, 0.0, m.preview_correction(z, _boom_tip(t + h * np.arange(N))))
         assert r.success
         v = sent[0]  # applied over [t, t + h)
         speeds.append(K * (v - y[2]))
@@ -344,7 +344,7 @@ def test_stroke_limit_alone_holds_for_an_undelayed_second_order_winch() -> None:
     stroke = []
     for k in range(120):
         t = k * h
-        r = m.step(y, 0.0, m.preview_correction(y, tip(t + h * np.arange(N))))
+        r = m.solve(y, 0.0, m.preview_correction(y, tip(t + h * np.arange(N))))
         assert r.success
         y = solve_ivp(rhs, (t, t + h), y, args=(r.u0,), method="DOP853", rtol=1e-12,
                       atol=1e-13).y[:, -1]
@@ -381,7 +381,7 @@ def test_tension_limit_alone_holds_on_an_independent_plant() -> None:
     tension, heave = [], []
     for k in range(200):
         z = np.concatenate([y, sent])
-        r = m.step(z, 0.0, np.zeros(30))
+        r = m.solve(z, 0.0, np.zeros(30))
         assert r.success
         tension.append(t0 + mass / a * (y[2] - y[0]))
         v = sent[0]
@@ -536,7 +536,7 @@ def test_nonlinear_unit_mpc_matches_an_independent_nlp_and_closes_the_loop() -> 
         t = k * h
         z = np.concatenate([y, sent])
         D = m.preview_correction(z, tip(t + h * np.arange(N)))
-        r = m.step(z, 0.0, D)
+        r = m.solve(z, 0.0, D)
         assert r.success
         if k < 6:
             u_ref, speed_ref = ref(z, D)
@@ -555,7 +555,7 @@ def test_nonlinear_unit_mpc_matches_an_independent_nlp_and_closes_the_loop() -> 
     for _ in range(4):
         z = np.concatenate([rng.uniform(-1, 1, 3) * [1.0, 0.8, 1.0], rng.uniform(-1, 1, d)])
         D = tip(rng.uniform(0, 20) + h * np.arange(N))
-        r = m.step(z, 0.0, D)
+        r = m.solve(z, 0.0, D)
         assert r.success
         np.testing.assert_allclose(r.plan, ref(z, D)[0], rtol=0, atol=1e-6)
     passive = solve_ivp(rhs, (0.0, 100 * h), np.zeros(3), args=(0.0,), method="DOP853",
@@ -582,7 +582,7 @@ def test_nonlinear_unit_mpc_reduces_to_the_linear_mpc_as_b_quadratic_vanishes() 
     for _ in range(6):
         z = rng.standard_normal(mq.nz) * np.array([0.3, 0.3, 0.3, 0.2, 0.2, 0.2, 0.2])
         D = 0.8 * np.sin(0.6 * 0.05 * np.arange(20) + rng.uniform(0, 6))
-        rq, ri = mq.step(z, 0.0, D), mi.step(z, 0.0, D)
+        rq, ri = mq.solve(z, 0.0, D), mi.solve(z, 0.0, D)
         assert rq.success and ri.success
         assert ri.u0 == pytest.approx(rq.u0, abs=1e-7)
         np.testing.assert_allclose(ri.plan, rq.plan, atol=1e-6)

@@ -66,7 +66,7 @@ def test_daqp_moves_equal_qpoases_with_active_limits_and_delay(plant_636: pl.Hea
     du0, dplan, slack_steps = [], [], 0
     active_kinds = np.zeros(4, dtype=int)
     for _ in range(steps):
-        rq, rd = mq.step(z, up), md.step(z, up)
+        rq, rd = mq.solve(z, up), md.solve(z, up)
         assert rq.success and rd.success
         du0.append(abs(rq.u0 - rd.u0))
         dplan.append(float(np.max(np.abs(rq.plan - rd.plan))))
@@ -117,12 +117,12 @@ def test_infeasible_step_reports_failure_and_falls_back_on_the_plan(plant_636: p
           "unit_mass": 125000.0, "static_tension": 50000.0}
     for solver in ("daqp", "qpoases"):
         m = mpc.LinearMPC(plant_636, 0.2, mpc.MPCSettings(solver=solver, **st))
-        first = m.step(np.zeros(m.nz), 0.0)
+        first = m.solve(np.zeros(m.nz), 0.0)
         assert first.success
         z = np.zeros(m.nz)
         z[plant_636.blocks["winch"].start] = 0.5
         z[m.n :] = 0.5
-        r = m.step(z, 0.0)
+        r = m.solve(z, 0.0)
         assert not r.success, solver
         np.testing.assert_array_equal(r.plan, np.concatenate([first.plan[1:],
                                                               first.plan[-1:]]))
@@ -147,12 +147,12 @@ def test_daqp_two_stage_steps_print_nothing(plant_636: pl.HeavePlant,
     full_solve = m._daqp.full.solve
     m._daqp.full.solve = lambda g, c: full_calls.append(1) or full_solve(g, c)
     z = np.zeros(m.nz)
-    assert m.step(z).success
+    assert m.solve(z).success
     # Winch at u = -0.15 m with the buffered commands there too: the stretch x0 + u - x stays
     # at -0.15 m for the next samples, below the -0.072 m that the 40 kN limit allows.
     z[plant_636.blocks["winch"].start] = -0.15
     z[m.n :] = -0.15
-    r = m.step(z, -0.15)
+    r = m.solve(z, -0.15)
     assert r.success and r.max_slack > 0
     assert full_calls
     out, err = capfd.readouterr()

@@ -1,0 +1,377 @@
+"""The plants of the closed loop (:class:`cable_ocp.heave.closed_loop.LoopPlant`).
+
+* :class:`UnitWinchPlant`: the design model (6.2) or (6.3) and its winch ((6.1) or the
+  second-order winch) integrated together by RK4 on the sub-steps ``h / substeps``, with
+  the boom-tip heave linear between grid points, in the sea and vessel states sampled
+  exactly (:func:`cable_ocp.heave.simulate.wave_realisation`). Its state (unit, winch, sea,
+  vessel) is measurable for full-state feedback, and the unit's depth with white noise
+  (the plant of :func:`cable_ocp.heave.simulate.compare`).
+* :class:`WinchedLine`: a line under the winch. The winch is integrated exactly (ZOH) on
+  the sub-steps and is a position source, as in (6.4); the line is :class:`CableLine` (the
+  cable plant: :class:`cable_ocp.heave.axial_plant.AxialCablePlant` or a plant of
+  :mod:`cable_ocp.heave.cable_models`, heave measured from the static depth at the
+  deployment length) or :class:`ModelLine` (the design model (6.2)/(6.3) by RK4 with
+  ``x0 + u`` linear per sub-step: the prediction beside the cable). The controllers see what
+  a real system measures, once per sample, each with its own white noise: the unit's depth
+  (``[controller] measurement_noise``), the winch position (``winch_noise``) and the
+  boom-tip heave from the vessel's motion sensor (``boom_tip_noise``).
+
+Both integrate the unit model with :func:`cable_ocp.heave.plant.unit_acceleration` (its one
+home); they differ in the winch (inside the RK4 step, or exact) because each is the plant of
+its own comparison.
+"""
+
+from __future__ import annotations
+
+from typing import Any
+
+import numpy as np
+from scipy import linalg
+
+from cable_ocp.heave import plant as pl
+from cable_ocp.heave.closed_loop import CableTrace, LoopPlant, Sample, Trace, Wave
+from cable_ocp.heave.discrete import delay_steps
+from cable_ocp.heave.estimators import Observation
+from cable_ocp.heave.plant import unit_acceleration
+from cable_ocp.scene.heave import HeaveScene
+
+__all__ = ["CableLine", "ModelLine", "UnitWinchPlant", "WinchedLine", "winch_maps"]
+
+
+class UnitWinchPlant(LoopPlant):
+    """The design model with its winch, RK4 on the sub-steps, in the exactly sampled sea.
+
+    Parameters
+    ----------
+    sc : HeaveScene
+        The scene: unit (``a``, ``b``, ``model``, ``b_quadratic``), winch, controller
+        (sample time, preview), ``[simulation] substeps``.
+    p : HeavePlant
+        Its plant (6.28) (the states' order: unit, winch, vessel, sea).
+    t, x0 : numpy.ndarray
+        The sea's grid (s, step ``h / substeps``) and the boom-tip heave there (m), long
+        enough for the preview.
+    sea_states : numpy.ndarray
+        The vessel and sea states on that grid (the plant's states from the vessel block on).
+    noise : numpy.ndarray, shape (n_ctrl + 1,)
+        The depth sensor's noise per sample, m.
+    n_ctrl : int
+        Control samples (the trace's length).
+    """
+
+    def __init__(self, sc: HeaveScene, p: pl.HeavePlant, t: np.ndarray, x0: np.ndarray,
+                 sea_states: np.ndarray, noise: np.ndarray, n_ctrl: int) -> None:
+        c, u, w = sc.controller, sc.unit, sc.winch
+        self.sample_time = h = c.sample_time
+        self.substeps = m = sc.simulation.substeps
+        self.hs = h / m
+        self.delay = delay_steps(w.delay, h)
+        self.a, self.b = u.a, u.b
+        self.bq = u.b_quadratic if u.model == "quadratic" else 0.0
+        self.quad = u.model == "quadratic"
+        self.first = w.model == "first_order"
+        self.K, self.wn, self.zeta = w.gain, w.natural_frequency, w.damping_ratio
+        self.nuw = 3 if self.first else 4
+        self.n = p.n
+        self.lo = p.blocks["vessel"].start
+        self.t, self.x0, self.sea, self.noise = t, x0, sea_states, noise
+        self.n_fore = int(round(c.preview_time / self.hs)) if c.preview_time > 0 else None
+        self.nfine = n_ctrl * m
+        self.s = np.zeros(self.nuw)
+
+    def _f(self, s: np.ndarray, x0: float, v: float) -> np.ndarray:
+        acc = unit_acceleration(s[0], s[1], x0 + s[2], self.a, self.b, self.bq, self.quad)
+        if self.first:
+            return np.array([s[1], acc, self.K * (v - s[2])])
+        wn = self.wn
+        return np.array([s[1], acc, s[3], wn**2 * (v - s[2]) - 2 * self.zeta * wn * s[3]])
+
+    def start(self) -> dict[str, float]:
+        self.s = np.zeros(self.nuw)  # the unit and winch at rest; the sea stationary
+        return {"x": float(self.s[0])}
+
+    def observe(self, k: int) -> Observation:
+        i = k * self.substeps
+        z = np.empty(self.n)
+        z[: self.nuw] = self.s
+        z[self.lo:] = self.sea[i]
+        fore = (self.x0[i: i + self.n_fore + 1: self.substeps] if self.n_fore is not None
+                else None)
+        return Observation(y=np.array([self.s[0] + self.noise[k]]), state=z, forecast=fore)
+
+    def advance(self, k: int, v: float) -> Sample:
+        m, hs, f, x0 = self.substeps, self.hs, self._f, self.x0
+        i = k * m
+        s = self.s
+        xs, us, uds = np.empty(m), np.empty(m + 1), np.empty(m)
+        for j in range(m):
+            ii = i + j
+            us[j] = s[2]
+            uds[j] = self.K * (v - s[2]) if self.first else s[3]
+            xa, xb = x0[ii], x0[ii + 1]
+            xm = 0.5 * (xa + xb)
+            k1 = f(s, xa, v)
+            k2 = f(s + hs / 2 * k1, xm, v)
+            k3 = f(s + hs / 2 * k2, xm, v)
+            k4 = f(s + hs * k3, xb, v)
+            s = s + hs / 6 * (k1 + 2 * k2 + 2 * k3 + k4)
+            xs[j] = s[0]
+        us[m] = s[2]
+        self.s = s
+        return Sample(x=xs, u=us, u_dot=uds)
+
+    def end_speed(self, v: float) -> float:
+        # the left limit K (v - u(T)) of the first-order winch
+        return self.K * (v - self.s[2]) if self.first else self.s[3]
+
+    def trace(self, x: np.ndarray, u: np.ndarray, u_dot: np.ndarray, u0: np.ndarray,
+              channels: dict[str, np.ndarray], per_sample: np.ndarray) -> Trace:  # noqa: ARG002
+        n = self.nfine + 1
+        return Trace(self.t[:n], x, self.x0[:n], u, u_dot, u0)
+
+
+def winch_maps(sc: HeaveScene, dt: float) -> tuple[np.ndarray, np.ndarray, np.ndarray,
+                                                   np.ndarray]:
+    """Exact ZOH map of the winch over ``dt``: ``w+ = Phi w + Gam v``; its output rows for
+    ``u`` and ``u'`` (``C``, ``D``).
+
+    Parameters
+    ----------
+    sc : HeaveScene
+        The scene's ``[winch]`` (first-order (6.1) or second-order).
+    dt : float
+        The sub-step, s.
+    """
+    w = sc.winch
+    blk = pl.winch_first(w.gain) if w.model == "first_order" else pl.winch_second(
+        w.natural_frequency, w.damping_ratio)
+    A, B = np.asarray(blk.A), np.asarray(blk.B)
+    C, D = np.asarray(blk.C), np.asarray(blk.D)
+    nw = A.shape[0]
+    Mx = np.zeros((nw + 1, nw + 1))
+    Mx[:nw, :nw] = A
+    Mx[:nw, nw:] = B
+    E = linalg.expm(Mx * dt)
+    # outputs: row 0 u, row 1 u_dot (C, D of the block)
+    return E[:nw, :nw], E[:nw, nw], np.vstack([C[0], C[1]]), np.array([D[0, 0], D[1, 0]])
+
+
+class WinchedLine(LoopPlant):
+    """A line under the winch (module docstring): the winch exact on the sub-steps.
+
+    Parameters
+    ----------
+    sc : HeaveScene
+        The scene: winch, controller (sample time, preview).
+    line : CableLine or ModelLine
+        The line the winch output pays in and out.
+    wave : Wave
+        The boom tip and the deployment length on the sub-step grid.
+    noise : numpy.ndarray, shape (n_ctrl + 1, 3)
+        The noise of the depth, winch and boom-tip sensors per sample, m.
+    """
+
+    channels = ("tension_unit", "tension_top")
+
+    def __init__(self, sc: HeaveScene, line: Any, wave: Wave, noise: np.ndarray) -> None:
+        c = sc.controller
+        self.sample_time = h = c.sample_time
+        self.substeps = m = wave.substeps
+        self.delay = delay_steps(sc.winch.delay, h)
+        self.Phi, self.Gam, self.Cw, self.Dw = winch_maps(sc, h / m)
+        self.line, self.wave, self.noise = line, wave, noise
+        self.n_preview = int(round(c.preview_time / h))
+        self.x0_samples = wave.x0[::m]
+        self.w = np.zeros(self.Phi.shape[0])
+
+    @property
+    def failed_at(self) -> int | None:  # type: ignore[override]
+        return self.line.failed_at
+
+    @property
+    def stop(self) -> tuple[str, str] | None:  # type: ignore[override]
+        return getattr(self.line, "stop", None)
+
+    @property
+    def max_residual(self) -> float:  # type: ignore[override]
+        return self.line.max_residual
+
+    def start(self) -> dict[str, float]:
+        self.w = np.zeros(self.Phi.shape[0])
+        t_u0, t_t0 = self.line.start(float(self.wave.x0[0]), float(self.wave.ldep[0]))
+        return {"x": self.line.heave, "tension_unit": t_u0, "tension_top": t_t0}
+
+    def observe(self, k: int) -> Observation:
+        i = k * self.substeps
+        u_now = float(self.Cw[0] @ self.w)
+        y = np.array([self.line.heave, u_now, self.wave.x0[i]]) + self.noise[k]
+        npv = self.n_preview
+        fore = self.x0_samples[k: k + npv + 1] if npv > 0 else None
+        return Observation(y=y, length=float(self.wave.ldep[i]), forecast=fore)
+
+    def advance(self, k: int, v: float) -> Sample:
+        m = self.substeps
+        i = k * m
+        Phi, Gam, Cw, Dw = self.Phi, self.Gam, self.Cw, self.Dw
+        w = self.w
+        upts, uds = np.empty(m + 1), np.empty(m)
+        upts[0] = float(Cw[0] @ w)
+        for j in range(m):
+            uds[j] = float(Cw[1] @ w + Dw[1] * v)
+            w = Phi @ w + Gam * v
+            upts[j + 1] = float(Cw[0] @ w)
+        self.w = w
+        wave = self.wave
+        heave, t_unit, t_top, t_mn = self.line.advance(k, upts, wave.x0[i: i + m + 1],
+                                                       wave.ldep[i: i + m + 1])
+        return Sample(x=heave, u=upts, u_dot=uds,
+                      channels={"tension_unit": t_unit, "tension_top": t_top}, per_sample=t_mn)
+
+    def end_speed(self, v: float) -> float:
+        return float(self.Cw[1] @ self.w + self.Dw[1] * v)
+
+    def trace(self, x: np.ndarray, u: np.ndarray, u_dot: np.ndarray, u0: np.ndarray,
+              channels: dict[str, np.ndarray], per_sample: np.ndarray) -> CableTrace:
+        wave = self.wave
+        return CableTrace(t=wave.t, x=x, x0=wave.x0, u=u, u_dot=u_dot, u0=u0,
+                          tension_unit=channels["tension_unit"],
+                          tension_top=channels["tension_top"], length=wave.ldep,
+                          min_element_tension=per_sample)
+
+
+class CableLine:
+    """The cable plant as the line: heave relative to the static depth at ``L_dep``.
+
+    Parameters
+    ----------
+    plant : SampledCablePlant
+        The cable stepped one sample per call (:func:`cable_ocp.heave.cable_models.
+        cable_plant`), shared by the runs.
+    """
+
+    def __init__(self, plant: Any) -> None:
+        self.p = plant
+        self.substeps = plant.substeps
+        self.x = plant.initial_state()
+        self.heave = 0.0
+        self.failed_at: int | None = None
+        self.max_residual = 0.0
+        #: (status, message) where the plant refused a sample (its ``out["stop"]``)
+        self.stop: tuple[str, str] | None = None
+
+    def start(self, x0_start: float, ldep0: float) -> tuple[float, float]:
+        """The static state, at rest; returns the static tensions (at the unit, at the top,
+        N).
+
+        Parameters
+        ----------
+        x0_start : float
+            The top's displacement at the start (the boom tip), m: the static line hangs
+            from it.
+        ldep0 : float
+            The deployment length at the start, m.
+        """
+        self.x = self.p.initial_state()
+        self.heave = x0_start  # the static line hangs from the displaced top, at rest
+        self.stop = None
+        self.failed_at = None
+        self.max_residual = 0.0
+        return self.p.static_tensions(ldep0)
+
+    def advance(self, k: int, u: np.ndarray, x0: np.ndarray, ldep: np.ndarray
+                ) -> tuple[np.ndarray, np.ndarray, np.ndarray, float]:
+        """Advance one sample; returns the heave, the tensions at the unit and the top at
+        the sub-step ends (m, N, N) and the smallest element tension (N).
+
+        Parameters
+        ----------
+        k : int
+            The sample.
+        u, x0, ldep : numpy.ndarray, shape (m + 1,)
+            Winch output, boom-tip heave and deployment length at the sub-step points, m.
+        """
+        x, out = self.p.advance(self.x, ldep - u, self.p.z_top0 + x0)
+        if "stop" in out and self.stop is None:
+            self.stop = ("failed", f"at t = {k * self.p.h:.2f} s {out['stop']}; the run "
+                         "stops there")
+        if "stop" not in out:
+            self.max_residual = max(self.max_residual, out["residual"])
+        if not (out["residual"] <= max(1e3 * self.p.tolerance, 1e-6)) and self.failed_at is None:
+            self.failed_at = k
+        self.x = x
+        heave = out["z_unit"] - self.p.static_unit_height(ldep[1:])
+        self.heave = float(heave[-1])
+        return heave, out["t_unit"], out["t_top"], out["t_min"]
+
+
+class ModelLine:
+    """The design model (6.2) or (6.3) as the line, RK4 with ``x0 + u`` linear per step.
+
+    Tension at the unit ``T0 + (m/a)(x0 + u - x)`` (the model's own, :mod:`.mpc`); the
+    model has no top tension (reported as the same dynamic part on the static top tension).
+
+    Parameters
+    ----------
+    a, b, b_quadratic : float
+        The model's coefficients: s^2, s, s^2/m.
+    quadratic : bool
+        (6.3) instead of (6.2).
+    substeps : int
+        Sub-steps per sample.
+    dt : float
+        Sub-step, s.
+    mass : float
+        Unit mass with its added mass, kg.
+    t_unit0, t_top0 : float
+        Static tensions at the unit and the top, N.
+    """
+
+    def __init__(self, a: float, b: float, b_quadratic: float, quadratic: bool,
+                 substeps: int, dt: float, mass: float, t_unit0: float, t_top0: float) -> None:
+        self.a, self.b, self.bq, self.quad = a, b, b_quadratic, quadratic
+        self.substeps, self.dt = substeps, dt
+        self.k = mass / a
+        self.t0, self.tt0 = t_unit0, t_top0
+        self.s = [0.0, 0.0]
+        self.heave = 0.0
+        self.failed_at: int | None = None
+        self.max_residual = 0.0
+
+    def start(self, x0_start: float, ldep0: float) -> tuple[float, float]:  # noqa: ARG002
+        """At rest; returns the static tensions (N).
+
+        Parameters
+        ----------
+        x0_start : float
+            The boom tip at the start, m: the unit starts there.
+        ldep0 : float
+            The deployment length at the start, m (not used by the model).
+        """
+        self.s = [x0_start, 0.0]
+        self.heave = x0_start
+        return self.t0, self.tt0
+
+    def _f(self, x: float, v: float, inp: float) -> tuple[float, float]:
+        return v, unit_acceleration(x, v, inp, self.a, self.b, self.bq, self.quad)
+
+    def advance(self, k: int, u: np.ndarray, x0: np.ndarray, ldep: np.ndarray  # noqa: ARG002
+                ) -> tuple[np.ndarray, np.ndarray, np.ndarray, float]:
+        """As :meth:`CableLine.advance`."""
+        m, dt = self.substeps, self.dt
+        x, v = self.s
+        inp = (x0 + u).tolist()
+        xs = np.empty(m)
+        for j in range(m):
+            ia, ib = inp[j], inp[j + 1]
+            im = 0.5 * (ia + ib)
+            k1 = self._f(x, v, ia)
+            k2 = self._f(x + 0.5 * dt * k1[0], v + 0.5 * dt * k1[1], im)
+            k3 = self._f(x + 0.5 * dt * k2[0], v + 0.5 * dt * k2[1], im)
+            k4 = self._f(x + dt * k3[0], v + dt * k3[1], ib)
+            x += dt / 6 * (k1[0] + 2 * k2[0] + 2 * k3[0] + k4[0])
+            v += dt / 6 * (k1[1] + 2 * k2[1] + 2 * k3[1] + k4[1])
+            xs[j] = x
+        self.s = [x, v]
+        self.heave = x
+        dyn = self.k * (x0[1:] + u[1:] - xs)
+        return xs, self.t0 + dyn, self.tt0 + dyn, float(np.min(self.t0 + dyn))
