@@ -37,11 +37,11 @@ from cable_ocp.dynamics.lumped_params import LumpedParams
 from cable_ocp.physics.added_mass import added_mass_per_length, line_added_mass
 from cable_ocp.physics.drag import drag_per_length
 from cable_ocp.physics.drag import point_drag as physics_point_drag
-from cable_ocp.physics.elasticity import material_damping, smooth_tension
+from cable_ocp.physics.elasticity import material_damping, smooth_strain_energy, smooth_tension
 
 __all__ = ["GAUSS_W", "GAUSS_X", "LumpedEquations", "added_mass_share", "node_loads",
            "node_masses", "node_weights", "point_drag", "point_drag_items", "segment_drag",
-           "segment_tension", "strain_energy"]
+           "segment_tension"]
 
 #: 3-point Gauss-Legendre rule on [-1, 1] (the mean of the tension over a strain interval)
 GAUSS_X = (-math.sqrt(0.6), 0.0, math.sqrt(0.6))
@@ -51,27 +51,6 @@ GAUSS_W = (5.0 / 18.0, 8.0 / 18.0, 5.0 / 18.0)
 # --------------------------------------------------------------------------------------
 # The laws on one segment
 # --------------------------------------------------------------------------------------
-
-def strain_energy(eps: Any, ea: float, delta_t: float, ell: float) -> Any:
-    """Strain energy ``ell * int_0^eps T de`` of a segment with the smooth no-compression
-    tension (:func:`cable_ocp.physics.elasticity.smooth_tension`), J.
-
-    Parameters
-    ----------
-    eps : casadi expression
-        Strain (-).
-    ea : float
-        EA, N.
-    delta_t : float
-        Smoothing force scale, N.
-    ell : float
-        Unstretched length, m.
-    """
-    u = ea * eps
-    dd = delta_t
-    return ell * (ea * eps**2 / 4.0
-                  + (u * ca.sqrt(u * u + dd * dd) + dd * dd * ca.asinh(u / dd)) / (4.0 * ea))
-
 
 def segment_tension(d1: Any, ell1: Any, ea: Any, c: Any, delta_t: Any, *,
                     d0: Any = None, ell0: Any = None, dt: Any = None, dv: Any = None,
@@ -404,14 +383,16 @@ class LumpedEquations:
 
     def energy(self, v: Any, mass: Any, r: list[Any]) -> tuple[Any, Any]:
         """Kinetic energy 1/2 v^T M v (``mass`` the free nodes' mass matrix) and potential
-        energy (strain, :func:`strain_energy`, and weight), J."""
+        energy (strain, :func:`cable_ocp.physics.elasticity.smooth_strain_energy` per
+        unstretched length, and weight), J."""
         p = self.params
         kin = 0.5 * ca.dot(v, ca.mtimes(mass, v))
         pot = 0
         for j in range(p.segments):
             ell = float(p.segment_length[j])
             eps = ca.norm_2(r[j + 1] - r[j]) / ell - 1.0
-            pot = pot + strain_energy(eps, float(p.axial_stiffness[j]), p.slack_smoothing, ell)
+            pot = pot + ell * smooth_strain_energy(eps, float(p.axial_stiffness[j]),
+                                                   p.slack_smoothing)
         for i in range(p.segments + 1):
             pot = pot + float(self.node_weight[i]) * r[i][2]
         return kin, pot
