@@ -8,8 +8,10 @@
   model's own equilibrium F(x, 0, 0) = 0 by Newton from there, so that the run starts
   exactly at rest; or ``start = "unstrained"``: hanging straight down from end_b at its
   unstretched length, at rest (Huang's 5.7.1 start);
-* :func:`simulate_lumped` and :func:`modes_lumped`: the dispatched entry points of
-  :func:`cable_ocp.dynamics.simulate` and :func:`cable_ocp.dynamics.modes`.
+* :class:`LumpedSceneModel`: the scene's model as
+  :class:`~cable_ocp.dynamics.model.CableModel` (static state, the step driven by the
+  top, linearisation, modes, simulation), on which :func:`cable_ocp.dynamics.simulate`
+  and :func:`cable_ocp.dynamics.modes` dispatch.
 """
 
 from __future__ import annotations
@@ -31,19 +33,18 @@ from cable_ocp.dynamics.result import (
     slack_report,
     until_slack,
 )
+from cable_ocp.dynamics.stepping import MAX_CHUNKS
 from cable_ocp.errors import CableOCPError
 from cable_ocp.physics.current import current_velocity
 from cable_ocp.scene.dynamics import DynamicScene
 from cable_ocp.scene.motion import top_offset_expr
 
-__all__ = ["LumpedSceneModel", "check_lumped_plant", "lumped_params", "lumped_start",
-           "modes_lumped", "segment_counts", "simulate_lumped"]
+__all__ = ["SLACK_MESSAGE", "LumpedSceneModel", "check_lumped_plant", "lumped_params",
+           "lumped_start", "segment_counts"]
 
 #: the slack message of the lumped-mass model (:func:`cable_ocp.dynamics.result.slack_report`)
 SLACK_MESSAGE = ("slack: segment {segment} (s = {location:.4g} m from end_a) first went slack "
                  "at t = {t:.6g} s; Huang (1992) ch. 5 excludes slack cable: {action}")
-#: at most this many progress calls (chunks) per run
-MAX_CHUNKS = 200
 #: runs with more segment-steps than this compile the whole step to C
 #: (:func:`cable_ocp.dynamics.lumped_run.run`, ``compile="step"``)
 COMPILE_STEP_ABOVE = 1_000_000
@@ -442,14 +443,3 @@ class LumpedSceneModel:
                            message=msg, diagnostics={"segments": n, "start": info,
                                                      "stiffness": "tension, weight and body "
                                                      "loads; drag neglected"})
-
-
-def simulate_lumped(scene: DynamicScene, progress: Callable[[int, int], None] | None = None
-                    ) -> SimulationResult:
-    """:meth:`LumpedSceneModel.simulate` of the scene."""
-    return LumpedSceneModel(scene).simulate(progress)
-
-
-def modes_lumped(scene: DynamicScene, count: int) -> ModesResult:
-    """:meth:`LumpedSceneModel.modes` of the scene."""
-    return LumpedSceneModel(scene).modes(count)

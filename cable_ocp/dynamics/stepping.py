@@ -17,6 +17,11 @@ from collections.abc import Callable
 import casadi as ca
 import numpy as np
 
+__all__ = ["MAX_CHUNKS", "run_chunks"]
+
+#: at most this many progress calls (chunks) per run, in every model
+MAX_CHUNKS = 200
+
 
 def run_chunks(chunk_fn: Callable[[int], ca.Function], acc: np.ndarray, n_out: int,
                per_chunk: int, every: int, dt: float, off: int, n_state: int,
