@@ -71,6 +71,13 @@ def axial_driven_step(model: AxialModel, dt: float) -> DrivenStep:
     them); the guess is ``x0``; the start is the closed-form static profile at rest (the
     motion's acceleration is zero inside a step: the top tension leaves out the inertia of
     half an element, ``mu h a_top / 2``).
+
+    Parameters
+    ----------
+    model : AxialModel
+        The axial model of the scene.
+    dt : float
+        The step, s.
     """
     sc = model.scene
     md = copy.copy(model)
@@ -110,6 +117,13 @@ def planar_driven_step(model: PlanarModel, dt: float | None = None) -> DrivenSte
     The unknown is the new offsets ``q1``; the guess the model's explicit predictor; the
     start the static state (:meth:`PlanarModel.initial_state` with ``start = "static"``,
     which also raises the model's force scale to the static tension).
+
+    Parameters
+    ----------
+    model : PlanarModel
+        The planar model of the scene.
+    dt : float, optional
+        The step, s (None: a symbol).
 
     Raises
     ------

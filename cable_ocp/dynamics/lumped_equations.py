@@ -166,7 +166,17 @@ def added_mass_share(dm: Any, en: Any, et: Any, eet: Any = None) -> Any:
     ``eet``: the compiled kernel's ``t t^T`` from its unit tangent (it has it for the drag's
     Jacobian); the law is then written on it, ``(en (I - t t^T) + et t t^T) / 2``, as
     ``line_added_mass`` writes it on ``dm dm^T / |dm|^2`` (the two differ by rounding, and
-    the kernel's steps are kept bitwise)."""
+    the kernel's steps are kept bitwise).
+
+    Parameters
+    ----------
+    dm : casadi expression (3,)
+        The chord, m.
+    en, et : float or casadi expression
+        Normal and tangential added mass of the segment, kg.
+    eet : casadi expression (3, 3), optional
+        t t^T from the unit tangent (-).
+    """
     if eet is None:
         return 0.5 * line_added_mass(dm, en, et)
     return 0.5 * (en * (ca.SX.eye(3) - eet) + et * eet)
@@ -176,7 +186,21 @@ def point_drag(u: Any, cs: list[float], law: str, rho: float, delta: float) -> A
     """Drag of a point body (the unit, eq. (5.6), or a body on the line), N:
     :func:`cable_ocp.physics.drag.point_drag` of the flow ``u`` relative to it (m/s), with
     the drag areas ``cs`` (m^2 per axis), the law ``"vector"`` or ``"per_axis"``, the
-    water density ``rho`` (kg/m^3) and the smoothing velocity ``delta`` (m/s)."""
+    water density ``rho`` (kg/m^3) and the smoothing velocity ``delta`` (m/s).
+
+    Parameters
+    ----------
+    u : casadi expression (3,)
+        Flow relative to the body, m/s.
+    cs : list of 3 float
+        Drag areas C_D S per axis, m^2.
+    law : {"vector", "per_axis"}
+        The law.
+    rho : float
+        Water density, kg/m^3.
+    delta : float
+        Smoothing velocity, m/s.
+    """
     return physics_point_drag(u, cs, rho=rho, delta=delta, per_axis=law == "per_axis")
 
 
@@ -225,7 +249,15 @@ def node_weights(p: LumpedParams) -> np.ndarray:
 def node_loads(p: LumpedParams, weights: np.ndarray | None = None) -> np.ndarray:
     """The constant loads on the nodes, N, shape (3, N+1): the weights in water
     (:func:`node_weights`, or ``weights``) and the external loads of the unit and the
-    bodies."""
+    bodies.
+
+    Parameters
+    ----------
+    p : LumpedParams
+        The line.
+    weights : ndarray (N+1,), optional
+        The nodes' weights in water, N (default :func:`node_weights`).
+    """
     static = np.zeros((3, p.segments + 1))
     static[2] = -(node_weights(p) if weights is None else weights)
     if p.unit is not None:
@@ -273,7 +305,19 @@ class LumpedEquations:
 
     def tension(self, j: int, d1: Any, ell1: Any = None, **kw: Any) -> dict[str, Any]:
         """:func:`segment_tension` of segment ``j`` with chord ``d1`` (m): its EA, c and
-        unstretched length (or ``ell1``, m; further keywords as there)."""
+        unstretched length (or ``ell1``, m; further keywords as there).
+
+        Parameters
+        ----------
+        j : int
+            Segment index from end_a.
+        d1 : casadi expression (3,)
+            The chord, m.
+        ell1 : float or casadi expression, optional
+            Unstretched length, m (default the segment's).
+        **kw
+            Further keywords of :func:`segment_tension`.
+        """
         p = self.params
         ell1 = float(p.segment_length[j]) if ell1 is None else ell1
         return segment_tension(d1, ell1, float(p.axial_stiffness[j]),
@@ -281,7 +325,15 @@ class LumpedEquations:
 
     def tensions(self, r: list[Any], vel: list[Any] | None = None) -> tuple[Any, Any]:
         """Segment tensions (N; with the material damping where velocities are given) and
-        strains (-) at node positions ``r``."""
+        strains (-) at node positions ``r``.
+
+        Parameters
+        ----------
+        r : list of casadi expression
+            Node positions, m.
+        vel : list of casadi expression, optional
+            Node velocities, m/s.
+        """
         ts, es = [], []
         p = self.params
         for j in range(p.segments):
@@ -295,7 +347,19 @@ class LumpedEquations:
                 dt: float | None) -> list[Any]:
         """The segments' pulls on the nodes, N: at the positions ``r0`` (``r1`` None; the
         material damping from the velocities ``vel`` unless None), or the discrete
-        gradient between ``r0`` and ``r1`` over ``dt`` (:func:`segment_tension`)."""
+        gradient between ``r0`` and ``r1`` over ``dt`` (:func:`segment_tension`).
+
+        Parameters
+        ----------
+        r0 : list of casadi expression
+            Node positions (at the start of the step), m.
+        r1 : list of casadi expression or None
+            Node positions at the end of the step, m.
+        vel : list of casadi expression or None
+            Node velocities, m/s (one level).
+        dt : float or None
+            The step, s (two levels).
+        """
         p = self.params
         f = self.zeros()
         for j in range(p.segments):
@@ -317,7 +381,17 @@ class LumpedEquations:
 
     def segment_drag(self, j: int, dm: Any, urel: Any) -> Any:
         """:func:`segment_drag` of segment ``j`` with chord ``dm`` (m) in the relative flow
-        ``urel`` (m/s), N (zero without drag or water)."""
+        ``urel`` (m/s), N (zero without drag or water).
+
+        Parameters
+        ----------
+        j : int
+            Segment index.
+        dm : casadi expression (3,)
+            The chord, m.
+        urel : casadi expression (3,)
+            Relative flow, m/s.
+        """
         p = self.params
         if p.water_density == 0 or (p.normal_drag[j] == 0 and p.tangential_drag[j] == 0):
             return ca.SX.zeros(3)
@@ -329,7 +403,17 @@ class LumpedEquations:
 
     def point_drag(self, i: int, r: Any, v: Any) -> Any:
         """The drag of the unit and the bodies at node ``i`` at position ``r`` (m) and
-        velocity ``v`` (m/s), N."""
+        velocity ``v`` (m/s), N.
+
+        Parameters
+        ----------
+        i : int
+            Node index.
+        r : casadi expression (3,)
+            The node's position, m.
+        v : casadi expression (3,)
+            Its velocity, m/s.
+        """
         p = self.params
         f = ca.SX.zeros(3)
         for node, cs, law in point_drag_items(p):
@@ -340,7 +424,15 @@ class LumpedEquations:
 
     def drag(self, r: list[Any], vel: list[Any]) -> list[Any]:
         """Hydrodynamic drag with current on the segments (half to each end node), the unit
-        and the bodies, N, at positions ``r`` and node velocities ``vel``."""
+        and the bodies, N, at positions ``r`` and node velocities ``vel``.
+
+        Parameters
+        ----------
+        r : list of casadi expression
+            Node positions, m.
+        vel : list of casadi expression
+            Node velocities, m/s.
+        """
         p = self.params
         f = self.zeros()
         if p.water_density == 0:
@@ -360,7 +452,17 @@ class LumpedEquations:
 
     def added_mass_share(self, j: int, dm: Any, length: Any = None) -> Any:
         """:func:`added_mass_share` of segment ``j`` at chord ``dm`` (m), 3x3, kg; with
-        ``length`` (m) that unstretched length instead of the segment's own."""
+        ``length`` (m) that unstretched length instead of the segment's own.
+
+        Parameters
+        ----------
+        j : int
+            Segment index.
+        dm : casadi expression (3,)
+            The chord, m.
+        length : float or casadi expression, optional
+            Unstretched length, m.
+        """
         en, et = (float(a[j]) for a in self.added_mass)
         if en == 0 and et == 0:
             return ca.SX.zeros(3, 3)
@@ -384,7 +486,17 @@ class LumpedEquations:
     def energy(self, v: Any, mass: Any, r: list[Any]) -> tuple[Any, Any]:
         """Kinetic energy 1/2 v^T M v (``mass`` the free nodes' mass matrix) and potential
         energy (strain, :func:`cable_ocp.physics.elasticity.smooth_strain_energy` per
-        unstretched length, and weight), J."""
+        unstretched length, and weight), J.
+
+        Parameters
+        ----------
+        v : casadi expression (3 n_free,)
+            Free-node velocities, m/s.
+        mass : casadi expression
+            The free nodes' mass matrix, kg.
+        r : list of casadi expression
+            Node positions, m.
+        """
         p = self.params
         kin = 0.5 * ca.dot(v, ca.mtimes(mass, v))
         pot = 0

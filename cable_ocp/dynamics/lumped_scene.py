@@ -52,7 +52,15 @@ COMPILE_STEP_ABOVE = 1_000_000
 
 def segment_counts(lengths: list[float], total: int) -> list[int]:
     """Share ``total`` lumped segments among line segments of the given lengths (m):
-    proportional to length, at least one each (largest remainders first)."""
+    proportional to length, at least one each (largest remainders first).
+
+    Parameters
+    ----------
+    lengths : list of float
+        The line segments' lengths, m.
+    total : int
+        Lumped segments in all.
+    """
     n = len(lengths)
     if total < n:
         raise CableOCPError(f"simulation.segments = {total}: the line has {n} segments "
@@ -95,7 +103,15 @@ def check_lumped_plant(scene: DynamicScene) -> None:
 
 def lumped_params(scene: DynamicScene, segments: int | None = None) -> LumpedParams:
     """Parameters of the lumped-mass model of a scene with ``segments`` lumped segments
-    (default ``simulation.segments``), shared among ``[[cable.segments]]`` by length."""
+    (default ``simulation.segments``), shared among ``[[cable.segments]]`` by length.
+
+    Parameters
+    ----------
+    scene : DynamicScene
+        A lumped3d scene.
+    segments : int, optional
+        Lumped segments (default ``simulation.segments``).
+    """
     _check(scene)
     st = scene.statics
     env = st.environment
@@ -167,6 +183,13 @@ def lumped_start(scene: DynamicScene, model: LumpedMassModel
     (:func:`cable_ocp.dynamics.static.static_state`) interpolated at the nodes' unstretched
     arc lengths (cubic in s per coordinate), then refined to the lumped-mass equilibrium
     by Newton. ``"unstrained"``: straight down from end_b, unstretched.
+
+    Parameters
+    ----------
+    scene : DynamicScene
+        The scene.
+    model : LumpedMassModel
+        Its model.
 
     Returns
     -------

@@ -476,7 +476,15 @@ class LumpedCablePlant(_OneLengthPlant):
                 ) -> tuple[np.ndarray, dict[str, Any]]:
         """:meth:`SampledCablePlant.advance`; where the winch would take the top segment
         out of its range, nothing is stepped: the state is returned unchanged, the
-        outputs are NaN, the residual infinite and ``out["stop"]`` says why."""
+        outputs are NaN, the residual infinite and ``out["stop"]`` says why.
+
+        Parameters
+        ----------
+        x : numpy.ndarray
+            State.
+        lengths, tops : numpy.ndarray, shape (substeps + 1,)
+            Unstretched length and top height at the sub-step points, m.
+        """
         why = self._out_of_range(lengths)
         if why is None:
             return super().advance(x, lengths, tops)
@@ -488,7 +496,15 @@ class LumpedCablePlant(_OneLengthPlant):
     def run_open_loop(self, lengths: np.ndarray, tops: np.ndarray,
                       chunk: int = 200) -> dict[str, np.ndarray]:
         """:meth:`SampledCablePlant.run_open_loop`; raises :class:`CableOCPError` where
-        ``lengths`` would take the top segment out of its range."""
+        ``lengths`` would take the top segment out of its range.
+
+        Parameters
+        ----------
+        lengths, tops : numpy.ndarray
+            On the sub-step grid, m (:meth:`SampledCablePlant.run_open_loop`).
+        chunk : int
+            Samples per mapaccum call.
+        """
         why = self._out_of_range(lengths)
         if why is not None:
             raise CableOCPError(why)
