@@ -10,14 +10,16 @@ Statics in four lines::
 The data flow is one way: problem file -> :mod:`cable_ocp.scene` (validated frozen
 dataclasses) -> :mod:`cable_ocp.statics.formulation` (CasADi equations, only the terms the
 scene needs) -> :mod:`cable_ocp.statics.collocation` (transcription) ->
-:mod:`cable_ocp.statics.solver` (built once, parametric, warm-started) ->
+:mod:`cable_ocp.statics.line_solver` (built once, parametric, warm-started) ->
+:mod:`cable_ocp.statics.solver` (solve, sweep, session) ->
 :mod:`cable_ocp.statics.solution` -> :mod:`cable_ocp.report` / :mod:`cable_ocp.plots`.
 """
 
 from cable_ocp.errors import CableOCPError
 from cable_ocp.scene import Scene, load, load_scene, scene_from_dict
+from cable_ocp.statics.line_solver import StaticsSolver
 from cable_ocp.statics.solution import StaticsSolution
-from cable_ocp.statics.solver import StaticsSolver, solve, sweep
+from cable_ocp.statics.solver import solve, sweep
 from cable_ocp.status import Status
 
 # the baseline methods register themselves (statics.registry) when imported

@@ -2,9 +2,8 @@
 
 What is checked, and why each tolerance:
 
-* The piece formulas (2.31)-(2.33) (with the derived Delta z) against adaptive quadrature
-  of (2.21)-(2.23), and their Jacobian against finite differences: the formulas are
-  exact, so agreement is to rounding (1e-12 relative; FD Jacobian to 1e-7).
+* The piece formulas (2.31)-(2.33) themselves: tests/test_statics_catenary.py (they live in
+  cable_ocp.statics.catenary).
 * Point loads, constructed cases (Huang 1992, Figs 2.4/2.5/2.8 are captions only,
 docs/conventions.md):
   no point load against the closed-form elastic catenary (1e-9 relative); 1-3 interior
@@ -27,10 +26,10 @@ from functools import cache
 
 import numpy as np
 import pytest
-from scipy.integrate import quad, solve_ivp
+from scipy.integrate import solve_ivp
 from scipy.optimize import root
 
-from cable_ocp.baselines.huang import _piece_terms, solve, solve_huang, solve_point_loads
+from cable_ocp.baselines.huang import solve, solve_huang, solve_point_loads
 from cable_ocp.scene import Scene, load_scene, scene_from_dict
 from cable_ocp.statics.registry import get_method
 from cable_ocp.statics.solver import solve as solve_collocation
@@ -126,42 +125,6 @@ def _reference(psi: float, law: str) -> np.ndarray:
 def _order(errors: list[float]) -> float:
     """Observed order from errors on N, 2N, 4N, ...: mean log2 of successive ratios."""
     return float(np.mean(np.log2(np.asarray(errors[:-1]) / np.asarray(errors[1:]))))
-
-
-# --------------------------------------------------------------------------------------
-# the exact piece (2.31)-(2.33)
-# --------------------------------------------------------------------------------------
-
-@pytest.mark.parametrize("w, inv_ea, vertical", [(12.3, 0.0, False), (12.3, 1e-5, False),
-                                                 (-3.0, 1e-5, False), (0.0, 1e-5, False),
-                                                 (12.3, 1e-5, True)])
-def test_piece_increments_exact(w: float, inv_ea: float, vertical: bool) -> None:
-    """(2.31), (2.32) and the derived (2.33) equal the quadrature of (2.21)-(2.23), also
-    for a buoyant (w < 0), a weightless (w = 0) and a vertical (h = 0) piece; the
-    Jacobian equals central differences (to 1e-7: FD truncation/rounding)."""
-    rng = np.random.default_rng(3)
-    v = rng.normal(size=3) * 100.0
-    if vertical:
-        v[:2] = 0.0
-        v[2] = 50.0
-    s0, ds = np.array([0.0, 3.0]), np.array([3.0, 7.0])
-    cum = np.array([[0.0, 0.0, 0.0], [5.0, -2.0, 8.0]])
-    dr, jac, _ = _piece_terms(v, s0, ds, cum, w, inv_ea)
-    for j in range(2):
-        def tau(s: float, j: int = j) -> np.ndarray:
-            return v + cum[j] + np.array([0.0, 0.0, w * s])
-        for k in range(3):
-            ref = quad(lambda s, k=k, tau=tau: -tau(s)[k] * (inv_ea + 1 / np.linalg.norm(tau(s))),
-                       s0[j], s0[j] + ds[j], epsabs=1e-14, epsrel=1e-13)[0]
-            assert dr[j, k] == pytest.approx(ref, rel=1e-12, abs=1e-12)
-    h = 1e-4
-    fd = np.zeros((3, 3))
-    for k in range(3):
-        e = np.zeros(3)
-        e[k] = h
-        fd[:, k] = (_piece_terms(v + e, s0, ds, cum, w, inv_ea)[0].sum(0)
-                    - _piece_terms(v - e, s0, ds, cum, w, inv_ea)[0].sum(0)) / (2 * h)
-    np.testing.assert_allclose(jac, fd, rtol=1e-7, atol=1e-7 * np.abs(jac).max())
 
 
 # --------------------------------------------------------------------------------------

@@ -116,6 +116,33 @@ def test_killed_batch_resumes_with_one_row_per_case(tmp_path: Path) -> None:
     assert len((tmp_path / "k.csv").read_text().splitlines()) == 16
 
 
+@pytest.mark.parametrize("how", ["cut", "no_newline"])
+def test_resume_drops_a_cut_line_and_what_follows(tmp_path: Path, how: str) -> None:
+    """A store line cut short (a kill in mid-write) is dropped on --resume with every line
+    after it, and those cases run again, in order after the kept rows; a last line that is
+    whole but lost its newline is kept (and ended). The rows before are kept byte for
+    byte, the file ends with exactly one valid row per case, and so does the CSV."""
+    out = tmp_path / "r"
+    run_batch(DEZOYSA, ranges=RANGE, workers=0, out=out)
+    jsonl = tmp_path / "r.jsonl"
+    lines = jsonl.read_text(encoding="utf-8").splitlines(keepends=True)
+    assert len(lines) == 8
+    if how == "cut":
+        kept = 3
+        text = "".join(lines[:3]) + lines[3][: len(lines[3]) // 2] + "".join(lines[4:])
+    else:
+        kept = 4
+        text = "".join(lines[:3]) + lines[3].rstrip("\n")
+    jsonl.write_text(text, encoding="utf-8")
+    res = run_batch(DEZOYSA, ranges=RANGE, workers=0, out=out, resume=True)
+    after = jsonl.read_text(encoding="utf-8").splitlines(keepends=True)
+    assert after[:kept] == lines[:kept]
+    rows = [json.loads(line) for line in after]
+    assert [r["case"] for r in rows] == list(range(8))  # the dropped ones again, in order
+    assert sorted(r["case"] for r in res.rows) == list(range(8))
+    assert len((tmp_path / "r.csv").read_text().splitlines()) == 9
+
+
 def test_output_exists_needs_resume_or_overwrite(tmp_path: Path, capsys) -> None:
     out = tmp_path / "e"
     (tmp_path / "e.csv").write_text("x\n")
@@ -128,18 +155,22 @@ def test_output_exists_needs_resume_or_overwrite(tmp_path: Path, capsys) -> None
 @dataclass
 class KillingSpec(RunnerSpec):
     """Runs the real runner, but the worker process SIGKILLs itself on ``kill_cases``:
-    always (``marker_dir`` empty) or only the first time (a marker file per case)."""
+    always (``marker_dir`` empty) or only the first time (a marker file per case); with
+    ``count_dir`` each kill first leaves a file there (the deaths can be counted)."""
 
     kill_cases: tuple[int, ...] = ()
     marker_dir: str = ""
+    count_dir: str = ""
 
     def make(self) -> Any:
-        return _Killing(super().make(), self.kill_cases, self.marker_dir)
+        return _Killing(super().make(), self.kill_cases, self.marker_dir, self.count_dir)
 
 
 class _Killing:
-    def __init__(self, inner: Any, kill: tuple[int, ...], marker_dir: str) -> None:
+    def __init__(self, inner: Any, kill: tuple[int, ...], marker_dir: str,
+                 count_dir: str = "") -> None:
         self.inner, self.kill, self.marker_dir = inner, kill, marker_dir
+        self.count_dir = count_dir
 
     def columns(self) -> list[str]:
         return self.inner.columns()
@@ -150,6 +181,8 @@ class _Killing:
             if marker is None or not marker.exists():
                 if marker is not None:
                     marker.touch()
+                if self.count_dir:
+                    (Path(self.count_dir) / f"{case.index}-{os.getpid()}").touch()
                 os.kill(os.getpid(), signal.SIGKILL)
         return self.inner.run(case)
 
@@ -179,6 +212,22 @@ def test_local_case_that_always_kills_is_worker_lost() -> None:
     st = {r["case"]: r["status"] for r in res.rows}
     assert st.pop(3) == "worker_lost"
     assert set(st.values()) == {"solved"}
+
+
+@pytest.mark.parametrize("attempts", [1, 3])
+def test_a_case_is_tried_exactly_max_attempts_times(tmp_path: Path, attempts: int) -> None:
+    """The retry count is exact: a case that kills every worker runs max_attempts times in
+    all (counted by the files it leaves before each death), its row says so, and no other
+    case is lost or run twice."""
+    res = run_batch(DEZOYSA, ranges=RANGE, workers=2, chunk_size=4, max_attempts=attempts,
+                    spec=_spec(kill_cases=(5,), count_dir=str(tmp_path)))
+    deaths = sorted(p.name for p in tmp_path.iterdir())
+    assert len(deaths) == attempts and all(d.startswith("5-") for d in deaths)
+    assert len(set(deaths)) == attempts  # each in a worker of its own
+    row = next(r for r in res.rows if r["case"] == 5)
+    assert row["status"] == "worker_lost"
+    assert f"died {attempts} times" in row["message"]
+    assert [r["case"] for r in res.rows] == list(range(8))
 
 
 @pytest.fixture(scope="module")

@@ -567,3 +567,26 @@ def test_a_dip_within_the_cable_radius_warns_and_beyond_it_fails() -> None:
                for w in thick.diagnostics["warnings"])
     thin = check_physical(load_scene(path, {"cable.diameter": 0.006}), profile())
     assert thin.status == "below_seabed" and "below the seabed plane" in thin.message
+
+
+@pytest.mark.parametrize("over,status", [(0.5, "solved"), (1.5, "above_surface")])
+def test_the_above_surface_boundary_is_the_stated_tolerance(over: float, status: str) -> None:
+    """The free surface's tolerance is REL_TOL times the cable's length (here 1e-6 x 315 m
+    = 0.315 mm): a top end at half of it above the surface is in the water, at one and a
+    half times it is above (both sides of the boundary, so that a tolerance 10x looser or
+    tighter, or a check against the seabed's, fails one of them)."""
+    from types import SimpleNamespace
+
+    from cable_ocp.scene import load_scene
+    from cable_ocp.statics.checks import REL_TOL, check_physical
+
+    path = ROOT / "problems" / "chucheepsakul_top_tension.toml"
+    scene = load_scene(path)
+    depth = scene.environment.water_depth
+    s = np.linspace(0.0, 315.0, 31)
+    z = depth * s / 315.0 + over * REL_TOL * 315.0 * (s / 315.0) ** 8
+    sol = SimpleNamespace(status="solved", message="", s=s, length=315.0, diagnostics={},
+                          position=np.column_stack([0.3 * s, 0.0 * s, z]))
+    assert check_physical(scene, sol).status == status
+    if status == "above_surface":
+        assert f"{over * REL_TOL * 315.0:.4g} m above the free surface" in sol.message

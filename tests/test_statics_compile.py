@@ -318,13 +318,13 @@ def test_chord_refactorises_and_falls_back_on_poor_contraction(
         calls.append(1)
         return real(*args, **kwargs)
 
-    monkeypatch.setattr("cable_ocp.statics.solver.newton", spy)
-    monkeypatch.setattr("cable_ocp.statics.solver.NEWTON_MAX_STEPS", 3)
+    monkeypatch.setattr("cable_ocp.statics.line_solver.newton", spy)
+    monkeypatch.setattr("cable_ocp.statics.line_solver.NEWTON_MAX_STEPS", 3)
     res = solver._newton(far_w, p, warm=True)
     assert calls  # the chord steps gave up within 3 steps: damped Newton took over
     assert "chord steps stopped" in res.message
     cold = StaticsSolver(load_scene(DEZOYSA, {**OFF, "layout.psi0_deg": 60.0})).solve()
-    monkeypatch.setattr("cable_ocp.statics.solver.NEWTON_MAX_STEPS", 30)
+    monkeypatch.setattr("cable_ocp.statics.line_solver.NEWTON_MAX_STEPS", 30)
     sol = solver.solve(scene, warm_start=far)
     assert sol.success
     ref = np.max(np.abs(cold.force_a))

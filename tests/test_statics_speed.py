@@ -29,8 +29,8 @@ import pytest
 
 from cable_ocp.scene import load_scene
 from cable_ocp.statics import cache as disk_cache
+from cable_ocp.statics.catenary import catenary_parameter, catenary_parameter_bracketed
 from cable_ocp.statics.formulation import Formulation
-from cable_ocp.statics.initial_guess import _catenary_fixed, _catenary_parameter
 from cable_ocp.statics.newton import jacobian_functions
 from cable_ocp.statics.solver import StaticsSolver, sweep
 
@@ -360,8 +360,8 @@ def test_catenary_parameter_matches_the_bracketing_search() -> None:
     for h, v in [(1280.0, 2600.0), (229.0, 183.0), (100.0, -50.0), (10.0, 0.0)]:
         chord = math.hypot(h, v)
         for length in chord * (1.0 + np.geomspace(1e-6, 50.0, 25)):
-            a = _catenary_parameter(h, v, float(length))
-            assert abs(a - _catenary_fixed(h, v, float(length))) <= 1e-9 * a
+            a = catenary_parameter(h, v, float(length))
+            assert abs(a - catenary_parameter_bracketed(h, v, float(length))) <= 1e-9 * a
             target = math.sqrt(length * length - v * v)
             assert abs(2 * a * math.sinh(h / (2 * a)) - target) <= 1e-12 * target
 
@@ -376,7 +376,7 @@ def test_free_length_guess_unchanged_on_berteaux() -> None:
     length = free_length_guess(scene)
     assert 2600.0 < length < 3500.0
     h, v = 1280.0, 2600.0
-    a = _catenary_fixed(h, v, length)
+    a = catenary_parameter_bracketed(h, v, length)
     x0 = h / 2 - a * math.asinh(v / (2 * a * math.sinh(h / (2 * a))))
     tension = scene.cable.weight_in_water * a * math.cosh((h - x0) / a)
     assert abs(tension - 11146.6) <= 1e-9 * 11146.6

@@ -58,7 +58,7 @@ reading: C^1 Hermite cubic elements with nodal values and slopes (x_i, x'_i, y_i
 part is the chord (x_l(0) = 0, x_l(H) = X), imposed as the essential conditions x_0 = 0, x_N = X
 (same for y), and the slopes at the ends are free (natural conditions). Element integrals use
 4-point Gauss-Legendre quadrature (Chucheepsakul (1991): "Gaussian quadrature"; 4 points integrate
-the cubic-times-cubic terms exactly).
+the cubic-times-cubic terms exactly; :func:`cable_ocp.numerics.quadrature.gauss_legendre`).
 
 Iteration (Chucheepsakul 1991, eqs (17)-(20)): with T (from (13)) and P_x, P_y evaluated at the
 current iterate, the residual (20)
@@ -110,6 +110,7 @@ from cable_ocp.baselines.common import (
     unsupported,
 )
 from cable_ocp.errors import CableOCPError
+from cable_ocp.numerics.quadrature import gauss_legendre
 from cable_ocp.physics.current import profile_velocity_np
 from cable_ocp.physics.drag import drag_per_length_np
 from cable_ocp.scene import Scene
@@ -124,9 +125,7 @@ MAX_OUTER = 40
 
 __all__ = ["METHOD", "FemProblem", "solve", "solve_fem"]
 
-_XG, _WG = np.polynomial.legendre.leggauss(GAUSS_POINTS)
-_XG = 0.5 * (_XG + 1.0)  # on [0, 1]
-_WG = 0.5 * _WG
+_XG, _WG = gauss_legendre(GAUSS_POINTS, (0.0, 1.0))  # on [0, 1]
 
 
 def _fail(reason: str) -> CableOCPError:

@@ -149,7 +149,7 @@ def richardson_coarser(n: int, sol: StaticsSolution, get: Callable[[int], Static
     With d1 = |x_N - x_{N/2}| and d2 = |x_{N/2} - x_{N/4}| (end forces over the largest
     tension, positions and length over the length, :func:`compare`), the observed order is
     q = log2(d2/d1) clipped to [``low``, ``high``], and the estimate is d1 / (2^q - 1), as
-    the collocation solver does (:meth:`cable_ocp.statics.solver.StaticsSolver._estimate_error`).
+    the collocation solver does (:func:`cable_ocp.statics.error_estimate.richardson_estimate`).
     With 2 <= N < 4, or when the N/4 solve fails, q = ``high`` (the nominal order) from two
     solutions; below N = 2, or when the N/2 solve fails, no estimate (``inf``). When N/4
     is below ``min_coarse`` units (too coarse to show the order: on 10/5/2 elements the

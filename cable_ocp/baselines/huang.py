@@ -5,38 +5,15 @@ The method (Huang 1992, sections 2.2-2.5), as implemented here:
 1. **Point loads, exact.** The cable (unstretched length L, weight in water w = W/L per
    unstretched length, axial stiffness EA) carries point loads F^i at arc lengths s_i.
    Between two consecutive loads the tension vector is known in closed form from the end
-   force V = (V_x, V_y, V_z) that the support at s = 0 exerts on the cable (Huang 1992, (2.1)-(2.3),
-   (2.24)), in Huang's frame with z **downwards**::
-
-       T_vec(s) = -(V + sum_{s_i <= s} F^i + w s e_z),   T = |T_vec|         (2.1)-(2.3), (2.24)
-
-   and Hooke's law (2.5) with (2.18)-(2.23) integrates exactly over each piece
-   [s_n, s_{n+1}] to the increments (2.31)-(2.33). With a = V + sum F^i (constant on the
-   piece), h = sqrt(a_x^2 + a_y^2), A = a_z + w s_n, B = a_z + w s_{n+1}, T_A = sqrt(h^2 + A^2),
-   T_B = sqrt(h^2 + B^2)::
-
-       Delta x = -a_x [ (s_{n+1} - s_n)/EA + I ],  I = (1/w)[asinh(B/h) - asinh(A/h)]   (2.31)
-       Delta y = -a_y [ (s_{n+1} - s_n)/EA + I ]                                        (2.32)
-       Delta z = (A^2 - B^2)/(2 w EA) + (T_A - T_B)/w                                    (2.33)
-
-   (2.33) is garbled in the OCR of the thesis (docs/conventions.md): the relation above is
-   *derived here* by integrating (2.23) with (2.24), dz/ds = -X (1/EA + 1/T), X = a_z + w s,
-   and agrees with the legible parts of (2.33) (its first bracket is the 1/EA term; the
-   second is (L/W) times T(s_n) - T(s_{n+1})). Since T_A - T_B = -w (s_{n+1} - s_n)(A + B)/
-   (T_A + T_B), both terms are evaluated without dividing by w (so w = 0, a neutrally
-   buoyant cable, is regular), and I is evaluated through log1p in a cancellation-free
-   form that is also regular on a vertical piece (h = 0) and at w -> 0 (see
-   :func:`_piece_terms`). EA = inf makes the 1/EA terms vanish (inextensible cable).
-2. **Boundary conditions, per component** (Huang 1992, (2.34)-(2.45)). A component fixed at both
-   ends gives an equation sum Delta r_i = r_i(L) - r_i(0) (type 1, (2.34)-(2.36)); a force
-   prescribed at end_b gives V_i directly from (2.40)-(2.42) (type 2), so the mooring case
-   (type 3) is (2.43)-(2.44) for V_x, V_y and (2.45) for V_z; a force prescribed at end_a
-   is V_i itself. The remaining unknowns are found by Newton-Raphson (section 2.5) with
-   the analytic Jacobian. The sum sum Delta r is minus the gradient of the convex
-   complementary energy Phi(V) = int (T + T^2 / (2 EA)) ds, so each Newton step is also
-   checked against the merit Phi + V . target (Armijo) and halved until it decreases it:
-   a safeguard the thesis does not have (it notes that Newton "only guarantees local
-   convergence", 2.7); a full step is always tried first.
+   force V that the support at s = 0 exerts on the cable (Huang 1992, (2.1)-(2.3), (2.24)),
+   and Hooke's law integrates exactly over each piece to the increments (2.31)-(2.33) ((2.33)
+   derived from (2.31)-(2.32), its OCR being garbled). That elastic catenary between point
+   loads is a statics module of its own, :mod:`cable_ocp.statics.catenary` (equations
+   there), which this method calls at every outer iteration.
+2. **Boundary conditions, per component** (Huang 1992, (2.34)-(2.45)): a component fixed at
+   both ends gives an equation, a prescribed force gives V_i directly, the remaining
+   components of V are found by Newton-Raphson with the analytic Jacobian and a line
+   search on the convex complementary energy (:func:`cable_ocp.statics.catenary.solve_line`).
 3. **Drag, lumped** (Huang 1992, (2.46)-(2.47), Figure 2.3). The cable is divided into
    N = ``scene.solver.intervals`` segments of equal unstretched length. The drag on segment i (nodes
    i-1, i) is computed from its chord (strained length l, direction t = chord / l: the strain factor
@@ -71,7 +48,8 @@ are given as ``point_loads=[(s, (Fx, Fy, Fz)), ...]`` in the project frame: s is
 unstretched arc length from end_a (m), F the external force on the cable (N).
 
 Frames: the scene and the returned solution use the project frame (z up, seabed z = 0);
-Huang's z-down frame (Huang 1992, (2.3), (2.42)) exists only inside this module (``_FLIP``).
+Huang's z-down frame (Huang 1992, (2.3), (2.42)) exists only inside the catenary module
+(``cable_ocp.statics.catenary.FLIP``) and in V (``diagnostics["V_huang"]``).
 
 There is no seabed contact (Huang 1992, ch. 2 has none): a profile that goes below z = 0 comes
 back with status ``"seabed_contact"``, not ``"solved"``.
@@ -91,7 +69,7 @@ from __future__ import annotations
 import math
 import time
 from collections.abc import Sequence
-from dataclasses import dataclass, field
+from dataclasses import dataclass
 from typing import Any
 
 import numpy as np
@@ -108,6 +86,7 @@ from cable_ocp.errors import CableOCPError
 from cable_ocp.physics.current import profile_velocity_np
 from cable_ocp.physics.drag import drag_per_length_np
 from cable_ocp.scene import Scene
+from cable_ocp.statics.catenary import FLIP, CatenaryShape, solve_line
 from cable_ocp.statics.initial_guess import free_length_guess
 from cable_ocp.statics.registry import register
 from cable_ocp.statics.solution import StaticsSolution
@@ -116,377 +95,28 @@ __all__ = ["METHOD", "solve", "solve_huang", "solve_point_loads"]
 
 METHOD = "huang_semianalytic"
 
-# project frame (z up) <-> Huang's frame (z down, Huang (1992) (2.3), (2.42)): flip z
-_FLIP = np.array([1.0, 1.0, -1.0])
-
-_MAX_NEWTON = 50
 _MAX_HALVINGS = 8  # per ramp, in total
 _PointLoads = Sequence[tuple[float, Sequence[float]]]
 
 
 # --------------------------------------------------------------------------------------
-# One piece between point loads: (2.31)-(2.33), their Jacobian and the energy
+# The line under point loads: the elastic catenary (cable_ocp.statics.catenary)
 # --------------------------------------------------------------------------------------
 
-def _phi(e: np.ndarray) -> np.ndarray:
-    """log1p(e) / e, with its limit 1 at e = 0 (e > -1)."""
-    small = np.abs(e) < 1e-8
-    es = np.where(small, 1.0, e)
-    return np.where(small, 1.0 - 0.5 * e, np.log1p(es) / es)
-
-
-def _plus(x: np.ndarray, t: np.ndarray, h2: np.ndarray) -> np.ndarray:
-    """T + X without cancellation (= h^2 / (T - X) for X < 0)."""
-    neg = x < 0
-    return np.where(neg, h2 / np.where(neg, t - x, 1.0), t + x)
-
-
-def _minus(x: np.ndarray, t: np.ndarray, h2: np.ndarray) -> np.ndarray:
-    """T - X without cancellation (= h^2 / (T + X) for X > 0)."""
-    pos = x > 0
-    return np.where(pos, h2 / np.where(pos, t + x, 1.0), t - x)
-
-
-def _piece_terms(v: np.ndarray, s0: np.ndarray, ds: np.ndarray, cum: np.ndarray, w: float,
-                 inv_ea: float, derivatives: bool = True
-                 ) -> tuple[np.ndarray, np.ndarray | None, float]:
-    """Exact increments of all pieces, Huang's frame (z down).
-
-    Parameters
-    ----------
-    v : ndarray, shape (3,)
-        End force V on the cable at s = 0, N (Huang 1992, (2.1)-(2.3)).
-    s0, ds : ndarray, shape (M,)
-        Start and unstretched length of each piece, m.
-    cum : ndarray, shape (M, 3)
-        Sum of the point loads acting on the cable at or before each piece's start, N.
-    w : float
-        Weight in water per unstretched length, N/m (W/L of the thesis).
-    inv_ea : float
-        1/EA, 1/N (0 for an inextensible cable).
-    derivatives : bool
-        Also return the Jacobian d(sum Delta r)/dV.
-
-    Returns
-    -------
-    dr : ndarray, shape (M, 3)
-        (Delta x, Delta y, Delta z) of each piece, m: (2.31), (2.32) and the derived (2.33).
-    jac : ndarray, shape (3, 3) or None
-        d(sum_pieces Delta r)/dV, m/N (symmetric negative definite unless degenerate).
-    energy : float
-        Phi(V) = int (T + T^2/(2 EA)) ds, N m; grad Phi = -sum Delta r.
-    """
-    a = v[None, :] + cum
-    ax, ay = a[:, 0], a[:, 1]
-    h2 = ax * ax + ay * ay
-    xa = a[:, 2] + w * s0
-    xb = xa + w * ds
-    ta = np.sqrt(h2 + xa * xa)
-    tb = np.sqrt(h2 + xb * xb)
-    ssum = ta + tb
-    pa, pb = _plus(xa, ta, h2), _plus(xb, tb, h2)
-    ma, mb = _minus(xa, ta, h2), _minus(xb, tb, h2)
-    # I = int ds / T = (1/w)[asinh(B/h) - asinh(A/h)] = (1/w) ln((T_B + B)/(T_A + A))
-    branch = xa + xb >= 0
-    ep = w * ds * (pa + pb) / ssum / pa
-    em = -w * ds * (ma + mb) / ssum / np.where(branch, 1.0, ma)
-    integral = np.where(branch, ds * (pa + pb) / ssum / pa * _phi(np.where(branch, ep, 0.0)),
-                        ds * (ma + mb) / ssum / np.where(branch, 1.0, ma)
-                        * _phi(np.where(branch, 0.0, em)))
-    # int X / T ds = (T_B - T_A)/w
-    xt = ds * (xa + xb) / ssum
-    lin = ds * inv_ea
-    dr = np.empty_like(a)
-    dr[:, 0] = -ax * (lin + integral)
-    dr[:, 1] = -ay * (lin + integral)
-    dr[:, 2] = -0.5 * (xa + xb) * lin - xt
-    # energy: int T ds = 1/2 [ds M + h^2 I], M = (B T_B - A T_A)/(B - A)
-    mean = 0.5 * (ssum + (xa + xb) ** 2 / ssum)
-    energy = float(np.sum(0.5 * (ds * mean + h2 * integral)
-                          + 0.5 * inv_ea * (h2 * ds + ds * (xa * xa + xa * xb + xb * xb) / 3.0)))
-    if not derivatives:
-        return dr, None, energy
-    # int ds/T^3 and int X/T^3 ds
-    k3 = 2.0 * ssum * ds / ((pa + mb) * (ma + pb) * ta * tb)
-    n3 = ds * (xa + xb) / (ssum * ta * tb)
-    jac = np.empty((3, 3))
-    base = -(lin + integral)
-    jac[0, 0] = np.sum(base + ax * ax * k3)
-    jac[1, 1] = np.sum(base + ay * ay * k3)
-    jac[0, 1] = jac[1, 0] = np.sum(ax * ay * k3)
-    jac[0, 2] = jac[2, 0] = np.sum(ax * n3)
-    jac[1, 2] = jac[2, 1] = np.sum(ay * n3)
-    jac[2, 2] = np.sum(-lin - h2 * k3)
-    return dr, jac, energy
-
-
-# --------------------------------------------------------------------------------------
-# Point-load problem: Newton on V (2.34)-(2.45)
-# --------------------------------------------------------------------------------------
-
-@dataclass
-class _Inner:
-    """One exact solve for given point loads (Huang's frame inside, project frame out)."""
-
-    v: np.ndarray
-    length: float
-    breaks: np.ndarray  # piece boundaries, (M + 1,)
-    cum: np.ndarray  # (M, 3) loads before each piece, Huang frame
-    jump_start: np.ndarray  # load applied at s = 0 (Huang frame)
-    jump_end: np.ndarray  # load applied at s = L (Huang frame)
-    start: np.ndarray  # position of end_a, project frame
-    dr: np.ndarray  # (M, 3), Huang frame
-    iterations: int
-    residual: float  # relative end-position mismatch
-    converged: bool
-    message: str
-    extra: dict[str, Any] = field(default_factory=dict)
-
-    def nodes(self) -> np.ndarray:
-        """Positions of the piece boundaries, project frame, (M + 1, 3)."""
-        steps = self.dr * _FLIP
-        return self.start[None, :] + np.vstack([np.zeros(3), np.cumsum(steps, axis=0)])
-
-    def tension_at_end(self, at_b: bool, w: float) -> np.ndarray:
-        """Tension vector at s = L (after any load there) or at s = 0 (before), project."""
-        if at_b:
-            return -_FLIP * (self.v + self.cum[-1] + self.jump_end
-                             + w * self.length * np.array([0.0, 0.0, 1.0]))
-        return -_FLIP * self.v
-
-
-def _direct_components(scene: Scene, total_load: np.ndarray, w: float, length: float
-                       ) -> tuple[np.ndarray, np.ndarray]:
-    """V components fixed by a prescribed force (Huang frame) and the Newton mask.
-
-    end_a force: the support passes F_a to the cable, V_i = F_a,i. end_b force: (2.40)-(2.42)
-    (and (2.43)-(2.44)) with the tension T(L) = F_b (Huang 1992, (2.9)-(2.11)).
-    """
-    v = np.zeros(3)
-    unknown = np.zeros(3, dtype=bool)
-    weight = np.array([0.0, 0.0, w * length])
-    for i in range(3):
-        fa, fb = scene.end_a.force[i], scene.end_b.force[i]
-        if fa is not None:
-            v[i] = _FLIP[i] * fa
-        elif fb is not None:
-            v[i] = -_FLIP[i] * fb - total_load[i] - weight[i]
-        else:
-            unknown[i] = True
-    return v, unknown
-
-
-def _guess_v(scene: Scene, length: float) -> np.ndarray:
-    """Drag-free starting V (Huang frame) from a catenary/parabola estimate (Huang 1992, 2.5)."""
-    w = scene.cable.weight_in_water
-    pa, pb = scene.end_a.position, scene.end_b.position
-    # chord over the components fixed at both ends (the others are not Newton unknowns)
-    d = np.array([b - a if a is not None and b is not None else 0.0
-                  for a, b in zip(pa, pb, strict=True)])
-    chord = float(np.linalg.norm(d))
-    dh = math.hypot(d[0], d[1])
-    eh = d[:2] / dh if dh > 0 else np.array([1.0, 0.0])
-    ea = scene.cable.axial_stiffness
-    if chord > 0 and length <= chord and math.isfinite(ea):
-        t0 = (ea * (chord / length - 1.0) + abs(w) * length) * d / chord
-        t0[2] -= 0.5 * w * length
-    elif dh > 1e-9 * max(chord, 1.0):
-        ratio = (length * length - d[2] ** 2) / (dh * dh) - 1.0
-        lam = math.sqrt(3.0 * ratio) if ratio > 0 else 0.2
-        hor = max(abs(w) * dh / (2.0 * max(lam, 1e-3)), 1e-6 * max(abs(w) * length, 1.0))
-        t0 = np.array([hor * eh[0], hor * eh[1], hor * d[2] / dh - 0.5 * w * length])
-    else:
-        t0 = np.array([0.0, 0.0, 0.5 * abs(w) * length * (1.0 if d[2] >= 0 else -1.0)
-                       + (w * length * 0.5)])
-        if t0[2] == 0.0:
-            t0[2] = max(abs(w) * length, 1.0)
-    return -_FLIP * t0
-
-
-def _pieces(length: float, load_s: np.ndarray, nodes_s: np.ndarray) -> np.ndarray:
-    """Sorted piece boundaries: 0, L, the nodes and the interior load positions."""
-    pts = np.concatenate([[0.0, length], nodes_s, load_s])
-    pts = pts[(pts >= 0.0) & (pts <= length)]
-    pts = np.unique(pts)
-    keep = np.concatenate([[True], np.diff(pts) > 1e-12 * length])
-    return pts[keep]
-
-
-def _inner_solve(scene: Scene, length: float, load_s: np.ndarray, load_f: np.ndarray,
-                 v_guess: np.ndarray | None, nodes_s: np.ndarray | None = None) -> _Inner:
-    """Solve the cable under given point loads exactly (Huang 1992, (2.24)-(2.45)).
-
-    ``load_s`` (m) and ``load_f`` (N, Huang frame, shape (K, 3)) are the point loads;
-    ``nodes_s`` are extra piece boundaries (segment nodes, no load).
-    """
+def _line(scene: Scene, length: float, load_s: np.ndarray, load_f: np.ndarray,
+          v_guess: np.ndarray | None, nodes_s: np.ndarray | None = None) -> CatenaryShape:
+    """The cable of ``scene`` at unstretched length ``length`` under point loads (s in m,
+    F in N, project frame), exactly (Huang 1992, (2.24)-(2.45):
+    :func:`cable_ocp.statics.catenary.solve_line`); ``nodes_s`` are extra piece
+    boundaries (segment nodes, no load)."""
     cab = scene.cable
-    w = cab.weight_in_water
-    inv_ea = 1.0 / cab.axial_stiffness if cab.elastic else 0.0
-    tol = scene.solver.tolerance
-    nodes_s = np.zeros(0) if nodes_s is None else nodes_s
-    breaks = _pieces(length, load_s, nodes_s)
-    s0, ds = breaks[:-1], np.diff(breaks)
-    eps = 1e-12 * length
-    at_start = load_s <= eps
-    at_end = load_s >= length - eps
-    # cumulative loads: a load at s_k acts on every piece starting at or after s_k
-    # (loads at s = 0 act from the first piece on, as F^0 in (2.1)-(2.3))
-    cum = np.zeros((s0.size, 3))
-    for k in np.nonzero(~at_end)[0]:
-        # loads are piece boundaries by construction: the piece that starts there
-        j = 0 if at_start[k] else int(np.argmin(np.abs(s0 - load_s[k])))
-        cum[j:] += load_f[k]
-    jump_start = load_f[at_start].sum(axis=0) if np.any(at_start) else np.zeros(3)
-    jump_end = load_f[at_end].sum(axis=0) if np.any(at_end) else np.zeros(3)
-    total = load_f.sum(axis=0) if load_f.size else np.zeros(3)
-    v_known, unknown = _direct_components(scene, total, w, length)
-
-    # targets of the Newton equations (2.34)-(2.36)/(2.45), Huang frame
-    pa, pb = scene.end_a.position, scene.end_b.position
-    target = np.array([_FLIP[i] * (pb[i] - pa[i]) for i in range(3) if unknown[i]])
-    scale = max(length, float(np.linalg.norm(target)) if target.size else 0.0, 1e-300)
-
-    def evaluate(v: np.ndarray, deriv: bool = True
-                 ) -> tuple[np.ndarray, np.ndarray | None, float, np.ndarray]:
-        dr, jac, energy = _piece_terms(v, s0, ds, cum, w, inv_ea, deriv)
-        tot = dr.sum(axis=0)
-        return dr, jac, energy, tot[unknown] - target
-
-    v = v_known.copy()
-    if np.any(unknown):
-        g = _guess_v(scene, length) if v_guess is None else np.asarray(v_guess, float)
-        v[unknown] = g[unknown]
-    it, converged, msg = 0, False, ""
-    dr, jac, energy, res = evaluate(v)
-    if not np.any(unknown):
-        converged = bool(np.all(np.isfinite(dr)))
-        msg = "direct (2.40)-(2.42)" if converged else "non-finite profile (zero tension?)"
-    else:
-        for it in range(_MAX_NEWTON + 1):  # noqa: B007 - it is reported
-            if not (np.all(np.isfinite(res)) and np.isfinite(energy)):
-                msg = "non-finite Newton iterate (zero tension in a piece?)"
-                break
-            if np.max(np.abs(res)) <= tol * scale:
-                converged, msg = True, f"Newton-Raphson converged in {it} steps"
-                break
-            if it == _MAX_NEWTON:
-                msg = f"Newton-Raphson: no convergence in {_MAX_NEWTON} steps"
-                break
-            juu = jac[np.ix_(unknown, unknown)]
-            try:
-                step = -np.linalg.solve(juu, res)
-            except np.linalg.LinAlgError:
-                msg = "singular Newton matrix"
-                break
-            merit0 = energy + target @ v[unknown]
-            slope = -res @ step  # grad(merit) . step
-            alpha, accepted = 1.0, False
-            while alpha >= 1e-12:
-                vt = v.copy()
-                vt[unknown] += alpha * step
-                drt, jact, energyt, rest = evaluate(vt)
-                merit = energyt + target @ vt[unknown]
-                # Armijo on the convex merit; near the solution, where the merit changes
-                # by rounding only, a smaller residual is accepted instead
-                if np.all(np.isfinite(rest)) and np.isfinite(energyt) and (
-                        merit <= merit0 + 1e-4 * alpha * slope
-                        or (merit <= merit0 + 1e-12 * abs(merit0)
-                            and np.linalg.norm(rest) < np.linalg.norm(res))):
-                    accepted = True
-                    break
-                alpha *= 0.5
-            if not accepted:
-                msg = "Newton-Raphson line search failed"
-                break
-            v, dr, jac, energy, res = vt, drt, jact, energyt, rest
-    # position of end_a: given where fixed; else from end_b and the increments
-    tot = dr.sum(axis=0) * _FLIP
-    start = np.array([pa[i] if pa[i] is not None else pb[i] - tot[i] for i in range(3)])
-    resid = float(np.max(np.abs(res)) / scale) if res.size else 0.0
-    if not np.all(np.isfinite(start)):
-        converged = False
-    return _Inner(v=v, length=length, breaks=breaks, cum=cum, jump_start=jump_start,
-                  jump_end=jump_end, start=start, dr=dr, iterations=it, residual=resid,
-                  converged=converged, message=msg)
-
-
-def _lowest_z(scene: Scene, inner: _Inner) -> float:
-    """Exact lowest height of the profile, m (project frame).
-
-    Inside a piece the cable is lowest where the vertical tension component changes sign
-    (Huang's X = a_z + w s goes from < 0 to > 0); there the piece is cut and its exact
-    increment evaluated.
-    """
-    w = scene.cable.weight_in_water
-    nodes = inner.nodes()
-    low = float(np.min(nodes[:, 2]))
-    if w <= 0:
-        return low
-    inv_ea = 1.0 / scene.cable.axial_stiffness if scene.cable.elastic else 0.0
-    s0, ds = inner.breaks[:-1], np.diff(inner.breaks)
-    xa = inner.v[2] + inner.cum[:, 2] + w * s0
-    xb = xa + w * ds
-    cut = (xa < 0) & (xb > 0)
-    if np.any(cut):
-        dr, _, _ = _piece_terms(inner.v, s0[cut], -xa[cut] / w, inner.cum[cut], w, inv_ea,
-                                derivatives=False)
-        low = min(low, float(np.min(nodes[:-1][cut, 2] - dr[:, 2])))
-    return low
-
-
-def _profile(inner: _Inner, w: float) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
-    """s, positions and tension vectors (project frame) at every piece's start and end."""
-    br = inner.breaks
-    nodes = inner.nodes()
-    m = br.size - 1
-    ez = np.array([0.0, 0.0, 1.0])
-    s_list, r_list, t_list = [], [], []
-    if np.any(inner.jump_start):
-        s_list.append(0.0)
-        r_list.append(nodes[0])
-        t_list.append(-_FLIP * inner.v)
-    for j in range(m):
-        a = inner.v + inner.cum[j]
-        for k in (j, j + 1):
-            s_list.append(br[k])
-            r_list.append(nodes[k])
-            t_list.append(-_FLIP * (a + w * br[k] * ez))
-    if np.any(inner.jump_end):
-        s_list.append(br[-1])
-        r_list.append(nodes[-1])
-        t_list.append(inner.tension_at_end(True, w))
-    s = np.asarray(s_list)
-    r = np.asarray(r_list)
-    t = np.asarray(t_list)
-    # drop duplicates where nothing jumps
-    keep = np.ones(s.size, dtype=bool)
-    for i in range(1, s.size):
-        if s[i] == s[i - 1] and np.array_equal(t[i], t[i - 1]):
-            keep[i] = False
-    return s[keep], r[keep], t[keep]
-
-
-def _end_mismatch(scene: Scene, inner: _Inner) -> float:
-    """Largest relative mismatch of the end conditions (positions / L, forces / |T|max)."""
-    w = scene.cable.weight_in_water
-    nodes = inner.nodes()
-    ta = inner.tension_at_end(False, w)
-    tb = inner.tension_at_end(True, w)
-    fscale = max(float(np.linalg.norm(ta)), float(np.linalg.norm(tb)), 1e-300)
-    out = 0.0
-    for end, pos, t, sign in ((scene.end_a, nodes[0], ta, -1.0), (scene.end_b, nodes[-1], tb, 1.0)):
-        for i in range(3):
-            if end.position[i] is not None:
-                out = max(out, abs(pos[i] - end.position[i]) / inner.length)
-            else:
-                out = max(out, abs(t[i] - sign * end.force[i]) / fscale)
-        if end.tension is not None:
-            out = max(out, abs(float(np.linalg.norm(t)) - end.tension) / end.tension)
-    return out
+    return solve_line(length, cab.weight_in_water, cab.axial_stiffness, scene.end_a,
+                      scene.end_b, load_s, load_f, tolerance=scene.solver.tolerance,
+                      nodes_s=nodes_s, v_guess=v_guess)
 
 
 def _normalise_loads(point_loads: _PointLoads | None) -> tuple[np.ndarray, np.ndarray]:
-    """(s, F) list in the project frame -> arrays (s, F in Huang's frame)."""
+    """(s, F) list in the project frame -> arrays (s in m, F in N, project frame)."""
     if not point_loads:
         return np.zeros(0), np.zeros((0, 3))
     s, f = [], []
@@ -503,7 +133,7 @@ def _normalise_loads(point_loads: _PointLoads | None) -> tuple[np.ndarray, np.nd
         if sk < 0:
             raise CableOCPError(f"point_loads[{k}]: s = {sk} m must be >= 0")
         s.append(sk)
-        f.append(_FLIP * np.asarray(fk))
+        f.append(np.asarray(fk))
     return np.asarray(s), np.asarray(f)
 
 
@@ -603,17 +233,16 @@ def solve_point_loads(scene: Scene, point_loads: _PointLoads | None = None, *,
     _check_scene(scene)
     t0 = time.perf_counter()
     load_s, load_f = _normalise_loads(point_loads)
-    w = scene.cable.weight_in_water
     at_b = scene.end_b.tension is not None
     evals, how = 1, "given length"
 
-    def run(ell: float, prev: _Inner | None) -> tuple[_Inner | None, float]:
+    def run(ell: float, prev: CatenaryShape | None) -> tuple[CatenaryShape | None, float]:
         guess = prev.v if prev is not None else (None if v_guess is None else np.asarray(v_guess))
-        inner = _inner_solve(scene, ell, load_s, load_f, guess,
+        inner = _line(scene, ell, load_s, load_f, guess,
                              np.linspace(0.0, ell, scene.solver.intervals + 1))
         if not inner.converged:
             return None, math.nan
-        return inner, float(np.linalg.norm(inner.tension_at_end(at_b, w)))
+        return inner, float(np.linalg.norm(inner.tension_at_end(at_b)))
 
     if length is None and scene.free_length:
         inner, ell, evals, how = _find_length(scene, run, free_length_guess(scene))
@@ -621,7 +250,7 @@ def solve_point_loads(scene: Scene, point_loads: _PointLoads | None = None, *,
             return _failed(scene, "length_root_failed", how, t0)
     else:
         ell = float(length if length is not None else scene.cable.length)
-        inner = _inner_solve(scene, ell, load_s, load_f,
+        inner = _line(scene, ell, load_s, load_f,
                              None if v_guess is None else np.asarray(v_guess, float),
                              np.linspace(0.0, ell, scene.solver.intervals + 1))
     wall = time.perf_counter() - t0
@@ -639,16 +268,15 @@ def _failed(scene: Scene, status: str, msg: str, t0: float) -> StaticsSolution:
                            constraint_violation=math.inf, diagnostics={"method": METHOD})
 
 
-def _make_solution(scene: Scene, inner: _Inner, wall: float, iterations: int, ok: bool,
+def _make_solution(scene: Scene, inner: CatenaryShape, wall: float, iterations: int, ok: bool,
                    msg: str, diag: dict[str, Any], status_fail: str = "failed"
                    ) -> StaticsSolution:
-    w = scene.cable.weight_in_water
-    s, r, t = _profile(inner, w)
-    viol = _end_mismatch(scene, inner)
+    s, r, t = inner.profile()
+    viol = inner.end_mismatch()
     tol = scene.solver.tolerance
     finite = bool(np.all(np.isfinite(r)) and np.all(np.isfinite(t)))
     ends_ok = viol <= 10.0 * tol
-    min_z = _lowest_z(scene, inner) if finite else math.nan
+    min_z = inner.lowest_z() if finite else math.nan
     below = finite and min_z < -1e-6 * inner.length
     if ok and finite and ends_ok and below:
         # no seabed contact in Huang (1992) ch. 2: a profile through the seabed is not an answer
@@ -707,7 +335,7 @@ def _drag_loads(scene: Scene, nodes: np.ndarray, factor: float) -> np.ndarray:
 class _DragState:
     """Converged (or last) state of the outer iteration at one length."""
 
-    inner: _Inner
+    inner: CatenaryShape
     loads: np.ndarray  # (N, 3) project frame, the loads the inner solve used
     outer_iterations: int
     newton_iterations: int
@@ -738,8 +366,8 @@ def _outer(scene: Scene, length: float, n: int, placement: str, factor: float,
     history: list[float] = []
     inner = None
     for k in range(1, max_it + 1):
-        all_f = np.vstack([loads * _FLIP, extra_f]) if extra_f.size else loads * _FLIP
-        inner = _inner_solve(scene, length, all_s, all_f, v, nodes_s)
+        all_f = np.vstack([loads, extra_f]) if extra_f.size else loads
+        inner = _line(scene, length, all_s, all_f, v, nodes_s)
         newton += inner.iterations
         if not inner.converged:
             return _DragState(inner, loads, k, newton, [], math.inf, False, "newton_failed",
@@ -749,7 +377,7 @@ def _outer(scene: Scene, length: float, n: int, placement: str, factor: float,
         new = _drag_loads(scene, nodes[node_idx], factor)
         w = scene.cable.weight_in_water
         fscale = max(float(np.max(np.abs(inner.v))),
-                     float(np.max(np.abs(inner.tension_at_end(True, w)))),
+                     float(np.max(np.abs(inner.tension_at_end(True)))),
                      float(np.sum(np.linalg.norm(new, axis=1))), abs(w) * length, 1e-300)
         change = float(np.sum(np.linalg.norm(new - loads, axis=1))) / fscale
         history.append(change)
@@ -849,7 +477,7 @@ def _drag_solve(scene: Scene, length: float, n: int, placement: str,
                 warm_v: np.ndarray | None = None, max_outer: int = 1000) -> _DragState:
     """Drag iteration at one length, with the current ramp (Huang 1992, section 2.5)."""
     if scene.environment.current is None:
-        inner = _inner_solve(scene, length, extra_s, extra_f,
+        inner = _line(scene, length, extra_s, extra_f,
                              None if start is None else start.inner.v,
                              _node_s(length, n, placement)[0])
         return _DragState(inner, np.zeros((n, 3)), 0, inner.iterations, [], 0.0,
@@ -935,7 +563,6 @@ def solve_huang(scene: Scene, warm_start: StaticsSolution | None = None, *,
     _ramp_plans(scene, current_ramp)  # validates it
     extra_s, extra_f = _normalise_loads(point_loads)
     t0 = time.perf_counter()
-    w = scene.cable.weight_in_water
     at_b = scene.end_b.tension is not None
 
     warm_nodes = warm_v = None
@@ -945,7 +572,7 @@ def solve_huang(scene: Scene, warm_start: StaticsSolution | None = None, *,
         sig = np.linspace(0.0, 1.0, n + 1)
         warm_nodes = np.stack([np.interp(sig, src, warm_start.position[idx, k])
                                for k in range(3)], axis=1)
-        warm_v = -_FLIP * warm_start.tension_vector[0]
+        warm_v = -FLIP * warm_start.tension_vector[0]
     else:
         warm_len = None
 
@@ -961,7 +588,7 @@ def solve_huang(scene: Scene, warm_start: StaticsSolution | None = None, *,
         if not st.ok:
             run.last_fail = st  # type: ignore[attr-defined]
             return None, math.nan
-        return st, float(np.linalg.norm(st.inner.tension_at_end(at_b, w)))
+        return st, float(np.linalg.norm(st.inner.tension_at_end(at_b)))
 
     if scene.free_length:
         guess = warm_len if warm_len is not None else free_length_guess(scene)
@@ -1022,6 +649,13 @@ def solve(scene: Scene, warm_start: StaticsSolution | None = None) -> StaticsSol
     reach the accuracy (first-order lumping needs about N = 40 x (estimate at 40 /
     accuracy) segments: ~10^5 for 1e-6 on De Zoysa). A result above the accuracy is
     ``"inaccurate"`` (:func:`cable_ocp.baselines.common.refine_to_accuracy`).
+
+    Parameters
+    ----------
+    scene : Scene
+        The statics problem (project frame).
+    warm_start : StaticsSolution, optional
+        A neighbouring solution (see :func:`solve_huang`).
     """
     cache = MeshCache(lambda n, warm: solve_huang(scene, warm, intervals=n))
 

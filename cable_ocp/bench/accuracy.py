@@ -45,7 +45,8 @@ from cable_ocp.bench.common import (
     timed_solve_cpu,
 )
 from cable_ocp.scene import Scene, load_scene
-from cable_ocp.statics.solver import StaticsSolver, solve
+from cable_ocp.statics.line_solver import StaticsSolver
+from cable_ocp.statics.solver import solve
 
 ROOT = Path(__file__).resolve().parents[2] / "problems"
 
@@ -213,7 +214,7 @@ def _second_process(source: tuple[str | Path, dict[str, Any]], overrides: list[d
 
 def _child(args: dict[str, Any]) -> None:
     """The second process: each variant timed with the functions from the cache."""
-    from cable_ocp.statics.solver import StaticsSolver
+    from cable_ocp.statics.line_solver import StaticsSolver
 
     base = load_scene(args["path"], args["overrides"])
     scenes = [base.with_overrides(extra) for extra in args["variants"]]

@@ -31,7 +31,8 @@ from cable_ocp.bench.common import cache_folder
 from cable_ocp.numerics import sparse_lu
 from cable_ocp.scene import Scene, load_scene
 from cable_ocp.statics.formulation import Formulation
-from cable_ocp.statics.solver import StaticsSolver, sweep
+from cable_ocp.statics.line_solver import StaticsSolver
+from cable_ocp.statics.solver import sweep
 
 DEFAULT_SCENE = Path(__file__).resolve().parents[2] / "problems" / "dezoysa_sea_buggy.toml"
 
@@ -275,7 +276,7 @@ def run(scene_path: str | Path = DEFAULT_SCENE, angles: np.ndarray | None = None
 
 def _child(args: dict[str, Any]) -> None:
     """The second process: the sweep, its functions loaded from the cache (prints JSON)."""
-    from cable_ocp.statics.solver import StaticsSolver as Solver
+    from cable_ocp.statics.line_solver import StaticsSolver as Solver
 
     base = load_scene(args["scene"], {"solver.intervals": args["intervals"],
                                       "solver.compile": args.get("compile", "never")})

@@ -2,7 +2,8 @@
 
 The mesh has N intervals (uniform, or with points on the drag's kinks); in each, the state
 is a Lagrange polynomial of degree d through the interval start and d collocation points
-(Gauss-Legendre or Gauss-Radau, ``casadi.collocation_points``). Unknowns, in order::
+(Gauss-Legendre or Gauss-Radau, :func:`cable_ocp.numerics.quadrature.collocation_points`).
+Unknowns, in order::
 
     w = [x_0, x_0^1 .. x_0^d, x_1, x_1^1 .. x_{N-1}^d, x_N, (lam if the length is free)]
 
@@ -32,6 +33,7 @@ from dataclasses import dataclass, replace
 import casadi as ca
 import numpy as np
 
+from cable_ocp.numerics.quadrature import collocation_points
 from cable_ocp.scene import Scene
 from cable_ocp.statics.formulation import (
     NX,
@@ -262,7 +264,7 @@ class Collocation:
     def __init__(self, form: Formulation, intervals: int, degree: int, scheme: str,
                  grounded: bool = False):
         self.form = form
-        tau = ca.collocation_points(degree, scheme)
+        tau = collocation_points(degree, scheme)
         segs: tuple[int, ...] = ()
         bounds: tuple[float, ...] = ()
         if form.segmented:
@@ -581,8 +583,16 @@ class Collocation:
         return self._with_jacobian(f"joint_{k}", zs, p, res)
 
     # -- arc length -----------------------------------------------------------------------
-    def _segment_s(self, length: float, g: float) -> list[tuple[float, float]]:
-        """Unstretched arc length (m) at the start and end of every collocated segment."""
+    def segment_s(self, length: float, g: float) -> list[tuple[float, float]]:
+        """Unstretched arc length (m) at the start and end of every collocated segment.
+
+        Parameters
+        ----------
+        length : float
+            Total unstretched length, m.
+        g : float
+            Grounded length at end_a, m (the first segment starts there).
+        """
         if not self.mesh.segments:
             return [(g, length)]
         lens = [c.length for c in self.form.lines]
@@ -596,7 +606,7 @@ class Collocation:
             return g + sig * (length - g)
         offs = self.mesh.segment_offsets()
         out = np.empty_like(sig)
-        for k, (s0, s1) in enumerate(self._segment_s(length, g)):
+        for k, (s0, s1) in enumerate(self.segment_s(length, g)):
             b0, b1 = self.mesh.bounds[k], self.mesh.bounds[k + 1]
             out[offs[k]: offs[k + 1]] = s0 + (sig[offs[k]: offs[k + 1]] - b0) / (b1 - b0) \
                 * (s1 - s0)
@@ -607,7 +617,7 @@ class Collocation:
         s = np.asarray(s, dtype=float)
         if not self.mesh.segments:
             return (s - g) / (length - g)
-        ss = self._segment_s(length, g)
+        ss = self.segment_s(length, g)
         ends = np.array([e for _, e in ss])
         k = np.clip(np.searchsorted(ends, s, side="left"), 0, len(ss) - 1)
         s0 = np.array([a for a, _ in ss])[k]

@@ -12,75 +12,34 @@ Returned as node arrays in physical units, so they feed any transcription.
   T(s) = T_end - w (s_end - s) e_z, integrated for the positions (Huang (1992), eqs (2.40)-(2.42)).
 * Otherwise (mixed ends), or when the above degenerate: a straight line with the
   tension of a vertically hanging cable.
+* An anchored end_a with seabed contact: the catenary with touchdown
+  (:func:`touchdown_guess`); a towed line with bending (end_b free under a load): a
+  straight line downstream (:func:`towed_guess`); a multi-segment line: the guesses of
+  its mean cable (:func:`mean_cable_scene`).
+
+The catenary formulas themselves (the parameter through two points, the vertex, the nodes,
+the touchdown catenary) are those of :mod:`cable_ocp.statics.catenary`.
 """
 
 from __future__ import annotations
 
 import math
+from dataclasses import replace
 
 import numpy as np
 from scipy.integrate import cumulative_trapezoid
 from scipy.optimize import brentq
 
+from cable_ocp.physics.drag import line_drag_factors
 from cable_ocp.scene import Scene
-
-
-def _catenary_fixed(h: float, v: float, length: float) -> float:
-    """Catenary parameter a (m) with span h, rise v and arc length L (L > chord)."""
-    target = math.sqrt(max(length * length - v * v, 1e-300))
-
-    def fun(log_a: float) -> float:
-        a = math.exp(log_a)
-        arg = h / (2 * a)
-        if arg > 700:
-            return math.inf
-        return math.log(2 * a * math.sinh(arg)) - math.log(target)
-
-    lo, hi = math.log(h * 1e-4 + 1e-12), math.log(h * 1e6 + 1e-12)
-    return math.exp(brentq(fun, lo, hi, xtol=1e-14))
-
-
-def _log_sinhc(u: float) -> float:
-    """log(sinh(u)/u) for u > 0: for u < 1 as log1p of the series of (sinh(u) - u)/u,
-    which keeps full relative accuracy near a taut cable; else u + log1p(-exp(-2u)) -
-    log(2u), which does not overflow."""
-    if u >= 1.0:
-        return u + math.log1p(-math.exp(-2.0 * u)) - math.log(2.0 * u)
-    term, series = u, 0.0
-    for k in range(1, 12):
-        term *= u * u / ((2 * k) * (2 * k + 1))
-        series += term
-    return math.log1p(series / u)
-
-
-def _catenary_parameter(h: float, v: float, length: float) -> float:
-    """:func:`_catenary_fixed` by Newton's method on phi(u) = log(sinh(u)/u) -
-    log(sqrt(L^2 - v^2)/h), u = h / (2a): phi is increasing and convex for u > 0, and the
-    start lies above the root, so the iterates fall monotonically onto it (to roundoff,
-    about 20 times faster than the bracketing search)."""
-    log_r = math.log(max(math.sqrt(max(length * length - v * v, 1e-300)) / h, 1.0 + 1e-15))
-    # above the root: sinh(u)/u >= 1 + u^2/6, and sinh(u)/u >= r at u = 2 log(r) + 10
-    u = min(math.sqrt(6.0 * math.expm1(min(log_r, 700.0))), 2.0 * log_r + 10.0)
-    done = False
-    for _ in range(200):
-        step = (_log_sinhc(u) - log_r) / (1.0 / math.tanh(u) - 1.0 / u)
-        u -= step
-        if done:  # one more step after 1e-12: quadratic convergence reaches roundoff
-            break
-        done = abs(step) <= 1e-12 * u
-    return h / (2.0 * u)
-
-
-def _catenary_nodes(a: float, h: float, v: float, length: float, s: np.ndarray,
-                    w: float) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
-    """Horizontal coordinate X(s), height Z(s) (relative to end a) and tension (H, V)."""
-    x0 = h / 2 - a * math.asinh(v / (2 * a * math.sinh(h / (2 * a))))
-    s_a = a * math.sinh(-x0 / a)  # arc-length coordinate of end a from the vertex
-    xs = x0 + a * np.arcsinh((s + s_a) / a)
-    zs = a * np.cosh((xs - x0) / a) - a * math.cosh(-x0 / a)
-    th = np.full_like(s, w * a)
-    tv = w * (s + s_a)
-    return xs, zs, np.stack([th, tv], axis=1)
+from cable_ocp.statics.catenary import (
+    catenary_nodes,
+    catenary_parameter,
+    catenary_parameter_bracketed,
+    catenary_vertex,
+    touchdown_catenary,
+    vertex_nodes,
+)
 
 
 def _plane(scene: Scene) -> tuple[np.ndarray, np.ndarray, float, float]:
@@ -99,9 +58,9 @@ def _catenary_guess(scene: Scene, sigma: np.ndarray, length: float
     if h < 1e-6 * length or abs(w) < 1e-12 or length <= math.hypot(h, v) * (1 + 1e-9):
         return None
     flip = -1.0 if w < 0 else 1.0
-    a = _catenary_fixed(h, flip * v, length)
+    a = catenary_parameter_bracketed(h, flip * v, length)
     s = sigma * length
-    xs, zs, ht = _catenary_nodes(a, h, flip * v, length, s, abs(w))
+    xs, zs, ht = catenary_nodes(a, h, flip * v, s, abs(w))
     r = ra + np.outer(xs, eh) + np.outer(flip * zs, [0, 0, 1.0])
     t = np.outer(ht[:, 0], eh) + np.outer(flip * ht[:, 1], [0, 0, 1.0])
     return r, t
@@ -119,8 +78,8 @@ def free_length_guess(scene: Scene) -> float:
     flip = -1.0 if scene.cable.weight_in_water < 0 else 1.0
 
     def end_tension(length: float) -> float:
-        a = _catenary_parameter(h, flip * v, length)
-        x0 = h / 2 - a * math.asinh(flip * v / (2 * a * math.sinh(h / (2 * a))))
+        a = catenary_parameter(h, flip * v, length)
+        x0 = catenary_vertex(a, h, flip * v)
         xe = h if at_b else 0.0
         return w * a * math.cosh((xe - x0) / a)
 
@@ -198,6 +157,16 @@ def initial_guess(scene: Scene, sigma: np.ndarray, kind: str = "catenary"
     """Guess positions (n, 3) [m], tensions (n, 3) [N] and length [m] at ``sigma`` nodes.
 
     Returns the name of the guess actually used as the last element.
+
+    Parameters
+    ----------
+    scene : Scene
+        The statics scene (a single uniform cable).
+    sigma : ndarray
+        Node coordinates along the line, 0 at end_a and 1 at end_b.
+    kind : {"catenary", "straight"}
+        ``solver.initial_guess``: the drag-free catenary (or hanging line) where one
+        exists, else a straight line; or the straight line.
     """
     length = scene.cable.length if scene.cable.length is not None else free_length_guess(scene)
     if kind == "catenary":
@@ -220,6 +189,13 @@ def touchdown_guess(scene: Scene, sigma: np.ndarray
     for a rise h; H solves L - L_s + x_s = X (the horizontal distance). Returns the
     suspended part's nodes at ``sigma`` (0 = touchdown point), the total length and g;
     None when no such catenary exists (the cable is too short to touch).
+
+    Parameters
+    ----------
+    scene : Scene
+        The statics scene (end_a anchored on a horizontal seabed, w > 0, length known).
+    sigma : ndarray
+        Node coordinates of the suspended part, 0 at touchdown and 1 at end_b.
     """
     w = scene.cable.weight_in_water
     length = scene.cable.length
@@ -228,23 +204,74 @@ def touchdown_guess(scene: Scene, sigma: np.ndarray
     ra, eh, x_tot, h = _plane(scene)
     if h <= 0:
         return None
-
-    def excess(log_a: float) -> float:
-        a = math.exp(log_a)
-        ls = math.sqrt(h * h + 2 * h * a)
-        return (length - ls + a * math.acosh(1 + h / a)) - x_tot
-
-    lo, hi = math.log(1e-6 * h), math.log(1e6 * max(x_tot, h))
-    if excess(lo) * excess(hi) > 0:
+    found = touchdown_catenary(h, x_tot, length)
+    if found is None:
         return None
-    a = math.exp(brentq(excess, lo, hi, xtol=1e-12))
-    ls = math.sqrt(h * h + 2 * h * a)
-    if ls >= length:
-        return None
+    a, ls = found
     g = length - ls
     s = sigma * ls
-    xs = a * np.arcsinh(s / a)
-    zs = a * (np.sqrt(1 + (s / a) ** 2) - 1)
+    xs, zs, ht = vertex_nodes(a, s, w)
     r = ra + np.outer(g + xs, eh) + np.outer(zs, [0, 0, 1.0])
-    t = np.outer(np.full_like(s, w * a), eh) + np.outer(w * s, [0, 0, 1.0])
+    t = np.outer(ht[:, 0], eh) + np.outer(ht[:, 1], [0, 0, 1.0])
     return r, t, length, g
+
+
+def mean_cable_scene(scene: Scene) -> Scene:
+    """A single-cable scene with the line's mean weight per length, the bodies' vertical
+    loads spread over it (for the drag-free initial guesses of a multi-segment line)."""
+    total = sum(c.length for c in scene.segments)  # type: ignore[misc]
+    weight = sum(c.weight_in_water * c.length for c in scene.segments)  # type: ignore[operator]
+    weight -= sum(b.static_load[2] for b in scene.bodies)
+    cable = replace(scene.cable, weight_in_water=weight / total)
+    return replace(scene, cable=cable, segments=(), segment_intervals=(), bodies=())
+
+
+def towed_guess(scene: Scene, s: np.ndarray) -> tuple[np.ndarray, np.ndarray, float] | None:
+    """Guess for a towed line (end_a fixed, end_b free under a given load, a uniform
+    current in the x-z plane): a straight line from end_a downstream, sloping down at
+    0.1 rad, with the tension of the tangential drag and the end load accumulated from
+    end_b; in still water a line hanging straight down. None when the scene is not of
+    that kind.
+
+    Parameters
+    ----------
+    scene : Scene
+        The statics scene (segments, ends, current).
+    s : ndarray
+        Unstretched arc lengths of the nodes, m.
+
+    Returns
+    -------
+    tuple or None
+        Positions (n, 3) in m, tension vectors (n, 3) in N and the total length in m.
+    """
+    cur, a, b = scene.environment.current, scene.end_a, scene.end_b
+    if not all(a.fixed_mask) or any(b.fixed_mask):
+        return None
+    lens = [c.length for c in scene.segments]
+    cum = np.concatenate([[0.0], np.cumsum(lens)])
+    total = float(cum[-1])
+    if cur is None or cur.max_speed == 0.0:
+        # still water: the line hangs straight down from end_a, its tension the weight
+        # below (a sinking line; an inverted start would land on the unstable branch)
+        e = np.array([0.0, 0.0, -1.0])
+        ft = [abs(c.weight_in_water) for c in scene.segments]
+    else:
+        rho = scene.environment.water_density
+        ux = cur.ux[0] if cur.ux[0] != 0.0 else cur.max_speed
+        e = np.array([math.copysign(math.cos(0.1), ux), 0.0, -math.sin(0.1)])
+        # tangential drag per metre of each segment, N/m (0.5 rho C_t pi D U^2), plus the
+        # weight's component along the 0.1 rad slope
+        ft = [line_drag_factors(rho, c.diameter, c.normal_drag, c.tangential_drag)[1] * ux**2
+              + abs(c.weight_in_water) * 0.1 for c in scene.segments]
+    pull = float(np.linalg.norm([f or 0.0 for f in b.force]))
+
+    def beyond(sv: float) -> float:
+        """Drag on the line beyond arc length sv, N."""
+        return sum(f * max(0.0, min(hi, total) - max(lo, sv))
+                   for f, lo, hi in zip(ft, cum[:-1], cum[1:], strict=True))
+
+    tmag = np.array([pull + beyond(float(v)) for v in s])
+    tmag = np.maximum(tmag, 1e-6 * max(tmag.max(), 1.0))
+    r = np.asarray(a.position, dtype=float) + np.outer(s, e)
+    return r, np.outer(tmag, e), total

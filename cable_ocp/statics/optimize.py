@@ -44,8 +44,8 @@ from cable_ocp.statics.formulation import (
     P_TENSION,
     Formulation,
 )
+from cable_ocp.statics.line_solver import StaticsSolver
 from cable_ocp.statics.solution import StaticsSolution
-from cable_ocp.statics.solver import StaticsSolver
 
 __all__ = ["OptimizationResult", "StaticsNLP", "View"]
 

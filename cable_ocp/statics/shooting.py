@@ -10,7 +10,7 @@ start. Unknowns::
 
 Equations: continuity F(x_k) - x_{k+1} = 0 (divided by the step, like the collocation
 residuals), 6 end conditions and, when the length is free, the end tension. The system is
-square and is solved by the same :class:`~cable_ocp.statics.solver.StaticsSolver` (Newton,
+square and is solved by the same :class:`~cable_ocp.statics.line_solver.StaticsSolver` (Newton,
 IPOPT as the fallback; the residual and its Jacobian assembled per interval as for the
 collocation). Convergence: order 4 at the nodes.
 """

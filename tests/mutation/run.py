@@ -92,6 +92,7 @@ PLANAR = tuple(_PLN + t for t in (
     "tests/dynamics/test_axial.py::test_payout_wave_against_dalembert",)
 
 PHYS, FORM, COLL, HEAVE_A = "physics", "statics/formulation", "statics/collocation", "heave"
+CAT = "statics/catenary"
 DYN = "dynamics"
 AX_F, LM_F, PL_F, MO_F = ("cable_ocp/dynamics/axial.py", "cable_ocp/dynamics/lumped.py",
                           "cable_ocp/dynamics/planar.py", "cable_ocp/scene/motion.py")
@@ -252,22 +253,49 @@ MUTATIONS: tuple[Mutation, ...] = (
              "            self._singular = False\n            return",
              "            return", ("tests/test_statics_compile.py",),
              "after a singular matrix every later matrix gives non-finite steps"),
-    Mutation("interpreted-kernel-never-keeps-lu", COLL, "cable_ocp/statics/solver.py",
+    Mutation("interpreted-kernel-never-keeps-lu", COLL, "cable_ocp/statics/line_solver.py",
              "if chord and not self._kernel.can_chord and sparse_lu.available():",
              "if False:", ("tests/test_statics_compile.py",),
              "interpreted warm solves take full Newton steps (no kept LU factors)"),
-    Mutation("chord-steps-on-a-moving-mesh", COLL, "cable_ocp/statics/solver.py",
+    Mutation("chord-steps-on-a-moving-mesh", COLL, "cable_ocp/statics/line_solver.py",
              "chord = warm and not moving", "chord = warm",
              ("tests/test_statics_kinks.py",),
              "a tracking mesh is refitted after chord steps instead of moved by Newton"),
+    # -- statics/catenary.py and numerics/quadrature.py --------------------------------------
+    Mutation("catenary-dz-elastic-sign", CAT, "cable_ocp/statics/catenary.py",
+             "dr[:, 2] = -0.5 * (xa + xb) * lin - xt", "dr[:, 2] = 0.5 * (xa + xb) * lin - xt",
+             ("tests/test_statics_catenary.py",),
+             "elastic catenary: the stretch term of the derived (2.33) with the wrong sign"),
+    Mutation("catenary-end-b-force-sign", CAT, "cable_ocp/statics/catenary.py",
+             "v[i] = -FLIP[i] * fb - total_load[i] - weight[i]",
+             "v[i] = FLIP[i] * fb - total_load[i] - weight[i]",
+             ("tests/test_statics_catenary.py",),
+             "elastic catenary: a force given at end_b enters (2.40)-(2.42) with the wrong sign"),
+    Mutation("touchdown-suspended-length-wrong", CAT, "cable_ocp/statics/catenary.py",
+             "ls = math.sqrt(h * h + 2 * h * a)\n        return",
+             "ls = math.sqrt(h * h + 3 * h * a)\n        return",
+             ("tests/test_statics_catenary.py",),
+             "touchdown guess: suspended length of a catenary that does not leave the seabed "
+             "horizontally"),
+    Mutation("radau-weights-mirrored", CAT, "cable_ocp/numerics/quadrature.py",
+             "w[:-1] = (1.0 + x[:-1]) / (n * n * p * p)",
+             "w[:-1] = (1.0 - x[:-1]) / (n * n * p * p)", ("tests/test_quadrature.py",),
+             "Radau weights of the rule that includes -1, not +1"),
+    Mutation("legendre-map-keeps-full-weights", CAT, "cable_ocp/numerics/quadrature.py",
+             "return 0.5 * (b - a) * (x + 1.0) + a, 0.5 * (b - a) * w",
+             "return 0.5 * (b - a) * (x + 1.0) + a, (b - a) * w",
+             ("tests/test_baseline_chucheepsakul.py",),
+             "Gauss-Legendre on [a, b]: the weights not scaled by (b - a)/2 (the FEM's "
+             "element integrals doubled)"),
     Mutation("batch-chunks-ignore-grid-blocks", "batch", "cable_ocp/batch/__init__.py",
              "near = [b for b in starts if i + size / 2 <= b <= i + 1.5 * size]",
              "near = []", ("tests/test_batch.py::test_guided_chunks_end_at_grid_blocks",),
              "batch chunks cut across the grid's blocks (two workers build one solver)"),
-    Mutation("session-predictor-off", "batch", "cable_ocp/statics/solver.py",
-             "return _extrapolate(pts, float(v)) if len(pts) >= 2 else prev", "return prev",
+    Mutation("session-predictor-off", "batch", "cable_ocp/statics/predictor.py",
+             "return extrapolate(points, float(v)) if len(points) >= 2 else fallback",
+             "return fallback",
              ("tests/test_batch.py::test_solve_session_continuation_predicts_along_a_line",),
-             "the batch's continuation never predicts (plain warm starts only)"),
+             "the continuation predictor never predicts (batch and sweep: plain warm starts)"),
     # -- heave/ -------------------------------------------------------------------------------
     Mutation("mpc-applied-newest-command", HEAVE_A, "cable_ocp/heave/mpc.py",
              "c[n] = 1.0\n                return c, 0.0",
@@ -490,6 +518,40 @@ MUTATIONS: tuple[Mutation, ...] = (
              "self.unit_mass = (unit.virtual_mass[0], unit.virtual_mass[2])",
              "self.unit_mass = (unit.virtual_mass[2], unit.virtual_mass[2])",
              PLANAR, "planar: the unit's z added mass used for x too"),
+    # -- bookkeeping: numbers the code derives for its own records (issue 21, item 9) ------
+    Mutation("surface-tolerance-10x", "bookkeeping", "cable_ocp/statics/checks.py",
+             "    if z[i_top] > depth + tol:", "    if z[i_top] > depth + 10.0 * tol:",
+             ("tests/test_contract.py::test_the_above_surface_boundary_is_the_stated_tolerance",),
+             "the above-surface check 10x looser than its stated tolerance"),
+    Mutation("retry-one-attempt-more", "bookkeeping", "cable_ocp/batch/executors.py",
+             "        if attempts[crashed.index] >= max_attempts:",
+             "        if attempts[crashed.index] > max_attempts:",
+             ("tests/test_batch.py::test_a_case_is_tried_exactly_max_attempts_times",),
+             "a case that kills its workers is tried max_attempts + 1 times"),
+    Mutation("store-keeps-lines-after-a-cut", "bookkeeping", "cable_ocp/batch/store.py",
+             "                    break  # a line cut short",
+             "                    continue  # a line cut short",
+             ("tests/test_batch.py::test_resume_drops_a_cut_line_and_what_follows",),
+             "resume keeps the rows after a line cut short (out of order, not re-run)"),
+    Mutation("store-line-not-ended", "bookkeeping", "cable_ocp/batch/store.py",
+             'good.append(line if line.endswith("\\n") else line + "\\n")', "good.append(line)",
+             ("tests/test_batch.py::test_resume_drops_a_cut_line_and_what_follows",),
+             "a kept last line without its newline: the next row is written onto it"),
+    Mutation("current-first-knot-not-a-kink", "bookkeeping", "cable_ocp/physics/current.py",
+             "slope = np.concatenate([[0.0], np.diff(comp) / np.diff(z), [0.0]])",
+             "slope = np.concatenate([np.diff(comp)[:1] / np.diff(z)[:1], np.diff(comp) / "
+             "np.diff(z), [0.0]])", ("tests/test_physics_laws.py",),
+             "the first knot of a profile that starts above the seabed is not a kink (the "
+             "current is constant below it)"),
+    Mutation("identify-rk4-third-stage-slip", "bookkeeping", "cable_ocp/heave/identify.py",
+             "k3 = f(s + dt / 2 * k2, p, xm)", "k3 = f(s + dt / 2 * k1, p, xm)",
+             ("tests/heave/test_identify.py::test_the_design_models_integrator_is_fourth_order",),
+             "the design model's RK4 takes its third stage from the first (order < 4)"),
+    Mutation("chirp-sweeps-half-the-band", "bookkeeping", "cable_ocp/heave/identify_cable.py",
+             "x = np.sin(lo * t + 0.5 * (hi - lo) * t**2 / duration)",
+             "x = np.sin(lo * t + 0.25 * (hi - lo) * t**2 / duration)",
+             ("tests/heave/test_identify.py::test_the_chirp_sweeps_exactly_the_band",),
+             "the identification's chirp ends at the middle of its band"),
 )
 
 
@@ -540,7 +602,7 @@ def main(argv: list[str] | None = None) -> int:
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     ap.add_argument("--only", nargs="+", default=None,
                     help="mutation names or areas (physics, statics/formulation, "
-                         "statics/collocation, heave, dynamics)")
+                         "statics/collocation, statics/catenary, heave, dynamics)")
     ap.add_argument("--list", action="store_true", help="list the mutations and exit")
     ap.add_argument("--baseline", action="store_true",
                     help="first run every selected subset on the unmutated copy")

@@ -1,0 +1,186 @@
+"""End sensitivities of a solved line: its stiffness at the ends whose position is fixed.
+
+The implicit-function theorem on the collocated equations G(w, p) = 0 of one
+:class:`cable_ocp.statics.line_solver.StaticsSolver` gives dw/dp = -G_w^-1 G_p, with the
+end positions among the parameters p; the end forces F(w) then give dF/dx = F_w dw/dp.
+Exact for the discretised equations (no finite differences), one sparse LU of G_w.
+"""
+
+from __future__ import annotations
+
+from typing import Any
+
+import casadi as ca
+import numpy as np
+
+from cable_ocp.physics import seabed
+from cable_ocp.scene import Scene
+from cable_ocp.statics.formulation import P_END_A, P_END_B, Formulation
+
+__all__ = ["EndStiffness"]
+
+
+class EndStiffness:
+    """End forces and their sensitivities for one discretised line (built on first use).
+
+    Parameters
+    ----------
+    scene : Scene
+        The solver's scene (end conditions, seabed, cable weight).
+    form : Formulation
+        The solver's formulation (its scales).
+    coll : Collocation or MultipleShooting
+        The solver's transcription (residual, unknown layout).
+    grounded : bool
+        The line has a grounded part at end_a.
+    gj : casadi.Function
+        ``(w, p) -> (G, G_w)``, the residual and its sparse Jacobian in the unknowns (the
+        solver's Newton function).
+    """
+
+    def __init__(self, scene: Scene, form: Formulation, coll: Any, grounded: bool,
+                 gj: ca.Function) -> None:
+        self.scene = scene
+        self.form = form
+        self.coll = coll
+        self.grounded = grounded
+        self.gj = gj
+        self._sensitivity: ca.Function | None = None
+
+    def end_forces(self, ws: ca.MX) -> ca.MX:
+        """Forces (N) the cable exerts on the end_a and end_b attachments, (6,), from the
+        scaled unknowns: +T(0) and -T(L); with a grounded part, the anchor force is the
+        touchdown tension less the seabed's axial gradient over the grounded length, along
+        the grounded line (:func:`cable_ocp.physics.seabed.grounded_nodes` at s' = 0)."""
+        coll, sc = self.coll, self.form.scales
+        nx, last = coll.nx, coll.mesh.n_nodes - 1
+        tau0, tau_n = ws[3:6], ws[last * nx + 3: last * nx + 6]
+        if self.grounded:
+            tmag = ca.sqrt(ca.dot(tau0, tau0))
+            e = tau0 / tmag
+            k = seabed.axial_gradient(self.scene.environment.seabed,
+                                      self.scene.cable.weight_in_water, e) * sc.length / sc.force
+            fa = sc.force * ca.fmax(tmag - k * ws[coll.i_g], 0.0) * e
+        else:
+            fa = sc.force * tau0
+        return ca.vertcat(fa, -sc.force * tau_n)
+
+    def functions(self) -> ca.Function:
+        """``(w, p) -> (G_e, F_w)``: the Jacobians of the collocated residual in the end
+        values p[P_END_A], p[P_END_B] (n_w x 6) and of the end forces (N) in the unknowns
+        (6 x n_w), on the MX graph of the residual (the Jacobian in the unknowns, G_w,
+        comes from the Newton functions)."""
+        if self._sensitivity is None:
+            n_p = self.coll.n_p
+            w = ca.MX.sym("w", self.coll.n_w)
+            head = ca.MX.sym("p_head", P_END_A.start)
+            ends = ca.MX.sym("p_ends", P_END_B.stop - P_END_A.start)
+            tail = ca.MX.sym("p_tail", n_p - P_END_B.stop)
+            g = self.coll.residual(w, ca.vertcat(head, ends, tail))
+            cheap = ca.Function("statics_sensitivity_parts", [w, head, ends, tail],
+                                [ca.jacobian(g, ends), ca.jacobian(self.end_forces(w), w)])
+            wp, pp = ca.MX.sym("w", self.coll.n_w), ca.MX.sym("p", n_p)
+            args = (wp, pp[: P_END_A.start], pp[P_END_A.start: P_END_B.stop],
+                    pp[P_END_B.stop:])
+            self._sensitivity = ca.Function("statics_sensitivity", [wp, pp], cheap(*args),
+                                            ["w", "p"], ["G_e", "F_w"])
+        return self._sensitivity
+
+    def matrices(self, w: np.ndarray, p: np.ndarray) -> dict[str, dict[str, Any]]:
+        """The line's stiffness at each end whose position is fully fixed.
+
+        K[i][j] = dF_i/dx_j (N/m), F the force the cable exerts on that end's attachment
+        (as :attr:`StaticsSolution.force_a`/``force_b`` report it) and x that end's
+        position, the other end held as the scene says (fixed position or prescribed
+        force) and the unstretched length held (a free-length scene holds the length it
+        solved for, not the prescribed tension). Exact for the discretised equations:
+        the implicit-function theorem on G(w, p) = 0 gives dw/dp = -G_w^-1 G_p, with the
+        end positions among the parameters p (one sparse LU factorisation of G_w, one
+        column per fixed end coordinate), then dF/dx = F_w dw/dp / ell.
+
+        Parameters
+        ----------
+        w : ndarray
+            Converged scaled unknowns of the solver.
+        p : ndarray
+            Parameter vector of the solve (:meth:`Formulation.params`).
+
+        Returns
+        -------
+        dict
+            ``{"a": {...}, "b": {...}}``, each with ``matrix`` (3x3 nested list of floats,
+            N/m, with None entries where a derivative does not exist; or None) and ``note``
+            (what is held, or why there is no matrix).
+        """
+        from scipy.sparse import csr_matrix
+        from scipy.sparse.linalg import splu
+
+        scene, ell = self.scene, self.form.scales.length
+        held = "the unstretched length held"
+        if self.coll.free_length:
+            held += " (the length the prescribed tension gave; the tension is not held)"
+        out: dict[str, dict[str, Any]] = {}
+        fixed: list[str] = []  # ends with a fully fixed position, in the order a, b
+        for key, end, other in (("a", scene.end_a, scene.end_b), ("b", scene.end_b,
+                                                                  scene.end_a)):
+            if not all(end.fixed_mask):
+                free = ", ".join("xyz"[i] for i, f in enumerate(end.fixed_mask) if not f)
+                out[key] = {"matrix": None, "note": (
+                    f"end_{key}'s position is not fully fixed (free in {free}, where a force "
+                    "is prescribed): no stiffness at a free end")}
+                continue
+            how = "fixed" if all(other.fixed_mask) else \
+                "as the scene says (its prescribed force components held)"
+            out[key] = {"matrix": None,
+                        "note": f"end_{'b' if key == 'a' else 'a'} held {how}, {held}"}
+            fixed.append(key)
+        if not fixed:
+            return out
+        # parameter columns of the fixed ends among p[P_END_A], p[P_END_B] (scaled m)
+        cols = [c for key in fixed for c in ((0, 1, 2) if key == "a" else (3, 4, 5))]
+        g_p, f_w = self.functions()(w, p)
+        g_w = self.gj(w, p)[1]
+        h_w = g_w.sparse().tocsr()
+        h_p = np.asarray(g_p.sparse().todense())[:, cols]
+        if self.coll.free_length:
+            # hold the unstretched length (the line as installed), not the tension: the
+            # tension condition, the last residual (Collocation._boundary), becomes
+            # "lam (+ g) keeps its value", with no dependence on the end positions
+            n, last = self.coll.n_w, self.coll.n_w - 1
+            h_w.data[h_w.indptr[last]: h_w.indptr[last + 1]] = 0.0
+            hold = np.zeros(n)
+            hold[self.coll.i_lam] = 1.0
+            if self.coll.grounded:
+                hold[self.coll.i_g] = 1.0
+            h_w = h_w + csr_matrix((hold, (np.full(n, last), np.arange(n))), shape=(n, n))
+            h_p[last] = 0.0
+        try:
+            dw = splu(h_w.tocsc()).solve(-h_p)  # one factorisation, one column per coordinate
+        except RuntimeError as exc:  # "Factor is exactly singular"
+            dfdx, why = None, f"the Jacobian is singular ({exc})"
+        else:
+            dfdx = np.asarray(f_w.sparse() @ dw) / ell  # (6, len(cols)), N/m
+            why = "the sensitivity is not finite (ill-conditioned Jacobian)"
+        if dfdx is None or not np.all(np.isfinite(dfdx)):
+            for key in fixed:
+                out[key]["note"] = f"not computed: {why}"
+            return out
+        for j, key in enumerate(fixed):
+            rows = slice(0, 3) if key == "a" else slice(3, 6)  # F_a, F_b in the outputs
+            mat = dfdx[rows, 3 * j: 3 * j + 3]
+            k_list: list[list[float | None]] = [[float(v) for v in row] for row in mat]
+            if key == "a" and self.grounded:
+                if scene.environment.seabed.slope_deg != 0.0:  # type: ignore[union-attr]
+                    out[key] = {"matrix": None, "note": (
+                        "the anchor lies on a sloping seabed with the cable grounded: any "
+                        "displacement off the seabed plane lifts the grounded part, where "
+                        "the anchor force is not differentiable (one-sided contact)")}
+                    continue
+                for row in k_list:
+                    row[2] = None
+                out[key]["note"] += (
+                    "; the z column is null: the cable lies on the seabed at the anchor, where "
+                    "lifting the anchor changes the force at an unbounded rate (one-sided "
+                    "contact), so dF/dz does not exist")
+            out[key]["matrix"] = k_list
+        return out
