@@ -27,13 +27,13 @@ segment's length as inputs (:mod:`cable_ocp.dynamics.lumped_driven`, the heave p
 
 from __future__ import annotations
 
-import math
 from typing import Any
 
 import casadi as ca
 import numpy as np
 
 from cable_ocp.dynamics.lumped_params import LumpedParams
+from cable_ocp.numerics.quadrature import gauss_legendre
 from cable_ocp.physics.added_mass import added_mass_per_length, line_added_mass
 from cable_ocp.physics.drag import drag_per_length
 from cable_ocp.physics.drag import point_drag as physics_point_drag
@@ -43,9 +43,10 @@ __all__ = ["GAUSS_W", "GAUSS_X", "LumpedEquations", "added_mass_share", "node_lo
            "node_masses", "node_weights", "point_drag", "point_drag_items", "segment_drag",
            "segment_tension"]
 
-#: 3-point Gauss-Legendre rule on [-1, 1] (the mean of the tension over a strain interval)
-GAUSS_X = (-math.sqrt(0.6), 0.0, math.sqrt(0.6))
-GAUSS_W = (5.0 / 18.0, 8.0 / 18.0, 5.0 / 18.0)
+#: 3-point Gauss-Legendre rule on [-1, 1] (:func:`cable_ocp.numerics.quadrature.gauss_legendre`),
+#: its weights halved: the mean of the tension over a strain interval
+GAUSS_X = tuple(float(v) for v in gauss_legendre(3)[0])
+GAUSS_W = tuple(0.5 * float(v) for v in gauss_legendre(3)[1])
 
 
 # --------------------------------------------------------------------------------------

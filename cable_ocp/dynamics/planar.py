@@ -84,6 +84,7 @@ from cable_ocp.dynamics.model import DrivenStep
 from cable_ocp.dynamics.result import ModesResult, SimulationResult, slack_report, until_slack
 from cable_ocp.dynamics.stepping import MAX_CHUNKS, run_chunks
 from cable_ocp.errors import CableOCPError
+from cable_ocp.numerics.quadrature import gauss_legendre
 from cable_ocp.physics.added_mass import added_mass_per_length, line_added_mass_2d
 from cable_ocp.physics.current import profile_velocity
 from cable_ocp.physics.drag import line_drag_factors, point_drag, vector_drag_columns
@@ -98,9 +99,10 @@ SLACK_MESSAGE = ("slack: tension <= 0 first at t = {t:.6g} s in element {segment
                  "{location:.4g} m from end_a); the planar model predicts slack but cannot "
                  "follow it (Huang (1992) 4.5.1): {action}; the Hooke's-law tension EA e "
                  "reached {hooke:.4g} N")
-# 3-point Gauss-Legendre rule on [-1, 1] (mean of the tension over a strain interval)
-_GAUSS_X = (-math.sqrt(0.6), 0.0, math.sqrt(0.6))
-_GAUSS_W = (5.0 / 18.0, 8.0 / 18.0, 5.0 / 18.0)
+#: 3-point Gauss-Legendre rule on [-1, 1], weights halved (the mean of the tension over a
+#: strain interval)
+_MEAN_RULE = ([float(v) for v in gauss_legendre(3)[0]],
+              [0.5 * float(v) for v in gauss_legendre(3)[1]])
 #: a horizontal direction counts as along x when its y-component is below this (-)
 _PLANE_TOL = 1e-12
 
@@ -401,7 +403,7 @@ class PlanarModel:
         e0, e1 = l0 / h0 - 1.0, l1 / h1 - 1.0
         em, de = 0.5 * (e0 + e1), 0.5 * (e1 - e0)
         tbar = sum(wg * self._tension(em + g * de)
-                   for g, wg in zip(_GAUSS_X, _GAUSS_W, strict=True))
+                   for g, wg in zip(*_MEAN_RULE, strict=True))
         u = (d0 + d1) / ca.repmat(l0 + l1, 2, 1)
         if self.c > 0.0:
             rate = ca.sum1(u * (vm[:, 1:] - vm[:, :-1])) / hm
