@@ -28,7 +28,7 @@ from typing import Any
 import casadi as ca
 import numpy as np
 
-from cable_ocp.dynamics.axial import AxialModel
+from cable_ocp.dynamics.axial import AxialModel, static_profile
 from cable_ocp.errors import CableOCPError
 from cable_ocp.numerics.block_tridiagonal import block_tridiagonal_solve
 from cable_ocp.numerics.compile import compile_functions
@@ -285,16 +285,13 @@ class AxialCablePlant(SampledCablePlant):
     def static_unit_height(self, length: float | np.ndarray) -> np.ndarray:
         """Static height of the unit (m) hanging on ``length`` (m) from the top's static
         position: ``z_b - L - (W L + w L^2 / 2) / EA``."""
-        md = self.model
-        length = np.asarray(length, dtype=float)
-        return (self.z_top0 - length
-                - (md.unit_weight * length + 0.5 * md.w * length**2) / md.ea)
+        return static_profile(self.scene, 0.0, np.asarray(length, dtype=float))[0]
 
     def static_tensions(self, length: float | None = None) -> tuple[float, float]:
         """(tension at the unit, at the top) of the static line of ``length`` (m), N."""
-        md = self.model
         length = self.length0 if length is None else length
-        return md.unit_weight, md.unit_weight + md.w * length
+        tension = static_profile(self.scene, np.array([0.0, length]), length)[1]
+        return float(tension[0]), float(tension[1])
 
 
 def compile_plant_functions(fns: list[ca.Function], flags: str = "-O1") -> list[ca.Function]:
