@@ -67,20 +67,24 @@ import casadi as ca
 import numpy as np
 import scipy.linalg
 
-from cable_ocp.dynamics.result import ModesResult, SimulationResult
-from cable_ocp.dynamics.stepping import run_chunks
+from cable_ocp.dynamics.driven import axial_driven_step
+from cable_ocp.dynamics.model import DrivenStep
+from cable_ocp.dynamics.result import ModesResult, SimulationResult, slack_report, until_slack
+from cable_ocp.dynamics.stepping import MAX_CHUNKS, run_chunks
 from cable_ocp.errors import CableOCPError
 from cable_ocp.physics.drag import body_drag_factor, line_drag_factors, quadratic_drag
 from cable_ocp.physics.elasticity import kelvin_voigt_tension
 from cable_ocp.scene.dynamics import DynamicScene
 from cable_ocp.scene.motion import motion_function
 
-__all__ = ["AxialModel", "check_axial", "modes_axial", "simulate_axial", "static_profile"]
+__all__ = ["SLACK_MESSAGE", "AxialModel", "check_axial", "static_profile"]
 
 _GAUSS_C = (0.5 - math.sqrt(3.0) / 6.0, 0.5 + math.sqrt(3.0) / 6.0)
 _GAUSS_A = ((0.25, 0.25 - math.sqrt(3.0) / 6.0), (0.25 + math.sqrt(3.0) / 6.0, 0.25))
-#: at most this many progress calls (chunks) per run
-MAX_CHUNKS = 200
+#: the axial model's slack message (:func:`cable_ocp.dynamics.result.slack_report`)
+SLACK_MESSAGE = ("slack: tension <= 0 first at t = {t:.6g} s in element {segment} (s = "
+                 "{location:.4g} m from the unit); the axial model cannot follow slack "
+                 "(Huang (1992) 4.5.1): {action}")
 
 
 def check_axial(scene: DynamicScene) -> None:
@@ -152,7 +156,12 @@ class AxialModel:
     n : int
         Number of elements; the state is (zeta_0..zeta_{N-1}, V_0..V_{N-1})
         (:meth:`_fields`).
+
+    The model implements :class:`cable_ocp.dynamics.model.CableModel`.
     """
+
+    #: the scene's ``simulation.model`` of this model
+    name = "axial"
 
     def __init__(self, scene: DynamicScene, segments: int | None = None) -> None:
         check_axial(scene)
@@ -258,14 +267,40 @@ class AxialModel:
     def initial_state(self) -> np.ndarray:
         """State at t = 0: the closed-form static profile ("static") or the unstretched
         line hanging straight down from end_b ("unstrained", zeta = 0), at rest."""
+        if self.scene.simulation.start == "unstrained":
+            return np.zeros(2 * self.n)
+        return self.rest_state()
+
+    def rest_state(self) -> np.ndarray:
+        """The closed-form static profile at rest (whatever ``simulation.start`` says)."""
         n = self.n
         s = np.arange(n) * self.length0 / n
-        if self.scene.simulation.start == "unstrained":
-            zeta = np.zeros(n)
-        else:
-            z, _ = static_profile(self.scene, s)
-            zeta = z - (self.z_top0 - (self.length0 - s))
+        z, _ = static_profile(self.scene, s)
+        zeta = z - (self.z_top0 - (self.length0 - s))
         return np.concatenate([zeta, np.zeros(n)])
+
+    def state_size(self) -> int:
+        """The nodes' height offsets zeta and material velocities V: ``2 N``."""
+        return 2 * self.n
+
+    def static_state(self) -> tuple[np.ndarray, dict[str, Any]]:
+        """:meth:`initial_state` (``simulation.start``) and its source."""
+        start = self.scene.simulation.start
+        how = ("hanging straight down, unstretched, at rest" if start == "unstrained" else
+               "the closed-form static profile, at rest")
+        return self.initial_state(), {"source": start, "converged": True, "message": how}
+
+    def driven_step(self, dt: float | None = None) -> DrivenStep:
+        """The midpoint step with the top's height and the length as inputs over a step of
+        ``dt`` s (default ``simulation.time_step``;
+        :func:`cable_ocp.dynamics.driven.axial_driven_step`)."""
+        return axial_driven_step(self, self.scene.simulation.time_step if dt is None
+                                 else float(dt))
+
+    def linearize(self) -> tuple[np.ndarray, np.ndarray]:
+        """Stiffness K (N/m) and mass M (kg) about the static state (:meth:`matrices`)."""
+        m, k = self.matrices()
+        return k, m
 
     # ------------------------------------------------------------------ time stepping
     def _rhs_function(self) -> ca.Function:
@@ -362,10 +397,16 @@ class AxialModel:
 
     # ------------------------------------------------------------------ simulate
     def simulate(self, progress: Callable[[int, int], None] | None = None) -> SimulationResult:
-        """Integrate over ``simulation.duration`` (see :func:`simulate_axial`)."""
+        """Integrate over ``simulation.duration`` with ``simulation.scheme``; ``"thesis"``
+        is Huang's own finite-difference scheme (3.8)-(3.10) of the same equations
+        (:class:`cable_ocp.dynamics.axial_thesis.ThesisAxialModel`, a baseline)."""
         sc = self.scene
         sim = sc.simulation
         scheme = sim.scheme
+        if scheme == "thesis":
+            from cable_ocp.dynamics.axial_thesis import ThesisAxialModel
+
+            return ThesisAxialModel(sc, self.n).simulate(progress)
         dt = sim.time_step
         n_steps = sim.steps
         every = sim.output_every
@@ -411,8 +452,8 @@ class AxialModel:
         rmax, tmin, t_slack, e_slack = (float(v) for v in tail)
         z_nodes, tens, top, length, vel = (np.asarray(v) for v in
                                            post.map(xs.shape[1])(ts.reshape(1, -1), xs))
-        if sim.on_slack == "stop" and np.isfinite(t_slack):
-            keep = ts <= t_slack + sim.output_every * dt * (1.0 + 1e-9)
+        keep = until_slack(ts, t_slack, sim.output_every * dt, sim.on_slack)
+        if keep is not None:
             ts, z_nodes, tens, top, length, vel = (ts[keep], z_nodes[:, keep], tens[:, keep],
                                                    top[:, keep], length[:, keep], vel[:, keep])
         n_t = ts.size
@@ -426,20 +467,13 @@ class AxialModel:
         velocities = np.zeros_like(nodes)
         velocities[:, :, 2] = vel.T
         min_t = float(min(tmin, np.min(tens)))
-        slack: dict[str, Any] = {"occurred": bool(np.isfinite(t_slack)), "first_time": None,
-                                 "location": None, "segment": None}
-        if np.isfinite(t_slack):
-            e = int(round(e_slack))
-            lt = float(np.interp(t_slack, ts, length))
-            slack.update(first_time=t_slack, segment=e, location=(e + 0.5) * lt / self.n)
-            if status == "solved":
-                status = "slack"
-                action = ("the run stopped there" if sim.on_slack == "stop" else
-                          "the run continued with the linear model (tensions < 0 after that "
-                          "are not physical)")
-                message = (f"slack: tension <= 0 first at t = {t_slack:.6g} s in element {e} "
-                           f"(s = {slack['location']:.4g} m from the unit); the axial model "
-                           f"cannot follow slack (Huang (1992) 4.5.1): {action}")
+        e = int(round(e_slack)) if np.isfinite(t_slack) else None
+        slack, status, message = slack_report(
+            t_slack, e, None if e is None else
+            (e + 0.5) * float(np.interp(t_slack, ts, length)) / self.n, status=status,
+            message=message, on_slack=sim.on_slack, template=SLACK_MESSAGE,
+            continued="the run continued with the linear model (tensions < 0 after that are "
+                      "not physical)")
         if status == "solved":
             message = f"{sim.steps} steps of {dt:g} s ({sim.scheme}), {self.n} elements"
         warnings = []
@@ -521,16 +555,3 @@ class AxialModel:
                            diagnostics={"elements": self.n,
                                         "unit_virtual_mass_kg": self.unit_mass,
                                         "cable_virtual_mass_per_length_kg_m": self.mu})
-
-
-def simulate_axial(scene: DynamicScene, progress: Callable[[int, int], None] | None = None
-                   ) -> SimulationResult:
-    """Time-domain simulation of the axial model (dispatched by
-    :func:`cable_ocp.dynamics.simulate`; ``simulation.scheme = "thesis"`` dispatches to
-    Huang's finite-difference scheme, :mod:`cable_ocp.dynamics.axial_thesis`, instead)."""
-    return AxialModel(scene).simulate(progress)
-
-
-def modes_axial(scene: DynamicScene, count: int) -> ModesResult:
-    """Axial modes of the scene's line (dispatched by :func:`cable_ocp.dynamics.modes`)."""
-    return AxialModel(scene).modes(count)

@@ -37,14 +37,18 @@ from typing import Any
 import casadi as ca
 import numpy as np
 
-from cable_ocp.dynamics.axial import MAX_CHUNKS, check_axial
-from cable_ocp.dynamics.result import SimulationResult
+from cable_ocp.dynamics.result import SimulationResult, slack_report, until_slack
+from cable_ocp.dynamics.stepping import MAX_CHUNKS
 from cable_ocp.errors import CableOCPError
 from cable_ocp.physics.drag import body_drag_factor, line_drag_factors
 from cable_ocp.scene.dynamics import DynamicScene
 from cable_ocp.scene.motion import motion_function
 
-__all__ = ["ThesisAxialModel", "simulate_thesis"]
+__all__ = ["SLACK_MESSAGE", "ThesisAxialModel"]
+
+#: the thesis scheme's slack message (:func:`cable_ocp.dynamics.result.slack_report`)
+SLACK_MESSAGE = ("slack: tension <= 0 first at t = {t:.6g} s in element {segment}; the model "
+                 "cannot follow slack (Huang (1992) 4.5.1)")
 
 
 class ThesisAxialModel:
@@ -53,14 +57,15 @@ class ThesisAxialModel:
     Parameters
     ----------
     scene : DynamicScene
-        A vertical-line scene with the linear pay-out law.
+        A vertical-line scene with the linear pay-out law (checked by the axial model,
+        :meth:`cable_ocp.dynamics.axial.AxialModel.simulate`, which runs this scheme for
+        ``simulation.scheme = "thesis"``).
     segments : int, optional
         Number of intervals N (nodes 0..N, 0 at the sheave); default
         ``simulation.segments``, at least 3.
     """
 
     def __init__(self, scene: DynamicScene, segments: int | None = None) -> None:
-        check_axial(scene)
         tm = scene.top_motion
         if tm.payout_law != "linear":
             raise CableOCPError(f'simulation.scheme = "thesis" implements L = L0 + v t '
@@ -317,8 +322,8 @@ class ThesisAxialModel:
         z_nodes, tens, top, length = (np.asarray(v) for v in
                                       post.map(us.shape[1])(ts.reshape(1, -1), us))
         tmin, t_slack, e_slack = (float(v) for v in acc[-3:])
-        if sim.on_slack == "stop" and np.isfinite(t_slack):
-            keep = ts <= t_slack + every * dt * (1.0 + 1e-9)
+        keep = until_slack(ts, t_slack, every * dt, sim.on_slack)
+        if keep is not None:
             ts, z_nodes, tens, top, length = (ts[keep], z_nodes[:, keep], tens[:, keep],
                                               top[:, keep], length[:, keep])
         n_t = ts.size
@@ -328,16 +333,11 @@ class ThesisAxialModel:
         nodes[:, :, 2] = z_nodes.T
         tens = tens.T
         length = length.reshape(n_t)
-        slack: dict[str, Any] = {"occurred": bool(np.isfinite(t_slack)), "first_time": None,
-                                 "location": None, "segment": None}
-        if np.isfinite(t_slack):
-            e = int(round(e_slack))
-            lt = float(np.interp(t_slack, ts, length))
-            slack.update(first_time=t_slack, segment=e, location=(e + 0.5) * lt / self.n)
-            if status == "solved":
-                status = "slack"
-                message = (f"slack: tension <= 0 first at t = {t_slack:.6g} s in element {e}; "
-                           "the model cannot follow slack (Huang (1992) 4.5.1)")
+        e = int(round(e_slack)) if np.isfinite(t_slack) else None
+        slack, status, message = slack_report(
+            t_slack, e, None if e is None else
+            (e + 0.5) * float(np.interp(t_slack, ts, length)) / self.n, status=status,
+            message=message, on_slack=sim.on_slack, template=SLACK_MESSAGE)
         if status == "solved":
             message = f"{sim.steps} steps of {dt:g} s (thesis scheme), {self.n} intervals"
         return SimulationResult(
@@ -349,9 +349,3 @@ class ThesisAxialModel:
             diagnostics={"build_time_s": build, "steps": sim.steps, "elements": self.n,
                          "start": sim.start,
                          "wall_time_per_simulated_second": wall / ts[-1] if n_t > 1 else None})
-
-
-def simulate_thesis(scene: DynamicScene, progress: Callable[[int, int], None] | None = None
-                    ) -> SimulationResult:
-    """Run Huang's scheme (``simulation.scheme = "thesis"``) on an axial scene."""
-    return ThesisAxialModel(scene).simulate(progress)

@@ -275,7 +275,15 @@ class LumpedMassModel:
     # -- the nodes -----------------------------------------------------------------------
     def all_positions(self, x: Any, t: Any) -> list[Any]:
         """Every node's position (m): the free nodes' from ``x``, the prescribed ends' at
-        time ``t`` (s)."""
+        time ``t`` (s).
+
+        Parameters
+        ----------
+        x : casadi expression (3 n_free,)
+            Free-node positions, m.
+        t : casadi expression or float
+            Time, s.
+        """
         p = self.params
         r = [x[3 * k:3 * k + 3] for k in range(self.n_free)]
         if p.fixed_a:
@@ -284,7 +292,15 @@ class LumpedMassModel:
 
     def all_velocities(self, v: Any, t: Any) -> list[Any]:
         """Every node's velocity (m/s): the free nodes' from ``v``, the prescribed ends' at
-        time ``t`` (s)."""
+        time ``t`` (s).
+
+        Parameters
+        ----------
+        v : casadi expression (3 n_free,)
+            Free-node velocities, m/s.
+        t : casadi expression or float
+            Time, s.
+        """
         p = self.params
         u = [v[3 * k:3 * k + 3] for k in range(self.n_free)]
         if p.fixed_a:
@@ -304,7 +320,15 @@ class LumpedMassModel:
     # -- reference scales --------------------------------------------------------------
     def force_scale(self, x: np.ndarray | None = None, t: float = 0.0) -> float:
         """Force scale F of the scaled residual, N: the largest of the total weight in
-        water, the largest segment tension at the positions ``x`` (if given) and 1 N."""
+        water, the largest segment tension at the positions ``x`` (if given) and 1 N.
+
+        Parameters
+        ----------
+        x : ndarray (3 n_free,), optional
+            Free-node positions, m.
+        t : float
+            Time of the prescribed ends, s.
+        """
         f = max(float(np.abs(self.eq.node_weight).sum()), 1.0)
         if x is not None:
             f = max(f, float(np.max(np.asarray(self.tensions(x, t)[0]))))
@@ -325,7 +349,19 @@ class LumpedMassModel:
     def initial_state(self, x: np.ndarray, v: np.ndarray | None = None,
                       scheme: str = "midpoint", t: float = 0.0) -> np.ndarray:
         """Stepped state of ``scheme`` from free-node positions (m) and velocities (m/s)
-        at time t (s)."""
+        at time t (s).
+
+        Parameters
+        ----------
+        x : ndarray (3 n_free,)
+            Free-node positions, m.
+        v : ndarray (3 n_free,), optional
+            Free-node velocities, m/s (None: at rest).
+        scheme : str
+            One of :data:`SCHEMES`.
+        t : float
+            Time, s.
+        """
         x = np.asarray(x, float).reshape(-1)
         v = np.zeros_like(x) if v is None else np.asarray(v, float).reshape(-1)
         if scheme == "bdf2":
@@ -357,6 +393,25 @@ class LumpedMassModel:
         residual above ``tol`` (or NaN). ``iterations`` counts the Newton iterations;
         ``min_strain`` is the smallest segment strain at the end of the step (<= 0: a
         segment is slack) and ``slack_segment`` its index.
+
+        Parameters
+        ----------
+        dt : float
+            The time step, s.
+        scheme : str
+            One of :data:`SCHEMES` (below).
+        tol : float
+            Newton tolerance on the scaled residual (-).
+        max_iter : int
+            Newton iterations per step.
+        solver : {"newton", "rootfinder"}
+            Below.
+        linear_solver : str
+            CasADi linear solver of the compiled-kernel Newton matrix.
+        compile_kernel : bool
+            The per-segment kernel compiled to C (else interpreted).
+        force_scale : float, optional
+            Force scale F of the residual, N (default :meth:`force_scale`).
 
         Schemes (all implicit, A-stable, second order; the equations of a step are solved for
         the new free-node positions x1):
@@ -425,6 +480,8 @@ class LumpedMassModel:
             (largest nodal weight or tension), relative; or, at the rounding floor of a
             stiff cable, when Newton steps stall below 1e-12 of the line length with the
             force below 1e-6 of the scale.
+        max_iter : int
+            Newton iterations (per stage of the continuation).
 
         Returns
         -------
@@ -528,6 +585,13 @@ class LumpedMassModel:
         orientation stiffness is not symmetric and its velocity part is damping). K is
         symmetrised (it is symmetric up to rounding: the Hessian of the potential energy).
         M includes the direction-dependent added mass of (5.2) at ``x``.
+
+        Parameters
+        ----------
+        x : ndarray (3 n_free,)
+            Rest positions, m.
+        t : float
+            Time of the prescribed ends, s.
         """
         k = np.asarray(self.static_stiffness(x, t))
         m = np.asarray(ca.densify(self.mass_matrix(x, t)))
@@ -538,6 +602,15 @@ class LumpedMassModel:
         """Natural frequencies and mode shapes about the rest state ``x``.
 
         Solves K phi = omega^2 M phi (:meth:`linearize`).
+
+        Parameters
+        ----------
+        x : ndarray (3 n_free,)
+            Rest positions, m.
+        count : int, optional
+            Number of modes (default all).
+        t : float
+            Time of the prescribed ends, s.
 
         Returns
         -------

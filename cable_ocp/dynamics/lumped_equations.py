@@ -27,51 +27,31 @@ segment's length as inputs (:mod:`cable_ocp.dynamics.lumped_driven`, the heave p
 
 from __future__ import annotations
 
-import math
 from typing import Any
 
 import casadi as ca
 import numpy as np
 
 from cable_ocp.dynamics.lumped_params import LumpedParams
+from cable_ocp.numerics.quadrature import gauss_legendre
 from cable_ocp.physics.added_mass import added_mass_per_length, line_added_mass
 from cable_ocp.physics.drag import drag_per_length
 from cable_ocp.physics.drag import point_drag as physics_point_drag
-from cable_ocp.physics.elasticity import material_damping, smooth_tension
+from cable_ocp.physics.elasticity import material_damping, smooth_strain_energy, smooth_tension
 
 __all__ = ["GAUSS_W", "GAUSS_X", "LumpedEquations", "added_mass_share", "node_loads",
            "node_masses", "node_weights", "point_drag", "point_drag_items", "segment_drag",
-           "segment_tension", "strain_energy"]
+           "segment_tension"]
 
-#: 3-point Gauss-Legendre rule on [-1, 1] (the mean of the tension over a strain interval)
-GAUSS_X = (-math.sqrt(0.6), 0.0, math.sqrt(0.6))
-GAUSS_W = (5.0 / 18.0, 8.0 / 18.0, 5.0 / 18.0)
+#: 3-point Gauss-Legendre rule on [-1, 1] (:func:`cable_ocp.numerics.quadrature.gauss_legendre`),
+#: its weights halved: the mean of the tension over a strain interval
+GAUSS_X = tuple(float(v) for v in gauss_legendre(3)[0])
+GAUSS_W = tuple(0.5 * float(v) for v in gauss_legendre(3)[1])
 
 
 # --------------------------------------------------------------------------------------
 # The laws on one segment
 # --------------------------------------------------------------------------------------
-
-def strain_energy(eps: Any, ea: float, delta_t: float, ell: float) -> Any:
-    """Strain energy ``ell * int_0^eps T de`` of a segment with the smooth no-compression
-    tension (:func:`cable_ocp.physics.elasticity.smooth_tension`), J.
-
-    Parameters
-    ----------
-    eps : casadi expression
-        Strain (-).
-    ea : float
-        EA, N.
-    delta_t : float
-        Smoothing force scale, N.
-    ell : float
-        Unstretched length, m.
-    """
-    u = ea * eps
-    dd = delta_t
-    return ell * (ea * eps**2 / 4.0
-                  + (u * ca.sqrt(u * u + dd * dd) + dd * dd * ca.asinh(u / dd)) / (4.0 * ea))
-
 
 def segment_tension(d1: Any, ell1: Any, ea: Any, c: Any, delta_t: Any, *,
                     d0: Any = None, ell0: Any = None, dt: Any = None, dv: Any = None,
@@ -187,7 +167,17 @@ def added_mass_share(dm: Any, en: Any, et: Any, eet: Any = None) -> Any:
     ``eet``: the compiled kernel's ``t t^T`` from its unit tangent (it has it for the drag's
     Jacobian); the law is then written on it, ``(en (I - t t^T) + et t t^T) / 2``, as
     ``line_added_mass`` writes it on ``dm dm^T / |dm|^2`` (the two differ by rounding, and
-    the kernel's steps are kept bitwise)."""
+    the kernel's steps are kept bitwise).
+
+    Parameters
+    ----------
+    dm : casadi expression (3,)
+        The chord, m.
+    en, et : float or casadi expression
+        Normal and tangential added mass of the segment, kg.
+    eet : casadi expression (3, 3), optional
+        t t^T from the unit tangent (-).
+    """
     if eet is None:
         return 0.5 * line_added_mass(dm, en, et)
     return 0.5 * (en * (ca.SX.eye(3) - eet) + et * eet)
@@ -197,7 +187,21 @@ def point_drag(u: Any, cs: list[float], law: str, rho: float, delta: float) -> A
     """Drag of a point body (the unit, eq. (5.6), or a body on the line), N:
     :func:`cable_ocp.physics.drag.point_drag` of the flow ``u`` relative to it (m/s), with
     the drag areas ``cs`` (m^2 per axis), the law ``"vector"`` or ``"per_axis"``, the
-    water density ``rho`` (kg/m^3) and the smoothing velocity ``delta`` (m/s)."""
+    water density ``rho`` (kg/m^3) and the smoothing velocity ``delta`` (m/s).
+
+    Parameters
+    ----------
+    u : casadi expression (3,)
+        Flow relative to the body, m/s.
+    cs : list of 3 float
+        Drag areas C_D S per axis, m^2.
+    law : {"vector", "per_axis"}
+        The law.
+    rho : float
+        Water density, kg/m^3.
+    delta : float
+        Smoothing velocity, m/s.
+    """
     return physics_point_drag(u, cs, rho=rho, delta=delta, per_axis=law == "per_axis")
 
 
@@ -246,7 +250,15 @@ def node_weights(p: LumpedParams) -> np.ndarray:
 def node_loads(p: LumpedParams, weights: np.ndarray | None = None) -> np.ndarray:
     """The constant loads on the nodes, N, shape (3, N+1): the weights in water
     (:func:`node_weights`, or ``weights``) and the external loads of the unit and the
-    bodies."""
+    bodies.
+
+    Parameters
+    ----------
+    p : LumpedParams
+        The line.
+    weights : ndarray (N+1,), optional
+        The nodes' weights in water, N (default :func:`node_weights`).
+    """
     static = np.zeros((3, p.segments + 1))
     static[2] = -(node_weights(p) if weights is None else weights)
     if p.unit is not None:
@@ -294,7 +306,19 @@ class LumpedEquations:
 
     def tension(self, j: int, d1: Any, ell1: Any = None, **kw: Any) -> dict[str, Any]:
         """:func:`segment_tension` of segment ``j`` with chord ``d1`` (m): its EA, c and
-        unstretched length (or ``ell1``, m; further keywords as there)."""
+        unstretched length (or ``ell1``, m; further keywords as there).
+
+        Parameters
+        ----------
+        j : int
+            Segment index from end_a.
+        d1 : casadi expression (3,)
+            The chord, m.
+        ell1 : float or casadi expression, optional
+            Unstretched length, m (default the segment's).
+        **kw
+            Further keywords of :func:`segment_tension`.
+        """
         p = self.params
         ell1 = float(p.segment_length[j]) if ell1 is None else ell1
         return segment_tension(d1, ell1, float(p.axial_stiffness[j]),
@@ -302,7 +326,15 @@ class LumpedEquations:
 
     def tensions(self, r: list[Any], vel: list[Any] | None = None) -> tuple[Any, Any]:
         """Segment tensions (N; with the material damping where velocities are given) and
-        strains (-) at node positions ``r``."""
+        strains (-) at node positions ``r``.
+
+        Parameters
+        ----------
+        r : list of casadi expression
+            Node positions, m.
+        vel : list of casadi expression, optional
+            Node velocities, m/s.
+        """
         ts, es = [], []
         p = self.params
         for j in range(p.segments):
@@ -316,7 +348,19 @@ class LumpedEquations:
                 dt: float | None) -> list[Any]:
         """The segments' pulls on the nodes, N: at the positions ``r0`` (``r1`` None; the
         material damping from the velocities ``vel`` unless None), or the discrete
-        gradient between ``r0`` and ``r1`` over ``dt`` (:func:`segment_tension`)."""
+        gradient between ``r0`` and ``r1`` over ``dt`` (:func:`segment_tension`).
+
+        Parameters
+        ----------
+        r0 : list of casadi expression
+            Node positions (at the start of the step), m.
+        r1 : list of casadi expression or None
+            Node positions at the end of the step, m.
+        vel : list of casadi expression or None
+            Node velocities, m/s (one level).
+        dt : float or None
+            The step, s (two levels).
+        """
         p = self.params
         f = self.zeros()
         for j in range(p.segments):
@@ -338,7 +382,17 @@ class LumpedEquations:
 
     def segment_drag(self, j: int, dm: Any, urel: Any) -> Any:
         """:func:`segment_drag` of segment ``j`` with chord ``dm`` (m) in the relative flow
-        ``urel`` (m/s), N (zero without drag or water)."""
+        ``urel`` (m/s), N (zero without drag or water).
+
+        Parameters
+        ----------
+        j : int
+            Segment index.
+        dm : casadi expression (3,)
+            The chord, m.
+        urel : casadi expression (3,)
+            Relative flow, m/s.
+        """
         p = self.params
         if p.water_density == 0 or (p.normal_drag[j] == 0 and p.tangential_drag[j] == 0):
             return ca.SX.zeros(3)
@@ -350,7 +404,17 @@ class LumpedEquations:
 
     def point_drag(self, i: int, r: Any, v: Any) -> Any:
         """The drag of the unit and the bodies at node ``i`` at position ``r`` (m) and
-        velocity ``v`` (m/s), N."""
+        velocity ``v`` (m/s), N.
+
+        Parameters
+        ----------
+        i : int
+            Node index.
+        r : casadi expression (3,)
+            The node's position, m.
+        v : casadi expression (3,)
+            Its velocity, m/s.
+        """
         p = self.params
         f = ca.SX.zeros(3)
         for node, cs, law in point_drag_items(p):
@@ -361,7 +425,15 @@ class LumpedEquations:
 
     def drag(self, r: list[Any], vel: list[Any]) -> list[Any]:
         """Hydrodynamic drag with current on the segments (half to each end node), the unit
-        and the bodies, N, at positions ``r`` and node velocities ``vel``."""
+        and the bodies, N, at positions ``r`` and node velocities ``vel``.
+
+        Parameters
+        ----------
+        r : list of casadi expression
+            Node positions, m.
+        vel : list of casadi expression
+            Node velocities, m/s.
+        """
         p = self.params
         f = self.zeros()
         if p.water_density == 0:
@@ -381,7 +453,17 @@ class LumpedEquations:
 
     def added_mass_share(self, j: int, dm: Any, length: Any = None) -> Any:
         """:func:`added_mass_share` of segment ``j`` at chord ``dm`` (m), 3x3, kg; with
-        ``length`` (m) that unstretched length instead of the segment's own."""
+        ``length`` (m) that unstretched length instead of the segment's own.
+
+        Parameters
+        ----------
+        j : int
+            Segment index.
+        dm : casadi expression (3,)
+            The chord, m.
+        length : float or casadi expression, optional
+            Unstretched length, m.
+        """
         en, et = (float(a[j]) for a in self.added_mass)
         if en == 0 and et == 0:
             return ca.SX.zeros(3, 3)
@@ -404,14 +486,26 @@ class LumpedEquations:
 
     def energy(self, v: Any, mass: Any, r: list[Any]) -> tuple[Any, Any]:
         """Kinetic energy 1/2 v^T M v (``mass`` the free nodes' mass matrix) and potential
-        energy (strain, :func:`strain_energy`, and weight), J."""
+        energy (strain, :func:`cable_ocp.physics.elasticity.smooth_strain_energy` per
+        unstretched length, and weight), J.
+
+        Parameters
+        ----------
+        v : casadi expression (3 n_free,)
+            Free-node velocities, m/s.
+        mass : casadi expression
+            The free nodes' mass matrix, kg.
+        r : list of casadi expression
+            Node positions, m.
+        """
         p = self.params
         kin = 0.5 * ca.dot(v, ca.mtimes(mass, v))
         pot = 0
         for j in range(p.segments):
             ell = float(p.segment_length[j])
             eps = ca.norm_2(r[j + 1] - r[j]) / ell - 1.0
-            pot = pot + strain_energy(eps, float(p.axial_stiffness[j]), p.slack_smoothing, ell)
+            pot = pot + ell * smooth_strain_energy(eps, float(p.axial_stiffness[j]),
+                                                   p.slack_smoothing)
         for i in range(p.segments + 1):
             pot = pot + float(self.node_weight[i]) * r[i][2]
         return kin, pot

@@ -46,7 +46,21 @@ def next_state(scheme: str, x1: Any, z: Any, dt: Any, nf3: int) -> tuple[Any, An
     """The stepped state from the new positions ``x1`` and the old stepped state ``z``
     (positions, velocities, then the scheme's history: the acceleration for the midpoint
     and trapezoidal rules, the previous positions and velocities and the start flag for
-    BDF2); returns (new stepped state, new velocities)."""
+    BDF2); returns (new stepped state, new velocities).
+
+    Parameters
+    ----------
+    scheme : str
+        The scheme.
+    x1 : casadi expression
+        New free-node positions, m.
+    z : casadi expression
+        The old stepped state.
+    dt : float or casadi expression
+        The step, s.
+    nf3 : int
+        Number of free coordinates.
+    """
     x0, v0 = z[0:nf3], z[nf3:2 * nf3]
     if scheme == "midpoint":
         v1 = 2.0 * (x1 - x0) / dt - v0
@@ -76,7 +90,14 @@ class LumpedStepper:
                       max_iter: int = 20, solver: str = "newton",
                       linear_solver: str = "qr", compile_kernel: bool = True,
                       force_scale: float | None = None) -> ca.Function:
-        """:meth:`LumpedMassModel.step_function` (see there)."""
+        """:meth:`LumpedMassModel.step_function` (see there).
+
+        Parameters
+        ----------
+        dt, scheme, tol, max_iter, solver, linear_solver, compile_kernel, force_scale
+            As :meth:`~cable_ocp.dynamics.lumped.LumpedMassModel.step_function`
+            (s, -, -, -, -, -, -, N).
+        """
         if scheme not in SCHEMES:
             raise CableOCPError(f"scheme = {scheme!r}: valid are {SCHEMES}")
         if solver not in ("newton", "rootfinder"):
@@ -192,7 +213,17 @@ class LumpedStepper:
 
     def point_terms(self, r: Any, v: Any, gamma: Any, sym: Any = ca.MX) -> tuple[Any, Any]:
         """Drag (N, 3 x (N+1)) and its Newton blocks (9 x (N+1)) of the unit and the bodies
-        at node positions r and velocities v (MX, 3 x (N+1))."""
+        at node positions r and velocities v (MX, 3 x (N+1)).
+
+        Parameters
+        ----------
+        r, v : casadi expression (3, N+1)
+            Node positions (m) and velocities (m/s).
+        gamma : casadi expression
+            The scheme's velocity coefficient of the Newton matrix, 1/s.
+        sym : type
+            casadi.MX or casadi.SX.
+        """
         p = self.model.params
         n = p.segments
         items = point_drag_items(p)
@@ -221,7 +252,17 @@ class LumpedStepper:
         """``gj(x1, z, t0, dt)``: the step's scaled residual and, for the MX path, the
         Newton matrix and force residual (``(res, J, f)``), or, for the SX path, the
         Newton update by block elimination (``(res, dx)``). Cached: one function for
-        every step size (the step halving reuses it)."""
+        every step size (the step halving reuses it).
+
+        Parameters
+        ----------
+        scheme : str
+            The scheme.
+        compile_kernel : bool
+            MX around the compiled kernel, else one SX function.
+        fscale : float
+            Force scale, N.
+        """
         key = (scheme, compile_kernel, fscale)
         if key in self._residuals:
             return self._residuals[key]
@@ -357,7 +398,14 @@ class LumpedStepper:
     def core_step(self, dt: float, scheme: str, tol: float, max_iter: int,
                    linear_solver: str, compile_kernel: bool, force_scale: float | None
                    ) -> ca.Function:
-        """One Newton-solved step ``(z, t0) -> (z1, residual, iterations, converged)``."""
+        """One Newton-solved step ``(z, t0) -> (z1, residual, iterations, converged)``.
+
+        Parameters
+        ----------
+        dt, scheme, tol, max_iter, linear_solver, compile_kernel, force_scale
+            As :meth:`~cable_ocp.dynamics.lumped.LumpedMassModel.step_function`
+            (s, -, -, -, -, -, N).
+        """
         p = self.model.params
         nf3 = 3 * self.model.n_free
         fscale = self.model.force_scale() if force_scale is None else float(force_scale)
@@ -465,7 +513,15 @@ class LumpedStepper:
                       halvings: int) -> ca.Function:
         """``(z, t0) -> (z1, residual, iterations, converged)``: the core step; where its
         Newton iteration does not converge, two steps of dt/2 instead (recursively, at
-        most ``halvings`` times; only for the one-step schemes)."""
+        most ``halvings`` times; only for the one-step schemes).
+
+        Parameters
+        ----------
+        dt, scheme, tol, max_iter, linear_solver, compile_kernel, force_scale
+            As :meth:`core_step`.
+        halvings : int
+            Most halvings.
+        """
         core = self.core_step(dt, scheme, tol, max_iter, linear_solver, compile_kernel,
                                force_scale)
         if halvings <= 0 or scheme == "bdf2":
@@ -490,7 +546,15 @@ class LumpedStepper:
     def newton_step(self, dt: float, scheme: str, tol: float, max_iter: int,
                    linear_solver: str, compile_kernel: bool, force_scale: float | None,
                    halvings: int = 3) -> ca.Function:
-        """The ``"newton"`` solver of :meth:`step_function` (see there)."""
+        """The ``"newton"`` solver of :meth:`step_function` (see there).
+
+        Parameters
+        ----------
+        dt, scheme, tol, max_iter, linear_solver, compile_kernel, force_scale
+            As :meth:`core_step`.
+        halvings : int
+            Most halvings.
+        """
         step = self.halving_step(dt, scheme, tol, max_iter, linear_solver, compile_kernel,
                                   force_scale, halvings)
         nf3 = 3 * self.model.n_free
@@ -569,9 +633,12 @@ def segment_kernel_expr(drag_law: str) -> ca.Function:
     kb = 2.0 * beta * (dtbar / ell * uet + tbar / (l0 + l1) * (eye - uet)) + gamma * c / ell * (
         taut_switch(em, ea, delta_t) * uet)
     cb = 0.25 * gamma * lm * dmat
+    # the terms share subexpressions that their functions build again (the tangent's
+    # t t^T, the strain switch, ...): merged once (the same operations, fewer of them)
+    outs = ca.cse([f_el + 0.5 * f_d, -f_el + 0.5 * f_d, ca.vec(madd.T), ca.vec(kb.T),
+                   ca.vec(cb.T)])
     return ca.Function(
-        f"segment_{drag_law}", [ra0, rb0, ra1, rb1, va, vb, u_c, par, sc],
-        [f_el + 0.5 * f_d, -f_el + 0.5 * f_d, ca.vec(madd.T), ca.vec(kb.T), ca.vec(cb.T)],
+        f"segment_{drag_law}", [ra0, rb0, ra1, rb1, va, vb, u_c, par, sc], outs,
         ["ra0", "rb0", "ra1", "rb1", "va", "vb", "u", "par", "sc"],
         ["fa", "fb", "madd", "kb", "cb"])
 
@@ -585,14 +652,34 @@ def switch(name: str, cond: Any, if_true: ca.Function, if_false: ca.Function,
     evaluated. (CasADi's ``if_else(c, a, b, True)`` on expressions builds each branch as a
     function of the graph's *inputs*, so a branch that reuses a value computed before it
     (a Newton iterate, a step's result) evaluates that value again: here the branches take
-    those values as arguments.)"""
+    those values as arguments.)
+
+    Parameters
+    ----------
+    name : str
+        Name of the switch function.
+    cond : casadi expression
+        The condition.
+    if_true, if_false : casadi.Function
+        The branches, called on ``args``.
+    *args
+        Their arguments.
+    """
     return ca.Function.if_else(name, if_true, if_false)(cond, *args)
 
 
 def segment_kernel(drag_law: str, compile_kernel: bool = True) -> ca.Function:
     """The segment kernel of ``drag_law``, compiled to C once and cached on disk when a C
     compiler is available (:func:`cable_ocp.numerics.compile.compile_function`), else
-    interpreted."""
+    interpreted.
+
+    Parameters
+    ----------
+    drag_law : str
+        The normal drag's law.
+    compile_kernel : bool
+        Compile to C (else the SX function).
+    """
     key = f"{drag_law}:{compile_kernel}"
     if key not in _KERNELS:
         fn = segment_kernel_expr(drag_law)

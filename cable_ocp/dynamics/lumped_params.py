@@ -287,6 +287,29 @@ def uniform_params(length: float, segments: int, *, axial_stiffness: float, diam
     ``top_position`` may be a constant 3-vector (m); further keywords go to
     :class:`LumpedParams` (``unit``, ``end_a_position``, ``current``, ...). A constant
     ``end_a_position`` is accepted too.
+
+    Parameters
+    ----------
+    length : float
+        Unstretched cable length, m.
+    segments : int
+        Number of equal segments.
+    axial_stiffness : float
+        EA, N.
+    diameter : float
+        Hydrodynamic diameter, m.
+    mass_per_length, weight_in_water : float
+        kg/m and N/m.
+    top_position : callable or sequence of 3 float
+        end_b's position, m (a function of t, s, or constant).
+    normal_drag, tangential_drag : float
+        C_n, C_t (-).
+    added_mass_coefficient, tangential_added_mass_coefficient : float
+        C_a, C_at (-).
+    axial_damping : float
+        Material damping c, N s.
+    **kwargs
+        Further fields of :class:`LumpedParams`.
     """
     if segments < 1:
         raise CableOCPError(f"segments = {segments}: must be >= 1")

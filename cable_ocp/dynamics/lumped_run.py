@@ -126,6 +126,8 @@ def run(model: LumpedMassModel, x0: np.ndarray, v0: np.ndarray | None, duration:
         Keep every k-th step.
     chunk_records : int, optional
         Records per chunk (default: about 20 chunks).
+    t0 : float
+        Start time, s.
     tol : float
         Newton tolerance on the residual scaled by the force scale (-; the largest of the
         total weight in water and the largest tension at the start).

@@ -8,8 +8,10 @@
   model's own equilibrium F(x, 0, 0) = 0 by Newton from there, so that the run starts
   exactly at rest; or ``start = "unstrained"``: hanging straight down from end_b at its
   unstretched length, at rest (Huang's 5.7.1 start);
-* :func:`simulate_lumped` and :func:`modes_lumped`: the dispatched entry points of
-  :func:`cable_ocp.dynamics.simulate` and :func:`cable_ocp.dynamics.modes`.
+* :class:`LumpedSceneModel`: the scene's model as
+  :class:`~cable_ocp.dynamics.model.CableModel` (static state, the step driven by the
+  top, linearisation, modes, simulation), on which :func:`cable_ocp.dynamics.simulate`
+  and :func:`cable_ocp.dynamics.modes` dispatch.
 """
 
 from __future__ import annotations
@@ -31,19 +33,18 @@ from cable_ocp.dynamics.result import (
     slack_report,
     until_slack,
 )
+from cable_ocp.dynamics.stepping import MAX_CHUNKS
 from cable_ocp.errors import CableOCPError
 from cable_ocp.physics.current import current_velocity
 from cable_ocp.scene.dynamics import DynamicScene
 from cable_ocp.scene.motion import top_offset_expr
 
-__all__ = ["LumpedSceneModel", "check_lumped_plant", "lumped_params", "lumped_start",
-           "modes_lumped", "segment_counts", "simulate_lumped"]
+__all__ = ["SLACK_MESSAGE", "LumpedSceneModel", "check_lumped_plant", "lumped_params",
+           "lumped_start", "segment_counts"]
 
 #: the slack message of the lumped-mass model (:func:`cable_ocp.dynamics.result.slack_report`)
 SLACK_MESSAGE = ("slack: segment {segment} (s = {location:.4g} m from end_a) first went slack "
                  "at t = {t:.6g} s; Huang (1992) ch. 5 excludes slack cable: {action}")
-#: at most this many progress calls (chunks) per run
-MAX_CHUNKS = 200
 #: runs with more segment-steps than this compile the whole step to C
 #: (:func:`cable_ocp.dynamics.lumped_run.run`, ``compile="step"``)
 COMPILE_STEP_ABOVE = 1_000_000
@@ -51,7 +52,15 @@ COMPILE_STEP_ABOVE = 1_000_000
 
 def segment_counts(lengths: list[float], total: int) -> list[int]:
     """Share ``total`` lumped segments among line segments of the given lengths (m):
-    proportional to length, at least one each (largest remainders first)."""
+    proportional to length, at least one each (largest remainders first).
+
+    Parameters
+    ----------
+    lengths : list of float
+        The line segments' lengths, m.
+    total : int
+        Lumped segments in all.
+    """
     n = len(lengths)
     if total < n:
         raise CableOCPError(f"simulation.segments = {total}: the line has {n} segments "
@@ -94,7 +103,15 @@ def check_lumped_plant(scene: DynamicScene) -> None:
 
 def lumped_params(scene: DynamicScene, segments: int | None = None) -> LumpedParams:
     """Parameters of the lumped-mass model of a scene with ``segments`` lumped segments
-    (default ``simulation.segments``), shared among ``[[cable.segments]]`` by length."""
+    (default ``simulation.segments``), shared among ``[[cable.segments]]`` by length.
+
+    Parameters
+    ----------
+    scene : DynamicScene
+        A lumped3d scene.
+    segments : int, optional
+        Lumped segments (default ``simulation.segments``).
+    """
     _check(scene)
     st = scene.statics
     env = st.environment
@@ -166,6 +183,13 @@ def lumped_start(scene: DynamicScene, model: LumpedMassModel
     (:func:`cable_ocp.dynamics.static.static_state`) interpolated at the nodes' unstretched
     arc lengths (cubic in s per coordinate), then refined to the lumped-mass equilibrium
     by Newton. ``"unstrained"``: straight down from end_b, unstretched.
+
+    Parameters
+    ----------
+    scene : DynamicScene
+        The scene.
+    model : LumpedMassModel
+        Its model.
 
     Returns
     -------
@@ -442,14 +466,3 @@ class LumpedSceneModel:
                            message=msg, diagnostics={"segments": n, "start": info,
                                                      "stiffness": "tension, weight and body "
                                                      "loads; drag neglected"})
-
-
-def simulate_lumped(scene: DynamicScene, progress: Callable[[int, int], None] | None = None
-                    ) -> SimulationResult:
-    """:meth:`LumpedSceneModel.simulate` of the scene."""
-    return LumpedSceneModel(scene).simulate(progress)
-
-
-def modes_lumped(scene: DynamicScene, count: int) -> ModesResult:
-    """:meth:`LumpedSceneModel.modes` of the scene."""
-    return LumpedSceneModel(scene).modes(count)

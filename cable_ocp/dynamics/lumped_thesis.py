@@ -151,6 +151,21 @@ def run_thesis(model: LumpedMassModel, x0: np.ndarray, v0: np.ndarray | None,
     docstring). Same arguments and result type as :func:`cable_ocp.dynamics.lumped_run.run`;
     a step that produces non-finite positions stops the run with status ``"failed"``
     (the scheme is unstable for dt above about sqrt(m l / T): see the module docstring).
+
+    Parameters
+    ----------
+    model : LumpedMassModel
+        The model.
+    x0, v0 : ndarray (3 n_free,)
+        Initial positions (m) and velocities (m/s; None: at rest).
+    duration, time_step : float
+        Simulated time and step, s.
+    record_every : int
+        Keep every k-th step.
+    t0 : float
+        Start time, s.
+    progress : callable, optional
+        ``progress(t_done, duration)`` (s, s).
     """
     if not duration > 0:
         raise CableOCPError(f"duration = {duration}: must be > 0")

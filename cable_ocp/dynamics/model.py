@@ -67,8 +67,11 @@ class DrivenStep:
         tension at the unit and at the top (N), and the smallest element tension (N; the
         Hooke tension where the model's law cannot go negative, so that ``<= 0`` is slack).
     start : ndarray
-        The static state (:meth:`CableModel.static_state`) in this step's layout (relative
-        to the top: a displaced top carries the line with it).
+        The static state at rest under the static top, in this step's layout (relative to
+        the top: a displaced top carries the line with it).
+    residual_scale : casadi.DM or None
+        Where the residual is not scaled itself: the row scale of its convergence measure
+        ``max |residual * residual_scale|`` (-).
     """
 
     unknown: Any
@@ -80,6 +83,7 @@ class DrivenStep:
     guess: Any
     outputs: Any
     start: np.ndarray
+    residual_scale: Any = None
 
 
 @runtime_checkable

@@ -1,11 +1,10 @@
 """``modes(scene, count, lengths) -> ModesResult | DeploymentChart``: natural frequencies
-and mode shapes linearised about the static state, dispatched on ``[simulation] model``.
-
-Each model registers ``"module:function"`` in :data:`MODE_SOLVERS`; the function is called
-as ``fn(scene, count)`` and returns a :class:`~cable_ocp.dynamics.result.ModesResult` for
-the scene's length. With ``lengths`` the scene is re-solved at each length (overriding
-``cable.length``, or the top segment's length of a multi-segment line) and the frequencies
-are collected into a :class:`~cable_ocp.dynamics.result.DeploymentChart`.
+and mode shapes linearised about the static state: the scene's model
+(:func:`cable_ocp.dynamics.model.model_for`, on ``[simulation] model``) runs its
+:meth:`~cable_ocp.dynamics.model.CableModel.modes` for the scene's length. With
+``lengths`` the scene is re-solved at each length (overriding ``cable.length``, or the top
+segment's length of a multi-segment line) and the frequencies are collected into a
+:class:`~cable_ocp.dynamics.result.DeploymentChart`.
 """
 
 from __future__ import annotations
@@ -16,20 +15,12 @@ from typing import Any
 
 import numpy as np
 
+from cable_ocp.dynamics.model import model_for
 from cable_ocp.dynamics.result import DeploymentChart, ModesResult
-from cable_ocp.dynamics.simulate import _resolve
 from cable_ocp.errors import CableOCPError
 from cable_ocp.scene.dynamics import DynamicScene, load_dynamic_scene
 
-__all__ = ["MODE_SOLVERS", "modes"]
-
-#: model name -> "module:function" of its modal analysis
-MODE_SOLVERS: dict[str, str] = {
-    "axial": "cable_ocp.dynamics.axial:modes_axial",
-    "planar": "cable_ocp.dynamics.planar:modes_planar",
-    "lumped3d": "cable_ocp.dynamics.lumped_scene:modes_lumped",
-}
-
+__all__ = ["modes"]
 
 def _at_length(scene: DynamicScene, length: float) -> DynamicScene:
     """The scene with the unstretched length set to ``length`` (m); a multi-segment line
@@ -71,7 +62,7 @@ def modes(scene: DynamicScene | str | Path, count: int | None = None,
     Raises
     ------
     CableOCPError
-        An invalid scene, count or length (named), or a model not built yet.
+        An invalid scene, count or length (named).
     """
     if not isinstance(scene, DynamicScene):
         scene = load_dynamic_scene(scene, overrides)
@@ -81,7 +72,9 @@ def modes(scene: DynamicScene | str | Path, count: int | None = None,
         count = scene.modes.count
     if isinstance(count, bool) or not isinstance(count, (int, np.integer)) or count < 1:
         raise CableOCPError(f"--count = {count!r}: expected a positive integer")
-    fn = _resolve(MODE_SOLVERS, scene.simulation.model, "modal analysis")
+    def fn(sc: DynamicScene, count: int) -> ModesResult:
+        return model_for(sc).modes(count)
+
     if lengths is None:
         return fn(scene, int(count))
     lengths = np.asarray(lengths, dtype=float).ravel()

@@ -79,9 +79,12 @@ from typing import Any
 import casadi as ca
 import numpy as np
 
-from cable_ocp.dynamics.result import ModesResult, SimulationResult
-from cable_ocp.dynamics.stepping import run_chunks
+from cable_ocp.dynamics.driven import planar_driven_step
+from cable_ocp.dynamics.model import DrivenStep
+from cable_ocp.dynamics.result import ModesResult, SimulationResult, slack_report, until_slack
+from cable_ocp.dynamics.stepping import MAX_CHUNKS, run_chunks
 from cable_ocp.errors import CableOCPError
+from cable_ocp.numerics.quadrature import gauss_legendre
 from cable_ocp.physics.added_mass import added_mass_per_length, line_added_mass_2d
 from cable_ocp.physics.current import profile_velocity
 from cable_ocp.physics.drag import line_drag_factors, point_drag, vector_drag_columns
@@ -89,13 +92,17 @@ from cable_ocp.physics.elasticity import SLACK_SMOOTHING, smooth_tension, taut_s
 from cable_ocp.scene.dynamics import DynamicScene
 from cable_ocp.scene.motion import motion_function
 
-__all__ = ["PlanarModel", "check_planar", "modes_planar", "simulate_planar"]
+__all__ = ["SLACK_MESSAGE", "PlanarModel", "check_planar"]
 
-#: at most this many progress calls (chunks) per run
-MAX_CHUNKS = 200
-# 3-point Gauss-Legendre rule on [-1, 1] (mean of the tension over a strain interval)
-_GAUSS_X = (-math.sqrt(0.6), 0.0, math.sqrt(0.6))
-_GAUSS_W = (5.0 / 18.0, 8.0 / 18.0, 5.0 / 18.0)
+#: the planar model's slack message (:func:`cable_ocp.dynamics.result.slack_report`)
+SLACK_MESSAGE = ("slack: tension <= 0 first at t = {t:.6g} s in element {segment} (s = "
+                 "{location:.4g} m from end_a); the planar model predicts slack but cannot "
+                 "follow it (Huang (1992) 4.5.1): {action}; the Hooke's-law tension EA e "
+                 "reached {hooke:.4g} N")
+#: 3-point Gauss-Legendre rule on [-1, 1], weights halved (the mean of the tension over a
+#: strain interval)
+_MEAN_RULE = ([float(v) for v in gauss_legendre(3)[0]],
+              [0.5 * float(v) for v in gauss_legendre(3)[1]])
 #: a horizontal direction counts as along x when its y-component is below this (-)
 _PLANE_TOL = 1e-12
 
@@ -165,10 +172,15 @@ class PlanarModel:
         Number of elements (nodes 0..N, node N the top).
     free : list of int
         The free nodes: 0..N-1 with a unit, 1..N-1 with an anchored end_a.
+
+    The model implements :class:`cable_ocp.dynamics.model.CableModel`.
     """
 
+    #: the scene's ``simulation.model`` of this model
+    name = "planar"
+
     #: symbols that :attr:`motion` reads besides the time (None: a function of time only):
-    #: a subclass that moves the top by parameters (the heave plant) sets them, and
+    #: the driven step (:mod:`cable_ocp.dynamics.driven`) sets them, and
     #: :meth:`output_function` takes them as its last input
     motion_params: Any = None
 
@@ -391,7 +403,7 @@ class PlanarModel:
         e0, e1 = l0 / h0 - 1.0, l1 / h1 - 1.0
         em, de = 0.5 * (e0 + e1), 0.5 * (e1 - e0)
         tbar = sum(wg * self._tension(em + g * de)
-                   for g, wg in zip(_GAUSS_X, _GAUSS_W, strict=True))
+                   for g, wg in zip(*_MEAN_RULE, strict=True))
         u = (d0 + d1) / ca.repmat(l0 + l1, 2, 1)
         if self.c > 0.0:
             rate = ca.sum1(u * (vm[:, 1:] - vm[:, :-1])) / hm
@@ -718,7 +730,8 @@ class PlanarModel:
             t=np.zeros(0), length=np.zeros(0), top_position=empty, unit_position=empty,
             top_tension=np.zeros(0), node_positions=np.zeros((0, n + 1, 3)),
             segment_tensions=np.zeros((0, n)), min_tension=math.nan,
-            slack={"occurred": False, "first_time": None, "location": None, "segment": None},
+            slack=slack_report(None, None, None, status="failed", message="",
+                               on_slack="stop", template=SLACK_MESSAGE)[0],
             status="failed", message=info.get("message", "the static start failed"),
             model="planar", scheme=self.scene.simulation.scheme, diagnostics={"start": info})
 
@@ -737,8 +750,8 @@ class PlanarModel:
         # map stacks the (2, N + 1) outputs side by side, one block per time
         pos = np.stack([pos[:, k * n1:(k + 1) * n1].T for k in range(n_t)])
         vel = np.stack([vel[:, k * n1:(k + 1) * n1].T for k in range(n_t)])
-        if sim.on_slack == "stop" and np.isfinite(t_slack):
-            keep = ts <= t_slack + sim.output_every * dt * (1.0 + 1e-9)
+        keep = until_slack(ts, t_slack, sim.output_every * dt, sim.on_slack)
+        if keep is not None:
             ts, pos, vel = ts[keep], pos[keep], vel[keep]
             tens, top, length, eps = tens[:, keep], top[:, keep], length[:, keep], eps[:, keep]
             n_t = ts.size
@@ -754,23 +767,15 @@ class PlanarModel:
         length = length.reshape(n_t)
         min_strain = float(min(emin, np.min(eps)))
         min_t = float(min(smooth_tension(min_strain, self.ea, self.delta_t), np.min(tens)))
-        slack: dict[str, Any] = {"occurred": bool(np.isfinite(t_slack)), "first_time": None,
-                                 "location": None, "segment": None}
-        if np.isfinite(t_slack):
-            e = int(round(e_slack))
-            lt = float(np.interp(t_slack, ts, length))
-            slack.update(first_time=t_slack, segment=e, location=(e + 0.5) * lt / self.n)
-            if status == "solved":
-                status = "slack"
-                action = ("the run stopped there" if sim.on_slack == "stop" else
-                          "the run continued: a slack element carries no tension (the "
-                          "smooth no-compression law) and the model follows the slack "
-                          "cable only approximately (no bending, no contact, lumped)")
-                message = (f"slack: tension <= 0 first at t = {t_slack:.6g} s in element {e} "
-                           f"(s = {slack['location']:.4g} m from end_a); the planar model "
-                           f"predicts slack but cannot follow it (Huang (1992) 4.5.1): "
-                           f"{action}; the Hooke's-law tension EA e reached "
-                           f"{self.ea * min_strain:.4g} N")
+        e = int(round(e_slack)) if np.isfinite(t_slack) else None
+        slack, status, message = slack_report(
+            t_slack, e, None if e is None else
+            (e + 0.5) * float(np.interp(t_slack, ts, length)) / self.n, status=status,
+            message=message, on_slack=sim.on_slack, template=SLACK_MESSAGE,
+            continued="the run continued: a slack element carries no tension (the smooth "
+                      "no-compression law) and the model follows the slack cable only "
+                      "approximately (no bending, no contact, lumped)",
+            hooke=self.ea * min_strain)
         if status == "solved":
             message = f"{sim.steps} steps of {dt:g} s ({sim.scheme}), {self.n} elements"
         warnings = []
@@ -814,6 +819,33 @@ class PlanarModel:
             segment_tensions=tens, min_tension=min_t, slack=slack, status=status,
             message=message, warnings=warnings, wall_time_s=wall, model="planar",
             scheme=sim.scheme, diagnostics=diagnostics, node_velocities=velocities)
+
+    # ------------------------------------------------------------------ the interface
+    def state_size(self) -> int:
+        """Offsets q and material velocities V of the free nodes: ``4 n_free``."""
+        return 4 * self.nf
+
+    def static_state(self) -> tuple[np.ndarray | None, dict[str, Any]]:
+        """:meth:`initial_state`."""
+        return self.initial_state()
+
+    def driven_step(self, dt: float | None = None) -> DrivenStep:
+        """The midpoint step with the top's height and the length as inputs
+        (:func:`cable_ocp.dynamics.driven.planar_driven_step`; ``dt`` s, or a symbol)."""
+        return planar_driven_step(self, dt)
+
+    def linearize(self) -> tuple[np.ndarray, np.ndarray]:
+        """:meth:`matrices` about the static state.
+
+        Raises
+        ------
+        CableOCPError
+            When the static state failed.
+        """
+        x0, info = self.initial_state()
+        if x0 is None:
+            raise CableOCPError(info["message"])
+        return self.matrices(x0[:2 * self.nf])
 
     # ------------------------------------------------------------------ modes
     def matrices(self, q: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
@@ -864,16 +896,3 @@ class PlanarModel:
                            length=self.length0, model="planar", status=status, message=msg,
                            diagnostics={"elements": n, "start": info,
                                         "stiffness": "tension and weight; drag neglected"})
-
-
-def simulate_planar(scene: DynamicScene, progress: Callable[[int, int], None] | None = None
-                    ) -> SimulationResult:
-    """Time-domain simulation of the planar model (dispatched by
-    :func:`cable_ocp.dynamics.simulate`)."""
-    return PlanarModel(scene).simulate(progress)
-
-
-def modes_planar(scene: DynamicScene, count: int) -> ModesResult:
-    """In-plane modes of the scene's line about its static state (dispatched by
-    :func:`cable_ocp.dynamics.modes`)."""
-    return PlanarModel(scene).modes(count)

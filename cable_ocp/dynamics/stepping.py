@@ -17,6 +17,11 @@ from collections.abc import Callable
 import casadi as ca
 import numpy as np
 
+__all__ = ["MAX_CHUNKS", "run_chunks"]
+
+#: at most this many progress calls (chunks) per run, in every model
+MAX_CHUNKS = 200
+
 
 def run_chunks(chunk_fn: Callable[[int], ca.Function], acc: np.ndarray, n_out: int,
                per_chunk: int, every: int, dt: float, off: int, n_state: int,
@@ -28,6 +33,31 @@ def run_chunks(chunk_fn: Callable[[int], ca.Function], acc: np.ndarray, n_out: i
     Returns ``(times, states, acc, status, message, wall)``: the sample times (s) and
     states (the first ``n_state`` rows) after the start, the last good accumulator,
     ``"solved"`` or ``"failed"`` with its message, and the wall time of the loop (s).
+
+    Parameters
+    ----------
+    chunk_fn : callable
+        ``chunk_fn(m)``: the function advancing m samples (mapaccum).
+    acc : ndarray
+        The accumulator: state (and history) rows, then the residual at ``off``.
+    n_out : int
+        Samples to advance.
+    per_chunk : int
+        Samples per call.
+    every : int
+        Steps per sample.
+    dt : float
+        Time step, s.
+    off : int
+        Row of the residual in ``acc``.
+    n_state : int
+        Rows of the state.
+    tol_fail : float
+        Largest acceptable scaled residual (-).
+    stop_on_slack : bool
+        Stop after the chunk in which slack first occurs.
+    progress : callable or None
+        ``progress(done, total)`` (steps).
     """
     times: list[float] = []
     states: list[np.ndarray] = []

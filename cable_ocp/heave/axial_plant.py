@@ -15,14 +15,14 @@ model (:class:`cable_ocp.dynamics.axial.AxialModel`, Huang's (3.1)-(3.3)) of a d
 
 :class:`AxialCablePlant` builds, once, a CasADi function that advances the cable over one
 control sample: the cable scene's ``[simulation] time_step`` divides the sample into ``m``
-implicit-midpoint steps (a Newton ``rootfinder`` each, the axial model's own scheme), with
-``L`` and the sheave height linear in time over each step. One call per sample, no Python per
+implicit-midpoint steps, the axial model's own step with the top motion and the length as
+inputs (:meth:`cable_ocp.dynamics.axial.AxialModel.driven_step`: ``L`` and the sheave height
+linear in time over each step), each solved by Newton's method. One call per sample, no Python per
 sub-step.
 """
 
 from __future__ import annotations
 
-from collections.abc import Callable
 from typing import Any
 
 import casadi as ca
@@ -34,46 +34,12 @@ from cable_ocp.numerics.block_tridiagonal import block_tridiagonal_solve
 from cable_ocp.numerics.compile import compile_functions
 from cable_ocp.scene.dynamics import DynamicScene
 
-__all__ = ["AxialCablePlant", "SampledCablePlant", "compile_plant_functions", "sampled_motion"]
+__all__ = ["AxialCablePlant", "SampledCablePlant", "compile_plant_functions"]
 
 
 # ------------------------------------------------------------------------------------------
 # The step-able cable
 # ------------------------------------------------------------------------------------------
-
-def sampled_motion(top: Any, p: ca.SX, dt: Any) -> Callable[[Any], tuple]:
-    """The motion of a plant step as the models' ``motion(t)``: over the step (0, dt) the
-    unstretched length goes linearly from ``p[0]`` to ``p[1]`` and the top's height from
-    ``p[2]`` to ``p[3]`` (x and y stay at ``top``'s); returns (length, its rate, its second
-    derivative, top position, velocity, acceleration)."""
-
-    def motion(t: Any) -> tuple:
-        s = t / dt
-        length = p[0] + s * (p[1] - p[0])
-        z = p[2] + s * (p[3] - p[2])
-        return (length, (p[1] - p[0]) / dt, ca.SX(0.0),
-                ca.vertcat(top[0], top[1], z), ca.vertcat(0.0, 0.0, (p[3] - p[2]) / dt),
-                ca.SX.zeros(3))
-
-    return motion
-
-
-class _SteppedAxial(AxialModel):
-    """The axial model with the sheave height and the unstretched length as parameters.
-
-    Over one step of ``dt`` both are linear in time between their values at the start and
-    the end of the step, ``p = [L_a, L_b, z_a, z_b]`` (m): the motion that the model's
-    ``_fields`` reads from ``self.motion`` is this interpolation instead of a function of
-    time (its acceleration is zero inside a step: the top tension leaves out the inertia of
-    half an element, ``mu h a_top / 2``).
-    """
-
-    def __init__(self, scene: DynamicScene, dt: float) -> None:
-        super().__init__(scene)
-        self.dt = dt
-        self.p = ca.SX.sym("p", 4)
-        self.motion = sampled_motion(scene.top_position, self.p, dt)
-
 
 class SampledCablePlant:
     """What the heave loop needs of a cable plant stepped one control sample per call:
@@ -219,7 +185,7 @@ class AxialCablePlant(SampledCablePlant):
         self._setup(scene, sample_time, f"cable plant: [simulation] model = {sim.model!r}; "
                     "the heave plant uses the axial model (model = \"axial\")",
                     need_unit=False)
-        self.model = _SteppedAxial(scene, self.dt)
+        self.model = AxialModel(scene)
         self._sample = self._build(sim.tolerance, sim.max_iterations)
         self._chunks: dict[int, ca.Function] = {}
 
@@ -242,16 +208,9 @@ class AxialCablePlant(SampledCablePlant):
         md = self.model
         n = md.n
         n2 = 2 * n
-        dt = self.dt
-        p = md.p
-        t = ca.SX.sym("t")
-        x = ca.SX.sym("x", n2)
-        rhs = md.rhs(t, x)
-        f = ca.Function("f", [t, x, p], [rhs])
-        scale = ca.DM([1.0 / md.elongation] * n + [1.0 / (dt * md.gravity)] * n)
-        x0 = ca.SX.sym("x0", n2)
-        x1 = ca.SX.sym("x1", n2)
-        res = x1 - x0 - dt * f(0.5 * dt, 0.5 * (x0 + x1), p)
+        # the model's step with the top motion and the length as inputs
+        st = md.driven_step(self.dt)
+        x1, x0, p, res = st.unknown, st.state, st.inputs, st.residual
         perm = [int(i) for i in np.ravel(np.column_stack([np.arange(n), n + np.arange(n)]))]
         back = [int(i) for i in np.argsort(perm)]
         jac = ca.jacobian(res, x1)[perm, perm]
@@ -259,6 +218,7 @@ class AxialCablePlant(SampledCablePlant):
         if rows.size and np.max(np.abs(rows // 2 - cols // 2)) > 1:
             raise CableOCPError("cable plant: the axial model's Jacobian is not block "
                                 "tridiagonal (internal error)")
+
         def blk(i: int, j: int) -> ca.SX:
             return jac[2 * i: 2 * i + 2, 2 * j: 2 * j + 2]
 
@@ -267,16 +227,9 @@ class AxialCablePlant(SampledCablePlant):
             [blk(i, i) for i in range(n)], [blk(i + 1, i) for i in range(n - 1)],
             [blk(i, i + 1) for i in range(n - 1)], [rp[2 * i: 2 * i + 2] for i in range(n)]))
         newton = ca.Function("axial_newton", [x1, x0, p], [x1 - step[back]])
-        resid = ca.Function("axial_resid", [x1, x0, p], [ca.norm_inf(res * scale)])
-        heights, tens, top, length, vel = md.outputs(t, x)
-        # tension at the unit's attachment (s = 0): element 0's tension less the half
-        # element that node 0 carries (its weight in water, drag and inertia)
-        h_el = length / n
-        eps0 = tens[0] / md.ea  # (the drag's factor 1 + e; internal damping left out there)
-        drag0 = md.k_drag * (1.0 + eps0) * ca.fabs(vel[0]) * vel[0]
-        t_unit = tens[0] - 0.5 * h_el * (md.w + drag0 + md.mu * rhs[n])
-        out = ca.Function("axial_out", [x, p], [ca.substitute(
-            ca.vertcat(heights[0], vel[0], t_unit, top, ca.mmin(tens)), t, ca.SX(dt))])
+        resid = ca.Function("axial_resid", [x1, x0, p],
+                            [ca.norm_inf(res * st.residual_scale)])
+        out = ca.Function("axial_out", [x1, p], [st.outputs])
         newton, resid, out = compile_plant_functions([newton, resid, out])
 
         # one sub-step: two iterations, then more (up to max_iterations, evaluated only
@@ -327,26 +280,19 @@ class AxialCablePlant(SampledCablePlant):
     def initial_state(self) -> np.ndarray:
         """The static state at the scene's length, at rest (relative to the top, so a top
         that starts displaced carries the static line with it)."""
-        md = self.model
-        n = md.n
-        s = np.arange(n) * self.length0 / n
-        z, _ = static_profile(self.scene, s)
-        zeta = z - (self.z_top0 - (self.length0 - s))
-        return np.concatenate([zeta, np.zeros(n)])
+        return self.model.rest_state()
 
     def static_unit_height(self, length: float | np.ndarray) -> np.ndarray:
         """Static height of the unit (m) hanging on ``length`` (m) from the top's static
         position: ``z_b - L - (W L + w L^2 / 2) / EA``."""
-        md = self.model
-        length = np.asarray(length, dtype=float)
-        return (self.z_top0 - length
-                - (md.unit_weight * length + 0.5 * md.w * length**2) / md.ea)
+        return static_profile(self.scene, 0.0, np.asarray(length, dtype=float))[0]
 
     def static_tensions(self, length: float | None = None) -> tuple[float, float]:
         """(tension at the unit, at the top) of the static line of ``length`` (m), N."""
-        md = self.model
         length = self.length0 if length is None else length
-        return md.unit_weight, md.unit_weight + md.w * length
+        tension = static_profile(self.scene, np.array([0.0, length]), length)[1]
+        return float(tension[0]), float(tension[1])
+
 
 def compile_plant_functions(fns: list[ca.Function], flags: str = "-O1") -> list[ca.Function]:
     """Compile the plant's functions to one shared library (``cc -O1``: on the generated

@@ -34,15 +34,14 @@ import numpy as np
 
 from cable_ocp.dynamics.axial import check_axial
 from cable_ocp.dynamics.lumped import LumpedMassModel
-from cable_ocp.dynamics.lumped_driven import DrivenLumpedStep
 from cable_ocp.dynamics.lumped_scene import check_lumped_plant
-from cable_ocp.dynamics.planar import PlanarModel, check_planar
+from cable_ocp.dynamics.model import model_for
+from cable_ocp.dynamics.planar import check_planar
 from cable_ocp.errors import CableOCPError
 from cable_ocp.heave.axial_plant import (
     AxialCablePlant,
     SampledCablePlant,
     compile_plant_functions,
-    sampled_motion,
 )
 from cable_ocp.scene.dynamics import DynamicScene, dynamic_scene_from_dict
 
@@ -222,31 +221,77 @@ def _sample_functions(name: str, step: ca.Function, nx: int, substeps: int, dt: 
     return sample, flat, step
 
 
-class _SteppedPlanar(PlanarModel):
-    """The planar model with the top height and the unstretched length as parameters.
-
-    As the axial plant's: over one step of ``dt`` both are linear in time between their
-    values at the start and the end of the step, ``p = [L_a, L_b, z_a, z_b]`` (m); the top
-    stays at its static x. Time ``t`` runs from 0 to ``dt`` within the step; ``dt`` (s) is
-    a parameter too (:attr:`motion_params` = ``[p; dt]``).
-    """
-
-    def __init__(self, scene: DynamicScene) -> None:
-        super().__init__(scene)
-        #: the step, s: a symbol, so that one compiled step serves every step size (the
-        #: halving of a step whose Newton iteration does not converge)
-        self.dt = dt = ca.SX.sym("dt")
-        p = ca.SX.sym("p", 4)
-        self.motion_params = ca.vertcat(p, dt)
-        self.motion = sampled_motion(scene.top_position, p, dt)
-
-
 class _OneLengthPlant(SampledCablePlant):
-    """A plant that knows its static state at the cable scene's length only (the planar and
-    lumped-mass plants: their static start is the discrete equilibrium at that length),
-    from ``_z_static`` and ``_t_static``."""
+    """A plant that steps its model through the model's step with the top motion and the
+    length as inputs (:meth:`cable_ocp.dynamics.model.CableModel.driven_step`) and knows
+    its static state at the cable scene's length only (the planar and lumped-mass plants:
+    their static start is the discrete equilibrium at that length), from ``_z_static`` and
+    ``_t_static``."""
 
     model_name: str
+    #: the prefix of the plant's CasADi functions
+    _name: str
+
+    def _drive(self, scene: DynamicScene, sample_time: float) -> None:
+        """Set the sampling attributes, build the scene's model at rest under its static
+        top (:func:`still_scene`) and its driven step, and the sample function."""
+        self._setup(scene, sample_time)
+        self.model = model_for(still_scene(scene))
+        try:
+            self.step = self.model.driven_step()
+        except CableOCPError as exc:
+            raise CableOCPError(f"cable scene: {exc}") from None
+        self._x0 = np.asarray(self.step.start, dtype=float)
+        self._compile_sample()
+
+    def _build(self, tol: float, max_iter: int, halvings: int) -> ca.Function:
+        """The sample function ``(x, P) -> (x_next, z_unit, v_unit, t_unit, t_top, t_min,
+        residual)`` over ``substeps`` steps of the model's driven step (as the axial
+        plant's).
+
+        Each step is Newton's method on the step's (scaled) residual from the model's
+        predictor: two iterations, then more (up to ``max_iterations``) only while the
+        scaled residual exceeds the tolerance (a short-circuit switch, as the axial plant).
+        The Newton matrix (the exact Jacobian, block banded) is solved by CasADi's sparse
+        QR, which, unlike the ``rootfinder``, generates C: the functions are compiled as
+        the axial plant's (:func:`cable_ocp.heave.axial_plant.compile_plant_functions`).
+        Where a step does not converge (the residual above the failure threshold ``1e3
+        tolerance``: a line going slack, where the no-compression law bends sharply), it
+        is taken again as two steps of half the size, recursively up to ``halvings`` times
+        (only then evaluated).
+        """
+        st, name = self.step, self._name
+        y = st.unknown
+        ny, nx = y.shape[0], st.state.shape[0]
+        pars = ca.vertcat(st.state, st.inputs, st.dt)
+        fj = ca.Function(f"{name}_fj", [y, pars], [st.residual, ca.jacobian(st.residual, y)])
+        ys = ca.MX.sym("y", ny)
+        ps = ca.MX.sym("pars", pars.shape[0])
+        rk, jk = fj(ys, ps)
+        newton = ca.Function(f"{name}_newton", [ys, ps], [ys - ca.solve(jk, rk, "qr")])
+        resid = ca.Function(f"{name}_resid", [y, pars], [ca.norm_inf(st.residual)])
+        guess = ca.Function(f"{name}_guess", [pars], [st.guess])
+        fin = ca.Function(f"{name}_finish", [y, pars], [ca.vertcat(st.next_state,
+                                                                   st.outputs)])
+        newton, resid, guess, fin = compile_plant_functions([newton, resid, guess, fin])
+        self._guess, self._fin = guess, fin
+        step = _newton_step(name, newton, resid, guess, fin, nx, ny, tol, max_iter)
+        sample, self._flat, self._step = _sample_functions(name, step, nx, self.substeps,
+                                                           self.dt, tol, halvings)
+        return sample
+
+    def _outputs_at(self, x: np.ndarray, p: np.ndarray) -> np.ndarray:
+        """``[z_unit, v_unit, t_unit, t_top, t_min]`` of the state ``x`` at rest over a
+        step of ``p`` (the static outputs: the predictor of a state at rest with the top
+        and the length still is no motion)."""
+        pv = np.concatenate([x, p])
+        r = np.asarray(self._fin(self._guess(pv), pv)).ravel()
+        return r[x.size:]
+
+    def initial_state(self) -> np.ndarray:
+        """The static state at the scene's length, at rest, in the model's driven layout
+        (relative to the top, so a displaced top carries the line with it)."""
+        return self._x0.copy()
 
     def _compile_sample(self) -> None:
         """Build the sample function (the subclass's ``_build``, with the scene's Newton
@@ -288,9 +333,9 @@ class PlanarCablePlant(_OneLengthPlant):
     the top keeps its static x. A current along x (``[environment.current]`` of the cable
     scene) inclines the line and drags on the unit and the cable as they move. Each
     sub-step is the planar model's own implicit-midpoint step with its discrete-gradient
-    tension (:meth:`cable_ocp.dynamics.planar.PlanarModel._step_expressions`), with ``L``,
-    the top height and the step size as parameters, solved by Newton's method (compiled;
-    a step that does not converge is halved, :meth:`_build`).
+    tension with ``L``, the top height and the step size as inputs
+    (:meth:`cable_ocp.dynamics.planar.PlanarModel.driven_step`), solved by Newton's method
+    (compiled; a step that does not converge is halved, :meth:`_OneLengthPlant._build`).
 
     Outputs per sub-step: the unit's height and vertical velocity, the tension at the unit
     (the magnitude of the force that the cable exerts on it: element 0's tension less the
@@ -310,109 +355,13 @@ class PlanarCablePlant(_OneLengthPlant):
     """
 
     _chunk_name = "planar_chunk"
+    _name = "planar"
 
     #: the cable scene's ``simulation.model`` of this plant
     model_name = "planar"
 
     def __init__(self, scene: DynamicScene, sample_time: float) -> None:
-        sim = scene.simulation
-        self._setup(scene, sample_time)
-        # the static state: the statics solution refined to the discrete equilibrium, by
-        # the model with the scene's own (time) motion at t = 0 (the static top, L0)
-        base = PlanarModel(scene if sim.start == "static"
-                           else scene.with_overrides({"simulation.start": "static"}))
-        x0, info = base.initial_state()
-        if x0 is None:
-            raise CableOCPError(f"cable scene: the planar line's static state failed: "
-                                f"{info.get('message', '')}")
-        self._x0 = np.asarray(x0, dtype=float)
-        self.model = _SteppedPlanar(scene)
-        self.model.force_scale = base.force_scale
-        self.nf = self.model.nf
-        self._compile_sample()
-
-    def _build(self, tol: float, max_iter: int, halvings: int) -> ca.Function:
-        """The sample function ``(x, P) -> (x_next, z_unit, v_unit, t_unit, t_top, t_min,
-        residual)`` over ``substeps`` midpoint steps (as the axial plant's).
-
-        Each step is Newton's method on the planar model's midpoint residual in the new
-        offsets, from the model's explicit predictor: two iterations, then more (up to
-        ``max_iterations``) only while the scaled residual exceeds the tolerance (a
-        short-circuit switch, as the axial plant). The Newton matrix (block banded: the
-        pay-out terms reach two nodes each way) is solved by CasADi's sparse QR, which,
-        unlike the ``rootfinder``, generates C: the functions are compiled as the axial
-        plant's (:func:`cable_ocp.heave.axial_plant.compile_plant_functions`). Where a step does not
-        converge (the residual above the failure threshold ``1e3 tolerance``: a line going
-        slack, where the no-compression law bends sharply), it is taken again as two steps
-        of half the size, recursively up to ``halvings`` times (only then evaluated).
-        """
-        md = self.model
-        nf2 = 2 * self.nf
-        p = md.motion_params  # [L_a, L_b, z_a, z_b, dt]
-        dt = md.dt
-        q1, q0, v0, t0, res, v1, _, pred = md._step_expressions(dt)
-        res, v1, pred = ca.substitute([res, v1, pred], [t0], [ca.SX(0.0)])
-        pars = ca.vertcat(q0, v0, p)
-        fj = ca.Function("planar_fj", [q1, pars], [res, ca.jacobian(res, q1)])
-        xs = ca.MX.sym("q1", nf2)
-        ps = ca.MX.sym("pars", pars.shape[0])
-        rk, jk = fj(xs, ps)
-        newton = ca.Function("planar_newton", [xs, ps], [xs - ca.solve(jk, rk, "qr")])
-        resid = ca.Function("planar_resid", [q1, pars], [ca.norm_inf(res)])
-        guess = ca.Function("planar_guess", [pars], [pred])
-        post = ca.Function("planar_post", [q1, pars], [v1])
-        # outputs at the end of the step (t = dt)
-        outf = md.output_function()
-        qs = ca.SX.sym("q", nf2)
-        vs = ca.SX.sym("v", nf2)
-        va = ca.SX.sym("va", nf2)  # velocities at the start of the step
-        rs, tens, top, _, vel, _ = outf(dt, qs, vs, p)
-        # the pull on the unit: element 0's tension along its chord, less the half element
-        # that node 0 carries (weight in water, drag, inertia at the step's mean
-        # acceleration), as the axial plant's
-        h_el = p[1] / md.n
-        d0 = rs[:, 1] - rs[:, 0]
-        urel = (md._current(0.5 * (rs[1, 0] + rs[1, 1]))
-                - 0.5 * (vel[:, 0] + vel[:, 1]))
-        drag_half = 0.5 * md._element_drag(d0, urel)
-        l2 = ca.dot(d0, d0)
-        txx, txz, tzz = d0[0] ** 2 / l2, d0[0] * d0[1] / l2, d0[1] ** 2 / l2
-        half = 0.5 * h_el
-        mxx = half * (md.mu + md.man * (1.0 - txx) + md.mat * txx)
-        mxz = half * (md.mat - md.man) * txz
-        mzz = half * (md.mu + md.man * (1.0 - tzz) + md.mat * tzz)
-        acc = (vs[0:2] - va[0:2]) / dt
-        pull = (tens[0] * d0 / ca.norm_2(d0) + drag_half
-                - ca.vertcat(mxx * acc[0] + mxz * acc[1],
-                             mxz * acc[0] + mzz * acc[1] + 0.5 * md.w * h_el))
-        out = ca.Function("planar_out", [qs, vs, va, p],
-                          [ca.vertcat(rs[1, 0], vel[1, 0], ca.norm_2(pull), top,
-                                      ca.mmin(tens))])
-        newton, resid, guess, post, out = compile_plant_functions([newton, resid, guess, post, out])
-        self._out = out
-
-        # one step: two iterations, then more while the residual exceeds tol
-        def finish(y: ca.MX, pv: ca.MX) -> ca.MX:
-            vn = post(y, pv)
-            return ca.vertcat(y, vn, out(y, vn, pv[nf2:2 * nf2], pv[2 * nf2:]))
-
-        step = _newton_step("planar", newton, resid, guess, finish, 2 * nf2, nf2, tol,
-                            max_iter)
-        sample, self._flat, self._step = _sample_functions("planar", step, 2 * nf2,
-                                                           self.substeps, self.dt, tol,
-                                                           halvings)
-        return sample
-
-    def _outputs_at(self, x: np.ndarray, p: np.ndarray) -> np.ndarray:
-        nf2 = 2 * self.nf
-        return np.asarray(self._out(x[:nf2], x[nf2:], x[nf2:], p)).ravel()
-
-    # ------------------------------------------------------------------------------------
-    def initial_state(self) -> np.ndarray:
-        """The static state at the scene's length, at rest: offsets ``q`` from the
-        unstretched line hanging from the top and material velocities ``V`` (zero) of the
-        free nodes (relative to the top, so a displaced top carries it along)."""
-        return self._x0.copy()
+        self._drive(scene, sample_time)
 
 
 # ------------------------------------------------------------------------------------------
@@ -469,8 +418,8 @@ class LumpedCablePlant(_OneLengthPlant):
 
     Each sub-step is the lumped-mass model's implicit-midpoint step with its
     discrete-gradient tension with ``L``, the top height and the step as inputs
-    (:class:`cable_ocp.dynamics.lumped_driven.DrivenLumpedStep`: the model's own equations
-    of motion), solved by Newton's method with the exact Jacobian
+    (:meth:`cable_ocp.dynamics.lumped_scene.LumpedSceneModel.driven_step`: the model's own
+    equations of motion), solved by Newton's method with the exact Jacobian
     (block tridiagonal; CasADi's sparse QR, compiled), a step that does not converge
     halved as the planar plant's. The static start is the model's own equilibrium
     (:func:`cable_ocp.dynamics.lumped_scene.lumped_start`).
@@ -494,61 +443,16 @@ class LumpedCablePlant(_OneLengthPlant):
     """
 
     _chunk_name = "lumped_chunk"
+    _name = "lumped"
 
     #: the cable scene's ``simulation.model`` of this plant
     model_name = "lumped3d"
 
     def __init__(self, scene: DynamicScene, sample_time: float) -> None:
-        from cable_ocp.dynamics.lumped_scene import lumped_params, lumped_start
-
-        self._setup(scene, sample_time)
-        still = still_scene(scene)
-        base = LumpedMassModel(lumped_params(still))
-        self.model = md = DrivenLumpedStep(base, self.length0)
-        x_abs, info = lumped_start(still, base)
-        if x_abs is None:
-            raise CableOCPError(f"cable scene: the lumped-mass line's static state failed: "
-                                f"{info.get('message', '')}")
-        self.l_top0 = md.l_top0
-        self.top_range = (TOP_SEGMENT_RANGE[0] * md.l_top0, TOP_SEGMENT_RANGE[1] * md.l_top0)
-        nf3 = 3 * md.n
-        q = np.asarray(x_abs, dtype=float) - np.tile(md.top0, md.n)
-        self._x0 = np.concatenate([q, np.zeros(nf3)])
-        self.force_scale = base.force_scale(np.asarray(x_abs, dtype=float))
-        self._compile_sample()
-
-    def _build(self, tol: float, max_iter: int, halvings: int) -> ca.Function:
-        """The sample function ``(x, P) -> (x_next, z_unit, v_unit, t_unit, t_top, t_min,
-        residual)`` over ``substeps`` midpoint steps (as the planar plant's: Newton from
-        the explicit predictor, two iterations, then more only while the scaled residual
-        exceeds the tolerance; a failing step halved)."""
-        md = self.model
-        nf3 = 3 * md.n
-        e = md.expressions(self.force_scale)
-        pars = ca.vertcat(e["q0"], e["v0"], e["p"], e["dt"])
-        y = e["y"]
-        fj = ca.Function("lumped_fj", [y, pars], [e["res"], ca.jacobian(e["res"], y)])
-        ys = ca.MX.sym("y", nf3)
-        ps = ca.MX.sym("pars", pars.shape[0])
-        rk, jk = fj(ys, ps)
-        newton = ca.Function("lumped_newton", [ys, ps], [ys - ca.solve(jk, rk, "qr")])
-        resid = ca.Function("lumped_resid", [y, pars], [ca.norm_inf(e["res"])])
-        guess = ca.Function("lumped_guess", [pars], [e["guess"]])
-        fin = ca.Function("lumped_finish", [y, pars], [ca.vertcat(e["x1"], e["out"])])
-        newton, resid, guess, fin = compile_plant_functions([newton, resid, guess, fin])
-        self._fin = fin
-        step = _newton_step("lumped", newton, resid, guess, fin, 2 * nf3, nf3, tol, max_iter)
-        sample, self._flat, self._step = _sample_functions("lumped", step, 2 * nf3,
-                                                           self.substeps, self.dt, tol,
-                                                           halvings)
-        return sample
-
-    def _outputs_at(self, x: np.ndarray, p: np.ndarray) -> np.ndarray:
-        """``[z_unit, v_unit, t_unit, t_top, t_min]`` of the state ``x`` at rest over a
-        step of ``p`` (the static outputs: no displacement over the step)."""
-        nf3 = 3 * self.model.n
-        r = np.asarray(self._fin(np.zeros(nf3), np.concatenate([x, p]))).ravel()
-        return r[2 * nf3:]
+        self._drive(scene, sample_time)
+        self.l_top0 = float(self.model.params.segment_length[-1])
+        self.top_range = (TOP_SEGMENT_RANGE[0] * self.l_top0,
+                          TOP_SEGMENT_RANGE[1] * self.l_top0)
 
     def _out_of_range(self, lengths: np.ndarray) -> str | None:
         """Why ``lengths`` (m) would take the top segment out of its range, or None."""
@@ -572,7 +476,15 @@ class LumpedCablePlant(_OneLengthPlant):
                 ) -> tuple[np.ndarray, dict[str, Any]]:
         """:meth:`SampledCablePlant.advance`; where the winch would take the top segment
         out of its range, nothing is stepped: the state is returned unchanged, the
-        outputs are NaN, the residual infinite and ``out["stop"]`` says why."""
+        outputs are NaN, the residual infinite and ``out["stop"]`` says why.
+
+        Parameters
+        ----------
+        x : numpy.ndarray
+            State.
+        lengths, tops : numpy.ndarray, shape (substeps + 1,)
+            Unstretched length and top height at the sub-step points, m.
+        """
         why = self._out_of_range(lengths)
         if why is None:
             return super().advance(x, lengths, tops)
@@ -584,15 +496,16 @@ class LumpedCablePlant(_OneLengthPlant):
     def run_open_loop(self, lengths: np.ndarray, tops: np.ndarray,
                       chunk: int = 200) -> dict[str, np.ndarray]:
         """:meth:`SampledCablePlant.run_open_loop`; raises :class:`CableOCPError` where
-        ``lengths`` would take the top segment out of its range."""
+        ``lengths`` would take the top segment out of its range.
+
+        Parameters
+        ----------
+        lengths, tops : numpy.ndarray
+            On the sub-step grid, m (:meth:`SampledCablePlant.run_open_loop`).
+        chunk : int
+            Samples per mapaccum call.
+        """
         why = self._out_of_range(lengths)
         if why is not None:
             raise CableOCPError(why)
         return super().run_open_loop(lengths, tops, chunk)
-
-    def initial_state(self) -> np.ndarray:
-        """The static state at the scene's length, at rest: the free nodes' positions
-        relative to the top (m; a displaced top carries the line with it) and their
-        velocities (zero)."""
-        return self._x0.copy()
-

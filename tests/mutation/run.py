@@ -468,6 +468,25 @@ MUTATIONS: tuple[Mutation, ...] = (
              "ut * ut + delta * delta) * ut * t\n",
              "ut * ut + delta * delta) * ca.fabs(ut) * t\n", LUMPED,
              "lumped step: tangential drag u_t^2 instead of |u_t| u_t"),
+    Mutation("lumped-plant-top-length-frozen", DYN, "cable_ocp/dynamics/lumped_driven.py",
+             "lb = self.l_top0 + (par[1] - self.length0)",
+             "lb = self.l_top0 + (par[0] - self.length0)",
+             ("tests/heave/test_lumped_plant.py::test_vertical_lumped_plant_equals_axial",
+              "tests/heave/test_lumped_plant.py::"
+              "test_payout_settles_the_unit_by_the_static_elastic_answer"),
+             "lumped plant's driven step: the top segment keeps its start length over the "
+             "step (the winch's pay-out lost within a step)"),
+    Mutation("axial-plant-unit-tension-inertia-dropped", DYN, "cable_ocp/dynamics/driven.py",
+             "t_unit = tens[0] - 0.5 * h_el * (md.w + drag0 + md.mu * rhs[n])",
+             "t_unit = tens[0] - 0.5 * h_el * (md.w + drag0)",
+             ("tests/heave/test_planar_plant.py::test_vertical_planar_plant_equals_axial",),
+             "axial driven step: the unit's tension without the inertia of the half element "
+             "its node carries"),
+    Mutation("planar-plant-pull-drag-dropped", DYN, "cable_ocp/dynamics/driven.py",
+             "pull = (tens[0] * d0 / ca.norm_2(d0) + drag_half",
+             "pull = (tens[0] * d0 / ca.norm_2(d0)",
+             ("tests/heave/test_planar_plant.py::test_vertical_planar_plant_equals_axial",),
+             "planar driven step: the pull on the unit without the half element's drag"),
     Mutation("axial-thesis-coriolis-sign", DYN, "cable_ocp/dynamics/axial_thesis.py",
              "                -2 * mu * v * y / ell,", "                2 * mu * v * y / ell,",
              AXIAL, "Huang's scheme: the pay-out cross term C = -2 mu v y / l of (3.5) with "
