@@ -55,8 +55,9 @@ ENV_SWITCH = "CABLE_OCP_CACHE"
 ENV_DIR = "CABLE_OCP_CACHE_DIR"
 
 #: the modules whose code defines the cached functions (their hash is part of the key)
-_SOURCES = ("statics/formulation.py", "statics/collocation.py", "statics/shooting.py",
-            "statics/newton.py", "statics/ipopt.py", "statics/cache.py", "physics")
+_SOURCES = ("statics/formulation.py", "statics/collocation.py", "statics/mesh.py",
+            "statics/shooting.py", "statics/newton.py", "statics/ipopt.py", "statics/cache.py",
+            "physics")
 
 
 def cache_dir() -> Path | None:

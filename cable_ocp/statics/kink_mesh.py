@@ -15,8 +15,9 @@ import numpy as np
 
 from cable_ocp.scene import Scene
 from cable_ocp.statics import kinks as kink_points
-from cable_ocp.statics.collocation import Collocation, Mesh
+from cable_ocp.statics.collocation import Collocation
 from cable_ocp.statics.formulation import NX, Formulation
+from cable_ocp.statics.mesh import Mesh
 from cable_ocp.statics.solution import StaticsSolution
 
 __all__ = ["KinkMesh"]

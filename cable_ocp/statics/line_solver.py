@@ -50,7 +50,7 @@ from cable_ocp.physics import seabed
 from cable_ocp.scene import Scene, SolverOptions
 from cable_ocp.statics import cache as disk_cache
 from cable_ocp.statics.checks import check_physical
-from cable_ocp.statics.collocation import Collocation, Mesh
+from cable_ocp.statics.collocation import Collocation
 from cable_ocp.statics.error_estimate import apply_error_estimate
 from cable_ocp.statics.formulation import P_CURRENT, Formulation, _structure_key
 from cable_ocp.statics.initial_guess import (
@@ -62,6 +62,7 @@ from cable_ocp.statics.initial_guess import (
 from cable_ocp.statics.ipopt import build_ipopt
 from cable_ocp.statics.kink_mesh import KinkMesh
 from cable_ocp.statics.line_solution import assemble_solution
+from cable_ocp.statics.mesh import Mesh
 from cable_ocp.statics.newton import (
     LINEAR_SOLVER,
     Kernel,

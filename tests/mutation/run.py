@@ -226,7 +226,7 @@ MUTATIONS: tuple[Mutation, ...] = (
     Mutation("node-s-ignores-grounded", COLL, "cable_ocp/statics/collocation.py",
              "return g + sig * (length - g)", "return sig * length", SEABED,
              "arc length of the suspended nodes ignores the grounded part"),
-    Mutation("mesh-order-swapped", COLL, "cable_ocp/statics/collocation.py",
+    Mutation("mesh-order-swapped", COLL, "cable_ocp/statics/mesh.py",
              'return 2 * self.degree if self.scheme == "legendre" else 2 * self.degree - 1',
              'return 2 * self.degree - 1 if self.scheme == "legendre" else 2 * self.degree',
              STATICS + ("tests/test_statics_convergence.py",),
