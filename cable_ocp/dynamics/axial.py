@@ -129,6 +129,15 @@ def static_profile(scene: DynamicScene, s: np.ndarray, length: float | None = No
     unstretched arc lengths ``s`` (m, from the unit).
 
     T(s) = W + w s and z(s) = z_b - (L - s) - (W (L - s) + w (L^2 - s^2) / 2) / EA.
+
+    Parameters
+    ----------
+    scene : DynamicScene
+        A vertical-line scene with a unit.
+    s : ndarray
+        Unstretched arc lengths from the unit, m.
+    length : float or ndarray, optional
+        Unstretched length L, m (default the scene's).
     """
     length = scene.length if length is None else length
     w = scene.statics.cable.weight_in_water
@@ -227,7 +236,15 @@ class AxialModel:
                     heights=heights)
 
     def rhs(self, t: Any, x: Any) -> Any:
-        """Time derivative of the state (CasADi expression)."""
+        """Time derivative of the state (CasADi expression).
+
+        Parameters
+        ----------
+        t : casadi expression
+            Time, s.
+        x : casadi expression (2N,)
+            The state (:meth:`_fields`).
+        """
         f = self._fields(t, x)
         n, h, dy = self.n, f["h"], f["dy"]
         vel, eps, ten = f["vel"], f["eps"], f["tension"]
@@ -254,7 +271,15 @@ class AxialModel:
 
     def outputs(self, t: Any, x: Any) -> tuple[Any, Any, Any, Any, Any]:
         """(node heights z_0..z_N (m), element tensions (N), top tension (N), L (m),
-        node material velocities V_0..V_N (m/s))."""
+        node material velocities V_0..V_N (m/s)).
+
+        Parameters
+        ----------
+        t : casadi expression
+            Time, s.
+        x : casadi expression (2N,)
+            The state.
+        """
         f = self._fields(t, x)
         eps_top = f["eps"][self.n - 1]
         v_top = f["v_full"][self.n]
@@ -317,6 +342,17 @@ class AxialModel:
         only: its first step is trapezoidal), the largest scaled Newton residual so far,
         the smallest element tension so far (N), the time of the first tension <= 0 (s,
         inf if none) and that element's index.
+
+        Parameters
+        ----------
+        scheme : str
+            ``midpoint``, ``gauss4``, ``trapezoidal`` or ``bdf2``.
+        dt : float
+            The step, s.
+        tol : float
+            Newton tolerance on the scaled residual (-).
+        max_iter : int
+            Newton iterations per step.
         """
         n2 = 2 * self.n
         f = self._rhs_function()

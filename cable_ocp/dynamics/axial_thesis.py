@@ -137,6 +137,13 @@ class ThesisAxialModel:
         (3.5) and (3.7) at rest (the same stencils as (3.8)-(3.10)); a static start gives
         U_TT = 0, i.e. U^(-2) = U^(-1) = U^0. Without it a start away from equilibrium (e.g.
         ``start = "unstrained"``) would carry a first-order error in dT.
+
+        Parameters
+        ----------
+        u0 : ndarray
+            Displacements U^0 at the nodes, m.
+        dt : float
+            The step dT, s.
         """
         n = self.n
         dy = 1.0 / n
@@ -254,7 +261,15 @@ class ThesisAxialModel:
 
     def outputs(self, t: Any, u: Any) -> tuple[Any, Any, Any, Any]:
         """(heights from the unit to the sheave (m), element tensions from the unit (N),
-        top tension (N), L (m)) for U at the nodes (from the sheave)."""
+        top tension (N), L (m)) for U at the nodes (from the sheave).
+
+        Parameters
+        ----------
+        t : casadi expression
+            Time, s.
+        u : casadi expression
+            Displacements U at the nodes (from the sheave), m.
+        """
         n = self.n
         dy = 1.0 / n
         ell = self.length0 + self.v * t

@@ -19,7 +19,15 @@ __all__ = ["static_scene", "static_state"]
 
 def static_scene(scene: DynamicScene, unit_z: float | None = None) -> Scene:
     """The statics scene of the initial state, with the unit's drag in the current taken
-    at height ``unit_z`` (m; default: the estimate used when the scene was read)."""
+    at height ``unit_z`` (m; default: the estimate used when the scene was read).
+
+    Parameters
+    ----------
+    scene : DynamicScene
+        The dynamic scene.
+    unit_z : float, optional
+        Height at which the unit's drag is taken, m.
+    """
     st = scene.statics
     if scene.unit is None or unit_z is None:
         return st
@@ -34,6 +42,13 @@ def static_state(scene: DynamicScene, max_updates: int = 8) -> StaticsSolution:
     Returns the :class:`~cable_ocp.statics.solution.StaticsSolution` (check its
     ``status``); ``diagnostics["unit_current_updates"]`` counts the re-solves for a
     depth-varying current.
+
+    Parameters
+    ----------
+    scene : DynamicScene
+        The dynamic scene.
+    max_updates : int
+        Most re-solves for a depth-varying current.
     """
     from cable_ocp.statics.solver import solve  # heavy import, only when needed
 

@@ -123,6 +123,13 @@ class SampledCablePlant:
         ``lengths``, ``tops``: on the sub-step grid, ``K * substeps + 1`` points (K samples).
         Returns ``z_unit``, ``t_unit``, ``t_top`` on that grid (the first point static) and
         ``t_min``, ``residual`` (over the run). Chunks of samples are stepped by ``mapaccum``.
+
+        Parameters
+        ----------
+        lengths, tops : numpy.ndarray
+            Unstretched length and top height on the sub-step grid, m.
+        chunk : int
+            Samples per mapaccum call.
         """
         m = self.substeps
         nk = (len(lengths) - 1) // m
