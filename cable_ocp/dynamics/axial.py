@@ -67,6 +67,7 @@ import casadi as ca
 import numpy as np
 import scipy.linalg
 
+from cable_ocp.dynamics.checks import check_axial
 from cable_ocp.dynamics.driven import axial_driven_step
 from cable_ocp.dynamics.model import DrivenStep
 from cable_ocp.dynamics.result import ModesResult, SimulationResult, slack_report, until_slack
@@ -86,41 +87,6 @@ SLACK_MESSAGE = ("slack: tension <= 0 first at t = {t:.6g} s in element {segment
                  "{location:.4g} m from the unit); the axial model cannot follow slack "
                  "(Huang (1992) 4.5.1): {action}")
 
-
-def check_axial(scene: DynamicScene) -> None:
-    """Raise :class:`CableOCPError` (naming the key) when the scene is not a vertical line
-    with a unit that the axial model can represent."""
-    st = scene.statics
-    tm = scene.top_motion
-    why = 'simulation.model = "axial" is a vertical line: '
-    if scene.unit is None:
-        raise CableOCPError(why + "it needs a [unit] at end_a (an anchored end_a is a "
-                            'lumped3d scene)')
-    if st.segments or st.bodies:
-        raise CableOCPError(why + "[[cable.segments]] and [[bodies]] are not supported; give a "
-                            'single [cable] (or use model = "lumped3d")')
-    if st.environment.current is not None:
-        raise CableOCPError(why + "remove [environment.current] (or use model = \"lumped3d\")")
-    for key in ("horizontal_amplitude", "circular_radius"):
-        if getattr(tm, key) != 0.0:
-            raise CableOCPError(why + f"top_motion.{key} must be 0 (only heave and pay-out)")
-    if tm.tow is not None:
-        raise CableOCPError(why + "remove [top_motion.tow] (or use model = \"lumped3d\")")
-    if any(r[1] != 0.0 or r[2] != 0.0 for r in tm.series):
-        raise CableOCPError(why + "top_motion.series: the horizontal offsets dx, dy must be 0")
-    unit = scene.unit
-    if unit.weight_in_water <= 0.0 and st.cable.weight_in_water <= 0.0:
-        raise CableOCPError(why + f"unit.weight_in_water = {unit.weight_in_water} N and "
-                            f"cable.weight_in_water = {st.cable.weight_in_water} N/m: nothing "
-                            "keeps the line taut")
-    if unit.weight_in_water <= 0.0:
-        raise CableOCPError(why + f"unit.weight_in_water = {unit.weight_in_water} N: the line "
-                            "is slack at the unit in its static state (it needs a weight > 0)")
-    if st.cable.weight_in_water < 0.0:
-        low = unit.weight_in_water + st.cable.weight_in_water * scene.length
-        if low <= 0.0:
-            raise CableOCPError(why + f"cable.weight_in_water = {st.cable.weight_in_water} "
-                                "N/m: the buoyant cable is slack at the top in its static state")
 
 
 def static_profile(scene: DynamicScene, s: np.ndarray, length: float | None = None

@@ -23,6 +23,7 @@ from typing import Any
 import casadi as ca
 import numpy as np
 
+from cable_ocp.dynamics.checks import check_lumped, check_lumped_plant
 from cable_ocp.dynamics.lumped import LumpedMassModel
 from cable_ocp.dynamics.lumped_params import LumpedParams, PointBody, UnitParams
 from cable_ocp.dynamics.lumped_run import LumpedRun, run
@@ -77,29 +78,6 @@ def segment_counts(lengths: list[float], total: int) -> list[int]:
     return out
 
 
-def _check(scene: DynamicScene) -> None:
-    tm = scene.top_motion
-    if tm.varying_length:
-        key = "payout_amplitude" if tm.payout_law == "periodic" else "payout_speed"
-        raise CableOCPError(f'top_motion.{key}: simulation.model = "lumped3d" has a fixed '
-                            'length (Huang (1992) ch. 5); pay-out needs model = "axial" or '
-                            '"planar"')
-    check_lumped_plant(scene)
-
-
-def check_lumped_plant(scene: DynamicScene) -> None:
-    """Raise :class:`CableOCPError` (naming the key) when the scene's line has what the
-    lumped-mass model cannot represent, its ``[top_motion]`` aside (the heave plant,
-    :class:`cable_ocp.heave.cable_models.LumpedCablePlant`, moves the top and pays cable
-    out itself)."""
-    if scene.statics.environment.seabed is not None:
-        raise CableOCPError('[environment.seabed]: simulation.model = "lumped3d" has no '
-                            "seabed contact; remove the table (the seabed is then only "
-                            "checked in the static start)")
-    if any(c.bending_stiffness > 0 for c in scene.statics.lines):
-        raise CableOCPError('cable.segments[].bending_stiffness: simulation.model = '
-                            '"lumped3d" is a flexible cable (no bending stiffness)')
-
 
 def lumped_params(scene: DynamicScene, segments: int | None = None) -> LumpedParams:
     """Parameters of the lumped-mass model of a scene with ``segments`` lumped segments
@@ -112,7 +90,7 @@ def lumped_params(scene: DynamicScene, segments: int | None = None) -> LumpedPar
     segments : int, optional
         Lumped segments (default ``simulation.segments``).
     """
-    _check(scene)
+    check_lumped(scene)
     st = scene.statics
     env = st.environment
     lines = st.lines

@@ -79,6 +79,7 @@ from typing import Any
 import casadi as ca
 import numpy as np
 
+from cable_ocp.dynamics.checks import check_planar
 from cable_ocp.dynamics.driven import planar_driven_step
 from cable_ocp.dynamics.model import DrivenStep
 from cable_ocp.dynamics.result import ModesResult, SimulationResult, slack_report, until_slack
@@ -103,58 +104,6 @@ SLACK_MESSAGE = ("slack: tension <= 0 first at t = {t:.6g} s in element {segment
 #: strain interval)
 _MEAN_RULE = ([float(v) for v in gauss_legendre(3)[0]],
               [0.5 * float(v) for v in gauss_legendre(3)[1]])
-#: a horizontal direction counts as along x when its y-component is below this (-)
-_PLANE_TOL = 1e-12
-
-
-def _off_plane(heading_deg: float) -> bool:
-    return abs(math.sin(math.radians(heading_deg))) > _PLANE_TOL
-
-
-def check_planar(scene: DynamicScene) -> None:
-    """Raise :class:`CableOCPError` (naming the key) when the scene leaves the x-z plane
-    or has what the planar model cannot represent."""
-    st = scene.statics
-    tm = scene.top_motion
-    why = 'simulation.model = "planar" moves in the vertical x-z plane: '
-    if st.segments or st.bodies:
-        raise CableOCPError(why + "[[cable.segments]] and [[bodies]] are not supported; give a "
-                            'single [cable] (or use model = "lumped3d")')
-    if st.environment.seabed is not None:
-        raise CableOCPError(why + "[environment.seabed]: the model has no seabed contact; "
-                            "remove the table")
-    cur = st.environment.current
-    if cur is not None and any(abs(u) > _PLANE_TOL * max(cur.max_speed, 1.0) for u in cur.uy):
-        raise CableOCPError(why + "environment.current must flow along x (heading_deg 0 or "
-                            '180); use model = "lumped3d" for a cross-flow')
-    if tm.horizontal_amplitude != 0.0 and _off_plane(tm.horizontal_heading_deg):
-        raise CableOCPError(why + f"top_motion.horizontal_heading_deg = "
-                            f"{tm.horizontal_heading_deg}: must be 0 or 180")
-    if tm.circular_radius != 0.0 and _off_plane(tm.circular_heading_deg):
-        raise CableOCPError(why + f"top_motion.circular_heading_deg = "
-                            f"{tm.circular_heading_deg}: must be 0 or 180")
-    if tm.tow is not None:
-        tow = tm.tow
-        if _off_plane(tow.heading_deg):
-            raise CableOCPError(why + f"top_motion.tow.heading_deg = {tow.heading_deg}: must "
-                                "be 0 or 180")
-        if math.isfinite(tow.straight_length) and tow.turn_angle_deg != 0.0:
-            raise CableOCPError(why + "top_motion.tow: a turn leaves the plane; give no "
-                                'straight_length (a straight tow) or use model = "lumped3d"')
-    if any(r[2] != 0.0 for r in tm.series):
-        raise CableOCPError(why + "top_motion.series: the offsets dy must be 0")
-    if scene.unit is None:
-        ya = st.end_a.position[1]
-        if ya != scene.top_position[1]:
-            raise CableOCPError(why + f"end_a.position[1] = {ya} must equal end_b.position[1] "
-                                f"= {scene.top_position[1]} (the plane y = const)")
-    else:
-        unit = scene.unit
-        if unit.weight_in_water <= 0.0 and cur is None:
-            raise CableOCPError(why + f"unit.weight_in_water = {unit.weight_in_water} N: "
-                                "without a current nothing keeps the line taut (it needs a "
-                                "weight > 0)")
-
 
 class PlanarModel:
     """The discretised planar model of one scene (see the module docstring).
@@ -441,6 +390,15 @@ class PlanarModel:
         ``acc`` stacks the offsets q (2 n_free), the material velocities V (2 n_free), the
         largest scaled Newton residual so far, the smallest element strain so far, the
         time of the first slack strain (s, inf if none) and that element's index.
+
+        Parameters
+        ----------
+        dt : float
+            Time step, s.
+        tol : float
+            Newton tolerance on the scaled residual (-).
+        max_iter : int
+            Newton iterations allowed per step.
         """
         q1, q0, v0, t0, res, v1, eps1, pred = self._step_expressions(dt)
         nf2 = 2 * self.nf
@@ -555,6 +513,16 @@ class PlanarModel:
         loaded stretch are shorter than the arc: the statics solution interpolated at the
         nodes), the no-compression law gives them no stiffness; Hooke's law in tension
         and compression is solved first from there, then the model's own law.
+
+        Parameters
+        ----------
+        q_guess : numpy.ndarray
+            Start: the free nodes' offsets from the unstretched line hanging from end_b, m,
+            node-major (x, z) pairs.
+        tol : float
+            Tolerance on the nodal forces, times the force scale (-).
+        max_iter : int
+            Newton iterations allowed (each solve).
         """
         q = np.asarray(q_guess, dtype=float).copy()
         eps = np.asarray(self._strain_function()(q)).ravel()
@@ -675,11 +643,17 @@ class PlanarModel:
     # ------------------------------------------------------------------ simulate
     def simulate(self, progress: Callable[[int, int], None] | None = None,
                  state: np.ndarray | None = None) -> SimulationResult:
-        """Integrate over ``simulation.duration`` (see :func:`simulate_planar`).
+        """Integrate over ``simulation.duration`` from the static state (or ``state``).
 
-        ``state``: the initial (q, V) stacked (offsets from the unstretched line hanging
-        from end_b, m, and material velocities, m/s, of the free nodes, node-major (x, z)
-        pairs), instead of ``simulation.start``.
+        Parameters
+        ----------
+        progress : callable, optional
+            Called as ``progress(done, total)`` with output samples done, a bounded number
+            of times; the library never prints.
+        state : numpy.ndarray, optional
+            The initial (q, V) stacked (offsets from the unstretched line hanging from
+            end_b, m, and material velocities, m/s, of the free nodes, node-major (x, z)
+            pairs), instead of ``simulation.start``.
         """
         sc = self.scene
         sim = sc.simulation

@@ -32,11 +32,9 @@ from typing import Any
 import casadi as ca
 import numpy as np
 
-from cable_ocp.dynamics.axial import check_axial
+from cable_ocp.dynamics.checks import check_axial, check_lumped_plant, check_planar
 from cable_ocp.dynamics.lumped import LumpedMassModel
-from cable_ocp.dynamics.lumped_scene import check_lumped_plant
 from cable_ocp.dynamics.model import model_for
-from cable_ocp.dynamics.planar import check_planar
 from cable_ocp.errors import CableOCPError
 from cable_ocp.heave.axial_plant import (
     AxialCablePlant,
@@ -95,9 +93,7 @@ def check_plant_scene(path: str, scene: DynamicScene) -> None:
     The scene-level checks of ``[unit] cable_scene`` (readable, a dynamic scene with an
     axial, planar or lumped3d model and a unit, a time step dividing the sample) run when
     the heave scene is built (:func:`cable_ocp.scene.heave.check`); this one asks the model
-    itself (:func:`cable_ocp.dynamics.axial.check_axial`,
-    :func:`cable_ocp.dynamics.planar.check_planar`,
-    :func:`cable_ocp.dynamics.lumped_scene.check_lumped_plant`), so it lives with the models.
+    itself (:mod:`cable_ocp.dynamics.checks`), so it lives with the models.
 
     Parameters
     ----------
