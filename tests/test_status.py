@@ -70,3 +70,9 @@ def test_results_of_every_kind_carry_a_status() -> None:
                              {"simulation.duration": 20.0, "simulation.warmup": 5.0}),
                   ("passive", "lqr"))
     assert all(type(s) is Status for s in res.statuses.values()) and res.status == "solved"
+    from cable_ocp.dynamics import modes, simulate
+
+    dyn = ROOT / "problems" / "dynamics" / "huang_3_3_5.toml"
+    run = simulate(dyn, overrides={"simulation.duration": 2.0})
+    assert type(run.status) is Status and run.status == "solved"
+    assert type(modes(dyn, 2).status) is Status

@@ -13,6 +13,8 @@ from typing import Any
 
 import numpy as np
 
+from cable_ocp.status import Status
+
 __all__ = ["DeploymentChart", "ModesResult", "SimulationResult", "json_safe", "slack_report",
            "until_slack"]
 
@@ -138,7 +140,7 @@ class SimulationResult:
         ``occurred`` (bool), ``first_time`` (s or None), ``location`` (unstretched arc
         length from end_a of the middle of the first slack element, m, or None),
         ``segment`` (its index from end_a or None).
-    status : str
+    status : Status
         ``"solved"``; ``"slack"`` (a tension <= 0 occurred: the model cannot follow
         slack, Huang (1992) 4.5.1); ``"failed"`` (an implicit step did not converge: the
         history stops at the last good sample); ``"interrupted"``.
@@ -167,7 +169,7 @@ class SimulationResult:
     segment_tensions: np.ndarray
     min_tension: float
     slack: dict[str, Any]
-    status: str
+    status: Status
     message: str
     warnings: list[str] = field(default_factory=list)
     wall_time_s: float = 0.0
@@ -175,6 +177,10 @@ class SimulationResult:
     scheme: str = ""
     diagnostics: dict[str, Any] = field(default_factory=dict)
     node_velocities: np.ndarray | None = None
+
+    def __post_init__(self) -> None:
+        # the status is one of the package's vocabulary (cable_ocp.status)
+        object.__setattr__(self, "status", Status(self.status))
 
     @property
     def success(self) -> bool:
@@ -231,7 +237,7 @@ class ModesResult:
         Unstretched length of the line, m.
     model : str
         The model that was linearised.
-    status : str
+    status : Status
         ``"solved"`` or a failure code (e.g. the static state did not converge).
     message : str
         Detail of the status.
@@ -244,9 +250,13 @@ class ModesResult:
     node_positions: np.ndarray
     length: float
     model: str
-    status: str = "solved"
+    status: Status = Status.SOLVED
     message: str = ""
     diagnostics: dict[str, Any] = field(default_factory=dict)
+
+    def __post_init__(self) -> None:
+        # the status is one of the package's vocabulary (cable_ocp.status)
+        object.__setattr__(self, "status", Status(self.status))
 
     @property
     def periods(self) -> np.ndarray:
@@ -283,7 +293,7 @@ class DeploymentChart:
         Wave-frequency band (low, high), rad/s.
     model : str
         The model that was linearised.
-    status : str
+    status : Status
         ``"solved"`` or ``"failed"`` (some lengths failed: their rows are NaN).
     message : str
         Detail of the status.
@@ -295,9 +305,13 @@ class DeploymentChart:
     frequencies: np.ndarray
     wave_band: tuple[float, float]
     model: str
-    status: str = "solved"
+    status: Status = Status.SOLVED
     message: str = ""
     diagnostics: dict[str, Any] = field(default_factory=dict)
+
+    def __post_init__(self) -> None:
+        # the status is one of the package's vocabulary (cable_ocp.status)
+        object.__setattr__(self, "status", Status(self.status))
 
     @property
     def in_band(self) -> np.ndarray:
