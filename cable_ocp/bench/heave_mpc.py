@@ -40,12 +40,12 @@ def bench_scene() -> HeaveScene:
     return load_scene(SCENE)
 
 
-def bench_settings(sc: HeaveScene, horizon: int, solver: str) -> mpc_mod.MPCSettings:
+def bench_settings(scene: HeaveScene, horizon: int, solver: str) -> mpc_mod.MPCSettings:
     """MPC settings from the scene's ``[controller]`` and ``[winch]`` tables.
 
     Parameters
     ----------
-    sc : HeaveScene
+    scene : HeaveScene
         The heave scene: sample time, weights, winch limits, unit mass and static tension.
     horizon : int
         Prediction horizon, samples of the scene's sample time.
@@ -53,7 +53,7 @@ def bench_settings(sc: HeaveScene, horizon: int, solver: str) -> mpc_mod.MPCSett
         The MPC's solver, one of :data:`cable_ocp.heave.mpc.SOLVERS` (``"daqp"``,
         ``"qpoases"``, ``"osqp"``, ``"qrqp"``, ``"ipopt"``).
     """
-    c, w, u = sc.controller, sc.winch, sc.unit
+    c, w, u = scene.controller, scene.winch, scene.unit
     return mpc_mod.MPCSettings(
         horizon=horizon, sample_time=c.sample_time, q=c.q, r=c.r, solver=solver,
         stroke_max=w.stroke_max, speed_max=w.speed_max, command_rate_max=w.command_rate_max,
@@ -83,9 +83,9 @@ class BenchRow:
     cpu_p99_s: float = float("nan")
 
 
-def bench_plant(sc: HeaveScene | None = None) -> pl.HeavePlant:
+def bench_plant(scene: HeaveScene | None = None) -> pl.HeavePlant:
     """The 6.3.6 plant (6.28), built from the scene."""
-    return build_models(sc or bench_scene()).plant
+    return build_models(scene or bench_scene()).plant
 
 
 def _noise(p: pl.HeavePlant, h: float, steps: int, seed: int) -> np.ndarray:

@@ -198,21 +198,21 @@ def statics_cost(scene: Any, directions: int | None = None) -> Cost:
     return cost
 
 
-def heave_cost(sc: Any) -> Cost:
+def heave_cost(scene: Any) -> Cost:
     """Estimate of a heave comparison: plant steps, Riccati designs, MPC."""
     from cable_ocp.heave.discrete import delay_steps
 
-    c, sim = sc.controller, sc.simulation
+    c, sim = scene.controller, scene.simulation
     h = c.sample_time
     steps = int(round(sim.duration / h))
     fine = steps * sim.substeps
     ctrls = tuple(c.controllers)
     runs = len(ctrls) + (0 if "passive" in ctrls else 1)
     # states: unit + winch (3-4), vessel (2), sea filter (2 per section, <= 12)
-    n_sea = 2 if sc.vessel.model == "second_order" else 0
-    n_sea += 2 * (3 if sc.sea.shaping_filter == "thesis" else sc.sea.filter_order)
-    n = (3 if sc.winch.model == "first_order" else 4) + n_sea
-    d = delay_steps(sc.winch.delay, h)
+    n_sea = 2 if scene.vessel.model == "second_order" else 0
+    n_sea += 2 * (3 if scene.sea.shaping_filter == "thesis" else scene.sea.filter_order)
+    n = (3 if scene.winch.model == "first_order" else 4) + n_sea
+    d = delay_steps(scene.winch.delay, h)
     nz = n + d
     fine_all = fine + int(round(c.preview_time / h + 1)) * sim.substeps
     cost = Cost()
@@ -224,15 +224,15 @@ def heave_cost(sc: Any) -> Cost:
     designs = 1 + ("lqg" in ctrls) + ("mpc" in ctrls)
     cost.add(f"{designs} Riccati design(s) on {nz} states ({d} delay samples)",
              designs * (0.5 + DARE_S_CUBE * nz**3), 8.0 * 8 * nz**2,
-             f"winch.delay = {sc.winch.delay:g} s over controller.sample_time = {h:g} s "
+             f"winch.delay = {scene.winch.delay:g} s over controller.sample_time = {h:g} s "
              f"({d} samples)")
     if "mpc" in ctrls:
         hz = c.horizon
         cost.add(f"the MPC with a {hz}-sample horizon over {steps} samples",
                  MPC_BUILD_S_CUBE * hz**3 + steps * MPC_STEP_S * max(1.0, hz / 50) ** 3,
                  8.0 * hz**2 * (nz + 8), f"controller.horizon = {hz}")
-    if sc.unit.cable_scene is not None:
-        _cable_cost(sc, cost, runs)
+    if scene.unit.cable_scene is not None:
+        _cable_cost(scene, cost, runs)
     return cost
 
 

@@ -40,7 +40,7 @@ from cable_ocp.scene.heave import HeaveScene, load_cable_scene
 __all__ = ["compare", "compare_cable"]
 
 
-def compare(sc: HeaveScene, controllers: tuple | None = None,
+def compare(scene: HeaveScene, controllers: tuple | None = None,
             progress: Callable[[int, int, Any], None] | None = None) -> Any:
     """:func:`cable_ocp.heave.simulate.compare` for any heave scene: a scene with
     ``[unit] cable_scene`` goes to :func:`compare_cable`, the others to
@@ -51,19 +51,19 @@ def compare(sc: HeaveScene, controllers: tuple | None = None,
 
     Parameters
     ----------
-    sc : HeaveScene
+    scene : HeaveScene
         Any heave scene.
     controllers : tuple of str, optional
         The controllers (default the scene's).
     progress : callable, optional
         ``progress(done, total, None)`` every 100 samples.
     """
-    if sc.unit.cable_scene is not None:
-        return compare_cable(sc, controllers, progress)
-    return sm.compare(sc, controllers, progress)
+    if scene.unit.cable_scene is not None:
+        return compare_cable(scene, controllers, progress)
+    return sm.compare(scene, controllers, progress)
 
 
-def compare_cable(sc: HeaveScene, controllers: tuple | None = None,
+def compare_cable(scene: HeaveScene, controllers: tuple | None = None,
                   progress: Callable[[int, int, Any], None] | None = None) -> Any:
     """:func:`cable_ocp.heave.simulate.compare` for a scene with ``[unit] cable_scene``.
 
@@ -76,32 +76,32 @@ def compare_cable(sc: HeaveScene, controllers: tuple | None = None,
 
     Parameters
     ----------
-    sc : HeaveScene
+    scene : HeaveScene
         A heave scene with ``[unit] cable_scene``.
     controllers : tuple of str, optional
         The controllers (default the scene's).
     progress : callable, optional
         ``progress(done, total, None)`` every 100 samples.
     """
-    dyn = load_cable_scene(sc)
-    check_plant_scene(str(sc.unit.cable_scene), dyn)
-    ident = idc.identify_from_cable(sc, dyn)
-    sd, source = design_scene(sc, ident, dyn)
+    dyn = load_cable_scene(scene)
+    check_plant_scene(str(scene.unit.cable_scene), dyn)
+    ident = idc.identify_from_cable(scene, dyn)
+    sd, source = design_scene(scene, ident, dyn)
     warn = design_damping(ident.linear.b, "design model")[1] if source == "identified" else None
-    extra = {"plant": sc.simulation.plant,
+    extra = {"plant": scene.simulation.plant,
              "design_model": {"a": sd.unit.a, "b": sd.unit.b,
                               "b_quadratic": sd.unit.b_quadratic, "source": source,
                               "mass": sd.unit.mass, "static_tension": sd.unit.static_tension},
              "identified": idc.identified_json(ident)}
-    if sc.deployment is not None:
-        res = deploy(sc, sd, dyn, ident, extra, progress)
-    elif sc.simulation.plant == "model":
+    if scene.deployment is not None:
+        res = deploy(scene, sd, dyn, ident, extra, progress)
+    elif scene.simulation.plant == "model":
         r = sm.compare(sd, controllers, progress)
         res = CableComparison(r.sigma_uncontrolled, r.metrics, r.traces, r.models,
                               r.mpc_solve_times, r.mpc_failures, r.statuses, r.messages,
                               r.passive_heave_rms, r.warnings, json_extra=extra)
     else:
-        res = _compare_on_cable(sc, sd, dyn, controllers, progress, extra)
+        res = _compare_on_cable(scene, sd, dyn, controllers, progress, extra)
     if warn is not None and warn not in res.warnings:
         res.warnings.insert(0, warn)
     return res

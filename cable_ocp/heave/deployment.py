@@ -98,23 +98,23 @@ def _schedule(sc: HeaveScene, dyn: DynamicScene, ident0: CableIdentification,
     return out
 
 
-def deploy(sc: HeaveScene, sd: HeaveScene, dyn: DynamicScene, ident0: CableIdentification,
-           extra: dict, progress: Callable[[int, int, Any], None] | None = None
-           ) -> CableComparison:
-    """Run the deployment of ``sc.deployment`` (module docstring).
+def deploy(scene: HeaveScene, design: HeaveScene, cable_scene: DynamicScene,
+           ident0: CableIdentification, extra: dict,
+           progress: Callable[[int, int, Any], None] | None = None) -> CableComparison:
+    """Run the deployment of ``scene.deployment`` (module docstring).
 
-    ``sd`` is the design scene (:func:`cable_ocp.heave.design.design_scene`), ``ident0``
+    ``design`` is the design scene (:func:`cable_ocp.heave.design.design_scene`), ``ident0``
     the identification at the start. Returns a
     :class:`~cable_ocp.heave.metrics.CableComparison` whose ``json_extra["deployment"]``
     holds the schedule and the per-length table.
 
     Parameters
     ----------
-    sc : HeaveScene
+    scene : HeaveScene
         The heave scene with ``[deployment]``.
-    sd : HeaveScene
+    design : HeaveScene
         The design scene.
-    dyn : DynamicScene
+    cable_scene : DynamicScene
         The cable scene (axial).
     ident0 : CableIdentification
         The identification at the start.
@@ -126,15 +126,15 @@ def deploy(sc: HeaveScene, sd: HeaveScene, dyn: DynamicScene, ident0: CableIdent
     from cable_ocp.heave import simulate as sm
     from cable_ocp.heave.identify_cable import first_frequency, identified_json
 
-    dep = sc.deployment
+    dep = scene.deployment
     assert dep is not None and dep.final_length is not None
-    c = sc.controller
+    c = scene.controller
     h = c.sample_time
-    L0, L1 = dyn.length, dep.final_length
+    L0, L1 = cable_scene.length, dep.final_length
     lo, hi = sorted((L0, L1))
-    lengths = design_lengths(sc, dyn)
+    lengths = design_lengths(scene, cable_scene)
     lf = dep.fixed_length if dep.fixed_length is not None else L0
-    idents = _schedule(sc, dyn, ident0, lengths)
+    idents = _schedule(scene, cable_scene, ident0, lengths)
     a_tab = np.array([i.linear.a for i in idents])
     warnings: list[str] = []
     b_tab = np.empty(len(idents))
@@ -143,26 +143,26 @@ def deploy(sc: HeaveScene, sd: HeaveScene, dyn: DynamicScene, ident0: CableIdent
         if w:
             warnings.append(w)
     fixed_ident = next((i for i, L in zip(idents, lengths, strict=True) if abs(L - lf) < 1e-9),
-                       None) or identify_from_cable(sc, dyn, length=lf)
-    sched, p = design_table(sd, lengths, a_tab, b_tab)
+                       None) or identify_from_cable(scene, cable_scene, length=lf)
+    sched, p = design_table(design, lengths, a_tab, b_tab)
     b_fixed, w = design_damping(fixed_ident.linear.b, f"fixed design at {lf:g} m")
     if w and w not in warnings:
         warnings.append(w)
-    fixed, _ = design_table(sd, np.array([lf]), np.array([fixed_ident.linear.a]),
+    fixed, _ = design_table(design, np.array([lf]), np.array([fixed_ident.linear.a]),
                                np.array([b_fixed]))
 
-    warm = sc.simulation.warmup
+    warm = scene.simulation.warmup
     T = warm + abs(L1 - L0) / dep.payout_speed + dep.ramp_time + 20.0
     n_ctrl = int(math.ceil(T / h))
-    models = sm.build_models(sd)
-    plant = AxialCablePlant(dyn, h)
+    models = sm.build_models(design)
+    plant = AxialCablePlant(cable_scene, h)
     m = plant.substeps
-    t_f, x0_f, _ = sm.wave_realisation(models.plant, n_ctrl * h + 2 * h, h / sc.simulation.substeps,
-                                       sc.simulation.seed)
+    t_f, x0_f, _ = sm.wave_realisation(models.plant, n_ctrl * h + 2 * h,
+                                       h / scene.simulation.substeps, scene.simulation.seed)
     wave = make_wave(t_f, x0_f, h, m, n_ctrl,
                         lambda t: length_history(t, L0, L1, dep.payout_speed, warm,
                                                  dep.ramp_time), 0.5 * warm)
-    rng = np.random.default_rng(sc.simulation.seed + 1000)
+    rng = np.random.default_rng(scene.simulation.seed + 1000)
     noise = rng.standard_normal((n_ctrl + 1, 3)) * np.array(
         [c.measurement_noise, c.winch_noise, c.boom_tip_noise])
     total = n_ctrl * len(CONTROLLERS)
@@ -178,7 +178,7 @@ def deploy(sc: HeaveScene, sd: HeaveScene, dyn: DynamicScene, ident0: CableIdent
             if progress is not None:
                 progress(base + k, total, None)
 
-        runs[name] = run_loop(WinchedLine(sc, CableLine(plant), wave, noise), ctrl, n_ctrl,
+        runs[name] = run_loop(WinchedLine(scene, CableLine(plant), wave, noise), ctrl, n_ctrl,
                               bound, prog)
     if progress is not None:
         progress(total, total, None)
@@ -187,16 +187,16 @@ def deploy(sc: HeaveScene, sd: HeaveScene, dyn: DynamicScene, ident0: CableIdent
     base = None
     for name, run in runs.items():
         statuses[name], messages[name] = run_status(run)
-        d = cable_run_metrics(sd, run, energy[name])
+        d = cable_run_metrics(design, run, energy[name])
         if name == "passive":
             base = d["heave_rms"]
         d["reduction_pct"] = reduction_pct(d["heave_rms"], base)
         metrics[name] = CableMetrics(d)
 
     window = dep.window if dep.window is not None else (hi - lo) / 40.0
-    table = _per_length(runs, sc, lo, hi, window)
-    w1 = np.array([first_frequency(dyn.with_overrides({"cable.length": float(L)}))
-                   if abs(L - dyn.length) > 1e-9 else ident0.omega_1 for L in lengths])
+    table = _per_length(runs, scene, lo, hi, window)
+    w1 = np.array([first_frequency(cable_scene.with_overrides({"cable.length": float(L)}))
+                   if abs(L - cable_scene.length) > 1e-9 else ident0.omega_1 for L in lengths])
     extra = dict(extra)
     extra["deployment"] = {
         "start_length": L0, "final_length": L1, "payout_speed": dep.payout_speed,
@@ -262,19 +262,19 @@ def _per_length(runs: dict[str, LoopRun], sc: HeaveScene, lo: float, hi: float,
     return out
 
 
-def design_lengths(sc: HeaveScene, dyn: DynamicScene) -> np.ndarray:
+def design_lengths(scene: HeaveScene, cable_scene: DynamicScene) -> np.ndarray:
     """The schedule's lengths (m): ``[deployment] schedule_lengths`` or 7 from start to end.
 
     Parameters
     ----------
-    sc : HeaveScene
+    scene : HeaveScene
         The heave scene with ``[deployment]``.
-    dyn : DynamicScene
+    cable_scene : DynamicScene
         Its cable scene (the start length).
     """
-    dep = sc.deployment
+    dep = scene.deployment
     assert dep is not None and dep.final_length is not None
     if dep.schedule_lengths:
         return np.asarray(dep.schedule_lengths, dtype=float)
-    lo, hi = sorted((dyn.length, dep.final_length))
+    lo, hi = sorted((cable_scene.length, dep.final_length))
     return np.linspace(lo, hi, 7)

@@ -53,7 +53,7 @@ def design_damping(b: float, where: str) -> tuple[float, str | None]:
                    f"design uses b = {B_MIN:g} s")
 
 
-def design_scene(sc: HeaveScene, identification: Any | None, dyn: DynamicScene
+def design_scene(scene: HeaveScene, identification: Any | None, cable_scene: DynamicScene
                  ) -> tuple[HeaveScene, str]:
     """The heave scene with its design model: identified ``a, b`` (and ``b_quadratic``)
     unless ``[unit] a`` and ``b`` are given in the file; the unit's mass and static tension
@@ -61,15 +61,15 @@ def design_scene(sc: HeaveScene, identification: Any | None, dyn: DynamicScene
 
     Parameters
     ----------
-    sc : HeaveScene
+    scene : HeaveScene
         The heave scene.
     identification : CableIdentification or None
         The identification (needed unless ``[unit] a, b`` are given).
-    dyn : DynamicScene
+    cable_scene : DynamicScene
         The cable scene (the unit's mass and weight when not given).
     """
-    given = isinstance(sc.raw.get("unit"), dict) and {"a", "b"} <= set(sc.raw["unit"])
-    unit = sc.unit
+    given = isinstance(scene.raw.get("unit"), dict) and {"a", "b"} <= set(scene.raw["unit"])
+    unit = scene.unit
     kw: dict[str, Any] = {"cable_scene": None}
     source = "given"
     if not given:
@@ -77,14 +77,14 @@ def design_scene(sc: HeaveScene, identification: Any | None, dyn: DynamicScene
             raise CableOCPError("[unit] a and b are not given and nothing was identified")
         kw.update(a=identification.linear.a,
                   b=design_damping(identification.linear.b, "design model")[0])
-        if identification.quadratic is not None and "b_quadratic" not in sc.raw["unit"]:
+        if identification.quadratic is not None and "b_quadratic" not in scene.raw["unit"]:
             kw["b_quadratic"] = identification.quadratic.b
         source = "identified"
-    if not unit.mass > 0 and dyn.unit is not None:
-        kw["mass"] = dyn.unit.mass + dyn.unit.added_mass[2]
-        kw["static_tension"] = dyn.unit.weight_in_water
-    return replace(sc, unit=replace(unit, **kw),
-                   simulation=replace(sc.simulation, plant="model")), source
+    if not unit.mass > 0 and cable_scene.unit is not None:
+        kw["mass"] = cable_scene.unit.mass + cable_scene.unit.added_mass[2]
+        kw["static_tension"] = cable_scene.unit.weight_in_water
+    return replace(scene, unit=replace(unit, **kw),
+                   simulation=replace(scene.simulation, plant="model")), source
 
 
 # ------------------------------------------------------------------------------------------
@@ -224,20 +224,20 @@ def _design(sc: HeaveScene, a: float, b: float) -> tuple[pl.HeavePlant, np.ndarr
     return p, Ad, Bd, Ge, M3, M1, C3, nz
 
 
-def design_table(sc: HeaveScene, lengths: np.ndarray, a: np.ndarray, b: np.ndarray
+def design_table(scene: HeaveScene, lengths: np.ndarray, a: np.ndarray, b: np.ndarray
                  ) -> tuple[DesignTable, pl.HeavePlant]:
     """Designs (LQR gain, Kalman gains, sampled model) at each ``(length, a, b)``.
 
     Parameters
     ----------
-    sc : HeaveScene
+    scene : HeaveScene
         The design scene (weights, noises, winch, sea).
     lengths : numpy.ndarray
         Deployment lengths of the designs, m.
     a, b : numpy.ndarray
         The design model's coefficients there, s^2 and s.
     """
-    rows = [_design(sc, float(ai), float(bi)) for ai, bi in zip(a, b, strict=True)]
+    rows = [_design(scene, float(ai), float(bi)) for ai, bi in zip(a, b, strict=True)]
     p = rows[0][0]
     return DesignTable(lengths=np.asarray(lengths, dtype=float), a=np.asarray(a, dtype=float),
                        b=np.asarray(b, dtype=float),

@@ -153,7 +153,7 @@ def excitation_signal(kind: str, t: np.ndarray, amplitude: float, band: tuple[fl
     return x * (amplitude / float(np.sqrt(np.mean(x[keep] ** 2))))
 
 
-def run_experiment(dyn: DynamicScene, x0: np.ndarray, sample_time: float
+def run_experiment(scene: DynamicScene, x0: np.ndarray, sample_time: float
                    ) -> dict[str, np.ndarray]:
     """Move the top of the cable scene's line by ``x0`` (m, samples every ``sample_time``
     s, from rest) at its length; return the unit's heave ``z`` (m, relative to the static
@@ -162,7 +162,7 @@ def run_experiment(dyn: DynamicScene, x0: np.ndarray, sample_time: float
 
     Parameters
     ----------
-    dyn : DynamicScene
+    scene : DynamicScene
         The cable scene.
     x0 : numpy.ndarray
         The top's motion per sample, m.
@@ -171,7 +171,7 @@ def run_experiment(dyn: DynamicScene, x0: np.ndarray, sample_time: float
     """
     from cable_ocp.heave.cable_models import cable_plant
 
-    plant = cable_plant(dyn, sample_time)
+    plant = cable_plant(scene, sample_time)
     m = plant.substeps
     n = x0.size
     t = np.arange(n) * sample_time
@@ -184,7 +184,7 @@ def run_experiment(dyn: DynamicScene, x0: np.ndarray, sample_time: float
             "t_min": out["t_min"], "residual": out["residual"], "plant": plant}
 
 
-def first_frequency(dyn: DynamicScene) -> float:
+def first_frequency(scene: DynamicScene) -> float:
     """First axial natural frequency of the line, rad/s (undamped, about the static state;
     for a planar or lumped3d scene that of the same line hanging vertically, without the
     current: the axial model's, or, for a lumped3d line of several ``[[cable.segments]]``
@@ -192,17 +192,17 @@ def first_frequency(dyn: DynamicScene) -> float:
     from cable_ocp.dynamics.axial import AxialModel
     from cable_ocp.heave.cable_models import axial_twin, lumped_axial_frequency
 
-    st = dyn.statics
-    if dyn.simulation.model == "lumped3d" and (st.segments or st.bodies):
-        return lumped_axial_frequency(dyn)
-    return float(AxialModel(axial_twin(dyn)).modes(1).frequencies[0])
+    st = scene.statics
+    if scene.simulation.model == "lumped3d" and (st.segments or st.bodies):
+        return lumped_axial_frequency(scene)
+    return float(AxialModel(axial_twin(scene)).modes(1).frequencies[0])
 
 
-def identify_line(dyn: DynamicScene, *, excitation: str, amplitude: float,
+def identify_line(scene: DynamicScene, *, excitation: str, amplitude: float,
                   band: tuple[float, float], duration: float, sample_time: float,
                   noise: float, seed: int, sea: np.ndarray | None = None
                   ) -> CableIdentification:
-    """Run the experiment on the line of ``dyn`` and fit (6.2) and (6.3).
+    """Run the experiment on the line of ``scene`` and fit (6.2) and (6.3).
 
     The Gauss-Newton starts from the modal estimate ``a = 1 / omega_1^2`` with 5 % of
     critical damping (``b = 0.1 / omega_1``); the fit of (6.3) starts from the linear fit,
@@ -211,7 +211,7 @@ def identify_line(dyn: DynamicScene, *, excitation: str, amplitude: float,
 
     Parameters
     ----------
-    dyn : DynamicScene
+    scene : DynamicScene
         The cable scene.
     excitation : str
         The top motion (:func:`excitation_signal`).
@@ -234,14 +234,14 @@ def identify_line(dyn: DynamicScene, *, excitation: str, amplitude: float,
     t = np.arange(n) * sample_time
     x0 = excitation_signal(excitation, t, amplitude, band,
                            None if sea is None else np.interp(t, sea[0], sea[1]))
-    run = run_experiment(dyn, x0, sample_time)
+    run = run_experiment(scene, x0, sample_time)
     rng = np.random.default_rng(seed)
     z = run["z"] + (noise * rng.standard_normal(n) if noise > 0 else 0.0)
     # The experiment starts at rest in the static state: the initial state (the fit's initial
     # condition, z[0]) is known, not measured; a noisy z[0] would start the fitted model with
     # a free oscillation that a lightly damped model keeps over the whole record.
     z[0] = run["z"][0]
-    w1 = first_frequency(dyn)
+    w1 = first_frequency(scene)
     lin = identify_unit(t, x0, z, model="linear", guess=(1.0 / w1**2, 0.1 / w1))
     xm = lin.x_model
     sig_v = float(np.std(np.gradient(xm, t)))
@@ -251,7 +251,7 @@ def identify_line(dyn: DynamicScene, *, excitation: str, amplitude: float,
                                amplitude=float(np.sqrt(np.mean(x0**2))),
                                band=band if excitation in ("multisine", "chirp") else None,
                                duration=float(t[-1]), sample_time=sample_time, noise=noise,
-                               omega_1=w1, length=dyn.length, t=t, x0=x0, z=z)
+                               omega_1=w1, length=scene.length, t=t, x0=x0, z=z)
 
 
 def _sea_band_amplitude(sc: HeaveScene) -> tuple[float, float, Any]:
@@ -267,37 +267,37 @@ def _sea_band_amplitude(sc: HeaveScene) -> tuple[float, float, Any]:
     return math.sqrt(var), models.spectrum.omega_m, models
 
 
-def identify_from_cable(sc: HeaveScene, dyn: DynamicScene, length: float | None = None
+def identify_from_cable(scene: HeaveScene, cable_scene: DynamicScene, length: float | None = None
                         ) -> CableIdentification:
     """The experiment of ``[identification]`` on the heave scene's cable scene (module
     docstring), optionally at another unstretched ``length`` (m).
 
     Parameters
     ----------
-    sc : HeaveScene
+    scene : HeaveScene
         The heave scene (``[identification]``).
-    dyn : DynamicScene
+    cable_scene : DynamicScene
         Its cable scene.
     length : float, optional
         Unstretched length of the experiment, m (default the cable scene's).
     """
     from cable_ocp.heave.simulate import wave_realisation
 
-    if length is not None and length != dyn.length:
-        dyn = dyn.with_overrides({"cable.length": float(length)})
-    spec = sc.identification
-    amp, wm, models = _sea_band_amplitude(sc)
+    if length is not None and length != cable_scene.length:
+        cable_scene = cable_scene.with_overrides({"cable.length": float(length)})
+    spec = scene.identification
+    amp, wm, models = _sea_band_amplitude(scene)
     amplitude = spec.amplitude if spec.amplitude is not None else amp
-    w1 = first_frequency(dyn)
+    w1 = first_frequency(cable_scene)
     band = spec.band if spec.band is not None else (0.5 * wm, max(3.0 * wm, 1.5 * w1))
-    noise = spec.noise if spec.noise is not None else sc.controller.measurement_noise
-    h = sc.controller.sample_time
+    noise = spec.noise if spec.noise is not None else scene.controller.measurement_noise
+    h = scene.controller.sample_time
     sea = None
     if spec.excitation == "sea":
-        hs = h / sc.simulation.substeps
+        hs = h / scene.simulation.substeps
         ts, xs, _ = wave_realisation(models.plant, spec.duration + h, hs, spec.seed + 17)
         sea = np.vstack([ts, xs])
-    return identify_line(dyn, excitation=spec.excitation, amplitude=amplitude, band=band,
+    return identify_line(cable_scene, excitation=spec.excitation, amplitude=amplitude, band=band,
                          duration=spec.duration, sample_time=h, noise=noise, seed=spec.seed,
                          sea=sea)
 

@@ -150,19 +150,19 @@ class UnitWinchPlant(LoopPlant):
         return Trace(self.t[:n], x, self.x0[:n], u, u_dot, u0)
 
 
-def winch_maps(sc: HeaveScene, dt: float) -> tuple[np.ndarray, np.ndarray, np.ndarray,
+def winch_maps(scene: HeaveScene, dt: float) -> tuple[np.ndarray, np.ndarray, np.ndarray,
                                                    np.ndarray]:
     """Exact ZOH map of the winch over ``dt``: ``w+ = Phi w + Gam v``; its output rows for
     ``u`` and ``u'`` (``C``, ``D``).
 
     Parameters
     ----------
-    sc : HeaveScene
+    scene : HeaveScene
         The scene's ``[winch]`` (first-order (6.1) or second-order).
     dt : float
         The sub-step, s.
     """
-    w = sc.winch
+    w = scene.winch
     blk = pl.winch_first(w.gain) if w.model == "first_order" else pl.winch_second(
         w.natural_frequency, w.damping_ratio)
     A, B = np.asarray(blk.A), np.asarray(blk.B)

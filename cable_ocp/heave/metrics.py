@@ -154,7 +154,7 @@ def with_reduction(mt: Metrics, base: float | None) -> Metrics:
     return Metrics(**d)
 
 
-def run_metrics(sc: HeaveScene, tr: Trace, cmds: np.ndarray, energy: float | None,
+def run_metrics(scene: HeaveScene, tr: Trace, cmds: np.ndarray, energy: float | None,
                 times: np.ndarray | None, h: float) -> Metrics:
     """Metrics of one run, all over the same window ``t >= [simulation] warmup``.
 
@@ -166,7 +166,7 @@ def run_metrics(sc: HeaveScene, tr: Trace, cmds: np.ndarray, energy: float | Non
 
     Parameters
     ----------
-    sc : HeaveScene
+    scene : HeaveScene
         The scene (warm-up, winch limits).
     tr : Trace
         The run's trace.
@@ -179,10 +179,10 @@ def run_metrics(sc: HeaveScene, tr: Trace, cmds: np.ndarray, energy: float | Non
     h : float
         Sample time, s.
     """
-    warm = sc.simulation.warmup
+    warm = scene.simulation.warmup
     keep = tr.t >= warm - 1e-12
     u, ud = tr.u[keep], tr.u_dot[keep]
-    w = sc.winch
+    w = scene.winch
     viol = 0.0
     for val, lim in [(np.max(np.abs(u)), w.stroke_max), (np.max(np.abs(ud)), w.speed_max)]:
         if lim is not None:
@@ -216,14 +216,14 @@ CABLE_FIELDS = ("tension_unit_min", "tension_unit_max", "tension_top_min", "tens
                 "slack_samples", "slack_first_time_s", "plant_failed_at_s")
 
 
-def cable_run_metrics(sc: HeaveScene, run: LoopRun, energy: float | None) -> dict:
+def cable_run_metrics(scene: HeaveScene, run: LoopRun, energy: float | None) -> dict:
     """The metrics of :func:`run_metrics` and the cable's for a run of a line under the
     winch; every value None (JSON null) but ``energy_index``, the solve time and
     ``plant_failed_at_s`` when the run is not solved.
 
     Parameters
     ----------
-    sc : HeaveScene
+    scene : HeaveScene
         The design scene (warm-up, sample time, winch limits).
     run : LoopRun
         The run (a :class:`cable_ocp.heave.closed_loop.CableTrace`).
@@ -240,11 +240,11 @@ def cable_run_metrics(sc: HeaveScene, run: LoopRun, energy: float | None) -> dic
                                     and times.size else None)
         d["plant_failed_at_s"] = run.plant_failed_at
         return d
-    base = run_metrics(sc, run.trace, run.commands, energy, times, sc.controller.sample_time)
+    base = run_metrics(scene, run.trace, run.commands, energy, times, scene.controller.sample_time)
     tr = run.trace
-    keep = tr.t >= sc.simulation.warmup - 1e-12
-    h = sc.controller.sample_time
-    kk = np.arange(tr.min_element_tension.size) * h >= sc.simulation.warmup - 1e-12
+    keep = tr.t >= scene.simulation.warmup - 1e-12
+    h = scene.controller.sample_time
+    kk = np.arange(tr.min_element_tension.size) * h >= scene.simulation.warmup - 1e-12
     slack = tr.min_element_tension <= 0.0
     first = np.flatnonzero(slack & kk)
     return {**base.as_dict(),

@@ -806,16 +806,16 @@ class _NonlinearMPC:
         return rest, ok
 
 
-def settings_from_scene(sc: Any) -> MPCSettings:
+def settings_from_scene(scene: Any) -> MPCSettings:
     """The MPC settings a heave scene asks for (``[controller]``, ``[winch]`` limits,
     ``[unit]`` tension data), as the closed-loop simulation builds them.
 
     Parameters
     ----------
-    sc : HeaveScene
+    scene : HeaveScene
         A validated heave scene (:func:`cable_ocp.scene.heave.load_scene`).
     """
-    c, w, u = sc.controller, sc.winch, sc.unit
+    c, w, u = scene.controller, scene.winch, scene.unit
     return MPCSettings(
         horizon=c.horizon, sample_time=c.sample_time, q=c.q, r=c.r, solver=c.solver,
         stroke_max=w.stroke_max, speed_max=w.speed_max, command_rate_max=w.command_rate_max,

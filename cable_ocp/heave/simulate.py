@@ -83,12 +83,12 @@ class Models:
 _DESIGN_ERRORS = (ArithmeticError, ValueError, TypeError, RuntimeError, np.linalg.LinAlgError)
 
 
-def build_models(sc: HeaveScene) -> Models:
+def build_models(scene: HeaveScene) -> Models:
     """Spectrum, shaping filter and the full plant (6.28) of a scene.
 
     ``sigma_uncontrolled`` is None when the Lyapunov equation gives no valid variance (a
     negative or non-finite value, from an ill-conditioned filter)."""
-    s = sc.sea
+    s = scene.sea
     if s.modal_frequency is not None:
         wm = s.modal_frequency
     elif s.zero_crossing_period is not None:
@@ -97,13 +97,13 @@ def build_models(sc: HeaveScene) -> Models:
         wm = 2 * np.pi / s.peak_period
     spec = sea_mod.SeaSpectrum(s.spectrum, s.significant_wave_height, wm, s.peak_enhancement)
     fit = sea_mod.make_shaping_filter(spec, s.shaping_filter, s.filter_order)
-    v = sc.vessel
+    v = scene.vessel
     vessel = (pl.direct_vessel() if v.model == "none"
               else pl.vessel_block(v.natural_frequency, v.damping_ratio, v.gain))
-    w = sc.winch
+    w = scene.winch
     winch = (pl.winch_first(w.gain) if w.model == "first_order"
              else pl.winch_second(w.natural_frequency, w.damping_ratio))
-    plant = pl.assemble_plant(sc.unit.a, sc.unit.b, winch, vessel=vessel, sea=fit.filter)
+    plant = pl.assemble_plant(scene.unit.a, scene.unit.b, winch, vessel=vessel, sea=fit.filter)
     with np.errstate(all="ignore"):
         var = output_variance_lyapunov(plant.A, plant.B2, plant.e("x"))
     sig = float(np.sqrt(var)) if np.isfinite(var) and var >= 0 else None
@@ -161,7 +161,7 @@ def wave_realisation(plant: pl.HeavePlant, t_end: float, h_sim: float, seed: int
     return np.arange(nt) * h_sim, x0, xs
 
 
-def compare(sc: HeaveScene, controllers: tuple | None = None,
+def compare(scene: HeaveScene, controllers: tuple | None = None,
             progress: Callable[[int, int, Any], None] | None = None) -> Comparison:
     """Simulate the scene's controllers on one wave realisation and compute the metrics.
 
@@ -177,31 +177,31 @@ def compare(sc: HeaveScene, controllers: tuple | None = None,
 
     Parameters
     ----------
-    sc : HeaveScene
+    scene : HeaveScene
         A heave scene without a cable scene.
     controllers : tuple of str, optional
         The controllers (default the scene's).
     progress : callable, optional
         ``progress(done, total, None)`` every 100 samples.
     """
-    if sc.unit.cable_scene is not None:
+    if scene.unit.cable_scene is not None:
         raise CableOCPError(
-            f"unit.cable_scene = {sc.unit.cable_scene!r}: a scene on a cable is compared by "
+            f"unit.cable_scene = {scene.unit.cable_scene!r}: a scene on a cable is compared by "
             "cable_ocp.heave.compare (cable_ocp.heave.cable_compare), which identifies the "
             "design model from the cable; simulate.compare runs the design model alone")
-    models = build_models(sc)
+    models = build_models(scene)
     p = models.plant
-    c = sc.controller
+    c = scene.controller
     h = c.sample_time
-    m = sc.simulation.substeps
+    m = scene.simulation.substeps
     if m < 1:
         raise CableOCPError(f"simulation.substeps = {m}: must be >= 1")
     hs = h / m
-    tau = sc.winch.delay
-    T = sc.simulation.duration
+    tau = scene.winch.delay
+    T = scene.simulation.duration
     n_ctrl = int(round(T / h))
     preview = c.preview_time
-    t, x0, xs_sea = wave_realisation(p, T + preview + h, hs, sc.simulation.seed)
+    t, x0, xs_sea = wave_realisation(p, T + preview + h, hs, scene.simulation.seed)
     controllers = tuple(controllers or c.controllers)
     runs = controllers if "passive" in controllers else controllers + ("passive",)
     bound = unstable_bound(x0[: n_ctrl * m + 1])
@@ -218,13 +218,13 @@ def compare(sc: HeaveScene, controllers: tuple | None = None,
         raise
     except _DESIGN_ERRORS as exc:
         G, design_error = None, f"{type(exc).__name__}: {exc}"
-    settings = mpc_mod.settings_from_scene(sc)
+    settings = mpc_mod.settings_from_scene(scene)
 
     traces, metrics, statuses, messages = {}, {}, {}, {}
     solve_times = None
     failures = 0
     warnings: list[str] = []
-    rng_meas = np.random.default_rng(sc.simulation.seed + 1000)
+    rng_meas = np.random.default_rng(scene.simulation.seed + 1000)
     meas_noise = rng_meas.standard_normal(n_ctrl + 1) * c.measurement_noise
     total = n_ctrl * len(runs)
     passive_rms = None
@@ -237,7 +237,7 @@ def compare(sc: HeaveScene, controllers: tuple | None = None,
                 statuses[name], messages[name] = status, message
                 metrics[name] = Metrics(None, None, None, None, None, None, None, None)
             continue
-        plant = UnitWinchPlant(sc, p, t, x0, xs_sea, meas_noise, n_ctrl)
+        plant = UnitWinchPlant(scene, p, t, x0, xs_sea, meas_noise, n_ctrl)
         run = run_loop(plant, ctrl, n_ctrl, bound, report)
         tr, cmds, stop = run.trace, run.commands, run.stop
         if stop is not None and status == "solved":
@@ -253,7 +253,7 @@ def compare(sc: HeaveScene, controllers: tuple | None = None,
         energy = ctrl.energy_index
         times = run.times if name == "mpc" else None
         if status == "solved":
-            mt = run_metrics(sc, tr, cmds, energy, times, h)
+            mt = run_metrics(scene, tr, cmds, energy, times, h)
         else:
             mt = Metrics(None, None, None, None, energy, None,
                          float(np.median(times)) if times is not None and times.size else None,

@@ -496,7 +496,7 @@ def resolve_cable_scene(data: dict[str, Any], base_dir: str | Path | None) -> di
     return data
 
 
-def load_cable_scene(sc: HeaveScene) -> Any:
+def load_cable_scene(scene: HeaveScene) -> Any:
     """The dynamic scene of ``[unit] cable_scene`` (a :class:`~cable_ocp.dynamics.DynamicScene`).
 
     Raises
@@ -506,7 +506,7 @@ def load_cable_scene(sc: HeaveScene) -> Any:
     """
     from cable_ocp.scene.dynamics import load_dynamic_scene
 
-    path = sc.unit.cable_scene
+    path = scene.unit.cable_scene
     if path is None:
         raise CableOCPError("unit.cable_scene: is not given")
     try:
@@ -551,7 +551,7 @@ def _check_integration(sc: HeaveScene) -> None:
             f"simulation.substeps >= {need}")
 
 
-def check(sc: HeaveScene) -> None:
+def check(scene: HeaveScene) -> None:
     """Validate a scene built in Python (``scene_from_dict`` calls it on every file).
 
     Raises
@@ -562,17 +562,17 @@ def check(sc: HeaveScene) -> None:
         a plant step too long for RK4, or inconsistent options.
     """
     for (table, key), rule in RULES.items():
-        val = getattr(getattr(sc, table), key)
+        val = getattr(getattr(scene, table), key)
         if val is not None:
             _checked(rule, val, _key(table, key))
-    if sc.deployment is not None:
+    if scene.deployment is not None:
         for key, rule in DEPLOYMENT_RULES.items():
-            val = getattr(sc.deployment, key)
+            val = getattr(scene.deployment, key)
             if val is not None:
                 _checked(rule, val, _key("deployment", key))
     for (table, key), options in _CHOICES.items():
-        choice(getattr(getattr(sc, table), key), _key(table, key), options)
-    s = sc.sea
+        choice(getattr(getattr(scene, table), key), _key(table, key), options)
+    s = scene.sea
     given = [k for k in ("modal_frequency", "zero_crossing_period", "peak_period")
              if getattr(s, k) is not None]
     if len(given) != 1:
@@ -580,28 +580,28 @@ def check(sc: HeaveScene) -> None:
             "sea: give exactly one of modal_frequency (rad/s), zero_crossing_period (s), "
             f"peak_period (s); got {', '.join(given) if given else 'none'}"
         )
-    _check_cable(sc)
-    if sc.unit.model == "quadratic" and not sc.unit.b_quadratic > 0:
-        raise CableOCPError(f'unit.b_quadratic = {sc.unit.b_quadratic!r}: must be > 0 with '
+    _check_cable(scene)
+    if scene.unit.model == "quadratic" and not scene.unit.b_quadratic > 0:
+        raise CableOCPError(f'unit.b_quadratic = {scene.unit.b_quadratic!r}: must be > 0 with '
                             'unit.model = "quadratic" (s^2/m, Huang 1992, eq. (6.3))')
-    c = sc.controller
-    ratio = sc.winch.delay / c.sample_time
+    c = scene.controller
+    ratio = scene.winch.delay / c.sample_time
     if abs(ratio - round(ratio)) > 1e-9:
         raise CableOCPError(
-            f"winch.delay = {sc.winch.delay!r}: must be an integer multiple of "
+            f"winch.delay = {scene.winch.delay!r}: must be an integer multiple of "
             f"controller.sample_time = {c.sample_time} s (exact shift register)"
         )
-    if sc.winch.accel_max is not None and sc.winch.model != "second_order":
+    if scene.winch.accel_max is not None and scene.winch.model != "second_order":
         raise CableOCPError('winch.accel_max: needs winch.model = "second_order"; limit '
                             "winch.command_rate_max (m per sample) for the first-order winch")
-    if (sc.winch.tension_min is not None and not (sc.unit.mass > 0)
-            and sc.unit.cable_scene is None):
+    if (scene.winch.tension_min is not None and not (scene.unit.mass > 0)
+            and scene.unit.cable_scene is None):
         raise CableOCPError("winch.tension_min: needs unit.mass > 0 (kg) and "
                             "unit.static_tension (N)")
-    if sc.simulation.warmup >= sc.simulation.duration:
-        raise CableOCPError(f"simulation.warmup = {sc.simulation.warmup!r}: must be less than "
-                            f"simulation.duration = {sc.simulation.duration} s")
-    _check_integration(sc)
+    if scene.simulation.warmup >= scene.simulation.duration:
+        raise CableOCPError(f"simulation.warmup = {scene.simulation.warmup!r}: must be less than "
+                            f"simulation.duration = {scene.simulation.duration} s")
+    _check_integration(scene)
 
 
 def _check_cable(sc: HeaveScene) -> None:
