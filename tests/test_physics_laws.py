@@ -298,6 +298,11 @@ def test_added_mass_of_vertical_and_horizontal_elements():
     np.testing.assert_allclose(a @ t, mat * t, rtol=ROUND)  # along: tangential
     n = _unit(np.cross(t, [1.0, 0.0, 0.0]))
     np.testing.assert_allclose(a @ n, man * n, rtol=ROUND, atol=ROUND * man)  # across
+    # the law on a given projector (the stepping kernel's t t^T) is the same law
+    tt = ca.SX.sym("tt", 3, 3)
+    proj = ca.Function("p", [tt], [am.projected_added_mass(tt, man, mat)])
+    np.testing.assert_allclose(np.asarray(proj(np.outer(t, t))), a, rtol=ROUND,
+                               atol=ROUND * man)
     # the planar rows are the x-z entries of the 3D matrix of an in-plane element
     t2 = _unit([0.6, 0.0, -0.8])
     dd = ca.SX.sym("dd", 2, 1)

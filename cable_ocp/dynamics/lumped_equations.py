@@ -34,7 +34,11 @@ import numpy as np
 
 from cable_ocp.dynamics.lumped_params import LumpedParams
 from cable_ocp.numerics.quadrature import gauss_legendre
-from cable_ocp.physics.added_mass import added_mass_per_length, line_added_mass
+from cable_ocp.physics.added_mass import (
+    added_mass_per_length,
+    line_added_mass,
+    projected_added_mass,
+)
 from cable_ocp.physics.drag import drag_per_length
 from cable_ocp.physics.drag import point_drag as physics_point_drag
 from cable_ocp.physics.elasticity import material_damping, smooth_strain_energy, smooth_tension
@@ -165,9 +169,10 @@ def added_mass_share(dm: Any, en: Any, et: Any, eet: Any = None) -> Any:
     and tangential added masses ``en``, ``et`` (kg) at its chord ``dm`` (m).
 
     ``eet``: the compiled kernel's ``t t^T`` from its unit tangent (it has it for the drag's
-    Jacobian); the law is then written on it, ``(en (I - t t^T) + et t t^T) / 2``, as
-    ``line_added_mass`` writes it on ``dm dm^T / |dm|^2`` (the two differ by rounding, and
-    the kernel's steps are kept bitwise).
+    Jacobian); the law is then taken on it
+    (:func:`cable_ocp.physics.added_mass.projected_added_mass`) rather than on
+    ``dm dm^T / |dm|^2`` (the two differ by rounding, and the kernel's steps are kept
+    bitwise).
 
     Parameters
     ----------
@@ -180,7 +185,7 @@ def added_mass_share(dm: Any, en: Any, et: Any, eet: Any = None) -> Any:
     """
     if eet is None:
         return 0.5 * line_added_mass(dm, en, et)
-    return 0.5 * (en * (ca.SX.eye(3) - eet) + et * eet)
+    return 0.5 * projected_added_mass(eet, en, et)
 
 
 def point_drag(u: Any, cs: list[float], law: str, rho: float, delta: float) -> Any:

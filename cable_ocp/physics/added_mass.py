@@ -51,7 +51,26 @@ def line_added_mass(d: Any, normal: Any, tangential: Any) -> Any:
     tangential : float or casadi expression
         Tangential added mass, same unit.
     """
-    tt = ca.mtimes(d, d.T) / ca.dot(d, d)
+    return projected_added_mass(ca.mtimes(d, d.T) / ca.dot(d, d), normal, tangential)
+
+
+def projected_added_mass(tt: Any, normal: Any, tangential: Any) -> Any:
+    """The added-mass law (004 eq. (5.2)) on a given projector ``tt = t t^T``:
+    m_an (I - t t^T) + m_at t t^T (CasADi, 3 x 3).
+
+    :func:`line_added_mass` builds ``tt`` from a chord; a stepping kernel that has ``t t^T``
+    from its unit tangent already (for the drag's Jacobian) passes it here (the two
+    projectors differ by rounding).
+
+    Parameters
+    ----------
+    tt : casadi expression, shape (3, 3)
+        t t^T of the element's unit tangent t (-).
+    normal : float or casadi expression
+        Normal added mass (per length, kg/m, or of the element, kg).
+    tangential : float or casadi expression
+        Tangential added mass, same unit.
+    """
     return normal * (ca.SX.eye(3) - tt) + tangential * tt
 
 
