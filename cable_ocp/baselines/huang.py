@@ -84,7 +84,7 @@ from cable_ocp.baselines.common import (
 )
 from cable_ocp.errors import CableOCPError
 from cable_ocp.physics.current import profile_velocity_np
-from cable_ocp.physics.drag import drag_per_length_np
+from cable_ocp.physics.drag import drag_per_length_np, line_drag_factors
 from cable_ocp.scene import Scene
 from cable_ocp.statics.catenary import FLIP, CatenaryShape, solve_line
 from cable_ocp.statics.initial_guess import free_length_guess
@@ -421,7 +421,8 @@ def _ramp_plans(scene: Scene, current_ramp: str | Sequence[float]
         raise CableOCPError(f'current_ramp = {current_ramp!r}: "auto", "off" or a sequence')
     env, cab = scene.environment, scene.cable
     speed = env.current.max_speed if env.current is not None else 0.0
-    drag = 0.5 * env.water_density * cab.normal_drag * cab.diameter * speed ** 2
+    drag = line_drag_factors(env.water_density, cab.diameter, cab.normal_drag,
+                             cab.tangential_drag)[0] * speed ** 2
     w = abs(cab.weight_in_water)
     q = drag / w if w > 0 else math.inf
     m = min(math.ceil(math.sqrt(q)), 50) if math.isfinite(q) else 10

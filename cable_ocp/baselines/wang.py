@@ -140,7 +140,7 @@ from cable_ocp.baselines.common import (
 )
 from cable_ocp.errors import CableOCPError
 from cable_ocp.physics.current import profile_components_np
-from cable_ocp.physics.drag import drag_in_local_basis
+from cable_ocp.physics.drag import drag_in_local_basis, line_drag_factors
 from cable_ocp.scene import Scene
 from cable_ocp.statics.initial_guess import initial_guess
 from cable_ocp.statics.registry import register
@@ -204,7 +204,8 @@ class WangProblem:
         if w != 0.0:
             wscale = abs(w)
         elif cur is not None:
-            wscale = 0.5 * rho * cab.normal_drag * cab.diameter * cur.max_speed**2
+            wscale = line_drag_factors(rho, cab.diameter, cab.normal_drag,
+                                       cab.tangential_drag)[0] * cur.max_speed**2
         else:
             raise _fail("a weightless cable in still water has no defined shape")
         self.weight_scale = wscale

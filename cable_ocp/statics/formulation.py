@@ -62,6 +62,7 @@ from cable_ocp.physics.current import profile_velocity
 from cable_ocp.physics.drag import (
     drag_error_bound,
     drag_per_length,
+    line_drag_factors,
     point_drag,
     point_drag_error_bound,
 )
@@ -154,7 +155,8 @@ class Formulation:
                 fref = max(fref, end.tension)
         cur = env.current
         if cur is not None:
-            fref = max(fref, max(0.5 * env.water_density * c.normal_drag * c.diameter
+            fref = max(fref, max(line_drag_factors(env.water_density, c.diameter,
+                                                   c.normal_drag, c.tangential_drag)[0]
                                  * cur.max_speed**2 * ell for c in self.lines))
         if fref == 0.0:
             fref = 1.0

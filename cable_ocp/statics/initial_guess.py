@@ -142,8 +142,9 @@ def _straight_guess(scene: Scene, sigma: np.ndarray, length: float
     tmag = max(abs(w) * length, 1.0)
     env, cab = scene.environment, scene.cable
     if env.current is not None:  # the drag scale: a weightless cable is held by drag alone
-        tmag = max(tmag, 0.5 * env.water_density * cab.normal_drag * cab.diameter
-                   * env.current.max_speed**2 * length)
+        kn = line_drag_factors(env.water_density, cab.diameter, cab.normal_drag,
+                               cab.tangential_drag)[0]
+        tmag = max(tmag, kn * env.current.max_speed**2 * length)
     for end in (ea, eb):
         tmag = max([tmag, *(abs(f) for f in end.force if f is not None)])
         if end.tension is not None:
