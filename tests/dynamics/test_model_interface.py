@@ -73,8 +73,9 @@ def test_simulate_and_modes_dispatch_on_the_interface(problems) -> None:
 def test_slack_report_words_every_model_alike() -> None:
     """No slack: the entry says so and the status stays. Slack in a solved run: status
     "slack", the model's message with the action of ``on_slack``; a failed run keeps its
-    status and message. ``until_slack`` keeps the samples up to one output interval after
-    the first slack time (relative margin 1e-9 against the grid's rounding)."""
+    status and message. ``until_slack`` keeps the samples up to the first at or after the
+    first slack time: between samples (0.25 s) the next one, on a sample (0.3 s, as 0.3 and
+    as 0.2 + 0.1, the grid's rounding either way) that one and none after it."""
     tpl = "slack at t = {t:.3g} s, segment {segment}, s = {location:.3g} m: {action}{x}"
     slack, status, msg = slack_report(None, None, None, status="solved", message="ok",
                                       on_slack="stop", template=tpl)
@@ -93,5 +94,57 @@ def test_slack_report_words_every_model_alike() -> None:
     assert (status, msg) == ("failed", "no")
     t = np.arange(6) * 0.1
     assert until_slack(t, 0.25, 0.1, "stop").tolist() == [True] * 4 + [False] * 2
+    for on_grid in (0.3, 0.2 + 0.1, 3 * 0.1):
+        assert until_slack(t, on_grid, 0.1, "stop").tolist() == [True] * 4 + [False] * 2
     assert until_slack(t, 0.25, 0.1, "continue") is None
     assert until_slack(t, math.inf, 0.1, "stop") is None
+
+
+# --------------------------------------------------------------------------------------
+# a slack scene for every model
+# --------------------------------------------------------------------------------------
+MODELS = ("axial", "planar", "lumped3d")
+
+
+def _drop_scene(model: str, **sim) -> dict:
+    """A 100 m line in air (mu = 1 kg/m, EA = 1e6 N: c = 1000 m/s; 20 elements of 5 m) with
+    a 100 kg unit; the top starts down at 0.6 m/s at t = 0 (a velocity step): the tension
+    drop mu c V = 600 N reaches the unit at 0.1 s and doubles there, beyond the unit's
+    981 N (test_planar's slack scene, at every model)."""
+    g = 9.81
+    d = {"environment": {"water_depth": 500.0, "water_density": 1.225},
+         "cable": {"length": 100.0, "diameter": 0.01, "weight_in_water": g,
+                   "axial_stiffness": 1.0e6, "mass_per_length": 1.0,
+                   "added_mass_coefficient": 0.0},
+         "unit": {"mass": 100.0, "weight_in_water": 100.0 * g},
+         "end_b": {"position": [0.0, 0.0, 200.0]},
+         "top_motion": {"series": [[0.0, 0.0, 0.0, 0.0], [1.0, 0.0, 0.0, -0.6]]},
+         "simulation": {"model": model, "duration": 0.13, "time_step": 1e-3,
+                        "output_step": 1e-3, "segments": 20}}
+    d["simulation"].update(sim)
+    return d
+
+
+@pytest.mark.parametrize("name", MODELS)
+def test_a_stopped_run_ends_at_the_first_sample_at_or_after_the_slack_time(name: str) -> None:
+    """``on_slack = "stop"`` ends the history at the first output at or after the slack
+    time (docs/dynamics.md, Slack), the same for every model and whatever the chunks of the
+    run: with a sample every step the slack time (0.109 s here) is a sample, and the
+    history ends there, for a run of 130 samples (the axial and planar loops advance one
+    sample per chunk and stop there), of 300 (two per chunk: the loop has computed 0.110 s
+    too) and of the lumped model (which does not stop). Tolerance 1e-12 s: the rounding of
+    the grid k dt. Before the fix the history kept one output step more where the loop had
+    computed it: 0.110 s for the lumped model and the 300-sample runs, 0.109 s for the
+    others."""
+    from cable_ocp.scene.dynamics import dynamic_scene_from_dict
+
+    ends = []
+    for duration in (0.13, 0.3):
+        res = simulate(dynamic_scene_from_dict(_drop_scene(name, on_slack="stop",
+                                                           duration=duration)))
+        assert res.status == "slack" and SLACK_STOPPED in res.message
+        first = res.slack["first_time"]
+        assert res.t[-1] == pytest.approx(first, abs=1e-12)
+        assert res.t.size == res.node_positions.shape[0] == res.top_tension.size
+        ends.append((res.t.size, first))
+    assert ends[0] == ends[1]

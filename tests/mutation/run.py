@@ -97,6 +97,7 @@ DYN = "dynamics"
 AX_F, LM_F, PL_F, MO_F = ("cable_ocp/dynamics/axial.py", "cable_ocp/dynamics/lumped.py",
                           "cable_ocp/dynamics/planar.py", "cable_ocp/scene/motion.py")
 LK_F, LE_F = "cable_ocp/dynamics/lumped_kernel.py", "cable_ocp/dynamics/lumped_equations.py"
+_MI = "tests/dynamics/test_model_interface.py::test_"
 
 MUTATIONS: tuple[Mutation, ...] = (
     # -- physics/ ---------------------------------------------------------------------------
@@ -552,6 +553,13 @@ MUTATIONS: tuple[Mutation, ...] = (
              "x = np.sin(lo * t + 0.25 * (hi - lo) * t**2 / duration)",
              ("tests/heave/test_identify.py::test_the_chirp_sweeps_exactly_the_band",),
              "the identification's chirp ends at the middle of its band"),
+    Mutation("until-slack-keeps-one-sample-more", "bookkeeping", "cable_ocp/dynamics/result.py",
+             "return t < first_time + sample_step * (1.0 - 1e-9)",
+             "return t <= first_time + sample_step * (1.0 + 1e-9)", (
+                 _MI + "slack_report_words_every_model_alike",
+                 _MI + "a_stopped_run_ends_at_the_first_sample_at_or_after_the_slack_time"),
+             "a run stopped at slack keeps one output step past a slack time on the sample "
+             "grid where its loop computed it (the code before issue 21's fix)"),
 )
 
 
