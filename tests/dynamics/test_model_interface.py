@@ -148,3 +148,33 @@ def test_a_stopped_run_ends_at_the_first_sample_at_or_after_the_slack_time(name:
         assert res.t.size == res.node_positions.shape[0] == res.top_tension.size
         ends.append((res.t.size, first))
     assert ends[0] == ends[1]
+
+
+@pytest.mark.parametrize("name", MODELS)
+def test_the_slack_time_is_the_end_of_the_first_step_with_a_slack_element(name: str) -> None:
+    """``slack.first_time`` is the end time of the first step with a slack element (each
+    model's ``step_function``: axial T <= -1e-9 of the static top tension, planar strain
+    <= -1e-9 W / EA, lumped strain <= 0). With a sample every step that is exactly the
+    first sample whose element strains, computed here from the stored node positions
+    (|r_j+1 - r_j| / 5 m - 1), go negative; the sample before has none. Tolerance 1e-12 s:
+    the step's end t_k + dt and the sample time (k + 1) dt differ by rounding only (one step
+    is 1e-3 s). The strains at the two samples are about -39e-6 and +30e-6 (EA eps = -39 N
+    and +30 N; asserted beyond -30e-6 and +20e-6): far beyond the models' thresholds
+    (1e-6 N) and the rounding of the positions, so the strains from the positions and the
+    models' own criteria pick the same step. ``segment`` is the element with the smallest
+    strain there and ``location`` its middle (5 m elements, to rounding); the JSON says
+    the same."""
+    from cable_ocp.scene.dynamics import dynamic_scene_from_dict
+
+    res = simulate(dynamic_scene_from_dict(_drop_scene(name)))
+    assert res.status == "slack" and res.slack["occurred"], res.message
+    strain = np.linalg.norm(np.diff(res.node_positions, axis=1), axis=2) / 5.0 - 1.0
+    k = int(np.flatnonzero(strain.min(axis=1) < 0.0)[0])
+    assert strain[k].min() < -30e-6 and strain[k - 1].min() > 20e-6
+    first = res.slack["first_time"]
+    assert first == pytest.approx(res.t[k], abs=1e-12)
+    assert first == pytest.approx(k * 1e-3, abs=1e-12)
+    assert res.slack["segment"] == int(np.argmin(strain[k]))
+    assert res.slack["location"] == pytest.approx(5.0 * (res.slack["segment"] + 0.5),
+                                                  rel=1e-12)
+    assert res.to_dict()["slack"] == res.slack

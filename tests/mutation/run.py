@@ -98,6 +98,7 @@ AX_F, LM_F, PL_F, MO_F = ("cable_ocp/dynamics/axial.py", "cable_ocp/dynamics/lum
                           "cable_ocp/dynamics/planar.py", "cable_ocp/scene/motion.py")
 LK_F, LE_F = "cable_ocp/dynamics/lumped_kernel.py", "cable_ocp/dynamics/lumped_equations.py"
 _MI = "tests/dynamics/test_model_interface.py::test_"
+SLACK_TIME = _MI + "the_slack_time_is_the_end_of_the_first_step_with_a_slack_element"
 
 MUTATIONS: tuple[Mutation, ...] = (
     # -- physics/ ---------------------------------------------------------------------------
@@ -560,6 +561,20 @@ MUTATIONS: tuple[Mutation, ...] = (
                  _MI + "a_stopped_run_ends_at_the_first_sample_at_or_after_the_slack_time"),
              "a run stopped at slack keeps one output step past a slack time on the sample "
              "grid where its loop computed it (the code before issue 21's fix)"),
+    Mutation("axial-slack-time-one-step-early", "bookkeeping", AX_F,
+             "ca.if_else(first_slack, tm + dt, t_slack),", "ca.if_else(first_slack, tm, t_slack),",
+             (SLACK_TIME,), "axial: the slack time reported is the start of the first slack "
+             "step, one step before the first tension <= 0"),
+    Mutation("planar-slack-time-one-step-early", "bookkeeping", PL_F,
+             "ca.if_else(first, tm + dt, t_slack),", "ca.if_else(first, tm, t_slack),",
+             (SLACK_TIME,), "planar: the slack time reported is the start of the first slack "
+             "step, one step before the first strain <= 0"),
+    Mutation("lumped-slack-time-one-step-early", "bookkeeping",
+             "cable_ocp/dynamics/lumped_run.py",
+             "slack = (float(tstart[j] + dt * (fc[j] + 1)), int(round(sc[j])))",
+             "slack = (float(tstart[j] + dt * fc[j]), int(round(sc[j])))", (SLACK_TIME,),
+             "lumped: the slack time reported is the start of the first slack step, one step "
+             "before the first strain <= 0"),
 )
 
 
