@@ -178,3 +178,39 @@ def test_the_slack_time_is_the_end_of_the_first_step_with_a_slack_element(name: 
     assert res.slack["location"] == pytest.approx(5.0 * (res.slack["segment"] + 0.5),
                                                   rel=1e-12)
     assert res.to_dict()["slack"] == res.slack
+
+
+@pytest.mark.parametrize("name", MODELS)
+def test_the_output_grid_is_every_kth_step_when_the_ratio_is_inexact_in_binary(
+        name: str) -> None:
+    """time_step 0.1 s, output_step 0.3 s and duration 1.2 s: neither ratio is exact in
+    binary (0.3 / 0.1 = 2.9999999999999996, 1.2 / 0.1 = 11.999999999999998), yet the run is
+    12 steps with a sample every 3rd: exactly 5 samples at t = 0, 0.3, ..., 1.2 s
+    (tolerance 1e-12 s: the rounding of k 3 dt), every history has 5 rows, the
+    diagnostics and the progress hook count 12 steps, and the samples are the states after
+    0, 3, ..., 12 steps: every 3rd sample of the run that stores every step (equal today;
+    1e-12 m for the rounding of the step times k dt, computed otherwise in the two runs).
+    The top heaves (0.1 m at 1 rad/s) so that the samples differ."""
+    from cable_ocp.scene.dynamics import dynamic_scene_from_dict
+
+    d = _drop_scene(name, duration=1.2, time_step=0.1, output_step=0.3)
+    d["top_motion"] = {"heave_amplitude": 0.1, "heave_frequency": 1.0}
+    scene = dynamic_scene_from_dict(d)
+    assert (scene.simulation.steps, scene.simulation.output_every) == (12, 3)
+    calls: list[tuple[int, int]] = []
+    res = simulate(scene, progress=lambda done, total: calls.append((done, total)))
+    assert res.status == "solved", res.message
+    np.testing.assert_allclose(res.t, 0.3 * np.arange(5), rtol=0.0, atol=1e-12)
+    for series in (res.length, res.top_position, res.unit_position, res.top_tension,
+                   res.node_positions, res.segment_tensions):
+        assert series.shape[0] == 5
+    assert res.diagnostics["steps"] == 12
+    assert calls[-1] == (12, 12)
+    assert len(res.to_dict()["t"]) == 5
+    # the samples are the states after 0, 3, ..., 12 steps: every 3rd of a run sampling
+    # every step (the same 12 steps grouped otherwise: equal today, 1e-12 m for rounding)
+    every_step = simulate(scene.with_overrides({"simulation.output_step": 0.1}))
+    assert every_step.t.size == 13
+    np.testing.assert_allclose(res.node_positions, every_step.node_positions[::3], rtol=0.0,
+                               atol=1e-12)
+    assert np.ptp(res.unit_position[:, 2]) > 0.05  # the samples differ

@@ -99,6 +99,7 @@ AX_F, LM_F, PL_F, MO_F = ("cable_ocp/dynamics/axial.py", "cable_ocp/dynamics/lum
 LK_F, LE_F = "cable_ocp/dynamics/lumped_kernel.py", "cable_ocp/dynamics/lumped_equations.py"
 _MI = "tests/dynamics/test_model_interface.py::test_"
 SLACK_TIME = _MI + "the_slack_time_is_the_end_of_the_first_step_with_a_slack_element"
+OUTPUT_GRID = _MI + "the_output_grid_is_every_kth_step_when_the_ratio_is_inexact_in_binary"
 
 MUTATIONS: tuple[Mutation, ...] = (
     # -- physics/ ---------------------------------------------------------------------------
@@ -575,6 +576,16 @@ MUTATIONS: tuple[Mutation, ...] = (
              "slack = (float(tstart[j] + dt * fc[j]), int(round(sc[j])))", (SLACK_TIME,),
              "lumped: the slack time reported is the start of the first slack step, one step "
              "before the first strain <= 0"),
+    Mutation("output-every-truncated", "bookkeeping", "cable_ocp/scene/dynamic_parts.py",
+             "return int(round(self.output_step / self.time_step))",
+             "return int(self.output_step / self.time_step)", (OUTPUT_GRID,),
+             "steps per output sample truncated: output_step 0.3 s over time_step 0.1 s "
+             "(2.9999999999999996) stores every 2nd step"),
+    Mutation("steps-truncated", "bookkeeping", "cable_ocp/scene/dynamic_parts.py",
+             "return int(round(self.duration / self.time_step))",
+             "return int(self.duration / self.time_step)", (OUTPUT_GRID,),
+             "integration steps truncated: 1.2 s over 0.1 s (11.999999999999998) runs 11 "
+             "steps and drops the last output sample"),
 )
 
 
