@@ -100,6 +100,8 @@ LK_F, LE_F = "cable_ocp/dynamics/lumped_kernel.py", "cable_ocp/dynamics/lumped_e
 _MI = "tests/dynamics/test_model_interface.py::test_"
 SLACK_TIME = _MI + "the_slack_time_is_the_end_of_the_first_step_with_a_slack_element"
 OUTPUT_GRID = _MI + "the_output_grid_is_every_kth_step_when_the_ratio_is_inexact_in_binary"
+CHART = ("tests/dynamics/test_lumped_modes.py::"
+         "test_the_deployment_chart_of_a_segmented_line_pays_out_the_top_segment")
 
 MUTATIONS: tuple[Mutation, ...] = (
     # -- physics/ ---------------------------------------------------------------------------
@@ -586,6 +588,13 @@ MUTATIONS: tuple[Mutation, ...] = (
              "return int(self.duration / self.time_step)", (OUTPUT_GRID,),
              "integration steps truncated: 1.2 s over 0.1 s (11.999999999999998) runs 11 "
              "steps and drops the last output sample"),
+    Mutation("chart-pays-out-the-bottom-segment", "bookkeeping", "cable_ocp/dynamics/modes.py",
+             "        top = len(st.segments) - 1\n"
+             "        rest = sum(c.length for c in st.segments[:-1])",
+             "        top = 0\n"
+             "        rest = sum(c.length for c in st.segments[1:])", (CHART,),
+             "deployment chart of a segmented line: the length change goes to segment 0 "
+             "(end_a's, as if the segments were listed from end_b), not to the top one"),
 )
 
 
