@@ -102,6 +102,7 @@ SLACK_TIME = _MI + "the_slack_time_is_the_end_of_the_first_step_with_a_slack_ele
 OUTPUT_GRID = _MI + "the_output_grid_is_every_kth_step_when_the_ratio_is_inexact_in_binary"
 CHART = ("tests/dynamics/test_lumped_modes.py::"
          "test_the_deployment_chart_of_a_segmented_line_pays_out_the_top_segment")
+BODY = "tests/dynamics/test_lumped.py::test_a_point_body_loads_exactly_its_joints_node"
 
 MUTATIONS: tuple[Mutation, ...] = (
     # -- physics/ ---------------------------------------------------------------------------
@@ -595,6 +596,9 @@ MUTATIONS: tuple[Mutation, ...] = (
              "        rest = sum(c.length for c in st.segments[1:])", (CHART,),
              "deployment chart of a segmented line: the length change goes to segment 0 "
              "(end_a's, as if the segments were listed from end_b), not to the top one"),
+    Mutation("lumped-body-weight-on-next-node", "bookkeeping", LE_F,
+             "w[b.node] += b.weight_in_water", "w[b.node + 1] += b.weight_in_water", (BODY,),
+             "lumped: a point body's weight in water acts on the node above its joint"),
 )
 
 
