@@ -43,9 +43,12 @@ SLACK_STOPPED = "the run stopped there"
 
 def until_slack(t: np.ndarray, first_time: float | None, sample_step: float,
                 on_slack: str) -> np.ndarray | None:
-    """The samples a run keeps when it stops at slack: those up to the first sample after
-    the first slack time (boolean mask over ``t``), or None when nothing is cut (no slack,
-    or ``on_slack = "continue"``).
+    """The samples a run keeps when it stops at slack: those up to the first sample at or
+    after the first slack time (boolean mask over ``t``), or None when nothing is cut (no
+    slack, or ``on_slack = "continue"``). A slack time on the sample grid (the end of a
+    step that ends a sample interval) keeps the sample at that time and none after it,
+    whatever samples the run computed beyond (the axial and planar loops stop after the
+    chunk of samples in which slack occurred; the lumped-mass run does not stop).
 
     Parameters
     ----------
@@ -60,7 +63,9 @@ def until_slack(t: np.ndarray, first_time: float | None, sample_step: float,
     """
     if on_slack != "stop" or first_time is None or not math.isfinite(first_time):
         return None
-    return t <= first_time + sample_step * (1.0 + 1e-9)
+    # the first sample at or after first_time: below first_time + sample_step, by a
+    # margin of 1e-9 of the step against the rounding of the two grids (k dt, t + dt)
+    return t < first_time + sample_step * (1.0 - 1e-9)
 
 
 def slack_report(first_time: float | None, segment: int | None, location: float | None, *,

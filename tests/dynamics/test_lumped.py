@@ -270,6 +270,53 @@ def test_vertical_line_equals_axial_model(problems) -> None:
     assert np.all((ratio > 3.5) & (ratio < 4.5)), ratio
 
 
+def test_a_point_body_loads_exactly_its_joints_node() -> None:
+    """[[bodies]] on a line of three [[cable.segments]] (30, 30, 40 m in 3 + 3 + 4 lumped
+    segments of 10 m: joints at nodes 3 and 6): a clump of 2000 N in water at joint 1 and
+    a buoy of 500 N net buoyancy at joint 2, a unit of 5000 N at end_a, no current. At the
+    static start (statics, then the lumped equilibrium) the line hangs straight down and
+    the tension jumps across node i by exactly the node's load: half of each adjacent
+    segment's weight w l / 2, plus the clump's 2000 N at node 3 and minus the buoy's
+    500 N at node 6 (zero elsewhere); the first segment carries the unit plus half its own
+    weight. Tolerance 1e-5 N: the static Newton stops at 1e-9 of the force scale (9400 N),
+    against loads of 100 to 2000 N (seen 1e-6 N). The body's mass sits at its node too."""
+    from cable_ocp.scene.dynamics import dynamic_scene_from_dict
+
+    def seg(length: float, d: float, w: float, ea: float, mu: float) -> dict:
+        return {"length": length, "diameter": d, "weight_in_water": w, "axial_stiffness": ea,
+                "mass_per_length": mu, "added_mass_coefficient": 1.0}
+
+    scene = dynamic_scene_from_dict({
+        "environment": {"water_depth": 500.0, "water_density": 1025.0},
+        "cable": {"segments": [seg(30.0, 0.03, 20.0, 1e7, 3.0), seg(30.0, 0.04, 30.0, 2e7, 4.0),
+                               seg(40.0, 0.05, 40.0, 3e7, 5.0)]},
+        "bodies": [{"joint": 1, "kind": "clump", "weight_in_water": 2000.0, "mass": 250.0},
+                   {"joint": 2, "kind": "buoy", "net_buoyancy": 500.0, "mass": 100.0}],
+        "unit": {"mass": 600.0, "weight_in_water": 5000.0},
+        "end_b": {"position": [0.0, 0.0, 200.0]},
+        "simulation": {"model": "lumped3d", "duration": 1.0, "time_step": 0.01,
+                       "segments": 10}})
+    p = lumped_params(scene)
+    assert [b.node for b in p.bodies] == [3, 6]
+    m = LumpedMassModel(p)
+    x, info = lumped_start(scene, m)
+    assert info["converged"], info
+    pos = np.asarray(m.nodes(x, 0.0)).T
+    assert np.abs(pos[:, :2]).max() < 1e-9  # straight down: the balance is along z only
+    tens = np.asarray(m.segment_tension(x, np.zeros_like(x), 0.0)).ravel()
+    w = np.repeat([20.0, 30.0, 40.0], [3, 3, 4]) * 10.0  # each lumped segment's weight, N
+    body = np.zeros(11)
+    body[3], body[6] = 2000.0, -500.0
+    load = 0.5 * (w[:-1] + w[1:]) + body[1:-1]  # the interior nodes 1..9
+    np.testing.assert_allclose(np.diff(tens), load, rtol=0.0, atol=1e-5)
+    assert tens[0] == pytest.approx(5000.0 + 0.5 * w[0], abs=1e-5)
+    mu = np.repeat([3.0, 4.0, 5.0], [3, 3, 4]) * 10.0
+    mass = np.concatenate([[0.5 * mu[0] + 600.0], 0.5 * (mu[:-1] + mu[1:]), [0.5 * mu[-1]]])
+    mass[3] += 250.0
+    mass[6] += 100.0
+    np.testing.assert_allclose(m.node_mass[:, 2], mass, rtol=1e-14)
+
+
 def test_forced_heave_against_viscoelastic_rod_closed_form(problems) -> None:
     """Steady heave of the vertical 5.7 line, no drag, internal damping c = 2e6 N s (a
     Kelvin-Voigt rod, EA* = EA + i omega c), top z = sin(1.256 t), unit mass + added mass

@@ -10,6 +10,7 @@
 
 from __future__ import annotations
 
+import json
 import math
 
 import numpy as np
@@ -181,3 +182,119 @@ def test_modes_api_shapes_and_vertical_axial_modes_equal_axial_model(problems) -
     axial_3d = res.frequencies[z_share > 1.0 - 1e-9]
     ax = modes(f, axial_3d.size)
     np.testing.assert_allclose(axial_3d, ax.frequencies, rtol=1e-8)
+
+
+# --------------------------------------------------------------------------------------
+# the deployment chart of a segmented line (issue 21, item 9)
+# --------------------------------------------------------------------------------------
+#: two segments in air, end_a's below (EA 1e6 N, 1 kg/m) and the top one (2e6 N, 2 kg/m),
+#: 30 m each, a 100 kg unit; 6 lumped segments, shared by length
+_TWO_SEGMENTS = """
+[environment]
+water_depth = 500.0
+water_density = 1.225
+
+[[cable.segments]]
+length = 30.0
+diameter = 0.01
+weight_in_water = 9.81
+axial_stiffness = 1.0e6
+mass_per_length = 1.0
+added_mass_coefficient = 0.0
+
+[[cable.segments]]
+length = 30.0
+diameter = 0.02
+weight_in_water = 19.62
+axial_stiffness = 2.0e6
+mass_per_length = 2.0
+added_mass_coefficient = 0.0
+
+[unit]
+mass = 100.0
+weight_in_water = 981.0
+
+[end_b]
+position = [0.0, 0.0, 200.0]
+
+[simulation]
+model = "lumped3d"
+duration = 1.0
+time_step = 0.01
+segments = 6
+"""
+
+
+def _vertical_chain_frequencies(parts: list[tuple[int, float, float, float, float]],
+                                unit_mass: float, unit_weight: float) -> np.ndarray:
+    """Every natural frequency (rad/s, ascending) of a vertical lumped chain hanging from a
+    fixed top, written out here: ``parts`` from end_a up, each (lumped segments, length m,
+    EA N, mu kg/m, w N/m). Node masses: half of each adjacent segment's plus the unit's
+    at node 0 (in air: no added mass); static tensions T_j = W_unit + the weights of the
+    nodes 0..j (half segments); stretched lengths s_j = l_j (1 + T_j / EA_j). Transverse
+    springs T_j / s_j (the x and y chains, alike), axial springs EA_j / l_j."""
+    from scipy.linalg import eigh
+
+    ell = np.concatenate([np.full(n, length / n) for n, length, *_ in parts])
+    ea, mu, w = (np.concatenate([np.full(part[0], part[i]) for part in parts])
+                 for i in (2, 3, 4))
+    n = ell.size
+    mass = np.zeros(n + 1)
+    mass[:-1] += 0.5 * mu * ell
+    mass[1:] += 0.5 * mu * ell
+    mass[0] += unit_mass
+    wn = np.zeros(n + 1)
+    wn[:-1] += 0.5 * w * ell
+    wn[1:] += 0.5 * w * ell
+    wn[0] += unit_weight
+    tens = np.cumsum(wn)[:-1]
+    stretched = ell * (1.0 + tens / ea)
+
+    def chain(k: np.ndarray) -> np.ndarray:  # springs j between nodes j, j + 1; top fixed
+        kmat = np.diag(k + np.append(0.0, k[:-1])) - np.diag(k[:-1], 1) - np.diag(k[:-1], -1)
+        return eigh(kmat, np.diag(mass[:-1]), eigvals_only=True)
+
+    lam_x = chain(tens / stretched)
+    return np.sqrt(np.sort(np.concatenate([lam_x, lam_x, chain(ea / ell)])))
+
+
+def test_the_deployment_chart_of_a_segmented_line_pays_out_the_top_segment(
+        tmp_path, capsys) -> None:
+    """``modes(scene, count, lengths)`` on a line of two [[cable.segments]] changes the top
+    segment (end_b's, where pay-out happens) and leaves end_a's: at 60 m (the scene's own
+    length) the chart's row is the plain modes of the scene (the same computation) and the
+    chain of 3 + 3 lumped segments; at 90 m it is the chain of 30 m of the lower cable in 2
+    lumped segments and 60 m of the upper one in 4 (the shares by length), written out
+    here (:func:`_vertical_chain_frequencies`), all 18 frequencies to 1e-9 relative (the
+    static Newton's tolerance, 1e-9 of the force scale, bounds the tensions; the smooth
+    no-compression law changes them by delta_T^2 / (4 T), 1e-11 of T; seen 2e-11). Paying
+    out the lower segment instead (60 m below, 30 m on top) moves them by up to 15 %. The
+    CLI's ``--lengths 60:90:2`` gives the same lengths (exactly) and frequencies; a length
+    not longer than the segments below the top one (30 m) is refused."""
+    from cable_ocp.cli import main
+    from cable_ocp.errors import CableOCPError
+    from cable_ocp.scene.dynamics import load_dynamic_scene
+
+    f = tmp_path / "two.toml"
+    f.write_text(_TWO_SEGMENTS)
+    scene = load_dynamic_scene(f)
+    chart = modes(scene, 18, lengths=[60.0, 90.0])
+    assert chart.status == "solved", chart.message
+    np.testing.assert_array_equal(chart.lengths, [60.0, 90.0])
+    assert chart.frequencies.shape == (2, 18)
+    np.testing.assert_allclose(chart.frequencies[0], modes(scene, 18).frequencies,
+                               rtol=1e-12)
+    lower, upper = (1.0e6, 1.0, 9.81), (2.0e6, 2.0, 19.62)
+    at60 = _vertical_chain_frequencies([(3, 30.0, *lower), (3, 30.0, *upper)], 100.0, 981.0)
+    at90 = _vertical_chain_frequencies([(2, 30.0, *lower), (4, 60.0, *upper)], 100.0, 981.0)
+    np.testing.assert_allclose(chart.frequencies[0], at60, rtol=1e-9)
+    np.testing.assert_allclose(chart.frequencies[1], at90, rtol=1e-9)
+    wrong = _vertical_chain_frequencies([(4, 60.0, *lower), (2, 30.0, *upper)], 100.0, 981.0)
+    assert np.max(np.abs(wrong / at90 - 1.0)) > 0.1
+    assert main(["modes", str(f), "--count", "18", "--lengths", "60:90:2", "--json", "-",
+                 "--quiet"]) == 0
+    d = json.loads(capsys.readouterr().out)
+    assert d["lengths"] == [60.0, 90.0]
+    np.testing.assert_allclose(d["frequencies_rad_s"], chart.frequencies, rtol=1e-12)
+    with pytest.raises(CableOCPError, match="not longer than the segments below"):
+        modes(scene, 18, lengths=[30.0])

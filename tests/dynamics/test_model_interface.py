@@ -73,8 +73,9 @@ def test_simulate_and_modes_dispatch_on_the_interface(problems) -> None:
 def test_slack_report_words_every_model_alike() -> None:
     """No slack: the entry says so and the status stays. Slack in a solved run: status
     "slack", the model's message with the action of ``on_slack``; a failed run keeps its
-    status and message. ``until_slack`` keeps the samples up to one output interval after
-    the first slack time (relative margin 1e-9 against the grid's rounding)."""
+    status and message. ``until_slack`` keeps the samples up to the first at or after the
+    first slack time: between samples (0.25 s) the next one, on a sample (0.3 s, as 0.3 and
+    as 0.2 + 0.1, the grid's rounding either way) that one and none after it."""
     tpl = "slack at t = {t:.3g} s, segment {segment}, s = {location:.3g} m: {action}{x}"
     slack, status, msg = slack_report(None, None, None, status="solved", message="ok",
                                       on_slack="stop", template=tpl)
@@ -93,5 +94,123 @@ def test_slack_report_words_every_model_alike() -> None:
     assert (status, msg) == ("failed", "no")
     t = np.arange(6) * 0.1
     assert until_slack(t, 0.25, 0.1, "stop").tolist() == [True] * 4 + [False] * 2
+    for on_grid in (0.3, 0.2 + 0.1, 3 * 0.1):
+        assert until_slack(t, on_grid, 0.1, "stop").tolist() == [True] * 4 + [False] * 2
     assert until_slack(t, 0.25, 0.1, "continue") is None
     assert until_slack(t, math.inf, 0.1, "stop") is None
+
+
+# --------------------------------------------------------------------------------------
+# a slack scene for every model
+# --------------------------------------------------------------------------------------
+MODELS = ("axial", "planar", "lumped3d")
+
+
+def _drop_scene(model: str, **sim) -> dict:
+    """A 100 m line in air (mu = 1 kg/m, EA = 1e6 N: c = 1000 m/s; 20 elements of 5 m) with
+    a 100 kg unit; the top starts down at 0.6 m/s at t = 0 (a velocity step): the tension
+    drop mu c V = 600 N reaches the unit at 0.1 s and doubles there, beyond the unit's
+    981 N (test_planar's slack scene, at every model)."""
+    g = 9.81
+    d = {"environment": {"water_depth": 500.0, "water_density": 1.225},
+         "cable": {"length": 100.0, "diameter": 0.01, "weight_in_water": g,
+                   "axial_stiffness": 1.0e6, "mass_per_length": 1.0,
+                   "added_mass_coefficient": 0.0},
+         "unit": {"mass": 100.0, "weight_in_water": 100.0 * g},
+         "end_b": {"position": [0.0, 0.0, 200.0]},
+         "top_motion": {"series": [[0.0, 0.0, 0.0, 0.0], [1.0, 0.0, 0.0, -0.6]]},
+         "simulation": {"model": model, "duration": 0.13, "time_step": 1e-3,
+                        "output_step": 1e-3, "segments": 20}}
+    d["simulation"].update(sim)
+    return d
+
+
+@pytest.mark.parametrize("name", MODELS)
+def test_a_stopped_run_ends_at_the_first_sample_at_or_after_the_slack_time(name: str) -> None:
+    """``on_slack = "stop"`` ends the history at the first output at or after the slack
+    time (docs/dynamics.md, Slack), the same for every model and whatever the chunks of the
+    run: with a sample every step the slack time (0.109 s here) is a sample, and the
+    history ends there, for a run of 130 samples (the axial and planar loops advance one
+    sample per chunk and stop there), of 300 (two per chunk: the loop has computed 0.110 s
+    too) and of the lumped model (which does not stop). Tolerance 1e-12 s: the rounding of
+    the grid k dt. Before the fix the history kept one output step more where the loop had
+    computed it: 0.110 s for the lumped model and the 300-sample runs, 0.109 s for the
+    others."""
+    from cable_ocp.scene.dynamics import dynamic_scene_from_dict
+
+    ends = []
+    for duration in (0.13, 0.3):
+        res = simulate(dynamic_scene_from_dict(_drop_scene(name, on_slack="stop",
+                                                           duration=duration)))
+        assert res.status == "slack" and SLACK_STOPPED in res.message
+        first = res.slack["first_time"]
+        assert res.t[-1] == pytest.approx(first, abs=1e-12)
+        assert res.t.size == res.node_positions.shape[0] == res.top_tension.size
+        ends.append((res.t.size, first))
+    assert ends[0] == ends[1]
+
+
+@pytest.mark.parametrize("name", MODELS)
+def test_the_slack_time_is_the_end_of_the_first_step_with_a_slack_element(name: str) -> None:
+    """``slack.first_time`` is the end time of the first step with a slack element (each
+    model's ``step_function``: axial T <= -1e-9 of the static top tension, planar strain
+    <= -1e-9 W / EA, lumped strain <= 0). With a sample every step that is exactly the
+    first sample whose element strains, computed here from the stored node positions
+    (|r_j+1 - r_j| / 5 m - 1), go negative; the sample before has none. Tolerance 1e-12 s:
+    the step's end t_k + dt and the sample time (k + 1) dt differ by rounding only (one step
+    is 1e-3 s). The strains at the two samples are about -39e-6 and +30e-6 (EA eps = -39 N
+    and +30 N; asserted beyond -30e-6 and +20e-6): far beyond the models' thresholds
+    (1e-6 N) and the rounding of the positions, so the strains from the positions and the
+    models' own criteria pick the same step. ``segment`` is the element with the smallest
+    strain there and ``location`` its middle (5 m elements, to rounding); the JSON says
+    the same."""
+    from cable_ocp.scene.dynamics import dynamic_scene_from_dict
+
+    res = simulate(dynamic_scene_from_dict(_drop_scene(name)))
+    assert res.status == "slack" and res.slack["occurred"], res.message
+    strain = np.linalg.norm(np.diff(res.node_positions, axis=1), axis=2) / 5.0 - 1.0
+    k = int(np.flatnonzero(strain.min(axis=1) < 0.0)[0])
+    assert strain[k].min() < -30e-6 and strain[k - 1].min() > 20e-6
+    first = res.slack["first_time"]
+    assert first == pytest.approx(res.t[k], abs=1e-12)
+    assert first == pytest.approx(k * 1e-3, abs=1e-12)
+    assert res.slack["segment"] == int(np.argmin(strain[k]))
+    assert res.slack["location"] == pytest.approx(5.0 * (res.slack["segment"] + 0.5),
+                                                  rel=1e-12)
+    assert res.to_dict()["slack"] == res.slack
+
+
+@pytest.mark.parametrize("name", MODELS)
+def test_the_output_grid_is_every_kth_step_when_the_ratio_is_inexact_in_binary(
+        name: str) -> None:
+    """time_step 0.1 s, output_step 0.3 s and duration 1.2 s: neither ratio is exact in
+    binary (0.3 / 0.1 = 2.9999999999999996, 1.2 / 0.1 = 11.999999999999998), yet the run is
+    12 steps with a sample every 3rd: exactly 5 samples at t = 0, 0.3, ..., 1.2 s
+    (tolerance 1e-12 s: the rounding of k 3 dt), every history has 5 rows, the
+    diagnostics and the progress hook count 12 steps, and the samples are the states after
+    0, 3, ..., 12 steps: every 3rd sample of the run that stores every step (equal today;
+    1e-12 m for the rounding of the step times k dt, computed otherwise in the two runs).
+    The top heaves (0.1 m at 1 rad/s) so that the samples differ."""
+    from cable_ocp.scene.dynamics import dynamic_scene_from_dict
+
+    d = _drop_scene(name, duration=1.2, time_step=0.1, output_step=0.3)
+    d["top_motion"] = {"heave_amplitude": 0.1, "heave_frequency": 1.0}
+    scene = dynamic_scene_from_dict(d)
+    assert (scene.simulation.steps, scene.simulation.output_every) == (12, 3)
+    calls: list[tuple[int, int]] = []
+    res = simulate(scene, progress=lambda done, total: calls.append((done, total)))
+    assert res.status == "solved", res.message
+    np.testing.assert_allclose(res.t, 0.3 * np.arange(5), rtol=0.0, atol=1e-12)
+    for series in (res.length, res.top_position, res.unit_position, res.top_tension,
+                   res.node_positions, res.segment_tensions):
+        assert series.shape[0] == 5
+    assert res.diagnostics["steps"] == 12
+    assert calls[-1] == (12, 12)
+    assert len(res.to_dict()["t"]) == 5
+    # the samples are the states after 0, 3, ..., 12 steps: every 3rd of a run sampling
+    # every step (the same 12 steps grouped otherwise: equal today, 1e-12 m for rounding)
+    every_step = simulate(scene.with_overrides({"simulation.output_step": 0.1}))
+    assert every_step.t.size == 13
+    np.testing.assert_allclose(res.node_positions, every_step.node_positions[::3], rtol=0.0,
+                               atol=1e-12)
+    assert np.ptp(res.unit_position[:, 2]) > 0.05  # the samples differ

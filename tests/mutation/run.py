@@ -97,6 +97,12 @@ DYN = "dynamics"
 AX_F, LM_F, PL_F, MO_F = ("cable_ocp/dynamics/axial.py", "cable_ocp/dynamics/lumped.py",
                           "cable_ocp/dynamics/planar.py", "cable_ocp/scene/motion.py")
 LK_F, LE_F = "cable_ocp/dynamics/lumped_kernel.py", "cable_ocp/dynamics/lumped_equations.py"
+_MI = "tests/dynamics/test_model_interface.py::test_"
+SLACK_TIME = _MI + "the_slack_time_is_the_end_of_the_first_step_with_a_slack_element"
+OUTPUT_GRID = _MI + "the_output_grid_is_every_kth_step_when_the_ratio_is_inexact_in_binary"
+CHART = ("tests/dynamics/test_lumped_modes.py::"
+         "test_the_deployment_chart_of_a_segmented_line_pays_out_the_top_segment")
+BODY = "tests/dynamics/test_lumped.py::test_a_point_body_loads_exactly_its_joints_node"
 
 MUTATIONS: tuple[Mutation, ...] = (
     # -- physics/ ---------------------------------------------------------------------------
@@ -552,6 +558,47 @@ MUTATIONS: tuple[Mutation, ...] = (
              "x = np.sin(lo * t + 0.25 * (hi - lo) * t**2 / duration)",
              ("tests/heave/test_identify.py::test_the_chirp_sweeps_exactly_the_band",),
              "the identification's chirp ends at the middle of its band"),
+    Mutation("until-slack-keeps-one-sample-more", "bookkeeping", "cable_ocp/dynamics/result.py",
+             "return t < first_time + sample_step * (1.0 - 1e-9)",
+             "return t <= first_time + sample_step * (1.0 + 1e-9)", (
+                 _MI + "slack_report_words_every_model_alike",
+                 _MI + "a_stopped_run_ends_at_the_first_sample_at_or_after_the_slack_time"),
+             "a run stopped at slack keeps one output step past a slack time on the sample "
+             "grid where its loop computed it (the code before issue 21's fix)"),
+    Mutation("axial-slack-time-one-step-early", "bookkeeping", AX_F,
+             "ca.if_else(first_slack, tm + dt, t_slack),", "ca.if_else(first_slack, tm, t_slack),",
+             (SLACK_TIME,), "axial: the slack time reported is the start of the first slack "
+             "step, one step before the first tension <= 0"),
+    Mutation("planar-slack-time-one-step-early", "bookkeeping", PL_F,
+             "ca.if_else(first, tm + dt, t_slack),", "ca.if_else(first, tm, t_slack),",
+             (SLACK_TIME,), "planar: the slack time reported is the start of the first slack "
+             "step, one step before the first strain <= 0"),
+    Mutation("lumped-slack-time-one-step-early", "bookkeeping",
+             "cable_ocp/dynamics/lumped_run.py",
+             "slack = (float(tstart[j] + dt * (fc[j] + 1)), int(round(sc[j])))",
+             "slack = (float(tstart[j] + dt * fc[j]), int(round(sc[j])))", (SLACK_TIME,),
+             "lumped: the slack time reported is the start of the first slack step, one step "
+             "before the first strain <= 0"),
+    Mutation("output-every-truncated", "bookkeeping", "cable_ocp/scene/dynamic_parts.py",
+             "return int(round(self.output_step / self.time_step))",
+             "return int(self.output_step / self.time_step)", (OUTPUT_GRID,),
+             "steps per output sample truncated: output_step 0.3 s over time_step 0.1 s "
+             "(2.9999999999999996) stores every 2nd step"),
+    Mutation("steps-truncated", "bookkeeping", "cable_ocp/scene/dynamic_parts.py",
+             "return int(round(self.duration / self.time_step))",
+             "return int(self.duration / self.time_step)", (OUTPUT_GRID,),
+             "integration steps truncated: 1.2 s over 0.1 s (11.999999999999998) runs 11 "
+             "steps and drops the last output sample"),
+    Mutation("chart-pays-out-the-bottom-segment", "bookkeeping", "cable_ocp/dynamics/modes.py",
+             "        top = len(st.segments) - 1\n"
+             "        rest = sum(c.length for c in st.segments[:-1])",
+             "        top = 0\n"
+             "        rest = sum(c.length for c in st.segments[1:])", (CHART,),
+             "deployment chart of a segmented line: the length change goes to segment 0 "
+             "(end_a's, as if the segments were listed from end_b), not to the top one"),
+    Mutation("lumped-body-weight-on-next-node", "bookkeeping", LE_F,
+             "w[b.node] += b.weight_in_water", "w[b.node + 1] += b.weight_in_water", (BODY,),
+             "lumped: a point body's weight in water acts on the node above its joint"),
 )
 
 
