@@ -13,28 +13,11 @@ from typing import Any
 
 import numpy as np
 
+from cable_ocp.numerics.jsonable import json_safe
 from cable_ocp.status import Status
 
 __all__ = ["DeploymentChart", "ModesResult", "SimulationResult", "json_safe", "slack_report",
            "until_slack"]
-
-
-def json_safe(value: Any) -> Any:
-    """Convert numpy arrays and scalars to lists and floats, NaN and +-inf to None."""
-    if isinstance(value, dict):
-        return {str(k): json_safe(v) for k, v in value.items()}
-    if isinstance(value, (list, tuple)):
-        return [json_safe(v) for v in value]
-    if isinstance(value, np.ndarray):
-        return json_safe(value.tolist())
-    if isinstance(value, (bool, np.bool_)):
-        return bool(value)
-    if isinstance(value, (int, np.integer)):
-        return int(value)
-    if isinstance(value, (float, np.floating)):
-        x = float(value)
-        return x if math.isfinite(x) else None
-    return value
 
 
 #: what the slack message says when ``simulation.on_slack = "stop"``
