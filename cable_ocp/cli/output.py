@@ -278,6 +278,17 @@ def confirm(args: argparse.Namespace, path: str, what: str = "") -> None:
         print(f"wrote {path}" + (f" ({what})" if what else ""), file=sys.stderr)
 
 
+def _write(args: argparse.Namespace, path: str, text: str, what: str) -> None:
+    """``text`` to stdout (``path`` ``"-"``, no confirmation) or to the file ``path``,
+    confirmed (:func:`confirm`) as ``what``."""
+    if path == STDOUT:
+        sys.stdout.write(text)
+        sys.stdout.flush()
+    else:
+        Path(path).write_text(text, encoding="utf-8")
+        confirm(args, path, what)
+
+
 def emit_json(args: argparse.Namespace, obj: dict[str, Any], path: str | None = None) -> None:
     """Write ``obj`` as strict JSON to ``path`` (default ``args.json``); '-' = stdout.
 
@@ -294,15 +305,8 @@ def emit_json(args: argparse.Namespace, obj: dict[str, Any], path: str | None = 
         ``args.json``, and nothing is written when that is not set either.
     """
     path = path or args.json
-    if not path:
-        return
-    text = json_text(obj)
-    if path == STDOUT:
-        sys.stdout.write(text + "\n")
-        sys.stdout.flush()
-    else:
-        Path(path).write_text(text + "\n", encoding="utf-8")
-        confirm(args, path, "JSON")
+    if path:
+        _write(args, path, json_text(obj) + "\n", "JSON")
 
 
 def csv_text(header: Sequence[str], rows: Sequence[Sequence[Any]]) -> str:
@@ -345,15 +349,8 @@ def emit_csv(args: argparse.Namespace, header: Sequence[str], rows: Sequence[Seq
         ``args.csv``, and nothing is written when that is not set either.
     """
     path = path or args.csv
-    if not path:
-        return
-    text = csv_text(header, rows)
-    if path == STDOUT:
-        sys.stdout.write(text)
-        sys.stdout.flush()
-    else:
-        Path(path).write_text(text, encoding="utf-8")
-        confirm(args, path, "CSV")
+    if path:
+        _write(args, path, csv_text(header, rows), "CSV")
 
 
 def emit_plot(args: argparse.Namespace, draw: Callable[[str], Any],
