@@ -96,8 +96,17 @@ def slack_report(first_time: float | None, segment: int | None, location: float 
     return slack, status, message
 
 
+class _StatusVocabulary:
+    """The results' common base: ``status`` is made a :class:`cable_ocp.status.Status`
+    when a result is built (a status outside the vocabulary raises ``ValueError``)."""
+
+    def __post_init__(self) -> None:
+        # the status is one of the package's vocabulary (cable_ocp.status)
+        object.__setattr__(self, "status", Status(self.status))
+
+
 @dataclass(frozen=True)
-class SimulationResult:
+class SimulationResult(_StatusVocabulary):
     """Time history of a dynamics simulation.
 
     Attributes
@@ -161,10 +170,6 @@ class SimulationResult:
     diagnostics: dict[str, Any] = field(default_factory=dict)
     node_velocities: np.ndarray | None = None
 
-    def __post_init__(self) -> None:
-        # the status is one of the package's vocabulary (cable_ocp.status)
-        object.__setattr__(self, "status", Status(self.status))
-
     @property
     def success(self) -> bool:
         """True when the run finished without slack or failure."""
@@ -204,7 +209,7 @@ class SimulationResult:
 
 
 @dataclass(frozen=True)
-class ModesResult:
+class ModesResult(_StatusVocabulary):
     """Natural frequencies and mode shapes, linearised about the static state.
 
     Attributes
@@ -237,10 +242,6 @@ class ModesResult:
     message: str = ""
     diagnostics: dict[str, Any] = field(default_factory=dict)
 
-    def __post_init__(self) -> None:
-        # the status is one of the package's vocabulary (cable_ocp.status)
-        object.__setattr__(self, "status", Status(self.status))
-
     @property
     def periods(self) -> np.ndarray:
         """Natural periods 2 pi / omega, s (inf for a zero frequency)."""
@@ -262,7 +263,7 @@ class ModesResult:
 
 
 @dataclass(frozen=True)
-class DeploymentChart:
+class DeploymentChart(_StatusVocabulary):
     """Natural frequencies against paid-out length (a deployment resonance chart).
 
     Attributes
@@ -291,10 +292,6 @@ class DeploymentChart:
     status: Status = Status.SOLVED
     message: str = ""
     diagnostics: dict[str, Any] = field(default_factory=dict)
-
-    def __post_init__(self) -> None:
-        # the status is one of the package's vocabulary (cable_ocp.status)
-        object.__setattr__(self, "status", Status(self.status))
 
     @property
     def in_band(self) -> np.ndarray:
