@@ -380,10 +380,7 @@ class FemProblem:
             Tension magnitude at the Gauss points, N, for eps = 1 + T/EA (not used when
             EA = inf).
         """
-        g = self.slopes(q)
-        s = np.sqrt(1.0 + g[..., 0] ** 2 + g[..., 1] ** 2)
-        eps = 1.0 + tg / self.ea if math.isfinite(self.ea) else 1.0
-        return float(self.h * np.sum(_WG * s / eps))
+        return float(self.h * np.sum(self._length_weights(q, tg)))
 
     def arc_length_nodes(self, q: np.ndarray, tg: np.ndarray) -> np.ndarray:
         """Unstretched arc length at the nodes, m.
@@ -401,10 +398,16 @@ class FemProblem:
         numpy.ndarray, shape (n + 1,)
             s at every node from end_a (s = 0), m.
         """
+        return np.concatenate([[0.0], np.cumsum(self.h * np.sum(self._length_weights(q, tg),
+                                                                 axis=1))])
+
+    def _length_weights(self, q: np.ndarray, tg: np.ndarray) -> np.ndarray:
+        """The Gauss terms w_g S / eps of the unstretched length (shape (n, g); times h
+        and summed: :meth:`length`, per element: :meth:`arc_length_nodes`)."""
         g = self.slopes(q)
         s = np.sqrt(1.0 + g[..., 0] ** 2 + g[..., 1] ** 2)
         eps = 1.0 + tg / self.ea if math.isfinite(self.ea) else 1.0
-        return np.concatenate([[0.0], np.cumsum(self.h * np.sum(_WG * s / eps, axis=1))])
+        return _WG * s / eps
 
 
 def _initial_dofs(fem: FemProblem, warm_start: StaticsSolution | None) -> np.ndarray:
