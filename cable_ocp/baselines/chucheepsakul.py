@@ -100,12 +100,11 @@ import scipy.sparse as sp
 from scipy.sparse.linalg import spsolve
 
 from cable_ocp.baselines.common import (
-    Estimate,
     MeshCache,
-    double_within,
+    coarser_estimate,
     equilibrium_check,
+    finer_within_max_intervals,
     refine_to_accuracy,
-    richardson_coarser,
     rising_fixed_ends,
     unsupported,
 )
@@ -549,19 +548,9 @@ def solve(scene: Scene, warm_start: StaticsSolution | None = None) -> StaticsSol
     cache = MeshCache(
         lambda n, warm: solve_fem(scene.with_overrides({"solver.intervals": n}), warm))
 
-    def estimate(n: int, sol: StaticsSolution) -> Estimate:
-        cache.solutions[n] = sol
-        est = richardson_coarser(n, sol, cache.get, "z", *ORDER_RANGE, "elements")
-        alg = float(sol.constraint_violation)
-        est.detail["algebraic"] = alg
-        est.value += alg
-        return est
-
-    def finer(n: int, est: Estimate) -> tuple[int | None, str]:
-        lim = scene.solver.max_intervals
-        return double_within(n, est, scene.solver.accuracy, lim,
-                             f"solver.max_intervals = {lim}", ORDER_RANGE[1], "elements")
-
+    estimate = coarser_estimate(cache, "z", *ORDER_RANGE, "elements",
+                                lambda sol: float(sol.constraint_violation))
+    finer = finer_within_max_intervals(scene, ORDER_RANGE[1], "elements")
     sol = refine_to_accuracy(scene, METHOD, scene.solver.intervals, cache.solve_at, estimate, finer,
                              warm_start, label=lambda n: f"{n} elements", retry_cold=False)
     return equilibrium_check(scene, sol, METHOD)
