@@ -71,7 +71,7 @@ from cable_ocp.dynamics.checks import check_axial
 from cable_ocp.dynamics.driven import axial_driven_step
 from cable_ocp.dynamics.model import DrivenStep
 from cable_ocp.dynamics.result import ModesResult, SimulationResult, slack_report, until_slack
-from cable_ocp.dynamics.stepping import MAX_CHUNKS, run_chunks
+from cable_ocp.dynamics.stepping import chunk_functions, run_chunks
 from cable_ocp.errors import CableOCPError
 from cable_ocp.physics.drag import body_drag_factor, line_drag_factors, quadratic_drag
 from cable_ocp.physics.elasticity import kelvin_voigt_tension
@@ -415,16 +415,8 @@ class AxialModel:
         n_out = n_steps // every
         n2 = 2 * self.n
         t_build = time.perf_counter()
-        step = self.step_function(scheme, dt, sim.tolerance, sim.max_iterations)
-        macro = step.fold(every)
-        per_chunk = max(1, math.ceil(n_out / MAX_CHUNKS))
-        chunks: dict[int, ca.Function] = {}
-
-        def chunk_fn(m: int) -> ca.Function:
-            if m not in chunks:
-                chunks[m] = macro.mapaccum("chunk", m)
-            return chunks[m]
-
+        chunk_fn, per_chunk = chunk_functions(
+            self.step_function(scheme, dt, sim.tolerance, sim.max_iterations), every, n_out)
         tt = ca.SX.sym("t")
         xx = ca.SX.sym("x", n2)
         post = ca.Function("post", [tt, xx], list(self.outputs(tt, xx)))

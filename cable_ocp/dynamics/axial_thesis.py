@@ -29,7 +29,6 @@ Needs at least 3 elements (the stencil of (3.10)).
 
 from __future__ import annotations
 
-import math
 import time
 from collections.abc import Callable
 from typing import Any
@@ -38,7 +37,7 @@ import casadi as ca
 import numpy as np
 
 from cable_ocp.dynamics.result import SimulationResult, slack_report, until_slack
-from cable_ocp.dynamics.stepping import MAX_CHUNKS
+from cable_ocp.dynamics.stepping import chunk_functions
 from cable_ocp.errors import CableOCPError
 from cable_ocp.physics.drag import body_drag_factor, line_drag_factors
 from cable_ocp.scene.dynamics import DynamicScene
@@ -289,10 +288,7 @@ class ThesisAxialModel:
         n_out = sim.steps // every
         n1 = self.n + 1
         t_build = time.perf_counter()
-        step = self.step_function(dt)
-        macro = step.fold(every)
-        per_chunk = max(1, math.ceil(n_out / MAX_CHUNKS))
-        chunks: dict[int, ca.Function] = {}
+        chunk_fn, per_chunk = chunk_functions(self.step_function(dt), every, n_out)
         tt = ca.SX.sym("t")
         uu = ca.SX.sym("u", n1)
         post = ca.Function("post", [tt, uu], list(self.outputs(tt, uu)))
@@ -310,10 +306,8 @@ class ThesisAxialModel:
         status, message = "solved", ""
         while done < n_out:
             m = min(per_chunk, n_out - done)
-            if m not in chunks:
-                chunks[m] = macro.mapaccum("chunk", m)
             tgrid = (done * every + np.arange(m * every)) * dt
-            res = np.asarray(chunks[m](acc, tgrid.reshape(1, -1)))
+            res = np.asarray(chunk_fn(m)(acc, tgrid.reshape(1, -1)))
             finite = np.all(np.isfinite(res[:n1, :]), axis=0)
             k_good = int(np.argmin(finite)) if not finite.all() else m
             for j in range(k_good):

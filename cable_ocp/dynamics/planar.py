@@ -83,7 +83,7 @@ from cable_ocp.dynamics.checks import check_planar
 from cable_ocp.dynamics.driven import planar_driven_step
 from cable_ocp.dynamics.model import DrivenStep
 from cable_ocp.dynamics.result import ModesResult, SimulationResult, slack_report, until_slack
-from cable_ocp.dynamics.stepping import MAX_CHUNKS, run_chunks
+from cable_ocp.dynamics.stepping import chunk_functions, run_chunks
 from cable_ocp.errors import CableOCPError
 from cable_ocp.numerics.quadrature import gauss_legendre
 from cable_ocp.physics.added_mass import added_mass_per_length, line_added_mass_2d
@@ -674,16 +674,8 @@ class PlanarModel:
             eps = np.asarray(self._strain_function()(x0[:nf2])).ravel()
             self.force_scale = max(self.force_scale, self.ea * float(np.max(eps)))
         t_build = time.perf_counter()
-        step = self.step_function(dt, sim.tolerance, sim.max_iterations)
-        macro = step.fold(every)
-        per_chunk = max(1, math.ceil(n_out / MAX_CHUNKS))
-        chunks: dict[int, ca.Function] = {}
-
-        def chunk_fn(m: int) -> ca.Function:
-            if m not in chunks:
-                chunks[m] = macro.mapaccum("chunk", m)
-            return chunks[m]
-
+        chunk_fn, per_chunk = chunk_functions(
+            self.step_function(dt, sim.tolerance, sim.max_iterations), every, n_out)
         post = self.output_function()
         build_time = time.perf_counter() - t_build
         eps0 = float(np.min(np.asarray(post(0.0, x0[:nf2], x0[nf2:])[5])))
