@@ -70,7 +70,14 @@ import scipy.linalg
 from cable_ocp.dynamics.checks import check_axial
 from cable_ocp.dynamics.driven import axial_driven_step
 from cable_ocp.dynamics.model import DrivenStep
-from cable_ocp.dynamics.result import ModesResult, SimulationResult, slack_report, until_slack
+from cable_ocp.dynamics.result import (
+    ModesResult,
+    SimulationResult,
+    coarse_step_warnings,
+    full_speed_start_warnings,
+    slack_report,
+    until_slack,
+)
 from cable_ocp.dynamics.stepping import chunk_functions, run_chunks
 from cable_ocp.errors import CableOCPError
 from cable_ocp.physics.drag import body_drag_factor, line_drag_factors, quadratic_drag
@@ -473,21 +480,11 @@ class AxialModel:
         warnings = []
         tm_ = sc.top_motion
         if tm_.ramp_time == 0.0:
-            # a velocity jump dv at the top sends a tension step mu c dv down the line
             jump = abs(tm_.payout_speed) + abs(tm_.heave_amplitude * tm_.heave_frequency)
-            step = self.mu * math.sqrt(self.ea / self.mu) * jump
-            static_top = self.unit_weight + self.w * self.length0
-            if step > 0.1 * static_top:
-                warnings.append(
-                    f"the top starts at full speed ({jump:.3g} m/s at t = 0): a tension step "
-                    f"of about {step:.3g} N (mu c dv) runs down the line, "
-                    f"{step / static_top:.0%} of the static top tension; set "
-                    "top_motion.ramp_time for a smooth start")
-        for name, w_ in (("heave_frequency", tm_.heave_frequency),
-                         ("payout_frequency", tm_.payout_frequency)):
-            if w_ > 0.0 and w_ * dt > 2.0 * math.pi / 20.0:
-                warnings.append(f"simulation.time_step = {dt} s gives fewer than 20 steps per "
-                                f"period of top_motion.{name} = {w_} rad/s")
+            warnings += full_speed_start_warnings(jump, self.mu, self.ea,
+                                                  self.unit_weight + self.w * self.length0)
+        warnings += coarse_step_warnings(dt, (("heave_frequency", tm_.heave_frequency),
+                                              ("payout_frequency", tm_.payout_frequency)))
         diagnostics = {
             "build_time_s": build_time,
             "steps": sim.steps,

@@ -82,7 +82,14 @@ import numpy as np
 from cable_ocp.dynamics.checks import check_planar
 from cable_ocp.dynamics.driven import planar_driven_step
 from cable_ocp.dynamics.model import DrivenStep
-from cable_ocp.dynamics.result import ModesResult, SimulationResult, slack_report, until_slack
+from cable_ocp.dynamics.result import (
+    ModesResult,
+    SimulationResult,
+    coarse_step_warnings,
+    full_speed_start_warnings,
+    slack_report,
+    until_slack,
+)
 from cable_ocp.dynamics.stepping import chunk_functions, run_chunks
 from cable_ocp.errors import CableOCPError
 from cable_ocp.numerics.quadrature import gauss_legendre
@@ -752,22 +759,12 @@ class PlanarModel:
                               tm_.heave_amplitude * tm_.heave_frequency
                               + tm_.circular_radius * tm_.circular_frequency
                               ) + abs(tm_.payout_speed)
-            c_ax = math.sqrt(self.ea / self.mu)
-            step_t = self.mu * c_ax * jump
-            static_top = abs(self.unit_weight) + abs(self.w) * self.length0
-            if step_t > 0.1 * static_top:
-                warnings.append(
-                    f"the top starts at full speed ({jump:.3g} m/s at t = 0): a tension step "
-                    f"of about {step_t:.3g} N (mu c dv) runs down the line, "
-                    f"{step_t / static_top:.0%} of the static top tension; set "
-                    "top_motion.ramp_time for a smooth start")
-        for name, w_ in (("heave_frequency", tm_.heave_frequency),
-                         ("horizontal_frequency", tm_.horizontal_frequency),
-                         ("circular_frequency", tm_.circular_frequency),
-                         ("payout_frequency", tm_.payout_frequency)):
-            if w_ > 0.0 and w_ * dt > 2.0 * math.pi / 20.0:
-                warnings.append(f"simulation.time_step = {dt} s gives fewer than 20 steps per "
-                                f"period of top_motion.{name} = {w_} rad/s")
+            warnings += full_speed_start_warnings(
+                jump, self.mu, self.ea, abs(self.unit_weight) + abs(self.w) * self.length0)
+        warnings += coarse_step_warnings(dt, (("heave_frequency", tm_.heave_frequency),
+                                              ("horizontal_frequency", tm_.horizontal_frequency),
+                                              ("circular_frequency", tm_.circular_frequency),
+                                              ("payout_frequency", tm_.payout_frequency)))
         diagnostics = {
             "build_time_s": build_time,
             "steps": int(round(ts[-1] / dt)) if n_t else 0,

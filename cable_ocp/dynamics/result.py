@@ -8,6 +8,7 @@ never as an exception. ``to_dict()`` gives strict JSON (no NaN or infinity: ``nu
 from __future__ import annotations
 
 import math
+from collections.abc import Sequence
 from dataclasses import dataclass, field
 from typing import Any
 
@@ -16,8 +17,8 @@ import numpy as np
 from cable_ocp.numerics.jsonable import json_safe
 from cable_ocp.status import Status
 
-__all__ = ["DeploymentChart", "ModesResult", "SimulationResult", "json_safe", "slack_report",
-           "until_slack"]
+__all__ = ["DeploymentChart", "ModesResult", "SimulationResult", "coarse_step_warnings",
+           "full_speed_start_warnings", "json_safe", "slack_report", "until_slack"]
 
 
 #: what the slack message says when ``simulation.on_slack = "stop"``
@@ -94,6 +95,49 @@ def slack_report(first_time: float | None, segment: int | None, location: float 
         message = template.format(t=first_time, segment=segment, location=location,
                                   action=action, **fields)
     return slack, status, message
+
+
+def coarse_step_warnings(time_step: float, frequencies: Sequence[tuple[str, float]]
+                         ) -> list[str]:
+    """The warnings of a time step that gives fewer than 20 steps per period of a top
+    motion, for every model.
+
+    Parameters
+    ----------
+    time_step : float
+        ``simulation.time_step``, s.
+    frequencies : sequence of (str, float)
+        ``(name, omega)``: the key of each ``top_motion`` frequency the model follows and
+        its value, rad/s (0: that motion is off).
+    """
+    return [f"simulation.time_step = {time_step} s gives fewer than 20 steps per period of "
+            f"top_motion.{name} = {w} rad/s"
+            for name, w in frequencies if w > 0.0 and w * time_step > 2.0 * math.pi / 20.0]
+
+
+def full_speed_start_warnings(jump: float, mass_per_length: float, axial_stiffness: float,
+                              static_top_tension: float) -> list[str]:
+    """The warning of a top that starts at full speed (``top_motion.ramp_time = 0``): a
+    velocity jump dv sends a tension step mu c dv down the line (c = sqrt(EA / mu), the
+    axial wave speed); said when it is above 10 % of the static top tension.
+
+    Parameters
+    ----------
+    jump : float
+        The top's speed at t = 0+, m/s.
+    mass_per_length : float
+        mu, the line's mass per length with its tangential added mass, kg/m.
+    axial_stiffness : float
+        EA, N.
+    static_top_tension : float
+        The static top tension the step is compared with, N.
+    """
+    step = mass_per_length * math.sqrt(axial_stiffness / mass_per_length) * jump
+    if not step > 0.1 * static_top_tension:
+        return []
+    return [f"the top starts at full speed ({jump:.3g} m/s at t = 0): a tension step of about "
+            f"{step:.3g} N (mu c dv) runs down the line, {step / static_top_tension:.0%} of the "
+            "static top tension; set top_motion.ramp_time for a smooth start"]
 
 
 class _StatusVocabulary:
