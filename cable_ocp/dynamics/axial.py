@@ -75,6 +75,7 @@ from cable_ocp.dynamics.result import (
     SimulationResult,
     coarse_step_warnings,
     full_speed_start_warnings,
+    slack_element,
     slack_report,
     until_slack,
 )
@@ -468,11 +469,10 @@ class AxialModel:
         velocities = np.zeros_like(nodes)
         velocities[:, :, 2] = vel.T
         min_t = float(min(tmin, np.min(tens)))
-        e = int(round(e_slack)) if np.isfinite(t_slack) else None
+        e, where = slack_element(t_slack, e_slack, ts, length, self.n)
         slack, status, message = slack_report(
-            t_slack, e, None if e is None else
-            (e + 0.5) * float(np.interp(t_slack, ts, length)) / self.n, status=status,
-            message=message, on_slack=sim.on_slack, template=SLACK_MESSAGE,
+            t_slack, e, where, status=status, message=message, on_slack=sim.on_slack,
+            template=SLACK_MESSAGE,
             continued="the run continued with the linear model (tensions < 0 after that are "
                       "not physical)")
         if status == "solved":

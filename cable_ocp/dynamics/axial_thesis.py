@@ -36,7 +36,12 @@ from typing import Any
 import casadi as ca
 import numpy as np
 
-from cable_ocp.dynamics.result import SimulationResult, slack_report, until_slack
+from cable_ocp.dynamics.result import (
+    SimulationResult,
+    slack_element,
+    slack_report,
+    until_slack,
+)
 from cable_ocp.dynamics.stepping import chunk_functions
 from cable_ocp.errors import CableOCPError
 from cable_ocp.physics.drag import body_drag_factor, line_drag_factors
@@ -342,11 +347,10 @@ class ThesisAxialModel:
         nodes[:, :, 2] = z_nodes.T
         tens = tens.T
         length = length.reshape(n_t)
-        e = int(round(e_slack)) if np.isfinite(t_slack) else None
+        e, where = slack_element(t_slack, e_slack, ts, length, self.n)
         slack, status, message = slack_report(
-            t_slack, e, None if e is None else
-            (e + 0.5) * float(np.interp(t_slack, ts, length)) / self.n, status=status,
-            message=message, on_slack=sim.on_slack, template=SLACK_MESSAGE)
+            t_slack, e, where, status=status, message=message, on_slack=sim.on_slack,
+            template=SLACK_MESSAGE)
         if status == "solved":
             message = f"{sim.steps} steps of {dt:g} s (thesis scheme), {self.n} intervals"
         return SimulationResult(

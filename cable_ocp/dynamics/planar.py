@@ -87,6 +87,7 @@ from cable_ocp.dynamics.result import (
     SimulationResult,
     coarse_step_warnings,
     full_speed_start_warnings,
+    slack_element,
     slack_report,
     until_slack,
 )
@@ -740,11 +741,10 @@ class PlanarModel:
         length = length.reshape(n_t)
         min_strain = float(min(emin, np.min(eps)))
         min_t = float(min(smooth_tension(min_strain, self.ea, self.delta_t), np.min(tens)))
-        e = int(round(e_slack)) if np.isfinite(t_slack) else None
+        e, where = slack_element(t_slack, e_slack, ts, length, self.n)
         slack, status, message = slack_report(
-            t_slack, e, None if e is None else
-            (e + 0.5) * float(np.interp(t_slack, ts, length)) / self.n, status=status,
-            message=message, on_slack=sim.on_slack, template=SLACK_MESSAGE,
+            t_slack, e, where, status=status, message=message, on_slack=sim.on_slack,
+            template=SLACK_MESSAGE,
             continued="the run continued: a slack element carries no tension (the smooth "
                       "no-compression law) and the model follows the slack cable only "
                       "approximately (no bending, no contact, lumped)",

@@ -18,7 +18,8 @@ from cable_ocp.numerics.jsonable import json_safe
 from cable_ocp.status import Status
 
 __all__ = ["DeploymentChart", "ModesResult", "SimulationResult", "coarse_step_warnings",
-           "full_speed_start_warnings", "json_safe", "slack_report", "until_slack"]
+           "full_speed_start_warnings", "json_safe", "slack_element", "slack_report",
+           "until_slack"]
 
 
 #: what the slack message says when ``simulation.on_slack = "stop"``
@@ -45,6 +46,32 @@ def until_slack(t: np.ndarray, first_time: float | None, sample_step: float,
     if on_slack != "stop" or first_time is None or not math.isfinite(first_time):
         return None
     return t <= first_time + sample_step * (1.0 + 1e-9)
+
+
+def slack_element(first_time: float, element: float, t: np.ndarray, length: np.ndarray,
+                  elements: int) -> tuple[int | None, float | None]:
+    """``(segment, location)`` for :func:`slack_report` from a run of ``elements`` equal
+    elements: the first slack element (its recorded index rounded) and its middle's
+    unstretched arc length from end_a when slack occurred, (e + 1/2) L(first_time) / N
+    with L interpolated in the samples; ``(None, None)`` otherwise.
+
+    Parameters
+    ----------
+    first_time : float
+        End time of the first step with slack, s (inf: none).
+    element : float
+        The first slack element's index as recorded (a float of the accumulator).
+    t : ndarray (n,)
+        Sample times, s.
+    length : ndarray (n,)
+        Unstretched length at the samples, m.
+    elements : int
+        Number of elements N.
+    """
+    e = int(round(element)) if np.isfinite(first_time) else None
+    if e is None:
+        return None, None
+    return e, (e + 0.5) * float(np.interp(first_time, t, length)) / elements
 
 
 def slack_report(first_time: float | None, segment: int | None, location: float | None, *,
