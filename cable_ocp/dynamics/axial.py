@@ -80,8 +80,9 @@ from cable_ocp.dynamics.result import (
     until_slack,
 )
 from cable_ocp.dynamics.stepping import chunk_functions, run_chunks
+from cable_ocp.dynamics.vertical_line import vertical_line
 from cable_ocp.errors import CableOCPError
-from cable_ocp.physics.drag import body_drag_factor, line_drag_factors, quadratic_drag
+from cable_ocp.physics.drag import quadratic_drag
 from cable_ocp.physics.elasticity import kelvin_voigt_tension
 from cable_ocp.scene.dynamics import DynamicScene
 from cable_ocp.scene.motion import motion_function
@@ -149,29 +150,23 @@ class AxialModel:
     def __init__(self, scene: DynamicScene, segments: int | None = None) -> None:
         check_axial(scene)
         self.scene = scene
-        st = scene.statics
-        cab = st.cable
-        dyn = scene.cable[0]
-        unit = scene.unit
-        assert unit is not None
-        rho = st.environment.water_density
+        line = vertical_line(scene)
         self.n = int(segments or scene.simulation.segments)
-        self.ea = float(cab.axial_stiffness)
-        self.mu = dyn.mass_per_length + dyn.tangential_added_mass_per_length(cab.diameter, rho)
-        self.w = float(cab.weight_in_water)
-        self.c = float(dyn.axial_damping)
-        self.k_drag = line_drag_factors(rho, cab.diameter, cab.normal_drag,
-                                        cab.tangential_drag)[1]
-        self.unit_mass = unit.virtual_mass[2]
-        self.unit_weight = unit.weight_in_water
-        self.unit_drag = body_drag_factor(rho, unit.drag_coefficient[2], unit.drag_area[2])
-        self.z_top0 = float(scene.top_position[2])
-        self.length0 = scene.length
+        self.ea = line.axial_stiffness
+        self.mu = line.mass_per_length
+        self.w = line.weight_per_length
+        self.c = float(scene.cable[0].axial_damping)
+        self.k_drag = line.drag_factor
+        self.unit_mass = line.unit_mass
+        self.unit_weight = line.unit_weight
+        self.unit_drag = line.unit_drag
+        self.z_top0 = line.top_height
+        self.length0 = line.length
         self.motion = motion_function(scene)
         #: a tension below -slack_tolerance (N) is slack: 1e-9 of the static top tension,
         #: clear of round-off where a line released unstretched carries no load yet
         self.slack_tolerance = 1e-9 * (self.unit_weight + abs(self.w) * self.length0)
-        self.gravity = st.environment.gravity
+        self.gravity = scene.statics.environment.gravity
         #: static elongation of the line, m (floored at 1e-9 L): the position scale of the
         #: Newton residual
         self.elongation = max((self.unit_weight * self.length0

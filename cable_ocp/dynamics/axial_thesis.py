@@ -43,8 +43,8 @@ from cable_ocp.dynamics.result import (
     until_slack,
 )
 from cable_ocp.dynamics.stepping import chunk_functions
+from cable_ocp.dynamics.vertical_line import vertical_line
 from cable_ocp.errors import CableOCPError
-from cable_ocp.physics.drag import body_drag_factor, line_drag_factors
 from cable_ocp.scene.dynamics import DynamicScene
 from cable_ocp.scene.motion import motion_function
 
@@ -83,24 +83,18 @@ class ThesisAxialModel:
         if self.n < 3:
             raise CableOCPError(f'simulation.segments = {self.n}: scheme "thesis" needs at '
                                 "least 3 (the four-point stencil of Huang's (3.10))")
-        st = scene.statics
-        cab = st.cable
-        dyn = scene.cable[0]
-        unit = scene.unit
-        assert unit is not None
-        rho = st.environment.water_density
-        self.ea = float(cab.axial_stiffness)
-        self.mu = dyn.mass_per_length + dyn.tangential_added_mass_per_length(cab.diameter, rho)
-        self.w1 = float(cab.weight_in_water)
+        line = vertical_line(scene)
+        self.ea = line.axial_stiffness
+        self.mu = line.mass_per_length
+        self.w1 = line.weight_per_length
         # kappa = 1/2 rho C_t pi d, the drag of (3.1) linearised about the lagged modulus
-        self.kappa = line_drag_factors(rho, cab.diameter, cab.normal_drag,
-                                       cab.tangential_drag)[1]
-        self.mass = unit.virtual_mass[2]
-        self.w2 = unit.weight_in_water
-        self.unit_drag = body_drag_factor(rho, unit.drag_coefficient[2], unit.drag_area[2])
+        self.kappa = line.drag_factor
+        self.mass = line.unit_mass
+        self.w2 = line.unit_weight
+        self.unit_drag = line.unit_drag
         self.v = tm.payout_speed
-        self.length0 = scene.length
-        self.z_top0 = float(scene.top_position[2])
+        self.length0 = line.length
+        self.z_top0 = line.top_height
         self.motion = motion_function(scene)
 
     def static_u(self) -> np.ndarray:

@@ -97,6 +97,7 @@ DYN = "dynamics"
 AX_F, LM_F, PL_F, MO_F = ("cable_ocp/dynamics/axial.py", "cable_ocp/dynamics/lumped.py",
                           "cable_ocp/dynamics/planar.py", "cable_ocp/scene/motion.py")
 LK_F, LE_F = "cable_ocp/dynamics/lumped_kernel.py", "cable_ocp/dynamics/lumped_equations.py"
+VL_F = "cable_ocp/dynamics/vertical_line.py"  # the axial models' coefficients
 
 MUTATIONS: tuple[Mutation, ...] = (
     # -- physics/ ---------------------------------------------------------------------------
@@ -390,12 +391,12 @@ MUTATIONS: tuple[Mutation, ...] = (
              "f0 = (ten[0] - self.unit_weight - 0.5 * h * (self.w + drag[0])",
              "f0 = (ten[0] - 0.5 * h * (self.w + drag[0])", AXIAL,
              "axial: the unit's weight in water left out of its equation of motion (3.2)"),
-    Mutation("axial-unit-added-mass-dropped", DYN, AX_F,
-             "self.unit_mass = unit.virtual_mass[2]", "self.unit_mass = unit.mass",
+    Mutation("axial-unit-added-mass-dropped", DYN, VL_F,
+             "unit_mass=unit.virtual_mass[2],", "unit_mass=unit.mass,",
              AXIAL, "axial: the unit's heave added mass left out"),
-    Mutation("axial-tangential-added-mass-dropped", DYN, AX_F,
-             "self.mu = dyn.mass_per_length + dyn.tangential_added_mass_per_length(",
-             "self.mu = dyn.mass_per_length + 0.0 * dyn.tangential_added_mass_per_length(",
+    Mutation("axial-tangential-added-mass-dropped", DYN, VL_F,
+             "mass_per_length=dyn.mass_per_length + dyn.tangential_added_mass_per_length(",
+             "mass_per_length=dyn.mass_per_length + 0.0 * dyn.tangential_added_mass_per_length(",
              AXIAL, "axial: the cable's tangential added mass m_at of (3.1) left out"),
     Mutation("axial-advection-velocity-dropped", DYN, AX_F,
              "acc.append((ten[i] - ten[i - 1] - h * (self.w + drag[i])) / (self.mu * h)\n"
