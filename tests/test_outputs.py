@@ -366,3 +366,20 @@ def test_cli_json_fields_and_summary(problems, capsys):
     a = data["end_a"]
     assert rows["end_a angle to horizontal"] == f"{a['angle_to_horizontal_deg']:.3f} deg"
     assert rows["end_a tension"] == f"{a['tension_N']:.2f} N"
+
+
+def test_one_strict_json_converter_serves_the_results_and_the_cli():
+    """The results' ``to_dict()`` and the CLI's ``--json`` text use the same converter:
+    numpy values become Python ones, NaN and infinities null, tuples lists, keys strings."""
+    from cable_ocp.cli import output
+    from cable_ocp.dynamics import result
+    from cable_ocp.numerics.jsonable import json_safe
+
+    assert result.json_safe is json_safe
+    value = {1: (np.float64(math.nan), np.array([1.5, math.inf]), np.bool_(True)),
+             "n": np.int32(3), "f": -math.inf, "s": "text"}
+    expect = {"1": [None, [1.5, None], True], "n": 3, "f": None, "s": "text"}
+    got = json_safe(value)
+    assert got == expect
+    assert type(got["1"][2]) is bool and type(got["n"]) is int
+    assert json.loads(output.json_text(value)) == expect

@@ -100,12 +100,11 @@ import scipy.sparse as sp
 from scipy.sparse.linalg import spsolve
 
 from cable_ocp.baselines.common import (
-    Estimate,
     MeshCache,
-    double_within,
+    coarser_estimate,
     equilibrium_check,
+    finer_within_max_intervals,
     refine_to_accuracy,
-    richardson_coarser,
     rising_fixed_ends,
     unsupported,
 )
@@ -380,10 +379,7 @@ class FemProblem:
             Tension magnitude at the Gauss points, N, for eps = 1 + T/EA (not used when
             EA = inf).
         """
-        g = self.slopes(q)
-        s = np.sqrt(1.0 + g[..., 0] ** 2 + g[..., 1] ** 2)
-        eps = 1.0 + tg / self.ea if math.isfinite(self.ea) else 1.0
-        return float(self.h * np.sum(_WG * s / eps))
+        return float(self.h * np.sum(self._length_weights(q, tg)))
 
     def arc_length_nodes(self, q: np.ndarray, tg: np.ndarray) -> np.ndarray:
         """Unstretched arc length at the nodes, m.
@@ -401,10 +397,16 @@ class FemProblem:
         numpy.ndarray, shape (n + 1,)
             s at every node from end_a (s = 0), m.
         """
+        return np.concatenate([[0.0], np.cumsum(self.h * np.sum(self._length_weights(q, tg),
+                                                                 axis=1))])
+
+    def _length_weights(self, q: np.ndarray, tg: np.ndarray) -> np.ndarray:
+        """The Gauss terms w_g S / eps of the unstretched length (shape (n, g); times h
+        and summed: :meth:`length`, per element: :meth:`arc_length_nodes`)."""
         g = self.slopes(q)
         s = np.sqrt(1.0 + g[..., 0] ** 2 + g[..., 1] ** 2)
         eps = 1.0 + tg / self.ea if math.isfinite(self.ea) else 1.0
-        return np.concatenate([[0.0], np.cumsum(self.h * np.sum(_WG * s / eps, axis=1))])
+        return _WG * s / eps
 
 
 def _initial_dofs(fem: FemProblem, warm_start: StaticsSolution | None) -> np.ndarray:
@@ -546,19 +548,9 @@ def solve(scene: Scene, warm_start: StaticsSolution | None = None) -> StaticsSol
     cache = MeshCache(
         lambda n, warm: solve_fem(scene.with_overrides({"solver.intervals": n}), warm))
 
-    def estimate(n: int, sol: StaticsSolution) -> Estimate:
-        cache.solutions[n] = sol
-        est = richardson_coarser(n, sol, cache.get, "z", *ORDER_RANGE, "elements")
-        alg = float(sol.constraint_violation)
-        est.detail["algebraic"] = alg
-        est.value += alg
-        return est
-
-    def finer(n: int, est: Estimate) -> tuple[int | None, str]:
-        lim = scene.solver.max_intervals
-        return double_within(n, est, scene.solver.accuracy, lim,
-                             f"solver.max_intervals = {lim}", ORDER_RANGE[1], "elements")
-
+    estimate = coarser_estimate(cache, "z", *ORDER_RANGE, "elements",
+                                lambda sol: float(sol.constraint_violation))
+    finer = finer_within_max_intervals(scene, ORDER_RANGE[1], "elements")
     sol = refine_to_accuracy(scene, METHOD, scene.solver.intervals, cache.solve_at, estimate, finer,
                              warm_start, label=lambda n: f"{n} elements", retry_cold=False)
     return equilibrium_check(scene, sol, METHOD)

@@ -261,6 +261,60 @@ def richardson_coarser(n: int, sol: StaticsSolution, get: Callable[[int], Static
                                     "force_N": factor * f1, "position_m": factor * p1}, q)
 
 
+def coarser_estimate(cache: MeshCache, param: str, low: float, high: float, unit: str,
+                     algebraic: Callable[[StaticsSolution], float]
+                     ) -> Callable[[int, StaticsSolution], Estimate]:
+    """The ``estimate`` of :func:`refine_to_accuracy` for a method refined on ``cache``:
+    :func:`richardson_coarser` from its N/2 and N/4 solutions plus the iterate's algebraic
+    error ``algebraic(sol)`` (relative, -; also kept as ``detail["algebraic"]``).
+
+    Parameters
+    ----------
+    cache : MeshCache
+        The method's solutions by resolution; each estimated solution is stored in it.
+    param : {"s", "z"}
+        How nodes are matched (:func:`compare`).
+    low, high : float
+        Clip range of the observed order (-); ``high`` is the nominal order.
+    unit : str
+        Name of the resolution's unit in messages (e.g. ``"elements"``).
+    algebraic : callable
+        ``algebraic(sol) -> float``: the solution's algebraic error, added to the
+        estimate.
+    """
+    def estimate(n: int, sol: StaticsSolution) -> Estimate:
+        cache.solutions[n] = sol
+        est = richardson_coarser(n, sol, cache.get, param, low, high, unit)
+        alg = algebraic(sol)
+        est.detail["algebraic"] = alg
+        est.value += alg
+        return est
+
+    return estimate
+
+
+def finer_within_max_intervals(scene: Scene, top_order: float, unit: str
+                               ) -> Callable[[int, Estimate], tuple[int | None, str]]:
+    """The ``finer`` of :func:`refine_to_accuracy` for a method whose only limit is
+    ``solver.max_intervals``: :func:`double_within` it.
+
+    Parameters
+    ----------
+    scene : Scene
+        The statics problem: its ``solver.accuracy`` and ``solver.max_intervals``.
+    top_order : float
+        The method's highest convergence order (-), for the prediction.
+    unit : str
+        Name of the resolution's unit in messages (e.g. ``"segments"``).
+    """
+    def finer(n: int, est: Estimate) -> tuple[int | None, str]:
+        lim = scene.solver.max_intervals
+        return double_within(n, est, scene.solver.accuracy, lim,
+                             f"solver.max_intervals = {lim}", top_order, unit)
+
+    return finer
+
+
 def refine_to_accuracy(scene: Scene, method: str, start: Any,
                        solve_at: Callable[[Any, StaticsSolution | None], StaticsSolution],
                        estimate: Callable[[Any, StaticsSolution], Estimate],

@@ -76,11 +76,10 @@ import numpy as np
 from scipy.optimize import brentq
 
 from cable_ocp.baselines.common import (
-    Estimate,
     MeshCache,
-    double_within,
+    coarser_estimate,
+    finer_within_max_intervals,
     refine_to_accuracy,
-    richardson_coarser,
 )
 from cable_ocp.errors import CableOCPError
 from cable_ocp.physics.current import profile_velocity_np
@@ -660,20 +659,11 @@ def solve(scene: Scene, warm_start: StaticsSolution | None = None) -> StaticsSol
     """
     cache = MeshCache(lambda n, warm: solve_huang(scene, warm, intervals=n))
 
-    def estimate(n: int, sol: StaticsSolution) -> Estimate:
-        cache.solutions[n] = sol
-        est = richardson_coarser(n, sol, cache.get, "s", ORDER_LOW, 1.0, "segments")
-        alg = float(sol.constraint_violation) + float(sol.diagnostics.get("outer_load_change",
-                                                                          0.0))
-        est.detail["algebraic"] = alg
-        est.value += alg
-        return est
-
-    def finer(n: int, est: Estimate) -> tuple[int | None, str]:
-        lim = scene.solver.max_intervals
-        return double_within(n, est, scene.solver.accuracy, lim,
-                             f"solver.max_intervals = {lim}", 1.0, "segments")
-
+    estimate = coarser_estimate(
+        cache, "s", ORDER_LOW, 1.0, "segments",
+        lambda sol: (float(sol.constraint_violation)
+                     + float(sol.diagnostics.get("outer_load_change", 0.0))))
+    finer = finer_within_max_intervals(scene, 1.0, "segments")
     # no equilibrium_check: shooting the cable equations from a first-order answer
     # amplifies its ~1e-2 lumping error past the check's threshold on ordinary scenes
     return refine_to_accuracy(scene, METHOD, scene.solver.intervals, cache.solve_at, estimate,

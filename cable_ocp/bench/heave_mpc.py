@@ -94,6 +94,29 @@ def _noise(p: pl.HeavePlant, h: float, steps: int, seed: int) -> np.ndarray:
     return np.random.default_rng(seed).standard_normal((steps, p.n)) @ L.T
 
 
+def _closed_loop(solver: str, horizon: int, steps: int, seed: int, sea_scale: float,
+                 overrides: dict | None
+                 ) -> tuple[pl.HeavePlant, mpc_mod.LinearMPC, np.ndarray]:
+    """The benchmark's plant, its MPC (``solver``, ``horizon``, the scene's settings with
+    ``overrides``) and the sea's process noise of each of ``steps`` steps."""
+    sc = bench_scene()
+    p = bench_plant(sc)
+    st = dataclasses.replace(bench_settings(sc, horizon, solver), **(overrides or {}))
+    m = mpc_mod.LinearMPC(p, sc.winch.delay, st)
+    w = sea_scale * _noise(p, sc.controller.sample_time, steps, seed)
+    return p, m, w
+
+
+def _row(solver: str, horizon: int, ts: list[float], cpu: list[float], steps: int,
+         fails: int, note: str) -> BenchRow:
+    """A timing row from the wall and CPU times of every step, the first (one-off set-up)
+    left out of the median and p99."""
+    wall = np.array(ts[1:])
+    return BenchRow(solver, horizon, float(np.median(wall)), float(np.percentile(wall, 99)),
+                    steps, fails, note, float(np.median(cpu[1:])),
+                    float(np.percentile(cpu[1:], 99)))
+
+
 # Limits that the 3x sea makes active (stroke via the command bounds, speed, command rate and the
 # soft tension limit), as in the equality test of the DAQP and qpOASES moves.
 ACTIVE_LIMITS = {"stroke_max": 0.2, "speed_max": 0.15, "command_rate_max": 0.01,
@@ -132,11 +155,7 @@ def time_cas(solver: str, horizon: int, steps: int, seed: int = 0, sea_scale: fl
         :data:`ACTIVE_LIMITS`: stroke in m, speed in m/s, command rate in m per sample,
         tension in N). None (default): the scene's settings.
     """
-    sc = bench_scene()
-    p = bench_plant(sc)
-    st = dataclasses.replace(bench_settings(sc, horizon, solver), **(overrides or {}))
-    m = mpc_mod.LinearMPC(p, sc.winch.delay, st)
-    w = sea_scale * _noise(p, sc.controller.sample_time, steps, seed)
+    p, m, w = _closed_loop(solver, horizon, steps, seed, sea_scale, overrides)
     z = np.zeros(m.nz)
     up = 0.0
     ts, cpu, fails = [], [], 0
@@ -149,10 +168,7 @@ def time_cas(solver: str, horizon: int, steps: int, seed: int = 0, sea_scale: fl
         up = r.u0
         z = m.model.Ad @ z + m.model.Bd[:, 0] * r.u0
         z[: p.n] += w[k]
-    ts = np.array(ts[1:])  # the first call includes one-off set-up
-    return BenchRow(solver, horizon, float(np.median(ts)), float(np.percentile(ts, 99)),
-                    steps, fails, NOTES.get(solver, ""), float(np.median(cpu[1:])),
-                    float(np.percentile(cpu[1:], 99)))
+    return _row(solver, horizon, ts, cpu, steps, fails, NOTES.get(solver, ""))
 
 
 def profile_daqp(horizon: int = 50, steps: int = 300, seed: int = 0, sea_scale: float = 1.0,
@@ -188,16 +204,12 @@ def profile_daqp(horizon: int = 50, steps: int = 300, seed: int = 0, sea_scale: 
         :data:`ACTIVE_LIMITS`: stroke in m, speed in m/s, command rate in m per sample,
         tension in N). None (default): the scene's settings.
     """
-    sc = bench_scene()
-    p = bench_plant(sc)
-    st = dataclasses.replace(bench_settings(sc, horizon, "daqp"), **(overrides or {}))
     ref = time_cas("daqp", horizon, steps, seed, sea_scale, overrides)
-    m = mpc_mod.LinearMPC(p, sc.winch.delay, st)
+    p, m, w = _closed_loop("daqp", horizon, steps, seed, sea_scale, overrides)
     qp = m._daqp
     assert qp is not None
     two_stage = qp.reduced is not None
     red = qp.reduced if two_stage else qp.full
-    w = sea_scale * _noise(p, sc.controller.sample_time, steps, seed)
     nv, N = m._nv, m.N
     mh = qp.mh if two_stage else m.Ac.shape[0]
     nr = red.nv
@@ -285,10 +297,9 @@ def _time_do_mpc(horizon: int, steps: int, seed: int) -> BenchRow:
     import casadi as cs
     import do_mpc  # optional benchmark dependency
 
-    sc = bench_scene()
-    p = bench_plant(sc)
-    st = bench_settings(sc, horizon, "daqp")
-    ref = mpc_mod.LinearMPC(p, sc.winch.delay, st)  # sampled model, cost and terminal cost
+    # the sampled model, cost and terminal cost of our MPC, and the same sea
+    p, ref, w = _closed_loop("daqp", horizon, steps, seed, 1.0, None)
+    st = ref.settings
     Ad, Bd, nz, n, d = ref.model.Ad, ref.model.Bd, ref.nz, p.n, ref.model.d
     model = do_mpc.model.Model("discrete")
     z = model.set_variable("_x", "z", shape=(nz, 1))
@@ -326,7 +337,6 @@ def _time_do_mpc(horizon: int, steps: int, seed: int) -> BenchRow:
     ctl.set_nl_cons("tension", -model.aux["stretch"], ub=-ref.stretch_min, soft_constraint=True,
                     penalty_term_cons=float(ref.g_slack[-1]))
     ctl.setup()
-    w = _noise(p, st.sample_time, steps, seed)
     x = np.zeros((nz, 1))
     ctl.x0 = x
     ctl.set_initial_guess()
@@ -340,12 +350,9 @@ def _time_do_mpc(horizon: int, steps: int, seed: int) -> BenchRow:
         fails += not bool(ctl.solver_stats.get("success", True))
         x = Ad @ x + Bd * float(u0[0, 0])
         x[:n, 0] += w[k]
-    ts = np.array(ts[1:])
-    return BenchRow("do-mpc (ipopt)", horizon, float(np.median(ts)),
-                    float(np.percentile(ts, 99)), steps, fails,
-                    f"do-mpc {do_mpc.__version__}, discrete model, same cost and limits "
-                    "(tension: linear penalty)", float(np.median(cpu[1:])),
-                    float(np.percentile(cpu[1:], 99)))
+    return _row("do-mpc (ipopt)", horizon, ts, cpu, steps, fails,
+                f"do-mpc {do_mpc.__version__}, discrete model, same cost and limits "
+                "(tension: linear penalty)")
 
 
 def run(horizons: list[int] | tuple = (20, 50, 100), steps: int = 300,

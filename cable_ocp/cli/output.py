@@ -41,6 +41,7 @@ from typing import Any
 import numpy as np
 
 from cable_ocp.errors import CableOCPError
+from cable_ocp.numerics.jsonable import json_safe
 from cable_ocp.status import Status
 
 EXIT_OK = 0
@@ -227,24 +228,6 @@ def stdout_free(args: argparse.Namespace) -> bool:
 # Writing
 # --------------------------------------------------------------------------------------
 
-def strict(obj: Any) -> Any:
-    """A copy of ``obj`` that strict JSON can hold: numpy scalars and arrays as Python
-    numbers and lists, NaN and infinities as None, tuples as lists."""
-    if isinstance(obj, dict):
-        return {str(k): strict(v) for k, v in obj.items()}
-    if isinstance(obj, (list, tuple)):
-        return [strict(v) for v in obj]
-    if isinstance(obj, np.ndarray):
-        return strict(obj.tolist())
-    if isinstance(obj, (bool, np.bool_)):
-        return bool(obj)
-    if isinstance(obj, (int, np.integer)):
-        return int(obj)
-    if isinstance(obj, (float, np.floating)):
-        return float(obj) if math.isfinite(obj) else None
-    return obj
-
-
 def envelope(status: str, message: str, data: dict[str, Any] | None = None,
              warnings: Sequence[str] = ()) -> dict[str, Any]:
     """The top level of every JSON output: status, message, warnings, version, then
@@ -273,8 +256,9 @@ def envelope(status: str, message: str, data: dict[str, Any] | None = None,
 
 
 def json_text(obj: Any) -> str:
-    """Strict JSON text (``allow_nan=False`` after :func:`strict`)."""
-    return json.dumps(strict(obj), indent=2, allow_nan=False)
+    """Strict JSON text (``allow_nan=False`` after
+    :func:`cable_ocp.numerics.jsonable.json_safe`)."""
+    return json.dumps(json_safe(obj), indent=2, allow_nan=False)
 
 
 def confirm(args: argparse.Namespace, path: str, what: str = "") -> None:
@@ -294,6 +278,17 @@ def confirm(args: argparse.Namespace, path: str, what: str = "") -> None:
         print(f"wrote {path}" + (f" ({what})" if what else ""), file=sys.stderr)
 
 
+def _write(args: argparse.Namespace, path: str, text: str, what: str) -> None:
+    """``text`` to stdout (``path`` ``"-"``, no confirmation) or to the file ``path``,
+    confirmed (:func:`confirm`) as ``what``."""
+    if path == STDOUT:
+        sys.stdout.write(text)
+        sys.stdout.flush()
+    else:
+        Path(path).write_text(text, encoding="utf-8")
+        confirm(args, path, what)
+
+
 def emit_json(args: argparse.Namespace, obj: dict[str, Any], path: str | None = None) -> None:
     """Write ``obj`` as strict JSON to ``path`` (default ``args.json``); '-' = stdout.
 
@@ -304,21 +299,14 @@ def emit_json(args: argparse.Namespace, obj: dict[str, Any], path: str | None = 
         confirmation.
     obj : dict
         The output, usually an :func:`envelope`; NaN and infinities become null
-        (:func:`strict`).
+        (:func:`cable_ocp.numerics.jsonable.json_safe`).
     path : str, optional
         Where to write (``"-"``: stdout, without a confirmation); None (default):
         ``args.json``, and nothing is written when that is not set either.
     """
     path = path or args.json
-    if not path:
-        return
-    text = json_text(obj)
-    if path == STDOUT:
-        sys.stdout.write(text + "\n")
-        sys.stdout.flush()
-    else:
-        Path(path).write_text(text + "\n", encoding="utf-8")
-        confirm(args, path, "JSON")
+    if path:
+        _write(args, path, json_text(obj) + "\n", "JSON")
 
 
 def csv_text(header: Sequence[str], rows: Sequence[Sequence[Any]]) -> str:
@@ -361,15 +349,8 @@ def emit_csv(args: argparse.Namespace, header: Sequence[str], rows: Sequence[Seq
         ``args.csv``, and nothing is written when that is not set either.
     """
     path = path or args.csv
-    if not path:
-        return
-    text = csv_text(header, rows)
-    if path == STDOUT:
-        sys.stdout.write(text)
-        sys.stdout.flush()
-    else:
-        Path(path).write_text(text, encoding="utf-8")
-        confirm(args, path, "CSV")
+    if path:
+        _write(args, path, csv_text(header, rows), "CSV")
 
 
 def emit_plot(args: argparse.Namespace, draw: Callable[[str], Any],

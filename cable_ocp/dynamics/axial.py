@@ -70,10 +70,19 @@ import scipy.linalg
 from cable_ocp.dynamics.checks import check_axial
 from cable_ocp.dynamics.driven import axial_driven_step
 from cable_ocp.dynamics.model import DrivenStep
-from cable_ocp.dynamics.result import ModesResult, SimulationResult, slack_report, until_slack
-from cable_ocp.dynamics.stepping import MAX_CHUNKS, run_chunks
+from cable_ocp.dynamics.result import (
+    ModesResult,
+    SimulationResult,
+    coarse_step_warnings,
+    full_speed_start_warnings,
+    slack_element,
+    slack_report,
+    until_slack,
+)
+from cable_ocp.dynamics.stepping import chunk_functions, run_chunks
+from cable_ocp.dynamics.vertical_line import vertical_line
 from cable_ocp.errors import CableOCPError
-from cable_ocp.physics.drag import body_drag_factor, line_drag_factors, quadratic_drag
+from cable_ocp.physics.drag import quadratic_drag
 from cable_ocp.physics.elasticity import kelvin_voigt_tension
 from cable_ocp.scene.dynamics import DynamicScene
 from cable_ocp.scene.motion import motion_function
@@ -141,29 +150,23 @@ class AxialModel:
     def __init__(self, scene: DynamicScene, segments: int | None = None) -> None:
         check_axial(scene)
         self.scene = scene
-        st = scene.statics
-        cab = st.cable
-        dyn = scene.cable[0]
-        unit = scene.unit
-        assert unit is not None
-        rho = st.environment.water_density
+        line = vertical_line(scene)
         self.n = int(segments or scene.simulation.segments)
-        self.ea = float(cab.axial_stiffness)
-        self.mu = dyn.mass_per_length + dyn.tangential_added_mass_per_length(cab.diameter, rho)
-        self.w = float(cab.weight_in_water)
-        self.c = float(dyn.axial_damping)
-        self.k_drag = line_drag_factors(rho, cab.diameter, cab.normal_drag,
-                                        cab.tangential_drag)[1]
-        self.unit_mass = unit.virtual_mass[2]
-        self.unit_weight = unit.weight_in_water
-        self.unit_drag = body_drag_factor(rho, unit.drag_coefficient[2], unit.drag_area[2])
-        self.z_top0 = float(scene.top_position[2])
-        self.length0 = scene.length
+        self.ea = line.axial_stiffness
+        self.mu = line.mass_per_length
+        self.w = line.weight_per_length
+        self.c = float(scene.cable[0].axial_damping)
+        self.k_drag = line.drag_factor
+        self.unit_mass = line.unit_mass
+        self.unit_weight = line.unit_weight
+        self.unit_drag = line.unit_drag
+        self.z_top0 = line.top_height
+        self.length0 = line.length
         self.motion = motion_function(scene)
         #: a tension below -slack_tolerance (N) is slack: 1e-9 of the static top tension,
         #: clear of round-off where a line released unstretched carries no load yet
         self.slack_tolerance = 1e-9 * (self.unit_weight + abs(self.w) * self.length0)
-        self.gravity = st.environment.gravity
+        self.gravity = scene.statics.environment.gravity
         #: static elongation of the line, m (floored at 1e-9 L): the position scale of the
         #: Newton residual
         self.elongation = max((self.unit_weight * self.length0
@@ -415,16 +418,8 @@ class AxialModel:
         n_out = n_steps // every
         n2 = 2 * self.n
         t_build = time.perf_counter()
-        step = self.step_function(scheme, dt, sim.tolerance, sim.max_iterations)
-        macro = step.fold(every)
-        per_chunk = max(1, math.ceil(n_out / MAX_CHUNKS))
-        chunks: dict[int, ca.Function] = {}
-
-        def chunk_fn(m: int) -> ca.Function:
-            if m not in chunks:
-                chunks[m] = macro.mapaccum("chunk", m)
-            return chunks[m]
-
+        chunk_fn, per_chunk = chunk_functions(
+            self.step_function(scheme, dt, sim.tolerance, sim.max_iterations), every, n_out)
         tt = ca.SX.sym("t")
         xx = ca.SX.sym("x", n2)
         post = ca.Function("post", [tt, xx], list(self.outputs(tt, xx)))
@@ -469,11 +464,10 @@ class AxialModel:
         velocities = np.zeros_like(nodes)
         velocities[:, :, 2] = vel.T
         min_t = float(min(tmin, np.min(tens)))
-        e = int(round(e_slack)) if np.isfinite(t_slack) else None
+        e, where = slack_element(t_slack, e_slack, ts, length, self.n)
         slack, status, message = slack_report(
-            t_slack, e, None if e is None else
-            (e + 0.5) * float(np.interp(t_slack, ts, length)) / self.n, status=status,
-            message=message, on_slack=sim.on_slack, template=SLACK_MESSAGE,
+            t_slack, e, where, status=status, message=message, on_slack=sim.on_slack,
+            template=SLACK_MESSAGE,
             continued="the run continued with the linear model (tensions < 0 after that are "
                       "not physical)")
         if status == "solved":
@@ -481,21 +475,11 @@ class AxialModel:
         warnings = []
         tm_ = sc.top_motion
         if tm_.ramp_time == 0.0:
-            # a velocity jump dv at the top sends a tension step mu c dv down the line
             jump = abs(tm_.payout_speed) + abs(tm_.heave_amplitude * tm_.heave_frequency)
-            step = self.mu * math.sqrt(self.ea / self.mu) * jump
-            static_top = self.unit_weight + self.w * self.length0
-            if step > 0.1 * static_top:
-                warnings.append(
-                    f"the top starts at full speed ({jump:.3g} m/s at t = 0): a tension step "
-                    f"of about {step:.3g} N (mu c dv) runs down the line, "
-                    f"{step / static_top:.0%} of the static top tension; set "
-                    "top_motion.ramp_time for a smooth start")
-        for name, w_ in (("heave_frequency", tm_.heave_frequency),
-                         ("payout_frequency", tm_.payout_frequency)):
-            if w_ > 0.0 and w_ * dt > 2.0 * math.pi / 20.0:
-                warnings.append(f"simulation.time_step = {dt} s gives fewer than 20 steps per "
-                                f"period of top_motion.{name} = {w_} rad/s")
+            warnings += full_speed_start_warnings(jump, self.mu, self.ea,
+                                                  self.unit_weight + self.w * self.length0)
+        warnings += coarse_step_warnings(dt, (("heave_frequency", tm_.heave_frequency),
+                                              ("payout_frequency", tm_.payout_frequency)))
         diagnostics = {
             "build_time_s": build_time,
             "steps": sim.steps,

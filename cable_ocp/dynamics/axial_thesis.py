@@ -29,7 +29,6 @@ Needs at least 3 elements (the stencil of (3.10)).
 
 from __future__ import annotations
 
-import math
 import time
 from collections.abc import Callable
 from typing import Any
@@ -37,10 +36,15 @@ from typing import Any
 import casadi as ca
 import numpy as np
 
-from cable_ocp.dynamics.result import SimulationResult, slack_report, until_slack
-from cable_ocp.dynamics.stepping import MAX_CHUNKS
+from cable_ocp.dynamics.result import (
+    SimulationResult,
+    slack_element,
+    slack_report,
+    until_slack,
+)
+from cable_ocp.dynamics.stepping import chunk_functions
+from cable_ocp.dynamics.vertical_line import vertical_line
 from cable_ocp.errors import CableOCPError
-from cable_ocp.physics.drag import body_drag_factor, line_drag_factors
 from cable_ocp.scene.dynamics import DynamicScene
 from cable_ocp.scene.motion import motion_function
 
@@ -79,24 +83,18 @@ class ThesisAxialModel:
         if self.n < 3:
             raise CableOCPError(f'simulation.segments = {self.n}: scheme "thesis" needs at '
                                 "least 3 (the four-point stencil of Huang's (3.10))")
-        st = scene.statics
-        cab = st.cable
-        dyn = scene.cable[0]
-        unit = scene.unit
-        assert unit is not None
-        rho = st.environment.water_density
-        self.ea = float(cab.axial_stiffness)
-        self.mu = dyn.mass_per_length + dyn.tangential_added_mass_per_length(cab.diameter, rho)
-        self.w1 = float(cab.weight_in_water)
+        line = vertical_line(scene)
+        self.ea = line.axial_stiffness
+        self.mu = line.mass_per_length
+        self.w1 = line.weight_per_length
         # kappa = 1/2 rho C_t pi d, the drag of (3.1) linearised about the lagged modulus
-        self.kappa = line_drag_factors(rho, cab.diameter, cab.normal_drag,
-                                       cab.tangential_drag)[1]
-        self.mass = unit.virtual_mass[2]
-        self.w2 = unit.weight_in_water
-        self.unit_drag = body_drag_factor(rho, unit.drag_coefficient[2], unit.drag_area[2])
+        self.kappa = line.drag_factor
+        self.mass = line.unit_mass
+        self.w2 = line.unit_weight
+        self.unit_drag = line.unit_drag
         self.v = tm.payout_speed
-        self.length0 = scene.length
-        self.z_top0 = float(scene.top_position[2])
+        self.length0 = line.length
+        self.z_top0 = line.top_height
         self.motion = motion_function(scene)
 
     def static_u(self) -> np.ndarray:
@@ -289,10 +287,7 @@ class ThesisAxialModel:
         n_out = sim.steps // every
         n1 = self.n + 1
         t_build = time.perf_counter()
-        step = self.step_function(dt)
-        macro = step.fold(every)
-        per_chunk = max(1, math.ceil(n_out / MAX_CHUNKS))
-        chunks: dict[int, ca.Function] = {}
+        chunk_fn, per_chunk = chunk_functions(self.step_function(dt), every, n_out)
         tt = ca.SX.sym("t")
         uu = ca.SX.sym("u", n1)
         post = ca.Function("post", [tt, uu], list(self.outputs(tt, uu)))
@@ -310,10 +305,8 @@ class ThesisAxialModel:
         status, message = "solved", ""
         while done < n_out:
             m = min(per_chunk, n_out - done)
-            if m not in chunks:
-                chunks[m] = macro.mapaccum("chunk", m)
             tgrid = (done * every + np.arange(m * every)) * dt
-            res = np.asarray(chunks[m](acc, tgrid.reshape(1, -1)))
+            res = np.asarray(chunk_fn(m)(acc, tgrid.reshape(1, -1)))
             finite = np.all(np.isfinite(res[:n1, :]), axis=0)
             k_good = int(np.argmin(finite)) if not finite.all() else m
             for j in range(k_good):
@@ -348,11 +341,10 @@ class ThesisAxialModel:
         nodes[:, :, 2] = z_nodes.T
         tens = tens.T
         length = length.reshape(n_t)
-        e = int(round(e_slack)) if np.isfinite(t_slack) else None
+        e, where = slack_element(t_slack, e_slack, ts, length, self.n)
         slack, status, message = slack_report(
-            t_slack, e, None if e is None else
-            (e + 0.5) * float(np.interp(t_slack, ts, length)) / self.n, status=status,
-            message=message, on_slack=sim.on_slack, template=SLACK_MESSAGE)
+            t_slack, e, where, status=status, message=message, on_slack=sim.on_slack,
+            template=SLACK_MESSAGE)
         if status == "solved":
             message = f"{sim.steps} steps of {dt:g} s (thesis scheme), {self.n} intervals"
         return SimulationResult(

@@ -49,6 +49,7 @@ a run :mod:`cable_ocp.dynamics.lumped_run`; this module holds the model and its 
 from __future__ import annotations
 
 import math
+from collections.abc import Callable
 from functools import cached_property
 from typing import Any
 
@@ -285,10 +286,7 @@ class LumpedMassModel:
             Time, s.
         """
         p = self.params
-        r = [x[3 * k:3 * k + 3] for k in range(self.n_free)]
-        if p.fixed_a:
-            r = [ca.vec(p.end_a_position(t))] + r
-        return r + [ca.vec(p.top_position(t))]
+        return self._with_ends(x, lambda: p.end_a_position(t), lambda: p.top_position(t))
 
     def all_velocities(self, v: Any, t: Any) -> list[Any]:
         """Every node's velocity (m/s): the free nodes' from ``v``, the prescribed ends' at
@@ -301,11 +299,17 @@ class LumpedMassModel:
         t : casadi expression or float
             Time, s.
         """
-        p = self.params
-        u = [v[3 * k:3 * k + 3] for k in range(self.n_free)]
-        if p.fixed_a:
-            u = [ca.vec(self._a_vel(t))] + u
-        return u + [ca.vec(self._top_vel(t))]
+        return self._with_ends(v, lambda: self._a_vel(t), lambda: self._top_vel(t))
+
+    def _with_ends(self, x: Any, end_a: Callable[[], Any], top: Callable[[], Any]
+                   ) -> list[Any]:
+        """Every node's 3-vector from end_a: ``end_a()`` where end_a is prescribed (called
+        only then: its function is built on first use), the free nodes' from ``x``, then
+        ``top()``."""
+        nodes = [x[3 * k:3 * k + 3] for k in range(self.n_free)]
+        if self.params.fixed_a:
+            nodes = [ca.vec(end_a())] + nodes
+        return nodes + [ca.vec(top())]
 
     def free(self, f: list[Any]) -> Any:
         """The free nodes' entries of a list of node terms, stacked."""

@@ -20,7 +20,7 @@ from cable_ocp.dynamics.lumped_kernel import segment_kernel
 from cable_ocp.errors import CableOCPError
 from cable_ocp.numerics.compile import compile_function
 
-__all__ = ["LumpedRun", "run"]
+__all__ = ["LumpedRun", "run", "step_grid"]
 
 
 @dataclass
@@ -98,6 +98,28 @@ class LumpedRun:
         return self.status == "solved"
 
 
+def step_grid(duration: float, time_step: float, record_every: int) -> tuple[int, int, float]:
+    """``(k, n_steps, dt)`` of a run over ``duration``: k = ``record_every`` (at least 1) and
+    the fewest steps, a multiple of k, of at most ``time_step`` (to 1e-9 of a step) that
+    fill it exactly.
+
+    Parameters
+    ----------
+    duration : float
+        Simulated time, s (> 0, else :class:`CableOCPError`).
+    time_step : float
+        The largest step, s.
+    record_every : int
+        Steps per record.
+    """
+    if not duration > 0:
+        raise CableOCPError(f"duration = {duration}: must be > 0")
+    k = max(1, int(record_every))
+    n_steps = max(1, int(math.ceil(duration / time_step - 1e-9)))
+    n_steps = int(math.ceil(n_steps / k) * k)
+    return k, n_steps, duration / n_steps
+
+
 def run(model: LumpedMassModel, x0: np.ndarray, v0: np.ndarray | None, duration: float,
         time_step: float, *, scheme: str = "midpoint", record_every: int = 1,
         chunk_records: int | None = None, t0: float = 0.0, tol: float = 1e-10,
@@ -150,12 +172,7 @@ def run(model: LumpedMassModel, x0: np.ndarray, v0: np.ndarray | None, duration:
     if compile not in ("kernel", "step", False):
         raise CableOCPError(f"compile = {compile!r}: valid are 'kernel', 'step', False")
 
-    if not duration > 0:
-        raise CableOCPError(f"duration = {duration}: must be > 0")
-    k = max(1, int(record_every))
-    n_steps = max(1, int(math.ceil(duration / time_step - 1e-9)))
-    n_steps = int(math.ceil(n_steps / k) * k)
-    dt = duration / n_steps
+    k, n_steps, dt = step_grid(duration, time_step, record_every)
     n_rec = n_steps // k
     c = chunk_records or max(1, int(math.ceil(n_rec / 20)))
     c = min(c, n_rec)

@@ -31,6 +31,7 @@ from cable_ocp.dynamics.model import DrivenStep
 from cable_ocp.dynamics.result import (
     ModesResult,
     SimulationResult,
+    coarse_step_warnings,
     slack_report,
     until_slack,
 )
@@ -259,14 +260,11 @@ def _result(scene: DynamicScene, model: LumpedMassModel, out: LumpedRun,
                   "only approximately")
     positions = out.positions[:ts.size]
     velocities = out.velocities[:ts.size] if out.velocities is not None else None
-    warnings = []
     tm = scene.top_motion
-    for name, w in (("heave_frequency", tm.heave_frequency),
-                    ("horizontal_frequency", tm.horizontal_frequency),
-                    ("circular_frequency", tm.circular_frequency)):
-        if w > 0.0 and w * sim.time_step > 2.0 * math.pi / 20.0:
-            warnings.append(f"simulation.time_step = {sim.time_step} s gives fewer than 20 "
-                            f"steps per period of top_motion.{name} = {w} rad/s")
+    warnings = coarse_step_warnings(sim.time_step, (
+        ("heave_frequency", tm.heave_frequency),
+        ("horizontal_frequency", tm.horizontal_frequency),
+        ("circular_frequency", tm.circular_frequency)))
     sim_time = float(ts[-1] - ts[0]) if ts.size > 1 else 0.0
     diagnostics = {
         "build_time_s": out.build_time_s,

@@ -31,7 +31,6 @@ a fast path).
 
 from __future__ import annotations
 
-import math
 import time
 from collections.abc import Callable
 from typing import Any
@@ -40,8 +39,7 @@ import numpy as np
 from scipy.sparse import coo_matrix
 
 from cable_ocp.dynamics.lumped import LumpedMassModel
-from cable_ocp.dynamics.lumped_run import LumpedRun
-from cable_ocp.errors import CableOCPError
+from cable_ocp.dynamics.lumped_run import LumpedRun, step_grid
 from cable_ocp.numerics.linalg import solve_sparse
 from cable_ocp.physics.elasticity import hooke_tension
 
@@ -167,12 +165,7 @@ def run_thesis(model: LumpedMassModel, x0: np.ndarray, v0: np.ndarray | None,
     progress : callable, optional
         ``progress(t_done, duration)`` (s, s).
     """
-    if not duration > 0:
-        raise CableOCPError(f"duration = {duration}: must be > 0")
-    k = max(1, int(record_every))
-    n_steps = max(1, int(math.ceil(duration / time_step - 1e-9)))
-    n_steps = int(math.ceil(n_steps / k) * k)
-    dt = duration / n_steps
+    k, n_steps, dt = step_grid(duration, time_step, record_every)
     tb = time.perf_counter()
     th = _Thesis(model)
     build = time.perf_counter() - tb

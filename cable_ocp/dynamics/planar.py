@@ -82,8 +82,16 @@ import numpy as np
 from cable_ocp.dynamics.checks import check_planar
 from cable_ocp.dynamics.driven import planar_driven_step
 from cable_ocp.dynamics.model import DrivenStep
-from cable_ocp.dynamics.result import ModesResult, SimulationResult, slack_report, until_slack
-from cable_ocp.dynamics.stepping import MAX_CHUNKS, run_chunks
+from cable_ocp.dynamics.result import (
+    ModesResult,
+    SimulationResult,
+    coarse_step_warnings,
+    full_speed_start_warnings,
+    slack_element,
+    slack_report,
+    until_slack,
+)
+from cable_ocp.dynamics.stepping import chunk_functions, run_chunks
 from cable_ocp.errors import CableOCPError
 from cable_ocp.numerics.quadrature import gauss_legendre
 from cable_ocp.physics.added_mass import added_mass_per_length, line_added_mass_2d
@@ -674,16 +682,8 @@ class PlanarModel:
             eps = np.asarray(self._strain_function()(x0[:nf2])).ravel()
             self.force_scale = max(self.force_scale, self.ea * float(np.max(eps)))
         t_build = time.perf_counter()
-        step = self.step_function(dt, sim.tolerance, sim.max_iterations)
-        macro = step.fold(every)
-        per_chunk = max(1, math.ceil(n_out / MAX_CHUNKS))
-        chunks: dict[int, ca.Function] = {}
-
-        def chunk_fn(m: int) -> ca.Function:
-            if m not in chunks:
-                chunks[m] = macro.mapaccum("chunk", m)
-            return chunks[m]
-
+        chunk_fn, per_chunk = chunk_functions(
+            self.step_function(dt, sim.tolerance, sim.max_iterations), every, n_out)
         post = self.output_function()
         build_time = time.perf_counter() - t_build
         eps0 = float(np.min(np.asarray(post(0.0, x0[:nf2], x0[nf2:])[5])))
@@ -741,11 +741,10 @@ class PlanarModel:
         length = length.reshape(n_t)
         min_strain = float(min(emin, np.min(eps)))
         min_t = float(min(smooth_tension(min_strain, self.ea, self.delta_t), np.min(tens)))
-        e = int(round(e_slack)) if np.isfinite(t_slack) else None
+        e, where = slack_element(t_slack, e_slack, ts, length, self.n)
         slack, status, message = slack_report(
-            t_slack, e, None if e is None else
-            (e + 0.5) * float(np.interp(t_slack, ts, length)) / self.n, status=status,
-            message=message, on_slack=sim.on_slack, template=SLACK_MESSAGE,
+            t_slack, e, where, status=status, message=message, on_slack=sim.on_slack,
+            template=SLACK_MESSAGE,
             continued="the run continued: a slack element carries no tension (the smooth "
                       "no-compression law) and the model follows the slack cable only "
                       "approximately (no bending, no contact, lumped)",
@@ -760,22 +759,12 @@ class PlanarModel:
                               tm_.heave_amplitude * tm_.heave_frequency
                               + tm_.circular_radius * tm_.circular_frequency
                               ) + abs(tm_.payout_speed)
-            c_ax = math.sqrt(self.ea / self.mu)
-            step_t = self.mu * c_ax * jump
-            static_top = abs(self.unit_weight) + abs(self.w) * self.length0
-            if step_t > 0.1 * static_top:
-                warnings.append(
-                    f"the top starts at full speed ({jump:.3g} m/s at t = 0): a tension step "
-                    f"of about {step_t:.3g} N (mu c dv) runs down the line, "
-                    f"{step_t / static_top:.0%} of the static top tension; set "
-                    "top_motion.ramp_time for a smooth start")
-        for name, w_ in (("heave_frequency", tm_.heave_frequency),
-                         ("horizontal_frequency", tm_.horizontal_frequency),
-                         ("circular_frequency", tm_.circular_frequency),
-                         ("payout_frequency", tm_.payout_frequency)):
-            if w_ > 0.0 and w_ * dt > 2.0 * math.pi / 20.0:
-                warnings.append(f"simulation.time_step = {dt} s gives fewer than 20 steps per "
-                                f"period of top_motion.{name} = {w_} rad/s")
+            warnings += full_speed_start_warnings(
+                jump, self.mu, self.ea, abs(self.unit_weight) + abs(self.w) * self.length0)
+        warnings += coarse_step_warnings(dt, (("heave_frequency", tm_.heave_frequency),
+                                              ("horizontal_frequency", tm_.horizontal_frequency),
+                                              ("circular_frequency", tm_.circular_frequency),
+                                              ("payout_frequency", tm_.payout_frequency)))
         diagnostics = {
             "build_time_s": build_time,
             "steps": int(round(ts[-1] / dt)) if n_t else 0,

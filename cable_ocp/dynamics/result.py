@@ -8,33 +8,18 @@ never as an exception. ``to_dict()`` gives strict JSON (no NaN or infinity: ``nu
 from __future__ import annotations
 
 import math
+from collections.abc import Sequence
 from dataclasses import dataclass, field
 from typing import Any
 
 import numpy as np
 
+from cable_ocp.numerics.jsonable import json_safe
 from cable_ocp.status import Status
 
-__all__ = ["DeploymentChart", "ModesResult", "SimulationResult", "json_safe", "slack_report",
+__all__ = ["DeploymentChart", "ModesResult", "SimulationResult", "coarse_step_warnings",
+           "full_speed_start_warnings", "json_safe", "slack_element", "slack_report",
            "until_slack"]
-
-
-def json_safe(value: Any) -> Any:
-    """Convert numpy arrays and scalars to lists and floats, NaN and +-inf to None."""
-    if isinstance(value, dict):
-        return {str(k): json_safe(v) for k, v in value.items()}
-    if isinstance(value, (list, tuple)):
-        return [json_safe(v) for v in value]
-    if isinstance(value, np.ndarray):
-        return json_safe(value.tolist())
-    if isinstance(value, (bool, np.bool_)):
-        return bool(value)
-    if isinstance(value, (int, np.integer)):
-        return int(value)
-    if isinstance(value, (float, np.floating)):
-        x = float(value)
-        return x if math.isfinite(x) else None
-    return value
 
 
 #: what the slack message says when ``simulation.on_slack = "stop"``
@@ -66,6 +51,32 @@ def until_slack(t: np.ndarray, first_time: float | None, sample_step: float,
     # the first sample at or after first_time: below first_time + sample_step, by a
     # margin of 1e-9 of the step against the rounding of the two grids (k dt, t + dt)
     return t < first_time + sample_step * (1.0 - 1e-9)
+
+
+def slack_element(first_time: float, element: float, t: np.ndarray, length: np.ndarray,
+                  elements: int) -> tuple[int | None, float | None]:
+    """``(segment, location)`` for :func:`slack_report` from a run of ``elements`` equal
+    elements: the first slack element (its recorded index rounded) and its middle's
+    unstretched arc length from end_a when slack occurred, (e + 1/2) L(first_time) / N
+    with L interpolated in the samples; ``(None, None)`` otherwise.
+
+    Parameters
+    ----------
+    first_time : float
+        End time of the first step with slack, s (inf: none).
+    element : float
+        The first slack element's index as recorded (a float of the accumulator).
+    t : ndarray (n,)
+        Sample times, s.
+    length : ndarray (n,)
+        Unstretched length at the samples, m.
+    elements : int
+        Number of elements N.
+    """
+    e = int(round(element)) if np.isfinite(first_time) else None
+    if e is None:
+        return None, None
+    return e, (e + 0.5) * float(np.interp(first_time, t, length)) / elements
 
 
 def slack_report(first_time: float | None, segment: int | None, location: float | None, *,
@@ -118,8 +129,60 @@ def slack_report(first_time: float | None, segment: int | None, location: float 
     return slack, status, message
 
 
+def coarse_step_warnings(time_step: float, frequencies: Sequence[tuple[str, float]]
+                         ) -> list[str]:
+    """The warnings of a time step that gives fewer than 20 steps per period of a top
+    motion, for every model.
+
+    Parameters
+    ----------
+    time_step : float
+        ``simulation.time_step``, s.
+    frequencies : sequence of (str, float)
+        ``(name, omega)``: the key of each ``top_motion`` frequency the model follows and
+        its value, rad/s (0: that motion is off).
+    """
+    return [f"simulation.time_step = {time_step} s gives fewer than 20 steps per period of "
+            f"top_motion.{name} = {w} rad/s"
+            for name, w in frequencies if w > 0.0 and w * time_step > 2.0 * math.pi / 20.0]
+
+
+def full_speed_start_warnings(jump: float, mass_per_length: float, axial_stiffness: float,
+                              static_top_tension: float) -> list[str]:
+    """The warning of a top that starts at full speed (``top_motion.ramp_time = 0``): a
+    velocity jump dv sends a tension step mu c dv down the line (c = sqrt(EA / mu), the
+    axial wave speed); said when it is above 10 % of the static top tension.
+
+    Parameters
+    ----------
+    jump : float
+        The top's speed at t = 0+, m/s.
+    mass_per_length : float
+        mu, the line's mass per length with its tangential added mass, kg/m.
+    axial_stiffness : float
+        EA, N.
+    static_top_tension : float
+        The static top tension the step is compared with, N.
+    """
+    step = mass_per_length * math.sqrt(axial_stiffness / mass_per_length) * jump
+    if not step > 0.1 * static_top_tension:
+        return []
+    return [f"the top starts at full speed ({jump:.3g} m/s at t = 0): a tension step of about "
+            f"{step:.3g} N (mu c dv) runs down the line, {step / static_top_tension:.0%} of the "
+            "static top tension; set top_motion.ramp_time for a smooth start"]
+
+
+class _StatusVocabulary:
+    """The results' common base: ``status`` is made a :class:`cable_ocp.status.Status`
+    when a result is built (a status outside the vocabulary raises ``ValueError``)."""
+
+    def __post_init__(self) -> None:
+        # the status is one of the package's vocabulary (cable_ocp.status)
+        object.__setattr__(self, "status", Status(self.status))
+
+
 @dataclass(frozen=True)
-class SimulationResult:
+class SimulationResult(_StatusVocabulary):
     """Time history of a dynamics simulation.
 
     Attributes
@@ -183,10 +246,6 @@ class SimulationResult:
     diagnostics: dict[str, Any] = field(default_factory=dict)
     node_velocities: np.ndarray | None = None
 
-    def __post_init__(self) -> None:
-        # the status is one of the package's vocabulary (cable_ocp.status)
-        object.__setattr__(self, "status", Status(self.status))
-
     @property
     def success(self) -> bool:
         """True when the run finished without slack or failure."""
@@ -226,7 +285,7 @@ class SimulationResult:
 
 
 @dataclass(frozen=True)
-class ModesResult:
+class ModesResult(_StatusVocabulary):
     """Natural frequencies and mode shapes, linearised about the static state.
 
     Attributes
@@ -259,10 +318,6 @@ class ModesResult:
     message: str = ""
     diagnostics: dict[str, Any] = field(default_factory=dict)
 
-    def __post_init__(self) -> None:
-        # the status is one of the package's vocabulary (cable_ocp.status)
-        object.__setattr__(self, "status", Status(self.status))
-
     @property
     def periods(self) -> np.ndarray:
         """Natural periods 2 pi / omega, s (inf for a zero frequency)."""
@@ -284,7 +339,7 @@ class ModesResult:
 
 
 @dataclass(frozen=True)
-class DeploymentChart:
+class DeploymentChart(_StatusVocabulary):
     """Natural frequencies against paid-out length (a deployment resonance chart).
 
     Attributes
@@ -313,10 +368,6 @@ class DeploymentChart:
     status: Status = Status.SOLVED
     message: str = ""
     diagnostics: dict[str, Any] = field(default_factory=dict)
-
-    def __post_init__(self) -> None:
-        # the status is one of the package's vocabulary (cable_ocp.status)
-        object.__setattr__(self, "status", Status(self.status))
 
     @property
     def in_band(self) -> np.ndarray:

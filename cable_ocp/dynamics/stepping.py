@@ -1,9 +1,10 @@
 """The chunked time loop shared by the axial and planar models.
 
-Each model builds a CasADi function that advances ``every`` integration steps per output
-sample and maps it over ``m`` samples (``mapaccum``). The loop below calls it chunk by
-chunk (no Python per time step), keeps the good samples, and stops at the first sample
-whose scaled Newton residual exceeds the failure tolerance or whose state is not finite.
+Each model builds a CasADi function that advances one integration step;
+:func:`chunk_functions` folds it over ``every`` steps per output sample and maps that over
+``m`` samples (``mapaccum``). The loop below calls it chunk by chunk (no Python per time
+step), keeps the good samples, and stops at the first sample whose scaled Newton residual
+exceeds the failure tolerance or whose state is not finite.
 
 The accumulator row layout is the models': the state (and any scheme history) in rows
 ``[0, off)``, then the residual at ``off`` and the slack time at ``off + 2``.
@@ -11,16 +12,45 @@ The accumulator row layout is the models': the state (and any scheme history) in
 
 from __future__ import annotations
 
+import math
 import time
 from collections.abc import Callable
 
 import casadi as ca
 import numpy as np
 
-__all__ = ["MAX_CHUNKS", "run_chunks"]
+__all__ = ["MAX_CHUNKS", "chunk_functions", "run_chunks"]
 
 #: at most this many progress calls (chunks) per run, in every model
 MAX_CHUNKS = 200
+
+
+def chunk_functions(step: ca.Function, every: int, n_out: int
+                    ) -> tuple[Callable[[int], ca.Function], int]:
+    """``(chunk_fn, per_chunk)`` for a run of ``n_out`` output samples: ``chunk_fn(m)``
+    advances m samples of ``every`` steps each (``step`` folded over a sample, then
+    ``mapaccum``'d over m; built on first use for each m and kept), and ``per_chunk``
+    samples per call keep the calls (and progress reports) to at most :data:`MAX_CHUNKS`.
+
+    Parameters
+    ----------
+    step : casadi.Function
+        One integration step ``(acc, t) -> acc``.
+    every : int
+        Steps per output sample.
+    n_out : int
+        Output samples of the run.
+    """
+    macro = step.fold(every)
+    per_chunk = max(1, math.ceil(n_out / MAX_CHUNKS))
+    chunks: dict[int, ca.Function] = {}
+
+    def chunk_fn(m: int) -> ca.Function:
+        if m not in chunks:
+            chunks[m] = macro.mapaccum("chunk", m)
+        return chunks[m]
+
+    return chunk_fn, per_chunk
 
 
 def run_chunks(chunk_fn: Callable[[int], ca.Function], acc: np.ndarray, n_out: int,

@@ -283,12 +283,17 @@ class Kernel:
         p : numpy.ndarray, shape (n_p,)
             Scaled parameters.
         """
+        self._factorise(w, p)
+        self.counts["factor"] += 1
+        return self._g2.copy()
+
+    def _factorise(self, w: np.ndarray, p: np.ndarray) -> None:
+        """G and J at (w, p) into their buffers (``_g2``, the LU's nonzeros), then J
+        factorised in place (the factors kept)."""
         self._w[:] = w
         self._p[:] = p
         self._jeval()
         self._lu.factor()
-        self.counts["factor"] += 1
-        return self._g2.copy()
 
     def chord_step(self, g: np.ndarray) -> np.ndarray:
         """``-J^-1 g`` with the kept factors (a new array; non-finite where J was
@@ -308,10 +313,7 @@ class Kernel:
             Scaled parameters.
         """
         if self._seval is None:
-            self._w[:] = w
-            self._p[:] = p
-            self._jeval()
-            self._lu.factor()
+            self._factorise(w, p)
             self.counts["step"] += 1
             dw = self._lu.newton_step(self._g2)
             return self._g2.copy(), dw if np.all(np.isfinite(dw)) else np.full(self.n_w, np.nan)

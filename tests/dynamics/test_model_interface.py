@@ -4,7 +4,8 @@ The axial, planar and lumped-mass models of the shipped 113 m line (the heave ex
 cable scenes) implement :class:`CableModel`; their steps with the top motion and the
 length as inputs keep the static state at rest when the top and the length stay still;
 ``simulate`` and ``modes`` dispatch on the interface; ``slack_report`` words every
-model's slack the same way.
+model's slack the same way, and ``coarse_step_warnings`` and ``full_speed_start_warnings``
+every model's warnings.
 """
 
 from __future__ import annotations
@@ -17,7 +18,13 @@ import pytest
 
 from cable_ocp.dynamics import modes, simulate
 from cable_ocp.dynamics.model import CableModel, DrivenStep, model_for
-from cable_ocp.dynamics.result import SLACK_STOPPED, slack_report, until_slack
+from cable_ocp.dynamics.result import (
+    SLACK_STOPPED,
+    coarse_step_warnings,
+    full_speed_start_warnings,
+    slack_report,
+    until_slack,
+)
 from cable_ocp.scene.dynamics import load_dynamic_scene
 
 LINES = {"axial": "line_6_3_6.toml", "planar": "line_6_3_6_planar.toml",
@@ -214,3 +221,18 @@ def test_the_output_grid_is_every_kth_step_when_the_ratio_is_inexact_in_binary(
     np.testing.assert_allclose(res.node_positions, every_step.node_positions[::3], rtol=0.0,
                                atol=1e-12)
     assert np.ptp(res.unit_position[:, 2]) > 0.05  # the samples differ
+
+
+def test_the_warnings_of_a_coarse_step_and_a_full_speed_start() -> None:
+    """Fewer than 20 steps per period of a motion that is on (4.5 rad/s at 0.25 s: 5.6),
+    none for one that is off or well resolved; a tension step mu c dv = 4 kg/m x 500 m/s x
+    1 m/s = 2000 N against a static top tension of 100 N, none below 10 % of it."""
+    assert coarse_step_warnings(0.25, (("heave_frequency", 4.5), ("payout_frequency", 0.0),
+                                       ("circular_frequency", 1.0))) == [
+        "simulation.time_step = 0.25 s gives fewer than 20 steps per period of "
+        "top_motion.heave_frequency = 4.5 rad/s"]
+    assert full_speed_start_warnings(1.0, 4.0, 1.0e6, 100.0) == [
+        "the top starts at full speed (1 m/s at t = 0): a tension step of about 2e+03 N "
+        "(mu c dv) runs down the line, 2000% of the static top tension; set "
+        "top_motion.ramp_time for a smooth start"]
+    assert full_speed_start_warnings(1.0, 4.0, 1.0e6, 20000.0 + 1.0) == []

@@ -103,6 +103,7 @@ OUTPUT_GRID = _MI + "the_output_grid_is_every_kth_step_when_the_ratio_is_inexact
 CHART = ("tests/dynamics/test_lumped_modes.py::"
          "test_the_deployment_chart_of_a_segmented_line_pays_out_the_top_segment")
 BODY = "tests/dynamics/test_lumped.py::test_a_point_body_loads_exactly_its_joints_node"
+VL_F = "cable_ocp/dynamics/vertical_line.py"  # the axial models' coefficients
 
 MUTATIONS: tuple[Mutation, ...] = (
     # -- physics/ ---------------------------------------------------------------------------
@@ -396,12 +397,12 @@ MUTATIONS: tuple[Mutation, ...] = (
              "f0 = (ten[0] - self.unit_weight - 0.5 * h * (self.w + drag[0])",
              "f0 = (ten[0] - 0.5 * h * (self.w + drag[0])", AXIAL,
              "axial: the unit's weight in water left out of its equation of motion (3.2)"),
-    Mutation("axial-unit-added-mass-dropped", DYN, AX_F,
-             "self.unit_mass = unit.virtual_mass[2]", "self.unit_mass = unit.mass",
+    Mutation("axial-unit-added-mass-dropped", DYN, VL_F,
+             "unit_mass=unit.virtual_mass[2],", "unit_mass=unit.mass,",
              AXIAL, "axial: the unit's heave added mass left out"),
-    Mutation("axial-tangential-added-mass-dropped", DYN, AX_F,
-             "self.mu = dyn.mass_per_length + dyn.tangential_added_mass_per_length(",
-             "self.mu = dyn.mass_per_length + 0.0 * dyn.tangential_added_mass_per_length(",
+    Mutation("axial-tangential-added-mass-dropped", DYN, VL_F,
+             "mass_per_length=dyn.mass_per_length + dyn.tangential_added_mass_per_length(",
+             "mass_per_length=dyn.mass_per_length + 0.0 * dyn.tangential_added_mass_per_length(",
              AXIAL, "axial: the cable's tangential added mass m_at of (3.1) left out"),
     Mutation("axial-advection-velocity-dropped", DYN, AX_F,
              "acc.append((ten[i] - ten[i - 1] - h * (self.w + drag[i])) / (self.mu * h)\n"
@@ -441,8 +442,8 @@ MUTATIONS: tuple[Mutation, ...] = (
              "out[0] += p.unit.mass + np.asarray(p.unit.added_mass)", "out[0] += p.unit.mass",
              LUMPED, "lumped: the unit's added mass left out"),
     Mutation("lumped-added-mass-tangential-projector", DYN, LE_F,
-             "return 0.5 * (en * (ca.SX.eye(3) - eet) + et * eet)",
-             "return 0.5 * (en * eet + et * (ca.SX.eye(3) - eet))", LUMPED,
+             "return 0.5 * projected_added_mass(eet, en, et)",
+             "return 0.5 * projected_added_mass(eet, et, en)", LUMPED,
              "lumped step (the kernel's form): added mass (5.2) along the tangent t t^T "
              "instead of I - t t^T"),
     Mutation("lumped-modes-added-mass-tangential-projector", DYN,
