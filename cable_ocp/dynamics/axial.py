@@ -490,12 +490,11 @@ class AxialModel:
             "static_top_tension_N": self.unit_weight + self.w * self.length0,
             "wall_time_per_simulated_second": wall / ts[-1] if n_t > 1 else None,
         }
-        return SimulationResult(
-            t=ts, length=length, top_position=nodes[:, -1, :].copy(),
-            unit_position=nodes[:, 0, :].copy(), top_tension=top, node_positions=nodes,
-            segment_tensions=tens, min_tension=min_t, slack=slack, status=status,
-            message=message, warnings=warnings, wall_time_s=wall, model="axial",
-            scheme=sim.scheme, diagnostics=diagnostics, node_velocities=velocities)
+        return SimulationResult.from_nodes(
+            nodes, t=ts, length=length, top_tension=top, segment_tensions=tens,
+            min_tension=min_t, slack=slack, status=status, message=message, warnings=warnings,
+            wall_time_s=wall, model="axial", scheme=sim.scheme, diagnostics=diagnostics,
+            node_velocities=velocities)
 
     # ------------------------------------------------------------------ modes
     def matrices(self, length: float | None = None) -> tuple[np.ndarray, np.ndarray]:

@@ -347,10 +347,8 @@ class ThesisAxialModel:
             template=SLACK_MESSAGE)
         if status == "solved":
             message = f"{sim.steps} steps of {dt:g} s (thesis scheme), {self.n} intervals"
-        return SimulationResult(
-            t=ts, length=length, top_position=nodes[:, -1, :].copy(),
-            unit_position=nodes[:, 0, :].copy(), top_tension=top.reshape(n_t),
-            node_positions=nodes, segment_tensions=tens,
+        return SimulationResult.from_nodes(
+            nodes, t=ts, length=length, top_tension=top.reshape(n_t), segment_tensions=tens,
             min_tension=float(min(tmin, tens.min())), slack=slack, status=status,
             message=message, warnings=[], wall_time_s=wall, model="axial", scheme="thesis",
             diagnostics={"build_time_s": build, "steps": sim.steps, "elements": self.n,

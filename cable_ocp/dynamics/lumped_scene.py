@@ -227,16 +227,8 @@ def lumped_start(scene: DynamicScene, model: LumpedMassModel
 
 def _failed_result(scene: DynamicScene, model: LumpedMassModel, message: str,
                    info: dict[str, Any]) -> SimulationResult:
-    n = model.params.segments
-    empty = np.zeros((0, 3))
-    return SimulationResult(
-        t=np.zeros(0), length=np.zeros(0), top_position=empty, unit_position=empty,
-        top_tension=np.zeros(0), node_positions=np.zeros((0, n + 1, 3)),
-        segment_tensions=np.zeros((0, n)), min_tension=math.nan,
-        slack=slack_report(None, None, None, status="failed", message=message,
-                           on_slack=scene.simulation.on_slack, template=SLACK_MESSAGE)[0],
-        status="failed", message=message, model="lumped3d", scheme=scene.simulation.scheme,
-        diagnostics={"start": info})
+    return SimulationResult.failed(model.params.segments, message, "lumped3d",
+                                   scene.simulation.scheme, {"start": info})
 
 
 def _result(scene: DynamicScene, model: LumpedMassModel, out: LumpedRun,
@@ -278,10 +270,9 @@ def _result(scene: DynamicScene, model: LumpedMassModel, out: LumpedRun,
         "min_strain": out.min_strain,
         "wall_time_per_simulated_second": out.wall_time_s / sim_time if sim_time else None,
     }
-    return SimulationResult(
-        t=ts, length=np.full(ts.size, p.length), top_position=positions[:, -1, :].copy(),
-        unit_position=positions[:, 0, :].copy(), top_tension=top,
-        node_positions=positions, segment_tensions=tens, node_velocities=velocities,
+    return SimulationResult.from_nodes(
+        positions, t=ts, length=np.full(ts.size, p.length), top_tension=top,
+        segment_tensions=tens, node_velocities=velocities,
         min_tension=float(np.min(tens)) if tens.size else math.nan, slack=slack,
         status=status, message=message, warnings=warnings, wall_time_s=out.wall_time_s,
         model="lumped3d", scheme=sim.scheme, diagnostics=diagnostics)

@@ -698,16 +698,9 @@ class PlanarModel:
                             post, status, message, wall, build_time, info)
 
     def _failed(self, info: dict[str, Any]) -> SimulationResult:
-        n = self.n
-        empty = np.zeros((0, 3))
-        return SimulationResult(
-            t=np.zeros(0), length=np.zeros(0), top_position=empty, unit_position=empty,
-            top_tension=np.zeros(0), node_positions=np.zeros((0, n + 1, 3)),
-            segment_tensions=np.zeros((0, n)), min_tension=math.nan,
-            slack=slack_report(None, None, None, status="failed", message="",
-                               on_slack="stop", template=SLACK_MESSAGE)[0],
-            status="failed", message=info.get("message", "the static start failed"),
-            model="planar", scheme=self.scene.simulation.scheme, diagnostics={"start": info})
+        return SimulationResult.failed(
+            self.n, info.get("message", "the static start failed"), "planar",
+            self.scene.simulation.scheme, {"start": info})
 
     def _result(self, ts: np.ndarray, xs: np.ndarray, tail: np.ndarray, post: ca.Function,
                 status: str, message: str, wall: float, build_time: float,
@@ -776,12 +769,11 @@ class PlanarModel:
             "min_linear_tension_N": self.ea * min_strain,
             "wall_time_per_simulated_second": wall / ts[-1] if n_t > 1 else None,
         }
-        return SimulationResult(
-            t=ts, length=length, top_position=nodes[:, -1, :].copy(),
-            unit_position=nodes[:, 0, :].copy(), top_tension=top, node_positions=nodes,
-            segment_tensions=tens, min_tension=min_t, slack=slack, status=status,
-            message=message, warnings=warnings, wall_time_s=wall, model="planar",
-            scheme=sim.scheme, diagnostics=diagnostics, node_velocities=velocities)
+        return SimulationResult.from_nodes(
+            nodes, t=ts, length=length, top_tension=top, segment_tensions=tens,
+            min_tension=min_t, slack=slack, status=status, message=message, warnings=warnings,
+            wall_time_s=wall, model="planar", scheme=sim.scheme, diagnostics=diagnostics,
+            node_velocities=velocities)
 
     # ------------------------------------------------------------------ the interface
     def state_size(self) -> int:

@@ -246,6 +246,49 @@ class SimulationResult(_StatusVocabulary):
     diagnostics: dict[str, Any] = field(default_factory=dict)
     node_velocities: np.ndarray | None = None
 
+    @classmethod
+    def from_nodes(cls, node_positions: np.ndarray, **fields: Any) -> SimulationResult:
+        """A result whose end positions are its nodes' first (end_a, the unit) and last
+        (end_b, the top) ones: the one place that reads the node layout.
+
+        Parameters
+        ----------
+        node_positions : ndarray, shape (n_t, n_nodes, 3)
+            Node positions from end_a to end_b, m.
+        **fields
+            Every other field of :class:`SimulationResult`.
+        """
+        return cls(top_position=node_positions[:, -1, :].copy(),
+                   unit_position=node_positions[:, 0, :].copy(),
+                   node_positions=node_positions, **fields)
+
+    @classmethod
+    def failed(cls, elements: int, message: str, model: str, scheme: str,
+               diagnostics: dict[str, Any]) -> SimulationResult:
+        """The empty history of a run that could not start (status ``"failed"``).
+
+        Parameters
+        ----------
+        elements : int
+            The line's elements (segments), for the arrays' shapes.
+        message : str
+            Why the run could not start.
+        model : str
+            The model's name.
+        scheme : str
+            The time-integration scheme.
+        diagnostics : dict
+            The diagnostics (e.g. ``{"start": info}``).
+        """
+        return cls.from_nodes(
+            np.zeros((0, elements + 1, 3)), t=np.zeros(0), length=np.zeros(0),
+            top_tension=np.zeros(0), segment_tensions=np.zeros((0, elements)),
+            min_tension=math.nan,
+            slack=slack_report(None, None, None, status="failed", message=message,
+                               on_slack="stop", template="")[0],
+            status="failed", message=message, model=model, scheme=scheme,
+            diagnostics=diagnostics)
+
     @property
     def success(self) -> bool:
         """True when the run finished without slack or failure."""

@@ -236,3 +236,49 @@ def test_the_warnings_of_a_coarse_step_and_a_full_speed_start() -> None:
         "(mu c dv) runs down the line, 2000% of the static top tension; set "
         "top_motion.ramp_time for a smooth start"]
     assert full_speed_start_warnings(1.0, 4.0, 1.0e6, 20000.0 + 1.0) == []
+
+
+@pytest.mark.parametrize("name", ["planar", "lumped3d"])
+def test_a_failed_static_start_is_an_empty_failed_history(problems, monkeypatch,
+                                                          name: str) -> None:
+    """A run whose statics start fails returns status "failed" and an empty history of the
+    line's shapes (``SimulationResult.failed``), the statics message kept, no slack; it is
+    never a solution. The statics solve is made to fail (a stand-in for an infeasible one)."""
+    import json
+    from types import SimpleNamespace
+
+    import cable_ocp.dynamics.static as static
+
+    failed = SimpleNamespace(success=False, status="infeasible", message="no equilibrium")
+    monkeypatch.setattr(static, "static_state", lambda scene, *a, **k: failed)
+    scene = load_dynamic_scene(problems / "dynamics" / LINES[name])
+    res = simulate(scene)
+    n = 20  # the file's simulation.segments
+    assert res.status == "failed" and not res.success
+    assert "no equilibrium" in res.message and res.model == name
+    assert res.t.shape == (0,) and res.length.shape == (0,) and res.top_tension.shape == (0,)
+    assert res.node_positions.shape == (0, n + 1, 3)
+    assert res.top_position.shape == (0, 3) and res.unit_position.shape == (0, 3)
+    assert res.segment_tensions.shape == (0, n) and math.isnan(res.min_tension)
+    assert res.slack == {"occurred": False, "first_time": None, "location": None,
+                         "segment": None}
+    assert res.diagnostics["start"]["statics_status"] == "infeasible"
+    json.dumps(res.to_dict(full=True), allow_nan=False)
+
+
+@pytest.mark.parametrize("name", MODELS)
+def test_the_end_positions_are_the_top_path_and_the_unit_node(name: str) -> None:
+    """``top_position`` is end_b's imposed path and ``unit_position`` end_a's node, for every
+    model (``SimulationResult.from_nodes``): the drop scene's top goes down from z = 200 m by
+    the series' linear offset, 0.6 m/s t (exact but for rounding: 1e-9 m); the unit hangs
+    the 100 m line's length below it (within its stretch, < 0.2 m here: T / EA < 2e-3)."""
+    from cable_ocp.scene.dynamics import dynamic_scene_from_dict
+
+    res = simulate(dynamic_scene_from_dict(_drop_scene(name, duration=0.05)))
+    assert res.t.size == 51
+    top = np.column_stack([0 * res.t, 0 * res.t, 200.0 - 0.6 * res.t])
+    np.testing.assert_allclose(res.top_position, top, rtol=0, atol=1e-9)
+    assert np.array_equal(res.top_position, res.node_positions[:, -1, :])
+    assert np.array_equal(res.unit_position, res.node_positions[:, 0, :])
+    drop = res.top_position[:, 2] - res.unit_position[:, 2]
+    assert np.all((drop > 100.0 - 1e-9) & (drop < 100.2))

@@ -100,6 +100,8 @@ LK_F, LE_F = "cable_ocp/dynamics/lumped_kernel.py", "cable_ocp/dynamics/lumped_e
 _MI = "tests/dynamics/test_model_interface.py::test_"
 SLACK_TIME = _MI + "the_slack_time_is_the_end_of_the_first_step_with_a_slack_element"
 OUTPUT_GRID = _MI + "the_output_grid_is_every_kth_step_when_the_ratio_is_inexact_in_binary"
+ENDS = _MI + "the_end_positions_are_the_top_path_and_the_unit_node"
+FAILED_START = _MI + "a_failed_static_start_is_an_empty_failed_history"
 CHART = ("tests/dynamics/test_lumped_modes.py::"
          "test_the_deployment_chart_of_a_segmented_line_pays_out_the_top_segment")
 BODY = "tests/dynamics/test_lumped.py::test_a_point_body_loads_exactly_its_joints_node"
@@ -600,6 +602,14 @@ MUTATIONS: tuple[Mutation, ...] = (
     Mutation("lumped-body-weight-on-next-node", "bookkeeping", LE_F,
              "w[b.node] += b.weight_in_water", "w[b.node + 1] += b.weight_in_water", (BODY,),
              "lumped: a point body's weight in water acts on the node above its joint"),
+    Mutation("result-top-is-the-next-node", "bookkeeping", "cable_ocp/dynamics/result.py",
+             "return cls(top_position=node_positions[:, -1, :].copy(),",
+             "return cls(top_position=node_positions[:, -2, :].copy(),", (ENDS,),
+             "every model's reported top position is the node below end_b"),
+    Mutation("failed-result-one-node-short", "bookkeeping", "cable_ocp/dynamics/result.py",
+             "np.zeros((0, elements + 1, 3)), t=np.zeros(0)",
+             "np.zeros((0, elements, 3)), t=np.zeros(0)", (FAILED_START,),
+             "the empty history of a failed start has one node fewer than the line"),
 )
 
 
