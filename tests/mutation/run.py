@@ -22,7 +22,7 @@ Why a script and not mutmut or cosmic-ray: the suite is slow (minutes; single te
 seconds) on a 2-core machine, and the interesting bugs are the physics and control slips an
 engineer makes (a dropped factor, a sign, an index off by the delay), not the operator swaps
 those tools generate by the thousand, most of them in option parsing or error messages.
-Hand-picked mutations with targeted subsets give a meaningful pass in about an hour; the
+Hand-picked mutations with targeted subsets give a meaningful pass in about 11 minutes; the
 list is reviewed and extended with each issue (docs/testing.md).
 """
 
