@@ -18,8 +18,8 @@ computed, not a success (exit 1)
     physical), ``unstable`` and ``non_finite`` (a closed loop), ``wrong`` (a benchmark found
     an answer off by more than its tolerance); the baselines' and optimisers' own:
     ``not_converged``, ``infeasible``, ``max_iterations``, ``diverged``, ``not_equilibrium``,
-    ``seabed_contact``, ``length_root_failed``, ``max_nodes``, ``singular`` (IPOPT's return
-    statuses map onto these: :func:`from_ipopt`).
+    ``seabed_contact``, ``length_root_failed``, ``newton_failed``, ``max_nodes``, ``singular``
+    (IPOPT's return statuses map onto these: :func:`from_ipopt`).
 interrupted (exit 130)
     ``interrupted``: Ctrl-C; what finished is written.
 rows of a batch
@@ -56,6 +56,7 @@ class Status(StrEnum):
     NOT_EQUILIBRIUM = "not_equilibrium"
     SEABED_CONTACT = "seabed_contact"
     LENGTH_ROOT_FAILED = "length_root_failed"
+    NEWTON_FAILED = "newton_failed"
     MAX_NODES = "max_nodes"
     SINGULAR = "singular"
     INTERRUPTED = "interrupted"

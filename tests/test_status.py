@@ -76,3 +76,17 @@ def test_results_of_every_kind_carry_a_status() -> None:
     run = simulate(dyn, overrides={"simulation.duration": 2.0})
     assert type(run.status) is Status and run.status == "solved"
     assert type(modes(dyn, 2).status) is Status
+
+
+def test_a_baselines_own_failure_code_is_a_status() -> None:
+    """Huang's drag iteration whose inner Newton fails (the neutrally buoyant extreme scene:
+    no weight to hang the catenaries from) ends "newton_failed", a member: a failed solve
+    with its status, exit 1, not a crash (the robustness benchmark met it as a ValueError
+    once the vocabulary was enforced without this member)."""
+    from cable_ocp.scene import load_scene
+    from cable_ocp.statics.solver import solve
+
+    sol = solve(load_scene(ROOT / "problems" / "extreme" / "neutrally_buoyant.toml",
+                           {"solver.method": "huang_semianalytic"}))
+    assert sol.status is Status.NEWTON_FAILED and not sol.success
+    assert sol.to_dict()["status"] == "newton_failed" and "inner Newton failed" in sol.message
