@@ -16,6 +16,7 @@ import casadi as cs
 import numpy as np
 
 from cable_ocp.errors import CableOCPError
+from cable_ocp.physics.drag import quadratic_drag
 
 
 @dataclass(frozen=True)
@@ -58,7 +59,7 @@ def _rhs(model: str) -> cs.Function:
     p = cs.SX.sym("p", 2)
     x0 = cs.SX.sym("x0")
     a, b = p[0], p[1]
-    damp = b * s[1] if model == "linear" else b * s[1] * cs.fabs(s[1])
+    damp = b * s[1] if model == "linear" else quadratic_drag(b, s[1])
     return cs.Function("f", [s, p, x0], [cs.vertcat(s[1], (x0 - s[0] - damp) / a)])
 
 

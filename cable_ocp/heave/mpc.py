@@ -62,6 +62,7 @@ from cable_ocp.heave.delay import DelayLine
 from cable_ocp.heave.discrete import discretize_cost, discretize_delayed
 from cable_ocp.heave.mpc_daqp import DaqpQP
 from cable_ocp.heave.plant import HeavePlant
+from cable_ocp.physics.drag import quadratic_drag
 
 QP_SOLVERS = ("qpoases", "osqp", "qrqp")  # condensed QP through CasADi's ``conic``
 DIRECT_SOLVERS = ("daqp",)  # condensed QP in a persistent solver workspace
@@ -767,7 +768,8 @@ class _NonlinearMPC:
         e_unit = np.zeros(n)
         e_unit[iv] = 1.0
         xd = x[iv]
-        corr = (p.b * xd - bnl * xd * cs.sqrt(xd**2 + 1e-6)) / p.a
+        # (6.3)'s quadratic damping with the smooth modulus sqrt(v^2 + delta^2), delta = 1e-3 m/s
+        corr = (p.b * xd - quadratic_drag(bnl, xd, 1e-3)) / p.a
         xdot = (cs.mtimes(cs.DM(p.A), x) + cs.DM(p.B1) * v
                 + cs.DM(e_unit) * (dd / p.a + corr))
         f = cs.Function("f", [x, v, dd], [xdot])

@@ -35,6 +35,7 @@ import control as ct
 import numpy as np
 
 from cable_ocp.errors import CableOCPError
+from cable_ocp.physics.drag import quadratic_drag
 
 
 def unit_block(a: float, b: float) -> ct.StateSpace:
@@ -85,7 +86,7 @@ def unit_acceleration(x: float, v: float, inp: float, a: float, b: float,
     quadratic : bool
         (6.3) instead of (6.2).
     """
-    damp = b_quadratic * v * abs(v) if quadratic else b * v
+    damp = quadratic_drag(b_quadratic, v) if quadratic else b * v
     return (inp - x - damp) / a
 
 

@@ -47,7 +47,8 @@ The one law in the forms its callers need (every model, plant and baseline calls
 * :func:`line_drag_kernel`: value on an element and Jacobian with respect to the relative
   flow, as a stepping kernel needs them (its Newton matrix);
 * :func:`quadratic_drag`: the scalar law k |u| u (the axial models' tangential drag and
-  unit drag along the line);
+  unit drag along the line; the heave unit model's quadratic damping b_q |x'| x' of Huang
+  (1992) (6.3) in its plant, its identification and the nonlinear MPC's model);
 * point-body drag, the vector law -1/2 rho C_D S |u| u or per axis (Huang (1992) 5.2.2,
   the unit's drag (5.6)): :func:`point_drag` (CasADi), :func:`point_drag_jacobian`,
   :func:`point_drag_np` (numpy), with :func:`point_drag_error_bound`.
@@ -225,7 +226,11 @@ def quadratic_drag(k: Any, u: Any, delta: float = 0.0) -> Any:
     delta : float
         Smoothing velocity, m/s (0 = exact).
     """
-    mod = ca.fabs(u) if delta == 0.0 else smooth_abs(u, delta)
+    if delta != 0.0:
+        mod = smooth_abs(u, delta)
+    else:
+        # a float keeps Python's abs (a plant's inner loop), an expression CasADi's fabs
+        mod = abs(u) if isinstance(u, float) else ca.fabs(u)
     return k * mod * u
 
 
