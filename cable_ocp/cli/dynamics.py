@@ -182,7 +182,7 @@ def _write_netcdf(res: Any, path: str) -> None:
                 "node": np.arange(n_nodes), "element": np.arange(n_nodes - 1)},
         attrs={"model": res.model, "status": res.status, "message": res.message,
                "conventions": "z up; end_a = node 0 (unit), end_b = last node (ship)"})
-    ds.to_netcdf(path)
+    out.write_output("--netcdf", path, ds.to_netcdf)
 
 
 def _parse_lengths(text: str) -> np.ndarray:

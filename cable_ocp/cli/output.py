@@ -41,6 +41,7 @@ from typing import Any
 import numpy as np
 
 from cable_ocp.errors import CableOCPError
+from cable_ocp.numerics.atomic import replace_atomically, write_text_file
 from cable_ocp.numerics.jsonable import json_safe
 from cable_ocp.status import Status
 
@@ -278,14 +279,43 @@ def confirm(args: argparse.Namespace, path: str, what: str = "") -> None:
         print(f"wrote {path}" + (f" ({what})" if what else ""), file=sys.stderr)
 
 
-def _write(args: argparse.Namespace, path: str, text: str, what: str) -> None:
-    """``text`` to stdout (``path`` ``"-"``, no confirmation) or to the file ``path``,
-    confirmed (:func:`confirm`) as ``what``."""
+def write_output(option: str, path: str, write: Callable[[str], Any]) -> None:
+    """Write the output file ``path`` whole or not at all: ``write(tmp)`` on a temporary
+    file beside it, then a rename (:func:`cable_ocp.numerics.atomic.replace_atomically`).
+
+    Parameters
+    ----------
+    option : str
+        The option that named the file, for the message (e.g. ``"--json"``).
+    path : str
+        The file.
+    write : callable
+        ``write(tmp_path)`` writes the whole content to ``tmp_path``.
+
+    Raises
+    ------
+    CableOCPError
+        When the file cannot be written (a full disk, a file-size limit, a vanished
+        directory: CONVENTIONS "Exit codes", exit 2): naming the path and the reason; the
+        earlier file is kept and no partial file is left.
+    """
+    existed = Path(path).exists()
+    try:
+        replace_atomically(path, write)
+    except OSError as exc:
+        why = exc.strerror or str(exc) or type(exc).__name__
+        kept = "the earlier file is kept" if existed else "no file was written"
+        raise CableOCPError(f"{option} {path}: could not be written ({why}); {kept}") from exc
+
+
+def _write(args: argparse.Namespace, path: str, text: str, what: str, option: str) -> None:
+    """``text`` to stdout (``path`` ``"-"``, no confirmation) or to the file ``path``
+    (whole or not at all: :func:`write_output`), confirmed (:func:`confirm`) as ``what``."""
     if path == STDOUT:
         sys.stdout.write(text)
         sys.stdout.flush()
     else:
-        Path(path).write_text(text, encoding="utf-8")
+        write_output(option, path, lambda tmp: write_text_file(tmp, text))
         confirm(args, path, what)
 
 
@@ -306,7 +336,7 @@ def emit_json(args: argparse.Namespace, obj: dict[str, Any], path: str | None = 
     """
     path = path or args.json
     if path:
-        _write(args, path, json_text(obj) + "\n", "JSON")
+        _write(args, path, json_text(obj) + "\n", "JSON", "--json")
 
 
 def csv_text(header: Sequence[str], rows: Sequence[Sequence[Any]]) -> str:
@@ -350,7 +380,7 @@ def emit_csv(args: argparse.Namespace, header: Sequence[str], rows: Sequence[Seq
     """
     path = path or args.csv
     if path:
-        _write(args, path, csv_text(header, rows), "CSV")
+        _write(args, path, csv_text(header, rows), "CSV", "--csv")
 
 
 def emit_plot(args: argparse.Namespace, draw: Callable[[str], Any],
@@ -371,7 +401,7 @@ def emit_plot(args: argparse.Namespace, draw: Callable[[str], Any],
     path = path or args.plot
     if not path:
         return
-    draw(path)
+    write_output("--plot", path, draw)
     confirm(args, path, "figure")
 
 

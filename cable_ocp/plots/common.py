@@ -19,6 +19,8 @@ from matplotlib.backends.backend_agg import FigureCanvasAgg
 from matplotlib.figure import Figure
 from matplotlib.ticker import FuncFormatter
 
+from cable_ocp.numerics.atomic import replace_atomically
+
 #: resolution of saved raster figures, dots per inch
 DPI = 110
 
@@ -50,7 +52,8 @@ def save(fig: Figure, path: str | Path, dpi: int = DPI) -> Path:
         Resolution of raster formats, dots per inch (default :data:`DPI`).
     """
     path = Path(path)
-    fig.savefig(path, dpi=dpi)
+    # whole or not at all: a full disk keeps the earlier figure
+    replace_atomically(path, lambda tmp: fig.savefig(tmp, dpi=dpi))
     return path
 
 
