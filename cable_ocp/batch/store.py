@@ -10,12 +10,14 @@ rewritten in case order from the JSON lines, so it holds exactly one row per cas
 from __future__ import annotations
 
 import csv
+import io
 import json
 import math
 from pathlib import Path
 from typing import Any
 
 from cable_ocp.errors import CableOCPError
+from cable_ocp.numerics.atomic import write_text_atomically
 
 FIXED = ["case", "status", "message"]
 TAIL = ["wall_time [s]", "case_id"]
@@ -69,8 +71,7 @@ class Store:
                 "to continue that batch, --overwrite to replace it, or another --out")
         if not (resume and self.jsonl_path.exists()):
             self.jsonl_path.write_text("", encoding="utf-8")
-        self.meta_path.write_text(json.dumps(meta, indent=2, default=str) + "\n",
-                                  encoding="utf-8")
+        write_text_atomically(self.meta_path, json.dumps(meta, indent=2, default=str) + "\n")
         self._jsonl = self.jsonl_path.open("a", encoding="utf-8")
         self.columns = meta["columns"]
         new_csv = not (resume and self.csv_path.exists())
@@ -99,7 +100,7 @@ class Store:
                     break  # a line cut short by the interruption: drop it and what follows
                 good.append(line if line.endswith("\n") else line + "\n")
                 self.done[row["case_id"]] = row
-        self.jsonl_path.write_text("".join(good), encoding="utf-8")
+        write_text_atomically(self.jsonl_path, "".join(good))
 
     def _cells(self, row: dict[str, Any]) -> list[Any]:
         return ["" if row.get(self._key(c)) is None else row.get(self._key(c))
@@ -122,11 +123,13 @@ class Store:
         """Close the files and rewrite the CSV in case order; returns the rows."""
         self.close()
         rows = sorted(self.done.values(), key=lambda r: r["case"])
-        with self.csv_path.open("w", newline="", encoding="utf-8") as fh:
-            w = csv.writer(fh)
-            w.writerow(self.columns)
-            for row in rows:
-                w.writerow(self._cells(row))
+        buf = io.StringIO()
+        w = csv.writer(buf)
+        w.writerow(self.columns)
+        for row in rows:
+            w.writerow(self._cells(row))
+        # whole or not at all: a full disk keeps the CSV the rows were appended to
+        write_text_atomically(self.csv_path, buf.getvalue())
         return rows
 
     def close(self) -> None:

@@ -25,6 +25,7 @@ from __future__ import annotations
 
 import argparse
 import csv
+import io
 import json
 import os
 import subprocess
@@ -44,6 +45,7 @@ from cable_ocp.bench.common import (
     reference_solution,
     timed_solve_cpu,
 )
+from cable_ocp.numerics.atomic import write_text_atomically
 from cable_ocp.scene import Scene, load_scene
 from cable_ocp.statics.line_solver import StaticsSolver
 from cable_ocp.statics.solver import solve
@@ -375,12 +377,13 @@ def write_csv(results: list[dict[str, Any]], path: str | Path) -> None:
     """
     keys = ["scene", "method", "resolution", "time_s", "cpu_s", "status", "force_error",
             "profile_error", "estimate_ratio"]
-    with Path(path).open("w", newline="") as fh:
-        w = csv.DictWriter(fh, fieldnames=keys)
-        w.writeheader()
-        for res in results:
-            for r in res["rows"]:
-                w.writerow({k: r.get(k) for k in keys})
+    buf = io.StringIO()
+    w = csv.DictWriter(buf, fieldnames=keys)
+    w.writeheader()
+    for res in results:
+        for r in res["rows"]:
+            w.writerow({k: r.get(k) for k in keys})
+    write_text_atomically(path, buf.getvalue())  # whole or not at all
 
 
 if __name__ == "__main__":  # the second process of :func:`_second_process`
