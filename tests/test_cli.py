@@ -80,3 +80,34 @@ def test_json_dash_is_stdout_for_every_command(problems, tmp_path, capsys, monke
     data = json.loads(capsys.readouterr().out)
     assert len(data["directions"]) == 4 and data["status"] in ("solved", "partial")
     assert not (tmp_path / "-").exists()
+
+
+@pytest.mark.parametrize("case", ["json-csv", "json-problem", "plot-json", "batch-out"])
+def test_colliding_outputs_are_refused_before_the_solve(problems, tmp_path, capsys,
+                                                        case: str) -> None:
+    """Two outputs onto one file, or an output onto the problem file, is an input error
+    (exit 2, one line naming both), found before anything runs or is written (issue 22,
+    item 6): `--json X --csv X`, `--json` onto the problem, a `--plot` that is the
+    `--json` through another spelling, `batch --out bb --json bb.jsonl`."""
+    import shutil
+
+    problem = tmp_path / "p.toml"
+    shutil.copy(problems / "dezoysa_sea_buggy.toml", problem)
+    before = problem.read_bytes()
+    x = tmp_path / "x.png"
+    argv = {"json-csv": ["solve", str(problem), "--json", str(x), "--csv", str(x)],
+            "json-problem": ["solve", str(problem), "--json", str(problem)],
+            "plot-json": ["solve", str(problem), "--json", str(x),
+                          "--plot", str(tmp_path / "." / "x.png")],
+            "batch-out": ["batch", str(problem), "--grid", "layout.psi0_deg=0,90",
+                          "--out", str(tmp_path / "bb"), "--json",
+                          str(tmp_path / "bb.jsonl"), "--workers", "1"]}[case]
+    rc = main(argv)
+    err = capsys.readouterr().err.strip().splitlines()
+    assert rc == 2 and len(err) == 1, err
+    assert "the same file as" in err[0] and "give each output its own file" in err[0]
+    first = {"json-csv": "--csv", "json-problem": "--json", "plot-json": "--plot",
+             "batch-out": "--out"}[case]
+    assert err[0].startswith(f"cable-ocp: error: {first} ")
+    assert problem.read_bytes() == before
+    assert sorted(p.name for p in tmp_path.iterdir()) == ["p.toml"]

@@ -87,9 +87,10 @@ def cmd_batch(args: argparse.Namespace) -> int:
     from cable_ocp.scene import apply_overrides, read_problem
     from cable_ocp.scene.heave import resolve_cable_scene
 
-    out.check_outputs(args)
-    for p in paths(args.out):
+    store = paths(args.out)
+    for p in store:
         out.check_output_path(str(p), "--out", allow_stdout=False)
+    out.check_outputs(args, [("--out", p) for p in store])
     if args.workers is not None and not 0 <= args.workers <= 1024:
         raise CableOCPError(f"--workers {args.workers}: give 0..1024")
     if args.chunk_size is not None and args.chunk_size < 1:

@@ -210,14 +210,39 @@ def check_output_path(path: str | None, option: str, *, allow_stdout: bool = Tru
                 f"file name ending in one of: {', '.join('.' + f for f in formats)}")
 
 
-def check_outputs(args: argparse.Namespace) -> None:
-    """Check every output option the command has (``json``, ``csv``, ``plot``)."""
+def check_outputs(args: argparse.Namespace,
+                  extra: Sequence[tuple[str, str | os.PathLike[str]]] = ()) -> None:
+    """Check every output option the command has (``json``, ``csv``, ``plot``, ``netcdf``)
+    and that no two outputs, and no output and the problem file (``file``), are one file.
+
+    Parameters
+    ----------
+    args : argparse.Namespace
+        The parsed command line.
+    extra : sequence of (str, path)
+        More outputs of the command, ``(option, path)`` (e.g. the batch store's files),
+        for the collision check.
+    """
     check_output_path(getattr(args, "json", None), "--json")
     check_output_path(getattr(args, "csv", None), "--csv")
     if getattr(args, "plot", None) is not None:
         check_output_path(args.plot, "--plot", allow_stdout=False, formats=plot_formats())
     if getattr(args, "json", None) == STDOUT and getattr(args, "csv", None) == STDOUT:
         raise CableOCPError("--json - and --csv -: only one output can go to stdout")
+    outputs = [(opt, getattr(args, opt.lstrip("-"), None))
+               for opt in ("--json", "--csv", "--plot", "--netcdf")] + list(extra)
+    seen: dict[str, str] = {}
+    problem = getattr(args, "file", None)
+    if isinstance(problem, str) and problem:
+        seen[os.path.realpath(problem)] = "the problem file"
+    for opt, path in outputs:
+        if path is None or str(path) == STDOUT:
+            continue
+        key = os.path.realpath(path)
+        if key in seen:
+            raise CableOCPError(f"{opt} {path}: the same file as {seen[key]}; give each "
+                                "output its own file")
+        seen[key] = f"{opt} {path}"
 
 
 def stdout_free(args: argparse.Namespace) -> bool:
