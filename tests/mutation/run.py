@@ -553,6 +553,11 @@ MUTATIONS: tuple[Mutation, ...] = (
              "np.diff(z), [0.0]])", ("tests/test_physics_laws.py",),
              "the first knot of a profile that starts above the seabed is not a kink (the "
              "current is constant below it)"),
+    Mutation("identify-quadratic-damping-unsigned", HEAVE_A, "cable_ocp/heave/identify.py",
+             'damp = b * s[1] if model == "linear" else quadratic_drag(b, s[1])',
+             'damp = b * s[1] if model == "linear" else b * s[1] * s[1]',
+             ("tests/heave/test_identify.py",),
+             "the identification's (6.3) model: b x'^2 instead of b |x'| x'"),
     Mutation("identify-rk4-third-stage-slip", "bookkeeping", "cable_ocp/heave/identify.py",
              "k3 = f(s + dt / 2 * k2, p, xm)", "k3 = f(s + dt / 2 * k1, p, xm)",
              ("tests/heave/test_identify.py::test_the_design_models_integrator_is_fourth_order",),
