@@ -111,3 +111,43 @@ def test_colliding_outputs_are_refused_before_the_solve(problems, tmp_path, caps
     assert err[0].startswith(f"cable-ocp: error: {first} ")
     assert problem.read_bytes() == before
     assert sorted(p.name for p in tmp_path.iterdir()) == ["p.toml"]
+
+
+def test_a_problem_that_is_not_a_regular_file_or_too_large_is_refused(problems, tmp_path,
+                                                                      capsys):
+    """A FIFO (directly, and as a heave scene's ``[unit] cable_scene``) would block the
+    open forever, /dev/zero read until memory runs out, an oversized file (17 MiB, sparse)
+    be read whole: each is exit 2 with one line (issue 22, item 6). An alarm of 30 s turns a
+    regression into a failure instead of a hang."""
+    import os
+    import signal
+
+    fifo = tmp_path / "fifo.toml"
+    os.mkfifo(fifo)
+    heave = tmp_path / "h.toml"
+    text = (problems / "heave" / "ex_6_3_6_cable.toml").read_text()
+    heave.write_text(text.replace('cable_scene = "../dynamics/line_6_3_6.toml"',
+                                  f'cable_scene = "{fifo}"'))
+    big = tmp_path / "big.toml"
+    with big.open("wb") as fh:
+        fh.truncate(17 * 2**20)
+    cases = [(["solve", str(fifo)], "is not a regular file"),
+             (["heave", str(heave)], "is not a regular file"),
+             (["solve", "/dev/zero"], "is not a regular file"),
+             (["solve", str(big)], "a problem file is at most 16 MiB")]
+
+    def hung(signum, frame):
+        raise TimeoutError("the read blocked")
+
+    old = signal.signal(signal.SIGALRM, hung)
+    try:
+        for argv, words in cases:
+            signal.alarm(30)
+            rc = main([*argv, "--quiet"])
+            signal.alarm(0)
+            lines = capsys.readouterr().err.strip().splitlines()
+            assert rc == 2 and len(lines) == 1, (argv, lines)
+            assert words in lines[0], lines
+    finally:
+        signal.alarm(0)
+        signal.signal(signal.SIGALRM, old)

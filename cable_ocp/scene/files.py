@@ -10,6 +10,7 @@ given the wrong kind can say which command to use.
 from __future__ import annotations
 
 import copy
+import stat
 import tomllib
 from pathlib import Path
 from typing import Any
@@ -22,6 +23,9 @@ COMMANDS = {"statics": "cable-ocp solve", "heave": "cable-ocp heave",
 _HEAVE_TABLES = {"sea", "vessel", "winch", "controller"}
 _DYNAMICS_TABLES = {"top_motion", "simulation", "unit", "modes"}
 _STATICS_TABLES = {"environment", "cable", "end_a", "end_b"}
+#: the largest problem file read, bytes (the shipped ones are a few kB; a long top-motion
+#: series of 1e5 rows is about 4 MiB)
+MAX_PROBLEM_BYTES = 16 * 2**20
 
 
 def read_problem(path: str | Path) -> dict[str, Any]:
@@ -30,7 +34,8 @@ def read_problem(path: str | Path) -> dict[str, Any]:
     Raises
     ------
     CableOCPError
-        When the file is missing, a directory, unreadable, not UTF-8 or not valid TOML.
+        When the file is missing, a directory, not a regular file (a FIFO, a device),
+        larger than :data:`MAX_PROBLEM_BYTES`, unreadable, not UTF-8 or not valid TOML.
     """
     path = Path(path)
     name = str(path)
@@ -40,9 +45,24 @@ def read_problem(path: str | Path) -> dict[str, Any]:
         raise CableOCPError(f"problem file {name!r} is a directory: give a .toml file in it, "
                             "e.g. problems/dezoysa_sea_buggy.toml")
     try:
-        raw = path.read_bytes()
+        st = path.stat()
     except OSError as exc:
         raise CableOCPError(f"problem file {name!r} cannot be read: {exc.strerror}") from None
+    if not stat.S_ISREG(st.st_mode):
+        # a FIFO would block the open forever, a device (/dev/zero) read without end
+        raise CableOCPError(f"problem file {name!r} is not a regular file (a pipe, a device "
+                            "or a socket); give a .toml file")
+    if st.st_size > MAX_PROBLEM_BYTES:
+        raise CableOCPError(f"problem file {name!r} is {st.st_size} bytes; a problem file is at "
+                            f"most {MAX_PROBLEM_BYTES // 2**20} MiB of UTF-8 TOML")
+    try:
+        with path.open("rb") as fh:
+            raw = fh.read(MAX_PROBLEM_BYTES + 1)
+    except OSError as exc:
+        raise CableOCPError(f"problem file {name!r} cannot be read: {exc.strerror}") from None
+    if len(raw) > MAX_PROBLEM_BYTES:  # grew while it was read
+        raise CableOCPError(f"problem file {name!r} is larger than "
+                            f"{MAX_PROBLEM_BYTES // 2**20} MiB; a problem file is UTF-8 TOML")
     try:
         text = raw.decode("utf-8")
     except UnicodeDecodeError as exc:
