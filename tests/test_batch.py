@@ -474,3 +474,20 @@ def test_guided_chunks_end_at_grid_blocks() -> None:
     # without a grid (random samples: every key changes every case) the plain guided sizes
     rand = [Case(i, {"a": float(i), "b": float(-i)}) for i in range(200)]
     assert [len(c) for c in _chunks(rand, 2, None)][:3] == [50, 38, 28]
+
+
+@pytest.mark.parametrize("spec", ["uniform(-1e308,1e308)", "lognormal(700,10)",
+                                  "normal(1e308,1e308)"])
+def test_random_draws_that_overflow_a_float_are_an_input_error(spec: str) -> None:
+    """``uniform(-1e308,1e308)`` made numpy raise OverflowError (exit 3); a lognormal or
+    normal whose draws overflow gave inf into a case. Each is the user's input: one
+    CableOCPError naming the key (issue 22, item 6). The bounds: 1e308 - (-1e308) = 2e308 >
+    the largest float 1.8e308; exp(700 + 10 z) overflows beyond z = 0.97."""
+    from cable_ocp.batch.cases import build_cases, parse_random
+    from cable_ocp.errors import CableOCPError
+
+    with pytest.raises(CableOCPError, match="environment.current.speed"):
+        build_cases(samples=20, randoms=[parse_random(f"environment.current.speed={spec}")])
+    ok = build_cases(samples=20, randoms=[parse_random("environment.current.speed="
+                                                       "uniform(-1e307,1e307)")])
+    assert all(abs(c.overrides["environment.current.speed"]) <= 1e307 for c in ok)

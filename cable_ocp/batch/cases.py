@@ -115,6 +115,9 @@ def parse_random(text: str) -> tuple[str, str, tuple[float, float]]:
         raise CableOCPError(f"--random {text!r}: the parameters must be finite")
     if dist == "uniform" and not a < b:
         raise CableOCPError(f"--random {text!r}: uniform(low, high) needs low < high")
+    if dist == "uniform" and not math.isfinite(b - a):
+        raise CableOCPError(f"--random {text!r}: uniform(low, high) needs high - low to be a "
+                            "finite number (at most about 1.8e308)")
     if dist in ("normal", "lognormal") and not b > 0:
         raise CableOCPError(f"--random {text!r}: {dist}(.., spread) needs a spread > 0")
     return m.group(1), dist, (a, b)
@@ -189,6 +192,10 @@ def build_cases(grids: list[tuple[str, list[Any]]] | None = None,
             for key, dist, (a, b) in randoms:
                 x = (rng.uniform(a, b) if dist == "uniform" else rng.normal(a, b)
                      if dist == "normal" else rng.lognormal(a, b))
+                if not math.isfinite(x):  # e.g. lognormal(700, 10) or normal(1e308, 1e308)
+                    raise CableOCPError(
+                        f"--random {key}={dist}({a:g},{b:g}): a draw is not a finite number "
+                        f"({x}); give parameters whose draws fit a float")
                 d[key] = float(x)
             draws.append(d)
         # samples sorted along the first random key: neighbours are close (warm starts)
