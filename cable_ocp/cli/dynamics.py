@@ -202,7 +202,7 @@ def _parse_lengths(text: str) -> np.ndarray:
 def cmd_modes(args: argparse.Namespace) -> int:
     """``cable-ocp modes FILE``."""
     from cable_ocp import report
-    from cable_ocp.dynamics.modes import modes
+    from cable_ocp.dynamics.modes import at_length, modes
 
     out.check_outputs(args)
     if args.count is not None and not 1 <= args.count <= 200:
@@ -212,6 +212,8 @@ def cmd_modes(args: argparse.Namespace) -> int:
     out.check_cost(args, dynamics_cost(scene, lengths=1 if lengths is None else len(lengths)))
     title = scene.statics.meta.get("title", Path(args.file).stem)
     if lengths is not None:
+        for length in (lengths.min(), lengths.max()):  # the bounds, before the plan line
+            at_length(scene, float(length))
         out.note(args, f"modes: {len(lengths)} lengths, one static solve and eigenproblem "
                        "each ...")
     res = modes(scene, args.count, lengths)

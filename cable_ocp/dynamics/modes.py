@@ -20,11 +20,25 @@ from cable_ocp.dynamics.result import DeploymentChart, ModesResult
 from cable_ocp.errors import CableOCPError
 from cable_ocp.scene.dynamics import DynamicScene, load_dynamic_scene
 
-__all__ = ["modes"]
+__all__ = ["at_length", "modes"]
 
-def _at_length(scene: DynamicScene, length: float) -> DynamicScene:
+def at_length(scene: DynamicScene, length: float) -> DynamicScene:
     """The scene with the unstretched length set to ``length`` (m); a multi-segment line
-    changes its top segment (where pay-out happens)."""
+    changes its top segment (where pay-out happens).
+
+    Parameters
+    ----------
+    scene : DynamicScene
+        The scene.
+    length : float
+        The unstretched length of the whole line, m.
+
+    Raises
+    ------
+    CableOCPError
+        When the length is out of the scene's bounds or not longer than the segments below
+        the top one.
+    """
     st = scene.statics
     if st.segments:
         top = len(st.segments) - 1
@@ -84,7 +98,7 @@ def modes(scene: DynamicScene | str | Path, count: int | None = None,
     freqs = np.full((lengths.size, int(count)), np.nan)
     failed = []
     for i, length in enumerate(lengths):
-        res = fn(_at_length(scene, float(length)), int(count))
+        res = fn(at_length(scene, float(length)), int(count))
         if res.status != "solved":
             failed.append((float(length), res.message))
             continue

@@ -92,3 +92,16 @@ def test_a_run_that_would_take_hours_is_refused_before_any_work(
     for path in sorted((ROOT / "problems" / "dynamics").glob("*.toml")):
         cost = dynamics_cost(load_dynamic_scene(path))
         assert not cost.too_much, (path.name, cost.describe())
+
+
+def test_modes_lengths_out_of_bounds_is_one_line_before_the_plan(problems, capsys) -> None:
+    """``modes --lengths`` whose longest length is outside ``cable.length``'s bounds is an
+    input error found before the plan line: exactly one line on stderr, exit 2 (issue 22,
+    item 6: the plan line came first, two lines)."""
+    from cable_ocp.cli import main
+
+    rc = main(["modes", str(problems / "dynamics" / "huang_3_3_5.toml"), "--lengths",
+               "100:1e9:15"])
+    err = capsys.readouterr().err.strip().splitlines()
+    assert rc == 2 and len(err) == 1, err
+    assert err[0].startswith("cable-ocp: error: cable.length = 1000000000.0")
