@@ -12,6 +12,14 @@ The compiler is ``$CC`` (it may carry words, e.g. "ccache gcc"), else ``cc`` or 
 
 Every failure (no compiler, a folder that cannot be written, the compiler or the loading
 failing) falls back to the interpreted function, silently.
+
+A library that loads can still be damaged (truncated by a full disk, a flipped bit, another
+structure's library under this name), and loading it can crash the process (SIGBUS,
+SIGSEGV). So every library is written with a record beside it (``LIB.sha256``: its SHA-256
+and its own file name), after the compiler's output was checked to be a complete ELF file
+(its section headers, the last part the linker writes, inside the file), and a library is
+loaded only when its record matches it (:func:`library_ok`); otherwise it and its record
+are removed and it is built again (:func:`install_library`, :func:`forget_library`).
 """
 
 from __future__ import annotations
@@ -21,13 +29,16 @@ import hashlib
 import os
 import shlex
 import shutil
+import struct
 import subprocess
+import sys
 import tempfile
 from collections.abc import Callable
 
 import casadi as ca
 
-__all__ = ["cache_dir", "c_compiler", "compile_function", "compile_functions", "is_compiled"]
+__all__ = ["cache_dir", "c_compiler", "compile_function", "compile_functions", "forget_library",
+           "install_library", "is_compiled", "library_ok"]
 
 #: values of ``CABLE_OCP_CACHE`` that turn the compilation to C off
 CACHE_OFF = ("0", "off", "false", "no")
@@ -75,6 +86,102 @@ def _library(cache: str, name: str, digest: str) -> str:
     return os.path.join(cache, f"{name}_{digest}.so")
 
 
+def _record(lib: str) -> str:
+    return lib + ".sha256"
+
+
+def _sha256(path: str) -> str:
+    h = hashlib.sha256()
+    with open(path, "rb") as fh:
+        for block in iter(lambda: fh.read(1 << 20), b""):
+            h.update(block)
+    return h.hexdigest()
+
+
+def _elf_complete(path: str) -> bool:
+    """True when ``path`` is an ELF file whose section header table (written last by the
+    linker) lies inside the file; off Linux, any non-ELF file passes (other formats)."""
+    try:
+        with open(path, "rb") as fh:
+            head = fh.read(64)
+            size = os.fstat(fh.fileno()).st_size
+    except OSError:
+        return False
+    if head[:4] != b"\x7fELF":
+        return not sys.platform.startswith("linux") and size > 0
+    if len(head) < 52 or head[4] not in (1, 2) or head[5] not in (1, 2):
+        return False
+    end = "<" if head[5] == 1 else ">"
+    if head[4] == 2:  # 64-bit
+        if len(head) < 64:
+            return False
+        shoff, = struct.unpack_from(end + "Q", head, 0x28)
+        shentsize, shnum = struct.unpack_from(end + "HH", head, 0x3A)
+    else:
+        shoff, = struct.unpack_from(end + "I", head, 0x20)
+        shentsize, shnum = struct.unpack_from(end + "HH", head, 0x2E)
+    return shnum > 0 and shoff + shentsize * shnum <= size
+
+
+def library_ok(lib: str) -> bool:
+    """True when the library ``lib`` exists and matches its record (its SHA-256 and its
+    name in ``lib.sha256``): only then may it be loaded.
+
+    Parameters
+    ----------
+    lib : str
+        Path of the shared library.
+    """
+    try:
+        with open(_record(lib), encoding="ascii") as fh:
+            recorded = fh.read().split()
+        return (len(recorded) == 2 and recorded[1] == os.path.basename(lib)
+                and _elf_complete(lib) and recorded[0] == _sha256(lib))
+    except (OSError, UnicodeDecodeError):
+        return False
+
+
+def forget_library(lib: str) -> None:
+    """Remove the library ``lib`` and its record (what does not exist is skipped).
+
+    Parameters
+    ----------
+    lib : str
+        Path of the shared library.
+    """
+    for path in (lib, _record(lib)):
+        with contextlib.suppress(OSError):
+            os.remove(path)
+
+
+def install_library(part: str, lib: str) -> None:
+    """Check the freshly written library ``part`` (a complete ELF file), record its digest
+    beside ``lib`` and rename it onto ``lib``. Raises ``OSError`` when ``part`` is
+    incomplete (e.g. a compiler that exited 0 on a full disk with a file 8 bytes short) or
+    the record cannot be written; ``lib`` is then not installed.
+
+    Parameters
+    ----------
+    part : str
+        The written library, in the directory of ``lib``.
+    lib : str
+        Where it goes.
+    """
+    if not _elf_complete(part):
+        raise OSError(f"{part}: the compiler's output is not a complete shared library")
+    tmp = _record(lib) + f".{os.getpid()}.tmp"
+    try:
+        with open(tmp, "w", encoding="ascii") as fh:
+            fh.write(f"{_sha256(part)} {os.path.basename(lib)}\n")
+            fh.flush()
+            os.fsync(fh.fileno())
+        os.replace(tmp, _record(lib))
+    finally:
+        with contextlib.suppress(OSError):
+            os.remove(tmp)
+    os.replace(part, lib)
+
+
 def _build_library(fns: list[ca.Function], name: str, cache: str, cc: list[str], opt: str,
                    lib: str | None = None) -> str:
     """Generate the C code of ``fns`` as one file, compile it into ``lib`` (default: named
@@ -93,7 +200,8 @@ def _build_library(fns: list[ca.Function], name: str, cache: str, cc: list[str],
                                         + opt.encode()).hexdigest()[:16]
             lib = _library(cache, name, digest)
         os.makedirs(cache, exist_ok=True)
-        if not os.path.exists(lib):
+        if not library_ok(lib):
+            forget_library(lib)
             compile_shared(cc, opt, src, lib)
         return lib
     finally:
@@ -103,9 +211,10 @@ def _build_library(fns: list[ca.Function], name: str, cache: str, cc: list[str],
 def compile_shared(cc: list[str], opt: str, src: str, lib: str, timeout: float = 600.0
                    ) -> None:
     """Compile the C file ``src`` into the shared library ``lib`` with ``cc`` and ``opt``,
-    atomically: into a file of this process, then renamed, so that another process never
-    loads a half-written library (and a failed compile leaves nothing). Raises on any
-    failure (the compiler's error, a timeout in seconds).
+    atomically: into a file of this process, checked and recorded
+    (:func:`install_library`), then renamed, so that another process never loads a
+    half-written library (and a failed compile leaves nothing). Raises on any failure (the
+    compiler's error, an incomplete output, a timeout in seconds).
 
     Parameters
     ----------
@@ -126,7 +235,7 @@ def compile_shared(cc: list[str], opt: str, src: str, lib: str, timeout: float =
         subprocess.run([*cc, opt, "-fPIC", "-shared", src, "-o", part, "-lm"],
                        check=True, capture_output=True, timeout=timeout,
                        stdin=subprocess.DEVNULL)
-        os.replace(part, lib)
+        install_library(part, lib)
     finally:
         if os.path.exists(part):
             os.remove(part)
@@ -173,12 +282,13 @@ def compile_function(fn: ca.Function | Callable[[], ca.Function], opt: str = "-O
         digest = hashlib.sha256((key + "\0" + fname + "\0" + ca.__version__ + "\0" + opt
                                  ).encode()).hexdigest()[:16]
         lib = _library(cache, fname, digest)
-        if os.path.exists(lib):
+        if library_ok(lib):
             try:
                 return ca.external(fname, lib)
             except Exception:  # noqa: BLE001 - a broken library: compile it again
-                with contextlib.suppress(OSError):
-                    os.remove(lib)
+                forget_library(lib)
+        else:
+            forget_library(lib)  # damaged, foreign or without its record: never loaded
     else:
         lib = None
     f = built()

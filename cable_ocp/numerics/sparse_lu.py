@@ -45,7 +45,14 @@ import numpy as np
 import scipy.sparse as sps
 import scipy.sparse.linalg as spl
 
-from cable_ocp.numerics.compile import c_compiler, cache_dir, compile_shared
+from cable_ocp.numerics.compile import (
+    c_compiler,
+    cache_dir,
+    compile_shared,
+    forget_library,
+    install_library,
+    library_ok,
+)
 
 #: SuperLU's threshold for keeping the diagonal as pivot in the analysis: a diagonal entry
 #: at least this fraction of the largest in its column is kept (1.0: partial pivoting);
@@ -199,19 +206,25 @@ def _load(folder: str, cc: tuple[str, ...]) -> ctypes.CDLL | None:
     digest = hashlib.sha256(_SOURCE.encode()).hexdigest()[:16]
     lib = os.path.join(folder, f"cable_ocp_sparse_lu_{digest}.so")
     try:
-        if os.path.exists(lib):
+        if library_ok(lib):  # only a library that matches its record is ever opened
             try:
                 dll = _open(lib)
                 _BUILT.append(lib)
                 return dll
             except (OSError, AttributeError):  # broken: built again below
-                os.remove(lib)
+                forget_library(lib)
+        else:
+            forget_library(lib)
         os.makedirs(folder, exist_ok=True)
-        made = [x for x in _BUILT if os.path.exists(x)]  # all of this one source
+        made = [x for x in _BUILT if library_ok(x)]  # all of this one source
         if made:  # already compiled in this process: a copy
             part = lib + f".{os.getpid()}.tmp"
-            shutil.copyfile(made[-1], part)
-            os.replace(part, lib)
+            try:
+                shutil.copyfile(made[-1], part)
+                install_library(part, lib)
+            finally:
+                if os.path.exists(part):
+                    os.remove(part)
         else:
             with tempfile.TemporaryDirectory(prefix="cable_ocp_") as tmp:
                 src = os.path.join(tmp, "sparse_lu.c")
