@@ -2,21 +2,22 @@
 codes": an output that cannot be written, e.g. a full disk, found after the solve: exit 2,
 the earlier file is kept).
 
-The fault is real, not mocked: the command runs in a subprocess under a file-size limit
-(``RLIMIT_FSIZE`` of 2000 bytes, ``SIGXFSZ`` ignored), so that the kernel fails the write
-past 2000 bytes with ``EFBIG`` exactly as a full disk fails it with ``ENOSPC`` (the same
-``OSError`` path). Before the fix ``--json`` truncated the earlier file in place, left 2000
-bytes of JSON and exited 3 ("internal error: OSError").
+The fault is real, not mocked: the command runs under a file-size limit (the soft
+``RLIMIT_FSIZE`` of this process lowered to 2000 bytes for the run, ``SIGXFSZ`` ignored),
+so that the kernel fails the write past 2000 bytes with ``EFBIG`` exactly as a full disk
+fails it with ``ENOSPC`` (the same ``OSError`` path). Before the fix ``--json`` truncated
+the earlier file in place, left 2000 bytes of JSON and exited 3 ("internal error:
+OSError").
 """
 
 from __future__ import annotations
 
+import contextlib
 import os
 import resource
 import signal
 import stat
-import subprocess
-import sys
+from collections.abc import Iterator
 from pathlib import Path
 
 import pytest
@@ -28,56 +29,64 @@ PROBLEM = ROOT / "problems" / "dezoysa_sea_buggy.toml"
 LIMIT = 2000  # bytes: the solve's JSON, CSV and figure are each larger
 
 
-def _limited() -> None:
-    signal.signal(signal.SIGXFSZ, signal.SIG_IGN)
-    resource.setrlimit(resource.RLIMIT_FSIZE, (LIMIT, LIMIT))
-
-
 @pytest.fixture(scope="module")
-def warm_cache(tmp_path_factory: pytest.TempPathFactory) -> tuple[Path, Path]:
-    """A cache the problem's functions are already in, so that the limited runs write only
-    their output: made by the control run of :func:`test_the_same_write_succeeds_without_the_limit`
-    (without the limit, ``--json`` onto an earlier file of mode 0640)."""
-    cache = tmp_path_factory.mktemp("cache")
+def control(tmp_path_factory: pytest.TempPathFactory) -> Path:
+    """The control run, in this process without the limit: ``--json`` onto an earlier file
+    of mode 0640 (it also warms this process's functions, so that the limited runs below
+    write only their output)."""
+    from cable_ocp.cli import main
+
     work = tmp_path_factory.mktemp("control")
     target = work / "out.json"
     target.write_text("EARLIER\n")
     target.chmod(0o640)
-    env = {**os.environ, "CABLE_OCP_CACHE_DIR": str(cache)}
-    r = subprocess.run([sys.executable, "-m", "cable_ocp", "solve", str(PROBLEM), "--json",
-                        "out.json", "--quiet"], env=env, capture_output=True, text=True, cwd=work)
-    assert r.returncode == 0, r.stderr
-    return cache, target
+    assert main(["solve", str(PROBLEM), "--json", str(target), "--quiet"]) == 0
+    return target
+
+
+@contextlib.contextmanager
+def _file_size_limit(limit: int) -> Iterator[None]:
+    """This process's writes fail past ``limit`` bytes (EFBIG, SIGXFSZ ignored) inside the
+    block: the soft limit only, restored after."""
+    soft, hard = resource.getrlimit(resource.RLIMIT_FSIZE)
+    old = signal.signal(signal.SIGXFSZ, signal.SIG_IGN)
+    resource.setrlimit(resource.RLIMIT_FSIZE, (limit, hard))
+    try:
+        yield
+    finally:
+        resource.setrlimit(resource.RLIMIT_FSIZE, (soft, hard))
+        signal.signal(signal.SIGXFSZ, old)
 
 
 @pytest.mark.parametrize("option,name", [("--json", "out.json"), ("--csv", "out.csv"),
                                          ("--plot", "out.png")])
 def test_a_failed_write_keeps_the_earlier_file_and_exits_2(
-        tmp_path: Path, warm_cache: tuple[Path, Path], option: str, name: str) -> None:
+        tmp_path: Path, control: Path, capsys: pytest.CaptureFixture[str], option: str,
+        name: str) -> None:
+    from cable_ocp.cli import main
+
     target = tmp_path / name
     target.write_text("EARLIER\n")
-    env = {**os.environ, "CABLE_OCP_CACHE_DIR": str(warm_cache[0]), "MPLBACKEND": "Agg"}
-    r = subprocess.run([sys.executable, "-m", "cable_ocp", "solve", str(PROBLEM), option,
-                        name, "--quiet"], env=env, capture_output=True, text=True,
-                       cwd=tmp_path, preexec_fn=_limited)
-    assert r.returncode == 2, r.stderr
-    lines = r.stderr.strip().splitlines()
-    assert lines == [f"cable-ocp: error: {option} {name}: could not be written (File too "
+    capsys.readouterr()
+    with _file_size_limit(LIMIT):
+        rc = main(["solve", str(PROBLEM), option, str(target), "--quiet"])
+    lines = capsys.readouterr().err.strip().splitlines()
+    assert rc == 2, lines
+    assert lines == [f"cable-ocp: error: {option} {target}: could not be written (File too "
                      "large); the earlier file is kept"]
     assert target.read_text() == "EARLIER\n"
     assert [p.name for p in tmp_path.iterdir()] == [name]
 
 
-def test_the_same_write_succeeds_without_the_limit(warm_cache: tuple[Path, Path]) -> None:
+def test_the_same_write_succeeds_without_the_limit(control: Path) -> None:
     """The control: the same command without the limit replaced the earlier file whole
     (valid JSON, larger than the limit), kept its permissions and left no other file."""
     import json
 
-    target = warm_cache[1]
-    assert json.loads(target.read_text())["status"] == "solved"
-    assert target.stat().st_size > LIMIT
-    assert stat.S_IMODE(target.stat().st_mode) == 0o640
-    assert [p.name for p in target.parent.iterdir()] == ["out.json"]
+    assert json.loads(control.read_text())["status"] == "solved"
+    assert control.stat().st_size > LIMIT
+    assert stat.S_IMODE(control.stat().st_mode) == 0o640
+    assert [p.name for p in control.parent.iterdir()] == ["out.json"]
 
 
 def test_replace_atomically_on_failure_and_interruption(tmp_path: Path) -> None:
