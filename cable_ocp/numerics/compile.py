@@ -37,6 +37,8 @@ from collections.abc import Callable
 
 import casadi as ca
 
+from cable_ocp.numerics.atomic import write_text_atomically
+
 __all__ = ["cache_dir", "c_compiler", "compile_function", "compile_functions", "forget_library",
            "install_library", "is_compiled", "library_ok"]
 
@@ -169,16 +171,7 @@ def install_library(part: str, lib: str) -> None:
     """
     if not _elf_complete(part):
         raise OSError(f"{part}: the compiler's output is not a complete shared library")
-    tmp = _record(lib) + f".{os.getpid()}.tmp"
-    try:
-        with open(tmp, "w", encoding="ascii") as fh:
-            fh.write(f"{_sha256(part)} {os.path.basename(lib)}\n")
-            fh.flush()
-            os.fsync(fh.fileno())
-        os.replace(tmp, _record(lib))
-    finally:
-        with contextlib.suppress(OSError):
-            os.remove(tmp)
+    write_text_atomically(_record(lib), f"{_sha256(part)} {os.path.basename(lib)}\n")
     os.replace(part, lib)
 
 
