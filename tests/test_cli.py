@@ -151,3 +151,31 @@ def test_a_problem_that_is_not_a_regular_file_or_too_large_is_refused(problems, 
     finally:
         signal.alarm(0)
         signal.signal(signal.SIGALRM, old)
+
+
+@pytest.mark.parametrize("command", ["heave", "batch"])
+def test_an_output_onto_the_cable_scene_is_refused(problems, tmp_path, capsys,
+                                                   command: str) -> None:
+    """An output onto the dynamic scene that the problem file's `[unit] cable_scene` names
+    (an input too) is refused, exit 2 with one line naming it, and the scene is untouched."""
+    import re
+    import shutil
+
+    src = problems / "heave" / "ex_6_3_6_cable.toml"
+    text = src.read_text()
+    name = re.search(r'cable_scene\s*=\s*"([^"]+)"', text).group(1)
+    shutil.copy((src.parent / name).resolve(), tmp_path / "cable.toml")
+    problem = tmp_path / "h.toml"
+    problem.write_text(text.replace(f'"{name}"', '"cable.toml"'))
+    scene = tmp_path / "cable.toml"
+    before = scene.read_bytes()
+    argv = {"heave": ["heave", str(problem), "--json", str(scene)],
+            "batch": ["batch", str(problem), "--grid", "simulation.duration=1,2",
+                      "--out", str(tmp_path / "bb"), "--json", str(scene), "--workers", "0"]}
+    rc = main(argv[command])
+    err = capsys.readouterr().err.strip().splitlines()
+    assert rc == 2 and len(err) == 1, err
+    assert err[0].startswith(f"cable-ocp: error: --json {scene}: the same file as the input "
+                             "[unit] cable_scene"), err[0]
+    assert scene.read_bytes() == before
+    assert sorted(p.name for p in tmp_path.iterdir()) == ["cable.toml", "h.toml"]

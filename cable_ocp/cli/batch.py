@@ -107,6 +107,11 @@ def cmd_batch(args: argparse.Namespace) -> int:
     data = apply_overrides(read_problem(args.file), out.overrides(args))
     # a heave scene's relative [unit] cable_scene is read from the problem file's folder
     data = resolve_cable_scene(data, Path(args.file).parent)
+    unit = data.get("unit")
+    scene_file = unit.get("cable_scene") if isinstance(unit, dict) else None
+    out.check_outputs(args, [("--out", p) for p in store],
+                      inputs=[("[unit] cable_scene", scene_file)] if isinstance(scene_file, str)
+                      else [])
     failures = 0
     with out.progress(args, 1, "batch", "case") as bar:
         def step(done: int, total: int, row: dict[str, Any]) -> None:

@@ -69,6 +69,7 @@ def cmd_heave(args: argparse.Namespace) -> int:
 
     out.check_outputs(args)
     sc = load_scene(args.file, _overrides(args))
+    out.check_outputs(args, inputs=[("[unit] cable_scene", sc.unit.cable_scene)])
     out.check_cost(args, heave_cost(sc))
     with out.progress(args, 1, "heave simulation", "sample") as bar:
         res = compare(sc, progress=lambda done, total, _: bar(done, total))

@@ -211,9 +211,11 @@ def check_output_path(path: str | None, option: str, *, allow_stdout: bool = Tru
 
 
 def check_outputs(args: argparse.Namespace,
-                  extra: Sequence[tuple[str, str | os.PathLike[str]]] = ()) -> None:
+                  extra: Sequence[tuple[str, str | os.PathLike[str]]] = (),
+                  inputs: Sequence[tuple[str, str | os.PathLike[str] | None]] = ()) -> None:
     """Check every output option the command has (``json``, ``csv``, ``plot``, ``netcdf``)
-    and that no two outputs, and no output and the problem file (``file``), are one file.
+    and that no two outputs, and no output and an input (the problem file ``file``, and
+    ``inputs``), are one file.
 
     Parameters
     ----------
@@ -222,6 +224,9 @@ def check_outputs(args: argparse.Namespace,
     extra : sequence of (str, path)
         More outputs of the command, ``(option, path)`` (e.g. the batch store's files),
         for the collision check.
+    inputs : sequence of (str, path or None)
+        More files the command reads, ``(what, path)`` (e.g. ``("[unit] cable_scene",
+        path)``); None paths are skipped.
     """
     check_output_path(getattr(args, "json", None), "--json")
     check_output_path(getattr(args, "csv", None), "--csv")
@@ -235,6 +240,9 @@ def check_outputs(args: argparse.Namespace,
     problem = getattr(args, "file", None)
     if isinstance(problem, str) and problem:
         seen[os.path.realpath(problem)] = "the problem file"
+    for what, path in inputs:
+        if path is not None:
+            seen.setdefault(os.path.realpath(path), f"the input {what} {path}")
     for opt, path in outputs:
         if path is None or str(path) == STDOUT:
             continue
