@@ -36,10 +36,11 @@ import hashlib
 import importlib.metadata
 import json
 import os
-import tempfile
 from pathlib import Path
 
 import casadi as ca
+
+from cable_ocp.numerics.atomic import replace_atomically
 
 #: bump when the layout of an entry or the meaning of the stored functions changes
 FORMAT = 1
@@ -182,20 +183,13 @@ def save(structure: str, role: str, functions: dict[str, ca.Function]) -> bool:
                          "bytes": len(payload),
                          "sha256": hashlib.sha256(payload).hexdigest()})
     path = _path(folder, key, role)
-    tmp = None
+    content = header.encode("utf-8") + b"\n" + payload
     try:
         folder.mkdir(parents=True, exist_ok=True)
-        fd, tmp = tempfile.mkstemp(prefix=".tmp-", suffix=SUFFIX, dir=folder)
-        with os.fdopen(fd, "wb") as fh:
-            fh.write(header.encode("utf-8") + b"\n" + payload)
-        os.replace(tmp, path)
-        tmp = None
+        # not flushed to the disk: a cut entry fails its length or checksum and is rebuilt
+        replace_atomically(path, lambda tmp: Path(tmp).write_bytes(content))
     except OSError:
         return False
-    finally:
-        if tmp is not None:
-            with contextlib.suppress(OSError):
-                os.unlink(tmp)
     _evict(folder)
     return True
 
