@@ -267,14 +267,16 @@ def series(ax: Axes, t: np.ndarray, y: np.ndarray, label: str = "", color: Any =
         (line,) = ax.plot(t, y, color=color, lw=lw, ls=ls, label=label, gid="series")
         return Series(line, line, None)
     starts = envelope_windows(len(t), max(1, int(width_px / PIXELS_PER_WINDOW)))
-    lo = np.fmin.reduceat(y, starts[:-1])  # fmin/fmax skip NaN unless a window is all NaN
-    hi = np.fmax.reduceat(y, starts[:-1])
-    lo = np.fmin(lo, y[starts[1:]])  # the boundary sample belongs to both windows
+    # window k: samples starts[k] .. starts[k + 1] - 1 (reduceat over y[:-1]), and its end
+    # sample starts[k + 1], shared with the next window
+    lo = np.fmin.reduceat(y[:-1], starts[:-1])  # fmin/fmax skip NaN (unless all are NaN)
+    hi = np.fmax.reduceat(y[:-1], starts[:-1])
+    lo = np.fmin(lo, y[starts[1:]])
     hi = np.fmax(hi, y[starts[1:]])
     ok = np.isfinite(y)
     yz = np.where(ok, y, 0.0)
-    total = np.add.reduceat(yz, starts[:-1]) + yz[starts[1:]]
-    count = np.add.reduceat(ok.astype(float), starts[:-1]) + ok[starts[1:]]
+    total = np.add.reduceat(yz[:-1], starts[:-1]) + yz[starts[1:]]
+    count = np.add.reduceat(ok[:-1].astype(float), starts[:-1]) + ok[starts[1:]]
     with np.errstate(invalid="ignore", divide="ignore"):
         mean = np.where(count > 0, total / count, np.nan)
     edges = np.column_stack([t[starts[:-1]], t[starts[1:]]]).ravel()
