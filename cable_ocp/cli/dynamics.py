@@ -103,10 +103,11 @@ def cmd_simulate(args: argparse.Namespace) -> int:
             rows += [("simulated", "nothing")]
         else:
             rows += _series_rows(res, t)
-        rows += [("WARNING", w) for w in res.warnings]
         width = max(len(k) for k, _ in rows)
         print(title)
         print("\n".join(f"{k:<{width}}  {v}" for k, v in rows))
+    for w in res.warnings:  # the result's warnings, one line each on stderr
+        out.warn(w)
     out.emit_json(args, out.envelope(res.status, res.message, data, res.warnings))
     empty = len(res.t) == 0
     if empty and (args.csv or args.netcdf or args.plot):

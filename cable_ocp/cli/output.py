@@ -452,6 +452,12 @@ def say(args: argparse.Namespace, text: str) -> None:
         print(text)
 
 
+def warn(text: str) -> None:
+    """One warning line on stderr, ``warning: TEXT`` (also with ``--quiet``: a warning is
+    not a progress report or a confirmation)."""
+    print(f"warning: {' '.join(text.split())}", file=sys.stderr)
+
+
 def note(args: argparse.Namespace, text: str) -> None:
     """A remark on stderr (not with ``--quiet``).
 

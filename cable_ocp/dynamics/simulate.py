@@ -6,6 +6,7 @@
 from __future__ import annotations
 
 from collections.abc import Callable
+from dataclasses import replace
 from pathlib import Path
 from typing import Any
 
@@ -13,7 +14,7 @@ from cable_ocp.dynamics.model import model_for
 from cable_ocp.dynamics.result import SimulationResult
 from cable_ocp.scene.dynamics import DynamicScene, load_dynamic_scene
 
-__all__ = ["Progress", "simulate"]
+__all__ = ["Progress", "excitation", "simulate"]
 
 #: progress(done, total): called a bounded number of times (about once per chunk of steps)
 Progress = Callable[[int, int], None]
@@ -39,7 +40,9 @@ def simulate(scene: DynamicScene | str | Path, progress: Progress | None = None,
     -------
     SimulationResult
         Its ``status`` says whether the run is usable ("solved"), hit slack ("slack"), or
-        failed ("failed"); never raises on a numerical failure.
+        failed ("failed"); never raises on a numerical failure. A scene with nothing that
+        moves the line (:func:`excitation` empty) still runs, with a warning in
+        ``warnings`` (the status is unchanged) and ``diagnostics["excitation"]`` empty.
 
     Raises
     ------
@@ -50,4 +53,41 @@ def simulate(scene: DynamicScene | str | Path, progress: Progress | None = None,
         scene = load_dynamic_scene(scene, overrides)
     elif overrides:
         scene = scene.with_overrides(overrides)
-    return model_for(scene).simulate(progress)
+    res = model_for(scene).simulate(progress)
+    excited = excitation(scene)
+    warnings = list(res.warnings)
+    if not excited:
+        warnings.append(NO_EXCITATION.format(duration=scene.simulation.duration))
+    return replace(res, warnings=warnings,
+                   diagnostics={**res.diagnostics, "excitation": excited})
+
+
+#: the warning of a scene in which nothing moves the line
+NO_EXCITATION = ("nothing excites the line: no top motion, no pay-out, a static start; the "
+                 "{duration:g} s simulated stay at the static state (set [top_motion], "
+                 "e.g. heave_amplitude and heave_frequency)")
+
+
+def excitation(scene: DynamicScene) -> list[str]:
+    """What drives the line away from its static state: the names of the scene's active
+    excitations, empty when the run can only stay at rest.
+
+    ``"top motion"`` (end_b moves: heave, horizontal, circular, a tow or a series),
+    ``"pay-out"`` (the unstretched length changes) and ``"unstrained start"`` (the run
+    starts away from equilibrium). A steady current is not one: the static state
+    already balances it.
+
+    Parameters
+    ----------
+    scene : DynamicScene
+        The validated scene.
+    """
+    tm = scene.top_motion
+    out = []
+    if tm.moves:
+        out.append("top motion")
+    if tm.varying_length:
+        out.append("pay-out")
+    if scene.simulation.start != "static":
+        out.append("unstrained start")
+    return out

@@ -5,7 +5,8 @@ filter, the boom-tip and passive unit heave, the controlled unit heave (one stri
 controller, each on its own scale: the controlled heave is three orders of magnitude below
 the passive one), the running RMS of the unit heave on a log scale, the winch stroke and
 speed against their limits, and the trade-off curves. The simulation's warm-up, which the
-metrics leave out, is shaded. Panel titles say what is drawn in words and cite the thesis
+metrics leave out, is shaded. Long time series are drawn as envelopes (min..max per window,
+:func:`cable_ocp.plots.common.series`). Panel titles say what is drawn in words and cite the thesis
 figure it corresponds to, when the scene is one of the thesis' examples.
 """
 
@@ -27,6 +28,7 @@ from cable_ocp.plots.common import (
     new_figure,
     plain_log_ticks,
     save,
+    series,
     shade,
     wrap,
 )
@@ -181,12 +183,13 @@ def comparison_figure(res: Comparison, tradeoff: dict | None = None, scene: Any 
     # boom tip and passive unit heave
     ax = fig.add_subplot(gs[0, 1], label="passive")
     _time_axes(ax, t, warmup, handles)
-    handles += ax.plot(t, first.x0, lw=0.9, label="boom-tip heave x0", **BOOM_STYLE)
+    handles.append(series(ax, t, first.x0, lw=0.9, label="boom-tip heave x0",
+                          **BOOM_STYLE).handle)
     if "passive" in traces:
         m = res.metrics["passive"]
-        handles += ax.plot(t, traces["passive"].x, lw=0.9,
-                           label=f"unit heave, passive ({_rms(m)})",
-                           **CONTROLLER_STYLE["passive"])
+        handles.append(series(ax, t, traces["passive"].x, lw=0.9,
+                              label=f"unit heave, passive ({_rms(m)})",
+                              **CONTROLLER_STYLE["passive"]).handle)
     ax.set(xlabel="time t (s)", ylabel="heave (m)")
     ax.set_title(_title("Boom-tip heave and unit heave without control", refs, "passive"),
                  fontsize=10)
@@ -202,9 +205,9 @@ def comparison_figure(res: Comparison, tradeoff: dict | None = None, scene: Any 
         ax = fig.add_subplot(strips[i, 0], label=f"controlled {name}")
         _time_axes(ax, t, warmup, handles)
         m = res.metrics[name]
-        handles += ax.plot(t, traces[name].x * 1e3, lw=0.8,
-                           label=f"unit heave, {_name(name)} ({_rms(m)})",
-                           **CONTROLLER_STYLE.get(name, {}))
+        handles.append(series(ax, t, traces[name].x * 1e3, lw=0.8,
+                              label=f"unit heave, {_name(name)} ({_rms(m)})",
+                              **CONTROLLER_STYLE.get(name, {})).handle)
         after = t >= warmup
         if warmup > 0 and after.sum() > 1:  # fit the scale to the measured part
             peak = float(np.max(np.abs(traces[name].x[after]))) * 1e3
@@ -246,8 +249,8 @@ def comparison_figure(res: Comparison, tradeoff: dict | None = None, scene: Any 
     for name in controlled:
         tr = traces[name]
         style = CONTROLLER_STYLE.get(name, {})
-        ax_u.plot(t, tr.u, lw=0.8, **style)
-        ax_v.plot(t, tr.u_dot, lw=0.8, **style)
+        series(ax_u, t, tr.u, lw=0.8, **style)
+        series(ax_v, t, tr.u_dot, lw=0.8, **style)
     _limit_lines(ax_u, getattr(winch, "stroke_max", None), "winch limits (stroke, speed)",
                  handles)
     _limit_lines(ax_v, getattr(winch, "speed_max", None), "winch limits (stroke, speed)",

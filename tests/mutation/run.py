@@ -56,6 +56,7 @@ class Mutation:
 
 
 # -- test subsets -------------------------------------------------------------------------
+FIGS = "tests/test_plots_dynamics.py"
 EXTREME_REF = "tests/test_extreme.py::test_extreme_scene_against_independent_shooting"
 STATICS = ("tests/test_physics.py", "tests/test_statics_closed_form.py", EXTREME_REF,
            "tests/test_statics_seeds.py", "tests/test_baseline_huang.py",
@@ -647,6 +648,32 @@ MUTATIONS: tuple[Mutation, ...] = (
              "np.zeros((0, elements + 1, 3)), t=np.zeros(0)",
              "np.zeros((0, elements, 3)), t=np.zeros(0)", (FAILED_START,),
              "the empty history of a failed start has one node fewer than the line"),
+    Mutation("envelope-min-is-window-max", "plots", "cable_ocp/plots/common.py",
+             "    lo = np.fmin.reduceat(y[:-1], starts[:-1])",
+             "    lo = np.fmax.reduceat(y[:-1], starts[:-1])", (FIGS,),
+             "a long time series' envelope: its lower edge is each window's max"),
+    Mutation("long-series-drawn-as-line", "plots", "cable_ocp/plots/common.py",
+             "    if len(t) <= max(limit, 2):", "    if True:", (FIGS,),
+             "every time series is drawn as a line: 160 wave periods in 550 px, a solid block"),
+    Mutation("unit-heave-absolute-z", "plots", "cable_ocp/plots/dynamics.py",
+             "    rel = up - up[0]", "    rel = up - 0.0 * up[0]", (FIGS,),
+             "the simulate figure draws the unit's absolute z, not z - z_static"),
+    Mutation("plan-view-x-y-swapped", "plots", "cable_ocp/plots/dynamics.py",
+             'a.plot(r[0, :, 0], r[0, :, 1], color="k"',
+             'a.plot(r[0, :, 1], r[0, :, 0], color="k"', (FIGS,),
+             "the plan view draws the line at t = 0 with x and y swapped"),
+    Mutation("no-excitation-not-warned", "plots", "cable_ocp/dynamics/simulate.py",
+             "    if not excited:", "    if False:", (FIGS,),
+             "a scene in which nothing moves the line simulates without a warning"),
+    Mutation("heave-is-not-excitation", "plots", "cable_ocp/dynamics/simulate.py",
+             "    if tm.moves:", "    if tm.horizontal:", (FIGS,),
+             "a top that only heaves is taken for no excitation (a wrong warning)"),
+    Mutation("axial-modes-all-mode-one", "plots", "cable_ocp/plots/dynamics.py",
+             "        a.plot(uk, depth,", "        a.plot(u[0], depth,", (FIGS,),
+             "the axial mode figure draws the first mode's shape for every mode"),
+    Mutation("titles-not-fitted", "plots", "cable_ocp/plots/common.py",
+             "    fit_titles(fig)\n    # whole", "    # whole", (FIGS,),
+             "saved figures keep titles wider than the figure (clipped at its edges)"),
 )
 
 
@@ -697,7 +724,7 @@ def main(argv: list[str] | None = None) -> int:
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     ap.add_argument("--only", nargs="+", default=None,
                     help="mutation names or areas (physics, statics/formulation, "
-                         "statics/collocation, statics/catenary, heave, dynamics)")
+                         "statics/collocation, statics/catenary, heave, dynamics, plots, ...)")
     ap.add_argument("--list", action="store_true", help="list the mutations and exit")
     ap.add_argument("--baseline", action="store_true",
                     help="first run every selected subset on the unmutated copy")
