@@ -182,3 +182,126 @@ def to_json(obj: Any) -> str:
         return o
 
     return json.dumps(clean(obj), indent=2)
+
+
+#: SI prefixes for engineering notation of forces (N -> kN, MN, GN)
+_PREFIXED = {"N": ((1e9, "G"), (1e6, "M"), (1e3, "k"))}
+
+
+def quantity(value: Any, unit: str) -> str:
+    """A value with its unit, 4 significant digits, forces with an SI prefix
+    (``4347.1, "N"`` -> ``4.347 kN``); a dimensionless ``-`` unit is left out; ``-`` when
+    missing.
+
+    Parameters
+    ----------
+    value : float or other
+        The number (a string or bool is printed as is).
+    unit : str
+        Its unit, e.g. ``"N"``, ``"m/s"``, ``"-"``.
+    """
+    if isinstance(value, (bool, str)) or value is None:
+        return MISSING if value is None else str(value)
+    v = float(value)
+    if not np.isfinite(v):
+        return MISSING
+    for scale, prefix in _PREFIXED.get(unit, ()):
+        if abs(v) >= scale:
+            v, unit = v / scale, prefix + unit
+            break
+    text = f"{v:.4g}"
+    return text if unit in ("", "-") else f"{text} {unit}"
+
+
+def _split(col: str) -> tuple[str, str]:
+    """``name [unit]`` -> (name, unit)."""
+    if col.endswith("]") and " [" in col:
+        name, unit = col[:-1].split(" [", 1)
+        return name, unit
+    return col, ""
+
+
+def extreme_sentence(col: str, e: dict[str, Any], which: str = "max") -> str:
+    """One extreme as a sentence: ``largest max_tension 6.021 kN at
+    environment.current.speed = 1 m/s, layout.psi0_deg = 90 deg (case 7)``.
+
+    Parameters
+    ----------
+    col : str
+        The output column, ``name [unit]``.
+    e : dict
+        Its extremes (:func:`cable_ocp.batch.summary.extremes`).
+    which : str
+        ``"max"`` (default) or ``"min"``.
+    """
+    name, unit = _split(col)
+    at = ", ".join(f"{k} = {quantity(v, e['units'].get(k, ''))}"
+                   for k, v in e[f"{which}_at"].items())
+    word = "largest" if which == "max" else "smallest"
+    return (f"{word} {name} {quantity(e[which], unit)}" + (f" at {at}" if at else "")
+            + f" (case {e[f'{which}_case']})")
+
+
+def batch_extremes(summary: dict[str, dict[str, Any]], headline: Sequence[str] = (),
+                   width: int = 100) -> str:
+    """The extremes of a batch (:func:`cable_ocp.batch.summary.extremes`) as text: the
+    ``headline`` outputs as sentences naming the parameter values of the extreme cases
+    (:func:`extreme_sentence`), then a table of every output's largest and smallest value
+    with the swept keys' values of the case that gave each (headed by the keys' last parts
+    when those are distinct, their units in a line above). A table wider than ``width``
+    is split in two (largest, smallest); if those are still too wide, every output gets two
+    sentences.
+
+    Parameters
+    ----------
+    summary : dict
+        Output column -> its extremes, as :func:`cable_ocp.batch.summary.extremes` gives.
+    headline : sequence of str
+        Outputs stated first as sentences (e.g. the kind's main output); default none.
+    width : int
+        Largest line width of the table (default 100).
+    """
+    import textwrap
+
+    lines = []
+    for col in headline:
+        if col in summary:
+            for which in ("max", "min"):
+                lines += textwrap.wrap(extreme_sentence(col, summary[col], which), width,
+                                       subsequent_indent="    ", break_on_hyphens=False)
+    if not summary:
+        return "\n".join(lines)
+    units = next(iter(summary.values()))["units"]
+    keys = list(units)
+    short = [k.split(".")[-1] for k in keys]
+    heads = short if len(set(short)) == len(short) else keys
+    def build(parts: Sequence[tuple[str, str]]) -> str:
+        headers = ["output"]
+        for word, _ in parts:
+            headers += [word, *heads, "case"]
+        rows = []
+        for col, e in summary.items():
+            name, unit = _split(col)
+            row = [name]
+            for _, w in parts:
+                row += [quantity(e[w], unit), *[quantity(e[f"{w}_at"][k], "") for k in keys],
+                        str(e[f"{w}_case"])]
+            rows.append(row)
+        return table(headers, rows)
+
+    at = ("at: " + ", ".join(f"{h} = {k} ({units[k] or '-'})"
+                             for h, k in zip(heads, keys, strict=True))) if keys else ""
+    both = build((("largest", "max"), ("smallest", "min")))
+    tables = [both] if _fits(both, width) else [build((("largest", "max"),)),
+                                                build((("smallest", "min"),))]
+    if all(_fits(t, width) for t in tables):
+        return "\n".join([*lines, *([at] if at else []), *tables])
+    for col, e in summary.items():
+        for which in ("max", "min"):
+            lines += textwrap.wrap(extreme_sentence(col, e, which), width,
+                                   subsequent_indent="    ", break_on_hyphens=False)
+    return "\n".join(lines)
+
+
+def _fits(text: str, width: int) -> bool:
+    return max(len(line) for line in text.splitlines()) <= width

@@ -8,6 +8,8 @@ cases      the case matrix (grid in snake order, ranges, random samples, per-cas
 kinds      what a case of each scene kind computes, and its row
 executors  in-process, local worker processes, dask
 store      CSV + JSON lines written as rows arrive; resume
+arrays     per-case arrays in one netCDF file; the envelope across cases (range graph)
+summary    the extremes of every output and the parameter values of the cases that gave them
 
 Example
 -------
@@ -29,10 +31,12 @@ from typing import Any
 
 import numpy as np
 
+from cable_ocp.batch.arrays import ARRAYS, DIMS
 from cable_ocp.batch.cases import Case, build_cases, parse_grid, parse_random, parse_range
 from cable_ocp.batch.executors import RunnerSpec, run_dask, run_local, run_serial
 from cable_ocp.batch.kinds import SUCCESS, runner_kind
 from cable_ocp.batch.store import FIXED, TAIL, Store
+from cable_ocp.errors import CableOCPError
 from cable_ocp.scene.files import read_problem
 
 __all__ = ["BatchResult", "Case", "build_cases", "parse_grid", "parse_random", "parse_range",
@@ -58,6 +62,14 @@ class BatchResult:
         (CSV, JSON lines, meta) when written to disk.
     wall_time_s : float
         Wall time of this run, s.
+    skipped : int
+        Cases already done in the stored batch (``resume``), not run again.
+    random_inputs : list of str
+        The inputs among :attr:`inputs` drawn at random (``randoms``): a figure draws their
+        cases as points, not joined by lines.
+    arrays : dict, optional
+        Case index -> {name: 1-D array} (:mod:`cable_ocp.batch.arrays`) when the batch kept
+        them (``keep_arrays`` or ``arrays``); None otherwise.
     """
 
     kind: str
@@ -67,6 +79,14 @@ class BatchResult:
     paths: tuple[Path, Path, Path] | None = None
     wall_time_s: float = 0.0
     skipped: int = field(default=0)
+    random_inputs: list[str] = field(default_factory=list)
+    arrays: dict[int, dict[str, np.ndarray]] | None = None
+
+    def swept(self) -> list[str]:
+        """The inputs that take more than one value over the rows (all inputs if none
+        does)."""
+        return [k for k in self.inputs if len({str(r.get(k)) for r in self.rows}) > 1] or list(
+            self.inputs)
 
     def column(self, name: str) -> np.ndarray:
         """One input or output column as a float array (NaN where missing)."""
@@ -145,6 +165,7 @@ def run_batch(problem: str | Path | dict[str, Any], grids: Sequence[tuple[str, l
               workers: int | None = None, scheduler: Any = None, chunk_size: int | None = None,
               max_attempts: int = 2, spec: RunnerSpec | None = None,
               progress: Callable[[int, int, dict[str, Any]], None] | None = None,
+              keep_arrays: bool = False, arrays: str | Path | None = None,
               ) -> BatchResult:
     """Run a load-case study.
 
@@ -181,6 +202,13 @@ def run_batch(problem: str | Path | dict[str, Any], grids: Sequence[tuple[str, l
         Replaces the runner (for fault-injection tests and custom studies).
     progress : callable, optional
         ``progress(done, total, row)`` after each row.
+    keep_arrays : bool
+        Keep every case's arrays (tension along the line, time series:
+        :mod:`cable_ocp.batch.arrays`) in :attr:`BatchResult.arrays` (default False).
+    arrays : path, optional
+        Also write them to this netCDF file when the batch ends (implies ``keep_arrays``;
+        needs xarray, ``pip install -e '.[io]'``); with ``resume`` the stored arrays of the
+        cases already done are kept; an existing file needs ``resume`` or ``overwrite``.
 
     Returns
     -------
@@ -197,7 +225,10 @@ def run_batch(problem: str | Path | dict[str, Any], grids: Sequence[tuple[str, l
         data = resolve_cable_scene(data, Path(problem).parent)
     cases = build_cases(list(grids) + list(ranges), samples, list(randoms), seed)
     _check_base(data, kind)
-    spec = spec or RunnerSpec(kind, data, dict(options or {}))
+    keep_arrays = keep_arrays or arrays is not None
+    old_arrays = _check_arrays(kind, arrays, resume, overwrite) if keep_arrays else {}
+    spec = spec or RunnerSpec(kind, data, {**dict(options or {}),
+                                           **({"arrays": True} if keep_arrays else {})})
     columns_out = spec.make().columns() if kind != "heave" else _heave_columns(spec)
     inputs = [k for k, _ in list(grids) + list(ranges)] + [k for k, _, _ in randoms]
     store = None
@@ -213,8 +244,13 @@ def run_batch(problem: str | Path | dict[str, Any], grids: Sequence[tuple[str, l
     rows: dict[int, dict[str, Any]] = {}
     count = len(cases) - len(todo)
 
+    kept: dict[int, dict[str, np.ndarray]] = {}
+
     def on_row(row: dict[str, Any]) -> None:
         nonlocal count
+        got = row.pop(ARRAYS, None)  # arrays never go into the row files
+        if keep_arrays and got is not None:
+            kept[row["case"]] = got
         rows[row["case"]] = row
         if store is not None:
             store.add(row)
@@ -235,14 +271,51 @@ def run_batch(problem: str | Path | dict[str, Any], grids: Sequence[tuple[str, l
     finally:
         if store is not None:
             all_rows = store.finish()
-    if store is not None:
-        final = all_rows
-    else:
-        final = [rows[k] for k in sorted(rows)]
+        final = all_rows if store is not None else [rows[k] for k in sorted(rows)]
+        if keep_arrays:  # also the finished part of an interrupted batch
+            ids = {r["case_id"]: r["case"] for r in final}
+            for cid, arr in old_arrays.items():  # resumed: the stored cases it skipped
+                if ids.get(cid) is not None and ids[cid] not in kept:
+                    kept[ids[cid]] = arr
+            kept = {k: kept[k] for k in sorted(kept)}
+            if arrays is not None and kept:
+                from cable_ocp.batch.arrays import arrays_dataset, write_arrays
+
+                write_arrays(arrays, arrays_dataset(kind, kept, final, inputs))
     return BatchResult(kind, inputs, columns_out, final,
                        paths=(store.csv_path, store.jsonl_path, store.meta_path)
                        if store else None,
-                       wall_time_s=time.perf_counter() - t0, skipped=len(cases) - len(todo))
+                       wall_time_s=time.perf_counter() - t0, skipped=len(cases) - len(todo),
+                       random_inputs=[k for k, _, _ in randoms],
+                       arrays=kept if keep_arrays else None)
+
+
+def _check_arrays(kind: str, path: str | Path | None, resume: bool, overwrite: bool
+                  ) -> dict[str, dict[str, np.ndarray]]:
+    """Refuse arrays a kind does not keep, or a file there without resume/overwrite (before
+    any work); the arrays stored at ``path`` by case identifier when resuming."""
+    if kind not in DIMS:
+        raise CableOCPError(f"--arrays: a {kind} batch keeps no arrays; valid for "
+                            f"{', '.join(DIMS)} batches")
+    if path is None:
+        return {}
+    from cable_ocp.batch.arrays import case_arrays, read_arrays, require_xarray
+
+    require_xarray()
+    p = Path(path)
+    if not p.exists():
+        return {}
+    if not (resume or overwrite):
+        raise CableOCPError(f"--arrays {p}: a file is already there; give --resume to "
+                            "continue that batch, --overwrite to replace it, or another file")
+    if not resume:
+        return {}
+    ds = read_arrays(p)
+    if ds.attrs.get("kind") != kind:
+        raise CableOCPError(f"--arrays {p}: holds the arrays of a {ds.attrs.get('kind')} "
+                            f"batch, not of this {kind} batch; give another file")
+    ids = [str(v) for v in ds["case_id"].values]
+    return {cid: arr for cid, arr in zip(ids, case_arrays(ds).values(), strict=True)}
 
 
 def _heave_columns(spec: RunnerSpec) -> list[str]:

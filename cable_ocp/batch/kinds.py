@@ -21,6 +21,7 @@ from typing import Any
 
 import numpy as np
 
+from cable_ocp.batch.arrays import ARRAYS
 from cable_ocp.batch.cases import Case
 from cable_ocp.errors import CableOCPError
 from cable_ocp.scene.files import apply_overrides, scene_kind
@@ -61,7 +62,9 @@ class Runner(ABC):
         a copy of it.
     options : dict, optional
         The kind's options (a copy is kept): ``directions`` for the footprint runner
-        (default 36), ``controllers`` for the heave runner; the others take none. None
+        (default 36), ``controllers`` for the heave runner; ``arrays`` (True) for every
+        kind but the footprint: the row also carries the case's arrays under
+        :data:`cable_ocp.batch.arrays.ARRAYS` (:mod:`cable_ocp.batch.arrays`). None
         (default): no options.
     """
 
@@ -87,6 +90,8 @@ class Runner(ABC):
                    wall_time_s=time.perf_counter() - t0)
         row.update({k: v for k, v in case.overrides.items()})
         row.update({c: _num(out.get(c)) for c in self.columns()})
+        if self.options.get("arrays") and out.get(ARRAYS):
+            row[ARRAYS] = {k: np.asarray(v, dtype=float) for k, v in out[ARRAYS].items()}
         return row
 
     def _data(self, case: Case) -> dict[str, Any]:
@@ -149,6 +154,9 @@ class StaticsRunner(Runner):
         for end, f in (("a", sol.force_a), ("b", sol.force_b)):
             for c, v in zip("xyz", f, strict=True):
                 out[f"end_{end}_force_{c} [N]"] = v
+        pos = np.asarray(sol.position, dtype=float)
+        out[ARRAYS] = {"arc_length": sol.s, "tension": sol.tension, "x": pos[:, 0],
+                       "y": pos[:, 1], "z": pos[:, 2]}
         return sol.status, sol.message, out
 
 
@@ -213,6 +221,7 @@ class HeaveRunner(Runner):
         sc = scene_from_dict(apply_overrides(self.data, over))
         res = compare(sc, tuple(self.controllers))
         out: dict[str, Any] = {"sigma_uncontrolled [m]": res.sigma_uncontrolled}
+        out[ARRAYS] = _heave_arrays(res.traces)
         bad = []
         for c, m in res.metrics.items():
             d = m.as_dict()
@@ -257,7 +266,22 @@ class DynamicsRunner(Runner):
             if tail.size:
                 out["unit_heave_amplitude [m]"] = 0.5 * float(np.ptp(tail))
             out["final_length [m]"] = float(length[-1])
+            out[ARRAYS] = {"time": res.t, "top_tension": tt, "unit_z":
+                           np.asarray(res.unit_position, dtype=float)[:, 2], "length": length}
         return res.status, res.message, out
+
+
+def _heave_arrays(traces: dict[str, Any]) -> dict[str, np.ndarray]:
+    """Time and, per controller, the unit's heave, the winch output and (on the cable
+    plant) the tension at the unit, from a comparison's traces."""
+    out: dict[str, np.ndarray] = {}
+    for name, tr in traces.items():
+        out.setdefault("time", np.asarray(tr.t, dtype=float))
+        out[f"{name}_unit_heave"] = tr.x
+        out[f"{name}_winch_output"] = tr.u
+        if getattr(tr, "tension_unit", None) is not None:
+            out[f"{name}_unit_tension"] = tr.tension_unit
+    return out
 
 
 RUNNERS: dict[str, Callable[..., Runner]] = {

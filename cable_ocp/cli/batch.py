@@ -3,7 +3,6 @@
 from __future__ import annotations
 
 import argparse
-import math
 from pathlib import Path
 from typing import Any
 
@@ -71,12 +70,15 @@ def register(sub: argparse._SubParsersAction, parent: argparse.ArgumentParser) -
     out.add_plot_option(p, "an output over one swept key (line) or two (heat map)")
     p.add_argument("--plot-output", metavar="COLUMN",
                    help="output column to plot, e.g. 'max_tension [N]' (default: the kind's "
-                        "main output)")
+                        "main output; heave: every controller's heave RMS but the passive)")
+    p.add_argument("--arrays", metavar="FILE.nc",
+                   help="keep every case's arrays (statics: tension and position along the "
+                        "line; dynamics, heave: time series) in one netCDF file, chunked by "
+                        "case (needs pip install -e '.[io]')")
+    p.add_argument("--range-graph", metavar="PATH",
+                   help="statics: draw the envelope (min, max, mean over the cases) of the "
+                        "tension along the line against arc length (PNG, PDF, SVG)")
     p.set_defaults(func=cmd_batch)
-
-
-MAIN_OUTPUT = {"statics": "max_tension [N]", "footprint": "max_reach [m]",
-               "dynamics": "max_top_tension [N]"}
 
 
 def cmd_batch(args: argparse.Namespace) -> int:
@@ -84,13 +86,14 @@ def cmd_batch(args: argparse.Namespace) -> int:
     from cable_ocp import report
     from cable_ocp.batch import parse_grid, parse_random, parse_range, run_batch
     from cable_ocp.batch.store import paths
+    from cable_ocp.batch.summary import extremes
     from cable_ocp.scene import apply_overrides, read_problem
     from cable_ocp.scene.heave import resolve_cable_scene
 
     store = paths(args.out)
     for p in store:
         out.check_output_path(str(p), "--out", allow_stdout=False)
-    out.check_outputs(args, [("--out", p) for p in store])
+    out.check_outputs(args, [("--out", p) for p in store] + _array_outputs(args))
     if args.workers is not None and not 0 <= args.workers <= 1024:
         raise CableOCPError(f"--workers {args.workers}: give 0..1024")
     if args.chunk_size is not None and args.chunk_size < 1:
@@ -109,9 +112,10 @@ def cmd_batch(args: argparse.Namespace) -> int:
     data = resolve_cable_scene(data, Path(args.file).parent)
     unit = data.get("unit")
     scene_file = unit.get("cable_scene") if isinstance(unit, dict) else None
-    out.check_outputs(args, [("--out", p) for p in store],
+    out.check_outputs(args, [("--out", p) for p in store] + _array_outputs(args),
                       inputs=[("[unit] cable_scene", scene_file)] if isinstance(scene_file, str)
                       else [])
+    _check_arrays(args, data)
     failures = 0
     with out.progress(args, 1, "batch", "case") as bar:
         def step(done: int, total: int, row: dict[str, Any]) -> None:
@@ -123,45 +127,64 @@ def cmd_batch(args: argparse.Namespace) -> int:
                         command=args.command, options={"directions": args.directions},
                         out=args.out, resume=args.resume, overwrite=args.overwrite,
                         workers=args.workers, scheduler=args.scheduler,
-                        chunk_size=args.chunk_size, progress=step)
+                        chunk_size=args.chunk_size, progress=step, arrays=args.arrays,
+                        keep_arrays=bool(args.range_graph))
     if res.rows and all(r["status"] == "invalid_input" for r in res.rows):
         raise CableOCPError(f"every case is invalid; the first: {res.rows[0]['message']}")
     counts = res.statuses()
-    summary = _extremes(res)
+    summary = extremes(res)
     out.say(args, f"{Path(args.file).stem}: {len(res.rows)} cases ({res.kind}), "
                   f"{res.skipped} already done, {res.wall_time_s:.1f} s")
     out.say(args, report.table(["status", "cases"], sorted(counts.items())))
     if summary:
-        out.say(args, report.table(["output", "min", "at case", "max", "at case"],
-                                   [[k, v["min"], v["min_case"], v["max"], v["max_case"]]
-                                    for k, v in summary.items()]))
+        from cable_ocp.plots.batch import default_columns
+
+        out.say(args, report.batch_extremes(summary, [args.plot_output] if args.plot_output
+                                            else default_columns(res)))
     for p in res.paths or ():
         out.confirm(args, str(p))
+    if args.arrays and res.arrays:
+        out.confirm(args, args.arrays, "netCDF")
     status = "solved" if res.failures == 0 else "partial"
     out.emit_json(args, out.envelope(
         status, f"{len(res.rows) - res.failures} of {len(res.rows)} cases solved",
         {"kind": res.kind, "cases": len(res.rows), "statuses": counts, "extremes": summary,
-         "files": [str(p) for p in res.paths or ()], "wall_time_s": res.wall_time_s}))
+         "files": [str(p) for p in res.paths or ()] + ([args.arrays] if args.arrays else []),
+         "wall_time_s": res.wall_time_s}))
     if args.plot:
-        column = args.plot_output or MAIN_OUTPUT.get(res.kind) or res.outputs[1]
-        if column not in res.outputs:
+        column = args.plot_output
+        if column is not None and column not in res.outputs:
             raise CableOCPError(f"--plot-output {column!r}: valid are "
                                 + ", ".join(repr(c) for c in res.outputs))
         from cable_ocp.plots.batch import plot_batch
 
         out.emit_plot(args, lambda path: plot_batch(res, column, path,
                                                     title=Path(args.file).stem))
+    if args.range_graph and res.arrays:
+        from cable_ocp.plots.batch import plot_range_graph
+
+        solved = [r["case"] for r in res.rows if r["status"] == "solved"]
+        out.emit_plot(args, lambda path: plot_range_graph(
+            res.arrays, path, title=Path(args.file).stem, cases=solved), args.range_graph)
     return out.EXIT_OK if res.failures == 0 else out.EXIT_NOT_SUCCESS
 
 
-def _extremes(res: Any) -> dict[str, dict[str, Any]]:
-    """Min and max of each output over the successful cases, with the case index."""
-    out_: dict[str, dict[str, Any]] = {}
-    ok = [r for r in res.rows if r["status"] == "solved"]
-    for col in res.outputs:
-        vals = [(r[col], r["case"]) for r in ok if r.get(col) is not None
-                and math.isfinite(r[col])]
-        if vals:
-            lo, hi = min(vals), max(vals)
-            out_[col] = {"min": lo[0], "min_case": lo[1], "max": hi[0], "max_case": hi[1]}
-    return out_
+def _array_outputs(args: argparse.Namespace) -> list[tuple[str, str]]:
+    """``--arrays`` and ``--range-graph``, checked like the other outputs."""
+    out.check_output_path(args.arrays, "--arrays", allow_stdout=False, formats=("nc",))
+    out.check_output_path(args.range_graph, "--range-graph", allow_stdout=False,
+                          formats=out.plot_formats())
+    return [(o, p) for o, p in (("--arrays", args.arrays), ("--range-graph", args.range_graph))
+            if p is not None]
+
+
+def _check_arrays(args: argparse.Namespace, data: dict[str, Any]) -> None:
+    """Before any case runs: xarray for ``--arrays``, a statics batch for a range graph."""
+    from cable_ocp.batch.arrays import require_xarray
+    from cable_ocp.batch.kinds import runner_kind
+
+    if args.arrays:
+        require_xarray()
+    if args.range_graph and runner_kind(data, args.command) != "statics":
+        raise CableOCPError(f"--range-graph: draws the tension along the line of a statics "
+                            f"batch, not of a {runner_kind(data, args.command)} batch")
