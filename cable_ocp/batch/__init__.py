@@ -21,6 +21,7 @@ from __future__ import annotations
 
 import math
 import os
+import sys
 import time
 from collections.abc import Callable, Sequence
 from dataclasses import dataclass, field
@@ -32,8 +33,8 @@ import numpy as np
 from cable_ocp.batch.cases import Case, build_cases, parse_grid, parse_random, parse_range
 from cable_ocp.batch.executors import RunnerSpec, run_dask, run_local, run_serial
 from cable_ocp.batch.kinds import SUCCESS, runner_kind
-from cable_ocp.batch.store import FIXED, TAIL, Store
-from cable_ocp.scene.files import read_problem
+from cable_ocp.batch.store import FIXED, FORMAT, TAIL, Store, sha256_data, sha256_file
+from cable_ocp.scene.files import apply_overrides, read_problem
 
 __all__ = ["BatchResult", "Case", "build_cases", "parse_grid", "parse_random", "parse_range",
            "run_batch"]
@@ -53,11 +54,17 @@ class BatchResult:
         Output columns, ``name [unit]``.
     rows : list of dict
         One dict per case: ``case``, ``case_id``, ``status``, ``message``, ``wall_time_s``,
-        the inputs and the outputs.
+        the inputs, the outputs and ``duplicate_of`` (the first case with the same
+        parameters, or None).
     paths : tuple of Path, optional
         (CSV, JSON lines, meta) when written to disk.
     wall_time_s : float
         Wall time of this run, s.
+    skipped : int
+        Cases already done in the stored batch this run resumed.
+    notes : list of str
+        What a resume dropped from the stored rows (lines that are not rows, a line cut
+        short, ``worker_lost`` rows run again), one remark each.
     """
 
     kind: str
@@ -67,6 +74,15 @@ class BatchResult:
     paths: tuple[Path, Path, Path] | None = None
     wall_time_s: float = 0.0
     skipped: int = field(default=0)
+    notes: list[str] = field(default_factory=list)
+
+    def duplicates(self) -> list[list[int]]:
+        """Groups of cases with identical parameters (each group's case indices, in
+        order; a group has two or more): separate cases and rows, each with its own seed."""
+        groups: dict[str, list[int]] = {}
+        for r in self.rows:
+            groups.setdefault(str(r.get("case_id")), []).append(r["case"])
+        return [g for g in groups.values() if len(g) > 1]
 
     def column(self, name: str) -> np.ndarray:
         """One input or output column as a float array (NaN where missing)."""
@@ -145,7 +161,7 @@ def run_batch(problem: str | Path | dict[str, Any], grids: Sequence[tuple[str, l
               workers: int | None = None, scheduler: Any = None, chunk_size: int | None = None,
               max_attempts: int = 2, spec: RunnerSpec | None = None,
               progress: Callable[[int, int, dict[str, Any]], None] | None = None,
-              ) -> BatchResult:
+              overrides: dict[str, Any] | None = None) -> BatchResult:
     """Run a load-case study.
 
     Parameters
@@ -181,6 +197,9 @@ def run_batch(problem: str | Path | dict[str, Any], grids: Sequence[tuple[str, l
         Replaces the runner (for fault-injection tests and custom studies).
     progress : callable, optional
         ``progress(done, total, row)`` after each row.
+    overrides : dict, optional
+        Dotted key -> value applied to the base problem before the cases (``--set``);
+        recorded in the meta file, so that a resume with other values is refused.
 
     Returns
     -------
@@ -188,6 +207,8 @@ def run_batch(problem: str | Path | dict[str, Any], grids: Sequence[tuple[str, l
     """
     t0 = time.perf_counter()
     data = problem if isinstance(problem, dict) else read_problem(problem)
+    if overrides:
+        data = apply_overrides(data, overrides)
     kind = runner_kind(data, command)
     if kind == "heave" and not isinstance(problem, dict):
         # a relative [unit] cable_scene is read from the problem file's folder, also in
@@ -202,19 +223,23 @@ def run_batch(problem: str | Path | dict[str, Any], grids: Sequence[tuple[str, l
     inputs = [k for k, _ in list(grids) + list(ranges)] + [k for k, _, _ in randoms]
     store = None
     if out is not None:
-        meta = {"problem": str(problem) if not isinstance(problem, dict) else "<dict>",
-                "kind": kind, "cases": [c.overrides for c in cases], "seed": seed,
-                "columns": FIXED + inputs + columns_out + TAIL,
-                "units": {"inputs": "as in the problem file (SI; see docs/problem_files.md)",
-                          "outputs": "in brackets in each column name"}}
-        store = Store(out, meta, resume=resume, overwrite=overwrite)
-    done_ids = set(store.done) if store else set()
-    todo = [c for c in cases if c.case_id not in done_ids]
+        meta = _meta(problem, data, kind, command, options, overrides, grids, ranges,
+                     samples, randoms, seed, cases)
+        meta["columns"] = FIXED + inputs + columns_out + TAIL
+        store = Store(out, meta, resume=resume, overwrite=overwrite,
+                      case_ids=[c.case_id for c in cases])
+    done = set(store.done) if store else set()
+    todo = [c for c in cases if c.index not in done]
+    first: dict[str, int] = {}
+    for c in cases:
+        first.setdefault(c.case_id, c.index)
     rows: dict[int, dict[str, Any]] = {}
     count = len(cases) - len(todo)
 
     def on_row(row: dict[str, Any]) -> None:
         nonlocal count
+        same = first.get(row.get("case_id", ""), row["case"])
+        row["duplicate_of"] = same if same != row["case"] else None
         rows[row["case"]] = row
         if store is not None:
             store.add(row)
@@ -232,17 +257,44 @@ def run_batch(problem: str | Path | dict[str, Any], grids: Sequence[tuple[str, l
             run_serial(spec, chunks, on_row)
         else:
             run_local(spec, chunks, on_row, n_workers, max_attempts)
-    finally:
+    except BaseException:
         if store is not None:
-            all_rows = store.finish()
-    if store is not None:
-        final = all_rows
-    else:
-        final = [rows[k] for k in sorted(rows)]
+            store.abort()  # the CSV in case order as far as the disk allows; lock released
+        raise
+    final = store.finish() if store is not None else [rows[k] for k in sorted(rows)]
     return BatchResult(kind, inputs, columns_out, final,
                        paths=(store.csv_path, store.jsonl_path, store.meta_path)
                        if store else None,
-                       wall_time_s=time.perf_counter() - t0, skipped=len(cases) - len(todo))
+                       wall_time_s=time.perf_counter() - t0, skipped=len(cases) - len(todo),
+                       notes=list(store.notes) if store else [])
+
+
+def _meta(problem: str | Path | dict[str, Any], data: dict[str, Any], kind: str,
+          command: str | None, options: dict[str, Any] | None,
+          overrides: dict[str, Any] | None, grids: Sequence[tuple[str, list]],
+          ranges: Sequence[tuple[str, list]], samples: int,
+          randoms: Sequence[tuple[str, str, tuple[float, float]]], seed: int,
+          cases: Sequence[Case]) -> dict[str, Any]:
+    """The record of a batch's inputs for ``OUT.meta.json`` (:data:`store.INPUTS`): the
+    problem file's path and SHA-256 (of the dictionary's canonical JSON for a dictionary),
+    every override, sweep and draw, the seed, the options and the package version."""
+    # cable_ocp.__version__, read from the package already loaded (importing a subpackage
+    # loads it first): the layers leave importing the package itself to the CLI
+    version = getattr(sys.modules.get("cable_ocp"), "__version__", "unknown")
+    if isinstance(problem, dict):
+        source = {"path": None, "sha256": sha256_data(problem)}
+    else:
+        source = {"path": str(Path(problem).resolve()), "sha256": sha256_file(problem)}
+    return {"format": FORMAT, "version": version, "problem": source, "kind": kind,
+            "command": command, "set": dict(overrides or {}),
+            "grid": [[k, list(v)] for k, v in grids],
+            "range": [[k, list(v)] for k, v in ranges],
+            "random": [[k, d, list(p)] for k, d, p in randoms], "samples": samples,
+            "seed": seed, "options": dict(options or {}),
+            "base_sha256": sha256_data(data),
+            "cases": [c.overrides for c in cases],
+            "units": {"inputs": "as in the problem file (SI; see docs/problem_files.md)",
+                      "outputs": "in brackets in each column name"}}
 
 
 def _heave_columns(spec: RunnerSpec) -> list[str]:
