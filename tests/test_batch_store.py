@@ -227,13 +227,18 @@ def test_resume_with_other_inputs_is_refused_saying_what_differs(tmp_path: Path)
     assert len(resume().rows) == 2 and FakeSpec.ran == []
 
 
-def test_cli_resume_with_another_set_is_refused(tmp_path: Path,
-                                                capsys: pytest.CaptureFixture[str]) -> None:
-    """The CLI records its --set values (it passed an anonymous dictionary before): a
-    resume with another value exits 2 with one line naming both."""
-    cmd = ["batch", str(DEZOYSA), "--grid", f"{SPEED}=1.0", "--workers", "0", "--quiet",
-           "--out", str(tmp_path / "s")]
+def test_cli_default_out_and_resume_with_another_set_is_refused(
+        tmp_path: Path, capsys: pytest.CaptureFixture[str],
+        monkeypatch: pytest.MonkeyPatch) -> None:
+    """Without --out the store is the problem file's stem and _batch in the current
+    directory (--out was required before). The CLI records its --set values (it passed an
+    anonymous dictionary before): a resume with another value exits 2 with one line naming
+    both."""
+    monkeypatch.chdir(tmp_path)
+    cmd = ["batch", str(DEZOYSA), "--grid", f"{SPEED}=1.0", "--workers", "0", "--quiet"]
     assert main([*cmd, "--set", "layout.psi0_deg=10"]) == 0
+    assert sorted(p.name for p in tmp_path.iterdir()) == [
+        f"dezoysa_sea_buggy_batch.{x}" for x in ("csv", "jsonl", "meta.json")]
     capsys.readouterr()
     assert main([*cmd, "--set", "layout.psi0_deg=20", "--resume"]) == 2
     (err,) = capsys.readouterr().err.strip().splitlines()
