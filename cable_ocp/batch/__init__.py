@@ -23,6 +23,7 @@ from __future__ import annotations
 
 import math
 import os
+import sys
 import time
 from collections.abc import Callable, Sequence
 from dataclasses import dataclass, field
@@ -35,9 +36,9 @@ from cable_ocp.batch.arrays import ARRAYS, DIMS
 from cable_ocp.batch.cases import Case, build_cases, parse_grid, parse_random, parse_range
 from cable_ocp.batch.executors import RunnerSpec, run_dask, run_local, run_serial
 from cable_ocp.batch.kinds import SUCCESS, runner_kind
-from cable_ocp.batch.store import FIXED, TAIL, Store
+from cable_ocp.batch.store import FIXED, FORMAT, TAIL, Store, sha256_data, sha256_file
 from cable_ocp.errors import CableOCPError
-from cable_ocp.scene.files import read_problem
+from cable_ocp.scene.files import apply_overrides, read_problem
 
 __all__ = ["BatchResult", "Case", "build_cases", "parse_grid", "parse_random", "parse_range",
            "run_batch"]
@@ -57,13 +58,17 @@ class BatchResult:
         Output columns, ``name [unit]``.
     rows : list of dict
         One dict per case: ``case``, ``case_id``, ``status``, ``message``, ``wall_time_s``,
-        the inputs and the outputs.
+        the inputs, the outputs and ``duplicate_of`` (the first case with the same
+        parameters, or None).
     paths : tuple of Path, optional
         (CSV, JSON lines, meta) when written to disk.
     wall_time_s : float
         Wall time of this run, s.
     skipped : int
-        Cases already done in the stored batch (``resume``), not run again.
+        Cases already done in the stored batch this run resumed.
+    notes : list of str
+        What a resume dropped from the stored rows (lines that are not rows, a line cut
+        short, ``worker_lost`` rows run again), one remark each.
     random_inputs : list of str
         The inputs among :attr:`inputs` drawn at random (``randoms``): a figure draws their
         cases as points, not joined by lines.
@@ -79,6 +84,7 @@ class BatchResult:
     paths: tuple[Path, Path, Path] | None = None
     wall_time_s: float = 0.0
     skipped: int = field(default=0)
+    notes: list[str] = field(default_factory=list)
     random_inputs: list[str] = field(default_factory=list)
     arrays: dict[int, dict[str, np.ndarray]] | None = None
 
@@ -87,6 +93,14 @@ class BatchResult:
         does)."""
         return [k for k in self.inputs if len({str(r.get(k)) for r in self.rows}) > 1] or list(
             self.inputs)
+
+    def duplicates(self) -> list[list[int]]:
+        """Groups of cases with identical parameters (each group's case indices, in
+        order; a group has two or more): separate cases and rows, each with its own seed."""
+        groups: dict[str, list[int]] = {}
+        for r in self.rows:
+            groups.setdefault(str(r.get("case_id")), []).append(r["case"])
+        return [g for g in groups.values() if len(g) > 1]
 
     def column(self, name: str) -> np.ndarray:
         """One input or output column as a float array (NaN where missing)."""
@@ -165,6 +179,7 @@ def run_batch(problem: str | Path | dict[str, Any], grids: Sequence[tuple[str, l
               workers: int | None = None, scheduler: Any = None, chunk_size: int | None = None,
               max_attempts: int = 2, spec: RunnerSpec | None = None,
               progress: Callable[[int, int, dict[str, Any]], None] | None = None,
+              overrides: dict[str, Any] | None = None,
               keep_arrays: bool = False, arrays: str | Path | None = None,
               ) -> BatchResult:
     """Run a load-case study.
@@ -202,6 +217,9 @@ def run_batch(problem: str | Path | dict[str, Any], grids: Sequence[tuple[str, l
         Replaces the runner (for fault-injection tests and custom studies).
     progress : callable, optional
         ``progress(done, total, row)`` after each row.
+    overrides : dict, optional
+        Dotted key -> value applied to the base problem before the cases (``--set``);
+        recorded in the meta file, so that a resume with other values is refused.
     keep_arrays : bool
         Keep every case's arrays (tension along the line, time series:
         :mod:`cable_ocp.batch.arrays`) in :attr:`BatchResult.arrays` (default False).
@@ -216,6 +234,8 @@ def run_batch(problem: str | Path | dict[str, Any], grids: Sequence[tuple[str, l
     """
     t0 = time.perf_counter()
     data = problem if isinstance(problem, dict) else read_problem(problem)
+    if overrides:
+        data = apply_overrides(data, overrides)
     kind = runner_kind(data, command)
     if kind == "heave" and not isinstance(problem, dict):
         # a relative [unit] cable_scene is read from the problem file's folder, also in
@@ -233,14 +253,16 @@ def run_batch(problem: str | Path | dict[str, Any], grids: Sequence[tuple[str, l
     inputs = [k for k, _ in list(grids) + list(ranges)] + [k for k, _, _ in randoms]
     store = None
     if out is not None:
-        meta = {"problem": str(problem) if not isinstance(problem, dict) else "<dict>",
-                "kind": kind, "cases": [c.overrides for c in cases], "seed": seed,
-                "columns": FIXED + inputs + columns_out + TAIL,
-                "units": {"inputs": "as in the problem file (SI; see docs/problem_files.md)",
-                          "outputs": "in brackets in each column name"}}
-        store = Store(out, meta, resume=resume, overwrite=overwrite)
-    done_ids = set(store.done) if store else set()
-    todo = [c for c in cases if c.case_id not in done_ids]
+        meta = _meta(problem, data, kind, command, options, overrides, grids, ranges,
+                     samples, randoms, seed, cases)
+        meta["columns"] = FIXED + inputs + columns_out + TAIL
+        store = Store(out, meta, resume=resume, overwrite=overwrite,
+                      case_ids=[c.case_id for c in cases])
+    done = set(store.done) if store else set()
+    todo = [c for c in cases if c.index not in done]
+    first: dict[str, int] = {}
+    for c in cases:
+        first.setdefault(c.case_id, c.index)
     rows: dict[int, dict[str, Any]] = {}
     count = len(cases) - len(todo)
 
@@ -251,6 +273,8 @@ def run_batch(problem: str | Path | dict[str, Any], grids: Sequence[tuple[str, l
         got = row.pop(ARRAYS, None)  # arrays never go into the row files
         if keep_arrays and got is not None:
             kept[row["case"]] = got
+        same = first.get(row.get("case_id", ""), row["case"])
+        row["duplicate_of"] = same if same != row["case"] else None
         rows[row["case"]] = row
         if store is not None:
             store.add(row)
@@ -268,32 +292,46 @@ def run_batch(problem: str | Path | dict[str, Any], grids: Sequence[tuple[str, l
             run_serial(spec, chunks, on_row)
         else:
             run_local(spec, chunks, on_row, n_workers, max_attempts)
-    finally:
+    except BaseException:
         if store is not None:
-            all_rows = store.finish()
-        final = all_rows if store is not None else [rows[k] for k in sorted(rows)]
-        if keep_arrays:  # also the finished part of an interrupted batch
-            ids = {r["case_id"]: r["case"] for r in final}
-            for cid, arr in old_arrays.items():  # resumed: the stored cases it skipped
-                if ids.get(cid) is not None and ids[cid] not in kept:
-                    kept[ids[cid]] = arr
-            kept = {k: kept[k] for k in sorted(kept)}
-            if arrays is not None and kept:
-                from cable_ocp.batch.arrays import arrays_dataset, write_arrays
-
-                write_arrays(arrays, arrays_dataset(kind, kept, final, inputs))
+            store.abort()  # the CSV in case order as far as the disk allows; lock released
+        done_rows = ([store.done[k] for k in sorted(store.done)] if store is not None
+                     else [rows[k] for k in sorted(rows)])
+        _write_arrays(arrays, kind, kept, old_arrays, done_rows, inputs, keep_arrays)
+        raise
+    final = store.finish() if store is not None else [rows[k] for k in sorted(rows)]
+    kept = _write_arrays(arrays, kind, kept, old_arrays, final, inputs, keep_arrays)
     return BatchResult(kind, inputs, columns_out, final,
                        paths=(store.csv_path, store.jsonl_path, store.meta_path)
                        if store else None,
                        wall_time_s=time.perf_counter() - t0, skipped=len(cases) - len(todo),
+                       notes=list(store.notes) if store else [],
                        random_inputs=[k for k, _, _ in randoms],
                        arrays=kept if keep_arrays else None)
 
 
+def _write_arrays(path: str | Path | None, kind: str, kept: dict[int, dict[str, np.ndarray]],
+                  old: dict[int, dict[str, np.ndarray]], rows: list[dict[str, Any]],
+                  inputs: list[str], keep: bool) -> dict[int, dict[str, np.ndarray]]:
+    """The kept arrays with those of the stored cases a resume skipped, in case order,
+    written to ``path`` (also the finished part of an interrupted batch)."""
+    if not keep:
+        return kept
+    done = {r["case"] for r in rows}
+    merged = {**{k: v for k, v in old.items() if k in done}, **kept}
+    merged = {k: merged[k] for k in sorted(merged)}
+    if path is not None and merged:
+        from cable_ocp.batch.arrays import arrays_dataset, write_arrays
+
+        write_arrays(path, arrays_dataset(kind, merged, rows, inputs))
+    return merged
+
+
 def _check_arrays(kind: str, path: str | Path | None, resume: bool, overwrite: bool
-                  ) -> dict[str, dict[str, np.ndarray]]:
+                  ) -> dict[int, dict[str, np.ndarray]]:
     """Refuse arrays a kind does not keep, or a file there without resume/overwrite (before
-    any work); the arrays stored at ``path`` by case identifier when resuming."""
+    any work); the arrays stored at ``path`` by case index when resuming (the store refuses
+    a resume whose cases differ, so the indices are the same cases)."""
     if kind not in DIMS:
         raise CableOCPError(f"--arrays: a {kind} batch keeps no arrays; valid for "
                             f"{', '.join(DIMS)} batches")
@@ -314,8 +352,35 @@ def _check_arrays(kind: str, path: str | Path | None, resume: bool, overwrite: b
     if ds.attrs.get("kind") != kind:
         raise CableOCPError(f"--arrays {p}: holds the arrays of a {ds.attrs.get('kind')} "
                             f"batch, not of this {kind} batch; give another file")
-    ids = [str(v) for v in ds["case_id"].values]
-    return {cid: arr for cid, arr in zip(ids, case_arrays(ds).values(), strict=True)}
+    return case_arrays(ds)
+
+
+def _meta(problem: str | Path | dict[str, Any], data: dict[str, Any], kind: str,
+          command: str | None, options: dict[str, Any] | None,
+          overrides: dict[str, Any] | None, grids: Sequence[tuple[str, list]],
+          ranges: Sequence[tuple[str, list]], samples: int,
+          randoms: Sequence[tuple[str, str, tuple[float, float]]], seed: int,
+          cases: Sequence[Case]) -> dict[str, Any]:
+    """The record of a batch's inputs for ``OUT.meta.json`` (:data:`store.INPUTS`): the
+    problem file's path and SHA-256 (of the dictionary's canonical JSON for a dictionary),
+    every override, sweep and draw, the seed, the options and the package version."""
+    # cable_ocp.__version__, read from the package already loaded (importing a subpackage
+    # loads it first): the layers leave importing the package itself to the CLI
+    version = getattr(sys.modules.get("cable_ocp"), "__version__", "unknown")
+    if isinstance(problem, dict):
+        source = {"path": None, "sha256": sha256_data(problem)}
+    else:
+        source = {"path": str(Path(problem).resolve()), "sha256": sha256_file(problem)}
+    return {"format": FORMAT, "version": version, "problem": source, "kind": kind,
+            "command": command, "set": dict(overrides or {}),
+            "grid": [[k, list(v)] for k, v in grids],
+            "range": [[k, list(v)] for k, v in ranges],
+            "random": [[k, d, list(p)] for k, d, p in randoms], "samples": samples,
+            "seed": seed, "options": dict(options or {}),
+            "base_sha256": sha256_data(data),
+            "cases": [c.overrides for c in cases],
+            "units": {"inputs": "as in the problem file (SI; see docs/problem_files.md)",
+                      "outputs": "in brackets in each column name"}}
 
 
 def _heave_columns(spec: RunnerSpec) -> list[str]:

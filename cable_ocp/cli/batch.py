@@ -51,10 +51,15 @@ def register(sub: argparse._SubParsersAction, parent: argparse.ArgumentParser) -
                         "dynamic (simulate) scenes need none")
     p.add_argument("--directions", type=int, default=36, metavar="N",
                    help="footprint directions per case (default 36)")
-    p.add_argument("--out", required=True, metavar="PATH",
-                   help="results: PATH.csv, PATH.jsonl and PATH.meta.json (units)")
+    p.add_argument("--out", metavar="PATH",
+                   help="results: PATH.csv, PATH.jsonl and PATH.meta.json (inputs, units); "
+                        "default: the problem file's name with _batch, in the current "
+                        "directory (x.toml -> x_batch.csv, ...). One batch at a time writes "
+                        "there (PATH.lock)")
     p.add_argument("--resume", action="store_true",
-                   help="continue the batch stored at --out, skipping finished cases")
+                   help="continue the batch stored at --out with the same inputs (problem "
+                        "file, --set, sweeps, seed), skipping finished cases and running "
+                        "worker_lost ones again")
     p.add_argument("--overwrite", action="store_true",
                    help="replace the results stored at --out")
     p.add_argument("--workers", type=int, metavar="N",
@@ -85,11 +90,13 @@ def cmd_batch(args: argparse.Namespace) -> int:
     """``cable-ocp batch FILE ...``."""
     from cable_ocp import report
     from cable_ocp.batch import parse_grid, parse_random, parse_range, run_batch
-    from cable_ocp.batch.store import paths
+    from cable_ocp.batch.store import default_out, paths
     from cable_ocp.batch.summary import extremes
     from cable_ocp.scene import apply_overrides, read_problem
     from cable_ocp.scene.heave import resolve_cable_scene
 
+    if args.out is None:
+        args.out = str(default_out(args.file))
     store = paths(args.out)
     for p in store:
         out.check_output_path(str(p), "--out", allow_stdout=False)
@@ -107,8 +114,9 @@ def cmd_batch(args: argparse.Namespace) -> int:
     randoms = [parse_random(r) for r in args.random]
     if not (grids or ranges or randoms):
         raise CableOCPError("give at least one --grid, --range or --random (with --samples)")
+    # read here for the checks before any case runs (run_batch reads the file again: its
+    # digest goes into the meta file)
     data = apply_overrides(read_problem(args.file), out.overrides(args))
-    # a heave scene's relative [unit] cable_scene is read from the problem file's folder
     data = resolve_cable_scene(data, Path(args.file).parent)
     unit = data.get("unit")
     scene_file = unit.get("cable_scene") if isinstance(unit, dict) else None
@@ -123,7 +131,10 @@ def cmd_batch(args: argparse.Namespace) -> int:
             failures += row["status"] not in ("solved",)
             bar(done, total, postfix=f"{failures} not solved")
 
-        res = run_batch(data, grids, ranges, args.samples, randoms, args.seed,
+        # the file's path (its digest goes into the meta file; a heave scene's relative
+        # [unit] cable_scene is read from its folder) and the --set overrides apart
+        res = run_batch(args.file, grids, ranges, args.samples, randoms, args.seed,
+                        overrides=out.overrides(args),
                         command=args.command, options={"directions": args.directions},
                         out=args.out, resume=args.resume, overwrite=args.overwrite,
                         workers=args.workers, scheduler=args.scheduler,
@@ -131,6 +142,12 @@ def cmd_batch(args: argparse.Namespace) -> int:
                         keep_arrays=bool(args.range_graph))
     if res.rows and all(r["status"] == "invalid_input" for r in res.rows):
         raise CableOCPError(f"every case is invalid; the first: {res.rows[0]['message']}")
+    for remark in res.notes:
+        out.note(args, f"note: {remark}")
+    dups = res.duplicates()
+    for group in dups:
+        out.note(args, f"note: cases {', '.join(map(str, group))} have identical parameters "
+                       "(separate rows, each with its own seed)")
     counts = res.statuses()
     summary = extremes(res)
     out.say(args, f"{Path(args.file).stem}: {len(res.rows)} cases ({res.kind}), "
@@ -149,6 +166,7 @@ def cmd_batch(args: argparse.Namespace) -> int:
     out.emit_json(args, out.envelope(
         status, f"{len(res.rows) - res.failures} of {len(res.rows)} cases solved",
         {"kind": res.kind, "cases": len(res.rows), "statuses": counts, "extremes": summary,
+         "duplicates": dups, "notes": res.notes,
          "files": [str(p) for p in res.paths or ()] + ([args.arrays] if args.arrays else []),
          "wall_time_s": res.wall_time_s}))
     if args.plot:
