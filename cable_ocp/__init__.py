@@ -25,7 +25,7 @@ from cable_ocp.status import Status
 # the baseline methods register themselves (statics.registry) when imported
 from cable_ocp import baselines  # noqa: E402, F401  isort: skip
 
-__version__ = "0.2.0"
+from cable_ocp.version import __version__  # noqa: E402, F401  (the public version)
 
 __all__ = [
     "CableOCPError",

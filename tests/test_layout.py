@@ -132,12 +132,13 @@ def test_the_graph_sees_known_edges() -> None:
 LAYERS = {"numerics": 0, "physics": 1, "scene": 2, "statics": 3, "baselines": 4,
           "dynamics": 4, "heave": 5, "batch": 6, "bench": 7, "plots": 8, "report": 8,
           "cli": 9, "__main__": 10}
-#: modules that sit outside the layers: the error type and the status vocabulary (imported
+#: modules that sit outside the layers: the error type, the status vocabulary and the version
+#: (imported
 #: by every layer) and the package's own __init__ (the public face of ``import cable_ocp``,
 #: which only the CLI imports, for its version)
-OUTSIDE = ("cable_ocp", "cable_ocp.errors", "cable_ocp.status")
+OUTSIDE = ("cable_ocp", "cable_ocp.errors", "cable_ocp.status", "cable_ocp.version")
 #: the modules of OUTSIDE that every layer may import
-EVERYWHERE = ("cable_ocp.errors", "cable_ocp.status")
+EVERYWHERE = ("cable_ocp.errors", "cable_ocp.status", "cable_ocp.version")
 #: the largest module a newcomer should have to read whole (lines)
 MAX_LINES = 900
 #: modules allowed beyond MAX_LINES, each with its reason

@@ -23,7 +23,6 @@ from __future__ import annotations
 
 import math
 import os
-import sys
 import time
 from collections.abc import Callable, Sequence
 from dataclasses import dataclass, field
@@ -39,6 +38,7 @@ from cable_ocp.batch.kinds import SUCCESS, runner_kind
 from cable_ocp.batch.store import FIXED, FORMAT, TAIL, Store, sha256_data, sha256_file
 from cable_ocp.errors import CableOCPError
 from cable_ocp.scene.files import apply_overrides, read_problem
+from cable_ocp.version import __version__
 
 __all__ = ["BatchResult", "Case", "build_cases", "parse_grid", "parse_random", "parse_range",
            "run_batch"]
@@ -364,9 +364,7 @@ def _meta(problem: str | Path | dict[str, Any], data: dict[str, Any], kind: str,
     """The record of a batch's inputs for ``OUT.meta.json`` (:data:`store.INPUTS`): the
     problem file's path and SHA-256 (of the dictionary's canonical JSON for a dictionary),
     every override, sweep and draw, the seed, the options and the package version."""
-    # cable_ocp.__version__, read from the package already loaded (importing a subpackage
-    # loads it first): the layers leave importing the package itself to the CLI
-    version = getattr(sys.modules.get("cable_ocp"), "__version__", "unknown")
+    version = __version__
     if isinstance(problem, dict):
         source = {"path": None, "sha256": sha256_data(problem)}
     else:

@@ -33,7 +33,6 @@ from __future__ import annotations
 import contextlib
 import functools
 import hashlib
-import importlib.metadata
 import json
 import os
 from pathlib import Path
@@ -41,6 +40,7 @@ from pathlib import Path
 import casadi as ca
 
 from cable_ocp.numerics.atomic import replace_atomically
+from cable_ocp.version import __version__
 
 #: bump when the layout of an entry or the meaning of the stored functions changes
 FORMAT = 1
@@ -75,10 +75,6 @@ def cache_dir() -> Path | None:
 @functools.lru_cache(maxsize=1)
 def code_version() -> str:
     """cable_ocp and CasADi versions and a hash of the equation-defining sources."""
-    try:
-        version = importlib.metadata.version("cable_ocp")
-    except importlib.metadata.PackageNotFoundError:  # a source tree, not installed
-        version = "unknown"
     root = Path(__file__).resolve().parents[1]
     h = hashlib.sha256()
     for rel in _SOURCES:
@@ -88,7 +84,7 @@ def code_version() -> str:
             h.update(f.relative_to(root).as_posix().encode())
             with contextlib.suppress(OSError):
                 h.update(f.read_bytes())
-    return f"cable_ocp {version}; casadi {ca.__version__}; sources {h.hexdigest()[:20]}"
+    return f"cable_ocp {__version__}; casadi {ca.__version__}; sources {h.hexdigest()[:20]}"
 
 
 def entry_key(structure: str, role: str) -> str:
