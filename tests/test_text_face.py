@@ -114,3 +114,36 @@ def test_table_fits_100_columns_and_a_failed_row_keeps_its_columns() -> None:
     assert "lqg" in blocks[1] and "-" in blocks[1].splitlines()[4]
     with pytest.raises(ValueError, match="cells for 14 headings"):
         table(headers, [good[:-1]])
+
+
+def test_bench_tables_fit_100_columns() -> None:
+    """The benchmarks' tables (bench-heave, bench dynamics, bench sweep's headings and
+    labels) at their widest rows, through the one formatter: <= 100 columns; a failed or
+    missing row (NaN times, no amplitude) keeps its cells."""
+    from cable_ocp.bench import dynamics as bd
+    from cable_ocp.bench import heave_mpc as bh
+    from cable_ocp.bench import statics_sweep
+
+    nan = float("nan")
+    heave = bh.format_table([
+        bh.BenchRow("qpoases (condensed)", 100, 6.9e-4, 2.1e-3, 300, 0,
+                    "condensed dense QP, warm-started", 6.8e-4, 2.0e-3),
+        bh.BenchRow("do-mpc", 100, nan, nan, 0, 0, "not installed (pip install do-mpc)")])
+    dyn = bd.format_table([
+        bd.BenchRow("cable_ocp lumped (compiled)", 80, 0.0125, 2.345e-3, 426.0, 12.345,
+                    1.55e-2, 0.0013, "solved"),
+        bd.BenchRow("moordyn", 80, 2.5e-4, nan, nan, nan, nan, None, "not installed")])
+    import inspect
+    src = inspect.getsource(statics_sweep)
+    labels = [s for s in ("collocation, 1st process (build)", "compiled, 1st process (C compile)")
+              if s in src]
+    assert len(labels) == 2
+    sweep = table(["method", "points", "total [ms]", "CPU [ms]", "first [ms]", "next [ms]",
+                   "next CPU [ms]", "next p90 [ms]", "iters mean", "iters median",
+                   "factor. mean", "solved"],
+                  [[labels[1], 19, 1613.2, 93.1, 3.5, 0.47, 0.47, 0.61, 5.8, 6.0, 1.4, 19],
+                   [labels[0], 19, nan, nan, nan, nan, nan, nan, nan, nan, nan, 0]])
+    for text in (heave, dyn, sweep):
+        assert max(len(line) for line in text.splitlines()) <= WIDTH, text
+    rows = [line for line in dyn.splitlines()[3:]]
+    assert len(rows[0]) == len(rows[1])

@@ -420,7 +420,7 @@ def format_table(rows: Sequence[BenchRow]) -> str:
               r.status] for r in rows]
     return table(["model", "N", "dt", "wall/sim", "x real", "T amp", "error",
                   "amp vs other", "status"], cells,
-                 ["", "", "[s]", "[ms/s]", "time", "[kN]", "[-]", "", ""])
+                 ["", "", "[s]", "[ms/s]", "time", "[kN]", "[-]", "", ""], left=1)
 
 
 def as_dicts(rows: Sequence[BenchRow]) -> list[dict[str, Any]]:

@@ -413,7 +413,8 @@ def format_table(rows: list[BenchRow]) -> str:
     """Plain-text table of :func:`run`'s rows (:func:`cable_ocp.numerics.text_table.table`),
     with the speed-up over do-mpc per horizon in the note."""
     dom = {r.horizon: r.median_s for r in rows if r.solver.startswith("do-mpc")}
-    cells = []
+    cells: list[list] = []
+    notes: list[str] = []
     for r in rows:
         note = r.note
         if not r.solver.startswith("do-mpc") and np.isfinite(dom.get(r.horizon, np.nan)):
@@ -423,11 +424,15 @@ def format_table(rows: list[BenchRow]) -> str:
         cells.append([r.solver, r.horizon] + [
             "-" if not np.isfinite(v) else f"{1e3 * v:.3f}"
             for v in (r.median_s, r.p99_s, r.cpu_median_s, r.cpu_p99_s)]
-            + [r.steps, r.failures, note.lstrip("; ")])
-    return (table(["solver", "N", "median", "p99", "CPU median", "CPU p99", "steps", "fails",
-                   "note"], cells, ["", "", "[ms]", "[ms]", "[ms]", "[ms]", "", "", ""])
-            + "\n(ms per closed-loop step: wall time, and CPU time of the calling thread, "
-            "which a\npreemption by another process does not inflate)")
+            + [r.steps, r.failures])
+        if note.lstrip("; "):
+            notes.append(f"{r.solver}, N = {r.horizon}: {note.lstrip('; ')}")
+    return "\n".join([
+        table(["solver", "N", "median", "p99", "CPU median", "CPU p99", "steps", "fails"],
+              cells, ["", "", "[ms]", "[ms]", "[ms]", "[ms]", "", ""], left=1),
+        *notes,
+        "(ms per closed-loop step: wall time, and CPU time of the calling thread, which a",
+        "preemption by another process does not inflate)"])
 
 
 def json_data(rows: list[BenchRow]) -> dict:

@@ -33,9 +33,10 @@ def register(sub: argparse._SubParsersAction, parent: argparse.ArgumentParser) -
              "(Huang 1992, ch. 6)",
         description="Simulate the scene's controllers on one seeded wave realisation and "
                     "compare them: unit heave RMS and its reduction, winch speed and stroke, "
-                    "limit violations, MPC solve times. Exit 0 when every controller ran "
-                    "and stayed finite and stable, 1 otherwise (per-controller status in the "
-                    "JSON), 2 invalid input.")
+                    "limit violations (a warning names each limit a controller exceeds), MPC "
+                    "solve times. Exit 0 when every controller ran and stayed finite and "
+                    "stable (on the cable: its line never went slack), 1 otherwise "
+                    "(per-controller status in the JSON), 2 invalid input.")
     p.add_argument("file", help="heave scene (UTF-8 TOML), e.g. problems/heave/ex_6_3_6.toml")
     out.add_set_option(p)
     p.add_argument("--duration", type=float, metavar="S",
@@ -155,7 +156,7 @@ def heave_table(res: Any) -> str:
              _num(m.max_stroke, ".3f"), _num(m.winch_speed_rms, ".3f"),
              _num(m.energy_index, ".2f"), _num(m.max_constraint_violation, ".3f"),
              _num(m.solve_time_median_s, ".2e")] for name, m in res.metrics.items()]
-    return table(hdr, rows, units)
+    return table(hdr, rows, units, left=1)
 
 
 def cable_table(res: Any) -> str:
@@ -179,7 +180,7 @@ def cable_table(res: Any) -> str:
                        ("tension_unit_min", "tension_unit_max", "tension_top_min",
                         "tension_top_max")]
                     + [MISSING if d.get("slack_samples") is None else str(d["slack_samples"])])
-    return table(hdr, rows, units)
+    return table(hdr, rows, units, left=1)
 
 
 def deployment_table(res: Any) -> str:
@@ -210,7 +211,7 @@ def deployment_table(res: Any) -> str:
                      f"{row['slack_windows']} of {row['windows']}"])
     return (f"per {dep['window']:.3g} m of paid-out length, "
             f"{min(dep['per_length']['length']):.0f}-{max(dep['per_length']['length']):.0f} m:\n"
-            + table(hdr, rows, units))
+            + table(hdr, rows, units, left=1))
 
 
 def _print_table(sc: Any, args: argparse.Namespace, res: Any) -> None:

@@ -31,15 +31,19 @@ def _cell(v: Any) -> str:
 
 
 def _block(cols: list[int], heads: list[list[str]], cells: list[list[str]],
-           widths: list[int]) -> list[str]:
-    lines = [_GAP.join(h[i].rjust(widths[i]) for i in cols) for h in heads]
+           widths: list[int], left: int) -> list[str]:
+    def line(r: list[str]) -> str:
+        return _GAP.join(r[i].ljust(widths[i]) if i < left else r[i].rjust(widths[i])
+                         for i in cols)
+
+    lines = [line(h).rstrip() for h in heads]
     lines.append(_GAP.join("-" * widths[i] for i in cols))
-    lines += [_GAP.join(r[i].rjust(widths[i]) for i in cols) for r in cells]
+    lines += [line(r) for r in cells]
     return lines
 
 
 def table(headers: Sequence[str], rows: Sequence[Sequence[Any]],
-          units: Sequence[str] | None = None, width: int = WIDTH) -> str:
+          units: Sequence[str] | None = None, width: int = WIDTH, left: int = 0) -> str:
     """Fixed-width text table; floats are printed with 4 significant digits.
 
     Parameters
@@ -57,6 +61,9 @@ def table(headers: Sequence[str], rows: Sequence[Sequence[Any]],
         The widest line (default :data:`WIDTH`): the columns that do not fit go into
         further blocks below, each starting with the first column again. A single column
         wider than that is printed whole.
+    left : int
+        How many leading columns are left-aligned (default 0: every column right-aligned;
+        1: the row's name on the left).
     """
     n = len(headers)
     heads = [list(headers)] + ([list(units)] if units is not None else [])
@@ -77,5 +84,5 @@ def table(headers: Sequence[str], rows: Sequence[Sequence[Any]],
     for k, cols in enumerate(blocks):
         if k:
             out.append("")
-        out += _block(cols, heads, cells, widths)
+        out += _block(cols, heads, cells, widths, left)
     return "\n".join(out)
