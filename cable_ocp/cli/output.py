@@ -504,6 +504,7 @@ class ProgressLines:
         self.done = 0
         self.postfix: str | None = None
         self.lines = 0
+        self.first: tuple[float, int] | None = None
 
     def _write(self, now: float, last: bool = False) -> None:
         total = max(self.total, 1)
@@ -512,8 +513,11 @@ class ProgressLines:
                 f"({100.0 * self.done / total:.0f} %), {_clock_text(elapsed)}")
         if last:
             text += " (done)" if self.done >= self.total else " (stopped)"
-        elif 0 < self.done < self.total:
-            text += f", ~{_clock_text(elapsed * (self.total - self.done) / self.done)} left"
+        elif self.first is not None and self.first[1] < self.done < self.total:
+            # the rate since the first report (not since the start: a command may prepare
+            # for a while before its first step)
+            rate = (self.done - self.first[1]) / max(now - self.first[0], 1e-9)
+            text += f", ~{_clock_text((self.total - self.done) / rate)} left"
         if self.postfix:
             text += f", {self.postfix}"
         print(text, file=self.stream, flush=True)
@@ -539,6 +543,8 @@ class ProgressLines:
             self.postfix = postfix
         self.done = int(done)
         now = self.clock()
+        if self.first is None:
+            self.first = (now, self.done)
         since = now - self.last_t
         frac = (self.done - self.last_done) / max(self.total, 1)
         if since >= PROGRESS_EVERY_S or (frac >= PROGRESS_EVERY_FRACTION
