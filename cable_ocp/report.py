@@ -1,18 +1,22 @@
-"""Plain-text tables and JSON for statics solutions (the CLI prints what these return)."""
+"""Plain-text tables and JSON for statics solutions (the CLI prints what these return).
+
+:func:`table` is :func:`cable_ocp.numerics.text_table.table`, the one table formatter.
+"""
 
 from __future__ import annotations
 
 import json
-from collections.abc import Sequence
 from typing import Any
 
 import numpy as np
 
+from cable_ocp.numerics.text_table import MISSING, table
 from cable_ocp.statics.solution import StaticsSolution
+
+__all__ = ["statics_summary", "table", "to_json"]
 
 #: decimals of each unit in the summary (one way for every row: value, space, unit)
 _DECIMALS = {"m": 4, "N": 2, "deg": 3, "ms": 2}
-MISSING = "-"
 
 
 def _fmt(v: Any, decimals: int) -> str:
@@ -142,30 +146,6 @@ def statics_summary(sol: StaticsSolution, title: str = "") -> str:
     lines = [title] if title else []
     lines += [f"{k:<{width}}  {v}" for k, v in rows]
     return "\n".join(lines)
-
-
-def table(headers: Sequence[str], rows: Sequence[Sequence[Any]]) -> str:
-    """Fixed-width text table; floats are printed with 4 significant digits.
-
-    Parameters
-    ----------
-    headers : sequence of str
-        Column headings, printed above a line of dashes.
-    rows : sequence of sequence
-        The rows, each with one value per heading (a float is printed as ``{:.4g}``,
-        anything else with ``str``); every column is right-aligned to its widest cell.
-    """
-    def fmt(v: Any) -> str:
-        if isinstance(v, float):
-            return f"{v:.4g}"
-        return str(v)
-
-    cells = [[fmt(v) for v in r] for r in rows]
-    widths = [max(len(h), *(len(r[i]) for r in cells)) for i, h in enumerate(headers)]
-    out = ["  ".join(h.rjust(w) for h, w in zip(headers, widths, strict=True))]
-    out.append("  ".join("-" * w for w in widths))
-    out += ["  ".join(c.rjust(w) for c, w in zip(r, widths, strict=True)) for r in cells]
-    return "\n".join(out)
 
 
 def to_json(obj: Any) -> str:

@@ -41,6 +41,7 @@ from typing import Any
 
 import numpy as np
 
+from cable_ocp.numerics.text_table import table
 from cable_ocp.scene.dynamics import DynamicScene, load_dynamic_scene
 
 __all__ = ["QUICK", "BenchRow", "as_dicts", "format_summary", "format_table", "linear_check",
@@ -407,18 +408,19 @@ def run(segments: Sequence[int] = (20, 40, 80),
 
 
 def format_table(rows: Sequence[BenchRow]) -> str:
-    """The rows as a plain-text table (for the CLI; this module prints nothing)."""
-    head = (f"{'model':<20} {'N':>3} {'dt (s)':>8} {'wall/sim s':>11} {'x real time':>11} "
-            f"{'T amp (kN)':>10} {'error':>9} {'amp vs other':>12}  status")
-    lines = [head, "-" * len(head)]
-    for r in rows:
-        other = "" if r.amplitude_vs_other is None else f"{100 * r.amplitude_vs_other:+.2f} %"
-        lines.append(
-            f"{r.model:<20} {r.segments:>3} {r.time_step:>8.4g} "
-            f"{r.wall_per_simulated_s * 1e3:>8.2f} ms {r.realtime_factor:>11.0f} "
-            f"{r.top_tension_amplitude_N / 1e3:>10.3f} {r.error:>9.2e} {other:>12}  "
-            f"{r.status}")
-    return "\n".join(lines)
+    """The rows as a plain-text table (for the CLI; this module prints nothing), by
+    :func:`cable_ocp.numerics.text_table.table`."""
+    def num(v: float, spec: str, scale: float = 1.0) -> str:
+        return "-" if not math.isfinite(v) else format(v * scale, spec)
+
+    cells = [[r.model, r.segments, f"{r.time_step:.4g}",
+              num(r.wall_per_simulated_s, ".2f", 1e3), num(r.realtime_factor, ".0f"),
+              num(r.top_tension_amplitude_N, ".3f", 1e-3), num(r.error, ".2e"),
+              "" if r.amplitude_vs_other is None else f"{100 * r.amplitude_vs_other:+.2f} %",
+              r.status] for r in rows]
+    return table(["model", "N", "dt", "wall/sim", "x real", "T amp", "error",
+                  "amp vs other", "status"], cells,
+                 ["", "", "[s]", "[ms/s]", "time", "[kN]", "[-]", "", ""], left=1)
 
 
 def as_dicts(rows: Sequence[BenchRow]) -> list[dict[str, Any]]:

@@ -30,6 +30,7 @@ from cable_ocp.heave import mpc as mpc_mod
 from cable_ocp.heave import plant as pl
 from cable_ocp.heave.discrete import discretize_noise
 from cable_ocp.heave.simulate import build_models
+from cable_ocp.numerics.text_table import table
 from cable_ocp.scene.heave import HeaveScene, load_scene
 
 SCENE = Path(__file__).resolve().parents[2] / "problems" / "heave" / "ex_6_3_6.toml"
@@ -409,22 +410,29 @@ def run(horizons: list[int] | tuple = (20, 50, 100), steps: int = 300,
 
 
 def format_table(rows: list[BenchRow]) -> str:
-    """Plain-text table of :func:`run`'s rows, with the speed-up over do-mpc per horizon."""
-    lines = [f"{'solver':<16} {'N':>4} {'median ms':>10} {'p99 ms':>9} {'cpu med':>8} "
-             f"{'cpu p99':>8} {'steps':>6} {'fails':>6}  note"]
+    """Plain-text table of :func:`run`'s rows (:func:`cable_ocp.numerics.text_table.table`),
+    with the speed-up over do-mpc per horizon in the note."""
     dom = {r.horizon: r.median_s for r in rows if r.solver.startswith("do-mpc")}
+    cells: list[list] = []
+    notes: list[str] = []
     for r in rows:
         note = r.note
         if not r.solver.startswith("do-mpc") and np.isfinite(dom.get(r.horizon, np.nan)):
             ratio = dom[r.horizon] / r.median_s
             note += (f"; {ratio:.1f}x faster than do-mpc" if ratio >= 1
                      else f"; {1 / ratio:.1f}x slower than do-mpc")
-        lines.append(f"{r.solver:<16} {r.horizon:>4} {1e3 * r.median_s:10.3f} "
-                     f"{1e3 * r.p99_s:9.3f} {1e3 * r.cpu_median_s:8.3f} "
-                     f"{1e3 * r.cpu_p99_s:8.3f} {r.steps:>6} {r.failures:>6}  {note}")
-    lines.append("(ms per closed-loop step: wall time, and CPU time of the calling thread, "
-                 "which a preemption by another process does not inflate)")
-    return "\n".join(lines)
+        cells.append([r.solver, r.horizon] + [
+            "-" if not np.isfinite(v) else f"{1e3 * v:.3f}"
+            for v in (r.median_s, r.p99_s, r.cpu_median_s, r.cpu_p99_s)]
+            + [r.steps, r.failures])
+        if note.lstrip("; "):
+            notes.append(f"{r.solver}, N = {r.horizon}: {note.lstrip('; ')}")
+    return "\n".join([
+        table(["solver", "N", "median", "p99", "CPU median", "CPU p99", "steps", "fails"],
+              cells, ["", "", "[ms]", "[ms]", "[ms]", "[ms]", "", ""], left=1),
+        *notes,
+        "(ms per closed-loop step: wall time, and CPU time of the calling thread, which a",
+        "preemption by another process does not inflate)"])
 
 
 def json_data(rows: list[BenchRow]) -> dict:

@@ -169,11 +169,11 @@ def run(scene_path: str | Path = DEFAULT_SCENE, angles: np.ndarray | None = None
     with tempfile.TemporaryDirectory(prefix="cable_ocp_bench_") as tmp:
         folder = Path(tmp) / "cache"
         first = first_process(base, angles, repeats, folder)
-        rows.append(_row("collocation sweep, 1st process (build incl.)", first))
+        rows.append(_row("collocation, 1st process (build)", first))
         second = None
         if subprocess_run:
             second = second_process(scene_path, angles, intervals, repeats, folder)
-            rows.append(_row("  2nd process (functions from the disk cache)", second))
+            rows.append(_row("  2nd process (disk cache)", second))
         # the Newton kernel compiled to C (solver.compile = "auto"): the first process
         # generates and compiles the C code (once: an empty folder), a second process
         # loads the cached libraries
@@ -182,17 +182,17 @@ def run(scene_path: str | Path = DEFAULT_SCENE, angles: np.ndarray | None = None
         with cache_folder(comp_folder):
             sparse_lu.available()  # the helper present, as in first_process
             comp_first = _timed_sweep(comp_base, angles)
-        rows.append(_row("compiled (solver.compile = auto), 1st process (C compile incl.)",
+        rows.append(_row("compiled, 1st process (C compile)",
                          comp_first))
         comp_second = None
         if subprocess_run:
             comp_second = second_process(scene_path, angles, intervals, repeats, comp_folder,
                                          compile_mode="auto")
-            rows.append(_row("  compiled, 2nd process (cached libraries)", comp_second))
+            rows.append(_row("  compiled, 2nd process (cache)", comp_second))
         with cache_folder(Path(tmp) / "est"):
             sparse_lu.available()
             est = _timed_sweep(base, angles, error_estimate=True)
-        rows.append(_row("  with error estimates (1st process)", est))
+        rows.append(_row("  with error estimates", est))
         builds = []
         for _ in range(repeats):
             with cache_folder(None):
@@ -202,7 +202,7 @@ def run(scene_path: str | Path = DEFAULT_SCENE, angles: np.ndarray | None = None
                                (time.process_time() - c0) * 1e3))
         b_wall, b_cpu = min(builds, key=lambda x: x[1])
         nan = float("nan")
-        rows.append(["  build only (Newton functions, no cache)", 1, b_wall, b_cpu, nan, nan,
+        rows.append(["  build only (no cache)", 1, b_wall, b_cpu, nan, nan,
                      nan, nan, nan, nan, nan, 1])
 
     scenes = [base.with_overrides({"layout.psi0_deg": float(a)}) for a in angles]
@@ -225,15 +225,15 @@ def run(scene_path: str | Path = DEFAULT_SCENE, angles: np.ndarray | None = None
                     "iterations": [s.iterations for s in sols[1:]],
                     "solved": int(sum(s.success for s in sols)), "points": len(sols),
                     "sols": sols}
-    rows.append(_row("solve_bvp, each from catenary", bvp["cold"]))
-    rows.append(_row("solve_bvp, warm from previous", bvp["warm"]))
+    rows.append(_row("solve_bvp, from catenary", bvp["cold"]))
+    rows.append(_row("solve_bvp, warm", bvp["warm"]))
 
     fa = np.array(first["forces"])
     fb = np.array([s.force_a for s in bvp["cold"]["sols"]])
     agree = float(np.max(np.abs(fa - fb)) / np.max(np.abs(fa)))
-    headers = ["method", "points", "total [ms]", "total CPU [ms]", "first [ms]",
-               "median next [ms]", "median next CPU [ms]", "p90 next [ms]", "mean iters",
-               "median iters", "mean factorisations", "solved"]
+    headers = ["method", "points", "total [ms]", "CPU [ms]", "first [ms]", "next [ms]",
+               "next CPU [ms]", "next p90 [ms]", "iters mean", "iters median",
+               "factor. mean", "solved"]
     per_point = (first["total_ms"] - first["build_ms"] - first["first_ms"]) \
         / max(first["points"] - 1, 1)
     comp_row = _row("", comp_second or comp_first)

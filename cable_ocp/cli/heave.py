@@ -4,12 +4,14 @@ from __future__ import annotations
 
 import argparse
 import math
+import textwrap
 from pathlib import Path
 from typing import Any
 
 import numpy as np
 
 from cable_ocp.cli import output as out
+from cable_ocp.numerics.text_table import MISSING, WIDTH, table
 
 CONTROLLERS = ("passive", "lqr", "lqg", "mpc")
 
@@ -31,9 +33,10 @@ def register(sub: argparse._SubParsersAction, parent: argparse.ArgumentParser) -
              "(Huang 1992, ch. 6)",
         description="Simulate the scene's controllers on one seeded wave realisation and "
                     "compare them: unit heave RMS and its reduction, winch speed and stroke, "
-                    "limit violations, MPC solve times. Exit 0 when every controller ran "
-                    "and stayed finite and stable, 1 otherwise (per-controller status in the "
-                    "JSON), 2 invalid input.")
+                    "limit violations (a warning names each limit a controller exceeds), MPC "
+                    "solve times. Exit 0 when every controller ran and stayed finite and "
+                    "stable (on the cable: its line never went slack), 1 otherwise "
+                    "(per-controller status in the JSON), 2 invalid input.")
     p.add_argument("file", help="heave scene (UTF-8 TOML), e.g. problems/heave/ex_6_3_6.toml")
     out.add_set_option(p)
     p.add_argument("--duration", type=float, metavar="S",
@@ -107,29 +110,120 @@ def cmd_heave(args: argparse.Namespace) -> int:
     return out.EXIT_OK if not bad else out.EXIT_NOT_SUCCESS
 
 
+def _num(v: float | None, spec: str, scale: float = 1.0) -> str:
+    """A table cell: ``v / scale`` formatted, or ``-`` where the number does not exist."""
+    if v is None or not math.isfinite(v):
+        return MISSING
+    return format(v / scale, spec)
+
+
+def _wrap(text: str) -> str:
+    """A remark within the tables' width, its continuation lines indented."""
+    return textwrap.fill(text, WIDTH, subsequent_indent="  ", break_on_hyphens=False)
+
+
+def filter_lines(sc: Any, fit: Any) -> list[str]:
+    """The shaping filter's fit, and for the thesis' filter what its known misfit means.
+
+    Parameters
+    ----------
+    sc : HeaveScene
+        The scene (``[sea] shaping_filter``).
+    fit : cable_ocp.heave.sea.FilterFit
+        The filter's fit to the scene's spectrum.
+    """
+    lines = [f"shaping filter: spectral error {fit.spectral_error:.3f}, variance error "
+             f"{100 * fit.variance_error:+.2f} %"]
+    if sc.sea.shaping_filter == "thesis":
+        lines.append(f"  (the thesis' filter: its spectrum is {100 * fit.spectral_error:.0f} % off "
+                     "the sea's (L2); kept: it gives the thesis' sigma)")
+    return lines
+
+
+def heave_table(res: Any) -> str:
+    """The comparison table of a heave run: one row per controller, every row with every
+    column (a value that does not exist, e.g. of a failed controller, is ``-``).
+
+    Parameters
+    ----------
+    res : Comparison or CableComparison
+        The result (:func:`cable_ocp.heave.compare`).
+    """
+    hdr = ["controller", "status", "heave rms", "reduction", "peak u'", "max |u|", "u' rms",
+           "energy", "violation", "solve med"]
+    units = ["", "", "[m]", "[%]", "[m/s]", "[m]", "[m/s]", "[-]", "[-]", "[s]"]
+    rows = [[name, str(res.statuses[name]), _num(m.heave_rms, ".3e"),
+             _num(m.reduction_pct, ".2f"), _num(m.peak_winch_speed, ".3f"),
+             _num(m.max_stroke, ".3f"), _num(m.winch_speed_rms, ".3f"),
+             _num(m.energy_index, ".2f"), _num(m.max_constraint_violation, ".3f"),
+             _num(m.solve_time_median_s, ".2e")] for name, m in res.metrics.items()]
+    return table(hdr, rows, units, left=1)
+
+
+def cable_table(res: Any) -> str:
+    """Predicted against achieved on the cable plant: reductions, tensions and slack per
+    controller (every row with every column, ``-`` where a number does not exist).
+
+    Parameters
+    ----------
+    res : CableComparison
+        The result on the cable plant.
+    """
+    hdr = ["controller", "predicted", "achieved", "T unit min", "T unit max", "T top min",
+           "T top max", "slack"]
+    units = ["", "[%]", "[%]", "[kN]", "[kN]", "[kN]", "[kN]", "[samples]"]
+    rows = []
+    for name, m in res.metrics.items():
+        d = m.as_dict()
+        rows.append([name, _num(d.get("reduction_predicted_pct"), ".3f"),
+                     _num(d.get("reduction_pct"), ".3f")]
+                    + [_num(d.get(k), ".1f", 1e3) for k in
+                       ("tension_unit_min", "tension_unit_max", "tension_top_min",
+                        "tension_top_max")]
+                    + [MISSING if d.get("slack_samples") is None else str(d["slack_samples"])])
+    return table(hdr, rows, units, left=1)
+
+
+def deployment_table(res: Any) -> str:
+    """The deployment's summary over the windows of paid-out length (the README's table):
+    per controller the unit's heave (standard deviation about the window's mean: median and
+    largest over the windows, and the length of the largest), the lowest and highest tension
+    at the unit, and the slack (time and windows).
+
+    Parameters
+    ----------
+    res : CableComparison
+        The result of a scene with ``[deployment]``.
+    """
+    from cable_ocp.heave.deployment import summary
+
+    dep = res.json_extra["deployment"]
+    hdr = ["controller", "status", "heave std", "heave std", "at", "T unit min", "T unit max",
+           "slack", "slack"]
+    units = ["", "", "median [m]", "max [m]", "[m]", "[kN]", "[kN]", "[s]", "[windows]"]
+    rows = []
+    for name, row in summary(dep["per_length"], dep["sample_time"]).items():
+        rows.append([name, str(res.statuses.get(name, MISSING)),
+                     _num(row["heave_std_median"], ".4f"), _num(row["heave_std_max"], ".4f"),
+                     _num(row["heave_std_max_at"], ".0f"),
+                     _num(row["tension_unit_min"], ".1f", 1e3),
+                     _num(row["tension_unit_max"], ".1f", 1e3),
+                     _num(row["slack_time"], ".2f"),
+                     f"{row['slack_windows']} of {row['windows']}"])
+    return (f"per {dep['window']:.3g} m of paid-out length, "
+            f"{min(dep['per_length']['length']):.0f}-{max(dep['per_length']['length']):.0f} m:\n"
+            + table(hdr, rows, units, left=1))
+
+
 def _print_table(sc: Any, args: argparse.Namespace, res: Any) -> None:
     """The comparison table (what ``cable-ocp heave`` prints)."""
-    fit = res.models.filter_fit
     print(f"{sc.title or Path(args.file).stem}")
     sig = res.sigma_uncontrolled
     print("sigma_uncontrolled (Lyapunov, sigma^2 = pi P11): "
           + (f"{sig:.4f} m" if sig is not None else "- (no valid variance)"))
-    print(f"shaping filter: spectral error {fit.spectral_error:.3f}, variance error "
-          f"{100 * fit.variance_error:+.2f} %")
-    hdr = ("controller", "status", "heave rms [m]", "reduction [%]", "peak u' [m/s]", "max |u| [m]",
-           "u' rms [m/s]", "energy [-]", "violation [-]", "solve median [s]")
-    print("{:<10} {:<10} {:>13} {:>13} {:>13} {:>11} {:>12} {:>10} {:>13} {:>16}".format(
-        *hdr))
-
-    def f(v: float | None, spec: str) -> str:
-        return "-" if v is None or not math.isfinite(v) else format(v, spec)
-
-    for name, m in res.metrics.items():
-        print(f"{name:<10} {res.statuses[name]:<10} {f(m.heave_rms, '13.4e')} "
-              f"{f(m.reduction_pct, '13.3f')} "
-              f"{f(m.peak_winch_speed, '13.3f')} {f(m.max_stroke, '11.3f')} "
-              f"{f(m.winch_speed_rms, '12.3f')} {f(m.energy_index, '10.2f')} "
-              f"{f(m.max_constraint_violation, '13.3f')} {f(m.solve_time_median_s, '16.2e')}")
+    for line in filter_lines(sc, res.models.filter_fit):
+        print(line)
+    print(heave_table(res))
     if "mpc" in res.metrics:
         print(f"MPC solver failures (fell back on the shifted plan): {res.mpc_failures}")
     if "passive" not in res.metrics and res.passive_heave_rms is not None:
@@ -137,7 +231,9 @@ def _print_table(sc: Any, args: argparse.Namespace, res: Any) -> None:
               f"{res.passive_heave_rms:.4e} m")
     for name, st in res.statuses.items():
         if st != "solved":
-            print(f"{name}: {st}: {res.messages[name]}")
+            print(_wrap(f"{name}: {st}: {res.messages[name]}"))
+    for w in res.warnings:
+        print(_wrap(f"WARNING {w}"))
     extra = getattr(res, "json_extra", None) or {}
     if extra:
         _print_cable(extra, res)
@@ -147,33 +243,23 @@ def _print_cable(extra: dict, res: Any) -> None:
     """Identification and, on the cable plant, predicted vs achieved (cable scenes)."""
     idf = extra.get("identified")
     if idf:
-        print(f"identified from the cable ({idf['excitation']}, {idf['duration']:g} s): "
-              f"a = {idf['a']:.5g} +- {idf['a_std']:.2g} s^2, b = {idf['b']:.4g} +- "
-              f"{idf['b_std']:.2g} s, fit {idf['fit_pct']:.2f} %; (6.3): b_quadratic = "
-              f"{idf['b_quadratic']:.4g} s^2/m, fit {idf['fit_pct_quadratic']:.2f} %; "
-              f"first axial mode {idf['omega_1']:.4g} rad/s: 1/omega_1^2 = "
+        print(f"identified from the cable ({idf['excitation']}, {idf['duration']:g} s):")
+        print(f"  a = {idf['a']:.5g} +- {idf['a_std']:.2g} s^2, b = {idf['b']:.4g} +- "
+              f"{idf['b_std']:.2g} s, fit {idf['fit_pct']:.2f} %;")
+        print(f"  (6.3): b_quadratic = {idf['b_quadratic']:.4g} s^2/m, fit "
+              f"{idf['fit_pct_quadratic']:.2f} %;")
+        print(f"  first axial mode {idf['omega_1']:.4g} rad/s: 1/omega_1^2 = "
               f"{idf['a_modal']:.5g} s^2 ({idf['a_vs_modal_pct']:+.2f} %)")
     dm = extra.get("design_model", {})
     print(f"design model: a = {dm.get('a', float('nan')):.5g} s^2, "
           f"b = {dm.get('b', float('nan')):.4g} s ({dm.get('source', '-')}); "
           f"plant: {extra.get('plant', 'model')}")
-    if extra.get("plant") != "cable" or "deployment" in extra:
+    if "deployment" in extra:
+        print(deployment_table(res))
         return
-    print("{:<10} {:>15} {:>15} {:>23} {:>23} {:>6}".format(
-        "controller", "predicted [%]", "achieved [%]", "tension unit [kN]",
-        "tension top [kN]", "slack"))
-    def f(v: float | None, spec: str, scale: float = 1.0) -> str:
-        if v is None:
-            return "-".rjust(int(spec.split(".")[0].rstrip("df") or 0))
-        return format(v / scale if scale != 1.0 else v, spec)
-
-    for name, m in res.metrics.items():
-        d = m.as_dict()
-        print(f"{name:<10} {f(d['reduction_predicted_pct'], '15.3f')} "
-              f"{f(d['reduction_pct'], '15.3f')} "
-              f"{f(d['tension_unit_min'], '11.1f', 1e3)} {f(d['tension_unit_max'], '11.1f', 1e3)} "
-              f"{f(d['tension_top_min'], '11.1f', 1e3)} {f(d['tension_top_max'], '11.1f', 1e3)} "
-              f"{f(d['slack_samples'], '6d')}")
+    if extra.get("plant") != "cable":
+        return
+    print(cable_table(res))
 
 
 def _plot(sc: Any, args: argparse.Namespace, res: Any, path: str) -> None:

@@ -476,36 +476,158 @@ def note(args: argparse.Namespace, text: str) -> None:
 # Progress
 # --------------------------------------------------------------------------------------
 
+#: a progress line in a pipe or a log at least every this many seconds ...
+PROGRESS_EVERY_S = 10.0
+#: ... or when this fraction more of the work is done, but never more than one a second
+PROGRESS_EVERY_FRACTION = 0.1
+PROGRESS_MIN_S = 1.0
+#: the bar's width on a terminal that reports no width (0 columns)
+FALLBACK_COLUMNS = 80
+
+
+def _clock_text(seconds: float) -> str:
+    return f"{seconds:.0f} s" if seconds < 600 else f"{seconds / 60:.0f} min"
+
+
+class ProgressLines:
+    """Progress as short lines on a stream that is not a terminal (a pipe, a log): one line
+    when :data:`PROGRESS_EVERY_S` have passed since the last, or when
+    :data:`PROGRESS_EVERY_FRACTION` more of the total is done (at most one line per
+    :data:`PROGRESS_MIN_S`), and a last line at :meth:`close` if any was written.
+
+    Parameters
+    ----------
+    stream : file-like
+        Where the lines go (``sys.stderr``).
+    total : int
+        Number of steps expected (a call may change it).
+    desc, unit : str
+        What runs and the name of one step.
+    clock : callable
+        Seconds, monotonic (default :func:`time.monotonic`; a test injects its own).
+    """
+
+    def __init__(self, stream: Any, total: int, desc: str, unit: str,
+                 clock: Callable[[], float] | None = None) -> None:
+        import time
+
+        self.stream, self.total, self.desc, self.unit = stream, max(int(total), 0), desc, unit
+        self.clock = clock or time.monotonic
+        self.start = self.last_t = self.clock()
+        self.last_done = 0
+        self.done = 0
+        self.postfix: str | None = None
+        self.lines = 0
+        self.first: tuple[float, int] | None = None
+
+    def _write(self, now: float, last: bool = False) -> None:
+        total = max(self.total, 1)
+        elapsed = now - self.start
+        text = (f"cable-ocp: {self.desc}: {self.done}/{self.total} {self.unit} "
+                f"({100.0 * self.done / total:.0f} %), {_clock_text(elapsed)}")
+        if last:
+            text += " (done)" if self.done >= self.total else " (stopped)"
+        elif self.first is not None and self.first[1] < self.done < self.total:
+            # the rate since the first report (not since the start: a command may prepare
+            # for a while before its first step)
+            rate = (self.done - self.first[1]) / max(now - self.first[0], 1e-9)
+            text += f", ~{_clock_text((self.total - self.done) / rate)} left"
+        if self.postfix:
+            text += f", {self.postfix}"
+        print(text, file=self.stream, flush=True)
+        self.lines += 1
+        self.last_t, self.last_done = now, self.done
+
+    def __call__(self, done: int, total: int | None = None, postfix: str | None = None
+                 ) -> None:
+        """Record ``done`` steps (and a new ``total``, a ``postfix``); write a line when due.
+
+        Parameters
+        ----------
+        done : int
+            Steps finished.
+        total : int, optional
+            A new total.
+        postfix : str, optional
+            A short text after the line (e.g. failures).
+        """
+        if total is not None:
+            self.total = max(int(total), 0)
+        if postfix is not None:
+            self.postfix = postfix
+        self.done = int(done)
+        now = self.clock()
+        if self.first is None:
+            self.first = (now, self.done)
+        since = now - self.last_t
+        frac = (self.done - self.last_done) / max(self.total, 1)
+        if since >= PROGRESS_EVERY_S or (frac >= PROGRESS_EVERY_FRACTION
+                                         and since >= PROGRESS_MIN_S):
+            self._write(now)
+
+    def close(self) -> None:
+        """The last line, if any line was written (a short run writes none)."""
+        if self.lines:
+            self._write(self.clock(), last=True)
+
+
+def bar_columns(stream: Any) -> int:
+    """The width of a progress bar on the terminal ``stream``: its columns, or
+    :data:`FALLBACK_COLUMNS` where it reports none (tqdm draws nothing at 0 columns).
+
+    Parameters
+    ----------
+    stream : file-like
+        The terminal (``sys.stderr``).
+    """
+    try:
+        cols = os.get_terminal_size(stream.fileno()).columns
+    except (AttributeError, ValueError, OSError, io.UnsupportedOperation):
+        cols = 0
+    return cols if cols > 0 else FALLBACK_COLUMNS
+
+
 @contextlib.contextmanager
-def progress(args: argparse.Namespace, total: int, desc: str, unit: str = "it"
+def progress(args: argparse.Namespace, total: int, desc: str, unit: str = "it",
+             stream: Any = None, clock: Callable[[], float] | None = None
              ) -> Iterator[Callable[..., None]]:
-    """A progress bar on stderr (tqdm) for ``total`` steps, as a callback.
+    """Progress on stderr for ``total`` steps, as a callback, for every command.
 
     The callback takes ``(done, total=None, postfix=None)``: the number of steps finished,
-    optionally a new total, and a short text shown after the bar (e.g. failures). The bar
-    shows what runs, done/total, elapsed and remaining time. It is silent when stderr is
-    not a terminal or with ``--quiet``.
+    optionally a new total, and a short text shown after the bar (e.g. failures). On a
+    terminal a tqdm bar shows what runs, done/total, elapsed and remaining time (its width
+    the terminal's, 80 columns where the terminal reports none); in a pipe or a log, short
+    lines (:class:`ProgressLines`: every ~10 s or 10 %). Nothing with ``--quiet``.
 
     Parameters
     ----------
     args : argparse.Namespace
         The parsed command line; its ``quiet`` attribute (False when absent) turns the
-        bar off.
+        progress off.
     total : int
         Number of steps expected (the callback may change it).
     desc : str
         What runs, shown before the bar.
     unit : str
         Name of one step, shown in the rate (default ``"it"``).
+    stream : file-like, optional
+        Where the progress goes (default ``sys.stderr``).
+    clock : callable, optional
+        The clock of the lines in a pipe (default :func:`time.monotonic`).
     """
-    enabled = sys.stderr.isatty() and not getattr(args, "quiet", False)
-    if not enabled:
+    stream = sys.stderr if stream is None else stream
+    if getattr(args, "quiet", False):
         yield lambda done, total=None, postfix=None: None
+        return
+    if not (hasattr(stream, "isatty") and stream.isatty()):
+        lines = ProgressLines(stream, total, desc, unit, clock)
+        yield lines
+        lines.close()  # not after an exception: an interruption says so in one line
         return
     from tqdm import tqdm
 
-    bar = tqdm(total=total, desc=desc, unit=unit, file=sys.stderr, leave=False,
-               dynamic_ncols=True, smoothing=0.1)
+    bar = tqdm(total=total, desc=desc, unit=unit, file=stream, leave=False,
+               ncols=bar_columns(stream), smoothing=0.1)
 
     def update(done: int, total: int | None = None, postfix: str | None = None) -> None:
         if total is not None and total != bar.total:

@@ -32,6 +32,9 @@ from cable_ocp.heave.metrics import (
     CableComparison,
     CableMetrics,
     cable_run_metrics,
+    cable_status,
+    limit_excess,
+    limit_warning,
     reduction_pct,
 )
 from cable_ocp.scene.dynamics import DynamicScene
@@ -191,18 +194,15 @@ def _compare_on_cable(sc: HeaveScene, sd: HeaveScene, dyn: DynamicScene,
         metrics[name] = (mc, mm)
         if name not in controllers:
             continue
-        statuses[name], messages[name] = run_status(runs["cable"])
+        statuses[name], messages[name] = cable_status(runs["cable"], mc, plant_c.model_name)
         pst, pmsg = run_status(runs["model"], "design-model")
         if pst != "solved":
             warnings.append(f"{name}: on the design model (the prediction): {pst}: {pmsg}")
-        if mc["slack_samples"]:
-            why = ("cannot follow slack (it carries compression), its tensions there are not "
-                   "physical" if plant_c.model_name == "axial" else "has no compression and "
-                   "follows a slack line only approximately (it may fold there)")
-            warnings.append(
-                f"{name}: the line went slack on the cable (an element tension <= 0 at "
-                f"{mc['slack_samples']} samples after the warm-up, first at "
-                f"t = {mc['slack_first_time_s']:.2f} s); the {plant_c.model_name} model {why}")
+        if run_status(runs["cable"])[0] == "solved":
+            lim = limit_warning(name, limit_excess(sd, runs["cable"].trace,
+                                                   runs["cable"].commands, h))
+            if lim:
+                warnings.append(lim)
         traces[name] = runs["cable"].trace
         predicted[name] = runs["model"].trace
         if name == "mpc":

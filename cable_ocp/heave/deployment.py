@@ -31,7 +31,7 @@ from typing import Any
 import numpy as np
 
 from cable_ocp.heave.axial_plant import AxialCablePlant
-from cable_ocp.heave.closed_loop import LoopRun, make_wave, run_loop, run_status, unstable_bound
+from cable_ocp.heave.closed_loop import LoopRun, make_wave, run_loop, unstable_bound
 from cable_ocp.heave.design import cable_controller, design_damping, design_table
 from cable_ocp.heave.identify_cable import CableIdentification, identify_from_cable
 from cable_ocp.heave.loop_plants import CableLine, WinchedLine
@@ -39,12 +39,15 @@ from cable_ocp.heave.metrics import (
     CableComparison,
     CableMetrics,
     cable_run_metrics,
+    cable_status,
+    limit_excess,
+    limit_warning,
     reduction_pct,
 )
 from cable_ocp.scene.dynamics import DynamicScene
 from cable_ocp.scene.heave import HeaveScene
 
-__all__ = ["deploy", "length_history"]
+__all__ = ["deploy", "length_history", "summary"]
 
 CONTROLLERS = ("passive", "lqr_fixed", "lqr_scheduled")
 
@@ -186,8 +189,12 @@ def deploy(scene: HeaveScene, design: HeaveScene, cable_scene: DynamicScene,
     metrics, statuses, messages = {}, {}, {}
     base = None
     for name, run in runs.items():
-        statuses[name], messages[name] = run_status(run)
         d = cable_run_metrics(design, run, energy[name])
+        statuses[name], messages[name] = cable_status(run, d, "axial")
+        if statuses[name] == "solved" or statuses[name] == "slack":
+            lim = limit_warning(name, limit_excess(design, run.trace, run.commands, h))
+            if lim:
+                warnings.append(lim)
         if name == "passive":
             base = d["heave_rms"]
         d["reduction_pct"] = reduction_pct(d["heave_rms"], base)
@@ -259,6 +266,43 @@ def _per_length(runs: dict[str, LoopRun], sc: HeaveScene, lo: float, hi: float,
             rows["slack_samples"].append(int(np.count_nonzero(
                 (tr.min_element_tension <= 0.0) & kok & (kidx == j))))
         out[name] = rows
+    return out
+
+
+def summary(per_length: dict[str, Any], sample_time: float) -> dict[str, dict[str, Any]]:
+    """Per controller, the deployment over its windows of length (the README's table): the
+    unit's heave standard deviation (median and largest over the windows, m, and the window
+    centre of the largest, m), the lowest and highest tension at the unit (N), the slack time
+    (s: slack samples times ``sample_time``) and the windows with slack; windows without
+    samples (a run that stopped) are left out, a value over none is None.
+
+    Parameters
+    ----------
+    per_length : dict
+        The ``per_length`` table of the deployment's JSON (:func:`deploy`).
+    sample_time : float
+        The control sample, s.
+    """
+    centres = np.asarray(per_length["length"], dtype=float)
+    out: dict[str, dict[str, Any]] = {}
+    for name, rows in per_length.items():
+        if name == "length":
+            continue
+        have = np.array([v is not None for v in rows["heave_std"]], dtype=bool)
+        std = np.array([v for v in rows["heave_std"] if v is not None], dtype=float)
+        slack = [int(v) for v in rows["slack_samples"] if v is not None]
+        t_lo = [v for v in rows["tension_unit_min"] if v is not None]
+        t_hi = [v for v in rows["tension_unit_max"] if v is not None]
+        j = int(np.argmax(std)) if std.size else None
+        out[name] = {
+            "heave_std_median": float(np.median(std)) if std.size else None,
+            "heave_std_max": float(std[j]) if j is not None else None,
+            "heave_std_max_at": float(centres[have][j]) if j is not None else None,
+            "tension_unit_min": min(t_lo) if t_lo else None,
+            "tension_unit_max": max(t_hi) if t_hi else None,
+            "slack_time": sum(slack) * sample_time,
+            "slack_windows": sum(1 for v in slack if v > 0),
+            "windows": int(centres.size)}
     return out
 
 

@@ -16,6 +16,7 @@ from typing import TYPE_CHECKING, Any
 
 import numpy as np
 
+from cable_ocp.dynamics.result import slack_report
 from cable_ocp.heave.closed_loop import LoopRun, Trace, run_status
 from cable_ocp.scene.heave import HeaveScene
 from cable_ocp.status import Status
@@ -23,8 +24,9 @@ from cable_ocp.status import Status
 if TYPE_CHECKING:
     from cable_ocp.heave.simulate import Models
 
-__all__ = ["CABLE_FIELDS", "CableComparison", "CableMetrics", "Comparison", "Metrics",
-           "cable_run_metrics", "reduction_pct", "run_metrics", "with_reduction"]
+__all__ = ["CABLE_FIELDS", "LIMIT_TOLERANCE", "SLACK_MESSAGE", "WINCH_LIMITS", "CableComparison",
+           "CableMetrics", "Comparison", "Metrics", "cable_run_metrics", "cable_status",
+           "limit_excess", "limit_warning", "reduction_pct", "run_metrics", "with_reduction"]
 
 
 @dataclass(frozen=True)
@@ -154,6 +156,114 @@ def with_reduction(mt: Metrics, base: float | None) -> Metrics:
     return Metrics(**d)
 
 
+#: the winch's limits, in the order :func:`limit_excess` checks them: key, what, unit
+WINCH_LIMITS = (("stroke_max", "stroke", "m"), ("speed_max", "winch speed", "m/s"),
+                ("command_rate_max", "command change", "m per sample"),
+                ("accel_max", "winch acceleration", "m/s^2"))
+
+
+def limit_excess(scene: HeaveScene, tr: Trace, cmds: np.ndarray, h: float
+                 ) -> list[tuple[str, float, float, str]]:
+    """The winch limits a run exceeds after the warm-up: ``(key, largest value, limit,
+    unit)`` per ``[winch]`` key, in :data:`WINCH_LIMITS`' order (empty when every limit
+    holds). Stroke ``|u|`` and speed ``|u'|``; the change of the command per sample (command
+    ``k`` is issued at ``t = k h``, command -1 is the initial 0; its change from command
+    ``k - 1`` counts if ``k h >= warm-up``); the acceleration for the second-order winch only
+    (docs/conventions.md, "Heave compensation"). The plant does not saturate: a run past a
+    limit assumes a winch that can do what it was asked.
+
+    Parameters
+    ----------
+    scene : HeaveScene
+        The scene (warm-up, winch limits).
+    tr : Trace
+        The run's trace.
+    cmds : numpy.ndarray
+        The commands per sample, m.
+    h : float
+        Sample time, s.
+    """
+    warm = scene.simulation.warmup
+    keep = tr.t >= warm - 1e-12
+    w = scene.winch
+    largest: dict[str, float] = {}
+    if np.any(keep):
+        largest["stroke_max"] = float(np.max(np.abs(tr.u[keep])))
+        largest["speed_max"] = float(np.max(np.abs(tr.u_dot[keep])))
+    if w.command_rate_max is not None and cmds.size > 1:
+        k0 = max(0, int(np.ceil(warm / h - 1e-9)))
+        dcmd = np.diff(np.concatenate([[0.0], cmds]))[k0:]
+        if dcmd.size:
+            largest["command_rate_max"] = float(np.max(np.abs(dcmd)))
+    if w.accel_max is not None and w.model == "second_order" and np.any(keep):
+        largest["accel_max"] = float(np.max(np.abs(np.gradient(tr.u_dot, tr.t)[keep])))
+    out = []
+    for key, _, unit in WINCH_LIMITS:
+        limit = getattr(w, key, None)
+        if limit is not None and key in largest and largest[key] > limit:
+            out.append((key, largest[key], float(limit), unit))
+    return out
+
+
+#: a run exceeds a limit for :func:`limit_warning` when it is past it by more than this
+#: fraction: the MPC keeps its hard limits to its QP solver's tolerance (its command change
+#: ends 1e-10 m past 0.1 m), which is no excess a winch would notice
+LIMIT_TOLERANCE = 1e-3
+
+
+def limit_warning(name: str, excess: list[tuple[str, float, float, str]]) -> str | None:
+    """One warning line for a controller past the winch's limits (:func:`limit_excess`) by
+    more than :data:`LIMIT_TOLERANCE`, or None when it keeps them.
+
+    Parameters
+    ----------
+    name : str
+        The controller.
+    excess : list of tuple
+        :func:`limit_excess` of its run.
+    """
+    what = {key: text for key, text, _ in WINCH_LIMITS}
+    parts = [f"{what[key]} {value:.3g} {unit}, winch.{key} = {limit:g} ({value / limit:.1f}x)"
+             for key, value, limit, unit in excess if value > limit * (1.0 + LIMIT_TOLERANCE)]
+    if not parts:
+        return None
+    return (f"{name} exceeds the winch's limits (the plant does not saturate): "
+            + "; ".join(parts))
+
+
+#: the heave plant's slack message (:func:`cable_ocp.dynamics.result.slack_report`, the rule
+#: that gives ``simulate`` its status ``slack``)
+SLACK_MESSAGE = ("an element tension <= 0 at {samples} samples after the warm-up, "
+                 "first at t = {t:.2f} s; the {model} model {action}")
+
+
+def cable_status(run: LoopRun, metrics: dict, model: str) -> tuple[str, str]:
+    """``(status, message)`` of a run on the cable: :func:`cable_ocp.heave.closed_loop.
+    run_status`, then ``"slack"`` where the line went slack after the warm-up and the run
+    otherwise succeeded (:func:`cable_ocp.dynamics.result.slack_report`, as ``simulate``
+    decides it): until the plant follows slack physically, its tensions and heave past
+    slack are not physical.
+
+    Parameters
+    ----------
+    run : LoopRun
+        The run on the cable.
+    metrics : dict
+        Its :func:`cable_run_metrics` (``slack_first_time_s``, ``slack_samples``).
+    model : str
+        The cable plant's model (``"axial"``, ``"planar"``, ``"lumped3d"``).
+    """
+    status, message = run_status(run)
+    why = ("cannot follow slack (it carries compression): its tensions and heave past there "
+           "are not physical" if model == "axial" else "has no compression and follows a "
+           "slack line only approximately (it may fold there)")
+    _, status, message = slack_report(
+        metrics.get("slack_first_time_s"), None, None, status=status, message=message,
+        on_slack="continue", template=SLACK_MESSAGE, continued=why,
+        samples=metrics.get("slack_samples"), model=model)
+    return status, message
+
+
 def run_metrics(scene: HeaveScene, tr: Trace, cmds: np.ndarray, energy: float | None,
                 times: np.ndarray | None, h: float) -> Metrics:
     """Metrics of one run, all over the same window ``t >= [simulation] warmup``.
@@ -182,22 +292,8 @@ def run_metrics(scene: HeaveScene, tr: Trace, cmds: np.ndarray, energy: float | 
     warm = scene.simulation.warmup
     keep = tr.t >= warm - 1e-12
     u, ud = tr.u[keep], tr.u_dot[keep]
-    w = scene.winch
-    viol = 0.0
-    for val, lim in [(np.max(np.abs(u)), w.stroke_max), (np.max(np.abs(ud)), w.speed_max)]:
-        if lim is not None:
-            viol = max(viol, max(0.0, val - lim) / lim)
-    if w.command_rate_max is not None and cmds.size > 1:
-        # Command k is issued at t = k h (command -1 is the initial 0); its change from
-        # command k - 1 counts if k h >= warm-up.
-        k0 = max(0, int(np.ceil(warm / h - 1e-9)))
-        dcmd = np.diff(np.concatenate([[0.0], cmds]))[k0:]
-        if dcmd.size:
-            dr = float(np.max(np.abs(dcmd)))
-            viol = max(viol, max(0.0, dr - w.command_rate_max) / w.command_rate_max)
-    if w.accel_max is not None and w.model == "second_order":
-        acc = np.gradient(tr.u_dot, tr.t)[keep]
-        viol = max(viol, max(0.0, float(np.max(np.abs(acc))) - w.accel_max) / w.accel_max)
+    viol = max([0.0] + [(value - limit) / limit
+                        for _, value, limit, _ in limit_excess(scene, tr, cmds, h)])
     return Metrics(
         heave_rms=float(np.sqrt(np.mean(tr.x[keep] ** 2))),
         reduction_pct=None,

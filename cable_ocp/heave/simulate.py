@@ -58,7 +58,14 @@ from cable_ocp.heave.controllers import Controller, MPCController, Passive, Stat
 from cable_ocp.heave.discrete import DelayedDiscreteModel, discretize_delayed, discretize_noise
 from cable_ocp.heave.estimators import FullState, KalmanFilter, kalman_gain, process_noise
 from cable_ocp.heave.loop_plants import UnitWinchPlant
-from cable_ocp.heave.metrics import Comparison, Metrics, run_metrics, with_reduction
+from cable_ocp.heave.metrics import (
+    Comparison,
+    Metrics,
+    limit_excess,
+    limit_warning,
+    run_metrics,
+    with_reduction,
+)
 from cable_ocp.heave.stochastic import (
     WHITE_NOISE_INTENSITY,
     discrete_delay_lqr,
@@ -254,6 +261,9 @@ def compare(scene: HeaveScene, controllers: tuple | None = None,
         times = run.times if name == "mpc" else None
         if status == "solved":
             mt = run_metrics(scene, tr, cmds, energy, times, h)
+            lim = limit_warning(name, limit_excess(scene, tr, cmds, h))
+            if lim and name in controllers:
+                warnings.append(lim)
         else:
             mt = Metrics(None, None, None, None, energy, None,
                          float(np.median(times)) if times is not None and times.size else None,

@@ -164,7 +164,11 @@ def short_json(tmp_path_factory: pytest.TempPathFactory) -> dict:
 
 def test_cable_json_has_identification_and_prediction(short_json: dict) -> None:
     d = short_json
-    assert d["_rc"] == 0 and d["status"] == "solved" and d["plant"] == "cable"
+    # the passive unit resonates and takes the line slack: status slack, exit 1; the
+    # controllers' lines do not go slack
+    assert d["_rc"] == 1 and d["status"] == "slack" and d["plant"] == "cable"
+    assert {k: v["status"] for k, v in d["controllers"].items()} == {
+        "passive": "slack", "lqr": "solved", "mpc": "solved"}
     idf = d["identified"]
     for key in ("a", "b", "b_quadratic", "fit_pct", "excitation", "a_std", "b_std",
                 "b_quadratic_std", "omega_1", "a_modal"):
@@ -250,8 +254,10 @@ def test_long_line_depth_only_lqg_fails_on_the_cable(long_run: tuple) -> None:
     regression value; the test asks only that it comes after the 30 s warm-up's fade-in has
     begun and before the end.)"""
     _, _, _, res = long_run
-    assert res.statuses == {"passive": "solved", "lqr": "solved", "lqg": "failed"}
-    assert res.status == "failed" and "Newton step did not converge" in res.messages["lqg"]
+    # the passive unit near resonance takes the line slack (docs/heave.md: 1806 samples in
+    # 300 s): status slack, the first status that is not solved, so the top level's
+    assert res.statuses == {"passive": "slack", "lqr": "solved", "lqg": "failed"}
+    assert res.status == "slack" and "Newton step did not converge" in res.messages["lqg"]
     d = res.metrics["lqg"].as_dict()
     assert 5.0 < d["plant_failed_at_s"] < 90.0
     assert d["heave_rms"] is None and d["reduction_pct"] is None

@@ -341,7 +341,12 @@ def test_lumped_plant_achieves_the_predicted_reduction(vertical_json: dict) -> N
     one the design model predicts (same estimator, sensors, noise, sea) to 2 percentage
     points (the requirement). The identified a lies within 5 % of 1 / omega_1^2."""
     d = vertical_json
-    assert d["_rc"] == 0 and d["status"] == "solved"
+    # the passive unit resonates and its line goes slack (status slack, exit 1); the LQR's
+    # does not
+    assert d["_rc"] == 1 and d["status"] == "slack"
+    assert d["controllers"]["passive"]["status"] == "slack"
+    assert d["controllers"]["lqr"]["status"] == "solved"
+    assert d["controllers"]["lqr"]["slack_samples"] == 0
     assert d["cable_plant"]["model"] == "lumped3d" and d["cable_plant"]["segments"] == 10
     assert d["identified"]["a"] == pytest.approx(d["identified"]["a_modal"], rel=0.05)
     m = d["controllers"]["lqr"]

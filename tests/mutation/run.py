@@ -69,6 +69,8 @@ LAWS = ("tests/test_physics_laws.py",)
 HEAVE = ("tests/heave/test_plant.py", "tests/heave/test_discrete.py", "tests/heave/test_sea.py",
          "tests/heave/test_stochastic.py", "tests/heave/test_lqr.py",
          "tests/heave/test_mpc.py", "tests/heave/test_simulate.py")
+SLACK_ST = "tests/heave/test_slack_status.py::test_"
+TEXT = "tests/test_text_face.py::test_"
 HEAVE_SIM = ("tests/heave/test_simulate.py", "tests/heave/test_examples.py",
              "tests/heave/test_closed_loop.py")
 # dynamics: whole files where every test is quick, else the non-slow test ids
@@ -744,6 +746,40 @@ MUTATIONS: tuple[Mutation, ...] = (
     Mutation("titles-not-fitted", "plots", "cable_ocp/plots/common.py",
              "    fit_titles(fig)\n    # whole", "    # whole", (FIGS,),
              "saved figures keep titles wider than the figure (clipped at its edges)"),
+    # -- heave: slack and limits on the cable, the heave tables (issue 22, fault 7, item 12) --
+    Mutation("heave-slack-is-not-a-status", HEAVE_A, "cable_ocp/heave/metrics.py",
+             'metrics.get("slack_first_time_s"), None, None, status=status',
+             "None, None, None, status=status", (SLACK_ST + "short_stiff_line_goes_slack_status_"
+                                                  "slack_exit_1",),
+             "a run whose line goes slack on the cable stays solved (exit 0)"),
+    Mutation("heave-limit-warning-100x", HEAVE_A, "cable_ocp/heave/metrics.py",
+             "if value > limit * (1.0 + LIMIT_TOLERANCE)]", "if value > limit * 100.0]",
+             (SLACK_ST + "shipped_problem_still_solved_exit_0_with_a_limit_warning",),
+             "a controller 5.7x past the command-rate limit gets no warning"),
+    Mutation("heave-table-missing-cell-empty", HEAVE_A, "cable_ocp/cli/heave.py",
+             "        return MISSING\n    return format(v / scale, spec)",
+             "        return ''\n    return format(v / scale, spec)",
+             (SLACK_ST + "heave_tables_fit_and_a_failed_row_keeps_its_columns",),
+             "a failed controller's row loses its cells (its columns shift)"),
+    Mutation("deployment-slack-windows-all", HEAVE_A, "cable_ocp/heave/deployment.py",
+             '"slack_windows": sum(1 for v in slack if v > 0)',
+             '"slack_windows": sum(1 for v in slack if v >= 0)',
+             (SLACK_ST + "deployment_summary_and_table",),
+             "the deployment summary counts every window as slack"),
+    # -- bookkeeping: the text face (issue 22, items 11, 12) ----------------------------------
+    Mutation("progress-pipe-every-100-s", "bookkeeping", "cable_ocp/cli/output.py",
+             "if since >= PROGRESS_EVERY_S or", "if since >= 10 * PROGRESS_EVERY_S or",
+             (TEXT + "progress_in_a_pipe_writes_a_line_every_10_s_or_10_percent",),
+             "in a pipe the progress line comes every 100 s"),
+    Mutation("progress-bar-zero-columns", "bookkeeping", "cable_ocp/cli/output.py",
+             "return cols if cols > 0 else FALLBACK_COLUMNS", "return cols",
+             (TEXT + "progress_bar_draws_on_a_terminal_that_reports_0_columns",),
+             "a terminal that reports 0 columns gets a bar 0 wide"),
+    Mutation("table-ignores-its-width", "bookkeeping", "cable_ocp/numerics/text_table.py",
+             "if len(blocks[-1]) > 1 and used + len(_GAP) + widths[i] > width:",
+             "if False:",
+             (TEXT + "table_fits_100_columns_and_a_failed_row_keeps_its_columns",),
+             "a table wider than 100 columns is printed in one block"),
 )
 
 
