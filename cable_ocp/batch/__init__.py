@@ -33,6 +33,7 @@ from cable_ocp.batch.cases import Case, build_cases, parse_grid, parse_random, p
 from cable_ocp.batch.executors import RunnerSpec, run_dask, run_local, run_serial
 from cable_ocp.batch.kinds import SUCCESS, runner_kind
 from cable_ocp.batch.store import FIXED, TAIL, Store
+from cable_ocp.numerics import interrupt
 from cable_ocp.scene.files import read_problem
 
 __all__ = ["BatchResult", "Case", "build_cases", "parse_grid", "parse_random", "parse_range",
@@ -217,7 +218,8 @@ def run_batch(problem: str | Path | dict[str, Any], grids: Sequence[tuple[str, l
         nonlocal count
         rows[row["case"]] = row
         if store is not None:
-            store.add(row)
+            with interrupt.signals_blocked():  # a Ctrl-C waits for the row to be whole
+                store.add(row)
         count += 1
         if progress is not None:
             progress(count, len(cases), row)
