@@ -72,7 +72,9 @@ def main(argv: list[str] | None = None) -> int:
             args = parser.parse_args(argv)
         except SystemExit as exc:  # argparse: --help/--version (0) or a usage error (2)
             return int(exc.code or 0) if isinstance(exc.code, int) else EXIT_INPUT
-        return int(args.func(args) or 0)
+        rc = int(args.func(args) or 0)
+        interrupt.check()  # a Ctrl-C that CasADi swallowed after the last checkpoint
+        return rc
     except CableOCPError as exc:
         if interrupt.requested():
             return _interrupted()

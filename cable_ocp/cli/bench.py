@@ -320,7 +320,7 @@ def _write_partial(args: argparse.Namespace, rows: list[dict[str, Any]], keys: l
     """On Ctrl-C: write the rows finished so far (JSON status "interrupted")."""
     out.emit_json(args, out.envelope("interrupted", f"interrupted after {len(rows)} rows",
                                      {"rows": rows}))
-    out.emit_csv(args, header, [[r.get(k) for k in keys] for r in rows])
+    out.emit_csv(args, header, [[r.get(k) for k in keys] for r in rows], partial=True)
     if out.stdout_free(args) and rows:
         from cable_ocp import report
 

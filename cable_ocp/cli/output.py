@@ -7,7 +7,8 @@ Exit codes (the same for every subcommand)
 2    the user's input is wrong (file, key, value, option, output path); one line names it
      and says what would be valid; found before any solve
 3    an internal error: one line, plus "rerun with --debug for the traceback"
-130  interrupted (Ctrl-C), after writing the rows and results already finished
+130  interrupted (Ctrl-C or SIGTERM), after writing the rows and results already finished;
+     a result that an interruption cut short is never written as if it were whole
 
 Outputs
 -------
@@ -41,6 +42,7 @@ from typing import Any
 import numpy as np
 
 from cable_ocp.errors import CableOCPError
+from cable_ocp.numerics import interrupt
 from cable_ocp.numerics.atomic import replace_atomically, write_text_file
 from cable_ocp.numerics.jsonable import json_safe
 from cable_ocp.status import Status
@@ -359,6 +361,8 @@ def emit_json(args: argparse.Namespace, obj: dict[str, Any], path: str | None = 
         Where to write (``"-"``: stdout, without a confirmation); None (default):
         ``args.json``, and nothing is written when that is not set either.
     """
+    if obj.get("status") != Status.INTERRUPTED:
+        interrupt.check()  # a Ctrl-C that CasADi swallowed: the result is not written
     path = path or args.json
     if path:
         _write(args, path, json_text(obj) + "\n", "JSON", "--json")
@@ -387,7 +391,7 @@ def csv_text(header: Sequence[str], rows: Sequence[Sequence[Any]]) -> str:
 
 
 def emit_csv(args: argparse.Namespace, header: Sequence[str], rows: Sequence[Sequence[Any]],
-             path: str | None = None) -> None:
+             path: str | None = None, partial: bool = False) -> None:
     """Write a CSV table to ``path`` (default ``args.csv``); '-' = stdout.
 
     Parameters
@@ -402,7 +406,12 @@ def emit_csv(args: argparse.Namespace, header: Sequence[str], rows: Sequence[Seq
     path : str, optional
         Where to write (``"-"``: stdout, without a confirmation); None (default):
         ``args.csv``, and nothing is written when that is not set either.
+    partial : bool
+        The rows finished before an interruption (written although one is pending);
+        default False: an interruption pending is raised instead (nothing written).
     """
+    if not partial:
+        interrupt.check()
     path = path or args.csv
     if path:
         _write(args, path, csv_text(header, rows), "CSV", "--csv")
@@ -423,6 +432,7 @@ def emit_plot(args: argparse.Namespace, draw: Callable[[str], Any],
         Where to save; None (default): ``args.plot``, and nothing is drawn when that is not
         set either.
     """
+    interrupt.check()
     path = path or args.plot
     if not path:
         return
@@ -467,7 +477,8 @@ def progress(args: argparse.Namespace, total: int, desc: str, unit: str = "it"
              ) -> Iterator[Callable[..., None]]:
     """A progress bar on stderr (tqdm) for ``total`` steps, as a callback.
 
-    The callback takes ``(done, total=None, postfix=None)``: the number of steps finished,
+    The callback is a checkpoint of interruptions (:func:`cable_ocp.numerics.interrupt.check`)
+    and takes ``(done, total=None, postfix=None)``: the number of steps finished,
     optionally a new total, and a short text shown after the bar (e.g. failures). The bar
     shows what runs, done/total, elapsed and remaining time. It is silent when stderr is
     not a terminal or with ``--quiet``.
@@ -485,8 +496,8 @@ def progress(args: argparse.Namespace, total: int, desc: str, unit: str = "it"
         Name of one step, shown in the rate (default ``"it"``).
     """
     enabled = sys.stderr.isatty() and not getattr(args, "quiet", False)
-    if not enabled:
-        yield lambda done, total=None, postfix=None: None
+    if not enabled:  # still a checkpoint: a Ctrl-C that CasADi swallowed stops here
+        yield lambda done, total=None, postfix=None: interrupt.check()
         return
     from tqdm import tqdm
 
@@ -494,6 +505,7 @@ def progress(args: argparse.Namespace, total: int, desc: str, unit: str = "it"
                dynamic_ncols=True, smoothing=0.1)
 
     def update(done: int, total: int | None = None, postfix: str | None = None) -> None:
+        interrupt.check()
         if total is not None and total != bar.total:
             bar.total = total
         bar.n = done

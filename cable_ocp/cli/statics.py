@@ -148,7 +148,8 @@ def cmd_footprint(args: argparse.Namespace) -> int:
     out.emit_json(args, out.envelope(status, message, {
         "directions": rows, "wall_time_s": wall,
         "ship": list(scene.end_b.position[:2])}))
-    out.emit_csv(args, FOOTPRINT_HEADER, [[r[k] for k in _FP_KEYS] for r in rows])
+    out.emit_csv(args, FOOTPRINT_HEADER, [[r[k] for k in _FP_KEYS] for r in rows],
+                 partial=interrupted)
     if args.plot and not interrupted:
         from cable_ocp.plots.statics_series import plot_footprint
 
