@@ -185,14 +185,28 @@ def _exit_with_parent(parent: int) -> None:
         with contextlib.suppress(OSError, AttributeError):
             libc = ctypes.CDLL(None, use_errno=True)
             libc.prctl(PR_SET_PDEATHSIG, signal.SIGKILL, 0, 0, 0)
-    if os.getppid() != parent:  # died before the prctl
+    first = os.getppid()  # the batch, or a fork server that started this worker for it
+
+    def gone() -> bool:
+        if os.getppid() != first:  # orphaned: adopted by another process
+            return True
+        if first == parent:
+            return False
+        try:
+            os.kill(parent, 0)
+        except ProcessLookupError:
+            return True
+        except OSError:  # exists, not ours to signal
+            return False
+        return False
+
+    if gone():  # the batch died before the prctl
         os._exit(EXIT_INTERRUPTED)
 
     def watch() -> None:
-        while True:
+        while not gone():
             time.sleep(PARENT_POLL_S)
-            if os.getppid() != parent:
-                os._exit(EXIT_INTERRUPTED)
+        os._exit(EXIT_INTERRUPTED)
 
     threading.Thread(target=watch, name="cable_ocp-parent-watch", daemon=True).start()
 

@@ -82,7 +82,8 @@ def call_solver(solver: Any, **kwargs: Any) -> tuple[dict[str, Any], dict[str, A
     ``User_Requested_Stop``) or CasADi's check inside a callback, which prints a
     ``KeyboardInterruptException`` warning on ``sys.stderr`` and ends the solve with
     ``NonIpopt_Exception_Thrown``; neither raises. The solver's ``sys.stderr`` is captured
-    for the call: that warning is recognised and not shown, any other text is passed on.
+    for the call (in the main thread, the only one that signals reach): that warning is
+    recognised and not shown, any other text is passed on.
 
     Parameters
     ----------
@@ -96,6 +97,14 @@ def call_solver(solver: Any, **kwargs: Any) -> tuple[dict[str, Any], dict[str, A
     tuple of dict
         The solver's outputs and its ``stats()``.
     """
+    if threading.current_thread() is not threading.main_thread():
+        # signals reach the main thread only; sys.stderr is global: never swap it here
+        res = solver(**kwargs)
+        stats = solver.stats()
+        if str(stats.get("return_status")) == IPOPT_STOP:
+            _request()
+        check()
+        return res, stats
     buf = io.StringIO()
     try:
         with contextlib.redirect_stderr(buf):

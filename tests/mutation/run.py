@@ -634,8 +634,8 @@ MUTATIONS: tuple[Mutation, ...] = (
              "cable_ocp/numerics/interrupt.py",
              "    if caught or str(stats.get(\"return_status\")) == IPOPT_STOP:",
              "    if str(stats.get(\"return_status\")) == IPOPT_STOP:", (INTERRUPT,),
-             "a Ctrl-C that CasADi caught inside IPOPT is a failed solve: footprint retries the "
-             "direction, solve falls back, and CasADi's warning is printed"),
+             "a Ctrl-C that CasADi caught inside IPOPT, without the command line's handler (a "
+             "notebook), is a failed solve: footprint retries the direction"),
     Mutation("ctrl-c-while-importing-is-a-traceback", "faults", "cable_ocp/__init__.py",
              "_interrupt.defer_during_launch()\n", "\n", (INTERRUPT,),
              "a Ctrl-C while the command line imports the package prints a traceback"),
