@@ -15,12 +15,17 @@ scene needs) -> :mod:`cable_ocp.statics.collocation` (transcription) ->
 :mod:`cable_ocp.statics.solution` -> :mod:`cable_ocp.report` / :mod:`cable_ocp.plots`.
 """
 
-from cable_ocp.errors import CableOCPError
-from cable_ocp.scene import Scene, load, load_scene, scene_from_dict
-from cable_ocp.statics.line_solver import StaticsSolver
-from cable_ocp.statics.solution import StaticsSolution
-from cable_ocp.statics.solver import solve, sweep
-from cable_ocp.status import Status
+# the command line starting up: a Ctrl-C during these imports is recorded, not a traceback
+from cable_ocp.numerics import interrupt as _interrupt  # isort: skip
+
+_interrupt.defer_during_launch()
+
+from cable_ocp.errors import CableOCPError  # noqa: E402
+from cable_ocp.scene import Scene, load, load_scene, scene_from_dict  # noqa: E402
+from cable_ocp.statics.line_solver import StaticsSolver  # noqa: E402
+from cable_ocp.statics.solution import StaticsSolution  # noqa: E402
+from cable_ocp.statics.solver import solve, sweep  # noqa: E402
+from cable_ocp.status import Status  # noqa: E402
 
 # the baseline methods register themselves (statics.registry) when imported
 from cable_ocp import baselines  # noqa: E402, F401  isort: skip

@@ -37,6 +37,7 @@ from cable_ocp.batch.executors import RunnerSpec, run_dask, run_local, run_seria
 from cable_ocp.batch.kinds import SUCCESS, runner_kind
 from cable_ocp.batch.store import FIXED, FORMAT, TAIL, Store, sha256_data, sha256_file
 from cable_ocp.errors import CableOCPError
+from cable_ocp.numerics import interrupt
 from cable_ocp.scene.files import apply_overrides, read_problem
 from cable_ocp.version import __version__
 
@@ -277,7 +278,8 @@ def run_batch(problem: str | Path | dict[str, Any], grids: Sequence[tuple[str, l
         row["duplicate_of"] = same if same != row["case"] else None
         rows[row["case"]] = row
         if store is not None:
-            store.add(row)
+            with interrupt.signals_blocked():  # a Ctrl-C waits for the row to be whole
+                store.add(row)
         count += 1
         if progress is not None:
             progress(count, len(cases), row)

@@ -20,12 +20,17 @@ Dask
 
 from __future__ import annotations
 
+import contextlib
+import ctypes
 import hashlib
 import json
 import multiprocessing as mp
 import os
 import pickle
+import signal
 import sys
+import threading
+import time
 import traceback
 from collections import deque
 from collections.abc import Callable, Sequence
@@ -35,9 +40,15 @@ from typing import Any
 
 from cable_ocp.batch.cases import Case
 from cable_ocp.batch.kinds import RUNNERS, Runner
+from cable_ocp.numerics import interrupt
 from cable_ocp.status import Status
 
 OnRow = Callable[[dict[str, Any]], None]
+
+#: a worker's exit code when its batch is stopped (as the command line's, see docs/cli.md)
+EXIT_INTERRUPTED = 130
+#: linux/prctl.h: the signal a process gets when its parent dies
+PR_SET_PDEATHSIG = 1
 
 
 @dataclass
@@ -85,6 +96,7 @@ def _safe_run(runner: Runner, case: Case) -> dict[str, Any]:
     try:
         return runner.run(case)
     except Exception as exc:  # noqa: BLE001 - one case's bug must not stop the batch
+        interrupt.reraise_interruption(exc)  # a Ctrl-C stops the batch, it is not a row
         last = traceback.extract_tb(exc.__traceback__)[-1]
         return error_row(case, "error", f"{type(exc).__name__}: {exc} "
                                         f"({os.path.basename(last.filename)}:{last.lineno})")
@@ -118,31 +130,94 @@ def run_serial(spec: RunnerSpec, chunks: Sequence[Sequence[Case]], on_row: OnRow
 # Local worker processes
 # --------------------------------------------------------------------------------------
 
-def _worker_main(conn: Connection, spec: RunnerSpec) -> None:
-    """A worker: build the runner once, then run chunks until told to stop (None)."""
+def _worker_main(conn: Connection, spec: RunnerSpec, parent: int) -> None:
+    """A worker: build the runner once, then run chunks until told to stop (None).
+
+    It leaves interruptions to its parent: SIGINT is ignored (a Ctrl-C at the terminal
+    reaches the whole process group; the parent stops the batch and the workers), SIGTERM
+    ends it at once, and a Ctrl-C that IPOPT caught ends it quietly, without a row. It
+    exits when its parent dies (:func:`_exit_with_parent`), even in the middle of a case.
+    """
+    signal.signal(signal.SIGINT, signal.SIG_IGN)
+    signal.signal(signal.SIGTERM, signal.SIG_DFL)
+    if hasattr(signal, "pthread_sigmask"):  # blocked by the parent while it started us
+        signal.pthread_sigmask(signal.SIG_UNBLOCK, interrupt.SIGNALS)
+    _exit_with_parent(parent)
     try:
-        runner: Runner | None = spec.make()
-        why = ""
-    except Exception as exc:  # noqa: BLE001 - reported per case below
-        runner, why = None, f"{type(exc).__name__}: {exc}"
-    while True:
         try:
-            chunk = conn.recv()
-        except (EOFError, OSError):
-            return
-        if chunk is None:
-            return
-        for case in chunk:
-            conn.send(("start", case.index))
-            conn.send(("row", _safe_run(runner, case) if runner is not None
-                       else error_row(case, "error", f"building the runner failed: {why}")))
+            runner: Runner | None = spec.make()
+            why = ""
+        except Exception as exc:  # noqa: BLE001 - reported per case below
+            interrupt.reraise_interruption(exc)
+            runner, why = None, f"{type(exc).__name__}: {exc}"
+        while True:
+            try:
+                chunk = conn.recv()
+            except (EOFError, OSError):
+                return
+            if chunk is None:
+                return
+            for case in chunk:
+                conn.send(("start", case.index))
+                conn.send(("row", _safe_run(runner, case) if runner is not None
+                           else error_row(case, "error", f"building the runner failed: {why}")))
+    except (KeyboardInterrupt, BrokenPipeError):  # the batch is being stopped: no traceback
+        os._exit(EXIT_INTERRUPTED)
+
+
+#: how often a worker checks that its parent is alive where the kernel cannot tell it, s
+PARENT_POLL_S = 0.5
+
+
+def _exit_with_parent(parent: int) -> None:
+    """End this worker process when the process ``parent`` dies: on Linux the kernel sends
+    SIGKILL (``prctl(PR_SET_PDEATHSIG)``); everywhere a daemon thread polls
+    :func:`os.getppid` every :data:`PARENT_POLL_S` (a parent gone means a new parent pid).
+    Without this a batch killed with ``kill -9`` left its workers blocked for ever on their
+    pipes (each inherits the other pipes' parent ends, so no EOF arrives).
+
+    Parameters
+    ----------
+    parent : int
+        The batch process's pid, taken before the worker started.
+    """
+    if sys.platform.startswith("linux"):
+        with contextlib.suppress(OSError, AttributeError):
+            libc = ctypes.CDLL(None, use_errno=True)
+            libc.prctl(PR_SET_PDEATHSIG, signal.SIGKILL, 0, 0, 0)
+    first = os.getppid()  # the batch, or a fork server that started this worker for it
+
+    def gone() -> bool:
+        if os.getppid() != first:  # orphaned: adopted by another process
+            return True
+        if first == parent:
+            return False
+        try:
+            os.kill(parent, 0)
+        except ProcessLookupError:
+            return True
+        except OSError:  # exists, not ours to signal
+            return False
+        return False
+
+    if gone():  # the batch died before the prctl
+        os._exit(EXIT_INTERRUPTED)
+
+    def watch() -> None:
+        while not gone():
+            time.sleep(PARENT_POLL_S)
+        os._exit(EXIT_INTERRUPTED)
+
+    threading.Thread(target=watch, name="cable_ocp-parent-watch", daemon=True).start()
 
 
 class _Worker:
     def __init__(self, ctx: Any, spec: RunnerSpec) -> None:
         self.conn, child = ctx.Pipe(duplex=True)
-        self.proc = ctx.Process(target=_worker_main, args=(child, spec), daemon=True)
-        self.proc.start()
+        self.proc = ctx.Process(target=_worker_main, args=(child, spec, os.getpid()),
+                                daemon=True)
+        with interrupt.signals_blocked():  # no Ctrl-C traceback from a half-started worker
+            self.proc.start()
         child.close()
         self.chunk: list[Case] = []      # cases sent and not yet reported as rows
         self.running: int | None = None  # the case it reported starting
@@ -223,12 +298,15 @@ def run_local(spec: RunnerSpec, chunks: Sequence[Sequence[Case]], on_row: OnRow,
                     w.kill()
                     _recover(w, queue, attempts, max_attempts, on_row)
                     pool[pool.index(w)] = _Worker(ctx, spec)
-    finally:
+    except BaseException:  # interrupted (Ctrl-C, SIGTERM) or failed: stop every worker now
         for w in pool:
-            w.stop()
-        for w in pool:
-            w.proc.join(timeout=2)
             w.kill()
+        raise
+    for w in pool:
+        w.stop()
+    for w in pool:
+        w.proc.join(timeout=2)
+        w.kill()
 
 
 def _recover(w: _Worker, queue: deque[list[Case]], attempts: dict[int, int],

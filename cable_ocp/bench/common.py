@@ -16,6 +16,7 @@ import numpy as np
 from scipy.interpolate import CubicSpline
 
 from cable_ocp.errors import CableOCPError
+from cable_ocp.numerics import interrupt
 from cable_ocp.scene import Scene
 from cable_ocp.statics.solution import StaticsSolution
 from cable_ocp.statics.solver import solve
@@ -161,6 +162,7 @@ def timed_solve_cpu(scene: Scene, repeats: int = 1, budget_s: float = 2.0,
                 except CableOCPError as exc:
                     return None, float("nan"), float("nan"), f"unsupported: {exc}"
                 except Exception as exc:  # noqa: BLE001 - a crash is a result, reported
+                    interrupt.reraise_interruption(exc)
                     return None, float("nan"), float("nan"), \
                         f"crashed: {type(exc).__name__}: {exc}"
                 dt, dc = time.perf_counter() - t0, time.process_time() - c0

@@ -41,6 +41,7 @@ from typing import Any
 
 import numpy as np
 
+from cable_ocp.numerics import interrupt
 from cable_ocp.numerics.text_table import table
 from cable_ocp.scene.dynamics import DynamicScene, load_dynamic_scene
 
@@ -283,6 +284,7 @@ def _moordyn(segments: int, dtm: float, duration: float, scheme: str = "RK2",
                 wall = time.perf_counter() - t0
                 moordyn.Close(system)
             except Exception as exc:  # noqa: BLE001 - MoorDyn's failure is a result
+                interrupt.reraise_interruption(exc)
                 wall = math.nan
                 status = f"failed: {exc}"
     tens_a = np.asarray(tens)

@@ -12,6 +12,7 @@ from pathlib import Path
 from typing import Any
 
 from cable_ocp.cli import output as out
+from cable_ocp.numerics import interrupt
 
 
 def register(sub: argparse._SubParsersAction, parent: argparse.ArgumentParser) -> None:
@@ -265,7 +266,9 @@ def cmd_accuracy(args: argparse.Namespace) -> int:
 
             results = accuracy.run(scenes, args.method, repeats=args.repeats, progress=step,
                                    second_process=not args.no_subprocess)
-    except KeyboardInterrupt:
+    except (KeyboardInterrupt, Exception) as exc:  # a CasADi error may stand for a Ctrl-C
+        if not interrupt.is_interruption(exc):
+            raise
         _write_partial(args, rows, ACCURACY_KEYS, ACCURACY_HEADER)
         raise
     for res in results:
@@ -317,7 +320,7 @@ def _write_partial(args: argparse.Namespace, rows: list[dict[str, Any]], keys: l
     """On Ctrl-C: write the rows finished so far (JSON status "interrupted")."""
     out.emit_json(args, out.envelope("interrupted", f"interrupted after {len(rows)} rows",
                                      {"rows": rows}))
-    out.emit_csv(args, header, [[r.get(k) for k in keys] for r in rows])
+    out.emit_csv(args, header, [[r.get(k) for k in keys] for r in rows], partial=True)
     if out.stdout_free(args) and rows:
         from cable_ocp import report
 
@@ -347,7 +350,9 @@ def cmd_robustness(args: argparse.Namespace) -> int:
         with out.progress(args, n, "bench robustness", "cell") as bar:
             res = robustness.run(scenes, args.method, details=details, progress=lambda d, t, c:
                                  bar(d, postfix=f"{c['scene']}: {c['method']}"))
-    except KeyboardInterrupt:
+    except (KeyboardInterrupt, Exception) as exc:  # a CasADi error may stand for a Ctrl-C
+        if not interrupt.is_interruption(exc):
+            raise
         _write_partial(args, details, ROBUST_KEYS, ROBUST_HEADER)
         raise
     out.say(args, "Robustness matrix (ok: converged and within 1 % of the reference; FAIL: "

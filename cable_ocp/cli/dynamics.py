@@ -113,11 +113,14 @@ def cmd_simulate(args: argparse.Namespace) -> int:
     if empty and (args.csv or args.netcdf or args.plot):
         out.note(args, "no time series (the run failed before its first sample): no CSV, "
                        "netCDF or figure written")
+    stopped = res.status == "interrupted"  # the samples finished: JSON, CSV, netCDF
     if args.csv and not empty:
-        out.emit_csv(args, *_series_table(res))
+        out.emit_csv(args, *_series_table(res), partial=stopped)
     if args.netcdf and not empty:
         _write_netcdf(res, args.netcdf)
         out.confirm(args, args.netcdf, "netCDF")
+    if stopped:
+        raise KeyboardInterrupt
     if args.plot and not empty:
         from cable_ocp.plots.dynamics import plot_simulation
 

@@ -7,7 +7,8 @@ Exit codes (the same for every subcommand)
 2    the user's input is wrong (file, key, value, option, output path); one line names it
      and says what would be valid; found before any solve
 3    an internal error: one line, plus "rerun with --debug for the traceback"
-130  interrupted (Ctrl-C), after writing the rows and results already finished
+130  interrupted (Ctrl-C or SIGTERM), after writing the rows and results already finished;
+     a result that an interruption cut short is never written as if it were whole
 
 Outputs
 -------
@@ -41,6 +42,7 @@ from typing import Any
 import numpy as np
 
 from cable_ocp.errors import CableOCPError
+from cable_ocp.numerics import interrupt
 from cable_ocp.numerics.atomic import replace_atomically, write_text_file
 from cable_ocp.numerics.jsonable import json_safe
 from cable_ocp.status import Status
@@ -367,6 +369,8 @@ def emit_json(args: argparse.Namespace, obj: dict[str, Any], path: str | None = 
         Where to write (``"-"``: stdout, without a confirmation); None (default):
         ``args.json``, and nothing is written when that is not set either.
     """
+    if obj.get("status") != Status.INTERRUPTED:
+        interrupt.check()  # a Ctrl-C that CasADi swallowed: the result is not written
     path = path or args.json
     if path:
         _write(args, path, json_text(obj) + "\n", "JSON", "--json")
@@ -395,7 +399,7 @@ def csv_text(header: Sequence[str], rows: Sequence[Sequence[Any]]) -> str:
 
 
 def emit_csv(args: argparse.Namespace, header: Sequence[str], rows: Sequence[Sequence[Any]],
-             path: str | None = None) -> None:
+             path: str | None = None, partial: bool = False) -> None:
     """Write a CSV table to ``path`` (default ``args.csv``); '-' = stdout.
 
     Parameters
@@ -410,7 +414,12 @@ def emit_csv(args: argparse.Namespace, header: Sequence[str], rows: Sequence[Seq
     path : str, optional
         Where to write (``"-"``: stdout, without a confirmation); None (default):
         ``args.csv``, and nothing is written when that is not set either.
+    partial : bool
+        The rows finished before an interruption (written although one is pending);
+        default False: an interruption pending is raised instead (nothing written).
     """
+    if not partial:
+        interrupt.check()
     path = path or args.csv
     if path:
         _write(args, path, csv_text(header, rows), "CSV", "--csv")
@@ -431,6 +440,7 @@ def emit_plot(args: argparse.Namespace, draw: Callable[[str], Any],
         Where to save; None (default): ``args.plot``, and nothing is drawn when that is not
         set either.
     """
+    interrupt.check()
     path = path or args.plot
     if not path:
         return
@@ -593,7 +603,9 @@ def progress(args: argparse.Namespace, total: int, desc: str, unit: str = "it",
              ) -> Iterator[Callable[..., None]]:
     """Progress on stderr for ``total`` steps, as a callback, for every command.
 
-    The callback takes ``(done, total=None, postfix=None)``: the number of steps finished,
+    The callback is a checkpoint of interruptions (:func:`cable_ocp.numerics.interrupt.check`,
+    also with ``--quiet``: a Ctrl-C that CasADi swallowed stops there) and takes
+    ``(done, total=None, postfix=None)``: the number of steps finished,
     optionally a new total, and a short text shown after the bar (e.g. failures). On a
     terminal a tqdm bar shows what runs, done/total, elapsed and remaining time (its width
     the terminal's, 80 columns where the terminal reports none); in a pipe or a log, short
@@ -617,11 +629,16 @@ def progress(args: argparse.Namespace, total: int, desc: str, unit: str = "it",
     """
     stream = sys.stderr if stream is None else stream
     if getattr(args, "quiet", False):
-        yield lambda done, total=None, postfix=None: None
+        yield lambda done, total=None, postfix=None: interrupt.check()
         return
     if not (hasattr(stream, "isatty") and stream.isatty()):
         lines = ProgressLines(stream, total, desc, unit, clock)
-        yield lines
+
+        def step(done: int, total: int | None = None, postfix: str | None = None) -> None:
+            interrupt.check()
+            lines(done, total, postfix)
+
+        yield step
         lines.close()  # not after an exception: an interruption says so in one line
         return
     from tqdm import tqdm
@@ -630,6 +647,7 @@ def progress(args: argparse.Namespace, total: int, desc: str, unit: str = "it",
                ncols=bar_columns(stream), smoothing=0.1)
 
     def update(done: int, total: int | None = None, postfix: str | None = None) -> None:
+        interrupt.check()
         if total is not None and total != bar.total:
             bar.total = total
         bar.n = done

@@ -8,6 +8,7 @@ from typing import Any
 
 from cable_ocp.cli import output as out
 from cable_ocp.errors import CableOCPError
+from cable_ocp.numerics import interrupt
 
 PROFILE_HEADER = ["s [m]", "x [m]", "y [m]", "z [m]", "Tx [N]", "Ty [N]", "Tz [N]",
                   "tension [N]"]
@@ -131,7 +132,9 @@ def cmd_footprint(args: argparse.Namespace) -> int:
         try:
             res = footprint(scene, args.directions, progress=step)
             wall = res.wall_time_s
-        except KeyboardInterrupt:
+        except (KeyboardInterrupt, Exception) as exc:  # a CasADi error may stand for a Ctrl-C
+            if not interrupt.is_interruption(exc):
+                raise
             interrupted, wall = True, None
     n_bad = sum(r["status"] != "solved" for r in rows)
     status = ("interrupted" if interrupted else "solved" if n_bad == 0 else "partial")
@@ -145,7 +148,8 @@ def cmd_footprint(args: argparse.Namespace) -> int:
     out.emit_json(args, out.envelope(status, message, {
         "directions": rows, "wall_time_s": wall,
         "ship": list(scene.end_b.position[:2])}))
-    out.emit_csv(args, FOOTPRINT_HEADER, [[r[k] for k in _FP_KEYS] for r in rows])
+    out.emit_csv(args, FOOTPRINT_HEADER, [[r[k] for k in _FP_KEYS] for r in rows],
+                 partial=interrupted)
     if args.plot and not interrupted:
         from cable_ocp.plots.statics_series import plot_footprint
 

@@ -18,6 +18,7 @@ import numpy as np
 from cable_ocp.dynamics.lumped import LumpedMassModel
 from cable_ocp.dynamics.lumped_kernel import segment_kernel
 from cable_ocp.errors import CableOCPError
+from cable_ocp.numerics import interrupt
 from cable_ocp.numerics.compile import compile_function
 
 __all__ = ["LumpedRun", "run", "step_grid"]
@@ -214,43 +215,52 @@ def run(model: LumpedMassModel, x0: np.ndarray, v0: np.ndarray | None, duration:
     tw = time.perf_counter()
     done = 0
     tol_fail = max(1e3 * tol, 1e-6)
-    while done < n_rec:
-        m = min(c, n_rec - done)
-        tstart = t0 + dt * k * (done + np.arange(c))
-        zc, rc, ic, ec, fc, sc = chunk(z, tstart[None, :])
-        zc = np.asarray(zc).T[:m]
-        rc = np.asarray(rc).reshape(-1)[:m]
-        tstart = tstart[:m]
-        ic = np.asarray(ic).reshape(-1)[:m]
-        ec = np.asarray(ec).reshape(-1)[:m]
-        fc = np.asarray(fc).reshape(-1)[:m]
-        sc = np.asarray(sc).reshape(-1)[:m]
-        found = (fc >= 0) & (fc < k)  # casadi.find returns k when nothing is found
-        if slack is None and np.any(found):
-            j = int(np.flatnonzero(found)[0])
-            slack = (float(tstart[j] + dt * (fc[j] + 1)), int(round(sc[j])))
-        min_strain = min(min_strain, float(np.min(ec)))
-        bad = np.flatnonzero(~np.isfinite(rc) | (rc > tol_fail)
-                             | ~np.all(np.isfinite(zc), axis=1))
-        iterations += float(np.nansum(ic[:bad[0]] if bad.size else ic))
-        if bad.size:
-            b = int(bad[0])
-            zs_out.append(zc[:b])
-            res_out.append(rc[:b])
-            times.append(tstart[:b] + dt * k)
-            status = "failed"
-            message = (f"Newton did not converge in a step ending by t = "
-                       f"{tstart[b] + dt * k:.6g} s (scaled residual {rc[b]:.3g} > "
-                       f"{tol_fail:.3g}); the history stops at the last good record: a "
-                       "smaller time step may help")
-            break
-        zs_out.append(zc)
-        res_out.append(rc)
-        times.append(tstart + dt * k)
-        z = zc[-1]
-        done += m
-        if progress is not None:
-            progress(min(done * k * dt, duration), duration)
+    try:
+        while done < n_rec:
+            m = min(c, n_rec - done)
+            tstart = t0 + dt * k * (done + np.arange(c))
+            zc, rc, ic, ec, fc, sc = chunk(z, tstart[None, :])
+            zc = np.asarray(zc).T[:m]
+            rc = np.asarray(rc).reshape(-1)[:m]
+            tstart = tstart[:m]
+            ic = np.asarray(ic).reshape(-1)[:m]
+            ec = np.asarray(ec).reshape(-1)[:m]
+            fc = np.asarray(fc).reshape(-1)[:m]
+            sc = np.asarray(sc).reshape(-1)[:m]
+            found = (fc >= 0) & (fc < k)  # casadi.find returns k when nothing is found
+            if slack is None and np.any(found):
+                j = int(np.flatnonzero(found)[0])
+                slack = (float(tstart[j] + dt * (fc[j] + 1)), int(round(sc[j])))
+            min_strain = min(min_strain, float(np.min(ec)))
+            bad = np.flatnonzero(~np.isfinite(rc) | (rc > tol_fail)
+                                 | ~np.all(np.isfinite(zc), axis=1))
+            iterations += float(np.nansum(ic[:bad[0]] if bad.size else ic))
+            if bad.size:
+                b = int(bad[0])
+                zs_out.append(zc[:b])
+                res_out.append(rc[:b])
+                times.append(tstart[:b] + dt * k)
+                status = "failed"
+                message = (f"Newton did not converge in a step ending by t = "
+                           f"{tstart[b] + dt * k:.6g} s (scaled residual {rc[b]:.3g} > "
+                           f"{tol_fail:.3g}); the history stops at the last good record: a "
+                           "smaller time step may help")
+                break
+            zs_out.append(zc)
+            res_out.append(rc)
+            times.append(tstart + dt * k)
+            z = zc[-1]
+            done += m
+            if progress is not None:
+                progress(min(done * k * dt, duration), duration)
+    except (KeyboardInterrupt, Exception) as exc:  # a Ctrl-C: keep the records finished
+        if not interrupt.is_interruption(exc):
+            raise
+        n_ok = min(len(zs_out), len(res_out), len(times))  # the signal may fall between them
+        del zs_out[n_ok:], res_out[n_ok:], times[n_ok:]
+        status = "interrupted"
+        message = (f"interrupted after {float(times[-1][-1]) - t0:.6g} s of simulated time; "
+                   "the history stops at the last record finished")
     wall = time.perf_counter() - tw
     zall = np.concatenate(zs_out)
     tall = np.concatenate(times)

@@ -19,6 +19,8 @@ from collections.abc import Callable
 import casadi as ca
 import numpy as np
 
+from cable_ocp.numerics import interrupt
+
 __all__ = ["MAX_CHUNKS", "chunk_functions", "run_chunks"]
 
 #: at most this many progress calls (chunks) per run, in every model
@@ -62,7 +64,8 @@ def run_chunks(chunk_fn: Callable[[int], ca.Function], acc: np.ndarray, n_out: i
 
     Returns ``(times, states, acc, status, message, wall)``: the sample times (s) and
     states (the first ``n_state`` rows) after the start, the last good accumulator,
-    ``"solved"`` or ``"failed"`` with its message, and the wall time of the loop (s).
+    ``"solved"``, ``"failed"`` or ``"interrupted"`` (a Ctrl-C: the samples finished are
+    kept) with its message, and the wall time of the loop (s).
 
     Parameters
     ----------
@@ -94,30 +97,39 @@ def run_chunks(chunk_fn: Callable[[int], ca.Function], acc: np.ndarray, n_out: i
     status, message = "solved", ""
     done = 0
     t0 = time.perf_counter()
-    while done < n_out:
-        m = min(per_chunk, n_out - done)
-        tgrid = (done * every + np.arange(m * every)) * dt
-        res = np.asarray(chunk_fn(m)(acc, tgrid.reshape(1, -1)))
-        rcol = res[off, :]
-        bad = np.where(~(rcol <= tol_fail)
-                       | ~np.all(np.isfinite(res[:n_state, :]), axis=0))[0]
-        k_good = int(bad[0]) if bad.size else m
-        for j in range(k_good):
-            states.append(res[:n_state, j].copy())
-            times.append((done + j + 1) * every * dt)
-        if bad.size:
-            status = "failed"
-            message = (f"the implicit step did not converge before t = "
-                       f"{(done + k_good + 1) * every * dt:.6g} s (scaled residual "
-                       f"{rcol[k_good]:.3g} > {tol_fail:.3g}); the history stops at the "
-                       "last good sample: try a smaller simulation.time_step")
-            if k_good > 0:
-                acc = res[:, k_good - 1].copy()
-            break
-        acc = res[:, -1].copy()
-        done += m
-        if progress is not None:
-            progress(done * every, n_out * every)
-        if stop_on_slack and np.isfinite(acc[off + 2]):
-            break
+    try:
+        while done < n_out:
+            m = min(per_chunk, n_out - done)
+            tgrid = (done * every + np.arange(m * every)) * dt
+            res = np.asarray(chunk_fn(m)(acc, tgrid.reshape(1, -1)))
+            rcol = res[off, :]
+            bad = np.where(~(rcol <= tol_fail)
+                           | ~np.all(np.isfinite(res[:n_state, :]), axis=0))[0]
+            k_good = int(bad[0]) if bad.size else m
+            for j in range(k_good):
+                states.append(res[:n_state, j].copy())
+                times.append((done + j + 1) * every * dt)
+            if bad.size:
+                status = "failed"
+                message = (f"the implicit step did not converge before t = "
+                           f"{(done + k_good + 1) * every * dt:.6g} s (scaled residual "
+                           f"{rcol[k_good]:.3g} > {tol_fail:.3g}); the history stops at the "
+                           "last good sample: try a smaller simulation.time_step")
+                if k_good > 0:
+                    acc = res[:, k_good - 1].copy()
+                break
+            acc = res[:, -1].copy()
+            done += m
+            if progress is not None:
+                progress(done * every, n_out * every)
+            if stop_on_slack and np.isfinite(acc[off + 2]):
+                break
+    except (KeyboardInterrupt, Exception) as exc:  # a Ctrl-C: keep the samples finished
+        if not interrupt.is_interruption(exc):
+            raise
+        n_ok = min(len(states), len(times))  # the signal may fall between the appends
+        del states[n_ok:], times[n_ok:]
+        status = "interrupted"
+        message = (f"interrupted after {len(times) * every * dt:.6g} s of simulated time; "
+                   "the history stops at the last sample finished")
     return times, states, acc, status, message, time.perf_counter() - t0

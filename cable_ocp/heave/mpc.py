@@ -62,6 +62,7 @@ from cable_ocp.heave.delay import DelayLine
 from cable_ocp.heave.discrete import discretize_cost, discretize_delayed
 from cable_ocp.heave.mpc_daqp import DaqpQP
 from cable_ocp.heave.plant import HeavePlant
+from cable_ocp.numerics import interrupt
 from cable_ocp.physics.drag import quadratic_drag
 
 QP_SOLVERS = ("qpoases", "osqp", "qrqp")  # condensed QP through CasADi's ``conic``
@@ -581,6 +582,7 @@ class LinearMPC:
             else:
                 sol = self._solver(**args)
             ok = bool(self._solver.stats().get("success", False))
+            interrupt.check()  # a Ctrl-C that the QP solver turned into a failure
             if not ok and self._warm is not None:
                 # A stale warm start (e.g. after a jump in the state) can make an active-set
                 # solver fail (qrqp: "Failed to calculate search direction"): retry cold once.
@@ -792,8 +794,8 @@ class _NonlinearMPC:
             args["x0"] = np.concatenate([np.tile(z0, N + 1), np.zeros(N + self.ns)])
         else:
             args.update(self.warm)
-        sol = self.solver(**args)
-        ok = bool(self.solver.stats().get("success", False))
+        sol, st = interrupt.call_solver(self.solver, **args)
+        ok = bool(st.get("success", False))
         w = np.asarray(sol["x"]).ravel()
         Zs = w[: nz * (N + 1)].reshape(N + 1, nz)
         rest = w[nz * (N + 1) :]

@@ -37,6 +37,7 @@ from collections.abc import Callable
 
 import casadi as ca
 
+from cable_ocp.numerics import interrupt
 from cable_ocp.numerics.atomic import write_text_atomically
 
 __all__ = ["cache_dir", "c_compiler", "compile_function", "compile_functions", "forget_library",
@@ -278,7 +279,8 @@ def compile_function(fn: ca.Function | Callable[[], ca.Function], opt: str = "-O
         if library_ok(lib):
             try:
                 return ca.external(fname, lib)
-            except Exception:  # noqa: BLE001 - a broken library: compile it again
+            except Exception as exc:  # noqa: BLE001 - a broken library: compile it again
+                interrupt.reraise_interruption(exc)
                 forget_library(lib)
         else:
             forget_library(lib)  # damaged, foreign or without its record: never loaded
@@ -287,7 +289,8 @@ def compile_function(fn: ca.Function | Callable[[], ca.Function], opt: str = "-O
     f = built()
     try:
         return ca.external(f.name(), _build_library([f], f.name(), cache, cc, opt, lib))
-    except Exception:  # noqa: BLE001 - any failure: fall back to the interpreted function
+    except Exception as exc:  # noqa: BLE001 - any failure: fall back to the interpreted function
+        interrupt.reraise_interruption(exc)  # a compiler killed by the Ctrl-C: no fallback
         return f
 
 
@@ -320,5 +323,6 @@ def compile_functions(fns: list[ca.Function], opt: str = "-O1",
     try:
         lib = _build_library(fns, name, cache, cc, opt)
         return [ca.external(fn.name(), lib) for fn in fns]
-    except Exception:  # noqa: BLE001 - any failure: the interpreted functions
+    except Exception as exc:  # noqa: BLE001 - any failure: the interpreted functions
+        interrupt.reraise_interruption(exc)
         return fns

@@ -45,6 +45,7 @@ import numpy as np
 import scipy.sparse as sps
 import scipy.sparse.linalg as spl
 
+from cable_ocp.numerics import interrupt
 from cable_ocp.numerics.compile import (
     c_compiler,
     cache_dir,
@@ -234,7 +235,8 @@ def _load(folder: str, cc: tuple[str, ...]) -> ctypes.CDLL | None:
         dll = _open(lib)
         _BUILT.append(lib)
         return dll
-    except Exception:  # noqa: BLE001 - no helper: callers keep CasADi's linear solvers
+    except Exception as exc:  # noqa: BLE001 - no helper: callers keep CasADi's linear solvers
+        interrupt.reraise_interruption(exc)
         return None
 
 

@@ -44,7 +44,7 @@ import casadi as ca
 import numpy as np
 
 from cable_ocp.errors import CableOCPError
-from cable_ocp.numerics import sparse_lu
+from cable_ocp.numerics import interrupt, sparse_lu
 from cable_ocp.numerics.compile import compile_function, is_compiled
 from cable_ocp.physics import seabed
 from cable_ocp.scene import Scene, SolverOptions
@@ -597,9 +597,9 @@ class StaticsSolver:
         return res.w, res.iterations, res.success, "newton"
 
     def _ipopt_solve(self, w0: np.ndarray, p: np.ndarray) -> tuple[np.ndarray, int, bool, str]:
-        res = self._ipopt(x0=np.clip(w0, self._lbx, self._ubx), p=p, lbx=self._lbx,
-                          ubx=self._ubx, lbg=0, ubg=0)
-        st = self._ipopt.stats()
+        # a Ctrl-C: KeyboardInterrupt, never a failed solve to recover from
+        res, st = interrupt.call_solver(self._ipopt, x0=np.clip(w0, self._lbx, self._ubx), p=p,
+                                        lbx=self._lbx, ubx=self._ubx, lbg=0, ubg=0)
         w = np.asarray(res["x"]).reshape(-1)
         return w, int(st.get("iter_count", 0)), bool(st.get("success", False)), (
             f"ipopt ({st.get('return_status')})")

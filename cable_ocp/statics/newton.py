@@ -35,6 +35,8 @@ from dataclasses import dataclass
 import casadi as ca
 import numpy as np
 
+from cable_ocp.numerics import interrupt
+
 #: sparse linear solver of the Newton step (CasADi plugin): CSparse's LU, as the CasADi
 #: ``rootfinder`` used before; its set-up costs a tenth of the sparse QR's ("qr") and its
 #: solves about as much on the collocated systems
@@ -322,7 +324,8 @@ class Kernel:
         self.counts["step"] += 1
         try:
             self._seval()
-        except RuntimeError:  # CSparse: "factorization failed, ... singular"
+        except RuntimeError as exc:  # CSparse: "factorization failed, ... singular"
+            interrupt.reraise_interruption(exc)
             return self.g(w, p), np.full(self.n_w, np.nan)
         return self._g2.copy(), self._dw.copy()
 

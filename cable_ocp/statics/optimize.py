@@ -34,6 +34,7 @@ import casadi as ca
 import numpy as np
 
 from cable_ocp.errors import CableOCPError
+from cable_ocp.numerics import interrupt
 from cable_ocp.scene import Scene
 from cable_ocp.statics.collocation import Collocation
 from cable_ocp.statics.formulation import (
@@ -254,9 +255,10 @@ class StaticsNLP:
             start = self._solver.solve(self._uniform, error_estimate=False)
         x0 = np.concatenate([self._solver._from_solution(start),
                              np.clip(v0, self._lbx[nw:], self._ubx[nw:])])
-        res = self._nlp(x0=x0, p=np.asarray(theta, float), lbx=self._lbx, ubx=self._ubx,
-                        lbg=self._lbg, ubg=self._ubg)
-        st = self._nlp.stats()
+        # a Ctrl-C: KeyboardInterrupt, never a failed direction to retry
+        res, st = interrupt.call_solver(self._nlp, x0=x0, p=np.asarray(theta, float),
+                                        lbx=self._lbx, ubx=self._ubx, lbg=self._lbg,
+                                        ubg=self._ubg)
         x = np.asarray(res["x"]).ravel()
         vals = {n: float(x[nw + k] * s)
                 for k, (n, (_, s)) in enumerate(zip(self.names, self.index, strict=True))}

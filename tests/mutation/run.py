@@ -58,6 +58,7 @@ class Mutation:
 # -- test subsets -------------------------------------------------------------------------
 FIGS = "tests/test_plots_dynamics.py"
 STORE = "tests/test_batch_store.py"
+INTERRUPT = "tests/test_interrupt.py"
 EXTREME_REF = "tests/test_extreme.py::test_extreme_scene_against_independent_shooting"
 STATICS = ("tests/test_physics.py", "tests/test_statics_closed_form.py", EXTREME_REF,
            "tests/test_statics_seeds.py", "tests/test_baseline_huang.py",
@@ -712,6 +713,24 @@ MUTATIONS: tuple[Mutation, ...] = (
              "length L                           305.0010 m",
              ("tests/test_readme_outputs.py",),
              "a README sample output that a run no longer gives"),
+    Mutation("casadi-caught-ctrl-c-is-a-failed-solve", "faults",
+             "cable_ocp/numerics/interrupt.py",
+             "    if caught or str(stats.get(\"return_status\")) == IPOPT_STOP:",
+             "    if str(stats.get(\"return_status\")) == IPOPT_STOP:", (INTERRUPT,),
+             "a Ctrl-C that CasADi caught inside IPOPT, without the command line's handler (a "
+             "notebook), is a failed solve: footprint retries the direction"),
+    Mutation("ctrl-c-while-importing-is-a-traceback", "faults", "cable_ocp/__init__.py",
+             "_interrupt.defer_during_launch()\n", "\n", (INTERRUPT,),
+             "a Ctrl-C while the command line imports the package prints a traceback"),
+    Mutation("batch-worker-outlives-its-parent", "faults", "cable_ocp/batch/executors.py",
+             "    _exit_with_parent(parent)\n", "\n", (INTERRUPT,),
+             "a batch killed with kill -9 leaves its workers running"),
+    Mutation("interrupted-footprint-drops-its-csv", "faults", "cable_ocp/cli/statics.py",
+             "partial=interrupted)", "partial=False)", (INTERRUPT,),
+             "an interrupted footprint writes no CSV of its finished directions"),
+    Mutation("interrupted-simulate-drops-its-csv", "faults", "cable_ocp/cli/dynamics.py",
+             "partial=stopped)", "partial=False)", (INTERRUPT,),
+             "an interrupted simulate writes no CSV of its finished samples"),
     Mutation("result-top-is-the-next-node", "bookkeeping", "cable_ocp/dynamics/result.py",
              "return cls(top_position=node_positions[:, -1, :].copy(),",
              "return cls(top_position=node_positions[:, -2, :].copy(),", (ENDS,),
