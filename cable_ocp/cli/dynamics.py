@@ -106,8 +106,9 @@ def cmd_simulate(args: argparse.Namespace) -> int:
         width = max(len(k) for k, _ in rows)
         print(title)
         print("\n".join(f"{k:<{width}}  {v}" for k, v in rows))
-    for w in res.warnings:  # the result's warnings, one line each on stderr
-        out.warn(w)
+    if res.status != "interrupted":  # an interruption says so in one line (warnings: JSON)
+        for w in res.warnings:  # the result's warnings, one line each on stderr
+            out.warn(w)
     out.emit_json(args, out.envelope(res.status, res.message, data, res.warnings))
     empty = len(res.t) == 0
     if empty and (args.csv or args.netcdf or args.plot):
