@@ -33,6 +33,7 @@ from cable_ocp.batch.cases import Case, build_cases, parse_grid, parse_random, p
 from cable_ocp.batch.executors import RunnerSpec, run_dask, run_local, run_serial
 from cable_ocp.batch.kinds import SUCCESS, runner_kind
 from cable_ocp.batch.store import FIXED, TAIL, Store
+from cable_ocp.numerics.export import optional_module, summary_repr
 from cable_ocp.scene.files import read_problem
 
 __all__ = ["BatchResult", "Case", "build_cases", "parse_grid", "parse_random", "parse_range",
@@ -85,11 +86,72 @@ class BatchResult:
         ok = SUCCESS.get(self.kind, ("solved",))
         return sum(r["status"] not in ok for r in self.rows)
 
-    def to_pandas(self) -> Any:
-        """The rows as a pandas DataFrame (pandas is optional: ``pip install pandas``)."""
-        import pandas as pd
+    def __repr__(self) -> str:
+        """A few lines: kind, cases per status, the swept keys and columns."""
+        counts = self.statuses()
+        status = ", ".join(f"{n} {st}" for st, n in sorted(counts.items())) or "no cases"
+        return summary_repr(
+            "BatchResult", self.kind, status,
+            [("cases", len(self.rows), ""), ("failures", self.failures, ""),
+             ("skipped", self.skipped, ""), ("wall_time_s", self.wall_time_s, "s"),
+             ("inputs", " ".join(self.inputs) or "-", ""),
+             ("outputs", len(self.outputs), ""),
+             ("store", str(self.paths[0].with_suffix("")) if self.paths else "-", "")])
 
-        return pd.DataFrame(self.rows)
+    def to_pandas(self) -> Any:
+        """The rows as a ``pandas.DataFrame``, one per case (index ``case``): ``case_id``,
+        ``status``, ``message``, ``wall_time_s``, the swept inputs and the outputs (units
+        in the column names). Needs pandas (the extra ``[io]``)."""
+        pd = optional_module("pandas", "BatchResult.to_pandas()")
+        frame = pd.DataFrame(self.rows)
+        return frame.set_index("case") if "case" in frame else frame
+
+    def to_xarray(self) -> Any:
+        """The rows as an ``xarray.Dataset`` over the dimension ``case``: one variable per
+        input (named by its key) and output (its name without the unit, the unit in
+        ``units``), ``status`` and ``message``. Needs xarray (the extra ``[io]``)."""
+        xr = optional_module("xarray", "BatchResult.to_xarray()")
+        data: dict[str, Any] = {}
+        for col in [*self.inputs, *self.outputs, "wall_time_s"]:
+            name, _, unit = col.partition(" [")
+            values = [r.get(col) for r in self.rows]
+            numeric = all(v is None or isinstance(v, (int, float)) for v in values)
+            arr = self.column(col) if numeric else np.array(
+                ["" if v is None else str(v) for v in values])
+            attrs = {"units": unit.rstrip("]")} if unit else {}
+            if col == "wall_time_s":
+                attrs = {"units": "s"}
+            data[name] = ("case", arr, attrs)
+        for col in ("case_id", "status", "message"):
+            data[col] = ("case", np.array([str(r.get(col, "")) for r in self.rows]))
+        cases = np.array([int(r.get("case", i)) for i, r in enumerate(self.rows)])
+        return xr.Dataset(data, coords={"case": cases},
+                          attrs={"kind": self.kind, "inputs": ", ".join(self.inputs),
+                                 "inputs_units": "as in the problem file (SI)"})
+
+    def plot(self, ax: Any = None, column: str | None = None, **kwargs: Any
+             ) -> tuple[Any, Any]:
+        """Draw one output against the swept keys (matplotlib), MoorPy's habit:
+        ``fig, ax = res.plot()``.
+
+        Parameters
+        ----------
+        ax : matplotlib Axes, optional
+            Draw on it; None (default): a new figure as ``cable-ocp batch --plot``
+            (:func:`cable_ocp.plots.batch.batch_figure`).
+        column : str, optional
+            The output, e.g. ``"max_tension [N]"`` (default: the first output column).
+        **kwargs
+            ``title``.
+
+        Returns
+        -------
+        (fig, ax)
+            The figure and the Axes drawn on (with ``ax=None``: an array of its panels).
+        """
+        from cable_ocp.plots.accessors import plot_batch_result
+
+        return plot_batch_result(self, ax, column=column, **kwargs)
 
 
 def _blocks(cases: Sequence[Case]) -> list[int]:

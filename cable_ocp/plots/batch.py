@@ -12,8 +12,9 @@ from matplotlib.figure import Figure
 from cable_ocp.plots.common import legend_below, new_figure, save
 
 
-def plot_batch(res: Any, column: str, path: str | Path, title: str = "") -> Figure:
-    """Plot ``column`` of a :class:`cable_ocp.batch.BatchResult` against its swept keys.
+def batch_figure(res: Any, column: str, title: str = "") -> Figure:
+    """Build (without saving) the figure of :func:`plot_batch`: ``column`` of a
+    :class:`cable_ocp.batch.BatchResult` against its swept keys.
 
     One swept key: the output against it, with the cases that are not a success marked by
     their status. Two: a heat map over the grid (cases that are not a success hatched
@@ -26,8 +27,6 @@ def plot_batch(res: Any, column: str, path: str | Path, title: str = "") -> Figu
         count as swept.
     column : str
         The output to plot, a column name with its unit, e.g. ``"max_tension [N]"``.
-    path : str or Path
-        Where to save the figure (format from the suffix).
     title : str
         Start of the title (``"{title}: {column}"``); empty (default): the column alone.
     """
@@ -66,6 +65,24 @@ def plot_batch(res: Any, column: str, path: str | Path, title: str = "") -> Figu
     extra = f" (only the first two of {len(keys)} swept keys)" if len(keys) > 2 else ""
     ax.set_title(f"{title}: {column}{extra}" if title else column + extra, fontsize=10)
     ax.grid(True, alpha=0.3)
+    return fig
+
+
+def plot_batch(res: Any, column: str, path: str | Path, title: str = "") -> Figure:
+    """Save :func:`batch_figure` (``column`` against the swept keys) to ``path``.
+
+    Parameters
+    ----------
+    res : BatchResult
+        The batch's rows and swept input keys.
+    column : str
+        The output to plot, e.g. ``"max_tension [N]"``.
+    path : str or Path
+        Where to save the figure (format from the suffix).
+    title : str
+        Start of the title; empty (default): the column alone.
+    """
+    fig = batch_figure(res, column, title)
     save(fig, path)
     return fig
 

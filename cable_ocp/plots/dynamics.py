@@ -124,17 +124,16 @@ def plot_simulation(res: Any, path: str | Path, title: str = "", scene: Any = No
     return fig
 
 
-def plot_modes(res: Any, path: str | Path, title: str = "", max_modes: int = 6) -> Figure:
-    """The first mode shapes in the vertical plane of the line (shape components along the
-    line's horizontal direction and vertically, against the static profile).
+def modes_figure(res: Any, title: str = "", max_modes: int = 6) -> Figure:
+    """Build (without saving) the figure of :func:`plot_modes`: the first mode shapes
+    in the vertical plane of the line (shape components along the line's horizontal
+    direction and vertically, against the static profile).
 
     Parameters
     ----------
     res : ModesResult
         The modal analysis: frequencies (rad/s), mode shapes and static node positions
         (m). Each shape is drawn scaled to 12 % of the line's extent.
-    path : str or Path
-        Where to save the figure (format from the suffix).
     title : str
         Start of the title (``"{title}: natural modes of ..."``); default empty.
     max_modes : int
@@ -165,21 +164,38 @@ def plot_modes(res: Any, path: str | Path, title: str = "", max_modes: int = 6) 
     legend_below(fig, [*axes[0].get_lines()])
     fig.suptitle(f"{title}: natural modes of the {res.model} model about the static state",
                  fontsize=11)
+    return fig
+
+
+def plot_modes(res: Any, path: str | Path, title: str = "", max_modes: int = 6) -> Figure:
+    """Save :func:`modes_figure` (the first mode shapes, one panel each) to ``path``.
+
+    Parameters
+    ----------
+    res : ModesResult
+        The modal analysis.
+    path : str or Path
+        Where to save the figure (format from the suffix).
+    title : str
+        Start of the title; default empty.
+    max_modes : int
+        Largest number of modes drawn (default 6).
+    """
+    fig = modes_figure(res, title, max_modes)
     save(fig, path)
     return fig
 
 
-def plot_deployment(chart: Any, path: str | Path, title: str = "") -> Figure:
-    """Natural frequencies against paid-out length, the wave band shaded, crossings marked:
-    the lengths at which lowering the unit passes through a resonance.
+def deployment_figure(chart: Any, title: str = "") -> Figure:
+    """Build (without saving) the figure of :func:`plot_deployment`: natural
+    frequencies against paid-out length, the wave band shaded, crossings marked (the
+    lengths at which lowering the unit passes through a resonance).
 
     Parameters
     ----------
     chart : DeploymentChart
         Natural frequencies (rad/s) against unstretched paid-out length (m), and the wave
         band (rad/s).
-    path : str or Path
-        Where to save the figure (format from the suffix).
     title : str
         Start of the title (``"{title}: deployment resonance chart ..."``); default empty.
     """
@@ -206,5 +222,21 @@ def plot_deployment(chart: Any, path: str | Path, title: str = "") -> Figure:
     note = f"; {hidden} higher modes above the axis" if hidden else ""
     a.set_title(wrap(f"{title}: deployment resonance chart ({chart.model} model{note})", 9.0,
                      11), fontsize=11)
+    return fig
+
+
+def plot_deployment(chart: Any, path: str | Path, title: str = "") -> Figure:
+    """Save :func:`deployment_figure` (the deployment resonance chart) to ``path``.
+
+    Parameters
+    ----------
+    chart : DeploymentChart
+        Natural frequencies against paid-out length and the wave band.
+    path : str or Path
+        Where to save the figure (format from the suffix).
+    title : str
+        Start of the title; default empty.
+    """
+    fig = deployment_figure(chart, title)
     save(fig, path)
     return fig
