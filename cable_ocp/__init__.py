@@ -13,10 +13,23 @@ scene needs) -> :mod:`cable_ocp.statics.collocation` (transcription) ->
 :mod:`cable_ocp.statics.line_solver` (built once, parametric, warm-started) ->
 :mod:`cable_ocp.statics.solver` (solve, sweep, session) ->
 :mod:`cable_ocp.statics.solution` -> :mod:`cable_ocp.report` / :mod:`cable_ocp.plots`.
+
+Every result prints a short summary, draws itself (``fig, ax = sol.plot()``) and turns into
+arrays and tables (``sol.to_xarray()``, ``sol.to_pandas()``, the extra ``[io]``);
+:func:`write_netcdf` writes one whole or not at all (docs/api.md).
+
+Packages
+--------
+numerics, physics, scene, statics, baselines, dynamics, heave, batch   the library, in its
+    layer order (each imports only from the ones before it)
+bench, plots, report, cli   the face: benchmarks, figures, text, the command line
+errors, status   the one exception type and the status vocabulary
 """
 
 from cable_ocp.errors import CableOCPError
+from cable_ocp.numerics.export import write_netcdf
 from cable_ocp.scene import Scene, load, load_scene, scene_from_dict
+from cable_ocp.statics.footprint_nlp import FootprintResult, footprint
 from cable_ocp.statics.line_solver import StaticsSolver
 from cable_ocp.statics.solution import StaticsSolution
 from cable_ocp.statics.solver import solve, sweep
@@ -29,6 +42,7 @@ __version__ = "0.2.0"
 
 __all__ = [
     "CableOCPError",
+    "FootprintResult",
     "Scene",
     "StaticsSolution",
     "StaticsSolver",
@@ -36,6 +50,8 @@ __all__ = [
     "load",
     "load_scene",
     "scene_from_dict",
+    "footprint",
     "solve",
     "sweep",
+    "write_netcdf",
 ]

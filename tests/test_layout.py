@@ -149,8 +149,9 @@ def test_the_plot_accessors_are_the_only_calls_into_the_face() -> None:
     of a face module from the library is still an edge of GRAPH and fails the tests
     around this one)."""
     users = {m for m, _ in ACCESSOR_EDGES}
-    assert {"cable_ocp.statics.solution", "cable_ocp.statics.footprint",
-            "cable_ocp.dynamics.result", "cable_ocp.heave.metrics", "cable_ocp.batch"} <= users
+    assert {"cable_ocp.statics.solution", "cable_ocp.statics.footprint_nlp",
+            "cable_ocp.dynamics.result", "cable_ocp.heave.metrics",
+            "cable_ocp.batch.study"} <= users
     assert {t for _, t in ACCESSOR_EDGES} == {ACCESSOR_MODULE}
 
 
@@ -160,7 +161,7 @@ def test_the_graph_sees_known_edges() -> None:
     assert "cable_ocp.statics.formulation" in GRAPH["cable_ocp.statics.solver"]
     assert "cable_ocp.scene" in GRAPH["cable_ocp.statics.registry"]
     assert "cable_ocp.cli.output" in GRAPH["cable_ocp.cli.statics"]
-    assert "cable_ocp.heave.mpc" in GRAPH["cable_ocp.heave.simulate"]
+    assert "cable_ocp.heave.mpc" in GRAPH["cable_ocp.heave.design_loop"]
 
 
 # -- the layer order ---------------------------------------------------------------------

@@ -79,7 +79,7 @@ def _load(args: argparse.Namespace) -> Any:
 
 def cmd_simulate(args: argparse.Namespace) -> int:
     """``cable-ocp simulate FILE``."""
-    from cable_ocp.dynamics.simulate import simulate
+    from cable_ocp.dynamics.simulation import simulate
 
     out.check_outputs(args)
     out.check_output_path(args.netcdf, "--netcdf", allow_stdout=False)
@@ -183,7 +183,7 @@ def _parse_lengths(text: str) -> np.ndarray:
 def cmd_modes(args: argparse.Namespace) -> int:
     """``cable-ocp modes FILE``."""
     from cable_ocp import report
-    from cable_ocp.dynamics.modes import at_length, modes
+    from cable_ocp.dynamics.modal import at_length, modes
 
     out.check_outputs(args)
     if args.count is not None and not 1 <= args.count <= 200:

@@ -3,7 +3,7 @@
 Every metric is taken over the same window ``t >= [simulation] warmup`` (:func:`run_metrics`);
 ``reduction_pct`` is relative to a passive run on the same sea and plant
 (:func:`reduction_pct`). :class:`Comparison` is the result of
-:func:`cable_ocp.heave.simulate.compare`, :class:`CableComparison` that of
+:func:`cable_ocp.heave.design_loop.compare`, :class:`CableComparison` that of
 :func:`cable_ocp.heave.cable_compare.compare_cable` (on the cable plant the metrics add the
 tensions, the slack samples and the prediction of the design model: :class:`CableMetrics`,
 :func:`cable_run_metrics`).
@@ -22,7 +22,7 @@ from cable_ocp.scene.heave import HeaveScene
 from cable_ocp.status import Status
 
 if TYPE_CHECKING:
-    from cable_ocp.heave.simulate import Models
+    from cable_ocp.heave.design_loop import Models
 
 __all__ = ["CABLE_FIELDS", "CableComparison", "CableMetrics", "Comparison", "Metrics",
            "cable_run_metrics", "reduction_pct", "run_metrics", "with_reduction"]
@@ -53,7 +53,7 @@ class Metrics:
 
 @dataclass(frozen=True)
 class Comparison:
-    """Result of :func:`cable_ocp.heave.simulate.compare`.
+    """Result of :func:`cable_ocp.heave.design_loop.compare`.
 
     Attributes
     ----------

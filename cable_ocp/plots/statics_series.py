@@ -18,7 +18,7 @@ from matplotlib.figure import Figure
 from cable_ocp.plots.common import force_scale, legend_below, new_figure, save
 from cable_ocp.plots.statics import CURRENT_COLOR, heading_words
 from cable_ocp.scene import Scene
-from cable_ocp.statics.footprint import FootprintResult
+from cable_ocp.statics.footprint_nlp import FootprintResult
 
 
 def plot_sweep(values: Sequence[float], forces: np.ndarray, path: str | Path, xlabel: str,

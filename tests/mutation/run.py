@@ -296,7 +296,7 @@ MUTATIONS: tuple[Mutation, ...] = (
              ("tests/test_baseline_chucheepsakul.py",),
              "Gauss-Legendre on [a, b]: the weights not scaled by (b - a)/2 (the FEM's "
              "element integrals doubled)"),
-    Mutation("batch-chunks-ignore-grid-blocks", "batch", "cable_ocp/batch/__init__.py",
+    Mutation("batch-chunks-ignore-grid-blocks", "batch", "cable_ocp/batch/study.py",
              "near = [b for b in starts if i + size / 2 <= b <= i + 1.5 * size]",
              "near = []", ("tests/test_batch.py::test_guided_chunks_end_at_grid_blocks",),
              "batch chunks cut across the grid's blocks (two workers build one solver)"),
@@ -313,7 +313,7 @@ MUTATIONS: tuple[Mutation, ...] = (
     Mutation("kalman-intensity-one", HEAVE_A, "cable_ocp/heave/stochastic.py",
              "QN = np.array([[WHITE_NOISE_INTENSITY]])", "QN = np.array([[1.0]])", HEAVE,
              "Kalman filter's process-noise intensity 1 instead of pi"),
-    Mutation("sea-noise-variance-doubled", HEAVE_A, "cable_ocp/heave/simulate.py",
+    Mutation("sea-noise-variance-doubled", HEAVE_A, "cable_ocp/heave/design_loop.py",
              "Qd = discretize_noise(A, G, WHITE_NOISE_INTENSITY, h_sim)",
              "Qd = discretize_noise(A, G, 2 * WHITE_NOISE_INTENSITY, h_sim)", HEAVE,
              "simulated sea driven with twice the noise variance"),
@@ -598,7 +598,7 @@ MUTATIONS: tuple[Mutation, ...] = (
              "return int(self.duration / self.time_step)", (OUTPUT_GRID,),
              "integration steps truncated: 1.2 s over 0.1 s (11.999999999999998) runs 11 "
              "steps and drops the last output sample"),
-    Mutation("chart-pays-out-the-bottom-segment", "bookkeeping", "cable_ocp/dynamics/modes.py",
+    Mutation("chart-pays-out-the-bottom-segment", "bookkeeping", "cable_ocp/dynamics/modal.py",
              "        top = len(st.segments) - 1\n"
              "        rest = sum(c.length for c in st.segments[:-1])",
              "        top = 0\n"
