@@ -21,7 +21,7 @@ import numpy as np
 
 from cable_ocp.heave import lqr, sea
 from cable_ocp.heave import plant as pl
-from cable_ocp.heave.simulate import wave_realisation
+from cable_ocp.heave.design_loop import wave_realisation
 from cable_ocp.heave.thesis import A_626, B_626, G3_626, G5_626, HS_626, TAU_626, TZ_626
 
 

@@ -36,7 +36,7 @@ import numpy as np
 import pytest
 from scipy.interpolate import CubicSpline
 
-from cable_ocp.baselines.solve_bvp import solve_bvp
+from cable_ocp.baselines.scipy_bvp import solve_bvp
 from cable_ocp.scene import Scene, load_scene
 from cable_ocp.statics.solution import StaticsSolution
 from cable_ocp.statics.solver import solve

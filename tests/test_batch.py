@@ -278,7 +278,7 @@ def test_dask_default_chunks_follow_the_clusters_worker_count(dask_client,
                                                                ) -> None:
     """Without --chunk-size, the dask path cuts the chunks for the cluster's worker threads
     (2 here), not for this machine's cores: the first chunk is 1/(2 x 2) of the cases."""
-    import cable_ocp.batch as batch
+    import cable_ocp.batch.study as batch
 
     seen: list[int] = []
     real = batch._chunks
@@ -444,7 +444,7 @@ def test_guided_chunks_cover_every_case_once_in_order_and_shrink() -> None:
     """Default chunks: consecutive runs that cover every case once, in grid order, the
     first 1/(2 w) of the cases, then shrinking to 2 or fewer at the end (so the workers
     finish within a case or two of each other); a given chunk_size is kept."""
-    from cable_ocp.batch import _chunks
+    from cable_ocp.batch.study import _chunks
 
     cases = [Case(i, {"layout.psi0_deg": float(i)}) for i in range(200)]
     for w in (1, 2, 4):
@@ -462,7 +462,8 @@ def test_guided_chunks_end_at_grid_blocks() -> None:
     speed starts whenever one lies within half the chunk's size of its target end, so
     that two workers rarely build a solver for the same speed (the current is part of a
     statics solver's structure): every chunk but the short tail ones starts on a block."""
-    from cable_ocp.batch import _blocks, _chunks, build_cases, parse_range
+    from cable_ocp.batch import build_cases, parse_range
+    from cable_ocp.batch.study import _blocks, _chunks
 
     cases = build_cases([parse_range("environment.current.speed=0.4:1.3:10"),
                          parse_range("layout.psi0_deg=0:140:20")])

@@ -17,8 +17,8 @@ import numpy as np
 import pytest
 
 # imported (their own imports bound) before any test patches cable_ocp.statics.solver.solve
-import cable_ocp.heave.simulate
-import cable_ocp.statics.footprint  # noqa: F401
+import cable_ocp.heave.design_loop
+import cable_ocp.statics.footprint_nlp  # noqa: F401
 from cable_ocp.cli import main
 
 ROOT = Path(__file__).resolve().parents[1]
@@ -63,8 +63,8 @@ def no_work(monkeypatch: pytest.MonkeyPatch) -> None:
         raise AssertionError("the computation started")
 
     monkeypatch.setattr("cable_ocp.statics.solver.solve", boom)
-    monkeypatch.setattr("cable_ocp.statics.footprint.footprint", boom)
-    monkeypatch.setattr("cable_ocp.heave.simulate.compare", boom)
+    monkeypatch.setattr("cable_ocp.statics.footprint_nlp.footprint", boom)
+    monkeypatch.setattr("cable_ocp.heave.design_loop.compare", boom)
 
 
 # --------------------------------------------------------------------------------------
@@ -270,10 +270,10 @@ def test_reduction_against_passive_even_without_it(capsys: Any, tmp_path: Path) 
 
 def _unstable_gain(monkeypatch: pytest.MonkeyPatch) -> None:
     """Positive feedback: the LQR gain with its sign flipped (an unstable loop)."""
-    from cable_ocp.heave import simulate
+    from cable_ocp.heave import design_loop
 
-    real = simulate.discrete_delay_lqr
-    monkeypatch.setattr(simulate, "discrete_delay_lqr", lambda *a, **k: -3.0 * real(*a, **k))
+    real = design_loop.discrete_delay_lqr
+    monkeypatch.setattr(design_loop, "discrete_delay_lqr", lambda *a, **k: -3.0 * real(*a, **k))
 
 
 def test_unstable_loop_is_a_status_with_nulls(monkeypatch: pytest.MonkeyPatch, capsys: Any,
@@ -300,7 +300,7 @@ def test_state_bound_catches_an_unstable_run(monkeypatch: pytest.MonkeyPatch) ->
     command doubles every sample."""
     import dataclasses
 
-    from cable_ocp.heave import simulate
+    from cable_ocp.heave import design_loop
     from cable_ocp.heave.controllers import Controller
     from cable_ocp.scene.heave import load_scene
 
@@ -313,13 +313,13 @@ def test_state_bound_catches_an_unstable_run(monkeypatch: pytest.MonkeyPatch) ->
             self.u *= 2.0
             return self.u
 
-    real = simulate._make_controller
-    monkeypatch.setattr(simulate, "_make_controller", lambda name, *a: Doubling()
+    real = design_loop._make_controller
+    monkeypatch.setattr(design_loop, "_make_controller", lambda name, *a: Doubling()
                         if name == "mpc" else real(name, *a))
     sc = load_scene(HEAVE, {"controller.controllers": ["passive", "mpc"]})
     sc = dataclasses.replace(sc, simulation=dataclasses.replace(sc.simulation, duration=10.0,
                                                                 warmup=1.0))
-    res = simulate.compare(sc)
+    res = design_loop.compare(sc)
     assert res.statuses == {"passive": "solved", "mpc": "unstable"}
     assert "1000 times the largest boom-tip heave" in res.messages["mpc"]
     assert res.metrics["mpc"].heave_rms is None
@@ -332,7 +332,7 @@ def test_state_bound_catches_an_unstable_run(monkeypatch: pytest.MonkeyPatch) ->
 def test_non_finite_command_is_a_status(monkeypatch: pytest.MonkeyPatch) -> None:
     import dataclasses
 
-    from cable_ocp.heave import simulate
+    from cable_ocp.heave import design_loop
     from cable_ocp.heave.controllers import Controller
     from cable_ocp.scene.heave import load_scene
 
@@ -340,13 +340,13 @@ def test_non_finite_command_is_a_status(monkeypatch: pytest.MonkeyPatch) -> None
         def step(self, obs):  # noqa: ANN001, ANN201, ARG002
             return math.nan
 
-    real = simulate._make_controller
-    monkeypatch.setattr(simulate, "_make_controller", lambda name, *a: Nan()
+    real = design_loop._make_controller
+    monkeypatch.setattr(design_loop, "_make_controller", lambda name, *a: Nan()
                         if name == "mpc" else real(name, *a))
     sc = load_scene(HEAVE, {"controller.controllers": ["lqr", "mpc"]})
     sc = dataclasses.replace(sc, simulation=dataclasses.replace(sc.simulation, duration=3.0,
                                                                 warmup=1.0))
-    res = simulate.compare(sc)
+    res = design_loop.compare(sc)
     assert res.statuses == {"lqr": "solved", "mpc": "non_finite"}
     assert res.status == "non_finite"
     assert res.metrics["lqr"].reduction_pct > 90.0  # against the passive baseline
@@ -356,12 +356,12 @@ def test_design_failure_is_a_status(monkeypatch: pytest.MonkeyPatch, capsys: Any
                                     tmp_path: Path) -> None:
     """A Riccati equation without a solution (ControlArgument / LinAlgError before) is the
     status "failed" of the controllers that need it, with the library's error."""
-    from cable_ocp.heave import simulate
+    from cable_ocp.heave import design_loop
 
     def fail(*args: Any, **kwargs: Any) -> Any:
         raise np.linalg.LinAlgError("Failed to find a finite solution.")
 
-    monkeypatch.setattr(simulate, "discrete_delay_lqr", fail)
+    monkeypatch.setattr(design_loop, "discrete_delay_lqr", fail)
     out = tmp_path / "h.json"
     rc, _, _ = run(capsys, "heave", HEAVE, *SHORT, "--controllers", "passive", "lqr", "lqg",
                    "--json", out)
@@ -504,7 +504,7 @@ def test_ctrl_c_in_footprint_writes_finished_directions(monkeypatch: pytest.Monk
                         "status": "solved"})
         raise KeyboardInterrupt
 
-    monkeypatch.setattr("cable_ocp.statics.footprint.footprint", fake)
+    monkeypatch.setattr("cable_ocp.statics.footprint_nlp.footprint", fake)
     out = tmp_path / "f.json"
     rc, _, _ = run(capsys, "footprint", FOOTPRINT, "--directions", "8", "--json", out)
     assert rc == 130
@@ -516,7 +516,7 @@ def test_ctrl_c_in_heave_exits_130(monkeypatch: pytest.MonkeyPatch, capsys: Any)
     def interrupt(*args: Any, **kwargs: Any) -> Any:
         raise KeyboardInterrupt
 
-    monkeypatch.setattr("cable_ocp.heave.simulate.compare", interrupt)
+    monkeypatch.setattr("cable_ocp.heave.design_loop.compare", interrupt)
     rc, _, err = run(capsys, "heave", HEAVE)
     assert rc == 130 and err == ["cable-ocp: interrupted"]
 

@@ -11,7 +11,7 @@ from scipy.optimize import minimize_scalar
 from cable_ocp.cli import main
 from cable_ocp.errors import CableOCPError
 from cable_ocp.scene import load_scene
-from cable_ocp.statics.footprint import footprint
+from cable_ocp.statics.footprint_nlp import footprint
 
 W, H_SHIP, T_MAX, L_MAX, L_MIN = 12.3, 183.0, 2000.0, 305.0, 190.0
 

@@ -38,17 +38,44 @@ def _is_face(name: str) -> bool:
     return any(name == f or name.startswith(f + ".") for f in FACE)
 
 
+#: the one import from the library into the face: a result's ``plot`` method imports the
+#: accessors of the figures when it is called (the accessor pattern of pandas'
+#: ``DataFrame.plot`` and xarray's ``Dataset.plot``), never when the library is imported
+#: (test_importing_the_library_loads_no_face_module still holds). Such an import is an
+#: edge of ACCESSOR_EDGES, not of GRAPH: it is a call into the face, not a dependency.
+ACCESSOR_MODULE = "cable_ocp.plots.accessors"
+ACCESSOR_METHOD = "plot"
+ACCESSOR_EDGES: set[tuple[str, str]] = set()
+
+
+def _accessor_nodes(tree: ast.AST) -> set[int]:
+    """The import nodes inside a method named :data:`ACCESSOR_METHOD` that import
+    :data:`ACCESSOR_MODULE` and nothing else."""
+    out = set()
+    for fn in ast.walk(tree):
+        if isinstance(fn, ast.FunctionDef) and fn.name == ACCESSOR_METHOD:
+            for n in ast.walk(fn):
+                if isinstance(n, ast.ImportFrom) and n.module == ACCESSOR_MODULE:
+                    out.add(id(n))
+    return out
+
+
 def _imports(name: str, path: Path) -> set[str]:
     """Every cable_ocp module ``name`` imports, at module level or inside functions (not
-    the ``if TYPE_CHECKING:`` imports, which exist for annotations only)."""
+    the ``if TYPE_CHECKING:`` imports, which exist for annotations only, nor a result's
+    ``plot`` accessor: :data:`ACCESSOR_EDGES`)."""
     tree = ast.parse(path.read_text(encoding="utf-8"))
     pkg = name if path.name == "__init__.py" else name.rpartition(".")[0]
     found: set[str] = set()
     typing_only = {id(n) for block in ast.walk(tree) if isinstance(block, ast.If)
                    and "TYPE_CHECKING" in ast.unparse(block.test)
                    for stmt in block.body for n in ast.walk(stmt)}
+    accessors = _accessor_nodes(tree) if not _is_face(name) else set()
     for node in ast.walk(tree):
         if id(node) in typing_only:  # `if TYPE_CHECKING:` imports never run
+            continue
+        if id(node) in accessors:
+            ACCESSOR_EDGES.add((name, ACCESSOR_MODULE))
             continue
         if isinstance(node, ast.Import):
             targets = [a.name for a in node.names]
@@ -116,13 +143,25 @@ def test_no_import_cycles() -> None:
     assert not cycles, "\n".join(cycles)
 
 
+def test_the_plot_accessors_are_the_only_calls_into_the_face() -> None:
+    """Every result type with a ``plot`` method reaches the face through the accessor
+    module only (the exemption above is used, and used for nothing else: any other import
+    of a face module from the library is still an edge of GRAPH and fails the tests
+    around this one)."""
+    users = {m for m, _ in ACCESSOR_EDGES}
+    assert {"cable_ocp.statics.solution", "cable_ocp.statics.footprint_nlp",
+            "cable_ocp.dynamics.result", "cable_ocp.heave.metrics",
+            "cable_ocp.batch.study"} <= users
+    assert {t for _, t in ACCESSOR_EDGES} == {ACCESSOR_MODULE}
+
+
 def test_the_graph_sees_known_edges() -> None:
     """The parser is not blind: edges known to exist are found (else the tests above would
     pass on an empty graph)."""
     assert "cable_ocp.statics.formulation" in GRAPH["cable_ocp.statics.solver"]
     assert "cable_ocp.scene" in GRAPH["cable_ocp.statics.registry"]
     assert "cable_ocp.cli.output" in GRAPH["cable_ocp.cli.statics"]
-    assert "cable_ocp.heave.mpc" in GRAPH["cable_ocp.heave.simulate"]
+    assert "cable_ocp.heave.mpc" in GRAPH["cable_ocp.heave.design_loop"]
 
 
 # -- the layer order ---------------------------------------------------------------------

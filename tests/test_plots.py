@@ -224,7 +224,7 @@ def test_statics_non_finite_iterate(buggy, tmp_path: Path) -> None:
 def test_footprint_marks_unreachable(tmp_path: Path) -> None:
     from cable_ocp.plots.statics_series import plot_footprint
     from cable_ocp.scene import load_scene
-    from cable_ocp.statics.footprint import FootprintResult
+    from cable_ocp.statics.footprint_nlp import FootprintResult
 
     sc = load_scene(ROOT / "problems" / "footprint_tethered_unit.toml")
     th = np.arange(0.0, 360.0, 15.0)
@@ -302,8 +302,8 @@ def test_sweep_and_work_precision(tmp_path: Path) -> None:
 def test_heave_comparison(tmp_path: Path) -> None:
     from cable_ocp.heave import sea
     from cable_ocp.heave.closed_loop import Trace
+    from cable_ocp.heave.design_loop import Models
     from cable_ocp.heave.metrics import Comparison, Metrics
-    from cable_ocp.heave.simulate import Models
     from cable_ocp.plots.heave import plot_comparison, running_rms
     from cable_ocp.scene.heave import load_scene
 

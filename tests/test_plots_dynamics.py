@@ -134,7 +134,7 @@ def test_lumped_figure_heave_plan_3d_and_excitation_warning(tmp_path: Path,
     a 3D view. The shipped file (no top motion): solved, with the warning, which the CLI
     prints as one stderr line."""
     from cable_ocp.cli import main
-    from cable_ocp.dynamics.simulate import NO_EXCITATION
+    from cable_ocp.dynamics.simulation import NO_EXCITATION
     from cable_ocp.plots.dynamics import plot_simulation
 
     res = simulate(LUMPED, overrides={"simulation.duration": 0.5, **HEAVE})
@@ -166,7 +166,7 @@ def test_lumped_figure_heave_plan_3d_and_excitation_warning(tmp_path: Path,
 def test_axial_modes_are_displacement_against_depth(tmp_path: Path) -> None:
     """The 6.3.6 axial line: one curve per mode, u against depth below end_b, equal to the
     mode's axial (z) component over its largest magnitude, the curves different."""
-    from cable_ocp.dynamics.modes import modes
+    from cable_ocp.dynamics.modal import modes
     from cable_ocp.plots.dynamics import plot_modes
     from cable_ocp.scene.dynamics import load_dynamic_scene
 

@@ -176,7 +176,7 @@ def test_free_length_consistent_with_fixed_length(problems):
 def test_solve_bvp_agrees(problems):
     """scipy's solve_bvp (4th-order Lobatto, adaptive mesh, tol 1e-8) is an independent
     discretisation of the same equations: end forces agree to 1e-6 relative."""
-    from cable_ocp.baselines.solve_bvp import solve_bvp
+    from cable_ocp.baselines.scipy_bvp import solve_bvp
 
     for name in ("dezoysa_sea_buggy.toml", "berteaux_mooring.toml"):
         scene = load_scene(problems / name)

@@ -61,7 +61,7 @@ def test_every_status_the_command_docs_list_is_a_member() -> None:
 
 def test_results_of_every_kind_carry_a_status() -> None:
     import cable_ocp as co
-    from cable_ocp.heave.simulate import compare
+    from cable_ocp.heave.design_loop import compare
     from cable_ocp.scene.heave import load_scene as load_heave
 
     sol = co.solve(ROOT / "problems" / "berteaux_mooring.toml")

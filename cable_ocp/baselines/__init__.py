@@ -25,8 +25,19 @@ Contract, shared with the main solver (docs/baselines.md):
   ``solver.method`` and the reason: that is a user choice, not a numerical failure.
 * ``diagnostics["method"]`` is the method name; ``wall_time_s`` excludes file parsing;
   ``constraint_violation`` is the largest end-condition mismatch, relative (-).
+
+Modules
+-------
+chucheepsakul  Chucheepsakul & Subwonglee (1991): variational finite elements in z
+huang          Huang's catenary segments with the drag iterated (1992, ch. 2)
+wang           Wang, Cheong & Chucheepsakul (1993): shooting-optimization in z
+scipy_bvp      the same equations through :func:`scipy.integrate.solve_bvp`
+common         what they share: the refinement to an accuracy, the error estimate
+
+:func:`solve_bvp` (``cable_ocp.baselines.solve_bvp``) is the scipy method's function.
 """
 
-from cable_ocp.baselines import chucheepsakul, huang, solve_bvp, wang
+from cable_ocp.baselines import chucheepsakul, huang, scipy_bvp, wang  # noqa: F401  (register)
+from cable_ocp.baselines.scipy_bvp import solve_bvp
 
-__all__ = ["chucheepsakul", "huang", "solve_bvp", "wang"]
+__all__ = ["solve_bvp"]

@@ -167,7 +167,7 @@ class FootprintRunner(Runner):
 
     def _run(self, case: Case) -> tuple[str, str, dict[str, Any]]:
         from cable_ocp.scene import scene_from_dict
-        from cable_ocp.statics.footprint import footprint
+        from cable_ocp.statics.footprint_nlp import footprint
 
         n = int(self.options.get("directions", 36))
         res = footprint(scene_from_dict(self._data(case)), n)

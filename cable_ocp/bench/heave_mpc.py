@@ -28,8 +28,8 @@ import numpy as np
 
 from cable_ocp.heave import mpc as mpc_mod
 from cable_ocp.heave import plant as pl
+from cable_ocp.heave.design_loop import build_models
 from cable_ocp.heave.discrete import discretize_noise
-from cable_ocp.heave.simulate import build_models
 from cable_ocp.numerics.text_table import table
 from cable_ocp.scene.heave import HeaveScene, load_scene
 

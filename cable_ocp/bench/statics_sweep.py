@@ -26,7 +26,7 @@ from typing import Any
 
 import numpy as np
 
-from cable_ocp.baselines.solve_bvp import solve_bvp
+from cable_ocp.baselines.scipy_bvp import solve_bvp
 from cable_ocp.bench.common import cache_folder
 from cable_ocp.numerics import sparse_lu
 from cable_ocp.scene import Scene, load_scene

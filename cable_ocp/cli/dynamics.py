@@ -12,6 +12,7 @@ import numpy as np
 from cable_ocp.cli import output as out
 from cable_ocp.cli.cost import dynamics_cost
 from cable_ocp.errors import CableOCPError
+from cable_ocp.numerics.export import netcdf_engine, write_netcdf
 
 
 def register(sub: argparse._SubParsersAction, parent: argparse.ArgumentParser) -> None:
@@ -78,15 +79,12 @@ def _load(args: argparse.Namespace) -> Any:
 
 def cmd_simulate(args: argparse.Namespace) -> int:
     """``cable-ocp simulate FILE``."""
-    from cable_ocp.dynamics.simulate import simulate
+    from cable_ocp.dynamics.simulation import simulate
 
     out.check_outputs(args)
     out.check_output_path(args.netcdf, "--netcdf", allow_stdout=False)
-    if args.netcdf:
-        try:
-            import xarray  # noqa: F401
-        except ImportError:
-            raise CableOCPError("--netcdf needs xarray: pip install xarray") from None
+    if args.netcdf:  # before the run: a missing xarray is found at once
+        netcdf_engine("--netcdf")
     scene = _load(args)
     out.check_cost(args, dynamics_cost(scene))
     with out.progress(args, 1, f"simulate ({scene.simulation.model})", "step") as bar:
@@ -118,7 +116,8 @@ def cmd_simulate(args: argparse.Namespace) -> int:
     if args.csv and not empty:
         out.emit_csv(args, *_series_table(res), partial=stopped)
     if args.netcdf and not empty:
-        _write_netcdf(res, args.netcdf)
+        with out.output_errors("--netcdf", args.netcdf):
+            write_netcdf(res, args.netcdf)
         out.confirm(args, args.netcdf, "netCDF")
     if stopped:
         raise KeyboardInterrupt
@@ -172,24 +171,6 @@ def _series_table(res: Any) -> tuple[list[str], list[list[float]]]:
     return header, np.hstack(cols).tolist()
 
 
-def _write_netcdf(res: Any, path: str) -> None:
-    import xarray as xr
-
-    n_nodes = res.node_positions.shape[1]
-    ds = xr.Dataset(
-        {"length": ("time", res.length, {"units": "m", "long_name": "unstretched length"}),
-         "top_position": (("time", "xyz"), res.top_position, {"units": "m"}),
-         "unit_position": (("time", "xyz"), res.unit_position, {"units": "m"}),
-         "top_tension": ("time", res.top_tension, {"units": "N"}),
-         "node_position": (("time", "node", "xyz"), res.node_positions, {"units": "m"}),
-         "element_tension": (("time", "element"), res.segment_tensions, {"units": "N"})},
-        coords={"time": ("time", res.t, {"units": "s"}), "xyz": ["x", "y", "z"],
-                "node": np.arange(n_nodes), "element": np.arange(n_nodes - 1)},
-        attrs={"model": res.model, "status": res.status, "message": res.message,
-               "conventions": "z up; end_a = node 0 (unit), end_b = last node (ship)"})
-    out.write_output("--netcdf", path, ds.to_netcdf)
-
-
 def _parse_lengths(text: str) -> np.ndarray:
     m = re.fullmatch(r"\s*([^:]+):([^:]+):([^:]+)\s*", text)
     try:
@@ -207,7 +188,7 @@ def _parse_lengths(text: str) -> np.ndarray:
 def cmd_modes(args: argparse.Namespace) -> int:
     """``cable-ocp modes FILE``."""
     from cable_ocp import report
-    from cable_ocp.dynamics.modes import at_length, modes
+    from cable_ocp.dynamics.modal import at_length, modes
 
     out.check_outputs(args)
     if args.count is not None and not 1 <= args.count <= 200:

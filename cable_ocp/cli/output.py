@@ -334,9 +334,26 @@ def write_output(option: str, path: str, write: Callable[[str], Any]) -> None:
         directory: CONVENTIONS "Exit codes", exit 2): naming the path and the reason; the
         earlier file is kept and no partial file is left.
     """
+    with output_errors(option, path):
+        replace_atomically(path, write)
+
+
+@contextlib.contextmanager
+def output_errors(option: str, path: str) -> Iterator[None]:
+    """Around a library writer that writes ``path`` whole or not at all (e.g.
+    :func:`cable_ocp.numerics.export.write_netcdf`): its ``OSError`` becomes the
+    :class:`CableOCPError` of :func:`write_output` (exit 2, the path and the reason).
+
+    Parameters
+    ----------
+    option : str
+        The option that named the file, for the message.
+    path : str
+        The file.
+    """
     existed = Path(path).exists()
     try:
-        replace_atomically(path, write)
+        yield
     except OSError as exc:
         why = exc.strerror or str(exc) or type(exc).__name__
         kept = "the earlier file is kept" if existed else "no file was written"

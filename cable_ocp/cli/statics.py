@@ -115,7 +115,7 @@ def cmd_footprint(args: argparse.Namespace) -> int:
     from cable_ocp import report
     from cable_ocp.cli.cost import statics_cost
     from cable_ocp.scene import load_scene
-    from cable_ocp.statics.footprint import footprint
+    from cable_ocp.statics.footprint_nlp import footprint
 
     out.check_outputs(args)
     if args.directions < 3 or args.directions > 3600:

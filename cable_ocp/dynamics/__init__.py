@@ -6,11 +6,28 @@ Public entry points::
     load_dynamic_scene(path, overrides)  -> DynamicScene
     simulate(scene, progress=None)       -> SimulationResult
     modes(scene, count, lengths=None)    -> ModesResult | DeploymentChart
+
+``cable_ocp.dynamics.simulate`` and ``cable_ocp.dynamics.modes`` are these functions; their
+modules are :mod:`~cable_ocp.dynamics.simulation` and :mod:`~cable_ocp.dynamics.modal`.
+
+Modules
+-------
+model             the model interface that simulate and modes dispatch on; checks, the
+                  checks that a scene fits a model
+result            the result types (SimulationResult, ModesResult, DeploymentChart)
+simulation        simulate: the time integration of any model
+modal             modes: the linearisation about the static state, the deployment chart
+static            the static start of a dynamic scene
+axial, planar     the axial and planar lines; vertical_line their coefficients, stepping
+                  their chunked time loop, driven their steps with the top as an input,
+                  axial_thesis Huang's own axial scheme
+lumped            the 3D lumped-mass line: lumped_params, lumped_equations, lumped_kernel,
+                  lumped_run, lumped_scene, lumped_driven, lumped_thesis (Huang's (5.21))
 """
 
-from cable_ocp.dynamics.modes import modes
+from cable_ocp.dynamics.modal import modes
 from cable_ocp.dynamics.result import DeploymentChart, ModesResult, SimulationResult
-from cable_ocp.dynamics.simulate import simulate
+from cable_ocp.dynamics.simulation import simulate
 from cable_ocp.scene.dynamics import (
     DynamicScene,
     dynamic_scene_from_dict,

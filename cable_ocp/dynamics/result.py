@@ -14,6 +14,7 @@ from typing import Any
 
 import numpy as np
 
+from cable_ocp.numerics.export import optional_module, summary_repr
 from cable_ocp.numerics.jsonable import json_safe
 from cable_ocp.status import Status
 
@@ -289,6 +290,76 @@ class SimulationResult(_StatusVocabulary):
             status="failed", message=message, model=model, scheme=scheme,
             diagnostics=diagnostics)
 
+    def _ok(self, a: np.ndarray) -> float | None:
+        """Largest of ``a`` where it is finite (None for none)."""
+        a = np.asarray(a, dtype=float)
+        return float(np.nanmax(a)) if a.size and np.isfinite(a).any() else None
+
+    def __repr__(self) -> str:
+        """A few lines: status, model, span, tensions, slack and the arrays' shapes."""
+        t = self.t
+        span = float(t[-1] - t[0]) if len(t) else 0.0
+        return summary_repr(
+            "SimulationResult", self.status, self.message,
+            [("model", self.model or "-", ""), ("scheme", self.scheme or "-", ""),
+             ("simulated", span, "s"), ("samples", len(t), ""),
+             ("max_top_tension", self._ok(self.top_tension), "N"),
+             ("min_tension", self.min_tension, "N"),
+             ("slack", bool(self.slack.get("occurred")), ""),
+             ("warnings", len(self.warnings), ""), ("wall_time_s", self.wall_time_s, "s")],
+            {"t": self.t, "top_tension": self.top_tension,
+             "node_positions": self.node_positions, "segment_tensions": self.segment_tensions,
+             "node_velocities": self.node_velocities})
+
+    def to_xarray(self) -> Any:
+        """The time series as an ``xarray.Dataset`` (what ``cable-ocp simulate --netcdf``
+        writes): dimensions ``time`` (s), ``node`` (end_a = 0 to end_b), ``element`` and
+        ``xyz``; variables ``length`` (m, unstretched), ``top_position``,
+        ``unit_position``, ``node_position`` (m), ``top_tension``, ``element_tension`` (N)
+        and ``node_velocity`` (m/s, when the model gives it), each with its ``units``.
+        Needs xarray (the extra ``[io]``)."""
+        xr = optional_module("xarray", "SimulationResult.to_xarray()")
+        n_nodes = self.node_positions.shape[1]
+        data = {
+            "length": ("time", self.length, {"units": "m", "long_name": "unstretched length"}),
+            "top_position": (("time", "xyz"), self.top_position, {"units": "m"}),
+            "unit_position": (("time", "xyz"), self.unit_position, {"units": "m"}),
+            "top_tension": ("time", self.top_tension, {"units": "N"}),
+            "node_position": (("time", "node", "xyz"), self.node_positions, {"units": "m"}),
+            "element_tension": (("time", "element"), self.segment_tensions, {"units": "N"})}
+        if self.node_velocities is not None:
+            data["node_velocity"] = (("time", "node", "xyz"), self.node_velocities,
+                                     {"units": "m/s"})
+        return xr.Dataset(
+            data,
+            coords={"time": ("time", self.t, {"units": "s"}), "xyz": ["x", "y", "z"],
+                    "node": np.arange(n_nodes), "element": np.arange(max(n_nodes - 1, 0))},
+            attrs={"kind": "simulation", "model": self.model, "scheme": self.scheme,
+                   "status": str(self.status), "message": self.message,
+                   "min_tension_N": float(self.min_tension),
+                   "conventions": "z up; end_a = node 0 (unit), end_b = last node (ship)"})
+
+    def plot(self, ax: Any = None, **kwargs: Any) -> tuple[Any, Any]:
+        """Draw the result (matplotlib), MoorPy's habit: ``fig, ax = res.plot()``.
+
+        Parameters
+        ----------
+        ax : matplotlib Axes, optional
+            Draw the top tension against time on it; None (default): a new figure with
+            the four panels of ``cable-ocp simulate --plot``
+            (:func:`cable_ocp.plots.dynamics.simulation_figure`).
+        **kwargs
+            ``title``, ``scene``.
+
+        Returns
+        -------
+        (fig, ax)
+            The figure and the Axes drawn on (with ``ax=None``: an array of its panels).
+        """
+        from cable_ocp.plots.accessors import plot_simulation_result
+
+        return plot_simulation_result(self, ax, **kwargs)
+
     @property
     def success(self) -> bool:
         """True when the run finished without slack or failure."""
@@ -367,6 +438,64 @@ class ModesResult(_StatusVocabulary):
         with np.errstate(divide="ignore"):
             return np.where(self.frequencies > 0.0, 2.0 * np.pi / self.frequencies, np.inf)
 
+    def __repr__(self) -> str:
+        """A few lines: status, model, the lowest frequencies and the arrays' shapes."""
+        nums = [("model", self.model or "-", ""), ("length", self.length, "m"),
+                ("modes", len(self.frequencies), "")]
+        nums += [(f"omega_{k + 1}", w, "rad/s") for k, w in enumerate(self.frequencies[:3])]
+        if len(self.frequencies):
+            nums.append(("period_1", self.periods[0], "s"))
+        return summary_repr("ModesResult", self.status, self.message, nums,
+                            {"frequencies": self.frequencies, "shapes": self.shapes,
+                             "node_positions": self.node_positions})
+
+    def to_pandas(self) -> Any:
+        """The modes as a ``pandas.DataFrame``, one row per mode (index ``mode``, from 1):
+        ``frequency [rad/s]``, ``frequency [Hz]``, ``period [s]``. Needs pandas (the
+        extra ``[io]``)."""
+        pd = optional_module("pandas", "ModesResult.to_pandas()")
+        idx = pd.Index(np.arange(1, len(self.frequencies) + 1), name="mode")
+        return pd.DataFrame({"frequency [rad/s]": self.frequencies,
+                             "frequency [Hz]": self.frequencies / (2.0 * math.pi),
+                             "period [s]": self.periods}, index=idx)
+
+    def to_xarray(self) -> Any:
+        """The modes as an ``xarray.Dataset``: dimensions ``mode`` (from 1), ``node``
+        (end_a = 0) and ``xyz``; ``frequency`` (rad/s), ``period`` (s), ``shape`` (mode,
+        node, xyz; largest component 1) and ``node_position`` (m, the static state). Needs
+        xarray (the extra ``[io]``)."""
+        xr = optional_module("xarray", "ModesResult.to_xarray()")
+        return xr.Dataset(
+            {"frequency": ("mode", self.frequencies, {"units": "rad/s"}),
+             "period": ("mode", self.periods, {"units": "s"}),
+             "shape": (("mode", "node", "xyz"), self.shapes,
+                       {"units": "1", "long_name": "mode shape, largest component 1"}),
+             "node_position": (("node", "xyz"), self.node_positions, {"units": "m"})},
+            coords={"mode": np.arange(1, len(self.frequencies) + 1),
+                    "node": np.arange(self.node_positions.shape[0]), "xyz": ["x", "y", "z"]},
+            attrs={"kind": "modes", "model": self.model, "status": str(self.status),
+                   "message": self.message, "length_m": float(self.length)})
+
+    def plot(self, ax: Any = None, **kwargs: Any) -> tuple[Any, Any]:
+        """Draw the result (matplotlib), MoorPy's habit: ``fig, ax = res.plot()``.
+
+        Parameters
+        ----------
+        ax : matplotlib Axes, optional
+            Draw the static profile and the lowest three mode shapes on it; None
+            (default): a new figure with one panel per mode (``cable-ocp modes --plot``).
+        **kwargs
+            ``title``, ``max_modes`` (default 6).
+
+        Returns
+        -------
+        (fig, ax)
+            The figure and the Axes drawn on (with ``ax=None``: an array of its panels).
+        """
+        from cable_ocp.plots.accessors import plot_modes_result
+
+        return plot_modes_result(self, ax, **kwargs)
+
     def to_dict(self) -> dict[str, Any]:
         """JSON-ready dictionary: ``{"modes": [{"frequency_rad_s", "period_s", "shape"}],
         ...}`` in ascending frequency, ``shape`` one [dx, dy, dz] row per node from end_a
@@ -411,6 +540,63 @@ class DeploymentChart(_StatusVocabulary):
     status: Status = Status.SOLVED
     message: str = ""
     diagnostics: dict[str, Any] = field(default_factory=dict)
+
+    def __repr__(self) -> str:
+        """A few lines: status, model, the lengths, the band and the arrays' shapes."""
+        lo, hi = self.wave_band
+        lengths = np.asarray(self.lengths, dtype=float)
+        return summary_repr(
+            "DeploymentChart", self.status, self.message,
+            [("model", self.model or "-", ""),
+             ("lengths", f"{lengths.min():.6g}..{lengths.max():.6g}" if lengths.size else "-",
+              "m"), ("modes", self.frequencies.shape[-1] if self.frequencies.ndim == 2 else 0,
+                     ""),
+             ("wave_band", f"{lo:.6g}..{hi:.6g}", "rad/s"),
+             ("in_band", int(self.in_band.sum()), "")],
+            {"lengths": self.lengths, "frequencies": self.frequencies})
+
+    def to_xarray(self) -> Any:
+        """The chart as an ``xarray.Dataset``: ``frequency`` (rad/s) over dimensions
+        ``length`` (m, unstretched) and ``mode`` (from 1), ``in_band`` (bool). Needs
+        xarray (the extra ``[io]``)."""
+        xr = optional_module("xarray", "DeploymentChart.to_xarray()")
+        n = self.frequencies.shape[1]
+        return xr.Dataset(
+            {"frequency": (("length", "mode"), self.frequencies, {"units": "rad/s"}),
+             "in_band": (("length", "mode"), self.in_band)},
+            coords={"length": ("length", self.lengths, {"units": "m"}),
+                    "mode": np.arange(1, n + 1)},
+            attrs={"kind": "deployment_chart", "model": self.model,
+                   "status": str(self.status), "message": self.message,
+                   "wave_band_rad_s": list(self.wave_band)})
+
+    def to_pandas(self) -> Any:
+        """The chart as a ``pandas.DataFrame``: one row per length (index ``length [m]``),
+        one column per mode (``mode k [rad/s]``). Needs pandas (the extra ``[io]``)."""
+        pd = optional_module("pandas", "DeploymentChart.to_pandas()")
+        cols = {f"mode {k + 1} [rad/s]": self.frequencies[:, k]
+                for k in range(self.frequencies.shape[1])}
+        return pd.DataFrame(cols, index=pd.Index(self.lengths, name="length [m]"))
+
+    def plot(self, ax: Any = None, **kwargs: Any) -> tuple[Any, Any]:
+        """Draw the result (matplotlib), MoorPy's habit: ``fig, ax = res.plot()``.
+
+        Parameters
+        ----------
+        ax : matplotlib Axes, optional
+            Draw the frequencies against the length on it; None (default): a new figure
+            with the chart of ``cable-ocp modes --lengths --plot``.
+        **kwargs
+            ``title``.
+
+        Returns
+        -------
+        (fig, ax)
+            The figure and the Axes drawn on (with ``ax=None``: an array of its panels).
+        """
+        from cable_ocp.plots.accessors import plot_deployment_chart
+
+        return plot_deployment_chart(self, ax, **kwargs)
 
     @property
     def in_band(self) -> np.ndarray:

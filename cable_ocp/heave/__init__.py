@@ -8,6 +8,7 @@ In a few lines::
     import cable_ocp.heave as hv
     sc = hv.load_scene("problems/heave/ex_6_3_6.toml")
     res = hv.compare(sc, ("passive", "lqr", "mpc"))      # closed loop on one seeded sea
+    res                                                    # a short summary; res.plot()
     print(res.metrics["mpc"].heave_rms)
 
     models = hv.build_models(sc)                           # spectrum, filter, plant (6.28)
@@ -18,12 +19,13 @@ Modules
 -------
 sea         wave spectra (6.20), JONSWAP, Pierson-Moskowitz, shaping filters (6.21)-(6.23), fits
 plant       state-space blocks (6.1)/(6.5), (6.2), (6.25), delay models (6.13)-(6.14), (6.28)
+discrete    exact sampled-data models: ZOH with an input delay, cost and noise discretisation
 identify    Gauss-Newton identification of (6.2) and (6.3) (section 6.2.3)
 lqr         LQR designs with the delay handled three ways, delay margins, indices (6.16)-(6.18)
 stochastic  Lyapunov (6.31) and spectral (6.33)-(6.35) variances, LQG, winch-gain study (6.3.5)
 mpc         condensed linear MPC (CasADi ``conic``) and nonlinear MPC (IPOPT), built once
 mpc_daqp    the DAQP backend of the linear MPC
-simulate    closed-loop comparison on one seeded wave realisation (the design model)
+design_loop closed-loop comparison on one seeded wave realisation (the design model)
 identify_cable  the identification experiment (6.2.3) on a cable scene's line
 axial_plant     the axial line as the plant, stepped one control sample per call
 cable_models    the planar and 3D lumped-mass lines as the plant; cable_plant(): the plant by
@@ -42,12 +44,16 @@ cable_compare   :func:`compare` for every scene: on the design model, or on the 
 """
 
 from cable_ocp.heave.cable_compare import compare
+from cable_ocp.heave.design_loop import build_models
 from cable_ocp.heave.lqr import LQRDesign, design_lqr, regulator_plant
 from cable_ocp.heave.metrics import Comparison, Metrics
 from cable_ocp.heave.mpc import LinearMPC, MPCSettings, MPCStep, settings_from_scene
 from cable_ocp.heave.plant import HeavePlant, assemble_plant
-from cable_ocp.heave.simulate import build_models
 from cable_ocp.scene.heave import HeaveScene, load_scene, scene_from_dict
+
+#: the closed loop of each controller, under the verb of :func:`cable_ocp.dynamics.simulate`:
+#: ``simulate(scene, controllers)`` is :func:`compare` itself (one function, two names)
+simulate = compare
 
 __all__ = [
     "Comparison",
@@ -66,4 +72,5 @@ __all__ = [
     "regulator_plant",
     "scene_from_dict",
     "settings_from_scene",
+    "simulate",
 ]

@@ -4,7 +4,7 @@ and the deployment through resonance.
 A heave scene with ``[unit] cable_scene`` is compared here: the design model is identified
 from the cable (Huang (1992), section 6.2.3; :mod:`cable_ocp.heave.identify_cable`) unless
 ``[unit] a, b`` are given; ``[simulation] plant = "model"`` runs the usual comparison
-(:func:`cable_ocp.heave.simulate.compare`) on that model, ``"cable"`` runs every controller
+(:func:`cable_ocp.heave.design_loop.compare`) on that model, ``"cable"`` runs every controller
 against the cable (the axial, planar or lumped3d model of the cable scene,
 :func:`cable_ocp.heave.cable_models.cable_plant`) and against the design model
 for the prediction, and a ``[deployment]`` table lowers the unit through resonance
@@ -19,9 +19,9 @@ from typing import Any
 import numpy as np
 
 from cable_ocp.errors import CableOCPError
+from cable_ocp.heave import design_loop as sm
 from cable_ocp.heave import identify_cable as idc
 from cable_ocp.heave import mpc as mpc_mod
-from cable_ocp.heave import simulate as sm
 from cable_ocp.heave.cable_models import cable_plant, check_plant_scene
 from cable_ocp.heave.closed_loop import make_wave, run_loop, run_status, unstable_bound
 from cable_ocp.heave.deployment import deploy
@@ -45,9 +45,9 @@ __all__ = ["compare", "compare_cable"]
 
 def compare(scene: HeaveScene, controllers: tuple | None = None,
             progress: Callable[[int, int, Any], None] | None = None) -> Any:
-    """:func:`cable_ocp.heave.simulate.compare` for any heave scene: a scene with
+    """:func:`cable_ocp.heave.design_loop.compare` for any heave scene: a scene with
     ``[unit] cable_scene`` goes to :func:`compare_cable`, the others to
-    :func:`cable_ocp.heave.simulate.compare`. Returns a
+    :func:`cable_ocp.heave.design_loop.compare`. Returns a
     :class:`~cable_ocp.heave.metrics.Comparison` or a
     :class:`~cable_ocp.heave.metrics.CableComparison` (the same fields, and the
     cable's).
@@ -68,7 +68,7 @@ def compare(scene: HeaveScene, controllers: tuple | None = None,
 
 def compare_cable(scene: HeaveScene, controllers: tuple | None = None,
                   progress: Callable[[int, int, Any], None] | None = None) -> Any:
-    """:func:`cable_ocp.heave.simulate.compare` for a scene with ``[unit] cable_scene``.
+    """:func:`cable_ocp.heave.design_loop.compare` for a scene with ``[unit] cable_scene``.
 
     The design model is identified from the cable scene (Huang (1992), section 6.2.3,
     :func:`cable_ocp.heave.identify_cable.identify_from_cable`) unless ``[unit] a, b`` are

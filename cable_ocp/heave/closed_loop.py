@@ -7,7 +7,7 @@ ZOH), the command the winch applies, delayed by exactly ``tau = d h``
 (:class:`cable_ocp.heave.delay.DelayLine`), and the plant advanced over the sample on its
 ``m`` sub-steps (:meth:`LoopPlant.advance`). The plants (:mod:`cable_ocp.heave.loop_plants`):
 the design model (6.2)/(6.3) with its winch, integrated by RK4 on the sub-steps in the sea
-sampled exactly (:func:`cable_ocp.heave.simulate.compare`); and a line under the winch: the
+sampled exactly (:func:`cable_ocp.heave.design_loop.compare`); and a line under the winch: the
 cable (axial, planar or lumped3d) or the design model, with the winch integrated exactly
 (:func:`cable_ocp.heave.cable_compare.compare_cable`, the deployment).
 
@@ -38,7 +38,7 @@ from cable_ocp.status import Status
 __all__ = ["STATUSES", "UNSTABLE_FACTOR", "CableTrace", "LoopPlant", "LoopRun", "Sample",
            "Trace", "Wave", "make_wave", "run_loop", "run_status", "unstable_bound"]
 
-#: per-controller statuses (:mod:`cable_ocp.heave.simulate`)
+#: per-controller statuses (:mod:`cable_ocp.heave.design_loop`)
 #: the statuses of a run (members of :class:`cable_ocp.status.Status`)
 STATUSES = (Status.SOLVED, Status.UNSTABLE, Status.NON_FINITE, Status.FAILED)
 

@@ -126,7 +126,7 @@ def deploy(scene: HeaveScene, design: HeaveScene, cable_scene: DynamicScene,
     progress : callable, optional
         ``progress(done, total, None)`` every 100 samples.
     """
-    from cable_ocp.heave import simulate as sm
+    from cable_ocp.heave import design_loop as sm
     from cable_ocp.heave.identify_cable import first_frequency, identified_json
 
     dep = scene.deployment

@@ -188,7 +188,7 @@ def _design(sc: HeaveScene, a: float, b: float) -> tuple[pl.HeavePlant, np.ndarr
     noise), far below the waves, so that a slow offset is not taken for heave and not
     compensated; without it the filter forces the design model's states to explain it.
     """
-    from cable_ocp.heave.simulate import build_models
+    from cable_ocp.heave.design_loop import build_models
 
     s2 = replace(sc, unit=replace(sc.unit, a=a, b=b))
     p = build_models(s2).plant

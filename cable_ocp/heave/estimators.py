@@ -7,7 +7,7 @@ plant: :func:`cable_ocp.heave.design.design_table`). An :class:`Estimator` gives
 
 * :class:`FullState`: the identity. The plant's state as measured (the unit and winch
   states and the sea and vessel filters' states: the full-state LQR and MPC of
-  :func:`cable_ocp.heave.simulate.compare`), the delay buffer from the controller's own
+  :func:`cable_ocp.heave.design_loop.compare`), the delay buffer from the controller's own
   commands.
 * :class:`KalmanFilter`: the discrete Kalman filter in current-estimator form, the one
   implementation for the LQG on the design model (depth alone) and for every controller on

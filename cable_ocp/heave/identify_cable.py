@@ -256,7 +256,7 @@ def identify_line(scene: DynamicScene, *, excitation: str, amplitude: float,
 
 def _sea_band_amplitude(sc: HeaveScene) -> tuple[float, float, Any]:
     """(boom-tip RMS (m), the sea's modal frequency (rad/s), the models of the scene)."""
-    from cable_ocp.heave.simulate import build_models
+    from cable_ocp.heave.design_loop import build_models
     from cable_ocp.heave.stochastic import output_variance_lyapunov
 
     models = build_models(replace(sc, unit=replace(sc.unit, cable_scene=None)))
@@ -281,7 +281,7 @@ def identify_from_cable(scene: HeaveScene, cable_scene: DynamicScene, length: fl
     length : float, optional
         Unstretched length of the experiment, m (default the cable scene's).
     """
-    from cable_ocp.heave.simulate import wave_realisation
+    from cable_ocp.heave.design_loop import wave_realisation
 
     if length is not None and length != cable_scene.length:
         cable_scene = cable_scene.with_overrides({"cable.length": float(length)})

@@ -3,9 +3,9 @@
 * :class:`UnitWinchPlant`: the design model (6.2) or (6.3) and its winch ((6.1) or the
   second-order winch) integrated together by RK4 on the sub-steps ``h / substeps``, with
   the boom-tip heave linear between grid points, in the sea and vessel states sampled
-  exactly (:func:`cable_ocp.heave.simulate.wave_realisation`). Its state (unit, winch, sea,
+  exactly (:func:`cable_ocp.heave.design_loop.wave_realisation`). Its state (unit, winch, sea,
   vessel) is measurable for full-state feedback, and the unit's depth with white noise
-  (the plant of :func:`cable_ocp.heave.simulate.compare`).
+  (the plant of :func:`cable_ocp.heave.design_loop.compare`).
 * :class:`WinchedLine`: a line under the winch. The winch is integrated exactly (ZOH) on
   the sub-steps and is a position source, as in (6.4); the line is :class:`CableLine` (the
   cable plant: :class:`cable_ocp.heave.axial_plant.AxialCablePlant` or a plant of

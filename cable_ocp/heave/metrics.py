@@ -3,7 +3,7 @@
 Every metric is taken over the same window ``t >= [simulation] warmup`` (:func:`run_metrics`);
 ``reduction_pct`` is relative to a passive run on the same sea and plant
 (:func:`reduction_pct`). :class:`Comparison` is the result of
-:func:`cable_ocp.heave.simulate.compare`, :class:`CableComparison` that of
+:func:`cable_ocp.heave.design_loop.compare`, :class:`CableComparison` that of
 :func:`cable_ocp.heave.cable_compare.compare_cable` (on the cable plant the metrics add the
 tensions, the slack samples and the prediction of the design model: :class:`CableMetrics`,
 :func:`cable_run_metrics`).
@@ -18,11 +18,12 @@ import numpy as np
 
 from cable_ocp.dynamics.result import slack_report
 from cable_ocp.heave.closed_loop import LoopRun, Trace, run_status
+from cable_ocp.numerics.export import optional_module, summary_repr
 from cable_ocp.scene.heave import HeaveScene
 from cable_ocp.status import Status
 
 if TYPE_CHECKING:
-    from cable_ocp.heave.simulate import Models
+    from cable_ocp.heave.design_loop import Models
 
 __all__ = ["CABLE_FIELDS", "LIMIT_TOLERANCE", "SLACK_MESSAGE", "WINCH_LIMITS", "CableComparison",
            "CableMetrics", "Comparison", "Metrics", "cable_run_metrics", "cable_status",
@@ -54,7 +55,7 @@ class Metrics:
 
 @dataclass(frozen=True)
 class Comparison:
-    """Result of :func:`cable_ocp.heave.simulate.compare`.
+    """Result of :func:`cable_ocp.heave.design_loop.compare`.
 
     Attributes
     ----------
@@ -99,8 +100,77 @@ class Comparison:
         bad = [s for s in self.statuses.values() if s != "solved"]
         return bad[0] if bad else "solved"
 
+    def __repr__(self) -> str:
+        """A few lines: status, the passive baseline, each controller's status, heave RMS
+        and reduction, and the traces' shapes."""
+        nums: list[tuple[str, Any, str]] = [
+            ("controllers", len(self.metrics), ""),
+            ("passive_heave_rms", self.passive_heave_rms, "m"),
+            ("sigma_uncontrolled", self.sigma_uncontrolled, "m")]
+        for name, m in self.metrics.items():
+            nums += [(f"{name}.status", str(self.statuses.get(name, "-")), ""),
+                     (f"{name}.heave_rms", m.heave_rms, "m"),
+                     (f"{name}.reduction", m.reduction_pct, "%")]
+        nums.append(("warnings", len(self.warnings), ""))
+        first = next(iter(self.traces.values()), None)
+        return summary_repr(type(self).__name__, self.status, "", nums,
+                            {"traces.t": None if first is None else first.t})
 
-@dataclass(frozen=True)
+    def to_pandas(self) -> Any:
+        """The metrics as a ``pandas.DataFrame``, one row per controller (index
+        ``controller``): ``status`` and every :class:`Metrics` field (units as in
+        docs/conventions.md: m, m/s, %, s). Needs pandas (the extra ``[io]``)."""
+        pd = optional_module("pandas", f"{type(self).__name__}.to_pandas()")
+        rows = [{"controller": name, "status": str(self.statuses.get(name, "")),
+                 **{k: (np.nan if v is None else v) for k, v in m.as_dict().items()}}
+                for name, m in self.metrics.items()]
+        return pd.DataFrame(rows).set_index("controller")
+
+    def to_xarray(self) -> Any:
+        """The traces as an ``xarray.Dataset`` over dimensions ``controller`` and ``time``
+        (s): ``unit_heave``, ``tip_heave``, ``winch_output``, ``command`` (m),
+        ``winch_speed`` (m/s), and on a cable plant ``tension_unit``, ``tension_top`` (N)
+        and ``deployment_length`` (m); NaN after a stopped run's last sample. Needs
+        xarray (the extra ``[io]``)."""
+        xr = optional_module("xarray", f"{type(self).__name__}.to_xarray()")
+        names = {"x": ("unit_heave", "m"), "x0": ("tip_heave", "m"),
+                 "u": ("winch_output", "m"), "u_dot": ("winch_speed", "m/s"),
+                 "u0": ("command", "m"), "tension_unit": ("tension_unit", "N"),
+                 "tension_top": ("tension_top", "N"), "length": ("deployment_length", "m")}
+        parts = []
+        for tr in self.traces.values():
+            data = {var: ("time", np.asarray(getattr(tr, key), dtype=float), {"units": unit})
+                    for key, (var, unit) in names.items()
+                    if np.shape(getattr(tr, key, None)) == np.shape(tr.t)}
+            parts.append(xr.Dataset(data, coords={"time": ("time", tr.t, {"units": "s"})}))
+        ds = xr.concat(parts, dim="controller", join="outer") if parts else xr.Dataset()
+        return ds.assign_coords(controller=list(self.traces)).assign_attrs(
+            kind="heave", status=str(self.status),
+            statuses=", ".join(f"{k}: {v}" for k, v in self.statuses.items()))
+
+    def plot(self, ax: Any = None, **kwargs: Any) -> tuple[Any, Any]:
+        """Draw the comparison (matplotlib), MoorPy's habit: ``fig, ax = res.plot()``.
+
+        Parameters
+        ----------
+        ax : matplotlib Axes, optional
+            Draw the unit's heave against time, one line per controller, on it; None
+            (default): a new figure with the panels of ``cable-ocp heave --plot``
+            (:func:`cable_ocp.plots.heave.comparison_figure`).
+        **kwargs
+            ``scene`` (warm-up shading, limits, title), ``tradeoff``, ``references``.
+
+        Returns
+        -------
+        (fig, ax)
+            The figure and the Axes drawn on (with ``ax=None``: an array of its panels).
+        """
+        from cable_ocp.plots.accessors import plot_heave_result
+
+        return plot_heave_result(self, ax, **kwargs)
+
+
+@dataclass(frozen=True, repr=False)  # the short summary of Comparison
 class CableComparison(Comparison):
     """Result of :func:`cable_ocp.heave.cable_compare.compare_cable` (the fields of
     :class:`Comparison` plus the cable's).

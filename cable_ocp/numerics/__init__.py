@@ -2,8 +2,10 @@
 (:mod:`~cable_ocp.numerics.compile`), the kept sparse LU (:mod:`~cable_ocp.numerics.sparse_lu`),
 sparse solves that never warn (:mod:`~cable_ocp.numerics.linalg`), block-tridiagonal
 elimination in CasADi SX (:mod:`~cable_ocp.numerics.block_tridiagonal`), the Gauss
-quadrature rules (:mod:`~cable_ocp.numerics.quadrature`) and numbers that strict JSON can
-hold (:mod:`~cable_ocp.numerics.jsonable`).
+quadrature rules (:mod:`~cable_ocp.numerics.quadrature`), numbers that strict JSON can
+hold (:mod:`~cable_ocp.numerics.jsonable`), files written whole or not at all
+(:mod:`~cable_ocp.numerics.atomic`) and what every result shows its users: a short summary,
+the optional pandas and xarray, netCDF files (:mod:`~cable_ocp.numerics.export`).
 
 Nothing here knows about cables: these modules import no other part of the package.
 """

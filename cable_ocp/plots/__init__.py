@@ -1,12 +1,19 @@
 """Figures (matplotlib, Agg canvas: files only, nothing is shown on screen).
 
-statics  cable profiles (side elevation, or 3D view, plan and elevation) with the tension
-         along the cable; parameter sweeps; footprints
-heave    heave-compensation comparisons (spectra, time series, running RMS, limits,
-         trade-off curves)
-bench    the work-precision diagram
-common   the shared style: constrained layout, legends below the panels, units as "x (m)"
+Modules
+-------
+statics         cable profiles (side elevation, or 3D view, plan and elevation) with the
+                tension along the cable
+statics_series  parameter sweeps; footprints
+dynamics        simulations, mode shapes, the deployment resonance chart
+heave           heave-compensation comparisons (spectra, time series, running RMS, limits,
+                trade-off curves); heave_cable the deployment through resonance
+batch           an output of a load-case batch over its swept keys
+bench           the work-precision diagrams
+accessors       the results' ``.plot(ax=None)`` methods
+common          the shared style: constrained layout, legends below the panels, units as "x (m)"
 
-Every plotting function saves its figure and returns the matplotlib ``Figure``.
-Part of the face of the package: library modules never import it.
+Every ``plot_*`` function saves its figure and returns the matplotlib ``Figure``; the
+``*_figure`` functions build it without saving. Part of the face of the package: library
+modules never import it (a result's ``plot`` method imports :mod:`.accessors` when called).
 """

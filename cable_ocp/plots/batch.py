@@ -40,6 +40,22 @@ MAIN_OUTPUT = {"statics": "max_tension [N]", "footprint": "max_reach [m]",
                "dynamics": "max_top_tension [N]"}
 
 
+def batch_figure(res: Any, column: str | Sequence[str] | None = None, title: str = ""
+                 ) -> Figure:
+    """The figure of :func:`plot_batch` built and not saved (``BatchResult.plot``).
+
+    Parameters
+    ----------
+    res : BatchResult
+        The batch.
+    column : str, sequence of str or None
+        The output(s); None: :func:`default_columns`.
+    title : str
+        Start of the title.
+    """
+    return plot_batch(res, column, None, title)
+
+
 def plot_batch(res: Any, column: str | Sequence[str] | None, path: str | Path | None = None,
                title: str = "") -> Figure:
     """Plot output columns of a :class:`cable_ocp.batch.BatchResult` against its swept keys.

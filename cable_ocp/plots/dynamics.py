@@ -242,8 +242,9 @@ def axial_shapes(res: Any) -> np.ndarray | None:
     return u / peak[:, None]
 
 
-def plot_modes(res: Any, path: str | Path, title: str = "", max_modes: int = 6) -> Figure:
-    """The first mode shapes: for axial modes (every shape along the line, e.g. the axial
+def modes_figure(res: Any, title: str = "", max_modes: int = 6) -> Figure:
+    """The figure of :func:`plot_modes`, built and not saved (``ModesResult.plot``): the
+    first mode shapes: for axial modes (every shape along the line, e.g. the axial
     model) one panel of the axial displacement u against the depth below end_b, one curve
     per mode; otherwise one panel per mode in the vertical plane of the line (the shape's
     components along the line's horizontal direction and vertically, on the static
@@ -255,8 +256,6 @@ def plot_modes(res: Any, path: str | Path, title: str = "", max_modes: int = 6) 
         The modal analysis: frequencies (rad/s), mode shapes and static node positions
         (m). Axial shapes are normalised to a largest |u| of 1; the others are drawn scaled
         to 12 % of the line's extent.
-    path : str or Path
-        Where to save the figure (format from the suffix).
     title : str
         Start of the title (``"{title}: natural modes of ..."``); default empty.
     max_modes : int
@@ -270,6 +269,24 @@ def plot_modes(res: Any, path: str | Path, title: str = "", max_modes: int = 6) 
         fig = _modes_panels(res, n)
     fig.suptitle(f"{title}: natural modes of the {res.model} model about the static state",
                  fontsize=11)
+    return fig
+
+
+def plot_modes(res: Any, path: str | Path, title: str = "", max_modes: int = 6) -> Figure:
+    """Save :func:`modes_figure` (the first mode shapes) to ``path``.
+
+    Parameters
+    ----------
+    res : ModesResult
+        The modal analysis.
+    path : str or Path
+        Where to save the figure (format from the suffix).
+    title : str
+        Start of the title; default empty.
+    max_modes : int
+        Largest number of modes drawn (default 6).
+    """
+    fig = modes_figure(res, title, max_modes)
     save(fig, path)
     return fig
 
@@ -324,17 +341,16 @@ def _modes_panels(res: Any, n: int) -> Figure:
     return fig
 
 
-def plot_deployment(chart: Any, path: str | Path, title: str = "") -> Figure:
-    """Natural frequencies against paid-out length, the wave band shaded, crossings marked:
-    the lengths at which lowering the unit passes through a resonance.
+def deployment_figure(chart: Any, title: str = "") -> Figure:
+    """The figure of :func:`plot_deployment`, built and not saved: natural frequencies
+    against paid-out length, the wave band shaded, crossings marked (the lengths at which
+    lowering the unit passes through a resonance).
 
     Parameters
     ----------
     chart : DeploymentChart
         Natural frequencies (rad/s) against unstretched paid-out length (m), and the wave
         band (rad/s).
-    path : str or Path
-        Where to save the figure (format from the suffix).
     title : str
         Start of the title (``"{title}: deployment resonance chart ..."``); default empty.
     """
@@ -361,5 +377,21 @@ def plot_deployment(chart: Any, path: str | Path, title: str = "") -> Figure:
     note = f"; {hidden} higher modes above the axis" if hidden else ""
     a.set_title(wrap(f"{title}: deployment resonance chart ({chart.model} model{note})", 9.0,
                      11), fontsize=11)
+    return fig
+
+
+def plot_deployment(chart: Any, path: str | Path, title: str = "") -> Figure:
+    """Save :func:`deployment_figure` (the deployment resonance chart) to ``path``.
+
+    Parameters
+    ----------
+    chart : DeploymentChart
+        Natural frequencies against paid-out length and the wave band.
+    path : str or Path
+        Where to save the figure (format from the suffix).
+    title : str
+        Start of the title; default empty.
+    """
+    fig = deployment_figure(chart, title)
     save(fig, path)
     return fig

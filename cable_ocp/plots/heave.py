@@ -137,7 +137,7 @@ def comparison_figure(res: Comparison, tradeoff: dict | None = None, scene: Any 
     Parameters
     ----------
     res : Comparison
-        The result of :func:`cable_ocp.heave.simulate.compare`: traces (t in s, heave in
+        The result of :func:`cable_ocp.heave.design_loop.compare`: traces (t in s, heave in
         m, winch output in m and speed in m/s), metrics, sea models.
     tradeoff : dict, optional
         ``{label: array of rows [J_w, J_d, J_v, ...]}`` from
@@ -302,7 +302,7 @@ def plot_comparison(res: Comparison, path: str | Path, tradeoff: dict | None = N
     Parameters
     ----------
     res : Comparison
-        The result of :func:`cable_ocp.heave.simulate.compare`.
+        The result of :func:`cable_ocp.heave.design_loop.compare`.
     path : str or Path
         Output file; the format follows the suffix.
     tradeoff : dict, optional

@@ -18,7 +18,7 @@ from matplotlib.figure import Figure
 from cable_ocp.plots.common import force_scale, legend_below, new_figure, save
 from cable_ocp.plots.statics import CURRENT_COLOR, heading_words
 from cable_ocp.scene import Scene
-from cable_ocp.statics.footprint import FootprintResult
+from cable_ocp.statics.footprint_nlp import FootprintResult
 
 
 def plot_sweep(values: Sequence[float], forces: np.ndarray, path: str | Path, xlabel: str,
@@ -82,18 +82,16 @@ def plot_sweep(values: Sequence[float], forces: np.ndarray, path: str | Path, xl
     return fig
 
 
-def plot_footprint(res: FootprintResult, path: str | Path, title: str = "",
-                   scene: Scene | None = None) -> Figure:
-    """Footprint of a tethered unit: plan view of the reachable unit positions around the
-    ship, with the unreachable directions marked, and the reach and cable length per
-    direction.
+def footprint_figure(res: FootprintResult, title: str = "", scene: Scene | None = None
+                     ) -> Figure:
+    """Build (without saving) the figure of :func:`plot_footprint`: the footprint of a
+    tethered unit, a plan view of the reachable unit positions around the ship with the
+    unreachable directions marked, and the reach and cable length per direction.
 
     Parameters
     ----------
     res : FootprintResult
         The footprint to draw.
-    path : str or Path
-        Output file; the format follows the suffix.
     title : str
         Figure title.
     scene : Scene, optional
@@ -102,7 +100,7 @@ def plot_footprint(res: FootprintResult, path: str | Path, title: str = "",
     Returns
     -------
     matplotlib.figure.Figure
-        The saved figure; its axes are labelled ``"plan"`` and ``"reach"``.
+        The figure; its axes are labelled ``"plan"`` and ``"reach"``.
     """
     ok = np.isfinite(res.reach)
     ship = np.asarray(res.ship, float)
@@ -194,6 +192,30 @@ def plot_footprint(res: FootprintResult, path: str | Path, title: str = "",
     ax2.set_title(sub, fontsize=9.5)
     fig.suptitle(title or "Footprint of the tethered unit", fontsize=11)
     legend_below(fig, handles, ncols=3)
+    return fig
+
+
+def plot_footprint(res: FootprintResult, path: str | Path, title: str = "",
+                   scene: Scene | None = None) -> Figure:
+    """Save :func:`footprint_figure` to ``path``.
+
+    Parameters
+    ----------
+    res : FootprintResult
+        The footprint to draw.
+    path : str or Path
+        Output file; the format follows the suffix.
+    title : str
+        Figure title.
+    scene : Scene, optional
+        The footprint scene (current arrow, limits in the titles).
+
+    Returns
+    -------
+    matplotlib.figure.Figure
+        The saved figure; its axes are labelled ``"plan"`` and ``"reach"``.
+    """
+    fig = footprint_figure(res, title, scene)
     save(fig, path)
     return fig
 

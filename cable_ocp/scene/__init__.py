@@ -14,6 +14,7 @@ parts    what the scene kinds share: environment, current, seabed, cable, segmen
 statics  the statics scene (:class:`Scene`), its schema and :func:`load_scene`
 dynamics the dynamic scene (:class:`~cable_ocp.scene.dynamics.DynamicScene`) and its
          prescribed top motion (``motion``)
+dynamic_parts  the parts of a dynamic scene (a segment's dynamics, the top motion, ...)
 heave    the heave-compensation scene (:class:`HeaveScene`)
 loader   :func:`load`: any problem file -> its scene (statics, dynamics or heave)
 """

@@ -14,6 +14,7 @@ from typing import Any
 
 import numpy as np
 
+from cable_ocp.numerics.export import optional_module, summary_repr
 from cable_ocp.status import Status
 
 #: statuses whose iterate solves the discretised equations (see :attr:`StaticsSolution.converged`)
@@ -220,6 +221,79 @@ class StaticsSolution:
             "stiffness_note": st["note"],
         }
 
+    def __repr__(self) -> str:
+        """A few lines: status, length, tensions, solver numbers and the arrays' shapes."""
+        finite = bool(np.isfinite(self.tension_vector).all()) and len(self.s) > 0
+        ends = [("tension_a", self.end_tension("a"), "N"),
+                ("tension_b", self.end_tension("b"), "N")] if finite else []
+        return summary_repr(
+            "StaticsSolution", self.status, self.message,
+            [("length", self.length, "m"),
+             ("max_tension", self.max_tension if finite else None, "N"), *ends,
+             ("grounded_length", self.grounded_length, "m"),
+             ("method", self.diagnostics.get("method", "-"), ""),
+             ("iterations", self.iterations, ""), ("error_estimate", self.error_estimate, ""),
+             ("wall_time_s", self.wall_time_s, "s")],
+            {"s": self.s, "position": self.position, "tension_vector": self.tension_vector})
+
+    def _unique(self) -> np.ndarray:
+        """The nodes listed once (Radau's last collocation point is the next interval's
+        start): a mask over the nodes."""
+        return np.concatenate([[True], np.diff(self.s) > 0])
+
+    def to_xarray(self) -> Any:
+        """The profile as an ``xarray.Dataset`` over the unstretched arc length ``s`` (m,
+        from end_a), each node once: ``position`` (s, xyz; m), ``tension_vector`` (s,
+        xyz; N), ``tension`` (s; N); the status, message and length as attributes. Needs
+        xarray (the extra ``[io]``)."""
+        xr = optional_module("xarray", "StaticsSolution.to_xarray()")
+        keep = self._unique()
+        return xr.Dataset(
+            {"position": (("s", "xyz"), self.position[keep], {"units": "m"}),
+             "tension_vector": (("s", "xyz"), self.tension_vector[keep], {"units": "N"}),
+             "tension": ("s", self.tension[keep], {"units": "N"})},
+            coords={"s": ("s", self.s[keep], {"units": "m",
+                                              "long_name": "unstretched arc length from end_a"}),
+                    "xyz": ["x", "y", "z"]},
+            attrs={"kind": "statics", "status": str(self.status), "message": self.message,
+                   "length_m": float(self.length),
+                   "method": str(self.diagnostics.get("method", "")),
+                   "conventions": "z up; s = 0 at end_a"})
+
+    def to_pandas(self) -> Any:
+        """The profile as a ``pandas.DataFrame``, one row per node (each once): ``s [m]``,
+        ``x [m]``, ``y [m]``, ``z [m]``, ``tension [N]``, ``tension_x [N]``, ... Needs
+        pandas (the extra ``[io]``)."""
+        pd = optional_module("pandas", "StaticsSolution.to_pandas()")
+        keep = self._unique()
+        cols = {"s [m]": self.s[keep]}
+        cols.update({f"{c} [m]": self.position[keep, i] for i, c in enumerate("xyz")})
+        cols["tension [N]"] = self.tension[keep]
+        cols.update({f"tension_{c} [N]": self.tension_vector[keep, i]
+                     for i, c in enumerate("xyz")})
+        return pd.DataFrame(cols)
+
+    def plot(self, ax: Any = None, **kwargs: Any) -> tuple[Any, Any]:
+        """Draw the solution (matplotlib), MoorPy's habit: ``fig, ax = sol.plot()``.
+
+        Parameters
+        ----------
+        ax : matplotlib Axes, optional
+            Draw the elevation (horizontal distance along the line's plane against z) on
+            it; None (default): a new figure with every panel of ``cable-ocp solve
+            --plot`` (:func:`cable_ocp.plots.statics.statics_figure`).
+        **kwargs
+            ``title``, ``scene`` (the solved scene: seabed, surface, current, bodies).
+
+        Returns
+        -------
+        (fig, ax)
+            The figure and the Axes drawn on (with ``ax=None``: an array of its panels).
+        """
+        from cable_ocp.plots.accessors import plot_statics_result
+
+        return plot_statics_result(self, ax, **kwargs)
+
     def to_dict(self) -> dict[str, Any]:
         """JSON-ready dictionary (SI units; see docs/statics.md, "Outputs", for the fields).
 
@@ -229,8 +303,7 @@ class StaticsSolution:
             return [_num(v) for v in a]
 
         est = self.diagnostics.get("error_estimate_detail", {})
-        # Radau's last collocation point is the next interval's start: list it once
-        keep = np.concatenate([[True], np.diff(self.s) > 0])
+        keep = self._unique()
         out = {
             "status": self.status,
             "message": self.message,

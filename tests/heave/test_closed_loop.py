@@ -16,10 +16,10 @@ from cable_ocp.heave import plant as pl
 from cable_ocp.heave.closed_loop import make_wave, run_loop
 from cable_ocp.heave.controllers import Controller, StateFeedback
 from cable_ocp.heave.delay import DelayLine
+from cable_ocp.heave.design_loop import build_models, wave_realisation
 from cable_ocp.heave.discrete import discretize_delayed, discretize_noise
 from cable_ocp.heave.estimators import FullState, KalmanFilter, Observation, kalman_gain
 from cable_ocp.heave.loop_plants import ModelLine, UnitWinchPlant, WinchedLine
-from cable_ocp.heave.simulate import build_models, wave_realisation
 from cable_ocp.scene.heave import load_scene
 
 ROOT = Path(__file__).resolve().parents[2]

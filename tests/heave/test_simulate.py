@@ -9,7 +9,7 @@ from pathlib import Path
 import numpy as np
 import pytest
 
-from cable_ocp.heave import simulate as sm
+from cable_ocp.heave import design_loop as sm
 from cable_ocp.scene.heave import load_scene
 
 ROOT = Path(__file__).resolve().parents[2]
@@ -61,7 +61,7 @@ def test_sea_realisation_has_the_stationary_boom_tip_variance() -> None:
     # et al. (1993) s at 0.25 s (160 Wang et al. (1993) samples, well beyond the ~6 s correlation
     # time): the RMS's 4-sigma band (computed from the model, _rms_tolerance) is +-3.4 %, far inside
     # the 41 % that doubling the noise variance would cause (and a 10 % error would fail).
-    from cable_ocp.heave import simulate as sim
+    from cable_ocp.heave import design_loop as sim
 
     sc = load_scene(ROOT / "problems" / "heave" / "ex_6_3_6.toml")
     p = sim.build_models(sc).plant

@@ -28,6 +28,7 @@ import casadi as ca
 import numpy as np
 
 from cable_ocp.errors import CableOCPError
+from cable_ocp.numerics.export import optional_module, summary_repr
 from cable_ocp.scene import Scene
 from cable_ocp.statics.optimize import OptimizationResult, StaticsNLP, View
 from cable_ocp.statics.solver import solve
@@ -65,6 +66,81 @@ class FootprintResult:
     status: list[str]
     wall_time_s: float
     ship: np.ndarray
+
+    @property
+    def summary_status(self) -> str:
+        """``"solved"`` when every direction is, else how many are (``"70 of 72 directions
+        solved"``)."""
+        ok = sum(st == "solved" for st in self.status)
+        return "solved" if ok == len(self.status) else (
+            f"{ok} of {len(self.status)} directions solved")
+
+    def __repr__(self) -> str:
+        """A few lines: directions solved, the largest and smallest reach, the arrays."""
+        fin = np.isfinite(self.reach)
+        return summary_repr(
+            "FootprintResult", self.summary_status, "",
+            [("directions", len(self.theta_deg), ""),
+             ("max_reach", float(np.max(self.reach[fin])) if fin.any() else None, "m"),
+             ("min_reach", float(np.min(self.reach[fin])) if fin.any() else None, "m"),
+             ("area", self.area(), "m^2"), ("wall_time_s", self.wall_time_s, "s")],
+            {"theta_deg": self.theta_deg, "reach": self.reach, "points": self.points,
+             "thrust": self.thrust, "length": self.length})
+
+    def area(self) -> float | None:
+        """Area of the polygon of the reached unit positions, m^2 (shoelace formula;
+        None unless every direction was reached)."""
+        p = np.asarray(self.points, dtype=float)
+        if len(p) < 3 or not np.isfinite(p).all():
+            return None
+        x, y = p[:, 0], p[:, 1]
+        return float(0.5 * abs(np.dot(x, np.roll(y, -1)) - np.dot(y, np.roll(x, -1))))
+
+    def _columns(self) -> dict[str, tuple[np.ndarray, str]]:
+        return {"reach": (self.reach, "m"), "x": (self.points[:, 0], "m"),
+                "y": (self.points[:, 1], "m"), "thrust_x": (self.thrust[:, 0], "N"),
+                "thrust_y": (self.thrust[:, 1], "N"), "length": (self.length, "m")}
+
+    def to_pandas(self) -> Any:
+        """The directions as a ``pandas.DataFrame`` (index ``theta [deg]``): ``reach [m]``,
+        ``x [m]``, ``y [m]``, ``thrust_x [N]``, ``thrust_y [N]``, ``length [m]``,
+        ``status``. Needs pandas (the extra ``[io]``)."""
+        pd = optional_module("pandas", "FootprintResult.to_pandas()")
+        cols = {f"{k} [{u}]": v for k, (v, u) in self._columns().items()}
+        cols["status"] = [str(st) for st in self.status]
+        return pd.DataFrame(cols, index=pd.Index(self.theta_deg, name="theta [deg]"))
+
+    def to_xarray(self) -> Any:
+        """The directions as an ``xarray.Dataset`` over the dimension ``theta`` (deg, from
+        +x towards +y): ``reach``, ``x``, ``y``, ``length`` (m), ``thrust_x``,
+        ``thrust_y`` (N), ``status``. Needs xarray (the extra ``[io]``)."""
+        xr = optional_module("xarray", "FootprintResult.to_xarray()")
+        data = {k: ("theta", v, {"units": u}) for k, (v, u) in self._columns().items()}
+        data["status"] = ("theta", np.array([str(st) for st in self.status]))
+        return xr.Dataset(data, coords={"theta": ("theta", self.theta_deg, {"units": "deg"})},
+                          attrs={"kind": "footprint", "status": self.summary_status,
+                                 "ship_xy_m": [float(v) for v in self.ship]})
+
+    def plot(self, ax: Any = None, **kwargs: Any) -> tuple[Any, Any]:
+        """Draw the footprint (matplotlib), MoorPy's habit: ``fig, ax = res.plot()``.
+
+        Parameters
+        ----------
+        ax : matplotlib Axes, optional
+            Draw the plan (the reached unit positions around the ship) on it; None
+            (default): a new figure as ``cable-ocp footprint --plot``
+            (:func:`cable_ocp.plots.statics_series.footprint_figure`).
+        **kwargs
+            ``title``, ``scene``.
+
+        Returns
+        -------
+        (fig, ax)
+            The figure and the Axes drawn on (with ``ax=None``: an array of its panels).
+        """
+        from cable_ocp.plots.accessors import plot_footprint_result
+
+        return plot_footprint_result(self, ax, **kwargs)
 
 
 def footprint(scene: Scene, directions: int = 72,
