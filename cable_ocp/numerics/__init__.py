@@ -5,7 +5,9 @@ elimination in CasADi SX (:mod:`~cable_ocp.numerics.block_tridiagonal`), the Gau
 quadrature rules (:mod:`~cable_ocp.numerics.quadrature`), numbers that strict JSON can
 hold (:mod:`~cable_ocp.numerics.jsonable`), files written whole or not at all
 (:mod:`~cable_ocp.numerics.atomic`) and what every result shows its users: a short summary,
-the optional pandas and xarray, netCDF files (:mod:`~cable_ocp.numerics.export`).
+the optional pandas and xarray, netCDF files (:mod:`~cable_ocp.numerics.export`), text
+tables that fit 100 columns (:mod:`~cable_ocp.numerics.text_table`) and the one handling of
+Ctrl-C and SIGTERM, also inside CasADi's solvers (:mod:`~cable_ocp.numerics.interrupt`).
 
 Nothing here knows about cables: these modules import no other part of the package.
 """
