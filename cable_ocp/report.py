@@ -191,6 +191,8 @@ def quantity(value: Any, unit: str) -> str:
             v, unit = v / scale, prefix + unit
             break
     text = f"{v:.4g}"
+    if text.startswith("-") and float(text) == 0.0:  # a rounded -1e-13: no "-0"
+        text = text[1:]
     return text if unit in ("", "-") else f"{text} {unit}"
 
 

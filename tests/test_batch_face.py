@@ -228,3 +228,16 @@ def test_resume_keeps_the_stored_arrays_of_the_cases_it_skips(tmp_path: Path) ->
         np.testing.assert_array_equal(again[1][name], res.arrays[1][name])
     with pytest.raises(CableOCPError, match="--resume"):
         run_batch(DEZOYSA, grid, workers=0, arrays=nc)
+
+
+def test_quantity_writes_values_with_their_prefix_and_no_negative_zero() -> None:
+    """The summary's numbers: 4 significant digits, forces with an SI prefix, a value that
+    is zero without a sign (the y-force of a plane scene, -0.0, is "0 N", not "-0 N")."""
+    from cable_ocp.report import quantity
+
+    assert quantity(4347.1, "N") == "4.347 kN"
+    assert quantity(-2.4911e3, "N") == "-2.491 kN"
+    assert quantity(-1.0e-13, "N") == "-1e-13 N"  # not zero at 4 digits: kept as it is
+    assert quantity(-0.0, "N") == "0 N"
+    assert quantity(-0.00001, "m/s") == "-1e-05 m/s"
+    assert quantity(None, "m") == "-"
