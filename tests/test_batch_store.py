@@ -309,3 +309,26 @@ def test_an_append_on_a_full_disk_exits_2_and_keeps_the_earlier_lines(
     assert main([*cmd, "--out", str(out), "--resume"]) == 0
     rows = [json.loads(line) for line in _lines(tmp_path / "full.jsonl")]
     assert [r["case"] for r in rows] == list(range(8))
+
+
+def test_resume_after_the_cable_scene_changed_is_refused(tmp_path: Path) -> None:
+    """The meta file records the digest of the file a heave problem's `[unit] cable_scene`
+    names: a resume after that file changed is refused naming it (the problem file itself
+    is the same, so its own digest cannot tell)."""
+    import re
+
+    src = ROOT / "problems" / "heave" / "ex_6_3_6_cable.toml"
+    text = src.read_text()
+    name = re.search(r'cable_scene\s*=\s*"([^"]+)"', text).group(1)
+    scene = tmp_path / "cable.toml"
+    scene.write_bytes((src.parent / name).resolve().read_bytes())
+    problem = tmp_path / "h.toml"
+    problem.write_text(text.replace(f'"{name}"', '"cable.toml"'))
+    out = tmp_path / "o"
+    grid = [("simulation.duration", [1.0, 2.0])]
+    run_batch(problem, grid, workers=0, out=out, spec=_fake())
+    record = json.loads((tmp_path / "o.meta.json").read_text())
+    assert record["files"]["[unit] cable_scene"]["path"] == str(scene.resolve())
+    scene.write_text(scene.read_text() + "\n# edited\n")
+    with pytest.raises(CableOCPError, match=r"\[unit\] cable_scene digest differs"):
+        run_batch(problem, grid, workers=0, out=out, resume=True, spec=_fake())

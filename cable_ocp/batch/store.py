@@ -47,7 +47,7 @@ RETRIED = ("worker_lost",)
 #: the meta file's layout (``format``); a meta file of another layout cannot be resumed
 FORMAT = 2
 #: the inputs a resume must share with the batch it continues, in the order checked
-INPUTS = ("version", "problem", "kind", "command", "set", "grid", "range", "random",
+INPUTS = ("version", "problem", "files", "kind", "command", "set", "grid", "range", "random",
           "samples", "seed", "options", "cases")
 
 
@@ -147,6 +147,14 @@ def differences(old: dict[str, Any], new: dict[str, Any]) -> list[str]:
                 out.append(f"problem file digest differs (sha256 {str(a.get('sha256'))[:12]} of "
                            f"{a.get('path')} then, {str(b.get('sha256'))[:12]} of {b.get('path')}"
                            " now)")
+        elif key == "files":  # other files the problem reads ([unit] cable_scene)
+            a, b = a or {}, b or {}
+            for k in sorted(set(a) | set(b)):
+                fa, fb = a.get(k) or {}, b.get(k) or {}
+                if fa.get("sha256") != fb.get("sha256"):
+                    out.append(f"{k} digest differs (sha256 {str(fa.get('sha256'))[:12]} of "
+                               f"{fa.get('path')} then, {str(fb.get('sha256'))[:12]} of "
+                               f"{fb.get('path')} now)")
         elif key == "set":
             a, b = a or {}, b or {}
             for k in sorted(set(a) | set(b)):

@@ -410,13 +410,20 @@ def _meta(problem: str | Path | dict[str, Any], data: dict[str, Any], kind: str,
           cases: Sequence[Case]) -> dict[str, Any]:
     """The record of a batch's inputs for ``OUT.meta.json`` (:data:`store.INPUTS`): the
     problem file's path and SHA-256 (of the dictionary's canonical JSON for a dictionary),
+    those of the files it reads (a heave scene's ``[unit] cable_scene``),
     every override, sweep and draw, the seed, the options and the package version."""
     version = __version__
     if isinstance(problem, dict):
         source = {"path": None, "sha256": sha256_data(problem)}
     else:
         source = {"path": str(Path(problem).resolve()), "sha256": sha256_file(problem)}
-    return {"format": FORMAT, "version": version, "problem": source, "kind": kind,
+    files = {}  # the other files the problem reads, with their digests
+    unit = data.get("unit")
+    scene_file = unit.get("cable_scene") if isinstance(unit, dict) else None
+    if isinstance(scene_file, str) and Path(scene_file).is_file():
+        files["[unit] cable_scene"] = {"path": scene_file, "sha256": sha256_file(scene_file)}
+    return {"format": FORMAT, "version": version, "problem": source, "files": files,
+            "kind": kind,
             "command": command, "set": dict(overrides or {}),
             "grid": [[k, list(v)] for k, v in grids],
             "range": [[k, list(v)] for k, v in ranges],
