@@ -415,6 +415,13 @@ MUTATIONS: tuple[Mutation, ...] = (
     Mutation("axial-advection-position-dropped", DYN, AX_F,
              "dz.append(vel[i] + ref_rate + adv[i] * zy)", "dz.append(vel[i] + ref_rate)",
              AXIAL, "axial: fixed-domain transformation without the y L_t/L Z_y term"),
+    Mutation("axial-first-sample-with-the-new-top-velocity", DYN, AX_F,
+             "first = [np.asarray(v).reshape(-1, 1) for v in post[0](ts[0], xs[:, 0])]",
+             "first = [np.asarray(v).reshape(-1, 1) for v in post[1](ts[0], xs[:, 0])]",
+             ("tests/dynamics/test_axial.py::"
+              "test_first_sample_of_an_abrupt_start_is_the_static_state",),
+             "axial: the t = 0 sample of an abrupt start evaluated with the new pay-out and "
+             "heave velocity against the resting line (a damping tension it does not carry)"),
     Mutation("axial-modes-unit-mass-missing", DYN, AX_F,
              "mass[0] = self.unit_mass + 0.5 * self.mu * h", "mass[0] = 0.5 * self.mu * h",
              AXIAL, "axial modes: the unit's mass missing from the mass matrix"),
