@@ -115,7 +115,7 @@ def register(sub: argparse._SubParsersAction, parent: argparse.ArgumentParser) -
                     "per simulated second of cable_ocp's implicit midpoint scheme at several "
                     "time steps beside MoorDyn (optional: pip install moordyn) at its stable "
                     "steps, each with its top-force error against one converged reference "
-                    "(cable_ocp at 160 and 320 segments, Richardson-extrapolated, 2 ms), in "
+                    "(cable_ocp at 160 and 320 segments, Richardson-extrapolated, 4 ms), in "
                     "one run; then the targets (100x real time at 40 segments; no slower "
                     "than MoorDyn at equal accuracy). Several minutes; --quick: seconds.")
     d.add_argument("--segments", type=int, nargs="+", default=None, metavar="N",
