@@ -464,8 +464,8 @@ def cmd_bench_dynamics(args: argparse.Namespace) -> int:
                 raise out_error(f"--segments {n}: give 2..400")
         kw["segments"] = tuple(args.segments)
         if kw.get("moordyn_steps") is not None:
-            kw["moordyn_steps"] = {n: bd.DEFAULT_MOORDYN_STEPS.get(n, (
-                4e-3,) if n <= 40 else (2e-3,) if n <= 80 else (5e-4,))[:1] for n in args.segments}
+            kw["moordyn_steps"] = {n: (4e-3,) if n <= 40 else (2e-3,) if n <= 80 else (2.5e-4,)
+                                   for n in args.segments}
     if args.time_steps is not None:
         for dt in args.time_steps:
             if not 1e-4 <= dt <= 1.0:
