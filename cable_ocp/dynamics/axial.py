@@ -175,17 +175,23 @@ class AxialModel:
         self._rhs_fn: ca.Function | None = None
 
     # ------------------------------------------------------------------ equations
-    def _fields(self, t: Any, x: Any) -> dict[str, Any]:
+    def _fields(self, t: Any, x: Any, top_at_rest: bool = False) -> dict[str, Any]:
         """Symbolic nodal fields at time t for state x (shared by rhs and outputs).
 
         The state holds zeta_i = Z_i - Z_ref(y_i, t), the height relative to the
         unstretched line hanging from the current top, Z_ref = z_b(t) - L(t) (1 - y):
         zeta is of the size of the elongation, so the strains (zeta_{i+1} - zeta_i) / h
         carry no round-off from the absolute heights; zeta_N = 0 at the sheave.
+
+        ``top_at_rest``: the sheave's heave velocity and acceleration and the pay-out
+        speed and its rate taken as zero (the top's position and the length kept): the
+        fields of the initial state, which is at rest, before the motion starts (t = 0-).
         """
         n = self.n
         zeta, vel = x[:n], x[n:]
         length, dl, ddl, xb, vb, ab = self.motion(t)
+        if top_at_rest:
+            dl, ddl, vb, ab = 0.0 * dl, 0.0 * ddl, 0.0 * vb, 0.0 * ab
         dy = 1.0 / n
         h = length * dy
         z_full = ca.vertcat(zeta, 0.0)
@@ -238,7 +244,8 @@ class AxialModel:
             dz.append(vel[i] + ref_rate + adv[i] * zy)
         return ca.vertcat(*dz, *acc)
 
-    def outputs(self, t: Any, x: Any) -> tuple[Any, Any, Any, Any, Any]:
+    def outputs(self, t: Any, x: Any, top_at_rest: bool = False
+                ) -> tuple[Any, Any, Any, Any, Any]:
         """(node heights z_0..z_N (m), element tensions (N), top tension (N), L (m),
         node material velocities V_0..V_N (m/s)).
 
@@ -248,8 +255,15 @@ class AxialModel:
             Time, s.
         x : casadi expression (2N,)
             The state.
+        top_at_rest : bool
+            Evaluate with the top at rest (:meth:`_fields`): the sample of the initial
+            state. Without it, an abrupt start (``ramp_time = 0``: the pay-out speed or the
+            heave velocity jumps at t = 0) would give the sheave's material its new velocity
+            against a line still at rest, and the damping term c e_t of the top element
+            a tension the state does not carry (with c = 1e5 N s, 25.2 kN against the static
+            45.3 kN on huang_3_3_5.toml paid out at 0.5 m/s).
         """
-        f = self._fields(t, x)
+        f = self._fields(t, x, top_at_rest)
         eps_top = f["eps"][self.n - 1]
         v_top = f["v_full"][self.n]
         a_top = f["ab"][2] - f["ddl"] * (1.0 + eps_top)
@@ -423,11 +437,13 @@ class AxialModel:
         tt = ca.SX.sym("t")
         xx = ca.SX.sym("x", n2)
         post = ca.Function("post", [tt, xx], list(self.outputs(tt, xx)))
+        # the sample at t = 0 is the initial state at rest, before the motion starts
+        post0 = ca.Function("post0", [tt, xx], list(self.outputs(tt, xx, top_at_rest=True)))
         build_time = time.perf_counter() - t_build
 
         x0 = self.initial_state()
         # the initial state is given (static or unstrained), not checked for slack
-        ten0 = float(np.min(np.asarray(post(0.0, x0)[1])))
+        ten0 = float(np.min(np.asarray(post0(0.0, x0)[1])))
         bdf = scheme == "bdf2"
         off = 2 * n2 + 1 if bdf else n2
         acc = np.concatenate([x0] + ([x0, [1.0]] if bdf else [])
@@ -438,17 +454,21 @@ class AxialModel:
             sim.on_slack == "stop", progress)
         times, states = [0.0, *ts], [x0, *xs]
         return self._result(np.asarray(times), np.stack(states, axis=1), acc[off:off + 4],
-                            post, status, message, wall, build_time)
+                            (post0, post), status, message, wall, build_time)
 
-    def _result(self, ts: np.ndarray, xs: np.ndarray, tail: np.ndarray, post: ca.Function,
-                status: str, message: str, wall: float, build_time: float
-                ) -> SimulationResult:
+    def _result(self, ts: np.ndarray, xs: np.ndarray, tail: np.ndarray,
+                post: tuple[ca.Function, ca.Function], status: str, message: str, wall: float,
+                build_time: float) -> SimulationResult:
         sc = self.scene
         sim = sc.simulation
         dt = sim.time_step
         rmax, tmin, t_slack, e_slack = (float(v) for v in tail)
-        z_nodes, tens, top, length, vel = (np.asarray(v) for v in
-                                           post.map(xs.shape[1])(ts.reshape(1, -1), xs))
+        # the first sample (t = 0) with the top at rest (post[0]), the others as stepped
+        first = [np.asarray(v).reshape(-1, 1) for v in post[0](ts[0], xs[:, 0])]
+        rest = (post[1].map(xs.shape[1] - 1)(ts[1:].reshape(1, -1), xs[:, 1:])
+                if xs.shape[1] > 1 else [np.zeros((a.shape[0], 0)) for a in first])
+        z_nodes, tens, top, length, vel = (np.hstack([a, np.asarray(v)])
+                                           for a, v in zip(first, rest, strict=True))
         keep = until_slack(ts, t_slack, sim.output_every * dt, sim.on_slack)
         if keep is not None:
             ts, z_nodes, tens, top, length, vel = (ts[keep], z_nodes[:, keep], tens[:, keep],

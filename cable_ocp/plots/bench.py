@@ -138,7 +138,7 @@ def plot_dynamics_work_precision(rows: Sequence[BenchRow], path: str | Path) -> 
     ax.axhline(EQUAL_ACCURACY, color="0.5", lw=0.8, ls=":")  # the equal-accuracy level
     ax.axvline(1e3 / TARGET_REALTIME, color="0.5", lw=0.8, ls=":")  # 100x real time
     ax.set_xlabel("wall time per simulated second (ms)")
-    ax.set_ylabel("top-tension error / amplitude (-)")
+    ax.set_ylabel("top-force error against the reference / amplitude (-)")
     ax.set_title("Huang (1992) 5.7 system at 1.256 rad/s: work-precision", fontsize=10.5)
     ax.grid(True, which="major", alpha=0.35)
     ax.legend(fontsize=8)

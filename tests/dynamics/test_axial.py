@@ -341,6 +341,29 @@ def _payout_scene(scheme: str, ramp: float) -> dict:
                            "output_step": 0.5, "segments": 20, "scheme": scheme}}
 
 
+def test_first_sample_of_an_abrupt_start_is_the_static_state() -> None:
+    """Pay-out and heave switched on at full speed at t = 0 (no ramp) on a damped line
+    (c = 2e4 N s): the sample at t = 0 is the initial state, the static line at rest, whose
+    top tension is the weight in water of the line and unit, W + w L = 10 kN (004, (3.1)
+    and (3.3) at rest: EA u_z = w_2 + w_1 z). Evaluated with the new top velocity (heave
+    0.5 m/s up, pay-out 1 m/s down) against the resting line, the damping term c e_t of the
+    top element read c (1 - 0.5) / h = 2 kN less (8.0 kN). Tolerance 1e-9 of the tension:
+    the static profile is exact at the nodes, round-off only. The element tensions there
+    are the static W + w s at the elements' mid-points (the tension is linear in s)."""
+    d = _payout_scene("midpoint", 0.0)
+    d["cable"]["axial_damping"] = 2.0e4
+    d["top_motion"].update(heave_amplitude=0.5, heave_frequency=1.0)
+    d["simulation"].update(duration=0.1, output_step=0.05)
+    res = simulate(dynamic_scene_from_dict(d))
+    w_static = 5000.0 + 50.0 * 100.0
+    assert res.t[0] == 0.0
+    assert res.top_tension[0] == pytest.approx(w_static, rel=1e-9)
+    mid = (np.arange(20) + 0.5) * 100.0 / 20
+    np.testing.assert_allclose(res.segment_tensions[0], 5000.0 + 50.0 * mid, rtol=1e-9)
+    # the later samples are the stepped ones: the pay-out has started to unload the line
+    assert res.top_tension[1] < w_static - 100.0
+
+
 @pytest.mark.parametrize("scheme", ("midpoint", "thesis"))
 def test_steady_payout_reaches_the_quasi_steady_state(scheme: str) -> None:
     """Pay-out at v = 1 m/s with cable and unit drag. After the start transient has died

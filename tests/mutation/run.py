@@ -111,6 +111,9 @@ CHART = ("tests/dynamics/test_lumped_modes.py::"
          "test_the_deployment_chart_of_a_segmented_line_pays_out_the_top_segment")
 BODY = "tests/dynamics/test_lumped.py::test_a_point_body_loads_exactly_its_joints_node"
 VL_F = "cable_ocp/dynamics/vertical_line.py"  # the axial models' coefficients
+_BT = "tests/dynamics/test_bench_cli.py::test_"
+BENCH_MD = _BT + "moordyn_is_driven_consistently_and_compared_on_cable_ocps_force"
+BENCH_REF = _BT + "reference_extrapolates_and_every_row_is_compared_with_it"
 
 MUTATIONS: tuple[Mutation, ...] = (
     # -- physics/ ---------------------------------------------------------------------------
@@ -493,6 +496,39 @@ MUTATIONS: tuple[Mutation, ...] = (
     Mutation("axial-advection-position-dropped", DYN, AX_F,
              "dz.append(vel[i] + ref_rate + adv[i] * zy)", "dz.append(vel[i] + ref_rate)",
              AXIAL, "axial: fixed-domain transformation without the y L_t/L Z_y term"),
+    Mutation("bench-moordyn-start-of-step-velocity", "bench", "cable_ocp/bench/dynamics.py",
+             "v_mean = (np.diff(pos, axis=1) / COUPLING_STEP).T.tolist()",
+             "v_mean = np.asarray(motion.map(n_c + 1)(tc[None, :])[1])[:, :-1].T.tolist()",
+             (BENCH_MD,), "bench dynamics: MoorDyn given the velocity at the start of each "
+             "coupling step, not the one that carries it to the next position"),
+    Mutation("bench-moordyn-force-without-inertia", "bench", "cable_ocp/bench/dynamics.py",
+             'return np.einsum("nij,nj->ni", node_mass, acceleration) - point_force',
+             "return -point_force", (BENCH_MD,),
+             "bench dynamics: MoorDyn compared on its force without the top node's inertia "
+             "(a different force from cable_ocp's)"),
+    Mutation("bench-moordyn-sampled-at-step-end", "bench", "cable_ocp/bench/dynamics.py",
+             "t_s = tc[1:] - (0.5 * dtm if stage_time else 0.0)", "t_s = tc[1:]", (BENCH_MD,),
+             "bench dynamics: MoorDyn's force stamped at the coupling step's end, not at the "
+             "RK2 stage it was evaluated at"),
+    Mutation("bench-moordyn-unstretched-start", "bench", "cable_ocp/bench/dynamics.py",
+             "{unit_height - depth!r}", "{z_top - cab.length}", (BENCH_MD,),
+             "bench dynamics: MoorDyn's unit placed at the unstretched length (its IC solver "
+             "then leaves the line far from equilibrium at small dtM)"),
+    Mutation("bench-reference-not-extrapolated", "bench", "cable_ocp/bench/dynamics.py",
+             "y = y2 + (y2 - y1) / (ratio**2 - 1.0)", "y = y2", (BENCH_REF,),
+             "bench dynamics: the reference is the finer run, not Richardson-extrapolated"),
+    Mutation("bench-row-against-its-own-model", "bench", "cable_ocp/bench/dynamics.py",
+             "top_tension_amplitude_N=amp, error=_error(t, y, ref, duration),",
+             "top_tension_amplitude_N=amp, error=_error(t, y, Reference(t, y, amp, {}), "
+             "duration),", (BENCH_REF,),
+             "bench dynamics: a cable_ocp row compared with itself (no spatial error counted)"),
+    Mutation("axial-first-sample-with-the-new-top-velocity", DYN, AX_F,
+             "first = [np.asarray(v).reshape(-1, 1) for v in post[0](ts[0], xs[:, 0])]",
+             "first = [np.asarray(v).reshape(-1, 1) for v in post[1](ts[0], xs[:, 0])]",
+             ("tests/dynamics/test_axial.py::"
+              "test_first_sample_of_an_abrupt_start_is_the_static_state",),
+             "axial: the t = 0 sample of an abrupt start evaluated with the new pay-out and "
+             "heave velocity against the resting line (a damping tension it does not carry)"),
     Mutation("axial-modes-unit-mass-missing", DYN, AX_F,
              "mass[0] = self.unit_mass + 0.5 * self.mu * h", "mass[0] = 0.5 * self.mu * h",
              AXIAL, "axial modes: the unit's mass missing from the mass matrix"),
