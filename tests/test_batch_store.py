@@ -10,17 +10,14 @@ Zoysa's cable, one warm solve per case.
 
 from __future__ import annotations
 
-import contextlib
 import json
 import math
-import resource
-import signal
-from collections.abc import Iterator
 from dataclasses import dataclass
 from pathlib import Path
 from typing import Any, ClassVar
 
 import pytest
+from faults import file_size_limit
 
 from cable_ocp.batch import build_cases, parse_grid, parse_range, run_batch
 from cable_ocp.batch.cases import Case
@@ -264,21 +261,6 @@ def test_worker_lost_cases_run_again_on_resume(tmp_path: Path) -> None:
     assert len((tmp_path / "w.csv").read_text().splitlines()) == 5
 
 
-@contextlib.contextmanager
-def _file_size_limit(limit: int) -> Iterator[None]:
-    """This process's writes fail past ``limit`` bytes (EFBIG, as a full disk fails them
-    with ENOSPC; SIGXFSZ ignored) inside the block: the soft limit only, restored after
-    (tests/test_full_disk.py)."""
-    soft, hard = resource.getrlimit(resource.RLIMIT_FSIZE)
-    old = signal.signal(signal.SIGXFSZ, signal.SIG_IGN)
-    resource.setrlimit(resource.RLIMIT_FSIZE, (limit, hard))
-    try:
-        yield
-    finally:
-        resource.setrlimit(resource.RLIMIT_FSIZE, (soft, hard))
-        signal.signal(signal.SIGXFSZ, old)
-
-
 def test_an_append_on_a_full_disk_exits_2_and_keeps_the_earlier_lines(
         tmp_path: Path, capsys: pytest.CaptureFixture[str]) -> None:
     """The store's appends under a 3000-byte file-size limit (a JSON row of De Zoysa's
@@ -292,7 +274,7 @@ def test_an_append_on_a_full_disk_exits_2_and_keeps_the_earlier_lines(
     control = [json.loads(line) for line in _lines(tmp_path / "control.jsonl")]
     out = tmp_path / "full"
     capsys.readouterr()
-    with _file_size_limit(3000):
+    with file_size_limit(3000):
         rc = main([*cmd, "--out", str(out)])
     err = capsys.readouterr().err.strip().splitlines()
     assert rc == 2, err

@@ -12,15 +12,12 @@ OSError").
 
 from __future__ import annotations
 
-import contextlib
 import os
-import resource
-import signal
 import stat
-from collections.abc import Iterator
 from pathlib import Path
 
 import pytest
+from faults import file_size_limit
 
 from cable_ocp.numerics.atomic import replace_atomically, write_text_atomically
 
@@ -44,20 +41,6 @@ def control(tmp_path_factory: pytest.TempPathFactory) -> Path:
     return target
 
 
-@contextlib.contextmanager
-def _file_size_limit(limit: int) -> Iterator[None]:
-    """This process's writes fail past ``limit`` bytes (EFBIG, SIGXFSZ ignored) inside the
-    block: the soft limit only, restored after."""
-    soft, hard = resource.getrlimit(resource.RLIMIT_FSIZE)
-    old = signal.signal(signal.SIGXFSZ, signal.SIG_IGN)
-    resource.setrlimit(resource.RLIMIT_FSIZE, (limit, hard))
-    try:
-        yield
-    finally:
-        resource.setrlimit(resource.RLIMIT_FSIZE, (soft, hard))
-        signal.signal(signal.SIGXFSZ, old)
-
-
 @pytest.mark.parametrize("option,name", [("--json", "out.json"), ("--csv", "out.csv"),
                                          ("--plot", "out.png")])
 def test_a_failed_write_keeps_the_earlier_file_and_exits_2(
@@ -68,7 +51,7 @@ def test_a_failed_write_keeps_the_earlier_file_and_exits_2(
     target = tmp_path / name
     target.write_text("EARLIER\n")
     capsys.readouterr()
-    with _file_size_limit(LIMIT):
+    with file_size_limit(LIMIT):
         rc = main(["solve", str(PROBLEM), option, str(target), "--quiet"])
     lines = capsys.readouterr().err.strip().splitlines()
     assert rc == 2, lines
