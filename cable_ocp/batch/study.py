@@ -5,6 +5,7 @@ arrive and returns a :class:`BatchResult` (the package's docstring has the examp
 
 from __future__ import annotations
 
+import contextlib
 import math
 import os
 import time
@@ -344,7 +345,8 @@ def run_batch(problem: str | Path | dict[str, Any], grids: Sequence[tuple[str, l
             store.abort()  # the CSV in case order as far as the disk allows; lock released
         done_rows = ([store.done[k] for k in sorted(store.done)] if store is not None
                      else [rows[k] for k in sorted(rows)])
-        _write_arrays(arrays, kind, kept, old_arrays, done_rows, inputs, keep_arrays)
+        with contextlib.suppress(OSError, CableOCPError):  # the interruption is what ends it
+            _write_arrays(arrays, kind, kept, old_arrays, done_rows, inputs, keep_arrays)
         raise
     final = store.finish() if store is not None else [rows[k] for k in sorted(rows)]
     kept = _write_arrays(arrays, kind, kept, old_arrays, final, inputs, keep_arrays)
