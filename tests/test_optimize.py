@@ -42,6 +42,8 @@ def test_min_top_tension_matches_brute_force(tmp_path):
         lo, hi = (mid, hi) if ok else (lo, mid)
     assert l_opt == pytest.approx(0.5 * (lo + hi), abs=1e-3)
     assert res.solution.force_a[2] == pytest.approx(0.0, abs=1e-6 * t_opt)
+    text = repr(res)  # a short summary: the optimum's variables to 6 digits, not arrays
+    assert len(text) < 1000 and f"cable.length = {l_opt:.6g}" in text
     assert mod.main(["--scan", "5", "--out", str(tmp_path / "d.png")]) == 0
 
 

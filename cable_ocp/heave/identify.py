@@ -16,6 +16,7 @@ import casadi as cs
 import numpy as np
 
 from cable_ocp.errors import CableOCPError
+from cable_ocp.numerics.export import summary_repr
 from cable_ocp.physics.drag import quadratic_drag
 
 
@@ -52,6 +53,19 @@ class IdentificationResult:
     fit_pct: float
     std_errors: np.ndarray
     x_model: np.ndarray
+
+    def __repr__(self) -> str:
+        """A few lines: the model, convergence, the coefficients and the fit."""
+        unit_b = "s" if self.model == "linear" else "s^2/m"
+        return summary_repr(
+            "IdentificationResult", "converged" if self.converged else "not converged",
+            f"{self.model} unit model", [
+                ("a", self.a, "s^2"), ("b", self.b, unit_b),
+                ("std_error_a", float(self.std_errors[0]), "s^2"),
+                ("std_error_b", float(self.std_errors[1]), unit_b),
+                ("fit", self.fit_pct, "%"), ("rms_residual", self.rms_residual, "m"),
+                ("iterations", self.iterations, "")],
+            {"x_model": self.x_model})
 
 
 def _rhs(model: str) -> cs.Function:

@@ -35,6 +35,7 @@ import numpy as np
 
 from cable_ocp.errors import CableOCPError
 from cable_ocp.numerics import interrupt
+from cable_ocp.numerics.export import summary_repr
 from cable_ocp.scene import Scene
 from cable_ocp.statics.collocation import Collocation
 from cable_ocp.statics.formulation import (
@@ -112,6 +113,16 @@ class OptimizationResult:
     def success(self) -> bool:
         """True when IPOPT converged to a (local) optimum."""
         return self.status == "solved"
+
+    def __repr__(self) -> str:
+        """A few lines: the status, the objective, the optimal variables (physical units,
+        see the module docstring) and the cable's largest tension."""
+        return summary_repr(
+            "OptimizationResult", self.status, self.solution.message,
+            [("objective", self.objective, ""),
+             *((name, value, "") for name, value in self.variables.items()),
+             ("max_tension", self.solution.max_tension, "N"),
+             ("iterations", self.iterations, ""), ("wall_time_s", self.wall_time_s, "s")])
 
 
 class StaticsNLP:

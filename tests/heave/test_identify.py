@@ -52,6 +52,9 @@ def test_known_coefficients_come_back(model: str, a: float, b: float,
     assert r.a == pytest.approx(a, rel=1e-5)
     assert r.b == pytest.approx(b, rel=1e-5)
     assert r.fit_pct > 99.99
+    # its repr is a short summary (the response array as its shape), with a to 6 digits
+    text = repr(r)
+    assert len(text) < 1000 and "converged" in text and f"a = {r.a:.6g} s^2" in text
 
 
 def test_linear_model_on_quadratic_data_fits_worse() -> None:
