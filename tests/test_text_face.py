@@ -54,6 +54,26 @@ def test_progress_in_a_pipe_writes_a_line_every_10_s_or_10_percent() -> None:
     assert lines[-1] == "cable-ocp: heave simulation: 100/100 sample (100 %), 25 s (done)"
 
 
+def test_progress_in_a_pipe_says_preparing_through_a_silent_start() -> None:
+    """A command that prepares for a while before its first step (the deployment's nine
+    identifications: 37 s of silence in a pipe) gets a `preparing` line from the timer's
+    tick after 10 s without one, and again 10 s later; a tick sooner writes nothing."""
+    stream, clock = io.StringIO(), Clock()
+    lines = out.ProgressLines(stream, 1, "heave simulation", "sample", clock)
+    for t, due in ((4.0, 0), (10.5, 1), (15.0, 1), (20.6, 2)):
+        clock.now = 100.0 + t
+        lines.tick()
+        assert stream.getvalue().count("\n") == due, t
+    assert stream.getvalue().splitlines() == ["cable-ocp: heave simulation: preparing, 10 s",
+                                              "cable-ocp: heave simulation: preparing, 21 s"]
+    clock.now = 100.0 + 21.0
+    lines(500, 4000)  # the first step: 0.4 s after the last line, 12 % done: not yet due
+    clock.now = 100.0 + 31.0
+    lines.tick()
+    assert stream.getvalue().splitlines()[-1].startswith(
+        "cable-ocp: heave simulation: 500/4000 sample (12 %), 31 s")
+
+
 def test_progress_short_run_and_quiet_write_nothing() -> None:
     """A run that finishes before any line is due writes none (no final line either);
     ``--quiet`` writes nothing at all."""

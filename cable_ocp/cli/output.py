@@ -35,6 +35,7 @@ import json
 import math
 import os
 import sys
+import threading
 from collections.abc import Callable, Iterator, Sequence
 from pathlib import Path
 from typing import Any
@@ -520,7 +521,9 @@ class ProgressLines:
     """Progress as short lines on a stream that is not a terminal (a pipe, a log): one line
     when :data:`PROGRESS_EVERY_S` have passed since the last, or when
     :data:`PROGRESS_EVERY_FRACTION` more of the total is done (at most one line per
-    :data:`PROGRESS_MIN_S`), and a last line at :meth:`close` if any was written.
+    :data:`PROGRESS_MIN_S`), and a last line at :meth:`close` if any was written. A command
+    that prepares for a while before its first step (identifications, designs) calls
+    :meth:`tick` from a timer: a ``preparing`` line every :data:`PROGRESS_EVERY_S` of silence.
 
     Parameters
     ----------
@@ -546,13 +549,20 @@ class ProgressLines:
         self.postfix: str | None = None
         self.lines = 0
         self.first: tuple[float, int] | None = None
+        self._lock = threading.Lock()  # the timer's tick and the steps write one at a time
 
     def _write(self, now: float, last: bool = False) -> None:
+        with self._lock:
+            self._write_line(now, last)
+
+    def _write_line(self, now: float, last: bool) -> None:
         total = max(self.total, 1)
         elapsed = now - self.start
         text = (f"cable-ocp: {self.desc}: {self.done}/{self.total} {self.unit} "
                 f"({100.0 * self.done / total:.0f} %), {_clock_text(elapsed)}")
-        if last:
+        if self.first is None and not last:  # no step reported yet: the total is not known
+            text = f"cable-ocp: {self.desc}: preparing, {_clock_text(elapsed)}"
+        elif last:
             text += " (done)" if self.done >= self.total else " (stopped)"
         elif self.first is not None and self.first[1] < self.done < self.total:
             # the rate since the first report (not since the start: a command may prepare
@@ -590,6 +600,13 @@ class ProgressLines:
         frac = (self.done - self.last_done) / max(self.total, 1)
         if since >= PROGRESS_EVERY_S or (frac >= PROGRESS_EVERY_FRACTION
                                          and since >= PROGRESS_MIN_S):
+            self._write(now)
+
+    def tick(self) -> None:
+        """A line when :data:`PROGRESS_EVERY_S` have passed since the last (or the start)
+        without one: the heartbeat of a command that is still preparing or in a long step."""
+        now = self.clock()
+        if now - self.last_t >= PROGRESS_EVERY_S:
             self._write(now)
 
     def close(self) -> None:
@@ -655,7 +672,17 @@ def progress(args: argparse.Namespace, total: int, desc: str, unit: str = "it",
             interrupt.check()
             lines(done, total, postfix)
 
-        yield step
+        stop = threading.Event()
+        if clock is None:  # real time: a timer keeps the lines coming through silent phases
+            def beat() -> None:
+                while not stop.wait(PROGRESS_MIN_S):
+                    lines.tick()
+
+            threading.Thread(target=beat, name="cable-ocp progress", daemon=True).start()
+        try:
+            yield step
+        finally:
+            stop.set()
         lines.close()  # not after an exception: an interruption says so in one line
         return
     from tqdm import tqdm
