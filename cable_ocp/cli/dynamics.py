@@ -204,6 +204,13 @@ def cmd_modes(args: argparse.Namespace) -> int:
                        "each ...")
     res = modes(scene, args.count, lengths)
     data = res.to_dict()
+    if res.status == "interrupted":  # the lengths finished: JSON and CSV, then the one line
+        n = res.frequencies.shape[1]
+        out.emit_json(args, out.envelope(res.status, res.message, data))
+        out.emit_csv(args, ["length [m]"] + [f"mode{k + 1} [rad/s]" for k in range(n)],
+                     [[L, *row] for L, row in zip(res.lengths, res.frequencies, strict=True)],
+                     partial=True)
+        raise KeyboardInterrupt
     if lengths is None:
         rows = [[k + 1, f"{w:.6g}", f"{w / (2 * np.pi):.6g}", f"{p:.6g}"]
                 for k, (w, p) in enumerate(zip(res.frequencies, res.periods, strict=True))]

@@ -18,6 +18,7 @@ import numpy as np
 from cable_ocp.dynamics.model import model_for
 from cable_ocp.dynamics.result import DeploymentChart, ModesResult
 from cable_ocp.errors import CableOCPError
+from cable_ocp.numerics import interrupt
 from cable_ocp.scene.dynamics import DynamicScene, load_dynamic_scene
 
 __all__ = ["at_length", "modes"]
@@ -97,17 +98,27 @@ def modes(scene: DynamicScene | str | Path, count: int | None = None,
                             f"{lengths.tolist()}")
     freqs = np.full((lengths.size, int(count)), np.nan)
     failed = []
+    done = lengths.size
     for i, length in enumerate(lengths):
-        res = fn(at_length(scene, float(length)), int(count))
+        try:
+            res = fn(at_length(scene, float(length)), int(count))
+            interrupt.check()  # a Ctrl-C that a native solve swallowed
+        except KeyboardInterrupt:  # the lengths finished so far are the chart
+            done = i
+            break
         if res.status != "solved":
             failed.append((float(length), res.message))
             continue
         n = min(int(count), res.frequencies.size)
         freqs[i, :n] = res.frequencies[:n]
-    status = "solved" if not failed else "failed"
-    msg = (f"{lengths.size} lengths" if not failed else
-           f"{len(failed)} of {lengths.size} lengths failed (first at {failed[0][0]} m: "
-           f"{failed[0][1]})")
+    if done < lengths.size:
+        msg = f"interrupted after {done} of {lengths.size} lengths"
+        lengths, freqs, status = lengths[:done], freqs[:done], "interrupted"
+    else:
+        status = "solved" if not failed else "failed"
+        msg = (f"{lengths.size} lengths" if not failed else
+               f"{len(failed)} of {lengths.size} lengths failed (first at {failed[0][0]} m: "
+               f"{failed[0][1]})")
     return DeploymentChart(lengths=lengths, frequencies=freqs, wave_band=scene.modes.wave_band,
                            model=scene.simulation.model, status=status, message=msg,
                            diagnostics={"failed_lengths": [f[0] for f in failed]})

@@ -105,3 +105,38 @@ def test_modes_lengths_out_of_bounds_is_one_line_before_the_plan(problems, capsy
     err = capsys.readouterr().err.strip().splitlines()
     assert rc == 2 and len(err) == 1, err
     assert err[0].startswith("cable-ocp: error: cable.length = 1000000000.0")
+
+
+def test_interrupted_modes_lengths_keeps_the_lengths_it_finished(
+        tmp_path: Path, capsys: pytest.CaptureFixture, monkeypatch: pytest.MonkeyPatch) -> None:
+    """A Ctrl-C during `modes --lengths` (here while the fourth of five lengths is solved)
+    ends with exit 130 and one stderr line, after writing the chart of the lengths that
+    finished: JSON with status `interrupted`, the CSV's rows, each frequency equal to the
+    uninterrupted run's (the same solves)."""
+    from cable_ocp.dynamics import modal
+
+    argv = ["modes", str(AIR), "--count", "2", "--lengths", "50:150:5", "--quiet"]
+    assert main([*argv, "--json", str(tmp_path / "full.json")]) == 0
+    full = json.loads((tmp_path / "full.json").read_text())
+    calls = []
+    real = modal.model_for
+
+    def stopping(scene):  # the fourth length's model: as if Ctrl-C landed in its solve
+        calls.append(scene)
+        if len(calls) == 4:
+            raise KeyboardInterrupt
+        return real(scene)
+
+    monkeypatch.setattr(modal, "model_for", stopping)
+    capsys.readouterr()
+    rc = main([*argv, "--json", str(tmp_path / "cut.json"), "--csv", str(tmp_path / "cut.csv")])
+    assert rc == 130
+    assert capsys.readouterr().err.strip().splitlines() == ["cable-ocp: interrupted"]
+    cut = json.loads((tmp_path / "cut.json").read_text())
+    assert cut["status"] == "interrupted" and "3 of 5 lengths" in cut["message"]
+    assert cut["lengths"] == full["lengths"][:3]
+    assert cut["frequencies_rad_s"] == full["frequencies_rad_s"][:3]
+    with open(tmp_path / "cut.csv") as fh:
+        rows = list(csv.reader(fh))
+    assert len(rows) == 1 + 3 and float(rows[3][1]) == pytest.approx(
+        full["frequencies_rad_s"][2][0], rel=1e-12)

@@ -743,6 +743,14 @@ MUTATIONS: tuple[Mutation, ...] = (
              "    if stat.S_ISDIR(st.st_mode):",
              ("tests/test_cli.py::test_a_problem_that_is_not_a_regular_file_or_too_large_is_refused",),
              "a FIFO or a device is opened as a problem file"),
+    Mutation("interrupted-modes-drops-its-lengths", "faults", "cable_ocp/dynamics/modal.py",
+             "        except KeyboardInterrupt:  # the lengths finished so far are the chart\n"
+             "            done = i\n            break",
+             "        except KeyboardInterrupt:  # the lengths finished so far are the chart\n"
+             "            raise",
+             ("tests/dynamics/test_cli.py::test_interrupted_modes_lengths_keeps_the_lengths_it_"
+              "finished",),
+             "an interrupted modes --lengths writes nothing of the lengths it finished"),
     Mutation("cable-scene-not-an-input", "faults", "cable_ocp/cli/output.py",
              "            seen.setdefault(os.path.realpath(path), f\"the input {what} {path}\")",
              "            pass",
