@@ -102,7 +102,8 @@ def compare_cable(scene: HeaveScene, controllers: tuple | None = None,
         r = sm.compare(sd, controllers, progress)
         res = CableComparison(r.sigma_uncontrolled, r.metrics, r.traces, r.models,
                               r.mpc_solve_times, r.mpc_failures, r.statuses, r.messages,
-                              r.passive_heave_rms, r.warnings, json_extra=extra)
+                              r.passive_heave_rms, r.warnings, r.interrupted,
+                              json_extra=extra)
     else:
         res = _compare_on_cable(scene, sd, dyn, controllers, progress, extra)
     if warn is not None and warn not in res.warnings:
