@@ -86,3 +86,33 @@ def test_heave_interrupted_writes_the_controllers_finished(
     lqr = data["controllers"]["lqr"]
     assert lqr["status"] == "solved" and lqr["reduction_pct"] is None
     assert lqr["heave_rms"] == pytest.approx(ref["controllers"]["lqr"]["heave_rms"], rel=1e-12)
+
+
+def test_heave_on_the_cable_interrupted_keeps_the_passive_run(
+        tmp_path: Path, monkeypatch: pytest.MonkeyPatch, capsys: pytest.CaptureFixture) -> None:
+    """The loop on the cable plant: passive's two runs (design model, cable) finish, the
+    third (lqr's on the design model) is stopped."""
+    from cable_ocp.heave import cable_compare
+
+    calls = []
+    real = cable_compare.run_loop
+
+    def run_loop(*a, **k):  # noqa: ANN002, ANN003, ANN202 - the wrapped run_loop's
+        calls.append(1)
+        if len(calls) == 3:
+            raise KeyboardInterrupt
+        return real(*a, **k)
+
+    monkeypatch.setattr(cable_compare, "run_loop", run_loop)
+    js = tmp_path / "c.json"
+    rc = main(["heave", str(ROOT / "problems" / "heave" / "ex_6_3_6_cable.toml"), "--quiet",
+               "--duration", "40", "--set", "identification.duration=40",
+               "--controllers", "passive", "lqr", "--json", str(js)])
+    assert rc == 130 and capsys.readouterr().err == "cable-ocp: interrupted\n"
+    data = json.loads(js.read_text(), parse_constant=pytest.fail)
+    assert data["status"] == "interrupted"
+    ctrl = data["controllers"]
+    assert ctrl["passive"]["status"] == "solved" and ctrl["passive"]["reduction_pct"] == 0.0
+    assert data["passive_heave_rms"] == ctrl["passive"]["heave_rms"] > 0
+    assert ctrl["lqr"]["status"] == "interrupted"
+    assert all(v is None for k, v in ctrl["lqr"].items() if k not in ("status", "message"))
