@@ -43,6 +43,7 @@ from cable_ocp.heave.metrics import (
     no_cable_metrics,
     reduction_pct,
 )
+from cable_ocp.numerics import interrupt
 from cable_ocp.scene.dynamics import DynamicScene
 from cable_ocp.scene.heave import HeaveScene, load_cable_scene
 
@@ -197,7 +198,10 @@ def _compare_on_cable(sc: HeaveScene, sd: HeaveScene, dyn: DynamicScene,
                     line = CableLine(plant_c)
                 runs[kind] = run_loop(WinchedLine(sc, line, wave, noise), ctrl, n_ctrl,
                                       bound, prog)
-        except KeyboardInterrupt:  # keep the runs finished; this one and the rest: interrupted
+        except (KeyboardInterrupt, Exception) as exc:  # a CasADi error may be a Ctrl-C
+            # an interruption: keep the runs finished; this one and the rest: interrupted
+            if not interrupt.is_interruption(exc):
+                raise
             stopped = idx
             break
         mc = cable_run_metrics(sd, runs["cable"], ctrl.energy_index)

@@ -46,6 +46,7 @@ from cable_ocp.heave.metrics import (
     no_cable_metrics,
     reduction_pct,
 )
+from cable_ocp.numerics import interrupt
 from cable_ocp.scene.dynamics import DynamicScene
 from cable_ocp.scene.heave import HeaveScene
 
@@ -186,7 +187,10 @@ def deploy(scene: HeaveScene, design: HeaveScene, cable_scene: DynamicScene,
         try:
             runs[name] = run_loop(WinchedLine(scene, CableLine(plant), wave, noise), ctrl,
                                   n_ctrl, bound, prog)
-        except KeyboardInterrupt:  # keep the runs finished; this one and the rest: interrupted
+        except (KeyboardInterrupt, Exception) as exc:  # a CasADi error may be a Ctrl-C
+            # an interruption: keep the runs finished; this one and the rest: interrupted
+            if not interrupt.is_interruption(exc):
+                raise
             break
     stopped = len(runs) < len(CONTROLLERS)
     if progress is not None and not stopped:  # (after a Ctrl-C it would raise it again)

@@ -75,6 +75,7 @@ from cable_ocp.heave.stochastic import (
     discrete_delay_lqr,
     output_variance_lyapunov,
 )
+from cable_ocp.numerics import interrupt
 from cable_ocp.scene.heave import HeaveScene
 
 __all__ = ["Models", "build_models", "compare", "wave_realisation"]
@@ -252,7 +253,10 @@ def compare(scene: HeaveScene, controllers: tuple | None = None,
                 continue
             plant = UnitWinchPlant(scene, p, t, x0, xs_sea, meas_noise, n_ctrl)
             run = run_loop(plant, ctrl, n_ctrl, bound, report)
-        except KeyboardInterrupt:  # keep the runs finished; this one and the rest: interrupted
+        except (KeyboardInterrupt, Exception) as exc:  # a CasADi error may be a Ctrl-C
+            # an interruption: keep the runs finished; this one and the rest: interrupted
+            if not interrupt.is_interruption(exc):
+                raise
             stopped = n_done
             break
         tr, cmds, stop = run.trace, run.commands, run.stop
