@@ -113,8 +113,8 @@ RUNS = [
     Run("simulate", ["simulate", str(P / "dynamics" / "line_6_3_6_lumped3d.toml"), "--set",
                      "simulation.duration=120", "--json", "m.json", "--csv", "m.csv", *LINE],
         ("cpu", 1.9), outputs=("m.json", "m.csv")),
-    Run("heave", ["heave", str(P / "heave" / "ex_6_3_6.toml"), "--duration", "30",
-                  "--json", "h.json", *LINE], ("cpu", 1.5)),
+    Run("heave", ["heave", str(P / "heave" / "ex_6_3_6.toml"), "--duration", "60",
+                  "--json", "h.json", *LINE], ("cpu", 1.5), outputs=("h.json",)),
     # a terminal's Ctrl-C reaches the workers too: they printed ~60 lines of tracebacks
     Run("batch, Ctrl-C", _batch([]), ("rows", 2), outputs=("b.csv", "b.jsonl", "b.meta.json")),
     # the parent alone: SIGTERM ends it as a Ctrl-C does; SIGKILL leaves the workers
@@ -200,10 +200,22 @@ def _check(run: Run) -> None:
 @pytest.mark.parametrize("name", [r.name for r in RUNS if r.how != "sigkill"])
 def test_interrupted_command_exits_130_with_one_line(runs: dict[str, Run], name: str) -> None:
     """Exit 130, exactly one line on stderr (no traceback, no CasADi warning), and no file
-    but the finished part: for these moments, the solve and the heave comparison have
-    none, footprint its finished directions, simulate its finished samples, a batch its
-    finished rows."""
+    but the finished part: for these moments, the solve has none, the heave comparison
+    its JSON of the controllers finished, footprint its finished directions, simulate its
+    finished samples, a batch its finished rows."""
     _check(runs[name])
+
+
+def test_heave_keeps_its_finished_controllers(runs: dict[str, Run]) -> None:
+    run = runs["heave"]
+    _check(run)
+    path = run.folder / "h.json"
+    if not path.exists():  # the Ctrl-C came before the first run (building the designs)
+        return
+    data = json.loads(path.read_text(), parse_constant=pytest.fail)
+    assert data["status"] == "interrupted"
+    st = [c["status"] for c in data["controllers"].values()]
+    assert "interrupted" in st and st.index("interrupted") == st.count("solved")
 
 
 def test_footprint_keeps_its_finished_directions(runs: dict[str, Run]) -> None:

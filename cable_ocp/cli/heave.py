@@ -79,7 +79,15 @@ def cmd_heave(args: argparse.Namespace) -> int:
     bad = [k for k, s in res.statuses.items() if s != "solved"]
     message = ("every controller ran to the end with finite, bounded states" if not bad
                else "; ".join(f"{k}: {res.statuses[k]}: {res.messages[k]}" for k in bad))
-    if out.stdout_free(args):
+    # a Ctrl-C: the controllers finished go to --json and --csv; no table, no figure
+    stopped = res.status == "interrupted"
+    if stopped:
+        done = [k for k, s in res.statuses.items() if s != "interrupted"]
+        message = (f"interrupted after {len(done)} of {len(res.statuses)} controllers"
+                   + (f" ({', '.join(done)})" if done else "")
+                   + (", in the passive baseline (no reductions)"
+                      if len(done) == len(res.statuses) else ""))
+    if out.stdout_free(args) and not stopped:
         _print_table(sc, args, res)
     ctrl = {k: {"status": res.statuses[k], "message": res.messages[k], **v.as_dict()}
             for k, v in res.metrics.items()}
@@ -99,7 +107,9 @@ def cmd_heave(args: argparse.Namespace) -> int:
             header += [f"{k}_unit_heave [m]", f"{k}_winch_output [m]", f"{k}_winch_speed [m/s]",
                        f"{k}_command [m]"]
             cols += [tr.x, tr.u, tr.u_dot, tr.u0]
-        out.emit_csv(args, header, np.column_stack(cols).tolist())
+        out.emit_csv(args, header, np.column_stack(cols).tolist(), partial=stopped)
+    if stopped:
+        raise KeyboardInterrupt
     if args.plot:
         if res.traces:
             out.emit_plot(args, lambda path: _plot(sc, args, res, path))

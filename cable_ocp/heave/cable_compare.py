@@ -23,20 +23,27 @@ from cable_ocp.heave import design_loop as sm
 from cable_ocp.heave import identify_cable as idc
 from cable_ocp.heave import mpc as mpc_mod
 from cable_ocp.heave.cable_models import cable_plant, check_plant_scene
-from cable_ocp.heave.closed_loop import make_wave, run_loop, run_status, unstable_bound
+from cable_ocp.heave.closed_loop import (
+    INTERRUPTED,
+    make_wave,
+    run_loop,
+    run_status,
+    unstable_bound,
+)
 from cable_ocp.heave.deployment import deploy
 from cable_ocp.heave.design import cable_controller, design_damping, design_scene, design_table
 from cable_ocp.heave.loop_plants import CableLine, ModelLine, WinchedLine
 from cable_ocp.heave.metrics import (
-    CABLE_FIELDS,
     CableComparison,
     CableMetrics,
     cable_run_metrics,
     cable_status,
     limit_excess,
     limit_warning,
+    no_cable_metrics,
     reduction_pct,
 )
+from cable_ocp.numerics import interrupt
 from cable_ocp.scene.dynamics import DynamicScene
 from cable_ocp.scene.heave import HeaveScene, load_cable_scene
 
@@ -102,7 +109,8 @@ def compare_cable(scene: HeaveScene, controllers: tuple | None = None,
         r = sm.compare(sd, controllers, progress)
         res = CableComparison(r.sigma_uncontrolled, r.metrics, r.traces, r.models,
                               r.mpc_solve_times, r.mpc_failures, r.statuses, r.messages,
-                              r.passive_heave_rms, r.warnings, json_extra=extra)
+                              r.passive_heave_rms, r.warnings, r.interrupted,
+                              json_extra=extra)
     else:
         res = _compare_on_cable(scene, sd, dyn, controllers, progress, extra)
     if warn is not None and warn not in res.warnings:
@@ -164,31 +172,38 @@ def _compare_on_cable(sc: HeaveScene, sd: HeaveScene, dyn: DynamicScene,
                 f"top segment ({plant_c.l_top0:.4g} m), which takes {haul:.3g} m of haul-in "
                 f"and {pay:.3g} m of pay-out; a run whose winch goes further stops as failed "
                 "(fewer simulation.segments in the cable scene lengthen that segment)")
+    empty = no_cable_metrics()
+    stopped = None  # the index in runs_of where a Ctrl-C stopped the comparison
     for idx, name in enumerate(runs_of):
         if design_error is not None and name != "passive":
             statuses[name], messages[name] = "failed", design_error
-            empty = dict.fromkeys(("heave_rms", "reduction_pct", "peak_winch_speed",
-                                   "max_stroke", "energy_index", "max_constraint_violation",
-                                   "solve_time_median_s", "winch_speed_rms") + CABLE_FIELDS)
             metrics[name] = (empty, empty)
             continue
         runs = {}
-        for j, kind in enumerate(("model", "cable")):
-            base = (2 * idx + j) * n_ctrl
+        try:
+            for j, kind in enumerate(("model", "cable")):
+                base = (2 * idx + j) * n_ctrl
 
-            def prog(k: int, base: int = base) -> None:
-                if progress is not None:
-                    progress(base + k, total, None)
+                def prog(k: int, base: int = base) -> None:
+                    if progress is not None:
+                        progress(base + k, total, None)
 
-            mpc = (mpc_mod.LinearMPC(p, sc.winch.delay, settings) if name == "mpc" else None)
-            ctrl = cable_controller(name, None if name == "passive" else table, mpc)
-            if kind == "model":
-                line: Any = ModelLine(sd.unit.a, sd.unit.b, sd.unit.b_quadratic, quad, m,
-                                      h / m, sd.unit.mass, t_u0, t_t0)
-            else:
-                line = CableLine(plant_c)
-            runs[kind] = run_loop(WinchedLine(sc, line, wave, noise), ctrl, n_ctrl, bound,
-                                  prog)
+                mpc = (mpc_mod.LinearMPC(p, sc.winch.delay, settings) if name == "mpc"
+                       else None)
+                ctrl = cable_controller(name, None if name == "passive" else table, mpc)
+                if kind == "model":
+                    line: Any = ModelLine(sd.unit.a, sd.unit.b, sd.unit.b_quadratic, quad, m,
+                                          h / m, sd.unit.mass, t_u0, t_t0)
+                else:
+                    line = CableLine(plant_c)
+                runs[kind] = run_loop(WinchedLine(sc, line, wave, noise), ctrl, n_ctrl,
+                                      bound, prog)
+        except (KeyboardInterrupt, Exception) as exc:  # a CasADi error may be a Ctrl-C
+            # an interruption: keep the runs finished; this one and the rest: interrupted
+            if not interrupt.is_interruption(exc):
+                raise
+            stopped = idx
+            break
         mc = cable_run_metrics(sd, runs["cable"], ctrl.energy_index)
         mm = cable_run_metrics(sd, runs["model"], ctrl.energy_index)
         metrics[name] = (mc, mm)
@@ -211,7 +226,12 @@ def _compare_on_cable(sc: HeaveScene, sd: HeaveScene, dyn: DynamicScene,
             if failures:
                 warnings.append(f"mpc: the QP failed at {failures} of {solve_times.size} "
                                 "samples on the cable; the shifted previous plan was applied")
-    if progress is not None:
+    if stopped is not None:
+        for name in runs_of[stopped:]:
+            if name in controllers:
+                statuses[name], messages[name] = INTERRUPTED
+            metrics[name] = (empty, empty)
+    elif progress is not None:  # (after a Ctrl-C the progress would raise it again)
         progress(total, total, None)
     out = {}
     base_c = metrics["passive"][0]["heave_rms"]
@@ -237,4 +257,4 @@ def _compare_on_cable(sc: HeaveScene, sd: HeaveScene, dyn: DynamicScene,
                         "filters gives no valid variance (ill-conditioned); reported as null")
     return CableComparison(models.sigma_uncontrolled, out, traces, models, solve_times,
                            failures, statuses, messages, base_c, warnings,
-                           json_extra=extra, predicted_traces=predicted)
+                           stopped is not None, json_extra=extra, predicted_traces=predicted)

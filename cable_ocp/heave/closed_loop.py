@@ -35,12 +35,17 @@ from cable_ocp.heave.delay import DelayLine
 from cable_ocp.heave.estimators import Observation
 from cable_ocp.status import Status
 
-__all__ = ["STATUSES", "UNSTABLE_FACTOR", "CableTrace", "LoopPlant", "LoopRun", "Sample",
-           "Trace", "Wave", "make_wave", "run_loop", "run_status", "unstable_bound"]
+__all__ = ["INTERRUPTED", "STATUSES", "UNSTABLE_FACTOR", "CableTrace", "LoopPlant", "LoopRun",
+           "Sample", "Trace", "Wave", "make_wave", "run_loop", "run_status", "unstable_bound"]
 
 #: per-controller statuses (:mod:`cable_ocp.heave.design_loop`)
 #: the statuses of a run (members of :class:`cable_ocp.status.Status`)
-STATUSES = (Status.SOLVED, Status.UNSTABLE, Status.NON_FINITE, Status.FAILED)
+STATUSES = (Status.SOLVED, Status.UNSTABLE, Status.NON_FINITE, Status.FAILED,
+            Status.INTERRUPTED)
+
+#: ``(status, message)`` of a controller whose run a Ctrl-C stopped, or that had not run yet:
+#: a comparison catches the interruption, keeps the runs finished and returns with it
+INTERRUPTED = (Status.INTERRUPTED, "interrupted before its run finished")
 
 #: bound on the simulated unit heave and winch output, times the largest boom-tip heave of
 #: the realisation (at least 1 mm): beyond it the loop is declared unstable

@@ -19,7 +19,8 @@ Three compensators are compared on the same sea:
 
 The unit's heave is measured from the static depth at the current paid-out length. Results
 per ``window`` metres of length: unit heave RMS, tension extremes at the unit and the top,
-slack samples.
+slack samples. A Ctrl-C during a run keeps the runs finished (the others ``interrupted``,
+no per-length rows).
 """
 
 from __future__ import annotations
@@ -31,7 +32,7 @@ from typing import Any
 import numpy as np
 
 from cable_ocp.heave.axial_plant import AxialCablePlant
-from cable_ocp.heave.closed_loop import LoopRun, make_wave, run_loop, unstable_bound
+from cable_ocp.heave.closed_loop import INTERRUPTED, LoopRun, make_wave, run_loop, unstable_bound
 from cable_ocp.heave.design import cable_controller, design_damping, design_table
 from cable_ocp.heave.identify_cable import CableIdentification, identify_from_cable
 from cable_ocp.heave.loop_plants import CableLine, WinchedLine
@@ -42,8 +43,10 @@ from cable_ocp.heave.metrics import (
     cable_status,
     limit_excess,
     limit_warning,
+    no_cable_metrics,
     reduction_pct,
 )
+from cable_ocp.numerics import interrupt
 from cable_ocp.scene.dynamics import DynamicScene
 from cable_ocp.scene.heave import HeaveScene
 
@@ -181,9 +184,16 @@ def deploy(scene: HeaveScene, design: HeaveScene, cable_scene: DynamicScene,
             if progress is not None:
                 progress(base + k, total, None)
 
-        runs[name] = run_loop(WinchedLine(scene, CableLine(plant), wave, noise), ctrl, n_ctrl,
-                              bound, prog)
-    if progress is not None:
+        try:
+            runs[name] = run_loop(WinchedLine(scene, CableLine(plant), wave, noise), ctrl,
+                                  n_ctrl, bound, prog)
+        except (KeyboardInterrupt, Exception) as exc:  # a CasADi error may be a Ctrl-C
+            # an interruption: keep the runs finished; this one and the rest: interrupted
+            if not interrupt.is_interruption(exc):
+                raise
+            break
+    stopped = len(runs) < len(CONTROLLERS)
+    if progress is not None and not stopped:  # (after a Ctrl-C it would raise it again)
         progress(total, total, None)
 
     metrics, statuses, messages = {}, {}, {}
@@ -199,6 +209,9 @@ def deploy(scene: HeaveScene, design: HeaveScene, cable_scene: DynamicScene,
             base = d["heave_rms"]
         d["reduction_pct"] = reduction_pct(d["heave_rms"], base)
         metrics[name] = CableMetrics(d)
+    for name in CONTROLLERS[len(runs):]:
+        statuses[name], messages[name] = INTERRUPTED
+        metrics[name] = CableMetrics(no_cable_metrics())
 
     window = dep.window if dep.window is not None else (hi - lo) / 40.0
     table = _per_length(runs, scene, lo, hi, window)
@@ -218,7 +231,8 @@ def deploy(scene: HeaveScene, design: HeaveScene, cable_scene: DynamicScene,
     extra["cable_plant"] = {"segments": plant.model.n, "time_step": plant.dt, "substeps": m}
     traces = {k: r.trace for k, r in runs.items()}
     return CableComparison(models.sigma_uncontrolled, metrics, traces, models, None, 0,
-                              statuses, messages, base, warnings, json_extra=extra)
+                              statuses, messages, base, warnings, stopped,
+                              json_extra=extra)
 
 
 def _per_length(runs: dict[str, LoopRun], sc: HeaveScene, lo: float, hi: float,

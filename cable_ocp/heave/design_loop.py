@@ -33,6 +33,10 @@ number:
 * ``"non_finite"``: a state or command became NaN or infinite (the run stops there).
 * ``"failed"``: the controller could not be designed or built (a Riccati equation without a
   stabilising solution, a QP that cannot be set up); the message gives the solver's error.
+* ``"interrupted"``: a Ctrl-C (:class:`KeyboardInterrupt`) stopped the comparison before this
+  controller's run finished. The comparison returns what finished (the controllers run
+  before, their metrics as in an uninterrupted run) and its status is ``"interrupted"``;
+  without the passive baseline the reductions are None.
 
 For every status but ``"solved"`` the metrics of the run are None (JSON null), except
 ``energy_index`` (a property of the design) and the MPC solve times. ``reduction_pct`` is
@@ -53,7 +57,7 @@ from cable_ocp.errors import CableOCPError
 from cable_ocp.heave import mpc as mpc_mod
 from cable_ocp.heave import plant as pl
 from cable_ocp.heave import sea as sea_mod
-from cable_ocp.heave.closed_loop import run_loop, unstable_bound
+from cable_ocp.heave.closed_loop import INTERRUPTED, run_loop, unstable_bound
 from cable_ocp.heave.controllers import Controller, MPCController, Passive, StateFeedback
 from cable_ocp.heave.discrete import DelayedDiscreteModel, discretize_delayed, discretize_noise
 from cable_ocp.heave.estimators import FullState, KalmanFilter, kalman_gain, process_noise
@@ -71,6 +75,7 @@ from cable_ocp.heave.stochastic import (
     discrete_delay_lqr,
     output_variance_lyapunov,
 )
+from cable_ocp.numerics import interrupt
 from cable_ocp.scene.heave import HeaveScene
 
 __all__ = ["Models", "build_models", "compare", "wave_realisation"]
@@ -235,17 +240,25 @@ def compare(scene: HeaveScene, controllers: tuple | None = None,
     meas_noise = rng_meas.standard_normal(n_ctrl + 1) * c.measurement_noise
     total = n_ctrl * len(runs)
     passive_rms = None
+    stopped = None  # the index in runs where a Ctrl-C stopped the comparison
     for n_done, name in enumerate(runs):
         report = None if progress is None else (
             lambda k, n_done=n_done: progress(n_done * n_ctrl + k, total, None))
-        status, message, ctrl = _design(name, p, mdl, G, design_error, settings, tau, c, h)
-        if status == "failed":
-            if name in controllers:
-                statuses[name], messages[name] = status, message
-                metrics[name] = Metrics(None, None, None, None, None, None, None, None)
-            continue
-        plant = UnitWinchPlant(scene, p, t, x0, xs_sea, meas_noise, n_ctrl)
-        run = run_loop(plant, ctrl, n_ctrl, bound, report)
+        try:
+            status, message, ctrl = _design(name, p, mdl, G, design_error, settings, tau, c, h)
+            if status == "failed":
+                if name in controllers:
+                    statuses[name], messages[name] = status, message
+                    metrics[name] = Metrics(None, None, None, None, None, None, None, None)
+                continue
+            plant = UnitWinchPlant(scene, p, t, x0, xs_sea, meas_noise, n_ctrl)
+            run = run_loop(plant, ctrl, n_ctrl, bound, report)
+        except (KeyboardInterrupt, Exception) as exc:  # a CasADi error may be a Ctrl-C
+            # an interruption: keep the runs finished; this one and the rest: interrupted
+            if not interrupt.is_interruption(exc):
+                raise
+            stopped = n_done
+            break
         tr, cmds, stop = run.trace, run.commands, run.stop
         if stop is not None and status == "solved":
             status, message = stop
@@ -273,14 +286,21 @@ def compare(scene: HeaveScene, controllers: tuple | None = None,
         if name in controllers:
             traces[name], metrics[name] = tr, mt
             statuses[name], messages[name] = status, message
-    if progress is not None:
+    if stopped is not None:
+        for name in runs[stopped:]:
+            if name in controllers:
+                statuses[name], messages[name] = INTERRUPTED
+                metrics[name] = Metrics(None, None, None, None, None, None, None, None)
+        metrics = {k: metrics[k] for k in controllers}  # the scene's order
+    elif progress is not None:  # (after a Ctrl-C the progress would raise it again)
         progress(total, total, None)
     metrics = {k: with_reduction(v, passive_rms) for k, v in metrics.items()}
     if models.sigma_uncontrolled is None:
         warnings.append("sigma_uncontrolled: the Lyapunov equation of the sea and vessel "
                         "filters gives no valid variance (ill-conditioned); reported as null")
     return Comparison(models.sigma_uncontrolled, metrics, traces, models, solve_times,
-                      failures, statuses, messages, passive_rms, warnings)
+                      failures, statuses, messages, passive_rms, warnings,
+                      interrupted=stopped is not None)
 
 
 def _spectral_radius(A: np.ndarray) -> float:  # noqa: N803

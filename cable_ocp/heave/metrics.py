@@ -27,7 +27,8 @@ if TYPE_CHECKING:
 
 __all__ = ["CABLE_FIELDS", "LIMIT_TOLERANCE", "SLACK_MESSAGE", "WINCH_LIMITS", "CableComparison",
            "CableMetrics", "Comparison", "Metrics", "cable_run_metrics", "cable_status",
-           "limit_excess", "limit_warning", "reduction_pct", "run_metrics", "with_reduction"]
+           "limit_excess", "limit_warning", "no_cable_metrics", "reduction_pct", "run_metrics",
+           "with_reduction"]
 
 
 @dataclass(frozen=True)
@@ -76,6 +77,9 @@ class Comparison:
         MPC samples at which the QP failed and the shifted previous plan was applied.
     warnings : list of str
         Remarks that do not change a status (MPC fallbacks, a missing sigma_uncontrolled).
+    interrupted : bool
+        A Ctrl-C stopped the comparison (the controllers not finished have the status
+        ``"interrupted"``; the passive baseline, when not a controller, may be the run stopped).
     """
 
     sigma_uncontrolled: float | None
@@ -88,6 +92,7 @@ class Comparison:
     messages: dict = field(default_factory=dict)
     passive_heave_rms: float | None = None
     warnings: list = field(default_factory=list)
+    interrupted: bool = False
 
     def __post_init__(self) -> None:
         # every controller's status is one of the package's vocabulary (cable_ocp.status)
@@ -96,7 +101,10 @@ class Comparison:
 
     @property
     def status(self) -> Status:
-        """``"solved"`` when every controller is, else the first other status."""
+        """``"interrupted"`` when a Ctrl-C stopped the comparison (some controller is), else
+        ``"solved"`` when every controller is, else the first other status."""
+        if self.interrupted or Status.INTERRUPTED in self.statuses.values():
+            return Status.INTERRUPTED
         bad = [s for s in self.statuses.values() if s != "solved"]
         return bad[0] if bad else "solved"
 
@@ -380,6 +388,12 @@ def run_metrics(scene: HeaveScene, tr: Trace, cmds: np.ndarray, energy: float | 
 #: the cable-plant fields of a controller's metrics (None where the run is not solved)
 CABLE_FIELDS = ("tension_unit_min", "tension_unit_max", "tension_top_min", "tension_top_max",
                 "slack_samples", "slack_first_time_s", "plant_failed_at_s")
+
+
+def no_cable_metrics() -> dict:
+    """The metrics (:func:`cable_run_metrics`' keys) of a controller that has none (its design
+    failed, or an interruption came before its run finished): every value None."""
+    return dict.fromkeys(tuple(Metrics.__dataclass_fields__) + CABLE_FIELDS)
 
 
 def cable_run_metrics(scene: HeaveScene, run: LoopRun, energy: float | None) -> dict:
