@@ -119,8 +119,8 @@ RUNS = [
     Run("batch, Ctrl-C", _batch([]), ("rows", 2), outputs=("b.csv", "b.jsonl", "b.meta.json")),
     # the parent alone: SIGTERM ends it as a Ctrl-C does; SIGKILL leaves the workers
     # orphaned, and they used to block for ever on their pipes
-    Run("batch, SIGTERM", _batch([]), ("rows", 2), how="sigterm",
-        outputs=("b.csv", "b.jsonl", "b.meta.json")),
+    Run("batch, SIGTERM", _batch(["--json", "b.json"]), ("rows", 2), how="sigterm",
+        outputs=("b.csv", "b.jsonl", "b.meta.json", "b.json")),
     Run("batch, SIGKILL", _batch([]), ("rows", 2), how="sigkill",
         outputs=("b.csv", "b.jsonl", "b.meta.json")),
 ]
@@ -255,6 +255,10 @@ def test_batch_workers_end_with_their_parent(runs: dict[str, Run], name: str) ->
     if run.how != "sigkill":
         _check(run)
         assert len((run.folder / "b.csv").read_text().splitlines()) == 1 + len(rows)
+    if "--json" in run.argv:  # the summary of what was stored, status interrupted
+        data = json.loads((run.folder / "b.json").read_text(), parse_constant=pytest.fail)
+        assert data["status"] == "interrupted" and data["cases_stored"] == len(rows)
+        assert sum(data["statuses"].values()) == len(rows)
 
 
 def test_ipopt_stop_and_casadi_wrapping_are_interruptions() -> None:

@@ -3,6 +3,8 @@
 from __future__ import annotations
 
 import argparse
+import contextlib
+from collections.abc import Sequence
 from pathlib import Path
 from typing import Any
 
@@ -133,13 +135,17 @@ def cmd_batch(args: argparse.Namespace) -> int:
 
         # the file's path (its digest goes into the meta file; a heave scene's relative
         # [unit] cable_scene is read from its folder) and the --set overrides apart
-        res = run_batch(args.file, grids, ranges, args.samples, randoms, args.seed,
-                        overrides=out.overrides(args),
-                        command=args.command, options={"directions": args.directions},
-                        out=args.out, resume=args.resume, overwrite=args.overwrite,
-                        workers=args.workers, scheduler=args.scheduler,
-                        chunk_size=args.chunk_size, progress=step, arrays=args.arrays,
-                        keep_arrays=bool(args.range_graph))
+        try:
+            res = run_batch(args.file, grids, ranges, args.samples, randoms, args.seed,
+                            overrides=out.overrides(args),
+                            command=args.command, options={"directions": args.directions},
+                            out=args.out, resume=args.resume, overwrite=args.overwrite,
+                            workers=args.workers, scheduler=args.scheduler,
+                            chunk_size=args.chunk_size, progress=step, arrays=args.arrays,
+                            keep_arrays=bool(args.range_graph))
+        except KeyboardInterrupt:
+            _interrupted_summary(args, store)
+            raise
     if res.rows and all(r["status"] == "invalid_input" for r in res.rows):
         raise CableOCPError(f"every case is invalid; the first: {res.rows[0]['message']}")
     for remark in res.notes:
@@ -194,6 +200,29 @@ def _array_outputs(args: argparse.Namespace) -> list[tuple[str, str]]:
                           formats=out.plot_formats())
     return [(o, p) for o, p in (("--arrays", args.arrays), ("--range-graph", args.range_graph))
             if p is not None]
+
+
+def _interrupted_summary(args: argparse.Namespace, store: Sequence[Path]) -> None:
+    """``--json`` of an interrupted batch: status ``interrupted`` and the cases stored (the
+    store's JSON lines, every row whole), per status; then the interruption goes on."""
+    import json
+
+    if not args.json:
+        return
+    rows = []
+    with contextlib.suppress(OSError):
+        for line in store[1].read_text(encoding="utf-8").splitlines():
+            with contextlib.suppress(ValueError):
+                row = json.loads(line)
+                if isinstance(row, dict) and "status" in row:
+                    rows.append(row)
+    counts: dict[str, int] = {}
+    for r in rows:
+        counts[str(r["status"])] = counts.get(str(r["status"]), 0) + 1
+    out.emit_json(args, out.envelope(
+        "interrupted", f"interrupted: {len(rows)} cases stored in {store[1]}; --resume "
+        "continues", {"cases_stored": len(rows), "statuses": counts,
+                      "files": [str(p) for p in store]}))
 
 
 def _check_arrays(args: argparse.Namespace, data: dict[str, Any]) -> None:

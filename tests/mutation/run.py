@@ -760,6 +760,11 @@ MUTATIONS: tuple[Mutation, ...] = (
              ("tests/dynamics/test_cli.py::test_interrupted_modes_lengths_keeps_the_lengths_it_"
               "finished",),
              "an interrupted modes --lengths writes nothing of the lengths it finished"),
+    Mutation("interrupted-batch-writes-no-summary", "faults", "cable_ocp/cli/batch.py",
+             "        except KeyboardInterrupt:\n            _interrupted_summary(args, store)",
+             "        except KeyboardInterrupt:\n            pass",
+             ("tests/test_interrupt.py::test_batch_workers_end_with_their_parent",),
+             "an interrupted batch writes no --json summary (status interrupted)"),
     Mutation("cable-scene-not-an-input", "faults", "cable_ocp/cli/output.py",
              "            seen.setdefault(os.path.realpath(path), f\"the input {what} {path}\")",
              "            pass",
