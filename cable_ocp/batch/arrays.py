@@ -30,7 +30,7 @@ from typing import Any
 import numpy as np
 
 from cable_ocp.errors import CableOCPError
-from cable_ocp.numerics.atomic import replace_atomically
+from cable_ocp.numerics.export import write_netcdf
 from cable_ocp.scene.units import key_unit
 
 __all__ = ["ARRAYS", "DIMS", "arrays_dataset", "case_arrays", "envelope", "read_arrays",
@@ -67,16 +67,6 @@ def require_xarray(option: str = "--arrays") -> Any:
         raise CableOCPError(f"{option} needs xarray (the io extra): pip install -e '.[io]'"
                             ) from None
     return xarray
-
-
-def _engine() -> str:
-    """netCDF4 (chunked netCDF-4) when installed, else h5netcdf, else scipy (netCDF-3)."""
-    import importlib.util
-
-    for name, engine in (("netCDF4", "netcdf4"), ("h5netcdf", "h5netcdf")):
-        if importlib.util.find_spec(name) is not None:
-            return engine
-    return "scipy"
 
 
 def arrays_dataset(kind: str, arrays: Mapping[int, Mapping[str, np.ndarray]],
@@ -144,16 +134,16 @@ def write_arrays(path: str | Path, dataset: Any) -> Path:
     CableOCPError
         When the file cannot be written (a full disk: the earlier file is kept).
     """
-    engine = _engine()
-    encoding: dict[str, dict[str, Any]] = {}
-    if engine != "scipy":
-        for name, var in dataset.data_vars.items():
-            if var.dims and var.dims[0] == "case" and var.dtype.kind == "f":
-                encoding[str(name)] = {"chunksizes": (1, *[max(1, n) for n in var.shape[1:]]),
-                                       "zlib": True}
+    def by_case(engine: str, ds: Any) -> dict[str, dict[str, Any]]:
+        if engine == "scipy":  # netCDF-3 has no chunks
+            return {}
+        return {str(name): {"chunksizes": (1, *[max(1, n) for n in var.shape[1:]]),
+                            "zlib": True}
+                for name, var in ds.data_vars.items()
+                if var.dims and var.dims[0] == "case" and var.dtype.kind == "f"}
+
     try:
-        return replace_atomically(path, lambda tmp: dataset.to_netcdf(
-            tmp, engine=engine, encoding=encoding or None))
+        return write_netcdf(dataset, path, encoding=by_case)
     except OSError as exc:
         why = exc.strerror or str(exc) or type(exc).__name__
         raise CableOCPError(f"--arrays {path}: could not be written ({why}); the earlier file, "

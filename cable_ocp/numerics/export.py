@@ -10,7 +10,7 @@ from __future__ import annotations
 
 import math
 import os
-from collections.abc import Iterable, Mapping
+from collections.abc import Callable, Iterable, Mapping
 from importlib import import_module
 from pathlib import Path
 from types import ModuleType
@@ -129,7 +129,7 @@ def optional_module(name: str, purpose: str) -> ModuleType:
 
 def netcdf_engine(purpose: str) -> str:
     """The netCDF engine xarray will write with: ``netcdf4`` (the extra ``[io]``), else
-    ``scipy`` (netCDF3, which scipy can write).
+    ``h5netcdf`` (netCDF-4 too), else ``scipy`` (netCDF-3, which scipy can write).
 
     Parameters
     ----------
@@ -142,15 +142,18 @@ def netcdf_engine(purpose: str) -> str:
         When xarray is missing (see :func:`optional_module`).
     """
     optional_module("xarray", purpose)
-    try:
-        import_module("netCDF4")
-        return "netcdf4"
-    except ImportError:
-        import_module("scipy.io")
-        return "scipy"
+    for module, engine in (("netCDF4", "netcdf4"), ("h5netcdf", "h5netcdf")):
+        try:
+            import_module(module)
+            return engine
+        except ImportError:
+            continue
+    import_module("scipy.io")
+    return "scipy"
 
 
-def write_netcdf(result: Any, path: str | os.PathLike[str]) -> Path:
+def write_netcdf(result: Any, path: str | os.PathLike[str],
+                 encoding: Callable[[str, Any], dict[str, Any]] | None = None) -> Path:
     """Write ``result.to_xarray()`` (or an ``xarray.Dataset``) to the netCDF file ``path``,
     whole or not at all (:func:`cable_ocp.numerics.atomic.replace_atomically`).
 
@@ -160,6 +163,9 @@ def write_netcdf(result: Any, path: str | os.PathLike[str]) -> Path:
         What to write: a simulation's time series, a statics profile, modes, ...
     path : str or path-like
         The file (its directory must exist); an earlier file there is replaced.
+    encoding : callable, optional
+        ``encoding(engine, dataset)``: xarray's per-variable encoding for that engine
+        (e.g. chunks for netCDF-4); None (default): xarray's defaults.
 
     Returns
     -------
@@ -175,4 +181,5 @@ def write_netcdf(result: Any, path: str | os.PathLike[str]) -> Path:
     """
     engine = netcdf_engine("write_netcdf")
     ds = result.to_xarray() if hasattr(result, "to_xarray") else result
-    return replace_atomically(path, lambda tmp: ds.to_netcdf(tmp, engine=engine))
+    extra = {"encoding": enc} if encoding is not None and (enc := encoding(engine, ds)) else {}
+    return replace_atomically(path, lambda tmp: ds.to_netcdf(tmp, engine=engine, **extra))
