@@ -657,6 +657,22 @@ class StaticsSolver:
                                            self._gj)
         return self._stiffness.matrices(w, p)
 
+    def end_jacobian(self, w: np.ndarray, p: np.ndarray) -> np.ndarray:
+        """The 6x6 dF/dx of both end forces in both end positions, both ends fixed
+        (:meth:`cable_ocp.statics.stiffness.EndStiffness.end_jacobian`; N/m).
+
+        Parameters
+        ----------
+        w : ndarray
+            Converged scaled unknowns of this solver.
+        p : ndarray
+            Parameter vector of the solve (:meth:`Formulation.params`).
+        """
+        if self._stiffness is None:
+            self._stiffness = EndStiffness(self.scene, self.form, self.coll, self.grounded,
+                                           self._gj)
+        return self._stiffness.end_jacobian(w, p)
+
     def on_intervals(self, intervals: int) -> StaticsSolver:
         """The solver of this scene on ``intervals`` intervals, with this one's degree,
         scheme and contact (built on first use, kept in the shared cache).
@@ -683,6 +699,8 @@ class StaticsSolver:
         if np.all(np.isfinite(w)):
             # the end stiffness, computed on first use (StaticsSolution.stiffness)
             sol._stiffness_source = functools.partial(self.end_stiffness, w.copy(), p.copy())
+            if all(self.scene.end_a.fixed_mask) and all(self.scene.end_b.fixed_mask):
+                sol._jacobian_source = functools.partial(self.end_jacobian, w.copy(), p.copy())
             # the unknowns themselves and their mesh, for a warm start by this solver
             sol._unknowns = (self._token, w.copy(), self.coll.mesh)
         return sol

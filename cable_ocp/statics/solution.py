@@ -14,6 +14,7 @@ from typing import Any
 
 import numpy as np
 
+from cable_ocp.errors import CableOCPError
 from cable_ocp.numerics.export import optional_module, summary_repr
 from cable_ocp.status import Status
 
@@ -71,6 +72,9 @@ class StaticsSolution:
         default=None, repr=False, compare=False)
     _stiffness_cache: dict[str, dict[str, Any]] | None = field(
         default=None, repr=False, compare=False)
+    #: computes the 6x6 end Jacobian on demand (both ends fixed; see :meth:`end_jacobian`)
+    _jacobian_source: Callable[[], np.ndarray] | None = field(default=None, repr=False,
+                                                              compare=False)
     #: (solver token, scaled unknowns): lets the solver that produced this solution
     #: warm-start from its own unknowns without interpolating the node arrays
     _unknowns: tuple[object, np.ndarray] | None = field(default=None, repr=False,
@@ -202,6 +206,27 @@ class StaticsSolution:
         if mat is None:
             return None
         return np.array([[math.nan if v is None else v for v in row] for row in mat])
+
+    def end_jacobian(self) -> np.ndarray:
+        """dF/dx (6x6, N/m) of a line with both ends fixed: F = (force_a, force_b), the
+        forces on the two attachments, x = (x_a, x_b) the end positions, the unstretched
+        length held; the coupling blocks dF_a/dx_b and dF_b/dx_a included. The z_a column
+        is NaN when the line is grounded at end_a (:meth:`stiffness`). Exact for the
+        discretised equations (:meth:`StaticsSolver.end_jacobian`).
+
+        Raises
+        ------
+        CableOCPError
+            When the solve did not converge, the method has no sensitivities, or an end is
+            not fixed.
+        """
+        if not self.converged:
+            raise CableOCPError(f"no end Jacobian: the solve did not converge (status "
+                                f"{self.status})")
+        if self._jacobian_source is None:
+            raise CableOCPError("no end Jacobian: it comes from the sensitivities of the "
+                                "collocation and multiple-shooting solvers")
+        return self._jacobian_source()
 
     def stiffness_note(self, end: str) -> str:
         """What :meth:`stiffness` holds fixed at ``end``, or why it is None."""

@@ -218,11 +218,17 @@ class SolveSession:
     ----------
     error_estimate : bool, optional
         Override ``solver.error_estimate`` of every scene.
+    solvers : dict, optional
+        The built solvers by structure, shared with other sessions (the lines of a mooring
+        system: each line warm-starts from its own last solution, and lines of the same
+        structure share one built solver); None: this session's own.
     """
 
-    def __init__(self, error_estimate: bool | None = None) -> None:
+    def __init__(self, error_estimate: bool | None = None,
+                 solvers: dict[tuple, dict[tuple, StaticsSolver]] | None = None) -> None:
         self.error_estimate = error_estimate
-        self._caches: dict[tuple, dict[tuple, StaticsSolver]] = {}
+        self._caches: dict[tuple, dict[tuple, StaticsSolver]] = {} if solvers is None \
+            else solvers
         self._prev: dict[tuple, StaticsSolution] = {}
         self._last_key: tuple | None = None
         #: (value, solution) of the last solves along one line of a continuation, and the

@@ -13,6 +13,7 @@ from typing import Any
 import casadi as ca
 import numpy as np
 
+from cable_ocp.errors import CableOCPError
 from cable_ocp.physics import seabed
 from cable_ocp.scene import Scene
 from cable_ocp.statics.formulation import P_END_A, P_END_B, Formulation
@@ -86,6 +87,68 @@ class EndStiffness:
                                             ["w", "p"], ["G_e", "F_w"])
         return self._sensitivity
 
+    def _end_sensitivity(self, w: np.ndarray, p: np.ndarray, cols: list[int]
+                     ) -> tuple[np.ndarray | None, str]:
+        """dF/dx (N/m, (6, len(cols))) of both end forces in the end coordinates ``cols``
+        (0-2 end_a, 3-5 end_b), the unstretched length held; or (None, why)."""
+        from scipy.sparse import csr_matrix
+        from scipy.sparse.linalg import splu
+
+        ell = self.form.scales.length
+        g_p, f_w = self.functions()(w, p)
+        g_w = self.gj(w, p)[1]
+        h_w = g_w.sparse().tocsr()
+        h_p = np.asarray(g_p.sparse().todense())[:, cols]
+        if self.coll.free_length:
+            # hold the unstretched length (the line as installed), not the tension: the
+            # tension condition, the last residual (Collocation._boundary), becomes
+            # "lam (+ g) keeps its value", with no dependence on the end positions
+            n, last = self.coll.n_w, self.coll.n_w - 1
+            h_w.data[h_w.indptr[last]: h_w.indptr[last + 1]] = 0.0
+            hold = np.zeros(n)
+            hold[self.coll.i_lam] = 1.0
+            if self.coll.grounded:
+                hold[self.coll.i_g] = 1.0
+            h_w = h_w + csr_matrix((hold, (np.full(n, last), np.arange(n))), shape=(n, n))
+            h_p[last] = 0.0
+        try:
+            dw = splu(h_w.tocsc()).solve(-h_p)  # one factorisation, one column per coordinate
+        except RuntimeError as exc:  # "Factor is exactly singular"
+            return None, f"the Jacobian is singular ({exc})"
+        dfdx = np.asarray(f_w.sparse() @ dw) / ell  # (6, len(cols)), N/m
+        if not np.all(np.isfinite(dfdx)):
+            return None, "the sensitivity is not finite (ill-conditioned Jacobian)"
+        return dfdx, ""
+
+    def end_jacobian(self, w: np.ndarray, p: np.ndarray) -> np.ndarray:
+        """The 6x6 dF/dx of a line whose two ends are fixed: F = (F_a, F_b), the forces
+        the cable exerts on its two attachments (N), x = (x_a, x_b) the end positions
+        (m), the unstretched length held (the coupling of the two ends included: the
+        blocks dF_a/dx_b and dF_b/dx_a). With a grounded part at end_a the column of
+        z_a is NaN (one-sided contact, :meth:`matrices`).
+
+        Parameters
+        ----------
+        w : ndarray
+            Converged scaled unknowns of the solver.
+        p : ndarray
+            Parameter vector of the solve (:meth:`Formulation.params`).
+
+        Raises
+        ------
+        CableOCPError
+            When an end is not fully fixed, or the sensitivity does not exist.
+        """
+        scene = self.scene
+        if not (all(scene.end_a.fixed_mask) and all(scene.end_b.fixed_mask)):
+            raise CableOCPError("end_jacobian needs both end positions fixed")
+        dfdx, why = self._end_sensitivity(w, p, [0, 1, 2, 3, 4, 5])
+        if dfdx is None:
+            raise CableOCPError(f"the line's end stiffness was not computed: {why}")
+        if self.grounded:
+            dfdx[:, 2] = np.nan
+        return dfdx
+
     def matrices(self, w: np.ndarray, p: np.ndarray) -> dict[str, dict[str, Any]]:
         """The line's stiffness at each end whose position is fully fixed.
 
@@ -112,10 +175,7 @@ class EndStiffness:
             N/m, with None entries where a derivative does not exist; or None) and ``note``
             (what is held, or why there is no matrix).
         """
-        from scipy.sparse import csr_matrix
-        from scipy.sparse.linalg import splu
-
-        scene, ell = self.scene, self.form.scales.length
+        scene = self.scene
         held = "the unstretched length held"
         if self.coll.free_length:
             held += " (the length the prescribed tension gave; the tension is not held)"
@@ -138,30 +198,8 @@ class EndStiffness:
             return out
         # parameter columns of the fixed ends among p[P_END_A], p[P_END_B] (scaled m)
         cols = [c for key in fixed for c in ((0, 1, 2) if key == "a" else (3, 4, 5))]
-        g_p, f_w = self.functions()(w, p)
-        g_w = self.gj(w, p)[1]
-        h_w = g_w.sparse().tocsr()
-        h_p = np.asarray(g_p.sparse().todense())[:, cols]
-        if self.coll.free_length:
-            # hold the unstretched length (the line as installed), not the tension: the
-            # tension condition, the last residual (Collocation._boundary), becomes
-            # "lam (+ g) keeps its value", with no dependence on the end positions
-            n, last = self.coll.n_w, self.coll.n_w - 1
-            h_w.data[h_w.indptr[last]: h_w.indptr[last + 1]] = 0.0
-            hold = np.zeros(n)
-            hold[self.coll.i_lam] = 1.0
-            if self.coll.grounded:
-                hold[self.coll.i_g] = 1.0
-            h_w = h_w + csr_matrix((hold, (np.full(n, last), np.arange(n))), shape=(n, n))
-            h_p[last] = 0.0
-        try:
-            dw = splu(h_w.tocsc()).solve(-h_p)  # one factorisation, one column per coordinate
-        except RuntimeError as exc:  # "Factor is exactly singular"
-            dfdx, why = None, f"the Jacobian is singular ({exc})"
-        else:
-            dfdx = np.asarray(f_w.sparse() @ dw) / ell  # (6, len(cols)), N/m
-            why = "the sensitivity is not finite (ill-conditioned Jacobian)"
-        if dfdx is None or not np.all(np.isfinite(dfdx)):
+        dfdx, why = self._end_sensitivity(w, p, cols)
+        if dfdx is None:
             for key in fixed:
                 out[key]["note"] = f"not computed: {why}"
             return out
