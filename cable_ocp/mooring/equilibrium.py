@@ -80,20 +80,22 @@ def _moved(model: SystemModel, state: State, dx: np.ndarray) -> State:
     return new
 
 
-def _no_restoring(model: SystemModel, jac: np.ndarray, free: np.ndarray) -> str:
-    """Which unknown has no restoring (a zero row and column of the Newton matrix)."""
+def _no_restoring(model: SystemModel, jac: np.ndarray, free: np.ndarray,
+                  scale: np.ndarray) -> str:
+    """The unknown with no restoring, when the Newton matrix (forces and moments over
+    their scales, displacements in m and rad) is singular to 1e-12 of its largest
+    singular value: the largest component of the null vector; "" when it is regular."""
     names = []
     for p in model.scene.points:
         if p.kind == "free":
             names += [f"point {p.name!r} {c}" for c in "xyz"]
     for b in model.scene.bodies:
         names += [f"body {b.name!r} {d}" for d in DOF_NAMES]
-    sub = np.abs(jac[np.ix_(free, free)])
-    scale = max(float(sub.max(initial=0.0)), 1e-300)
-    for i, k in enumerate(free):
-        if sub[i].max() <= 1e-10 * scale and sub[:, i].max() <= 1e-10 * scale:
-            return names[k]
-    return ""
+    sub = jac[np.ix_(free, free)] / scale[free][:, None]
+    _, sv, vt = np.linalg.svd(sub)
+    if sv[-1] > 1e-12 * sv[0]:
+        return ""
+    return names[free[int(np.argmax(np.abs(vt[-1])))]]
 
 
 def solve_system(scene: SystemScene, model: SystemModel | None = None,
@@ -141,7 +143,7 @@ def solve_system(scene: SystemScene, model: SystemModel | None = None,
                        f"Newton steps (scaled residual {err:.3g})")
             break
         sub = jac[np.ix_(free, free)]
-        why = _no_restoring(model, jac, free)
+        why = _no_restoring(model, jac, free, scale)
         if why:
             raise CableOCPError(
                 f"{why} has no restoring: nothing resists a displacement in it (no line "
