@@ -288,3 +288,52 @@ def batch_extremes(summary: dict[str, dict[str, Any]], headline: Sequence[str] =
 
 def _fits(text: str, width: int) -> bool:
     return max(len(line) for line in text.splitlines()) <= width
+
+
+def system_summary(res: Any, title: str = "") -> str:
+    """The text summary of a mooring system (:class:`cable_ocp.mooring.SystemResult`): the
+    status, each body's pose and mooring load, the line table and each body's 6x6.
+
+    Parameters
+    ----------
+    res : SystemResult
+        The result.
+    title : str
+        Printed first when given.
+    """
+    lines = [title] if title else []
+    lines.append(f"status: {res.status} ({res.message}); {len(res.lines)} lines, "
+                 f"{res.wall_time_s:.3g} s")
+    for b in res.bodies:
+        held = f"; held: {', '.join(b['held'])}" if b["held"] else ""
+        lines.append(f"body {b['name']}: position {_vec(b['position'], 'm', 3)}, rotation "
+                     f"{_vec(b['rotation_deg'], 'deg', 4)}{held}")
+        if "mooring_force" in b:
+            lines.append(f"  mooring force {_vec(np.asarray(b['mooring_force']) / 1e3, 'kN', 2)}"
+                         f", moment {_vec(np.asarray(b['mooring_moment']) / 1e3, 'kN m', 1)}")
+    rows = []
+    for ln in res.lines:
+        anchor = ln.get("anchor_a") or ln.get("anchor_b")
+        rows.append([ln["name"], ln["tension_a"] / 1e3, ln["tension_b"] / 1e3,
+                     ln["max_tension"] / 1e3, ln["safety_factor"], ln["laid_length"],
+                     anchor["horizontal"] / 1e3 if anchor else None,
+                     anchor["vertical"] / 1e3 if anchor else None])
+    if rows:
+        lines.append("")
+        lines.append(table(["line", "T_a", "T_b", "T_max", "SF", "laid", "anchor H",
+                            "anchor V"], rows,
+                           units=["", "[kN]", "[kN]", "[kN]", "[-]", "[m]", "[kN]", "[kN]"],
+                           left=1))
+    for b in res.bodies:
+        st = b.get("stiffness")
+        if st is None:
+            continue
+        k = np.asarray(st["mooring"])
+        lines.append("")
+        lines.append(f"mooring stiffness of {b['name']}, K = -d[F; M]/d[x; theta] (rows F, M "
+                     "in N, N m;")
+        lines.append("columns x in m, theta in rad: small rotations about the fixed axes):")
+        names = ["x", "y", "z", "rx", "ry", "rz"]
+        lines.append(table(["", *names], [[names[i], *[float(v) + 0.0 for v in k[i]]]
+                                          for i in range(6)], left=1))
+    return "\n".join(lines)

@@ -25,6 +25,7 @@ from cable_ocp.numerics import interrupt
 
 _COMMAND_MODULES = [
     "cable_ocp.cli.statics",
+    "cable_ocp.cli.system",
     "cable_ocp.cli.heave",
     "cable_ocp.cli.dynamics",
     "cable_ocp.cli.batch",

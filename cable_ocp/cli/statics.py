@@ -84,9 +84,12 @@ def cmd_solve(args: argparse.Namespace) -> int:
     """``cable-ocp solve FILE``."""
     from cable_ocp import report
     from cable_ocp.cli.cost import statics_cost
+    from cable_ocp.cli.system import cmd_solve_system, is_system_file
     from cable_ocp.scene import load_scene
     from cable_ocp.statics.solver import solve
 
+    if is_system_file(args.file):
+        return cmd_solve_system(args)
     out.check_outputs(args)
     scene = load_scene(args.file, out.overrides(args))
     out.check_cost(args, statics_cost(scene))

@@ -38,10 +38,12 @@ from __future__ import annotations
 import copy
 import math
 from dataclasses import dataclass, field
+from pathlib import Path
 from typing import Any
 
 from cable_ocp.errors import CableOCPError
 from cable_ocp.scene.fields import check_keys, choice, integer, number, require, vector3
+from cable_ocp.scene.files import apply_overrides, read_problem
 from cable_ocp.scene.parts import (
     BODY_MAX,
     BODY_WHY,
@@ -54,8 +56,11 @@ from cable_ocp.scene.parts import (
 )
 from cable_ocp.scene.statics import Scene, SolverOptions, scene_from_dict
 
-__all__ = ["DOF_NAMES", "LineType", "Point", "SystemBody", "SystemLine", "SystemScene",
-           "is_system", "system_from_dict"]
+__all__ = ["DOF_NAMES", "MOORDYN_SUFFIXES", "LineType", "Point", "SystemBody", "SystemLine",
+           "SystemScene", "is_moordyn_path", "is_system", "load_system", "system_from_dict"]
+
+#: file name endings read as MoorDyn input files (:mod:`cable_ocp.scene.moordyn`)
+MOORDYN_SUFFIXES = (".dat", ".txt", ".in")
 
 #: the degrees of freedom of a body, in pose order
 DOF_NAMES = ("x", "y", "z", "roll", "pitch", "yaw")
@@ -85,6 +90,40 @@ def is_system(data: dict[str, Any]) -> bool:
         The problem as read from TOML.
     """
     return isinstance(data, dict) and "lines" in data
+
+
+def is_moordyn_path(path: str | Path) -> bool:
+    """True when ``path`` ends as a MoorDyn input file does (:data:`MOORDYN_SUFFIXES`).
+
+    Parameters
+    ----------
+    path : str or Path
+        A file name.
+    """
+    return Path(path).suffix.lower() in MOORDYN_SUFFIXES
+
+
+def load_system(path: str | Path, overrides: dict[str, Any] | None = None) -> SystemScene:
+    """Read a system (our TOML, or a MoorDyn v2 input file) and validate it.
+
+    Parameters
+    ----------
+    path : str or Path
+        The file.
+    overrides : dict, optional
+        Dotted keys set before validation (``--set``), e.g. ``{"bodies.0.force": [...]}``.
+    """
+    if is_moordyn_path(path):
+        from cable_ocp.scene.moordyn import read_moordyn
+
+        data = read_moordyn(path)
+    else:
+        data = read_problem(path)
+    if not is_system(data):
+        raise CableOCPError(f"{str(path)!r} is not a mooring system: it has no [[lines]]")
+    if overrides:
+        data = apply_overrides(data, overrides)
+    return system_from_dict(data)
 
 
 @dataclass(frozen=True)
