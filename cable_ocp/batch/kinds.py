@@ -36,12 +36,14 @@ OUTPUTS: dict[str, list[str]] = {
     "footprint": ["directions [-]", "solved_directions [-]", "min_reach [m]", "max_reach [m]",
                   "mean_reach [m]"],
     "heave": ["sigma_uncontrolled [m]"],  # + per controller, see HeaveRunner.columns
+    "system": ["max_tension [N]", "min_safety_factor [-]", "iterations [-]"],  # + per body
+    # pose and per line, see SystemRunner.columns
     "dynamics": ["max_top_tension [N]", "min_top_tension [N]", "min_tension [N]",
                  "slack [-]", "first_slack_time [s]", "unit_heave_amplitude [m]",
                  "final_length [m]", "simulation_wall_time [s]"],
 }
 SUCCESS = {"statics": ("solved",), "footprint": ("solved",), "heave": ("solved",),
-           "dynamics": ("solved",)}
+           "dynamics": ("solved",), "system": ("solved",)}
 
 
 def _num(x: Any) -> float | None:
@@ -284,9 +286,54 @@ def _heave_arrays(traces: dict[str, Any]) -> dict[str, np.ndarray]:
     return out
 
 
+class SystemRunner(Runner):
+    """``cable-ocp solve`` of a mooring system per case: one model per worker, each case's
+    lines warm-started from the previous case's (:class:`cable_ocp.mooring.SystemModel`,
+    rebuilt when a case changes the structure). Columns: the largest tension and the
+    smallest safety factor, per body its pose (m, deg), per line its largest tension and
+    its laid length."""
+
+    kind = "system"
+    POSE = (("x", "m"), ("y", "m"), ("z", "m"), ("roll", "deg"), ("pitch", "deg"),
+            ("yaw", "deg"))
+
+    def __init__(self, data: dict[str, Any], options: dict[str, Any] | None = None) -> None:
+        super().__init__(data, options)
+        self.bodies = [b.get("name", "") for b in data.get("bodies", [])]
+        self.lines = [ln.get("name", "") for ln in data.get("lines", [])]
+        self._model: Any = None
+
+    def columns(self) -> list[str]:
+        cols = list(OUTPUTS["system"])
+        for b in self.bodies:
+            cols += [f"{b}_{d} [{u}]" for d, u in self.POSE]
+        for ln in self.lines:
+            cols += [f"{ln}_max_tension [N]", f"{ln}_laid_length [m]"]
+        return cols
+
+    def _run(self, case: Case) -> tuple[str, str, dict[str, Any]]:
+        from cable_ocp.mooring import SystemModel, solve_system
+        from cable_ocp.scene.system import system_from_dict
+
+        sc = system_from_dict(self._data(case))
+        if self._model is None or not self._model.update(sc):
+            self._model = SystemModel(sc)
+        res = solve_system(sc, model=self._model, stiffness=False)
+        out: dict[str, Any] = {"max_tension [N]": res.max_tension,
+                               "min_safety_factor [-]": res.min_safety_factor,
+                               "iterations [-]": res.iterations}
+        for b in res.bodies:
+            for (d, u), v in zip(self.POSE, [*b["position"], *b["rotation_deg"]], strict=True):
+                out[f"{b['name']}_{d} [{u}]"] = v
+        for ln in res.lines:
+            out[f"{ln['name']}_max_tension [N]"] = ln["max_tension"]
+            out[f"{ln['name']}_laid_length [m]"] = ln["laid_length"]
+        return res.status, res.message, out
+
+
 RUNNERS: dict[str, Callable[..., Runner]] = {
     "statics": StaticsRunner, "footprint": FootprintRunner, "heave": HeaveRunner,
-    "dynamics": DynamicsRunner,
+    "dynamics": DynamicsRunner, "system": SystemRunner,
 }
 
 

@@ -447,6 +447,8 @@ def _check_base(data: dict[str, Any], kind: str) -> None:
     from cable_ocp.scene import scene_from_dict
     from cable_ocp.scene.dynamics import dynamic_scene_from_dict
     from cable_ocp.scene.heave import scene_from_dict as heave_from_dict
+    from cable_ocp.scene.system import system_from_dict
 
-    check = {"heave": heave_from_dict, "dynamics": dynamic_scene_from_dict}
+    check = {"heave": heave_from_dict, "dynamics": dynamic_scene_from_dict,
+             "system": system_from_dict}
     check.get(kind, scene_from_dict)(data)

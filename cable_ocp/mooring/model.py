@@ -141,6 +141,31 @@ class SystemModel:
             n += 6
         self.n = n
 
+    def update(self, scene: SystemScene) -> bool:
+        """Take ``scene`` in place of this model's when only loads, masses, positions or
+        poses differ (the lines keep their sessions and warm starts); False, and nothing
+        changed, when its lines, points or bodies differ in structure.
+
+        Parameters
+        ----------
+        scene : SystemScene
+            Another case of this system (a batch's next case).
+        """
+        same = ([(ln.name, ln.parts, ln.point_a, ln.point_b) for ln in scene.lines
+                 if ln.name in {m.name for m in self.lines}]
+                == [(ln.name, ln.parts, ln.point_a, ln.point_b) for ln in self.lines]
+                and scene.environment == self.env
+                and [(p.name, p.kind) for p in scene.points]
+                == [(p.name, p.kind) for p in self.scene.points]
+                and [b.name for b in scene.bodies] == [b.name for b in self.scene.bodies])
+        if same:
+            keep = {ln.name for ln in self.lines}
+            self.scene = scene
+            self.lines = [ln for ln in scene.lines if ln.name in keep]
+            self.points = {p.name: p for p in scene.points}
+            self.bodies = {b.name: b for b in scene.bodies}
+        return same
+
     # -- the state ---------------------------------------------------------------------
     def initial_state(self) -> State:
         """The file's positions and poses."""

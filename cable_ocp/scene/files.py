@@ -18,7 +18,7 @@ from typing import Any
 from cable_ocp.errors import CableOCPError
 
 #: scene kind -> the command that runs it
-COMMANDS = {"statics": "cable-ocp solve", "heave": "cable-ocp heave",
+COMMANDS = {"statics": "cable-ocp solve", "system": "cable-ocp solve", "heave": "cable-ocp heave",
             "dynamics": "cable-ocp simulate"}
 _HEAVE_TABLES = {"sea", "vessel", "winch", "controller"}
 _DYNAMICS_TABLES = {"top_motion", "simulation", "unit", "modes"}
@@ -84,7 +84,10 @@ def read_problem(path: str | Path) -> dict[str, Any]:
 
 
 def scene_kind(data: dict[str, Any]) -> str:
-    """``"heave"``, ``"dynamics"`` or ``"statics"``, from the tables a problem has."""
+    """``"system"`` (a ``lines`` array), ``"heave"``, ``"dynamics"`` or ``"statics"``, from
+    the tables a problem has."""
+    if "lines" in data:
+        return "system"
     if _HEAVE_TABLES & set(data):
         return "heave"
     if _DYNAMICS_TABLES & set(data):

@@ -11,18 +11,18 @@ from __future__ import annotations
 from pathlib import Path
 from typing import Any
 
-from cable_ocp.scene import dynamics, heave, statics  # the modules, not the package
+from cable_ocp.scene import dynamics, heave, statics, system  # the modules, not the package
 from cable_ocp.scene.files import apply_overrides, read_problem, scene_kind
 
 __all__ = ["KINDS", "load"]
 
 #: the scene kinds :func:`load` returns, and their types
 KINDS = {"statics": statics.Scene, "dynamics": dynamics.DynamicScene,
-         "heave": heave.HeaveScene}
+         "heave": heave.HeaveScene, "system": system.SystemScene}
 
 
 def load(path: str | Path, overrides: dict[str, Any] | None = None
-         ) -> statics.Scene | dynamics.DynamicScene | heave.HeaveScene:
+         ) -> statics.Scene | dynamics.DynamicScene | heave.HeaveScene | system.SystemScene:
     """Read any problem file (UTF-8 TOML, SI units) and return its validated scene.
 
     Parameters
@@ -35,17 +35,21 @@ def load(path: str | Path, overrides: dict[str, Any] | None = None
 
     Returns
     -------
-    Scene, DynamicScene or HeaveScene
-        By the file's tables (:func:`cable_ocp.scene.files.scene_kind`); its kind is
-        ``type(scene)`` (see :data:`KINDS`).
+    Scene, DynamicScene, HeaveScene or SystemScene
+        By the file's tables (a MoorDyn file: a system;
+        :func:`cable_ocp.scene.files.scene_kind`); its kind is ``type(scene)`` (see :data:`KINDS`).
 
     Raises
     ------
     CableOCPError
         When the file cannot be read or does not validate (the key is named).
     """
+    if system.is_moordyn_path(path):
+        return system.load_system(path, overrides)
     data = read_problem(path)
     kind = scene_kind(data)
+    if kind == "system":
+        return system.load_system(path, overrides)
     if overrides:
         data = apply_overrides(data, overrides)
     if kind == "heave":
