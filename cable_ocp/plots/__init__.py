@@ -8,6 +8,7 @@ statics_series  parameter sweeps; footprints
 dynamics        simulations, mode shapes, the deployment resonance chart
 heave           heave-compensation comparisons (spectra, time series, running RMS, limits,
                 trade-off curves); heave_cable the deployment through resonance
+system          mooring systems: plan and 3D views coloured by tension, the offset curve
 batch           an output of a load-case batch over its swept keys
 bench           the work-precision diagrams
 accessors       the results' ``.plot(ax=None)`` methods

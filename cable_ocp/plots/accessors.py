@@ -21,11 +21,12 @@ from cable_ocp.plots.dynamics import deployment_figure, modes_figure, simulation
 from cable_ocp.plots.heave import comparison_figure
 from cable_ocp.plots.statics import elevation_plane, statics_figure
 from cable_ocp.plots.statics_series import footprint_figure
+from cable_ocp.plots.system import draw_plan, system_figure
 from cable_ocp.scene.units import key_label
 
 __all__ = ["plot_batch_result", "plot_deployment_chart", "plot_footprint_result",
            "plot_heave_result", "plot_modes_result", "plot_simulation_result",
-           "plot_statics_result"]
+           "plot_statics_result", "plot_system_result"]
 
 
 def _panels(fig: Figure) -> tuple[Figure, np.ndarray]:
@@ -246,6 +247,31 @@ def plot_footprint_result(res: Any, ax: Any = None, title: str = "", scene: Any 
     ax.set_aspect("equal", adjustable="datalim")
     ax.set_xlabel("x (m)")
     ax.set_ylabel("y (m)")
+    if title:
+        ax.set_title(title)
+    ax.legend(fontsize=8)
+    return ax.figure, ax
+
+
+def plot_system_result(result: Any, ax: Any = None, **kwargs: Any) -> tuple[Figure, Any]:
+    """``SystemResult.plot``: the plan and 3D views of :func:`system_figure`, or the plan
+    view (lines coloured by tension, kN, with its colorbar) drawn on ``ax``.
+
+    Parameters
+    ----------
+    result : SystemResult
+        The solved system: line profiles and tensions (N), points and bodies (m, deg).
+    ax : matplotlib Axes, optional
+        Where to draw the plan; None: a new figure (:func:`system_figure`).
+    **kwargs
+        ``scene`` (SystemScene) and ``title`` (str), passed to :func:`system_figure`;
+        with ``ax``, ``title`` is the axes' title.
+    """
+    if ax is None:
+        return _panels(system_figure(result, **kwargs))
+    sm = draw_plan(ax, result)
+    ax.figure.colorbar(sm, ax=ax, label="line tension (kN)")
+    title = kwargs.get("title")
     if title:
         ax.set_title(title)
     ax.legend(fontsize=8)
