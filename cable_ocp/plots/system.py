@@ -21,6 +21,7 @@ Nothing is shown on screen (Agg canvas); save with :func:`cable_ocp.plots.common
 from __future__ import annotations
 
 import math
+from pathlib import Path
 from typing import Any
 
 import numpy as np
@@ -33,7 +34,7 @@ from matplotlib.ticker import MaxNLocator
 from mpl_toolkits.mplot3d.art3d import Line3DCollection
 
 from cable_ocp.mooring.result import SystemResult
-from cable_ocp.plots.common import legend_below, new_figure, nice_factor, wrap
+from cable_ocp.plots.common import legend_below, new_figure, nice_factor, save, wrap
 from cable_ocp.scene.system import SystemScene
 
 __all__ = ["draw_plan", "offset_curve_figure", "system_figure", "tension_norm"]
@@ -415,4 +416,24 @@ def offset_curve_figure(offsets: np.ndarray, restoring: np.ndarray,
     if title:
         fig.suptitle(wrap(title, fig.get_figwidth(), 11), fontsize=11)
     legend_below(fig, handles)
+    return fig
+
+
+def plot_system(result: SystemResult, path: str | Path, title: str = "",
+                scene: SystemScene | None = None) -> Figure:
+    """Save the plan and 3D views of a system (:func:`system_figure`) to ``path``.
+
+    Parameters
+    ----------
+    result : SystemResult
+        The result (a failed one too: its status is written in red).
+    path : str or Path
+        Output file; the format follows the suffix.
+    title : str
+        Figure title (default: the figure's own).
+    scene : SystemScene, optional
+        The scene solved (the seabed and the free surface).
+    """
+    fig = system_figure(result, scene=scene, title=title or None)
+    save(fig, path)
     return fig
