@@ -1,0 +1,73 @@
+"""``cable-ocp solve`` and ``cable-ocp batch`` on a mooring system: exit codes, the JSON, the
+CSV, one line on bad input with nothing written (CONVENTIONS "Exit codes")."""
+
+from __future__ import annotations
+
+import csv
+import json
+import subprocess
+import sys
+from pathlib import Path
+
+import pytest
+
+ROOT = Path(__file__).resolve().parents[2]
+SPAR = ROOT / "problems" / "systems" / "spar_3line.toml"
+
+
+def run(*args: str, cwd: Path) -> subprocess.CompletedProcess:
+    return subprocess.run([sys.executable, "-m", "cable_ocp", *args], cwd=cwd,
+                          capture_output=True, text=True, timeout=300)
+
+
+def test_solve_writes_json_and_csv_that_agree(tmp_path):
+    r = run("solve", str(SPAR), "--json", "s.json", "--csv", "s.csv", cwd=tmp_path)
+    assert r.returncode == 0, r.stderr
+    doc = json.loads((tmp_path / "s.json").read_text())
+    assert doc["status"] == "solved" and doc["kind"] == "system"
+    body = doc["bodies"][0]
+    # the external 1 MN surge load is carried by the mooring: its x force is -1 MN to the
+    # system tolerance (1e-8 of ~2.4 MN) -- the body's own load has no x component
+    assert abs(body["mooring_force"][0] + 1.0e6) < 0.1
+    k = body["stiffness"]["mooring"]
+    assert len(k) == 6 and all(len(row) == 6 for row in k) and k[0][0] > 0
+    with open(tmp_path / "s.csv", newline="") as f:
+        rows = list(csv.DictReader(f))
+    assert [r["line"] for r in rows] == ["L1", "L2", "L3"]
+    for row, line in zip(rows, doc["lines"], strict=True):
+        assert float(row["max_tension [N]"]) == pytest.approx(line["max_tension"], rel=1e-12)
+        assert float(row["laid_length [m]"]) == pytest.approx(line["laid_length"], abs=1e-9)
+    assert "L1" in r.stdout and "mooring stiffness of spar" in r.stdout
+
+
+@pytest.mark.parametrize("edit, words", [
+    ("lines.1.point_b=a2", "point_a and point_b are both 'a2'"),
+    ("lines.1.type=rope", "lines[1].type = 'rope': no such line type"),
+])
+def test_bad_system_is_one_line_exit_2_and_nothing_written(tmp_path, edit, words):
+    r = run("solve", str(SPAR), "--set", edit, "--json", "o.json", "--csv", "o.csv",
+            cwd=tmp_path)
+    assert r.returncode == 2
+    assert r.stderr.strip().count("\n") == 0 and words in r.stderr
+    assert not (tmp_path / "o.json").exists() and not (tmp_path / "o.csv").exists()
+
+
+def test_batch_over_a_systems_key(tmp_path):
+    """Two cases of the line length: the longer L1 carries less tension and lies longer
+    on the seabed; each case's columns equal a solve of that case."""
+    r = run("batch", str(SPAR), "--grid", "lines.0.length=895.0,910.0", "--out", "b",
+            "--workers", "1", cwd=tmp_path)
+    assert r.returncode == 0, r.stderr
+    with open(tmp_path / "b.csv", newline="") as f:
+        rows = list(csv.DictReader(f))
+    assert len(rows) == 2
+    t = [float(row["L1_max_tension [N]"]) for row in rows]
+    laid = [float(row["L1_laid_length [m]"]) for row in rows]
+    assert t[1] < t[0] and laid[1] > laid[0]
+    from cable_ocp.mooring import solve_system
+    from cable_ocp.scene.system import load_system
+
+    ref = solve_system(load_system(SPAR, {"lines.0.length": 910.0}), stiffness=False)
+    # 1e-7: the batch case is warm-started from the other case, the reference is cold;
+    # both stop at the system tolerance
+    assert t[1] == pytest.approx(ref.line("L1")["max_tension"], rel=1e-7)
