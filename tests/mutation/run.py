@@ -115,6 +115,9 @@ _BT = "tests/dynamics/test_bench_cli.py::test_"
 BENCH_MD = _BT + "moordyn_is_driven_consistently_and_compared_on_cable_ocps_force"
 BENCH_REF = _BT + "reference_extrapolates_and_every_row_is_compared_with_it"
 
+SYS_EQ = "tests/mooring/test_equilibrium.py"
+SYS_CLI = "tests/mooring/test_system_cli.py"
+
 MUTATIONS: tuple[Mutation, ...] = (
     # -- physics/ ---------------------------------------------------------------------------
     Mutation("drag-vector-normal-keeps-tangential", PHYS, "cable_ocp/physics/drag.py",
@@ -926,6 +929,33 @@ MUTATIONS: tuple[Mutation, ...] = (
              "import numpy as np  # noqa\n",
              ("tests/test_namespaces.py",),
              "an import leaves numpy public in cable_ocp.batch"),
+    # -- mooring systems (issue 23) -------------------------------------------------------
+    Mutation("system-geometric-term-dropped", "mooring", "cable_ocp/mooring/model.py",
+             "                    geo[3:, 3:] = skew(f) @ skew(arm)",
+             "                    geo[3:, 3:] = 0.0 * skew(f) @ skew(arm)", (SYS_EQ,),
+             "the 6x6 loses the geometric term [F]x[rho]x of the rotating fairlead arms"),
+    Mutation("system-free-points-not-condensed", "mooring", "cable_ocp/mooring/model.py",
+             "    if eliminate.size == 0:\n        return jkk",
+             "    if True:\n        return jkk", (SYS_EQ,),
+             "the 6x6 holds the free clump still instead of letting it find equilibrium"),
+    Mutation("system-reversed-line-not-permuted", "mooring", "cable_ocp/mooring/model.py",
+             "                k = k[np.ix_([3, 4, 5, 0, 1, 2], [3, 4, 5, 0, 1, 2])]",
+             "                k = k", (SYS_EQ,),
+             "a line listed fairlead-first uses its end Jacobian blocks the wrong way round"),
+    Mutation("hydrostatic-waterplane-moment-sign", "physics",
+             "cable_ocp/physics/hydrostatics.py",
+             "    m += rho * g * np.array([ixx * n[1], -iyy * n[0], 0.0])",
+             "    m += rho * g * np.array([-ixx * n[1], -iyy * n[0], 0.0])", (SYS_EQ,),
+             "the waterplane's roll moment destabilises instead of restoring"),
+    Mutation("system-anchor-uplift-sign", "mooring", "cable_ocp/mooring/result.py",
+             "                        \"vertical\": float(f[2])}",
+             "                        \"vertical\": float(-f[2])}", (SYS_CLI,),
+             "the anchor's uplift is reported with the wrong sign"),
+    Mutation("system-batch-line-columns-swapped", "batch", "cable_ocp/batch/kinds.py",
+             "            out[f\"{ln['name']}_max_tension [N]\"] = ln[\"max_tension\"]",
+             "            out[f\"{ln['name']}_max_tension [N]\"] = ln[\"tension_a\"]",
+             (SYS_CLI,),
+             "a system batch's per-line column holds the end_a tension, not the largest"),
 )
 
 
