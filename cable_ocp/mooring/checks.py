@@ -227,8 +227,8 @@ class OffsetCurve:
             "neutral_stiffness": self.neutral_stiffness})
 
 
-def offset_curve(scene: SystemScene, body: str | None = None, heading_deg: float = 0.0,
-                 offsets: Sequence[float] = (0.0, 5.0, 10.0, 20.0, 30.0)) -> OffsetCurve:
+def offset_curve(scene: SystemScene, body: str | None, heading_deg: float,
+                 offsets: Sequence[float]) -> OffsetCurve:
     """The restoring curve: the body's x, y held at offsets along a heading from its
     neutral position (no environmental load, module notes), z, roll, pitch, yaw (those
     free in the file) and the free points in equilibrium.
@@ -237,8 +237,8 @@ def offset_curve(scene: SystemScene, body: str | None = None, heading_deg: float
     ----------
     scene : SystemScene
         The system (its bodies' external loads are ignored).
-    body : str, optional
-        The body (the only free body when None); its x and y must be free.
+    body : str or None
+        The body (None: the only free body); its x and y must be free.
     heading_deg : float
         Direction of the offsets, deg from +x towards +y.
     offsets : sequence of float
@@ -364,7 +364,7 @@ class HeadingLoads:
             k: getattr(self, k) for k in self.__dataclass_fields__}})
 
 
-def heading_loads(scene: SystemScene, body: str | None = None, force: float = 1.0e6,
+def heading_loads(scene: SystemScene, body: str | None, force: float,
                   moment: Sequence[float] = (0.0, 0.0, 0.0),
                   headings_deg: Sequence[float] = HEADINGS_DEG) -> HeadingLoads:
     """The equilibrium under a steady horizontal load of magnitude ``force`` at each
@@ -374,8 +374,8 @@ def heading_loads(scene: SystemScene, body: str | None = None, force: float = 1.
     ----------
     scene : SystemScene
         The system.
-    body : str, optional
-        The body loaded (the only free body when None).
+    body : str or None
+        The body loaded (None: the only free body).
     force : float
         Magnitude of the horizontal force at the reference point, N; at heading h it is
         force * (cos h, sin h, 0).
