@@ -6,6 +6,7 @@ model        the state, the lines' solver sessions, the net loads and their exac
 equilibrium  Newton's method on the free points and bodies
 stiffness    a body's 6x6 stiffness (the Schur complement of the free points)
 result       the system result (poses, line table, points, stiffness)
+checks       the design checks: restoring curve, loads per heading, one line failed
 """
 
 from cable_ocp.mooring.equilibrium import solve_system

@@ -72,6 +72,7 @@ HEAVE = ("tests/heave/test_plant.py", "tests/heave/test_discrete.py", "tests/hea
          "tests/heave/test_mpc.py", "tests/heave/test_simulate.py")
 SLACK_ST = "tests/heave/test_slack_status.py::test_"
 TEXT = "tests/test_text_face.py::test_"
+MOORING_CHECKS = "tests/mooring/test_checks.py::test_"
 HEAVE_SIM = ("tests/heave/test_simulate.py", "tests/heave/test_examples.py",
              "tests/heave/test_closed_loop.py")
 # dynamics: whole files where every test is quick, else the non-slow test ids
@@ -956,6 +957,24 @@ MUTATIONS: tuple[Mutation, ...] = (
              "            out[f\"{ln['name']}_max_tension [N]\"] = ln[\"tension_a\"]",
              (SYS_CLI,),
              "a system batch's per-line column holds the end_a tension, not the largest"),
+    Mutation("restoring-force-sign", "mooring", "cable_ocp/mooring/checks.py",
+             "rest[i], trans[i] = -float(f[:2] @ e), float(f[:2] @ et)",
+             "rest[i], trans[i] = float(f[:2] @ e), float(f[:2] @ et)",
+             (MOORING_CHECKS + "the_slope_at_zero_offset_is_the_condensed_total_stiffness",),
+             "the offset curve reports the mooring's force along the heading, not the "
+             "restoring force pointing back"),
+    Mutation("failed-line-not-skipped", "mooring", "cable_ocp/mooring/checks.py",
+             "    model = SystemModel(scene, skip={name})\n",
+             "    model = SystemModel(scene, skip=set())\n",
+             (MOORING_CHECKS + "line_failure_on_the_three_line_spar",
+              MOORING_CHECKS + "the_neighbour_in_the_bundle_takes_the_load_of_a_failed_line"),
+             "the line-failure check solves the intact system for every removed line"),
+    Mutation("offset-curve-keeps-the-environment", "mooring", "cable_ocp/mooring/checks.py",
+             "    bodies = tuple(replace(b, force=(0.0, 0.0, 0.0), moment=(0.0, 0.0, 0.0))\n"
+             "                   for b in scene.bodies)\n",
+             "    bodies = tuple(scene.bodies)\n",
+             (MOORING_CHECKS + "the_slope_at_zero_offset_is_the_condensed_total_stiffness",),
+             "the restoring curve is about the loaded equilibrium, not the neutral position"),
 )
 
 
