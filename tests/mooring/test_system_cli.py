@@ -5,6 +5,7 @@ from __future__ import annotations
 
 import csv
 import json
+import math
 import subprocess
 import sys
 from pathlib import Path
@@ -38,6 +39,17 @@ def test_solve_writes_json_and_csv_that_agree(tmp_path):
         assert float(row["max_tension [N]"]) == pytest.approx(line["max_tension"], rel=1e-12)
         assert float(row["laid_length [m]"]) == pytest.approx(line["laid_length"], abs=1e-9)
     assert "L1" in r.stdout and "mooring stiffness of spar" in r.stdout
+    for line in doc["lines"]:
+        anchor = line["anchor_a"]
+        # the anchor's loads are the line's force on it: the horizontal part, and the
+        # vertical part as uplift (the line pulls up); a line lying on the seabed at the
+        # anchor (laid length > 0) lifts nothing off it
+        assert anchor["horizontal"] == pytest.approx(math.hypot(*line["force_a"][:2]))
+        assert anchor["vertical"] == line["force_a"][2]
+        if line["laid_length"] > 0:
+            assert abs(anchor["vertical"]) < 1e-6 * line["tension_a"]
+        else:
+            assert anchor["vertical"] > 0.01 * line["tension_a"]
 
 
 @pytest.mark.parametrize("edit, words", [

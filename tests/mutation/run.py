@@ -915,8 +915,9 @@ MUTATIONS: tuple[Mutation, ...] = (
              ("tests/test_face.py::test_plot_returns_the_figure_and_the_axes",),
              "SimulationResult.plot(ax=...) draws the length instead of the top tension"),
     Mutation("netcdf-written-in-place", "face", "cable_ocp/numerics/export.py",
-             "    return replace_atomically(path, lambda tmp: ds.to_netcdf(tmp, engine=engine))",
-             "    ds.to_netcdf(str(path), engine=engine)\n    return Path(path)",
+             "    return replace_atomically(path, lambda tmp: ds.to_netcdf(tmp, engine=engine, "
+             "**extra))",
+             "    ds.to_netcdf(str(path), engine=engine, **extra)\n    return Path(path)",
              ("tests/test_face.py::test_write_netcdf_round_trip_and_keeps_the_old_file",),
              "write_netcdf writes into the target: a failed write destroys the earlier file"),
     Mutation("heave-simulate-is-a-module-again", "face", "cable_ocp/heave/__init__.py",
