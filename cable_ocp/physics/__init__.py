@@ -10,6 +10,8 @@ physics < scene). The homes (docs/laws.md lists them with their equations and so
 * :mod:`~cable_ocp.physics.added_mass`: added mass of a line element and a body, weight in
   water and buoyancy;
 * :mod:`~cable_ocp.physics.seabed`: the seabed plane and the grounded line;
+* :mod:`~cable_ocp.physics.line_types`: standard mooring line types (chain, wire, fibre
+  ropes) from a nominal diameter, MoorPy's scaling laws;
 * :mod:`~cable_ocp.physics.smooth`: the smooth modulus and its bound;
 * :mod:`~cable_ocp.physics.hydrostatics`: a rigid body's weight, buoyancy, waterplane
   restoring and their exact derivatives.

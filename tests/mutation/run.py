@@ -67,6 +67,7 @@ SEABED = ("tests/test_seabed.py", EXTREME_REF, "tests/test_segments.py",
           "tests/test_statics_seeds.py")
 TOWED = ("tests/test_towed.py",)
 LAWS = ("tests/test_physics_laws.py",)
+LINE_TYPES = ("tests/test_line_types.py",)
 HEAVE = ("tests/heave/test_plant.py", "tests/heave/test_discrete.py", "tests/heave/test_sea.py",
          "tests/heave/test_stochastic.py", "tests/heave/test_lqr.py",
          "tests/heave/test_mpc.py", "tests/heave/test_simulate.py")
@@ -186,6 +187,15 @@ MUTATIONS: tuple[Mutation, ...] = (
              "return np.interp(z, knots, uy), np.interp(z, knots, ux)",
              LAWS + ("tests/test_statics_kinks.py",),
              "numpy current profile: the components swapped"),
+    Mutation("line-types-cdax-divided-by-pi", PHYS, "cable_ocp/physics/line_types.py",
+             'tangential_drag=c("Cd_ax")', 'tangential_drag=c("Cd_ax") / math.pi', LINE_TYPES,
+             "standard line types: MoorPy's CdAx (already on pi d) divided by pi again"),
+    Mutation("line-types-chain-mass-coefficient", PHYS, "cable_ocp/physics/line_types.py",
+             '"mass_d2": 20.0e3', '"mass_d2": 19.9e3', LINE_TYPES,
+             "standard line types: studless chain mass 19.9e3 d^2 instead of the yaml's 20.0e3"),
+    Mutation("line-types-fibre-dvol-without-4-over-pi", PHYS, "cable_ocp/physics/line_types.py",
+             '(c("mass_d2") / c("density")) * (4 / math.pi)', '(c("mass_d2") / c("density"))',
+             LINE_TYPES, "standard line types: fibre d_vol from the density without 4 / pi"),
     # -- statics/formulation.py ---------------------------------------------------------------
     Mutation("drag-stretch-factor-dropped", FORM, "cable_ocp/statics/formulation.py",
              "            f = f + stretch * fd", "            f = f + fd", STATICS,
