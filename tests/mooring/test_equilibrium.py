@@ -249,3 +249,22 @@ def test_bad_input_is_one_clear_error(edit, match):
     edit(d)
     with pytest.raises(CableOCPError, match=match):
         system_from_dict(d)
+
+
+def test_a_standard_line_type_fills_the_table_and_keys_override_it():
+    """``standard = "chain"`` at 90 mm gives the spar's chain table (written out from
+    MoorPy's getLineProps(90, 'chain')) key for key, the weight in water from the mass and
+    the volume-equivalent diameter in this water; a key given beside it wins."""
+    d = spar_dict()
+    d["line_types"]["std"] = {"standard": "chain", "nominal_diameter": 0.09,
+                              "mbl": 7.0e6}
+    sc = system_from_dict(d)
+    std, chain = sc.line_types["std"], sc.line_types["chain"]
+    for key in ("diameter", "mass_per_length", "weight_in_water", "normal_drag",
+                "tangential_drag"):
+        assert getattr(std, key) == pytest.approx(getattr(chain, key), rel=1e-12), key
+    # the file's EA is MoorPy's rounded to 9 digits
+    assert std.axial_stiffness == pytest.approx(chain.axial_stiffness, rel=1e-9)
+    assert std.mbl == 7.0e6
+    assert std.weight_in_water == pytest.approx(
+        (162.0 - 1025.0 * math.pi * 0.162**2 / 4) * 9.81, rel=1e-12)
