@@ -72,7 +72,7 @@ def cmd_solve_system(args: argparse.Namespace) -> int:
 
 
 def register(sub: argparse._SubParsersAction, parent: argparse.ArgumentParser) -> None:
-    """Add ``convert``.
+    """Add ``convert`` and ``mooring-checks``.
 
     Parameters
     ----------
@@ -92,6 +92,7 @@ def register(sub: argparse._SubParsersAction, parent: argparse.ArgumentParser) -
     c.add_argument("output", help="the file to write: .toml for ours, .dat or .txt for "
                                   "MoorDyn")
     c.set_defaults(func=cmd_convert)
+    register_checks(sub, parent)
 
 
 def cmd_convert(args: argparse.Namespace) -> int:
@@ -116,3 +117,114 @@ def cmd_convert(args: argparse.Namespace) -> int:
                             "(MoorDyn) file")
     out.confirm(args, args.output, "MoorDyn" if is_moordyn_path(args.output) else "TOML")
     return out.EXIT_OK
+
+
+def register_checks(sub: argparse._SubParsersAction, parent: argparse.ArgumentParser) -> None:
+    """Add ``mooring-checks``.
+
+    Parameters
+    ----------
+    sub : argparse._SubParsersAction
+        The ``cable-ocp`` parser's subparsers.
+    parent : argparse.ArgumentParser
+        The common options.
+    """
+    c = sub.add_parser(
+        "mooring-checks", parents=[parent],
+        help="design checks of a moored body: restoring curve, heading loads, line failure",
+        description="The checks the mooring standards ask for (docs/systems.md, 'Design "
+                    "checks'): the restoring curve along --heading over --offsets about the "
+                    "position without environmental load; the equilibrium under the body's "
+                    "steady load (its magnitude) from every --headings; each line removed in "
+                    "turn under the file's loads. Exit 0 when every case is solved, 1 when "
+                    "some is not (its status says why).")
+    c.add_argument("file", help="a system, e.g. problems/systems/spread_9line.toml")
+    c.add_argument("--body", default=None, help="the body (default: the only free one)")
+    c.add_argument("--heading", type=float, default=0.0, metavar="DEG",
+                   help="heading of the restoring curve, deg from +x towards +y (default 0)")
+    c.add_argument("--offsets", default="-20:40:13", metavar="START:STOP:N",
+                   help="offsets of the restoring curve, m (default -20:40:13)")
+    c.add_argument("--headings", default="0:330:12", metavar="START:STOP:N",
+                   help="headings of the steady load, deg (default 0:330:12)")
+    out.add_set_option(c)
+    out.add_json_option(c, "the three checks")
+    out.add_plot_option(c, "the restoring curve and the lines' tensions along it")
+    c.set_defaults(func=cmd_checks)
+
+
+def _span(text: str, option: str) -> list[float]:
+    import numpy as np
+
+    try:
+        a, b, n = text.split(":")
+        vals = np.linspace(float(a), float(b), int(n))
+    except ValueError:
+        raise CableOCPError(f"{option} {text!r}: expected START:STOP:N, e.g. -20:40:13") from None
+    if not 1 <= len(vals) <= 1000:
+        raise CableOCPError(f"{option} {text!r}: N must be in 1..1000")
+    return [float(v) for v in vals]
+
+
+def cmd_checks(args: argparse.Namespace) -> int:
+    """``cable-ocp mooring-checks FILE``."""
+    import numpy as np
+
+    from cable_ocp.mooring.checks import heading_loads, line_failure, offset_curve
+    from cable_ocp.numerics.text_table import table
+    from cable_ocp.scene.system import load_system
+
+    offsets = _span(args.offsets, "--offsets")
+    headings = _span(args.headings, "--headings")
+    out.check_outputs(args)
+    scene = load_system(args.file, out.overrides(args))
+    free = [b for b in scene.bodies if b.free]
+    body = args.body or (free[0].name if len(free) == 1 else None)
+    if body is None:
+        raise CableOCPError("--body: name the body (the system has "
+                            f"{len(free)} free bodies: {', '.join(b.name for b in free)})")
+    b = scene.body(body)
+    curve = offset_curve(scene, body, args.heading, offsets)
+    load = float(np.hypot(b.force[0], b.force[1]))
+    heads = heading_loads(scene, body, load, b.moment, headings) if load > 0 else None
+    fail = line_failure(scene, body)
+    kn = 1e-3
+    text = [f"restoring curve of {body} along {args.heading:g} deg (about its position "
+            "without environmental load):",
+            table(["offset", "restoring", "T_max", "SF", "status"],
+                  [[o, f * kn, t * kn, s, st] for o, f, t, s, st in zip(
+                      curve.offsets, curve.restoring_force, curve.max_tension,
+                      curve.min_safety_factor, curve.status, strict=True)],
+                  units=["[m]", "[kN]", "[kN]", "[-]", ""])]
+    if heads is not None:
+        text += ["", f"steady load of {load * kn:.6g} kN from each heading:",
+                 table(["heading", "offset", "T_max", "line", "SF", "status"],
+                       [[h, o, t * kn, ln, s, st] for h, o, t, ln, s, st in zip(
+                           heads.headings_deg, heads.offset, heads.max_tension,
+                           heads.max_tension_line, heads.min_safety_factor, heads.status,
+                           strict=True)], units=["[deg]", "[m]", "[kN]", "", "[-]", ""])]
+    text += ["", "line failure (each line removed in turn, the file's loads):",
+             table(["removed", "T_max", "line", "SF", "offset", "status"],
+                   [[r, t * kn, ln, s, o, st] for r, t, ln, s, o, st in zip(
+                       fail.removed, fail.max_tension, fail.max_tension_line,
+                       fail.min_safety_factor, fail.offset, fail.status, strict=True)],
+                   units=["", "[kN]", "", "[-]", "[m]", ""])]
+    out.say(args, "\n".join(text))
+    statuses = list(curve.status) + list(fail.status) + (list(heads.status) if heads else [])
+    ok = all(s == "solved" for s in statuses)
+    data = {"offset_curve": curve.to_dict(), "headings": heads.to_dict() if heads else None,
+            "line_failure": fail.to_dict()}
+    status = "solved" if ok else "partial"
+    out.emit_json(args, out.envelope(status, "every case solved" if ok else
+                                     "some cases were not solved", data, []))
+    if args.plot:
+        from cable_ocp.plots.common import save
+        from cable_ocp.plots.system import offset_curve_figure
+
+        def draw(path: str) -> None:
+            tens = {n: curve.line_tension[:, i] for i, n in enumerate(curve.line_names)}
+            save(offset_curve_figure(curve.offsets, curve.restoring_force, tens,
+                                     title=f"{body}: restoring curve along "
+                                           f"{args.heading:g} deg"), path)
+
+        out.emit_plot(args, draw)
+    return out.EXIT_OK if ok else out.EXIT_NOT_SUCCESS

@@ -122,6 +122,8 @@ def solve_system(scene: SystemScene, model: SystemModel | None = None,
     """
     t0 = time.perf_counter()
     model = model or SystemModel(scene)
+    if not model.lines:
+        raise CableOCPError("the system has no line left: nothing holds its points and bodies")
     state = start.copy() if start is not None else model.initial_state()
     free = model.free_dofs()
     ev = model.evaluate(state)

@@ -83,3 +83,22 @@ def test_batch_over_a_systems_key(tmp_path):
     # 1e-7: the batch case is warm-started from the other case, the reference is cold;
     # both stop at the system tolerance
     assert t[1] == pytest.approx(ref.line("L1")["max_tension"], rel=1e-7)
+
+
+def test_mooring_checks_command(tmp_path):
+    """The three checks in one command: the restoring curve through zero at the neutral
+    position and rising; the headings 120 deg apart equal (the spread's symmetry); the
+    failures of L2 and L3 mirror images; the JSON holds what the table shows."""
+    r = run("mooring-checks", str(SPAR), "--offsets=-10:10:3", "--headings", "0:240:3",
+            "--json", "c.json", cwd=tmp_path)
+    assert r.returncode == 0, r.stderr
+    doc = json.loads((tmp_path / "c.json").read_text())
+    f = doc["offset_curve"]["restoring_force"]
+    # 1e-6 of the 10 m value: the neutral position is an equilibrium to the tolerance
+    assert abs(f[1]) < 1e-6 * abs(f[2]) and f[0] < 0 < f[2]
+    t = doc["headings"]["max_tension"]
+    assert t[0] == pytest.approx(t[1], rel=1e-6) and t[1] == pytest.approx(t[2], rel=1e-6)
+    fail = doc["line_failure"]
+    assert fail["removed"] == ["L1", "L2", "L3"]
+    assert fail["max_tension"][1] == pytest.approx(fail["max_tension"][2], rel=1e-6)
+    assert "line failure" in r.stdout
