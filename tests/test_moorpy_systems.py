@@ -151,3 +151,19 @@ def test_stiffness_three_ways_agree_at_zero_rotation():
     # 1e-4 of the diagonal: central differences with steps 1e-3 m / 1e-5 rad (truncation
     # ~1e-7, catenary tolerance 1e-9 m over the step ~1e-6)
     assert k["analytic_vs_fd"]["all_over_diagonal"] < 1e-4
+
+
+def test_at_a_yawed_pose_moorpys_differences_are_in_euler_angles():
+    """At 5 deg of yaw MoorPy's own central differences (getCoupledStiffness) are the
+    fixed-axes stiffness times the Euler-rate matrix: taken back, they equal central
+    differences about the fixed axes and the analytic matrix, which in Euler angles they
+    do not (their roll column mixes in sin 5 deg of the pitch column)."""
+    ms = moorpy_system_from_dict(read_problem(SYSTEMS / "moorpy_3line_spread.toml"))
+    ms.solveEquilibrium(tol=TOL)
+    ms.bodyList[0].setPosition([0.0, 0.0, ms.bodyList[0].r6[2], 0.0, 0.0, math.radians(5.0)])
+    k = moorpy_stiffness(ms)
+    # 1e-4: the differencing (MoorPy's own steps and its loose 5e-5 m inner tolerance)
+    assert k["moorpy_fd_in_fixed_axes_vs_fd"]["all_over_diagonal"] < 1e-4
+    assert k["analytic_vs_fd"]["all_over_diagonal"] < 1e-4
+    # in Euler angles: K[:, roll] picks up sin(5 deg) K[:, pitch], ~9 % of the diagonal
+    assert k["moorpy_fd_vs_fd"]["all_over_diagonal"] > 0.05

@@ -41,7 +41,9 @@ condensed out; ``getSystemStiffnessA(DOFtype="free")`` on a free body would mix 
 hydrostatics and leave the free points uncondensed). MoorPy's central differences
 (``getCoupledStiffness``) perturb its Euler angles; ours (``fd_fixed_axes``) perturb small
 rotations about the fixed axes, which is the project's convention: the two agree at zero
-rotation only.
+rotation only; at a rotated pose MoorPy's is K_fixed with its rotation columns times the
+Euler-rate matrix J (:func:`euler_rate_matrix`), and ``fd_moorpy_in_fixed_axes`` undoes
+that. The analytic matrix is in rotations about the fixed axes.
 
 MoorPy is imported inside the functions: it is a benchmark peer (``pip install moorpy``),
 never a dependency of the library or of the default test run.
@@ -62,7 +64,8 @@ from cable_ocp.errors import CableOCPError
 from cable_ocp.physics.added_mass import weight_in_water
 
 __all__ = ["EQUILIBRIUM_TOLERANCE", "FD_ANGLE_STEP", "FD_STEP", "MAX_ITERATIONS",
-           "euler_from_matrix", "moorpy_reference", "moorpy_reference_of_system",
+           "euler_from_matrix", "euler_rate_matrix", "moorpy_reference",
+           "moorpy_reference_of_system",
            "moorpy_stiffness", "moorpy_system_from_dict", "rotation_matrix"]
 
 #: MoorPy ``solveEquilibrium(tol=...)``: absolute tolerance on the positions, m (its
@@ -101,6 +104,22 @@ def rotation_matrix(roll: float, pitch: float, yaw: float) -> np.ndarray:
     ry = np.array([[cp, 0.0, sp], [0.0, 1.0, 0.0], [-sp, 0.0, cp]])
     rx = np.array([[1.0, 0.0, 0.0], [0.0, cr, -sr], [0.0, sr, cr]])
     return rz @ ry @ rx
+
+
+def euler_rate_matrix(roll: float, pitch: float, yaw: float) -> np.ndarray:
+    """J with omega = J d(roll, pitch, yaw)/dt for R = Rz(yaw) Ry(pitch) Rx(roll): its
+    columns are the axes the Euler rates turn about, Rz Ry e_x, Rz e_y, e_z (fixed axes).
+    A stiffness in Euler angles (MoorPy's ``getCoupledStiffness``) is K_fixed with its
+    rotation columns times J.
+
+    Parameters
+    ----------
+    roll, pitch, yaw : float
+        The angles, rad.
+    """
+    rz = rotation_matrix(0.0, 0.0, yaw)
+    return np.column_stack([rz @ rotation_matrix(0.0, pitch, 0.0) @ np.array([1.0, 0, 0]),
+                            rz @ np.array([0.0, 1.0, 0.0]), np.array([0.0, 0.0, 1.0])])
 
 
 def euler_from_matrix(r: np.ndarray) -> np.ndarray:
@@ -421,9 +440,12 @@ def moorpy_stiffness(ms: Any, *, dx: float = FD_STEP, dth: float = FD_ANGLE_STEP
         (``getCoupledStiffness(dx, dth, lines_only=True)``: MoorPy's central differences,
         in its Euler angles), ``fd_fixed_axes`` (central differences of full point
         equilibria, small rotations about the fixed axes): 6n x 6n lists, N/m, N, N m/rad,
-        sign K = -d[F; M]/d[x; theta]; ``analytic_vs_fd`` and ``moorpy_fd_vs_fd``: the
-        largest |difference| over the largest |entry| of ``fd_fixed_axes`` per 3x3 block
-        (``xx``, ``x_theta``, ``theta_x``, ``theta_theta``) and overall; ``time_s``: median
+        sign K = -d[F; M]/d[x; theta]; ``fd_moorpy_in_fixed_axes``: ``fd_moorpy`` with its
+        rotation columns times J^-1 (:func:`euler_rate_matrix`); ``analytic_vs_fd``,
+        ``moorpy_fd_vs_fd``, ``analytic_vs_moorpy_fd``, ``moorpy_fd_in_fixed_axes_vs_fd``:
+        the largest |difference| over the largest |entry| of the second matrix per 3x3
+        block (``xx``, ``x_theta``, ``theta_x``, ``theta_theta``), and
+        ``all_over_diagonal``: max |K_ij - R_ij| / sqrt(|R_ii R_jj|); ``time_s``: median
         wall times, s.
     """
     saved = _hold_bodies(ms)
@@ -444,10 +466,16 @@ def moorpy_stiffness(ms: Any, *, dx: float = FD_STEP, dth: float = FD_ANGLE_STEP
     finally:
         _release_bodies(ms, saved)
     ka, km = np.asarray(ka, dtype=float), np.asarray(km, dtype=float)
+    km_fixed = km.copy()   # MoorPy's differences taken back to rotations about fixed axes
+    for ib, r6 in enumerate(base):
+        cols = slice(6 * ib + 3, 6 * ib + 6)
+        km_fixed[:, cols] = km[:, cols] @ np.linalg.inv(euler_rate_matrix(*r6[3:]))
     return {"sign": "K = -d[F; M]/d[x; theta], lines only, positive in surge",
             "analytic": ka.tolist(), "fd_moorpy": km.tolist(), "fd_fixed_axes": kf.tolist(),
             "analytic_vs_fd": _block_errors(ka, kf), "moorpy_fd_vs_fd": _block_errors(km, kf),
             "analytic_vs_moorpy_fd": _block_errors(ka, km),
+            "fd_moorpy_in_fixed_axes": km_fixed.tolist(),
+            "moorpy_fd_in_fixed_axes_vs_fd": _block_errors(km_fixed, kf),
             "time_s": {"analytic": t_a, "fd_moorpy": t_m, "fd_fixed_axes": t_f}}
 
 
@@ -475,7 +503,8 @@ def _line_result(ms: Any, numbers: list[int], depth: float) -> dict[str, Any]:
            "force_on_b_N": np.asarray(last.fB, dtype=float).tolist(),
            "laid_length_m": float(sum(ms.lineList[n - 1].LBot for n in numbers))}
     for label, pt, f in (("a", ends[0], first.fA), ("b", ends[1], last.fB)):
-        if pt is not None and pt.type == 1 and not _on_body(ms, pt.number):
+        if (pt is not None and pt.type == 1 and not _on_body(ms, pt.number)
+                and "anchor_end" not in out):
             out["anchor_end"] = label
             out["anchor_horizontal_N"] = float(np.hypot(f[0], f[1]))
             out["anchor_vertical_N"] = float(f[2])
