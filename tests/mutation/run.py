@@ -116,6 +116,7 @@ VL_F = "cable_ocp/dynamics/vertical_line.py"  # the axial models' coefficients
 _BT = "tests/dynamics/test_bench_cli.py::test_"
 BENCH_MD = _BT + "moordyn_is_driven_consistently_and_compared_on_cable_ocps_force"
 BENCH_REF = _BT + "reference_extrapolates_and_every_row_is_compared_with_it"
+MP_F, MP_T = "cable_ocp/bench/moorpy_systems.py", "tests/test_moorpy_systems.py::test_"
 
 SYS_EQ = "tests/mooring/test_equilibrium.py"
 SYS_CLI = "tests/mooring/test_system_cli.py"
@@ -536,6 +537,15 @@ MUTATIONS: tuple[Mutation, ...] = (
              "top_tension_amplitude_N=amp, error=_error(t, y, Reference(t, y, amp, {}), "
              "duration),", (BENCH_REF,),
              "bench dynamics: a cable_ocp row compared with itself (no spatial error counted)"),
+    Mutation("bench-moorpy-z-not-shifted", "bench", MP_F,
+             "pt = ms.addPoint(1, pos - shift)", "pt = ms.addPoint(1, pos)",
+             (MP_T + "single_suspended_line_matches_the_elastic_catenary_and_z_is_shifted",),
+             "bench moorpy: anchors given to MoorPy in our frame (z from the seabed), not "
+             "shifted to its z = 0 at the surface"),
+    Mutation("bench-moorpy-axial-drag-without-pi", "bench", MP_F,
+             '"CdAx": math.pi * _num(', '"CdAx": _num(',
+             (MP_T + "line_type_is_moorpys_own_table",),
+             "bench moorpy: MoorPy's CdAx (on d) taken as our C_dt (on pi d)"),
     Mutation("axial-first-sample-with-the-new-top-velocity", DYN, AX_F,
              "first = [np.asarray(v).reshape(-1, 1) for v in post[0](ts[0], xs[:, 0])]",
              "first = [np.asarray(v).reshape(-1, 1) for v in post[1](ts[0], xs[:, 0])]",
