@@ -17,6 +17,8 @@ dynamics the dynamic scene (:class:`~cable_ocp.scene.dynamics.DynamicScene`) and
 dynamic_parts  the parts of a dynamic scene (a segment's dynamics, the top motion, ...)
 heave    the heave-compensation scene (:class:`HeaveScene`)
 loader   :func:`load`: any problem file -> its scene (statics, dynamics or heave)
+moordyn  MoorDyn v2 input files <-> the system problem dict (read_moordyn,
+         write_moordyn) and that dict as TOML text (system_dict_to_toml)
 """
 
 from cable_ocp.scene.fields import FREE
