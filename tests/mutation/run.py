@@ -72,6 +72,7 @@ HEAVE = ("tests/heave/test_plant.py", "tests/heave/test_discrete.py", "tests/hea
          "tests/heave/test_mpc.py", "tests/heave/test_simulate.py")
 SLACK_ST = "tests/heave/test_slack_status.py::test_"
 TEXT = "tests/test_text_face.py::test_"
+MOORDYN = "tests/test_moordyn_files.py"
 HEAVE_SIM = ("tests/heave/test_simulate.py", "tests/heave/test_examples.py",
              "tests/heave/test_closed_loop.py")
 # dynamics: whole files where every test is quick, else the non-slow test ids
@@ -910,6 +911,19 @@ MUTATIONS: tuple[Mutation, ...] = (
              "import numpy as np  # noqa\n",
              ("tests/test_namespaces.py",),
              "an import leaves numpy public in cable_ocp.batch"),
+    # -- MoorDyn files (scene/moordyn.py) ---------------------------------------------------
+    Mutation("moordyn-z-not-shifted", "scene", "cable_ocp/scene/moordyn.py",
+             'position=[xyz[0], xyz[1], xyz[2] + depth], mass=mass,',
+             'position=[xyz[0], xyz[1], xyz[2]], mass=mass,', (MOORDYN,),
+             "a MoorDyn free point keeps MoorDyn's z (surface at 0) instead of z + depth"),
+    Mutation("moordyn-cdax-divided-by-pi", "scene", "cable_ocp/scene/moordyn.py",
+             '"tangential_drag": _num(t[8], f"line type {name!r} CdAx", row, fname),',
+             '"tangential_drag": _num(t[8], f"line type {name!r} CdAx", row, fname) / math.pi,',
+             (MOORDYN,),
+             "CdAx divided by pi: MoorDyn's CdAx is already on pi d (Line.cpp Dq), as ours"),
+    Mutation("moordyn-written-z-not-shifted-back", "scene", "cable_ocp/scene/moordyn.py",
+             '            word, z = "Free", z - depth', '            word, z = "Free", z',
+             (MOORDYN,), "write_moordyn writes a free point's z without subtracting the depth"),
 )
 
 
