@@ -123,6 +123,7 @@ def test_multi_part_line_becomes_moordyn_lines_joined_by_free_points(tmp_path: P
     assert [ln["name"] for ln in back["lines"][2:]] == ["leg3.part1", "leg3.part2"]
     assert [(ln["type"], ln["length"]) for ln in back["lines"][2:]] == [
         ("chain", 500.0), ("wire", 300.0)]
+    assert tomllib.loads(system_dict_to_toml(back)) == back    # quoted keys "leg3.part1"
     assert back["lines"][2]["point_a"] == "point3"
     assert back["lines"][3]["point_b"] == "point6"
     # the joint starts on the chord, 5/8 of the way from the anchor to the fairlead
@@ -148,6 +149,21 @@ def test_custom_names_survive_a_write(tmp_path: Path) -> None:
     out = tmp_path / "out.dat"
     write_moordyn(data, out)
     assert read_moordyn(out) == data
+    assert tomllib.loads(system_dict_to_toml(data)) == data
+
+
+@pytest.mark.parametrize("key,value,word", [
+    ("waterplane_area", 80.0, "waterplane_area"),
+    ("center_of_buoyancy", [0.0, 0.0, -6.0], "centre of gravity"),
+    ("held", ["z"], "held")])
+def test_write_refuses_what_moordyn_cannot_carry(key: str, value: object, word: str,
+                                                 tmp_path: Path) -> None:
+    data = read_moordyn(SPREAD)
+    data["bodies"][0][key] = value
+    out = tmp_path / "out.dat"
+    with pytest.raises(CableOCPError, match=word):
+        write_moordyn(data, out)
+    assert not out.exists()
 
 
 def _bad(tmp_path: Path, old: str, new: str) -> str:

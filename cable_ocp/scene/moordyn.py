@@ -781,7 +781,12 @@ def write_moordyn(data: dict[str, Any], path: str | Path) -> None:
         centre of gravity, a body holding a subset of its degrees of freedom other than
         its translations.
     """
-    write_text_atomically(path, _moordyn_text(data))
+    try:
+        text = _moordyn_text(data)
+    except KeyError as exc:
+        raise CableOCPError(f"write_moordyn: a table lacks the key {exc.args[0]!r} (the "
+                            "system schema, cable_ocp/scene/system.py)") from None
+    write_text_atomically(path, text)
 
 
 # -- TOML ---------------------------------------------------------------------------------
