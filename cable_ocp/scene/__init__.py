@@ -18,6 +18,8 @@ dynamic_parts  the parts of a dynamic scene (a segment's dynamics, the top motio
 heave    the heave-compensation scene (:class:`HeaveScene`)
 system   mooring systems: line types, points, bodies, lines (:class:`SystemScene`)
 loader   :func:`load`: any problem file -> its scene (statics, dynamics or heave)
+moordyn  MoorDyn v2 input files <-> the system problem dict (read_moordyn,
+         write_moordyn) and that dict as TOML text (system_dict_to_toml)
 """
 
 from cable_ocp.scene.fields import FREE

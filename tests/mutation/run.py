@@ -74,6 +74,7 @@ HEAVE = ("tests/heave/test_plant.py", "tests/heave/test_discrete.py", "tests/hea
 SLACK_ST = "tests/heave/test_slack_status.py::test_"
 TEXT = "tests/test_text_face.py::test_"
 MOORING_CHECKS = "tests/mooring/test_checks.py::test_"
+MOORDYN = "tests/test_moordyn_files.py"
 HEAVE_SIM = ("tests/heave/test_simulate.py", "tests/heave/test_examples.py",
              "tests/heave/test_closed_loop.py")
 # dynamics: whole files where every test is quick, else the non-slow test ids
@@ -996,6 +997,19 @@ MUTATIONS: tuple[Mutation, ...] = (
              "    bodies = tuple(scene.bodies)\n",
              (MOORING_CHECKS + "the_slope_at_zero_offset_is_the_condensed_total_stiffness",),
              "the restoring curve is about the loaded equilibrium, not the neutral position"),
+    # -- MoorDyn files (scene/moordyn.py) ---------------------------------------------------
+    Mutation("moordyn-z-not-shifted", "scene", "cable_ocp/scene/moordyn.py",
+             'position=[xyz[0], xyz[1], xyz[2] + depth], mass=mass,',
+             'position=[xyz[0], xyz[1], xyz[2]], mass=mass,', (MOORDYN,),
+             "a MoorDyn free point keeps MoorDyn's z (surface at 0) instead of z + depth"),
+    Mutation("moordyn-cdax-divided-by-pi", "scene", "cable_ocp/scene/moordyn.py",
+             '"tangential_drag": _num(t[8], f"line type {name!r} CdAx", row, fname),',
+             '"tangential_drag": _num(t[8], f"line type {name!r} CdAx", row, fname) / math.pi,',
+             (MOORDYN,),
+             "CdAx divided by pi: MoorDyn's CdAx is already on pi d (Line.cpp Dq), as ours"),
+    Mutation("moordyn-written-z-not-shifted-back", "scene", "cable_ocp/scene/moordyn.py",
+             '            word, z = "Free", z - depth', '            word, z = "Free", z',
+             (MOORDYN,), "write_moordyn writes a free point's z without subtracting the depth"),
 )
 
 
