@@ -70,7 +70,9 @@ def compare_with_moorpy(path: str | Path, repeats: int = 5) -> dict[str, Any]:
     out: dict[str, Any] = {"file": str(path), "status": str(res.status)}
     if body:
         ours = np.r_[res.body()["position"], res.body()["rotation_deg"]]
-        theirs = np.asarray(ref["body"]["pose"], float) if "body" in ref else None
+        mp_body = (ref.get("bodies") or {}).get(body) or {}
+        theirs = (np.r_[mp_body["position_m"], mp_body["rotation_deg"]]
+                  if "position_m" in mp_body else None)
         out["pose"] = {"ours": ours.tolist(), "moorpy": None if theirs is None else
                        theirs.tolist(),
                        "max_difference": None if theirs is None else
