@@ -6,6 +6,8 @@ model        the state, the lines' solver sessions, the net loads and their exac
 equilibrium  Newton's method on the free points and bodies
 stiffness    a body's 6x6 stiffness (the Schur complement of the free points)
 result       the system result (poses, line table, points, stiffness)
+design       design optimisation (lengths, clumps, anchors) with exact gradients through
+             the equilibrium
 """
 
 from cable_ocp.mooring.equilibrium import solve_system
