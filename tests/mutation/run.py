@@ -921,7 +921,8 @@ MUTATIONS: tuple[Mutation, ...] = (
              ("tests/mooring/test_design.py",),
              "a length variable's gradient forgets the lines' own force change with length "
              "(only the mass/cost gradient is left)"),
-    Mutation("length-sensitivity-no-grounded-part", "statics", "cable_ocp/statics/stiffness.py",
+    Mutation("length-sensitivity-no-grounded-part", "statics/stiffness",
+             "cable_ocp/statics/stiffness.py",
              "dg = dw[self.coll.i_g].copy() if self.grounded else np.zeros(7)",
              "dg = np.zeros(7)",
              ("tests/mooring/test_design.py",),
