@@ -209,6 +209,21 @@ class MooringDesign:
                 elif v.kind in ("radius", "heading") and self._anchor(line) is None:
                     raise CableOCPError(f"design variable {v.name!r}: line {line!r} has no "
                                         "fixed point (an anchor) to move")
+        claims: list[tuple[str, str, str]] = []  # (kind, line or point, part or "")
+        for v in self.variables:
+            for t in v.targets:
+                line, _, part = t.partition("/")
+                if v.kind == "length" and part and len(_parts(self._lines[line])) == 1:
+                    part = ""  # one part: the line's length (exact)
+                where = self._anchor(line) if v.kind in ("radius", "heading") else line
+                mine = (v.kind, str(where), part)
+                if any(c[:2] == mine[:2] and (not c[2] or not part or c[2] == part)
+                       for c in claims):
+                    raise CableOCPError(
+                        f"design variable {v.name!r}: {t!r} is already set by another "
+                        "variable (a line's length and one of its parts' lengths, one anchor "
+                        "moved twice, or one target twice)")
+                claims.append(mine)
         self.model: SystemModel | None = None
         self.evaluations = 0
 
@@ -424,7 +439,7 @@ class MooringDesign:
                 for tname in v.targets:
                     if v.kind != "length" or tname.split("/")[0] != ln.name:
                         continue
-                    if "/" in tname:
+                    if "/" in tname and len(ln.parts) > 1:
                         dfl, dgl = self._part_difference(scene, model, ev, i,
                                                          int(tname.split("/")[1]))
                         f_p[i, :, j] += dfl
