@@ -105,7 +105,8 @@ class DesignPoint:
     x : ndarray
         The variables' values (m, kg, rad).
     offset : float
-        The body's horizontal offset from its file position under the design load, m.
+        The body's horizontal offset from its file position under the design load, m
+        (its gradient does not exist at 0: a design load that leaves the body in place).
     tension : ndarray
         (n_lines, 2) end tensions at point_a and point_b, N.
     safety_factor : ndarray
