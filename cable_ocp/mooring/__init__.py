@@ -7,6 +7,8 @@ equilibrium  Newton's method on the free points and bodies
 stiffness    a body's 6x6 stiffness (the Schur complement of the free points)
 result       the system result (poses, line table, points, stiffness)
 checks       the design checks: restoring curve, loads per heading, one line failed
+design       design optimisation (lengths, clumps, anchors) with exact gradients through
+             the equilibrium
 """
 
 from cable_ocp.mooring.equilibrium import solve_system

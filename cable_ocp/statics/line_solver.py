@@ -673,6 +673,23 @@ class StaticsSolver:
                                            self._gj)
         return self._stiffness.end_jacobian(w, p)
 
+    def length_sensitivity(self, w: np.ndarray, p: np.ndarray) -> dict[str, Any]:
+        """The end forces' and the grounded length's sensitivities to the unstretched
+        length and the end positions, both ends fixed
+        (:meth:`cable_ocp.statics.stiffness.EndStiffness.length_sensitivity`).
+
+        Parameters
+        ----------
+        w : ndarray
+            Converged scaled unknowns of this solver.
+        p : ndarray
+            Parameter vector of the solve (:meth:`Formulation.params`).
+        """
+        if self._stiffness is None:
+            self._stiffness = EndStiffness(self.scene, self.form, self.coll, self.grounded,
+                                           self._gj)
+        return self._stiffness.length_sensitivity(w, p)
+
     def on_intervals(self, intervals: int) -> StaticsSolver:
         """The solver of this scene on ``intervals`` intervals, with this one's degree,
         scheme and contact (built on first use, kept in the shared cache).
@@ -701,6 +718,8 @@ class StaticsSolver:
             sol._stiffness_source = functools.partial(self.end_stiffness, w.copy(), p.copy())
             if all(self.scene.end_a.fixed_mask) and all(self.scene.end_b.fixed_mask):
                 sol._jacobian_source = functools.partial(self.end_jacobian, w.copy(), p.copy())
+                sol._length_source = functools.partial(self.length_sensitivity, w.copy(),
+                                                       p.copy())
             # the unknowns themselves and their mesh, for a warm start by this solver
             sol._unknowns = (self._token, w.copy(), self.coll.mesh)
         return sol

@@ -75,6 +75,9 @@ class StaticsSolution:
     #: computes the 6x6 end Jacobian on demand (both ends fixed; see :meth:`end_jacobian`)
     _jacobian_source: Callable[[], np.ndarray] | None = field(default=None, repr=False,
                                                               compare=False)
+    #: computes the length sensitivities on demand (see :meth:`length_sensitivity`)
+    _length_source: Callable[[], dict[str, Any]] | None = field(default=None, repr=False,
+                                                                compare=False)
     #: (solver token, scaled unknowns): lets the solver that produced this solution
     #: warm-start from its own unknowns without interpolating the node arrays
     _unknowns: tuple[object, np.ndarray] | None = field(default=None, repr=False,
@@ -227,6 +230,30 @@ class StaticsSolution:
             raise CableOCPError("no end Jacobian: it comes from the sensitivities of the "
                                 "collocation and multiple-shooting solvers")
         return self._jacobian_source()
+
+    def length_sensitivity(self) -> dict[str, Any]:
+        """Sensitivities of a line with both ends fixed to its unstretched length L and
+        its end positions x = (x_a, x_b), from one factorisation (exact for the
+        discretised equations, :meth:`StaticsSolver.length_sensitivity`): ``force`` dF/dL
+        (6,), N/m, F = (force_a, force_b); ``end_jacobian`` dF/dx (6x6), N/m
+        (:meth:`end_jacobian`); ``grounded_length`` dg/dL (-) and ``grounded_length_ends``
+        dg/dx (6,) (-), g the grounded length at end_a. The z_a entries are NaN when the
+        line is grounded at end_a. On a multi-segment line L scales every segment (their
+        shares held).
+
+        Raises
+        ------
+        CableOCPError
+            When the solve did not converge, the method has no sensitivities, an end is
+            not fixed or the length is an unknown.
+        """
+        if not self.converged:
+            raise CableOCPError(f"no length sensitivity: the solve did not converge (status "
+                                f"{self.status})")
+        if self._length_source is None:
+            raise CableOCPError("no length sensitivity: it comes from the sensitivities of "
+                                "the collocation and multiple-shooting solvers")
+        return self._length_source()
 
     def stiffness_note(self, end: str) -> str:
         """What :meth:`stiffness` holds fixed at ``end``, or why it is None."""

@@ -4,6 +4,8 @@ The implicit-function theorem on the collocated equations G(w, p) = 0 of one
 :class:`cable_ocp.statics.line_solver.StaticsSolver` gives dw/dp = -G_w^-1 G_p, with the
 end positions among the parameters p; the end forces F(w) then give dF/dx = F_w dw/dp.
 Exact for the discretised equations (no finite differences), one sparse LU of G_w.
+The fixed unstretched length is a parameter too (p[P_LENGTH] = L / ell): the same
+factorisation gives the sensitivities to it (:meth:`EndStiffness.length_sensitivity`).
 """
 
 from __future__ import annotations
@@ -16,7 +18,7 @@ import numpy as np
 from cable_ocp.errors import CableOCPError
 from cable_ocp.physics import seabed
 from cable_ocp.scene import Scene
-from cable_ocp.statics.formulation import P_END_A, P_END_B, Formulation
+from cable_ocp.statics.formulation import P_END_A, P_END_B, P_LENGTH, Formulation
 
 __all__ = ["EndStiffness"]
 
@@ -67,11 +69,13 @@ class EndStiffness:
         return ca.vertcat(fa, -sc.force * tau_n)
 
     def functions(self) -> ca.Function:
-        """``(w, p) -> (G_e, F_w)``: the Jacobians of the collocated residual in the end
-        values p[P_END_A], p[P_END_B] (n_w x 6) and of the end forces (N) in the unknowns
-        (6 x n_w), on the MX graph of the residual (the Jacobian in the unknowns, G_w,
-        comes from the Newton functions)."""
+        """``(w, p) -> (G_e, F_w, G_L)``: the Jacobians of the collocated residual in the end
+        values p[P_END_A], p[P_END_B] (n_w x 6), of the end forces (N) in the unknowns
+        (6 x n_w) and of the residual in the scaled length p[P_LENGTH] (n_w x 1), on the MX
+        graph of the residual (the Jacobian in the unknowns, G_w, comes from the Newton
+        functions)."""
         if self._sensitivity is None:
+            assert P_LENGTH == 0 and P_END_A.start == 1  # p_head below is the length alone
             n_p = self.coll.n_p
             w = ca.MX.sym("w", self.coll.n_w)
             head = ca.MX.sym("p_head", P_END_A.start)
@@ -79,26 +83,28 @@ class EndStiffness:
             tail = ca.MX.sym("p_tail", n_p - P_END_B.stop)
             g = self.coll.residual(w, ca.vertcat(head, ends, tail))
             cheap = ca.Function("statics_sensitivity_parts", [w, head, ends, tail],
-                                [ca.jacobian(g, ends), ca.jacobian(self.end_forces(w), w)])
+                                [ca.jacobian(g, ends), ca.jacobian(self.end_forces(w), w),
+                                 ca.jacobian(g, head)])
             wp, pp = ca.MX.sym("w", self.coll.n_w), ca.MX.sym("p", n_p)
             args = (wp, pp[: P_END_A.start], pp[P_END_A.start: P_END_B.stop],
                     pp[P_END_B.stop:])
             self._sensitivity = ca.Function("statics_sensitivity", [wp, pp], cheap(*args),
-                                            ["w", "p"], ["G_e", "F_w"])
+                                            ["w", "p"], ["G_e", "F_w", "G_L"])
         return self._sensitivity
 
-    def _end_sensitivity(self, w: np.ndarray, p: np.ndarray, cols: list[int]
-                     ) -> tuple[np.ndarray | None, str]:
-        """dF/dx (N/m, (6, len(cols))) of both end forces in the end coordinates ``cols``
-        (0-2 end_a, 3-5 end_b), the unstretched length held; or (None, why)."""
+    def _sensitivities(self, w: np.ndarray, p: np.ndarray, cols: list[int]
+                       ) -> tuple[np.ndarray | None, Any, str]:
+        """(dw/dp, F_w, why): the unknowns' sensitivities (n_w, len(cols)) to the
+        parameter columns ``cols`` (0 the scaled length p[P_LENGTH], 1-3 end_a, 4-6 end_b,
+        scaled), the unstretched length held; dw None when they do not exist."""
         from scipy.sparse import csr_matrix
         from scipy.sparse.linalg import splu
 
-        ell = self.form.scales.length
-        g_p, f_w = self.functions()(w, p)
+        g_e, f_w, g_l = self.functions()(w, p)
         g_w = self.gj(w, p)[1]
         h_w = g_w.sparse().tocsr()
-        h_p = np.asarray(g_p.sparse().todense())[:, cols]
+        h_p = np.hstack([np.asarray(g_l.sparse().todense()),
+                         np.asarray(g_e.sparse().todense())])[:, cols]
         if self.coll.free_length:
             # hold the unstretched length (the line as installed), not the tension: the
             # tension condition, the last residual (Collocation._boundary), becomes
@@ -114,11 +120,76 @@ class EndStiffness:
         try:
             dw = splu(h_w.tocsc()).solve(-h_p)  # one factorisation, one column per coordinate
         except RuntimeError as exc:  # "Factor is exactly singular"
-            return None, f"the Jacobian is singular ({exc})"
-        dfdx = np.asarray(f_w.sparse() @ dw) / ell  # (6, len(cols)), N/m
+            return None, f_w, f"the Jacobian is singular ({exc})"
+        return dw, f_w, ""
+
+    def _end_sensitivity(self, w: np.ndarray, p: np.ndarray, cols: list[int]
+                         ) -> tuple[np.ndarray | None, str]:
+        """dF/dx (N/m, (6, len(cols))) of both end forces in the end coordinates ``cols``
+        (0-2 end_a, 3-5 end_b), the unstretched length held; or (None, why)."""
+        dw, f_w, why = self._sensitivities(w, p, [c + 1 for c in cols])
+        if dw is None:
+            return None, why
+        dfdx = np.asarray(f_w.sparse() @ dw) / self.form.scales.length  # N/m
         if not np.all(np.isfinite(dfdx)):
             return None, "the sensitivity is not finite (ill-conditioned Jacobian)"
         return dfdx, ""
+
+    def length_sensitivity(self, w: np.ndarray, p: np.ndarray) -> dict[str, Any]:
+        """Sensitivities to the unstretched length L and to the end positions of a line
+        whose two ends are fixed, from one factorisation (the implicit-function theorem,
+        dw/dp = -G_w^-1 G_p with p = (L / ell, x_a / ell, x_b / ell)); exact for the
+        discretised equations.
+
+        On a multi-segment line L is the total length with every segment's share L_k / L
+        held (the shares are baked into the built functions, ``Formulation.fractions``):
+        the derivative in one segment's length alone is not a parameter of the
+        formulation (a finite difference of two solves gives it).
+
+        Parameters
+        ----------
+        w : ndarray
+            Converged scaled unknowns of the solver.
+        p : ndarray
+            Parameter vector of the solve (:meth:`Formulation.params`).
+
+        Returns
+        -------
+        dict
+            ``force``: dF/dL (6,), N/m, F = (F_a, F_b) the forces on the attachments;
+            ``end_jacobian``: dF/dx (6x6), N/m (:meth:`end_jacobian`); ``grounded_length``:
+            dg/dL (-), g the grounded length at end_a (0 without contact);
+            ``grounded_length_ends``: dg/dx (6,) (-). With a grounded part, the z_a entries
+            are NaN (one-sided contact).
+
+        Raises
+        ------
+        CableOCPError
+            When an end is not fixed, the length is an unknown (a prescribed tension), or
+            the sensitivity does not exist.
+        """
+        scene = self.scene
+        if not (all(scene.end_a.fixed_mask) and all(scene.end_b.fixed_mask)):
+            raise CableOCPError("length_sensitivity needs both end positions fixed")
+        if self.coll.free_length:
+            raise CableOCPError("length_sensitivity: the length is an unknown of this scene "
+                                "(a prescribed tension), not a parameter; give cable.length")
+        dw, f_w, why = self._sensitivities(w, p, list(range(7)))
+        if dw is None:
+            raise CableOCPError(f"the line's length sensitivity was not computed: {why}")
+        ell = self.form.scales.length
+        df = np.asarray(f_w.sparse() @ dw) / ell  # (6, 7): d/dL, then d/dx, N/m
+        # w[i_g] = g / ell and p = (L, x) / ell: d w[i_g] / dp is dg/d(L, x) as it stands
+        dg = dw[self.coll.i_g].copy() if self.grounded else np.zeros(7)
+        if not (np.all(np.isfinite(df)) and np.all(np.isfinite(dg))):
+            raise CableOCPError("the line's length sensitivity is not finite "
+                                "(ill-conditioned Jacobian)")
+        jac, dg_x = df[:, 1:].copy(), dg[1:].copy()
+        if self.grounded:
+            jac[:, 2] = np.nan
+            dg_x[2] = np.nan
+        return {"force": df[:, 0].copy(), "end_jacobian": jac,
+                "grounded_length": float(dg[0]), "grounded_length_ends": dg_x}
 
     def end_jacobian(self, w: np.ndarray, p: np.ndarray) -> np.ndarray:
         """The 6x6 dF/dx of a line whose two ends are fixed: F = (F_a, F_b), the forces

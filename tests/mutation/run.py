@@ -1010,6 +1010,23 @@ MUTATIONS: tuple[Mutation, ...] = (
     Mutation("moordyn-written-z-not-shifted-back", "scene", "cable_ocp/scene/moordyn.py",
              '            word, z = "Free", z - depth', '            word, z = "Free", z',
              (MOORDYN,), "write_moordyn writes a free point's z without subtracting the depth"),
+    Mutation("design-dq-sign", "mooring", "cable_ocp/mooring/design.py",
+             "dq[free] = -np.linalg.solve(", "dq[free] = np.linalg.solve(",
+             ("tests/mooring/test_design.py",),
+             "the equilibrium's response to a design variable, dq/dp = -R_q^-1 R_p, loses "
+             "its sign"),
+    Mutation("design-length-sensitivity-dropped", "mooring", "cable_ocp/mooring/design.py",
+             "                        f_p[i, :, j] += fl\n",
+             "                        f_p[i, :, j] += 0.0 * fl\n",
+             ("tests/mooring/test_design.py",),
+             "a length variable's gradient forgets the lines' own force change with length "
+             "(only the mass/cost gradient is left)"),
+    Mutation("length-sensitivity-no-grounded-part", "statics/stiffness",
+             "cable_ocp/statics/stiffness.py",
+             "dg = dw[self.coll.i_g].copy() if self.grounded else np.zeros(7)",
+             "dg = np.zeros(7)",
+             ("tests/mooring/test_design.py",),
+             "the laid length's sensitivity to length and ends is taken as zero"),
 )
 
 
