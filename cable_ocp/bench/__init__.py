@@ -9,4 +9,5 @@ statics_sweep  De Zoysa's psi0 sweep, collocation against solve_bvp
 batch          load-case batches on a pool and on dask
 dynamics       the 3D lumped-mass dynamics against MoorDyn
 heave_mpc      the MPC's solve time per step
+moorpy_current a current on one line: ours against MoorPy's smeared load and a closed form
 """
