@@ -11,8 +11,9 @@ What MoorPy 1.3.0 does (``moorpy/line.py``, ``Line.staticSolve``):
   ``w_vec = fCurrent / L + (0, 0, -w)``, and solves the ordinary elastic catenary in a frame
   whose "down" is ``w_vec`` (``RotFrm2Vect``);
 * lines 838-843: with a current and neither end on the seabed the seabed is put out of reach;
-  with an end on it (lines 823-837) the seabed of the catenary is the plane normal to
-  ``w_vec`` in the rotated frame, not the true one.
+  with an end on it (lines 826-837) the seabed of the catenary is the plane normal to
+  ``w_vec`` in the rotated frame, not the true one (its tilt changes the fairlead's height
+  above it by the span times the tilt's tangent).
 
 The current load is thus evaluated on the real shape (per segment), but smeared: MoorPy's
 line carries the right total current force, but spread as if uniform. Ours
