@@ -10,4 +10,6 @@ batch          load-case batches on a pool and on dask
 dynamics       the 3D lumped-mass dynamics against MoorDyn
 heave_mpc      the MPC's solve time per step
 moorpy_systems mooring systems in MoorPy: equilibrium, 6x6 stiffness, timings
+systems        mooring systems beside MoorPy in one run: pose, tensions, 6x6, times
+moorpy_current a current on one line: ours against MoorPy's smeared load and a closed form
 """

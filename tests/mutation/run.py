@@ -1027,6 +1027,16 @@ MUTATIONS: tuple[Mutation, ...] = (
              "dg = np.zeros(7)",
              ("tests/mooring/test_design.py",),
              "the laid length's sensitivity to length and ends is taken as zero"),
+    Mutation("moorpy-current-cdax-on-d", "bench", "cable_ocp/bench/moorpy_current.py",
+             '"Cd": lt_in["normal_drag"], "CdAx": lt_in["tangential_drag"], "MBL": 1e9}',
+             '"Cd": lt_in["normal_drag"], "CdAx": lt_in["tangential_drag"] / math.pi,'
+             ' "MBL": 1e9}',
+             ("tests/test_moorpy_current.py",),
+             "MoorPy's CdAx given on d (MoorDyn's convention) though line.py:939 puts it on pi d"),
+    Mutation("current-closed-form-tension-sign", "bench", "cable_ocp/bench/moorpy_current.py",
+             "    return t_a, t_a - load * chord\n", "    return t_a, t_a + load * chord\n",
+             ("tests/test_moorpy_current.py",),
+             "straight line in a current along it: the downstream end carries the drag"),
 )
 
 
