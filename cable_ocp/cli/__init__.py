@@ -10,6 +10,7 @@ Modules
 app       :func:`main` and :func:`build_parser`: the parser, the exit codes of exceptions
 output    the shared contract of the commands
 statics, heave, dynamics, batch, bench, cost   the command groups, and the cost estimates
+system    mooring systems: solve on a system or a MoorDyn file, convert, mooring-checks
 """
 
 from cable_ocp.cli.app import build_parser, main
