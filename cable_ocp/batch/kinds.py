@@ -291,7 +291,15 @@ class SystemRunner(Runner):
     lines warm-started from the previous case's (:class:`cable_ocp.mooring.SystemModel`,
     rebuilt when a case changes the structure). Columns: the largest tension and the
     smallest safety factor, per body its pose (m, deg), per line its largest tension and
-    its laid length."""
+    its laid length.
+
+    Parameters
+    ----------
+    data : dict
+        The base system problem as read from TOML (SI units).
+    options : dict, optional
+        Not used by this runner (kept as :attr:`options`); None (default): none.
+    """
 
     kind = "system"
     POSE = (("x", "m"), ("y", "m"), ("z", "m"), ("roll", "deg"), ("pitch", "deg"),
