@@ -635,6 +635,13 @@ class StaticsSolver:
         """
         return self._kernel.step(w, p)[1]
 
+    def _sensitivities(self) -> EndStiffness:
+        """The end sensitivities of this solver's line (built on first use)."""
+        if self._stiffness is None:
+            self._stiffness = EndStiffness(self.scene, self.form, self.coll, self.grounded,
+                                           self._gj)
+        return self._stiffness
+
     def end_stiffness(self, w: np.ndarray, p: np.ndarray) -> dict[str, dict[str, Any]]:
         """The line's stiffness at each end whose position is fully fixed
         (:meth:`cable_ocp.statics.stiffness.EndStiffness.matrices`, built on first use).
@@ -652,10 +659,7 @@ class StaticsSolver:
             ``{"a": {...}, "b": {...}}``, each with ``matrix`` (3x3, N/m, or None) and
             ``note``.
         """
-        if self._stiffness is None:
-            self._stiffness = EndStiffness(self.scene, self.form, self.coll, self.grounded,
-                                           self._gj)
-        return self._stiffness.matrices(w, p)
+        return self._sensitivities().matrices(w, p)
 
     def end_jacobian(self, w: np.ndarray, p: np.ndarray) -> np.ndarray:
         """The 6x6 dF/dx of both end forces in both end positions, both ends fixed
@@ -668,10 +672,7 @@ class StaticsSolver:
         p : ndarray
             Parameter vector of the solve (:meth:`Formulation.params`).
         """
-        if self._stiffness is None:
-            self._stiffness = EndStiffness(self.scene, self.form, self.coll, self.grounded,
-                                           self._gj)
-        return self._stiffness.end_jacobian(w, p)
+        return self._sensitivities().end_jacobian(w, p)
 
     def length_sensitivity(self, w: np.ndarray, p: np.ndarray) -> dict[str, Any]:
         """The end forces' and the grounded length's sensitivities to the unstretched
@@ -685,10 +686,7 @@ class StaticsSolver:
         p : ndarray
             Parameter vector of the solve (:meth:`Formulation.params`).
         """
-        if self._stiffness is None:
-            self._stiffness = EndStiffness(self.scene, self.form, self.coll, self.grounded,
-                                           self._gj)
-        return self._stiffness.length_sensitivity(w, p)
+        return self._sensitivities().length_sensitivity(w, p)
 
     def on_intervals(self, intervals: int) -> StaticsSolver:
         """The solver of this scene on ``intervals`` intervals, with this one's degree,

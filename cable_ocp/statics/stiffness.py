@@ -135,6 +135,11 @@ class EndStiffness:
             return None, "the sensitivity is not finite (ill-conditioned Jacobian)"
         return dfdx, ""
 
+    def _require_fixed_ends(self, what: str) -> None:
+        """Raise unless both end positions are fully fixed (``what`` needs them)."""
+        if not (all(self.scene.end_a.fixed_mask) and all(self.scene.end_b.fixed_mask)):
+            raise CableOCPError(f"{what} needs both end positions fixed")
+
     def length_sensitivity(self, w: np.ndarray, p: np.ndarray) -> dict[str, Any]:
         """Sensitivities to the unstretched length L and to the end positions of a line
         whose two ends are fixed, from one factorisation (the implicit-function theorem,
@@ -168,9 +173,7 @@ class EndStiffness:
             When an end is not fixed, the length is an unknown (a prescribed tension), or
             the sensitivity does not exist.
         """
-        scene = self.scene
-        if not (all(scene.end_a.fixed_mask) and all(scene.end_b.fixed_mask)):
-            raise CableOCPError("length_sensitivity needs both end positions fixed")
+        self._require_fixed_ends("length_sensitivity")
         if self.coll.free_length:
             raise CableOCPError("length_sensitivity: the length is an unknown of this scene "
                                 "(a prescribed tension), not a parameter; give cable.length")
@@ -210,9 +213,7 @@ class EndStiffness:
         CableOCPError
             When an end is not fully fixed, or the sensitivity does not exist.
         """
-        scene = self.scene
-        if not (all(scene.end_a.fixed_mask) and all(scene.end_b.fixed_mask)):
-            raise CableOCPError("end_jacobian needs both end positions fixed")
+        self._require_fixed_ends("end_jacobian")
         dfdx, why = self._end_sensitivity(w, p, [0, 1, 2, 3, 4, 5])
         if dfdx is None:
             raise CableOCPError(f"the line's end stiffness was not computed: {why}")
