@@ -223,13 +223,18 @@ class StaticsSolution:
             When the solve did not converge, the method has no sensitivities, or an end is
             not fixed.
         """
+        return self._from_sensitivities(self._jacobian_source, "end Jacobian")
+
+    def _from_sensitivities(self, source: Callable[[], Any] | None, what: str) -> Any:
+        """``source()``, the solver's sensitivities at this solution; raise naming ``what``
+        when the solve did not converge or the method has none."""
         if not self.converged:
-            raise CableOCPError(f"no end Jacobian: the solve did not converge (status "
+            raise CableOCPError(f"no {what}: the solve did not converge (status "
                                 f"{self.status})")
-        if self._jacobian_source is None:
-            raise CableOCPError("no end Jacobian: it comes from the sensitivities of the "
+        if source is None:
+            raise CableOCPError(f"no {what}: it comes from the sensitivities of the "
                                 "collocation and multiple-shooting solvers")
-        return self._jacobian_source()
+        return source()
 
     def length_sensitivity(self) -> dict[str, Any]:
         """Sensitivities of a line with both ends fixed to its unstretched length L and
@@ -247,13 +252,7 @@ class StaticsSolution:
             When the solve did not converge, the method has no sensitivities, an end is
             not fixed or the length is an unknown.
         """
-        if not self.converged:
-            raise CableOCPError(f"no length sensitivity: the solve did not converge (status "
-                                f"{self.status})")
-        if self._length_source is None:
-            raise CableOCPError("no length sensitivity: it comes from the sensitivities of "
-                                "the collocation and multiple-shooting solvers")
-        return self._length_source()
+        return self._from_sensitivities(self._length_source, "length sensitivity")
 
     def stiffness_note(self, end: str) -> str:
         """What :meth:`stiffness` holds fixed at ``end``, or why it is None."""
