@@ -61,6 +61,12 @@ from typing import Any
 import numpy as np
 
 from cable_ocp.errors import CableOCPError
+from cable_ocp.numerics.rotation import (
+    euler_angles,
+    euler_rate_matrix,
+    rotate_small,
+    rotation_matrix,
+)
 from cable_ocp.physics.added_mass import weight_in_water
 
 __all__ = ["EQUILIBRIUM_TOLERANCE", "FD_ANGLE_STEP", "FD_STEP", "MAX_ITERATIONS",
@@ -89,43 +95,16 @@ def _moorpy() -> ModuleType:
                             "pip install moorpy") from None
 
 
-def rotation_matrix(roll: float, pitch: float, yaw: float) -> np.ndarray:
-    """R = Rz(yaw) Ry(pitch) Rx(roll): MoorPy's ``rotationMatrix`` (moorpy/helpers.py) and
-    the project's order (docs/conventions.md).
-
-    Parameters
-    ----------
-    roll, pitch, yaw : float
-        The angles, rad.
-    """
-    cr, sr, cp, sp = math.cos(roll), math.sin(roll), math.cos(pitch), math.sin(pitch)
-    cy, sy = math.cos(yaw), math.sin(yaw)
-    rz = np.array([[cy, -sy, 0.0], [sy, cy, 0.0], [0.0, 0.0, 1.0]])
-    ry = np.array([[cp, 0.0, sp], [0.0, 1.0, 0.0], [-sp, 0.0, cp]])
-    rx = np.array([[1.0, 0.0, 0.0], [0.0, cr, -sr], [0.0, sr, cr]])
-    return rz @ ry @ rx
-
-
-def euler_rate_matrix(roll: float, pitch: float, yaw: float) -> np.ndarray:
-    """J with omega = J d(roll, pitch, yaw)/dt for R = Rz(yaw) Ry(pitch) Rx(roll): its
-    columns are the axes the Euler rates turn about, Rz Ry e_x, Rz e_y, e_z (fixed axes).
-    A stiffness in Euler angles (MoorPy's ``getCoupledStiffness``) is K_fixed with its
-    rotation columns times J.
-
-    Parameters
-    ----------
-    roll, pitch, yaw : float
-        The angles, rad.
-    """
-    rz = rotation_matrix(0.0, 0.0, yaw)
-    return np.column_stack([rz @ rotation_matrix(0.0, pitch, 0.0) @ np.array([1.0, 0, 0]),
-                            rz @ np.array([0.0, 1.0, 0.0]), np.array([0.0, 0.0, 1.0])])
-
-
 def euler_from_matrix(r: np.ndarray) -> np.ndarray:
-    """(roll, pitch, yaw), rad, of R = Rz(yaw) Ry(pitch) Rx(roll) (|pitch| < 90 deg)."""
-    return np.array([math.atan2(r[2, 1], r[2, 2]), -math.asin(max(-1.0, min(1.0, r[2, 0]))),
-                     math.atan2(r[1, 0], r[0, 0])])
+    """(roll, pitch, yaw), rad, of R = Rz(yaw) Ry(pitch) Rx(roll)
+    (:func:`cable_ocp.numerics.rotation.euler_angles`, as an array).
+
+    Parameters
+    ----------
+    r : ndarray
+        A rotation matrix.
+    """
+    return np.array(euler_angles(r))
 
 
 # --------------------------------------------------------------------------------------
@@ -383,7 +362,7 @@ def _fd_fixed_axes(ms: Any, dx: float, dth: float, tol: float) -> np.ndarray:
             else:
                 axis = np.zeros(3)
                 axis[dof - 3] = sign * dth
-                rot = _axis_rotation(axis) @ rotation_matrix(*r6[3:])
+                rot = rotate_small(axis, rotation_matrix(*r6[3:]))
                 r6[3:] = euler_from_matrix(rot)
             ms.bodyList[ib].setPosition(r6)
             _solve_points(ms, tol)
@@ -392,16 +371,6 @@ def _fd_fixed_axes(ms: Any, dx: float, dth: float, tol: float) -> np.ndarray:
         k[:, j] = -(f[0] - f[1]) / (2.0 * (dx if dof < 3 else dth))
     _solve_points(ms, tol)
     return k
-
-
-def _axis_rotation(theta: np.ndarray) -> np.ndarray:
-    """Rodrigues: the rotation by |theta| about theta/|theta|."""
-    a = float(np.linalg.norm(theta))
-    if a == 0.0:
-        return np.eye(3)
-    e = theta / a
-    kx = np.array([[0.0, -e[2], e[1]], [e[2], 0.0, -e[0]], [-e[1], e[0], 0.0]])
-    return np.eye(3) + math.sin(a) * kx + (1.0 - math.cos(a)) * kx @ kx
 
 
 def _timed(fn: Any, repeats: int) -> tuple[Any, float]:
