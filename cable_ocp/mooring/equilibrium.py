@@ -139,6 +139,10 @@ def solve_system(scene: SystemScene, model: SystemModel | None = None,
         history.append(err)
         if err <= scene.tolerance:
             status, message = "solved", f"equilibrium in {it} Newton steps"
+            if ev.unphysical:
+                status = "failed"
+                message = (f"an equilibrium in {it} Newton steps, but not a solution: "
+                           f"{ev.unphysical}")
             break
         if it >= scene.max_iterations:
             message = (f"no equilibrium in system.max_iterations = {scene.max_iterations} "

@@ -77,7 +77,7 @@ class Evaluation:
         One :class:`StaticsSolution` per line (in the scene's orientation: ``end_a`` at
         the line's lower end, ``SystemLine.reversed``).
     ok : bool
-        Every line solve converged.
+        Every line solve converged (its forces may be used by the iteration).
     message : str
         Why not, when ``ok`` is False.
     end_forces : list
@@ -100,6 +100,9 @@ class Evaluation:
     lines: list[StaticsSolution]
     ok: bool
     message: str = ""
+    #: why a converged line is not a solution (e.g. it passes below the seabed, where
+    #: contact is not modelled), "" when every line is
+    unphysical: str = ""
     end_forces: list[tuple[np.ndarray, np.ndarray]] = field(default_factory=list)
     q: np.ndarray | None = None
     jac: np.ndarray | None = None
@@ -236,6 +239,11 @@ class SystemModel:
         """
         sols, ok, why = self.solve_lines(state)
         ev = Evaluation(state=state, lines=sols, ok=ok, message=why)
+        bad = [(ln, sol) for ln, sol in zip(self.lines, sols, strict=True)
+               if sol.converged and not sol.success]
+        if bad:
+            ev.unphysical = "; ".join(f"line {ln.name!r}: {sol.status} ({sol.message})"
+                                      for ln, sol in bad)
         if not ok:
             return ev
         rho, g = self.env.water_density, self.env.gravity

@@ -16,6 +16,7 @@ import casadi as ca
 import numpy as np
 
 from cable_ocp.errors import CableOCPError
+from cable_ocp.numerics import sparse_lu
 from cable_ocp.physics import seabed
 from cable_ocp.scene import Scene
 from cable_ocp.statics.formulation import P_END_A, P_END_B, P_LENGTH, Formulation
@@ -49,6 +50,7 @@ class EndStiffness:
         self.grounded = grounded
         self.gj = gj
         self._sensitivity: ca.Function | None = None
+        self._lu: Any = None  # the kept sparse LU of G_w (built on first use)
 
     def end_forces(self, ws: ca.MX) -> ca.MX:
         """Forces (N) the cable exerts on the end_a and end_b attachments, (6,), from the
@@ -93,18 +95,33 @@ class EndStiffness:
         return self._sensitivity
 
     def _sensitivities(self, w: np.ndarray, p: np.ndarray, cols: list[int]
-                       ) -> tuple[np.ndarray | None, Any, str]:
+                       ) -> tuple[np.ndarray | None, np.ndarray, str]:
         """(dw/dp, F_w, why): the unknowns' sensitivities (n_w, len(cols)) to the
         parameter columns ``cols`` (0 the scaled length p[P_LENGTH], 1-3 end_a, 4-6 end_b,
-        scaled), the unstretched length held; dw None when they do not exist."""
+        scaled), the unstretched length held, and F_w (6, n_w) dense; dw None when they do
+        not exist.
+
+        With a fixed length and the compiled sparse LU (:mod:`cable_ocp.numerics.sparse_lu`)
+        G_w is refactorised on a pivot order kept between calls (the solves of a mooring
+        system's Newton iteration call this once per line and step); else SuperLU
+        factorises it anew."""
+        g_e, f_w, g_l = self.functions()(w, p)
+        h_p = np.hstack([g_l.full(), g_e.full()])[:, cols]
+        g_w = self.gj(w, p)[1]
+        if not self.coll.free_length and sparse_lu.available():
+            if self._lu is None:
+                self._lu = sparse_lu.SparseLU(g_w.sparsity())
+            self._lu.nz[:] = g_w.nonzeros()
+            self._lu.factor()
+            # newton_step(b) = -G_w^-1 b: dw = -G_w^-1 G_p column by column
+            dw = np.column_stack([self._lu.newton_step(h_p[:, j]) for j in range(len(cols))])
+            if not np.all(np.isfinite(dw)):
+                return None, f_w.full(), "the Jacobian is singular"
+            return dw, f_w.full(), ""
         from scipy.sparse import csr_matrix
         from scipy.sparse.linalg import splu
 
-        g_e, f_w, g_l = self.functions()(w, p)
-        g_w = self.gj(w, p)[1]
         h_w = g_w.sparse().tocsr()
-        h_p = np.hstack([np.asarray(g_l.sparse().todense()),
-                         np.asarray(g_e.sparse().todense())])[:, cols]
         if self.coll.free_length:
             # hold the unstretched length (the line as installed), not the tension: the
             # tension condition, the last residual (Collocation._boundary), becomes
@@ -120,8 +137,8 @@ class EndStiffness:
         try:
             dw = splu(h_w.tocsc()).solve(-h_p)  # one factorisation, one column per coordinate
         except RuntimeError as exc:  # "Factor is exactly singular"
-            return None, f_w, f"the Jacobian is singular ({exc})"
-        return dw, f_w, ""
+            return None, f_w.full(), f"the Jacobian is singular ({exc})"
+        return dw, f_w.full(), ""
 
     def _end_sensitivity(self, w: np.ndarray, p: np.ndarray, cols: list[int]
                          ) -> tuple[np.ndarray | None, str]:
@@ -130,7 +147,7 @@ class EndStiffness:
         dw, f_w, why = self._sensitivities(w, p, [c + 1 for c in cols])
         if dw is None:
             return None, why
-        dfdx = np.asarray(f_w.sparse() @ dw) / self.form.scales.length  # N/m
+        dfdx = (f_w @ dw) / self.form.scales.length  # N/m
         if not np.all(np.isfinite(dfdx)):
             return None, "the sensitivity is not finite (ill-conditioned Jacobian)"
         return dfdx, ""
@@ -181,7 +198,7 @@ class EndStiffness:
         if dw is None:
             raise CableOCPError(f"the line's length sensitivity was not computed: {why}")
         ell = self.form.scales.length
-        df = np.asarray(f_w.sparse() @ dw) / ell  # (6, 7): d/dL, then d/dx, N/m
+        df = (f_w @ dw) / ell  # (6, 7): d/dL, then d/dx, N/m
         # w[i_g] = g / ell and p = (L, x) / ell: d w[i_g] / dp is dg/d(L, x) as it stands
         dg = dw[self.coll.i_g].copy() if self.grounded else np.zeros(7)
         if not (np.all(np.isfinite(df)) and np.all(np.isfinite(dg))):
