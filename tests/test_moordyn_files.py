@@ -24,7 +24,8 @@ MOORPY_CASES = sorted(DATA.glob("moorpy_case*.dat"))
 EXPECTED = {
     "meta": {"title": "MoorDyn v2 input file: a 3-line spread on a free buoy, one line with "
                       "a clump\n(handwritten for cable_ocp's tests; depth 200 m)"},
-    "environment": {"water_depth": 200.0, "water_density": 1027.5, "gravity": 9.81},
+    "environment": {"water_depth": 200.0, "water_density": 1027.5, "gravity": 9.81,
+                    "seabed": {"friction": 0.0}},  # MoorDyn always has its seabed
     "line_types": {
         # CdAx is copied: MoorDyn's and ours are both on pi d (source/Line.cpp, Dq)
         "chain": {"diameter": 0.1674, "mass_per_length": 146.0, "axial_stiffness": 1.5e9,

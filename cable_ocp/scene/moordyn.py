@@ -485,8 +485,10 @@ def read_moordyn(path: str | Path) -> dict[str, Any]:
         "water_density": env_t.get("water_density", MOORDYN_DEFAULT_DENSITY),
         "gravity": env_t.get("gravity", MOORDYN_DEFAULT_GRAVITY),
     }
-    if "friction" in env_t:
-        environment["seabed"] = {"friction": env_t["friction"]}
+    # MoorDyn always has a seabed at its water depth (contact with stiffness kb and
+    # damping cb; axial friction FrictionCoefficient, 0 unless given): ours is the plane
+    # z = 0 with contact
+    environment["seabed"] = {"friction": env_t.get("friction", 0.0)}
     types, type_extra = _read_line_types(sec.get("line_types", []), fname)
     bodies, body_extra, body_ids = _read_bodies(sec.get("bodies", []), fname, depth)
     points, point_extra, point_ids = _read_points(sec.get("points", []), fname, depth,
