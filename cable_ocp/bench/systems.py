@@ -22,7 +22,40 @@ from cable_ocp.mooring import SystemModel, body_stiffness, solve_system
 from cable_ocp.scene import read_problem
 from cable_ocp.scene.system import system_from_dict
 
-__all__ = ["compare_with_moorpy"]
+__all__ = ["DEFAULT_FILES", "compare_with_moorpy", "rows"]
+
+#: the systems of ``cable-ocp bench systems`` (none has a current: MoorPy's is smeared)
+SYSTEMS = Path(__file__).resolve().parents[2] / "problems" / "systems"
+DEFAULT_FILES = tuple(str(SYSTEMS / f) for f in (
+    "spar_3line.toml", "moorpy_3line_spread.toml", "spread_9line_bundled.toml",
+    "spread_two_part_clump.toml"))
+
+
+def rows(results: list[dict[str, Any]]) -> tuple[list[str], list[list[Any]]]:
+    """(headers, rows) of the bench table, one row per system.
+
+    Parameters
+    ----------
+    results : list of dict
+        :func:`compare_with_moorpy` results.
+    """
+    head = ["system", "status", "pose [m]", "T rel", "laid [m]", "K vs MP", "K vs FD",
+            "ours eq [ms]", "MP eq [ms]", "ours K [ms]", "MP K [ms]"]
+    out = []
+    for r in results:
+        t = r["times_s"]
+
+        def ms(v: Any) -> Any:
+            return None if v is None else 1e3 * v
+
+        out.append([Path(r["file"]).stem, r["status"], (r.get("pose") or {}).get(
+            "max_difference"), max(max(ln["tension_a"], ln["tension_b"]) for ln in r["lines"]),
+            max(ln["laid_length_m"] for ln in r["lines"]),
+            (r.get("stiffness") or {}).get("analytic"),
+            (r.get("stiffness") or {}).get("fd_fixed_axes"), ms(t["ours_repeat"]),
+            ms(t["moorpy_equilibrium"]), ms(t["ours_6x6_assembly"]),
+            ms(t["moorpy_analytic_6x6"])])
+    return head, out
 
 
 def _median_time(fn: Any, repeats: int) -> float:
@@ -51,7 +84,11 @@ def compare_with_moorpy(path: str | Path, repeats: int = 5) -> dict[str, Any]:
         the relative differences of the end tensions and the laid-length difference, m),
         ``stiffness`` (the largest difference of ours from MoorPy's analytic and from
         the central differences about the fixed axes, relative to the largest entry), and
-        ``times_s``.
+        ``times_s`` (s, medians): ours_first (the model built, the lines' solvers from the
+        disk cache or built), ours_repeat (from the file's start, the solvers built),
+        ours_6x6_assembly (from the lines' end Jacobians of the solve, as MoorPy's analytic
+        matrix uses its last solve's line stiffnesses), ours_6x6_fresh (the lines' end
+        Jacobians computed anew), moorpy_equilibrium, moorpy_analytic_6x6.
     """
     from cable_ocp.bench.moorpy_systems import moorpy_reference
 
@@ -64,8 +101,12 @@ def compare_with_moorpy(path: str | Path, repeats: int = 5) -> dict[str, Any]:
     repeat = _median_time(lambda: solve_system(scene, model=model, stiffness=False), repeats)
     body = scene.bodies[0].name if scene.bodies else None
     ev = model.evaluate(res.state)
-    k_time = _median_time(lambda: body_stiffness(model, model.evaluate(res.state), body),
-                          repeats) if body else None
+    # the 6x6 from the lines' end Jacobians of the solve (as MoorPy's analytic matrix uses
+    # the line stiffnesses of its last solve), and with the lines' sensitivities anew
+    assembly = _median_time(lambda: body_stiffness(model, ev, body), max(repeats, 20)) \
+        if body else None
+    fresh = _median_time(lambda: body_stiffness(model, model.evaluate(res.state), body),
+                         repeats) if body else None
     ref = moorpy_reference(data, repeats=repeats)
     out: dict[str, Any] = {"file": str(path), "status": str(res.status)}
     if body:
@@ -91,8 +132,10 @@ def compare_with_moorpy(path: str | Path, repeats: int = 5) -> dict[str, Any]:
                      "tension_b": abs(ln["tension_b"] - mp["tension_b_N"]) / mp["tension_b_N"],
                      "laid_length_m": abs(ln["laid_length"] - mp["laid_length_m"])})
     out["lines"] = rows
-    out["times_s"] = {"ours_first": first, "ours_repeat": repeat, "ours_6x6": k_time,
-                      "moorpy_equilibrium": ref.get("time_s"),
-                      "moorpy_analytic_6x6": (ref.get("stiffness") or {}).get("times_s", {})
+    out["times_s"] = {"ours_first": first, "ours_repeat": repeat,
+                      "ours_6x6_assembly": assembly, "ours_6x6_fresh": fresh,
+                      "moorpy_equilibrium": (ref.get("time_s") or {}).get("solve_equilibrium"),
+                      "moorpy_analytic_6x6": ((ref.get("stiffness") or {}).get("time_s") or {})
                       .get("analytic")}
+    out["line_models"] = res.diagnostics.get("line_models")
     return out

@@ -108,6 +108,24 @@ def register(sub: argparse._SubParsersAction, parent: argparse.ArgumentParser) -
     out.add_json_option(bb, "the rows and the summary")
     bb.set_defaults(func=cmd_bench_batch)
 
+    y = which.add_parser(
+        "systems", parents=[parent],
+        help="mooring systems beside MoorPy: pose, tensions, 6x6 and times in one run",
+        description="Each system (default: the shipped systems without current) solved by "
+                    "cable_ocp and by MoorPy (pip install moorpy) in one run: the largest "
+                    "differences of the body pose (m), the line end tensions (relative) and "
+                    "laid lengths (m), of cable_ocp's 6x6 from MoorPy's analytic matrix and "
+                    "from central differences of full equilibria (relative to the largest "
+                    "entry); the median times of the equilibrium (from the file's start, "
+                    "solvers built) and of the 6x6 (from the solved lines' stiffnesses, as "
+                    "MoorPy's getCoupledStiffnessA).")
+    y.add_argument("files", nargs="*", metavar="FILE",
+                   help="system files (default: problems/systems/ without current)")
+    y.add_argument("--repeats", type=int, default=5, metavar="N",
+                   help="timed runs, the median kept (5)")
+    out.add_json_option(y, "the rows")
+    y.set_defaults(func=cmd_bench_systems)
+
     d = which.add_parser(
         "dynamics", parents=[parent],
         help="lumped-mass dynamics: wall time per simulated second beside MoorDyn",
@@ -450,6 +468,29 @@ def cmd_bench_batch(args: argparse.Namespace) -> int:
 DYNAMICS_KEYS = ["model", "segments", "time_step", "wall_per_simulated_s", "realtime_factor",
                  "top_tension_amplitude_N", "error", "amplitude_vs_reference",
                  "amplitude_vs_other", "status"]
+
+
+def cmd_bench_systems(args: argparse.Namespace) -> int:
+    """``cable-ocp bench systems``."""
+    from cable_ocp.bench import systems as bs
+    from cable_ocp.numerics.text_table import table
+
+    out.check_outputs(args)
+    if not 1 <= args.repeats <= 100:
+        raise out_error(f"--repeats {args.repeats}: give 1..100")
+    files = args.files or list(bs.DEFAULT_FILES)
+    results = []
+    with out.progress(args, len(files), "bench systems", "system") as bar:
+        for i, f in enumerate(files):
+            bar(i, postfix=Path(f).stem)
+            results.append(bs.compare_with_moorpy(f, repeats=args.repeats))
+        bar(len(files))
+    head, rows = bs.rows(results)
+    out.say(args, "cable_ocp beside MoorPy (no current; differences are the largest over "
+                  "the system; times are medians of " + f"{args.repeats} runs)")
+    out.say(args, table(head, rows, left=1))
+    out.emit_json(args, out.envelope("ok", f"{len(results)} systems", {"rows": results}, []))
+    return out.EXIT_OK
 
 
 def cmd_bench_dynamics(args: argparse.Namespace) -> int:

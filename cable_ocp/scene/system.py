@@ -76,6 +76,10 @@ _BODY_KEYS = {"name", "kind", "held", "position", "rotation_deg", "mass", "cente
               "metacenter", "hydrostatic_matrix", "force", "moment"}
 _LINE_KEYS = {"name", "point_a", "point_b", "parts", "type", "length"}
 _SYSTEM_KEYS = {"tolerance", "max_iterations"}
+#: the smallest system.tolerance over solver.tolerance: the net forces of an equilibrium
+#: stall at ~25 x the lines' scaled residual tolerance (seen on the 3- and 9-line spreads:
+#: 2.3e-9 at 1e-10), so a system tolerance below 50 x it cannot be reached
+LINE_FLOOR = 50.0
 #: masses, kg (bodies and clumps)
 MASS_MAX = 1e9
 MASS_WHY = "heavier than the largest floating structure (~6e8 kg)"
@@ -677,6 +681,13 @@ def system_from_dict(data: dict[str, Any]) -> SystemScene:
                                "tension")
     max_it = integer(sys_t.get("max_iterations", 50), "system.max_iterations", 1, 1000)
     first = lines[0].scene
+    floor = LINE_FLOOR * first.solver.tolerance
+    if tol < floor:
+        raise CableOCPError(
+            f"system.tolerance = {tol:g}: must be >= {floor:g} ({LINE_FLOOR:g} x "
+            f"solver.tolerance = {first.solver.tolerance:g}): the lines' end forces are "
+            "accurate to about that, so a smaller net force cannot be told from zero; "
+            "lower solver.tolerance with it")
     return SystemScene(environment=first.environment, line_types=types, points=points,
                        bodies=bodies, lines=tuple(lines), solver=first.solver, tolerance=tol,
                        max_iterations=max_it, meta=meta, raw=raw)

@@ -268,3 +268,16 @@ def test_a_standard_line_type_fills_the_table_and_keys_override_it():
     assert std.mbl == 7.0e6
     assert std.weight_in_water == pytest.approx(
         (162.0 - 1025.0 * math.pi * 0.162**2 / 4) * 9.81, rel=1e-12)
+
+
+def test_a_system_tolerance_below_the_lines_accuracy_is_refused():
+    """The net forces stall at ~25 x the lines' own tolerance (2.3e-9 at 1e-10 on the spar:
+    the residual history of its solve); a system tolerance below 50 x it is refused before
+    any solve, naming both keys, and accepted once solver.tolerance is lowered with it."""
+    d = spar_dict()
+    d["system"] = {"tolerance": 1e-9}
+    with pytest.raises(CableOCPError, match=r"system.tolerance = 1e-09: must be >= 5e-09 "
+                                             r"\(50 x solver.tolerance = 1e-10\)"):
+        system_from_dict(d)
+    d["solver"] = {"tolerance": 1e-11}
+    assert system_from_dict(d).tolerance == 1e-9
