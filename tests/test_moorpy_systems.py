@@ -86,7 +86,7 @@ def test_two_part_line_equals_moorpys_own_two_lines_with_a_free_point():
 
 
 def test_line_type_is_moorpys_own_table():
-    """Our written-out chain (C_dt = CdAx / pi, mass in air) becomes exactly MoorPy's
+    """Our written-out chain (C_dt = CdAx, both on pi d; mass in air) becomes exactly MoorPy's
     getLineProps(120, 'chain'), including the weight in water it computes itself."""
     ms = moorpy_system_from_dict(read_problem(SYSTEMS / "moorpy_3line_spread.toml"))
     ref = mp.System(depth=600.0).setLineType(120, "chain", name="chain")
@@ -128,7 +128,8 @@ def test_metacenter_from_waterplane_moments_and_the_free_clump():
     np.testing.assert_allclose(body.rM, [0.0, 0.0, 10.0], rtol=1e-14)
     np.testing.assert_allclose(body.f6Ext, [-1e6, 0, 0, 0, 0, 0])
     clump = ms.pointList[ms.cable_ocp_points["clump1"] - 1]
-    assert clump.type == 0 and clump.m == 10000.0 and clump.r[2] == 20.0 - 200.0
+    # the clump at the file's first guess, MoorPy's z
+    assert clump.type == 0 and clump.m == 10000.0 and clump.r[2] == 40.0 - 200.0
 
 
 def test_rotation_matrix_is_moorpys_and_euler_inverts_it():

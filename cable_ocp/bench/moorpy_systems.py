@@ -18,7 +18,8 @@ Conversions (MoorPy's conventions read from ``moorpy/system.py``, ``body.py``, `
 - line types: MoorPy keys ``d_vol`` (our ``diameter``), ``m`` (``mass_per_length``),
   ``EA``, ``w`` = (m - rho pi d^2 / 4) g (weight in water per length,
   :func:`cable_ocp.physics.added_mass.weight_in_water`), ``MBL``, ``Cd``, ``CdAx`` =
-  pi C_dt (MoorDyn's and MoorPy's axial drag is on d, ours on pi d), ``Ca``, ``CaAx``.
+  C_dt (MoorPy's axial drag is on pi d as ours: ``line.py``, ``0.5*rho*CdAx*np.pi*d_vol``),
+  ``Ca``, ``CaAx``.
 - points: ``fixed`` -> MoorPy type 1, ``free`` -> type 0 (mass, volume, ``fExt``),
   ``body`` -> type 1 attached with ``Body.attachPoint`` at its body-frame position.
 - bodies: ``free`` -> type 0 (``held`` DOFs removed from ``DOFs``), ``fixed`` -> type 1;
@@ -156,7 +157,7 @@ def _line_type(name: str, table: dict[str, Any], rho: float, g: float) -> dict[s
             "EA": _num(table, "axial_stiffness", where),
             "MBL": _num(table, "mbl", where, 0.0),
             "Cd": _num(table, "normal_drag", where, 0.0),
-            "CdAx": math.pi * _num(table, "tangential_drag", where, 0.0),
+            "CdAx": _num(table, "tangential_drag", where, 0.0),
             "Ca": _num(table, "added_mass", where, 0.0),
             "CaAx": _num(table, "tangential_added_mass", where, 0.0),
             "cost": _num(table, "cost_per_length", where, 0.0),

@@ -4,8 +4,10 @@ Newton's method on the net loads of the free points and bodies (:mod:`.model`), 
 bodies' rotations as Euler angles (a held angle keeps its value), with the exact
 Jacobian assembled from the lines' end Jacobians: each step solves every line once
 (warm-started) and factorises each line's collocated Jacobian once. A backtracking line
-search on the scaled residual (forces over the largest tension, moments also over a
-length of the system) halves the step where it does not decrease or where a line fails.
+search on the 2-norm of the scaled residual (forces over the largest tension, moments
+also over a length of the system) halves the step where it does not decrease, where a
+line fails, or where a line leaves the water column (passes below the seabed) when the
+iterate before did not.
 
 Why a nested solve and not one NLP for the whole system: each line keeps the solver
 that exists (contact switching at the touchdown, the warm starts, the fallbacks and the
@@ -161,14 +163,19 @@ def solve_system(scene: SystemScene, model: SystemModel | None = None,
             break
         dx = np.zeros(model.n)
         dx[free] = step * _step_limit(model, _full(model.n, free, step))
+        # the merit is the 2-norm of the scaled residual (the Newton step is a descent
+        # direction for it, not for the largest entry), on this step's scales
+        merit = float(np.linalg.norm(r[free] / scale[free]))
         alpha, accepted = 1.0, False
         for _ in range(HALVINGS):
             interrupt.check()
             trial = model.evaluate(_moved(model, state, alpha * dx))
-            if trial.ok:
+            # a trial whose lines leave the water column is no better iterate, unless the
+            # iteration is not yet out of such states itself
+            if trial.ok and (not trial.unphysical or ev.unphysical):
                 rt = _residual(model, trial)
-                if float(np.max(np.abs(rt[free]) / scale[free], initial=0.0)) < \
-                        (1.0 - 1e-4 * alpha) * err:
+                if float(np.linalg.norm(rt[free] / scale[free])) < \
+                        (1.0 - 1e-4 * alpha) * merit:
                     accepted = True
                     break
             alpha /= 2.0

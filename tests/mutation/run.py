@@ -544,9 +544,10 @@ MUTATIONS: tuple[Mutation, ...] = (
              "bench moorpy: anchors given to MoorPy in our frame (z from the seabed), not "
              "shifted to its z = 0 at the surface"),
     Mutation("bench-moorpy-axial-drag-without-pi", "bench", MP_F,
-             '"CdAx": math.pi * _num(', '"CdAx": _num(',
+             '"CdAx": _num(table, "tangential_drag"',
+             '"CdAx": math.pi * _num(table, "tangential_drag"',
              (MP_T + "line_type_is_moorpys_own_table",),
-             "bench moorpy: MoorPy's CdAx (on d) taken as our C_dt (on pi d)"),
+             "bench moorpy: our C_dt (on pi d) multiplied by pi for MoorPy's CdAx (also on pi d)"),
     Mutation("axial-first-sample-with-the-new-top-velocity", DYN, AX_F,
              "first = [np.asarray(v).reshape(-1, 1) for v in post[0](ts[0], xs[:, 0])]",
              "first = [np.asarray(v).reshape(-1, 1) for v in post[1](ts[0], xs[:, 0])]",
