@@ -9,6 +9,7 @@ from typing import Any
 
 from cable_ocp.cli import output as out
 from cable_ocp.errors import CableOCPError
+from cable_ocp.numerics import interrupt
 
 LINE_HEADER = ["line", "point_a", "point_b", "length [m]", "tension_a [N]", "tension_b [N]",
                "max_tension [N]", "safety_factor [-]", "laid_length [m]",
@@ -183,18 +184,36 @@ def cmd_checks(args: argparse.Namespace) -> int:
         raise CableOCPError("--body: name the body (the system has "
                             f"{len(free)} free bodies: {', '.join(b.name for b in free)})")
     b = scene.body(body)
-    curve = offset_curve(scene, body, args.heading, offsets)
     load = float(np.hypot(b.force[0], b.force[1]))
-    heads = heading_loads(scene, body, load, b.moment, headings) if load > 0 else None
-    fail = line_failure(scene, body)
+    runs = [("offset_curve", lambda: offset_curve(scene, body, args.heading, offsets)),
+            ("headings", (lambda: heading_loads(scene, body, load, b.moment, headings))
+             if load > 0 else None),
+            ("line_failure", lambda: line_failure(scene, body))]
+    done: dict[str, Any] = {}
+    interrupted = False
+    with out.progress(args, len(runs), "mooring checks", "check") as bar:
+        for i, (name, run_check) in enumerate(runs):
+            bar(i, postfix=name)
+            try:
+                done[name] = run_check() if run_check is not None else None
+            except (KeyboardInterrupt, Exception) as exc:  # a CasADi error may be a Ctrl-C
+                if not interrupt.is_interruption(exc):
+                    raise
+                interrupted = True
+                break
+        if not interrupted:
+            bar(len(runs))
+    curve, heads, fail = (done.get(k) for k in ("offset_curve", "headings", "line_failure"))
     kn = 1e-3
-    text = [f"restoring curve of {body} along {args.heading:g} deg (about its position "
-            "without environmental load):",
-            table(["offset", "restoring", "T_max", "SF", "status"],
-                  [[o, f * kn, t * kn, s, st] for o, f, t, s, st in zip(
-                      curve.offsets, curve.restoring_force, curve.max_tension,
-                      curve.min_safety_factor, curve.status, strict=True)],
-                  units=["[m]", "[kN]", "[kN]", "[-]", ""])]
+    text = []
+    if curve is not None:
+        text += [f"restoring curve of {body} along {args.heading:g} deg (about its position "
+                 "without environmental load):",
+                 table(["offset", "restoring", "T_max", "SF", "status"],
+                       [[o, f * kn, t * kn, s, st] for o, f, t, s, st in zip(
+                           curve.offsets, curve.restoring_force, curve.max_tension,
+                           curve.min_safety_factor, curve.status, strict=True)],
+                       units=["[m]", "[kN]", "[kN]", "[-]", ""])]
     if heads is not None:
         text += ["", f"steady load of {load * kn:.6g} kN from each heading:",
                  table(["heading", "offset", "T_max", "line", "SF", "status"],
@@ -202,21 +221,29 @@ def cmd_checks(args: argparse.Namespace) -> int:
                            heads.headings_deg, heads.offset, heads.max_tension,
                            heads.max_tension_line, heads.min_safety_factor, heads.status,
                            strict=True)], units=["[deg]", "[m]", "[kN]", "", "[-]", ""])]
-    text += ["", "line failure (each line removed in turn, the file's loads):",
-             table(["removed", "T_max", "line", "SF", "offset", "status"],
-                   [[r, t * kn, ln, s, o, st] for r, t, ln, s, o, st in zip(
-                       fail.removed, fail.max_tension, fail.max_tension_line,
-                       fail.min_safety_factor, fail.offset, fail.status, strict=True)],
-                   units=["", "[kN]", "", "[-]", "[m]", ""])]
-    out.say(args, "\n".join(text))
-    statuses = list(curve.status) + list(fail.status) + (list(heads.status) if heads else [])
+    if fail is not None:
+        text += ["", "line failure (each line removed in turn, the file's loads):",
+                 table(["removed", "T_max", "line", "SF", "offset", "status"],
+                       [[r, t * kn, ln, s, o, st] for r, t, ln, s, o, st in zip(
+                           fail.removed, fail.max_tension, fail.max_tension_line,
+                           fail.min_safety_factor, fail.offset, fail.status, strict=True)],
+                       units=["", "[kN]", "", "[-]", "[m]", ""])]
+    if text:
+        out.say(args, "\n".join(text))
+    statuses = [s for c in (curve, heads, fail) if c is not None for s in c.status]
     ok = all(s == "solved" for s in statuses)
-    data = {"offset_curve": curve.to_dict(), "headings": heads.to_dict() if heads else None,
-            "line_failure": fail.to_dict()}
-    status = "solved" if ok else "partial"
-    out.emit_json(args, out.envelope(status, "every case solved" if ok else
-                                     "some cases were not solved", data, []))
-    if args.plot:
+    data = {k: (done[k].to_dict() if done.get(k) is not None else None)
+            for k in ("offset_curve", "headings", "line_failure")}
+    if interrupted:
+        status, message = "interrupted", (
+            f"interrupted; finished: {', '.join(done) or 'none'}")
+    else:
+        status = "solved" if ok else "partial"
+        message = "every case solved" if ok else "some cases were not solved"
+    out.emit_json(args, out.envelope(status, message, data, []))
+    if interrupted:
+        raise KeyboardInterrupt
+    if args.plot and curve is not None:
         from cable_ocp.plots.common import save
         from cable_ocp.plots.system import offset_curve_figure
 

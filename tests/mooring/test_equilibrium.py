@@ -281,3 +281,18 @@ def test_a_system_tolerance_below_the_lines_accuracy_is_refused():
         system_from_dict(d)
     d["solver"] = {"tolerance": 1e-11}
     assert system_from_dict(d).tolerance == 1e-9
+
+
+def test_an_equilibrium_with_a_line_below_the_seabed_is_not_a_solution():
+    """The two-part spread with lines 2 and 3 of 400 m chain + 450 m polyester: pushed
+    towards them, they would lay more than their 400 m of chain on the seabed, and contact
+    is modelled on a line's first part only. Whatever the iteration ends on, it is not
+    reported as solved, and the message names the lines and says why."""
+    path = ROOT / "problems" / "systems" / "spread_two_part_clump.toml"
+    over = {f"lines.{i}.parts": [{"type": "chain", "length": 400.0},
+                                 {"type": "polyester", "length": 450.0}] for i in (2, 3)}
+    from cable_ocp.scene.system import load_system
+
+    res = solve_system(load_system(path, over), stiffness=False)
+    assert res.status == "failed"
+    assert "line 'line2'" in res.message and "first segment" in res.message
