@@ -22,13 +22,65 @@ from cable_ocp.mooring import SystemModel, body_stiffness, solve_system
 from cable_ocp.scene import read_problem
 from cable_ocp.scene.system import system_from_dict
 
-__all__ = ["DEFAULT_FILES", "compare_with_moorpy", "rows"]
+__all__ = ["CURRENT_CASES", "DEFAULT_FILES", "compare_with_moorpy", "ours_with_current",
+           "rows"]
 
 #: the systems of ``cable-ocp bench systems`` (none has a current: MoorPy's is smeared)
 SYSTEMS = Path(__file__).resolve().parents[2] / "problems" / "systems"
 DEFAULT_FILES = tuple(str(SYSTEMS / f) for f in (
     "spar_3line.toml", "moorpy_3line_spread.toml", "spread_9line_bundled.toml",
     "spread_two_part_clump.toml"))
+
+
+#: (file, current speed m/s, heading deg) timed with a current (MoorPy has no exact one)
+CURRENT_CASES = ((str(SYSTEMS / "spar_3line.toml"), 1.0, 30.0),
+                 (str(SYSTEMS / "spread_9line.toml"), 1.0, 30.0))
+
+
+def ours_with_current(path: str | Path, speed: float, heading_deg: float,
+                      repeats: int = 5) -> dict[str, Any]:
+    """The times of a system's equilibrium and 6x6 with a uniform current, ours alone.
+
+    Parameters
+    ----------
+    path : str or Path
+        A system TOML.
+    speed : float
+        Current speed, m/s.
+    heading_deg : float
+        Direction the water flows towards, deg from +x towards +y.
+    repeats : int
+        Timed repeats (medians).
+
+    Returns
+    -------
+    dict
+        As :func:`compare_with_moorpy`, without MoorPy's numbers: ``status``, ``times_s``
+        (ours_first, ours_repeat, ours_6x6_assembly, ours_6x6_fresh), and ``asymmetry``
+        (max |K - K^T| / max |K| of the mooring 6x6: the drag's follower loads).
+    """
+    from cable_ocp.mooring.stiffness import relative_asymmetry
+    from cable_ocp.scene import apply_overrides
+
+    data = apply_overrides(read_problem(path), {"environment.current": {
+        "speed": speed, "heading_deg": heading_deg}})
+    scene = system_from_dict(data)
+    t0 = time.perf_counter()
+    model = SystemModel(scene)
+    res = solve_system(scene, model=model)
+    first = time.perf_counter() - t0
+    repeat = _median_time(lambda: solve_system(scene, model=model, stiffness=False), repeats)
+    body = scene.bodies[0].name
+    ev = model.evaluate(res.state)
+    k = body_stiffness(model, ev, body)["mooring"]
+    return {"file": f"{path} + {speed:g} m/s at {heading_deg:g} deg", "status": str(res.status),
+            "asymmetry": relative_asymmetry(k), "lines": [], "times_s": {
+                "ours_first": first, "ours_repeat": repeat,
+                "ours_6x6_assembly": _median_time(lambda: body_stiffness(model, ev, body),
+                                                  max(repeats, 20)),
+                "ours_6x6_fresh": _median_time(
+                    lambda: body_stiffness(model, model.evaluate(res.state), body), repeats),
+                "moorpy_equilibrium": None, "moorpy_analytic_6x6": None}}
 
 
 def rows(results: list[dict[str, Any]]) -> tuple[list[str], list[list[Any]]]:
@@ -48,9 +100,11 @@ def rows(results: list[dict[str, Any]]) -> tuple[list[str], list[list[Any]]]:
         def ms(v: Any) -> Any:
             return None if v is None else 1e3 * v
 
-        out.append([Path(r["file"]).stem, r["status"], (r.get("pose") or {}).get(
-            "max_difference"), max(max(ln["tension_a"], ln["tension_b"]) for ln in r["lines"]),
-            max(ln["laid_length_m"] for ln in r["lines"]),
+        name = Path(r["file"].split(" + ")[0]).stem + (
+            " + current" if " + " in r["file"] else "")
+        out.append([name, r["status"], (r.get("pose") or {}).get("max_difference"),
+            max((max(ln["tension_a"], ln["tension_b"]) for ln in r["lines"]), default=None),
+            max((ln["laid_length_m"] for ln in r["lines"]), default=None),
             (r.get("stiffness") or {}).get("analytic"),
             (r.get("stiffness") or {}).get("fd_fixed_axes"), ms(t["ours_repeat"]),
             ms(t["moorpy_equilibrium"]), ms(t["ours_6x6_assembly"]),

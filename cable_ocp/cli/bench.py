@@ -118,7 +118,8 @@ def register(sub: argparse._SubParsersAction, parent: argparse.ArgumentParser) -
                     "from central differences of full equilibria (relative to the largest "
                     "entry); the median times of the equilibrium (from the file's start, "
                     "solvers built) and of the 6x6 (from the solved lines' stiffnesses, as "
-                    "MoorPy's getCoupledStiffnessA).")
+                    "MoorPy's getCoupledStiffnessA); then, without FILEs, the shipped spar and "
+                    "9-line spread with a 1 m/s current, ours alone.")
     y.add_argument("files", nargs="*", metavar="FILE",
                    help="system files (default: problems/systems/ without current)")
     y.add_argument("--repeats", type=int, default=5, metavar="N",
@@ -479,15 +480,20 @@ def cmd_bench_systems(args: argparse.Namespace) -> int:
     if not 1 <= args.repeats <= 100:
         raise out_error(f"--repeats {args.repeats}: give 1..100")
     files = args.files or list(bs.DEFAULT_FILES)
+    currents = [] if args.files else list(bs.CURRENT_CASES)
     results = []
-    with out.progress(args, len(files), "bench systems", "system") as bar:
+    with out.progress(args, len(files) + len(currents), "bench systems", "system") as bar:
         for i, f in enumerate(files):
             bar(i, postfix=Path(f).stem)
             results.append(bs.compare_with_moorpy(f, repeats=args.repeats))
-        bar(len(files))
+        for j, (f, speed, heading) in enumerate(currents):
+            bar(len(files) + j, postfix=Path(f).stem + " + current")
+            results.append(bs.ours_with_current(f, speed, heading, repeats=args.repeats))
+        bar(len(files) + len(currents))
     head, rows = bs.rows(results)
     out.say(args, "cable_ocp beside MoorPy (no current; differences are the largest over "
-                  "the system; times are medians of " + f"{args.repeats} runs)")
+                  "the system; times are medians of " + f"{args.repeats} runs; the rows "
+                  "'+ current' (1 m/s at 30 deg) are ours alone: MoorPy smears a current)")
     out.say(args, table(head, rows, left=1))
     out.emit_json(args, out.envelope("ok", f"{len(results)} systems", {"rows": results}, []))
     return out.EXIT_OK
