@@ -52,13 +52,16 @@ def test_solve_writes_json_and_csv_that_agree(tmp_path):
             assert anchor["vertical"] > 0.01 * line["tension_a"]
 
 
-@pytest.mark.parametrize("edit, words", [
-    ("lines.1.point_b=a2", "point_a and point_b are both 'a2'"),
-    ("lines.1.type=rope", "lines[1].type = 'rope': no such line type"),
+@pytest.mark.parametrize("edits, words", [
+    (["lines.1.point_b=a2"], "point_a and point_b are both 'a2'"),
+    (["lines.1.type=rope"], "lines[1].type = 'rope': no such line type"),
+    # every fairlead on the spar's axis: nothing resists a yaw (found in the solve)
+    ([f"points.{i}.position=[0.0,0.0,-70.0]" for i in (3, 4, 5)],
+     "body 'spar' yaw has no restoring"),
 ])
-def test_bad_system_is_one_line_exit_2_and_nothing_written(tmp_path, edit, words):
-    r = run("solve", str(SPAR), "--set", edit, "--json", "o.json", "--csv", "o.csv",
-            cwd=tmp_path)
+def test_bad_system_is_one_line_exit_2_and_nothing_written(tmp_path, edits, words):
+    sets = [a for e in edits for a in ("--set", e)]
+    r = run("solve", str(SPAR), *sets, "--json", "o.json", "--csv", "o.csv", cwd=tmp_path)
     assert r.returncode == 2
     assert r.stderr.strip().count("\n") == 0 and words in r.stderr
     assert not (tmp_path / "o.json").exists() and not (tmp_path / "o.csv").exists()
@@ -102,3 +105,17 @@ def test_mooring_checks_command(tmp_path):
     assert fail["removed"] == ["L1", "L2", "L3"]
     assert fail["max_tension"][1] == pytest.approx(fail["max_tension"][2], rel=1e-6)
     assert "line failure" in r.stdout
+
+
+def test_a_moordyn_deck_with_rods_is_one_line_exit_2(tmp_path):
+    """A section we do not model, with rows: refused with the file's line, nothing written."""
+    deck = (ROOT / "tests" / "data" / "moordyn" / "moorpy_case1.dat").read_text()
+    rods = ("---------------------- ROD TYPES ----------------------\n"
+            "Name  Diam  Mass/m  Cd  Ca  CdEnd  CaEnd\n(-) (m) (kg/m) (-) (-) (-) (-)\n"
+            "pile  2.0  500.0  1.0  1.0  0.0  0.0\n")
+    lines = deck.splitlines(keepends=True)
+    at = next(k for k, ln in enumerate(lines) if ln.startswith("-") and "OPTIONS" in ln)
+    (tmp_path / "rods.dat").write_text("".join(lines[:at]) + rods + "".join(lines[at:]))
+    r = run("solve", "rods.dat", "--json", "o.json", cwd=tmp_path)
+    assert r.returncode == 2 and "ROD TYPES" in r.stderr and "not modelled" in r.stderr
+    assert r.stderr.strip().count("\n") == 0 and not (tmp_path / "o.json").exists()
