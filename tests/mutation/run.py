@@ -1038,6 +1038,20 @@ MUTATIONS: tuple[Mutation, ...] = (
              "    return t_a, t_a - load * chord\n", "    return t_a, t_a + load * chord\n",
              ("tests/test_moorpy_current.py",),
              "straight line in a current along it: the downstream end carries the drag"),
+    Mutation("system-line-below-seabed-reported-solved", "mooring",
+             "cable_ocp/mooring/equilibrium.py",
+             "            if ev.unphysical:\n                status = \"failed\"",
+             "            if False:\n                status = \"failed\"", (SYS_EQ,),
+             "an equilibrium whose line passes below the seabed is reported as solved"),
+    Mutation("system-tolerance-below-the-line-floor", "mooring", "cable_ocp/scene/system.py",
+             "    if tol < floor:", "    if tol < 0.0:", (SYS_EQ,),
+             "a system tolerance the lines' accuracy cannot reach is accepted"),
+    Mutation("moordyn-seabed-only-with-friction", "scene", "cable_ocp/scene/moordyn.py",
+             '    environment["seabed"] = {"friction": env_t.get("friction", 0.0)}',
+             '    if "friction" in env_t:\n'
+             '        environment["seabed"] = {"friction": env_t["friction"]}',
+             ("tests/test_moordyn_files.py",),
+             "a MoorDyn deck without FrictionCoefficient loses its seabed"),
 )
 
 
