@@ -32,6 +32,28 @@ DEFAULT_FILES = tuple(str(SYSTEMS / f) for f in (
     "spread_two_part_clump.toml"))
 
 
+def _timed_solve(scene: Any, repeats: int) -> tuple[Any, Any, Any, dict[str, Any]]:
+    """(model, result, evaluation at the result, ours' times): the first equilibrium (the
+    model built), a repeat from the file's start (the solvers built), the 6x6 from the
+    lines' end Jacobians of the solve (as MoorPy's analytic matrix uses the line
+    stiffnesses of its last solve) and with the lines' sensitivities anew."""
+    t0 = time.perf_counter()
+    model = SystemModel(scene)
+    res = solve_system(scene, model=model)
+    first = time.perf_counter() - t0
+    repeat = _median_time(lambda: solve_system(scene, model=model, stiffness=False), repeats)
+    body = scene.bodies[0].name if scene.bodies else None
+    ev = model.evaluate(res.state)
+    times: dict[str, Any] = {"ours_first": first, "ours_repeat": repeat,
+                             "ours_6x6_assembly": None, "ours_6x6_fresh": None}
+    if body:
+        times["ours_6x6_assembly"] = _median_time(lambda: body_stiffness(model, ev, body),
+                                                  max(repeats, 20))
+        times["ours_6x6_fresh"] = _median_time(
+            lambda: body_stiffness(model, model.evaluate(res.state), body), repeats)
+    return model, res, ev, times
+
+
 #: (file, current speed m/s, heading deg) timed with a current (MoorPy has no exact one)
 CURRENT_CASES = ((str(SYSTEMS / "spar_3line.toml"), 1.0, 30.0),
                  (str(SYSTEMS / "spread_9line.toml"), 1.0, 30.0))
@@ -65,22 +87,11 @@ def ours_with_current(path: str | Path, speed: float, heading_deg: float,
     data = apply_overrides(read_problem(path), {"environment.current": {
         "speed": speed, "heading_deg": heading_deg}})
     scene = system_from_dict(data)
-    t0 = time.perf_counter()
-    model = SystemModel(scene)
-    res = solve_system(scene, model=model)
-    first = time.perf_counter() - t0
-    repeat = _median_time(lambda: solve_system(scene, model=model, stiffness=False), repeats)
-    body = scene.bodies[0].name
-    ev = model.evaluate(res.state)
-    k = body_stiffness(model, ev, body)["mooring"]
+    model, res, ev, times = _timed_solve(scene, repeats)
+    k = body_stiffness(model, ev, scene.bodies[0].name)["mooring"]
     return {"file": f"{path} + {speed:g} m/s at {heading_deg:g} deg", "status": str(res.status),
             "asymmetry": relative_asymmetry(k), "lines": [], "times_s": {
-                "ours_first": first, "ours_repeat": repeat,
-                "ours_6x6_assembly": _median_time(lambda: body_stiffness(model, ev, body),
-                                                  max(repeats, 20)),
-                "ours_6x6_fresh": _median_time(
-                    lambda: body_stiffness(model, model.evaluate(res.state), body), repeats),
-                "moorpy_equilibrium": None, "moorpy_analytic_6x6": None}}
+                **times, "moorpy_equilibrium": None, "moorpy_analytic_6x6": None}}
 
 
 def rows(results: list[dict[str, Any]]) -> tuple[list[str], list[list[Any]]]:
@@ -148,19 +159,8 @@ def compare_with_moorpy(path: str | Path, repeats: int = 5) -> dict[str, Any]:
 
     data = read_problem(path)
     scene = system_from_dict(data)
-    t0 = time.perf_counter()
-    model = SystemModel(scene)
-    res = solve_system(scene, model=model)
-    first = time.perf_counter() - t0
-    repeat = _median_time(lambda: solve_system(scene, model=model, stiffness=False), repeats)
+    model, res, ev, times = _timed_solve(scene, repeats)
     body = scene.bodies[0].name if scene.bodies else None
-    ev = model.evaluate(res.state)
-    # the 6x6 from the lines' end Jacobians of the solve (as MoorPy's analytic matrix uses
-    # the line stiffnesses of its last solve), and with the lines' sensitivities anew
-    assembly = _median_time(lambda: body_stiffness(model, ev, body), max(repeats, 20)) \
-        if body else None
-    fresh = _median_time(lambda: body_stiffness(model, model.evaluate(res.state), body),
-                         repeats) if body else None
     ref = moorpy_reference(data, repeats=repeats)
     out: dict[str, Any] = {"file": str(path), "status": str(res.status)}
     if body:
@@ -186,8 +186,7 @@ def compare_with_moorpy(path: str | Path, repeats: int = 5) -> dict[str, Any]:
                      "tension_b": abs(ln["tension_b"] - mp["tension_b_N"]) / mp["tension_b_N"],
                      "laid_length_m": abs(ln["laid_length"] - mp["laid_length_m"])})
     out["lines"] = rows
-    out["times_s"] = {"ours_first": first, "ours_repeat": repeat,
-                      "ours_6x6_assembly": assembly, "ours_6x6_fresh": fresh,
+    out["times_s"] = {**times,
                       "moorpy_equilibrium": (ref.get("time_s") or {}).get("solve_equilibrium"),
                       "moorpy_analytic_6x6": ((ref.get("stiffness") or {}).get("time_s") or {})
                       .get("analytic")}
