@@ -114,6 +114,19 @@ def test_six_by_six_equals_central_differences_with_a_clump(rotation_deg, shift)
     assert rot < 1e-5, rot
 
 
+def test_six_by_six_with_a_current_equals_central_differences():
+    """With a current (1 m/s towards 30 deg) the drag is a follower load: the 6x6 is no
+    longer symmetric in its elastic part, and still the exact derivative (the lines' end
+    Jacobians carry the drag's derivatives): 1e-5 of the largest entry, as without."""
+    d = held(clump_dict(), [0.0, 0.0, 0.0], [0.0, 0.0, 0.0])
+    d["environment"]["current"] = {"speed": 1.0, "heading_deg": 30.0}
+    k, kfd = central_difference_6x6(d)
+    assert np.max(np.abs(k - kfd)) / np.max(np.abs(k)) < 1e-5
+    # the elastic part's asymmetry (1e-9 without current) is now far above the noise
+    el = solve_system(system_from_dict(d)).stiffness(which="elastic")
+    assert np.max(np.abs(el - el.T)) > 1e-3 * np.max(np.abs(el))
+
+
 def test_asymmetry_is_the_mooring_moment(spar):
     """K - K^T = [M]x in the rotational block (lines without current are conservative:
     their elastic part is symmetric; the geometric part's antisymmetric part is
