@@ -12,6 +12,7 @@ import numpy as np
 from cable_ocp.cli import output as out
 from cable_ocp.cli.cost import dynamics_cost
 from cable_ocp.errors import CableOCPError
+from cable_ocp.numerics import interrupt
 from cable_ocp.numerics.export import netcdf_engine, write_netcdf
 
 
@@ -90,6 +91,13 @@ def cmd_simulate(args: argparse.Namespace) -> int:
     with out.progress(args, 1, f"simulate ({scene.simulation.model})", "step") as bar:
         res = simulate(scene, progress=lambda done, total: bar(done, total))
     title = scene.statics.meta.get("title", Path(args.file).stem)
+    # a Ctrl-C from here on waits until the finished run is written (then exit 130)
+    with interrupt.deferred():
+        return _simulate_outputs(args, scene, res, title)
+
+
+def _simulate_outputs(args: argparse.Namespace, scene: Any, res: Any, title: str) -> int:
+    """The text, JSON, CSV, netCDF and figure of a finished (or interrupted) run."""
     data = res.to_dict()
     if out.stdout_free(args):
         t = res.t

@@ -38,7 +38,7 @@ from types import FrameType
 from typing import Any
 
 __all__ = ["IPOPT_STOP", "call_solver", "check", "clear", "defer_during_launch", "install",
-           "is_interruption", "reraise_interruption", "requested", "signals_blocked"]
+           "deferred", "is_interruption", "reraise_interruption", "requested", "signals_blocked"]
 
 #: IPOPT's return status after a Ctrl-C during its solve
 IPOPT_STOP = "User_Requested_Stop"
@@ -49,6 +49,7 @@ _CASADI_CAUGHT = "KeyboardInterruptException"
 SIGNALS = (signal.SIGINT, signal.SIGTERM)
 
 _requested = False
+_deferred = 0  # depth of deferred() contexts: the handler records instead of raising
 
 
 def requested() -> bool:
@@ -69,8 +70,9 @@ def clear() -> None:
 
 
 def check() -> None:
-    """Raise :class:`KeyboardInterrupt` if an interruption has been requested."""
-    if _requested:
+    """Raise :class:`KeyboardInterrupt` if an interruption has been requested (not inside
+    :func:`deferred`, which raises it at its end)."""
+    if _requested and not _deferred:
         raise KeyboardInterrupt
 
 
@@ -148,7 +150,23 @@ def reraise_interruption(exc: BaseException) -> None:
 
 def _handler(signum: int, frame: FrameType | None) -> None:
     _request()
-    raise KeyboardInterrupt
+    if not _deferred:
+        raise KeyboardInterrupt
+
+
+@contextlib.contextmanager
+def deferred() -> Iterator[None]:
+    """Around writing a finished result: a SIGINT or SIGTERM (delivered to any thread) is
+    recorded, not raised, until the block ends; then :class:`KeyboardInterrupt` is raised
+    if one came (the command line writes what finished, then exits 130)."""
+    global _deferred
+    _deferred += 1
+    try:
+        yield
+    finally:
+        _deferred -= 1
+    if not _deferred and _requested:
+        raise KeyboardInterrupt
 
 
 def install() -> None:
