@@ -25,7 +25,9 @@ once with its ends at the file's positions; the equilibrium moves its ends
                               hydrostatic_matrix (6x6), force (N), moment (N m)
     [[lines]]                 name, point_a, point_b, parts = [{type, length}, ...] (from
                               point_a) or type and length
-    [system]                  tolerance (relative force residual), max_iterations
+    [system]                  tolerance (relative force residual), max_iterations,
+                              line_model ("auto": the closed-form catenary where it is exact,
+                              else the collocation; "collocation": every line by collocation)
     [moordyn]                 what a MoorDyn file carries that statics does not use (kept
                               for writing the file back; :mod:`cable_ocp.scene.moordyn`)
 
@@ -75,7 +77,10 @@ _BODY_KEYS = {"name", "kind", "held", "position", "rotation_deg", "mass", "cente
               "volume", "center_of_buoyancy", "waterplane_area", "waterplane_moments",
               "metacenter", "hydrostatic_matrix", "force", "moment"}
 _LINE_KEYS = {"name", "point_a", "point_b", "parts", "type", "length"}
-_SYSTEM_KEYS = {"tolerance", "max_iterations"}
+_SYSTEM_KEYS = {"tolerance", "max_iterations", "line_model"}
+
+#: values of ``[system] line_model``
+LINE_MODELS = ("auto", "collocation")
 #: masses, kg (bodies and clumps)
 MASS_MAX = 1e9
 MASS_WHY = "heavier than the largest floating structure (~6e8 kg)"
@@ -300,6 +305,11 @@ class SystemScene:
         free point or body, over the largest line tension.
     max_iterations : int
         Newton iterations of the equilibrium.
+    line_model : str
+        ``"auto"``: a line gets the closed-form elastic catenary where it is exact (no
+        current, one line type, no bending stiffness, a flat seabed z = 0 or none,
+        :func:`cable_ocp.statics.catenary_line.catenary_exact`), else the collocation;
+        ``"collocation"``: every line by collocation.
     meta : dict
         ``[meta]`` strings.
     raw : dict
@@ -314,6 +324,7 @@ class SystemScene:
     solver: SolverOptions
     tolerance: float = 1e-8
     max_iterations: int = 50
+    line_model: str = "auto"
     meta: dict[str, str] = field(default_factory=dict)
     raw: dict[str, Any] = field(default_factory=dict, repr=False, compare=False)
 
@@ -676,7 +687,9 @@ def system_from_dict(data: dict[str, Any]) -> SystemScene:
                  unit="-", why="the net force on a free point or body over the largest "
                                "tension")
     max_it = integer(sys_t.get("max_iterations", 50), "system.max_iterations", 1, 1000)
+    line_model = choice(sys_t.get("line_model", "auto"), "system.line_model", LINE_MODELS)
     first = lines[0].scene
     return SystemScene(environment=first.environment, line_types=types, points=points,
                        bodies=bodies, lines=tuple(lines), solver=first.solver, tolerance=tol,
-                       max_iterations=max_it, meta=meta, raw=raw)
+                       max_iterations=max_it, line_model=line_model, meta=meta,
+                       raw=raw)
