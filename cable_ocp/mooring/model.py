@@ -1,11 +1,15 @@
 """The state of a mooring system, its net loads and their exact Jacobian.
 
 The unknowns are the positions of the free points and the poses of the bodies. Every
-line is solved as today's collocation BVP with both ends held where the state puts them
-(:class:`cable_ocp.statics.solver.SolveSession`, warm-started from the line's last
-solution); its end forces and their 6x6 Jacobian in its end positions come from the
-line solver's own sensitivities (the implicit-function theorem,
-:meth:`cable_ocp.statics.solution.StaticsSolution.end_jacobian`). Assembly
+line is solved with both ends held where the state puts them, warm-started from its last
+solution, by one of two line models (``[system] line_model``, docs/systems.md): where the
+closed-form elastic catenary is exact (no current, one line type, no bending stiffness, a
+flat seabed z = 0 or none: :func:`cable_ocp.statics.catenary_line.catenary_exact`) by it
+(:func:`cable_ocp.statics.catenary_line.solve_catenary_scene`, Newton from the line's last
+(H, V_b); should it fail, the collocation takes that solve), else as the collocation BVP
+(:class:`cable_ocp.statics.solver.SolveSession`). Either gives the end forces and their
+exact 6x6 Jacobian in the end positions
+(:meth:`cable_ocp.statics.solution.StaticsSolution.end_jacobian`). Assembly
 (docs/systems.md, "Formulation"): an end e of a line on an entity moves by
 dr_e = T_e dq, T_e = I for a free point and T_e = [I, -[rho_e]x] for a point of a body
 (rho_e = R r_e, dq = (dx, dtheta), dtheta small rotations about the fixed axes); the
@@ -34,7 +38,8 @@ from cable_ocp.numerics.rotation import (
 )
 from cable_ocp.physics.hydrostatics import body_load, load_jacobian
 from cable_ocp.scene import End
-from cable_ocp.scene.system import SystemScene
+from cable_ocp.scene.system import SystemLine, SystemScene
+from cable_ocp.statics.catenary_line import catenary_exact, solve_catenary_scene
 from cable_ocp.statics.solution import StaticsSolution
 from cable_ocp.statics.solver import SolveSession
 
@@ -132,6 +137,10 @@ class SystemModel:
                          for _ in self.lines]
         self.points = {p.name: p for p in scene.points}
         self.bodies = {b.name: b for b in scene.bodies}
+        #: line name -> the model of its last solve, "catenary" or "collocation"
+        self.line_models: dict[str, str] = {}
+        #: line name -> its last catenary solution's (H, V_b), N: the warm start
+        self.catenary_starts: dict[str, tuple[float, float]] = {}
         # columns of the small coordinates: 3 per free point, 6 per body
         self.cols: dict[str, slice] = {}
         n = 0
@@ -221,11 +230,34 @@ class SystemModel:
             xa, xb = self.position(line.point_a, state), self.position(line.point_b, state)
             lo, hi = (xb, xa) if line.reversed else (xa, xb)
             sc = replace(line.scene, end_a=_held(lo), end_b=_held(hi))
-            sol = session.solve(sc)
+            sol = None
+            if self.uses_catenary(line):
+                sol = solve_catenary_scene(sc, self.catenary_starts.get(line.name))
+                if sol.converged:
+                    d = sol.diagnostics
+                    self.catenary_starts[line.name] = (d["horizontal_tension"],
+                                                       d["vertical_force"])
+                    self.line_models[line.name] = "catenary"
+                else:
+                    sol = None
+            if sol is None:
+                sol = session.solve(sc)
+                self.line_models[line.name] = "collocation"
             sols.append(sol)
             if not sol.converged and ok:
                 ok, why = False, f"line {line.name!r}: {sol.status} ({sol.message})"
         return sols, ok, why
+
+    def uses_catenary(self, line: SystemLine) -> bool:
+        """True when ``line`` is solved by the closed-form catenary: ``[system]
+        line_model`` is "auto" and the catenary is exact for it (:func:`catenary_exact`).
+
+        Parameters
+        ----------
+        line : SystemLine
+            One of the model's lines.
+        """
+        return self.scene.line_model == "auto" and not catenary_exact(line.scene)
 
     def evaluate(self, state: State, jacobian: bool = True) -> Evaluation:
         """Solve the lines at ``state`` and assemble the net loads (and their Jacobian).

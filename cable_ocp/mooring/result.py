@@ -55,7 +55,9 @@ class SystemResult:
     wall_time_s : float
         s.
     diagnostics : dict
-        ``residual_history`` (scaled residual per step), counts, the tolerance.
+        ``residual_history`` (scaled residual per step), counts, the tolerance,
+        ``line_models`` (line name -> "catenary" or "collocation", the model of its
+        last solve).
     """
 
     status: Status
@@ -258,7 +260,10 @@ def build_result(model: Any, ev: Any, status: str, message: str, iterations: int
     diag = {"residual_history": history, "tolerance": scene.tolerance,
             "unknowns": int(model.free_dofs().size), "lines": len(model.lines),
             "formulation": "nested: Newton on the free points and bodies, each line the "
-                           "collocation BVP with exact end Jacobians (docs/systems.md)"}
+                           "closed-form catenary or the collocation BVP with exact end "
+                           "Jacobians (docs/systems.md)",
+            "line_models": {ln.name: model.line_models.get(ln.name, "collocation")
+                            for ln in model.lines}}
     return SystemResult(status=Status(status), message=message, bodies=bodies, lines=lines,
                         points=points, solutions=sols, iterations=iterations,
                         wall_time_s=wall, diagnostics=diag, state=state.copy())

@@ -25,7 +25,9 @@ once with its ends at the file's positions; the equilibrium moves its ends
                               hydrostatic_matrix (6x6), force (N), moment (N m)
     [[lines]]                 name, point_a, point_b, parts = [{type, length}, ...] (from
                               point_a) or type and length
-    [system]                  tolerance (relative force residual), max_iterations
+    [system]                  tolerance (relative force residual), max_iterations,
+                              line_model ("auto": the closed-form catenary where it is exact,
+                              else the collocation; "collocation": every line by collocation)
     [moordyn]                 what a MoorDyn file carries that statics does not use (kept
                               for writing the file back; :mod:`cable_ocp.scene.moordyn`)
 
@@ -75,7 +77,10 @@ _BODY_KEYS = {"name", "kind", "held", "position", "rotation_deg", "mass", "cente
               "volume", "center_of_buoyancy", "waterplane_area", "waterplane_moments",
               "metacenter", "hydrostatic_matrix", "force", "moment"}
 _LINE_KEYS = {"name", "point_a", "point_b", "parts", "type", "length"}
-_SYSTEM_KEYS = {"tolerance", "max_iterations"}
+_SYSTEM_KEYS = {"tolerance", "max_iterations", "line_model"}
+
+#: values of ``[system] line_model``
+LINE_MODELS = ("auto", "collocation")
 #: the smallest system.tolerance over solver.tolerance: the net forces of an equilibrium
 #: stall at ~25 x the lines' scaled residual tolerance (seen on the 3- and 9-line spreads:
 #: 2.3e-9 at 1e-10), so a system tolerance below 50 x it cannot be reached
@@ -304,6 +309,11 @@ class SystemScene:
         free point or body, over the largest line tension.
     max_iterations : int
         Newton iterations of the equilibrium.
+    line_model : str
+        ``"auto"``: a line gets the closed-form elastic catenary where it is exact (no
+        current, one line type, no bending stiffness, a flat seabed z = 0 or none,
+        :func:`cable_ocp.statics.catenary_line.catenary_exact`), else the collocation;
+        ``"collocation"``: every line by collocation.
     meta : dict
         ``[meta]`` strings.
     raw : dict
@@ -318,6 +328,7 @@ class SystemScene:
     solver: SolverOptions
     tolerance: float = 1e-8
     max_iterations: int = 50
+    line_model: str = "auto"
     meta: dict[str, str] = field(default_factory=dict)
     raw: dict[str, Any] = field(default_factory=dict, repr=False, compare=False)
 
@@ -680,6 +691,7 @@ def system_from_dict(data: dict[str, Any]) -> SystemScene:
                  unit="-", why="the net force on a free point or body over the largest "
                                "tension")
     max_it = integer(sys_t.get("max_iterations", 50), "system.max_iterations", 1, 1000)
+    line_model = choice(sys_t.get("line_model", "auto"), "system.line_model", LINE_MODELS)
     first = lines[0].scene
     floor = LINE_FLOOR * first.solver.tolerance
     if tol < floor:
@@ -690,4 +702,5 @@ def system_from_dict(data: dict[str, Any]) -> SystemScene:
             "lower solver.tolerance with it")
     return SystemScene(environment=first.environment, line_types=types, points=points,
                        bodies=bodies, lines=tuple(lines), solver=first.solver, tolerance=tol,
-                       max_iterations=max_it, meta=meta, raw=raw)
+                       max_iterations=max_it, line_model=line_model, meta=meta,
+                       raw=raw)

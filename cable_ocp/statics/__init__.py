@@ -14,6 +14,8 @@ solution        the result type; line_solution builds it from a discretised line
 error_estimate  the a-posteriori error estimate; checks the method-free checks
 stiffness       end stiffness from the sensitivities
 catenary        the elastic catenary with point loads in closed form; initial_guess
+catenary_line   the uniform line in still water with seabed contact in closed form, with
+                its exact 6x6 end Jacobian (a mooring system's line model where exact)
 optimize        optimisation through the statics (StaticsNLP)
 footprint_nlp   the footprint of a tethered unit (:func:`cable_ocp.footprint`)
 registry        the methods by name (``[solver] method``); cache the function cache

@@ -1052,6 +1052,18 @@ MUTATIONS: tuple[Mutation, ...] = (
              '        environment["seabed"] = {"friction": env_t["friction"]}',
              ("tests/test_moordyn_files.py",),
              "a MoorDyn deck without FrictionCoefficient loses its seabed"),
+    Mutation("catenary-line-friction-drop-sign", CAT, "cable_ocp/statics/catenary_line.py",
+             "h_a = max(h - k * lg, 0.0) if grounded else h\n    v_a = ",
+             "h_a = max(h + k * lg, 0.0) if grounded else h\n    v_a = ",
+             ("tests/test_catenary_line.py",),
+             "catenary line: the grounded part's friction raises the tension towards the anchor"),
+    Mutation("catenary-line-no-out-of-plane", CAT, "cable_ocp/statics/catenary_line.py",
+             "kbb = -(basis @ inv @ basis.T) - h / span * perp",
+             "kbb = -(basis @ inv @ basis.T)", ("tests/test_catenary_line.py",),
+             "catenary line: the out-of-plane term H/X of the end Jacobian dropped"),
+    Mutation("catenary-line-slack-integral", CAT, "cable_ocp/statics/catenary_line.py",
+             "di_dh = h / k if slack else lg", "di_dh = lg", ("tests/test_catenary_line.py",),
+             "catenary line: the stretch of a grounded part with a slack anchor end"),
 )
 
 
