@@ -29,6 +29,7 @@ list is reviewed and extended with each issue (docs/testing.md).
 from __future__ import annotations
 
 import argparse
+import importlib.util
 import os
 import re
 import shutil
@@ -1065,6 +1066,22 @@ MUTATIONS: tuple[Mutation, ...] = (
              "di_dh = h / k if slack else lg", "di_dh = lg", ("tests/test_catenary_line.py",),
              "catenary line: the stretch of a grounded part with a slack anchor end"),
 )
+
+
+def _more_mutations() -> tuple[Mutation, ...]:
+    """The mutations of ``tests/mutation/list_*.py`` (each a ``MUTATIONS`` list of dicts with
+    the fields of :class:`Mutation`), one file an area of work, so that lists grow apart."""
+    more: list[Mutation] = []
+    for path in sorted(Path(__file__).parent.glob("list_*.py")):
+        spec = importlib.util.spec_from_file_location(path.stem, path)
+        module = importlib.util.module_from_spec(spec)
+        spec.loader.exec_module(module)
+        for d in module.MUTATIONS:
+            more.append(Mutation(**{**d, "tests": tuple(d["tests"])}))
+    return tuple(more)
+
+
+MUTATIONS = MUTATIONS + _more_mutations()
 
 
 def _copy_tree(dst: Path) -> None:
