@@ -97,7 +97,13 @@ from cable_ocp.numerics.quadrature import gauss_legendre
 from cable_ocp.physics.added_mass import added_mass_per_length, line_added_mass_2d
 from cable_ocp.physics.current import profile_velocity
 from cable_ocp.physics.drag import line_drag_factors, point_drag, vector_drag_columns
-from cable_ocp.physics.elasticity import SLACK_SMOOTHING, smooth_tension, taut_switch
+from cable_ocp.physics.elasticity import (
+    SLACK_SMOOTHING,
+    mean_smooth_tension,
+    mean_taut_switch,
+    smooth_tension,
+    taut_switch,
+)
 from cable_ocp.scene.dynamics import DynamicScene
 from cable_ocp.scene.motion import motion_function
 
@@ -359,12 +365,11 @@ class PlanarModel:
         l0, l1 = self._norms(d0), self._norms(d1)
         e0, e1 = l0 / h0 - 1.0, l1 / h1 - 1.0
         em, de = 0.5 * (e0 + e1), 0.5 * (e1 - e0)
-        tbar = sum(wg * self._tension(em + g * de)
-                   for g, wg in zip(*_MEAN_RULE, strict=True))
+        tbar = mean_smooth_tension(e0, e1, self.ea, self.delta_t)
         u = (d0 + d1) / ca.repmat(l0 + l1, 2, 1)
         if self.c > 0.0:
             rate = ca.sum1(u * (vm[:, 1:] - vm[:, :-1])) / hm
-            tbar = tbar + self.c * rate * self._taut(em)
+            tbar = tbar + self.c * rate * mean_taut_switch(e0, e1, self.ea, self.delta_t)
         force = self._spread(ca.repmat(tbar, 2, 1) * u)
         # drag at the mean positions with the midpoint velocities
         zm = 0.5 * (self._heights(qa, m0) + self._heights(qb, m1))
