@@ -58,8 +58,10 @@ eigenproblem. The pay-out (advection) terms a R_y and a V_y use central differen
 the top a one-sided second-order difference.
 
 Time: the implicit midpoint rule with a discrete-gradient tension (the energy-momentum
-method of Simo & Tarnow (1992), Gonzalez (1996)): the element force is the mean of T over
-[e_0, e_1] (3-point Gauss) along (d_0 + d_1) / (|d_0| + |d_1|), so that an undamped run in
+method of Simo & Tarnow (1992), Gonzalez (1996)): the element force is the exact mean of T
+over [e_0, e_1] (:func:`cable_ocp.physics.elasticity.mean_smooth_tension`, from the strain
+energy: exact across the no-compression kink when an element goes slack or taut) along
+(d_0 + d_1) / (|d_0| + |d_1|), so that an undamped run in
 air conserves the discrete energy to the Newton tolerance, at any time step (A-stable,
 symplectic for the linear part, no numerical damping). The kinematic equation is
 eliminated (V_m = (R_1 - R_0) / dt - a R_y,m), the step is a Newton ``rootfinder`` in the
@@ -93,7 +95,6 @@ from cable_ocp.dynamics.result import (
 )
 from cable_ocp.dynamics.stepping import chunk_functions, run_chunks
 from cable_ocp.errors import CableOCPError
-from cable_ocp.numerics.quadrature import gauss_legendre
 from cable_ocp.physics.added_mass import added_mass_per_length, line_added_mass_2d
 from cable_ocp.physics.current import profile_velocity
 from cable_ocp.physics.drag import line_drag_factors, point_drag, vector_drag_columns
@@ -114,10 +115,6 @@ SLACK_MESSAGE = ("slack: tension <= 0 first at t = {t:.6g} s in element {segment
                  "{location:.4g} m from end_a); the planar model predicts slack but cannot "
                  "follow it (Huang (1992) 4.5.1): {action}; the Hooke's-law tension EA e "
                  "reached {hooke:.4g} N")
-#: 3-point Gauss-Legendre rule on [-1, 1], weights halved (the mean of the tension over a
-#: strain interval)
-_MEAN_RULE = ([float(v) for v in gauss_legendre(3)[0]],
-              [0.5 * float(v) for v in gauss_legendre(3)[1]])
 
 class PlanarModel:
     """The discretised planar model of one scene (see the module docstring).
@@ -364,7 +361,6 @@ class PlanarModel:
         # discrete-gradient tension (mean of T over [e0, e1] along (d0 + d1)/(l0 + l1))
         l0, l1 = self._norms(d0), self._norms(d1)
         e0, e1 = l0 / h0 - 1.0, l1 / h1 - 1.0
-        em, de = 0.5 * (e0 + e1), 0.5 * (e1 - e0)
         tbar = mean_smooth_tension(e0, e1, self.ea, self.delta_t)
         u = (d0 + d1) / ca.repmat(l0 + l1, 2, 1)
         if self.c > 0.0:
