@@ -35,6 +35,7 @@ from cable_ocp.dynamics.result import (
     slack_report,
     until_slack,
 )
+from cable_ocp.dynamics.snap import snap_report
 from cable_ocp.dynamics.stepping import MAX_CHUNKS
 from cable_ocp.errors import CableOCPError
 from cable_ocp.physics.current import current_velocity
@@ -274,7 +275,8 @@ def _result(scene: DynamicScene, model: LumpedMassModel, out: LumpedRun,
         positions, t=ts, length=np.full(ts.size, p.length), top_tension=top,
         segment_tensions=tens, node_velocities=velocities,
         min_tension=float(np.min(tens)) if tens.size else math.nan, slack=slack,
-        status=status, message=message, warnings=warnings, wall_time_s=out.wall_time_s,
+        snap=snap_report(ts, tens, s_mid), status=status, message=message,
+        warnings=warnings, wall_time_s=out.wall_time_s,
         model="lumped3d", scheme=sim.scheme, diagnostics=diagnostics)
 
 

@@ -93,7 +93,8 @@ from cable_ocp.dynamics.result import (
     slack_report,
     until_slack,
 )
-from cable_ocp.dynamics.stepping import chunk_functions, run_chunks
+from cable_ocp.dynamics.snap import snap_report
+from cable_ocp.dynamics.stepping import chunk_functions, halving, run_chunks
 from cable_ocp.errors import CableOCPError
 from cable_ocp.physics.added_mass import added_mass_per_length, line_added_mass_2d
 from cable_ocp.physics.current import profile_velocity
@@ -691,9 +692,13 @@ class PlanarModel:
         acc = np.concatenate([x0, [0.0, eps0, np.inf, -1.0]])
         tol_fail = max(1e3 * sim.tolerance, 1e-6)
         off = 2 * nf2
+        stats: dict[str, Any] = {}
         ts, xs, acc, status, message, wall = run_chunks(
             chunk_fn, acc, n_out, per_chunk, every, dt, off, off, tol_fail,
-            sim.on_slack == "stop", progress)
+            sim.on_slack == "stop", progress,
+            refine=halving(lambda h: self.step_function(h, sim.tolerance, sim.max_iterations),
+                           dt, every), stats=stats)
+        info = {**info, "step_halving": stats}
         times, states = [0.0, *ts], [x0, *xs]
         return self._result(np.asarray(times), np.stack(states, axis=1), acc[off:off + 4],
                             post, status, message, wall, build_time, info)
@@ -773,6 +778,7 @@ class PlanarModel:
         return SimulationResult.from_nodes(
             nodes, t=ts, length=length, top_tension=top, segment_tensions=tens,
             min_tension=min_t, slack=slack, status=status, message=message, warnings=warnings,
+            snap=snap_report(ts, tens, (np.arange(self.n) + 0.5) / self.n * length[:, None]),
             wall_time_s=wall, model="planar", scheme=sim.scheme, diagnostics=diagnostics,
             node_velocities=velocities)
 
