@@ -110,7 +110,7 @@ def check_lumped(scene: DynamicScene) -> None:
     refuses."""
     tm = scene.top_motion
     if tm.varying_length:
-        key = "payout_amplitude" if tm.payout_law == "periodic" else "payout_speed"
+        key = tm.payout_key
         raise CableOCPError(f'top_motion.{key}: simulation.model = "lumped3d" has a fixed '
                             'length (Huang (1992) ch. 5); pay-out needs model = "axial" or '
                             '"planar"')

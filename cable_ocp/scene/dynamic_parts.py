@@ -20,7 +20,8 @@ from cable_ocp.scene.fields import number as _number
 from cable_ocp.scene.fields import require as _require
 
 __all__ = ["BODY_DYN_KEYS", "CABLE_DYN_KEYS", "DEFAULT_SCHEME", "DYNAMIC_TABLES", "MAX_STEPS",
-           "MODELS", "ROUNDING", "SCHEMES", "BodyDynamics", "ModesOptions", "SegmentDynamics",
+           "MODELS", "PAYOUT_LAWS", "ROUNDING", "SCHEMES", "BodyDynamics", "ModesOptions",
+           "SegmentDynamics",
            "Simulation", "TopMotion", "Tow", "Unit", "parse_modes", "parse_segment_dynamics",
            "parse_simulation", "parse_top_motion", "parse_tow", "parse_unit",
            "vec_or_scalar"]
@@ -45,10 +46,13 @@ _TOP_KEYS = {"heave_amplitude", "heave_frequency", "horizontal_amplitude",
              "horizontal_frequency", "horizontal_heading_deg", "circular_radius",
              "circular_frequency", "circular_heading_deg", "series", "ramp_time",
              "payout_law", "payout_speed", "payout_acceleration", "payout_amplitude",
-             "payout_frequency", "tow"}
+             "payout_frequency", "payout_speed_table", "payout_length_table", "tow"}
 _LAW_KEYS = {"linear": {"payout_speed"},
              "quadratic": {"payout_speed", "payout_acceleration"},
-             "periodic": {"payout_amplitude", "payout_frequency"}}
+             "periodic": {"payout_amplitude", "payout_frequency"},
+             "table": {"payout_speed_table", "payout_length_table"}}
+#: the pay-out laws of ``top_motion.payout_law``
+PAYOUT_LAWS = ("linear", "quadratic", "periodic", "table")
 _TOW_KEYS = {"speed", "heading_deg", "straight_length", "turn_diameter", "turn_angle_deg",
              "turn_direction"}
 _SIM_KEYS = {"model", "duration", "time_step", "output_step", "segments", "start", "scheme",
@@ -249,13 +253,18 @@ class TopMotion:
     ramp_time : float
         s, smooth start of amplitudes and speeds (0 = none).
     payout_law : str
-        ``"linear"``, ``"quadratic"`` or ``"periodic"`` (Huang (1992) 3.1).
+        ``"linear"``, ``"quadratic"``, ``"periodic"`` (Huang (1992) 3.1) or ``"table"``.
     payout_speed : float
         v, m/s of unstretched cable (> 0 lowers the unit).
     payout_acceleration : float
         a, m/s^2 (quadratic law).
     payout_amplitude, payout_frequency : float
         p (m), w (rad/s) of the periodic law.
+    payout_table : tuple of (t, value)
+        The table law's rows: (s, m/s) of ``payout_speed_table`` or (s, m) of
+        ``payout_length_table`` (:func:`cable_ocp.scene.motion.length_expr`).
+    payout_table_kind : str
+        ``"speed"`` or ``"length"`` (the table law), else ``""``.
     tow : Tow or None
         Towing path.
     """
@@ -275,13 +284,26 @@ class TopMotion:
     payout_acceleration: float = 0.0
     payout_amplitude: float = 0.0
     payout_frequency: float = 0.0
+    payout_table: tuple[tuple[float, float], ...] = ()
+    payout_table_kind: str = ""
     tow: Tow | None = None
 
     @property
     def varying_length(self) -> bool:
         """True when the unstretched length changes with time."""
+        if self.payout_law == "table":
+            vals = [r[1] for r in self.payout_table]
+            return (any(v != 0.0 for v in vals) if self.payout_table_kind == "speed"
+                    else any(v != vals[0] for v in vals))
         return (self.payout_speed != 0.0 or self.payout_acceleration != 0.0
                 or self.payout_amplitude != 0.0)
+
+    @property
+    def payout_key(self) -> str:
+        """The ``[top_motion]`` key that sets the pay-out (for messages)."""
+        if self.payout_law == "table":
+            return f"payout_{self.payout_table_kind}_table"
+        return "payout_amplitude" if self.payout_law == "periodic" else "payout_speed"
 
     @property
     def horizontal(self) -> bool:
@@ -549,8 +571,7 @@ def parse_top_motion(t: Any) -> TopMotion:
             raise CableOCPError(f"{where}.series[0]: the offsets at t = 0 must be 0 (end_b "
                                 "starts at end_b.position)")
         kw["series"] = tuple(out)
-    law = _choice(t.get("payout_law", "linear"), f"{where}.payout_law",
-                  ("linear", "quadratic", "periodic"))
+    law = _choice(t.get("payout_law", "linear"), f"{where}.payout_law", PAYOUT_LAWS)
     kw["payout_law"] = law
     all_law_keys = set().union(*_LAW_KEYS.values())
     for key in sorted(all_law_keys & set(t)):
@@ -569,9 +590,51 @@ def parse_top_motion(t: Any) -> TopMotion:
                                 "\"periodic\": L = L0 + p sin(w t))")
         kw["payout_frequency"] = _number(t["payout_frequency"], f"{where}.payout_frequency",
                                          positive=True)
+    if law == "table":
+        kw["payout_table_kind"], kw["payout_table"] = _payout_table(t, where)
     if "tow" in t:
         kw["tow"] = parse_tow(t["tow"])
     return TopMotion(**kw)
+
+
+def _payout_table(t: dict[str, Any], where: str
+                  ) -> tuple[str, tuple[tuple[float, float], ...]]:
+    """(kind, rows) of ``payout_law = "table"``: exactly one of ``payout_speed_table``
+    ([[t, v], ...], s and m/s; times from 0, non-decreasing, a time given twice is a jump
+    in speed such as a sudden stop) and ``payout_length_table`` ([[t, L], ...], s and m;
+    times from 0, increasing)."""
+    given = [k for k in ("payout_speed_table", "payout_length_table") if k in t]
+    if len(given) != 1:
+        raise CableOCPError(
+            f'{where}.payout_law = "table" needs exactly one of {where}.payout_speed_table '
+            f"([[t, v], ...], s and m/s) and {where}.payout_length_table ([[t, L], ...], s "
+            f"and m); got {', '.join(given) if given else 'neither'}")
+    key = given[0]
+    kind = "speed" if key == "payout_speed_table" else "length"
+    unit = "m/s" if kind == "speed" else "m"
+    rows = t[key]
+    if not isinstance(rows, list) or len(rows) < 2:
+        raise CableOCPError(f"{where}.{key}: expected at least two rows [t, "
+                            f"{'v' if kind == 'speed' else 'L'}] (s, {unit})")
+    out = []
+    for i, r in enumerate(rows):
+        if not isinstance(r, list) or len(r) != 2:
+            raise CableOCPError(f"{where}.{key}[{i}] = {r!r}: expected [t, "
+                                f"{'v' if kind == 'speed' else 'L'}] (s, {unit})")
+        out.append((_number(r[0], f"{where}.{key}[{i}][0]", nonneg=True),
+                    _number(r[1], f"{where}.{key}[{i}][1]", positive=kind == "length")))
+    if out[0][0] != 0.0:
+        raise CableOCPError(f"{where}.{key}[0][0] = {out[0][0]}: the table starts at t = 0 s")
+    for i, (a, b) in enumerate(zip(out, out[1:], strict=False)):
+        if b[0] < a[0] or (b[0] == a[0] and kind == "length"):
+            raise CableOCPError(
+                f"{where}.{key}[{i + 1}][0] = {b[0]} s: times must "
+                + ("not decrease (a time given twice is a jump in speed)" if kind == "speed"
+                   else "increase strictly (a length cannot jump)"))
+        if kind == "speed" and i + 2 < len(out) and out[i + 2][0] == a[0] == b[0]:
+            raise CableOCPError(f"{where}.{key}[{i + 2}][0] = {a[0]} s: a time may be given "
+                                "at most twice (the speeds before and after a jump)")
+    return kind, tuple(out)
 
 
 def parse_simulation(t: Any) -> Simulation:
