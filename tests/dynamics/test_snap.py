@@ -1,0 +1,149 @@
+"""Slack and snap loads (issue 24 item 4): the exact mean tension across the
+no-compression kink, a mass dropped on an elastic line from slack against the closed form
+W (1 + sqrt(1 + 2 k h / W)), the step halving, the snap in the outputs, and the
+Huang (1992) 3.3.2 rope (004_7da4a1ee8042db40.txt line ~954: "cable snatching occurs which
+results in an impact load in the cable following initiation of slack in the cable, which
+the present model can not handle")."""
+
+from __future__ import annotations
+
+import json
+import math
+
+import numpy as np
+import pytest
+from scipy.integrate import quad
+
+from cable_ocp.cli.dynamics import _series_table
+from cable_ocp.dynamics import dynamic_scene_from_dict, load_dynamic_scene, simulate
+from cable_ocp.dynamics.lumped_scene import LumpedSceneModel
+from cable_ocp.dynamics.planar import PlanarModel
+from cable_ocp.numerics.quadrature import gauss_legendre
+from cable_ocp.physics.elasticity import mean_smooth_tension, mean_taut_switch, smooth_tension
+
+G = 9.80665
+EA, L, M, H, C = 1.0e5, 10.0, 100.0, 0.5, 50.0
+K, W = EA / L, M * G
+
+
+def _scene(model: str, max_iterations: int = 20) -> dict:
+    """A 10 m line (EA = 1e5 N: k = 1e4 N/m; 0.1 kg, 1/1000 of the unit) holding a
+    100 kg unit in air; damping c = 50 N s (damping ratio of the unit's swing
+    c / L / (2 sqrt(k M)) = 0.0025; it damps the light line's own waves)."""
+    return {"environment": {"water_depth": 500.0, "water_density": 1.225},
+            "cable": {"length": L, "diameter": 0.01, "weight_in_water": 0.01 * G,
+                      "axial_stiffness": EA, "mass_per_length": 0.01,
+                      "added_mass_coefficient": 0.0, "axial_damping": C},
+            "unit": {"mass": M, "weight_in_water": W},
+            "end_b": {"position": [0.0, 0.0, 200.0]},
+            "simulation": {"model": model, "duration": 0.6, "time_step": 1e-3,
+                           "output_step": 1e-3, "segments": 10, "start": "unstrained",
+                           "max_iterations": max_iterations}}
+
+
+def _dropped_planar(max_iterations: int = 20):
+    """The dropped start: the line straight and slack, every node raised by H (1 - y)
+    (the unit H above where the line goes taut), at rest."""
+    m = PlanarModel(dynamic_scene_from_dict(_scene("planar", max_iterations)))
+    y = np.arange(m.n + 1) / m.n
+    q = np.zeros((m.nf, 2))
+    q[:, 1] = H * (1.0 - y[m.free])
+    return m.simulate(state=np.concatenate([q.ravel(), np.zeros(2 * m.nf)]))
+
+
+def _closed() -> tuple[float, float, float]:
+    """(peak tension W (1 + sqrt(1 + 2 k h / W)), time the line goes taut sqrt(2 h / g),
+    time of the peak) for a massless line."""
+    omega = math.sqrt(K / M)
+    v0 = math.sqrt(2.0 * G * H)
+    # x(t) = W/k + A sin(omega t - phi) after taut; x = 0, x' = v0 at taut
+    phase = math.atan2(-W / K, v0 / omega)
+    return (W * (1.0 + math.sqrt(1.0 + 2.0 * K * H / W)), math.sqrt(2.0 * H / G),
+            math.sqrt(2.0 * H / G) + (0.5 * math.pi - phase) / omega)
+
+
+def test_mean_tension_is_exact_across_the_kink() -> None:
+    """The mean of the smooth law over [e0, e1] against adaptive quadrature (1e-9
+    relative: quad's tolerance), through the kink at e = 0 and on tiny intervals; the
+    3-point Gauss rule it replaces is 14 % wrong over [-1e-3, 1e-3] (the exact 25 N)."""
+    d = 0.01
+    for e0, e1 in [(-1e-3, 2e-3), (-1e-7, 1e-7), (1e-3, 1e-3 + 1e-12), (0.01, 0.0100001),
+                   (-2e-3, -1e-3), (0.0, 1e-9)]:
+        ref = quad(lambda e: smooth_tension(e, EA, d), e0, e1, points=[0.0] if e0 < 0 < e1
+                   else None, epsabs=1e-15, epsrel=1e-12)[0] / (e1 - e0)
+        assert mean_smooth_tension(e0, e1, EA, d) == pytest.approx(ref, rel=1e-9, abs=1e-12)
+        s_ref = (smooth_tension(e1, EA, d) - smooth_tension(e0, EA, d)) / (EA * (e1 - e0))
+        assert mean_taut_switch(e0, e1, EA, d) == pytest.approx(s_ref, rel=1e-6, abs=1e-9)
+    assert mean_smooth_tension(1e-3, 1e-3, EA, d) == smooth_tension(1e-3, EA, d)
+    x, w = gauss_legendre(3)
+    gauss = sum(0.5 * wi * smooth_tension(1e-3 * xi, EA, d) for xi, wi in zip(x, w))
+    assert mean_smooth_tension(-1e-3, 1e-3, EA, d) == pytest.approx(25.0, rel=1e-6)
+    assert abs(gauss - 25.0) > 0.1 * 25.0
+
+
+def test_a_mass_dropped_on_the_planar_line_matches_the_closed_form() -> None:
+    """Peak tension W (1 + sqrt(1 + 2 k h / W)) = 4262 N: the run through slack and the
+    snap gives it to 1 % (the damping ratio 0.0025 lowers the peak by about
+    zeta pi / 2 = 0.4 %, the line's 1/1000 of the mass less), the taut time sqrt(2h/g)
+    to 3 steps (the nodes above the unit go taut one by one), the peak's time to 1 % of
+    it; the snap is in the result and its JSON."""
+    res = _dropped_planar()
+    peak, t_taut, t_peak = _closed()
+    snap = res.snap
+    assert res.slack["occurred"] and snap["occurred"] and snap["count"] == 1
+    assert snap["peak_tension"] == pytest.approx(peak, rel=0.01)
+    assert snap["peak_tension"] < peak  # damping only lowers it
+    assert abs(snap["taut_at"] - t_taut) <= 3e-3
+    assert snap["time"] == pytest.approx(t_peak, rel=0.01)
+    assert snap["segment"] == 9 and snap["location"] == pytest.approx(9.5)  # the top
+    assert snap["slack_from"] == 0.0
+    assert res.t[-1] == pytest.approx(0.6)  # followed to the end
+    dd = json.loads(json.dumps(res.to_dict(), allow_nan=False))
+    assert dd["snap"]["peak_tension"] == pytest.approx(snap["peak_tension"])
+    header, rows = _series_table(res)
+    col = header.index("snap_peak [-]")
+    marked = [r[0] for r in rows if r[col] == 1.0]
+    assert marked == [pytest.approx(snap["time"])]
+
+
+def test_the_lumped_model_follows_the_same_drop() -> None:
+    """The lumped-mass model from the same dropped start: its snap equals the planar
+    one to 0.1 N (the two are the same chain in the plane, to the Newton tolerance and
+    their tension quadratures)."""
+    lm = LumpedSceneModel(dynamic_scene_from_dict(_scene("lumped3d")))
+    x0, info = lm.static_positions()  # "unstrained": straight down, at rest
+    x = np.asarray(x0, dtype=float).reshape(-1, 3).copy()
+    for j, i in enumerate(lm.free):
+        x[j, 2] += H * (1.0 - i / lm.n)
+    lm._static = (x.ravel(), info)  # the dropped start instead of the unstrained one
+    res = lm.simulate()
+    planar = _dropped_planar()
+    assert res.snap["occurred"]
+    assert res.snap["peak_tension"] == pytest.approx(planar.snap["peak_tension"], abs=0.1)
+    assert res.snap["time"] == pytest.approx(planar.snap["time"], abs=1e-9)
+
+
+def test_step_halving_resolves_the_snap_when_the_full_step_fails() -> None:
+    """With 3 Newton iterations a step the snap no longer converges: those samples are
+    computed again with the step halved (29 of them, down to dt / 8 here) and the peak
+    is that of the converged run to 0.5 N (the halved steps' own discretisation)."""
+    fine = _dropped_planar()
+    res = _dropped_planar(max_iterations=3)
+    stats = res.diagnostics["start"]["step_halving"]
+    assert res.t[-1] == pytest.approx(0.6)
+    assert stats["refined_samples"] > 0 and stats["finest_step_s"] < 1e-3
+    assert res.snap["peak_tension"] == pytest.approx(fine.snap["peak_tension"], abs=0.5)
+
+
+def test_huang_3_3_2_snatching_is_followed_by_the_planar_model() -> None:
+    """3.3.2's rope at 2 Hz (problems/dynamics/huang_3_3_2.toml): the text says the
+    model cannot handle the snatching. The planar model runs through it: slack at
+    0.14 s, then snaps whose peak exceeds the 46 N static tension several times over
+    (the impact load), to the end of the 3 s run."""
+    sc = load_dynamic_scene("problems/dynamics/huang_3_3_2.toml",
+                            {"simulation.model": "planar"})
+    res = simulate(sc)
+    assert res.status == "slack" and res.t[-1] == pytest.approx(3.0)
+    assert res.slack["first_time"] == pytest.approx(0.1425, abs=0.01)
+    assert res.snap["occurred"] and res.snap["count"] >= 2
+    assert res.snap["peak_tension"] > 4.0 * 46.3
