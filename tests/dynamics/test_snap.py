@@ -42,7 +42,7 @@ def _scene(model: str, max_iterations: int = 20, time_step: float = 1e-3) -> dic
                            "max_iterations": max_iterations}}
 
 
-@functools.lru_cache(maxsize=None)
+@functools.cache
 def _dropped_planar(max_iterations: int = 20, time_step: float = 1e-3):
     """The dropped start: the line straight and slack, every node raised by H (1 - y)
     (the unit H above where the line goes taut), at rest."""
@@ -78,7 +78,7 @@ def test_mean_tension_is_exact_across_the_kink() -> None:
         assert mean_taut_switch(e0, e1, EA, d) == pytest.approx(s_ref, rel=1e-6, abs=1e-9)
     assert mean_smooth_tension(1e-3, 1e-3, EA, d) == smooth_tension(1e-3, EA, d)
     x, w = gauss_legendre(3)
-    gauss = sum(0.5 * wi * smooth_tension(1e-3 * xi, EA, d) for xi, wi in zip(x, w))
+    gauss = sum(0.5 * wi * smooth_tension(1e-3 * xi, EA, d) for xi, wi in zip(x, w, strict=True))
     assert mean_smooth_tension(-1e-3, 1e-3, EA, d) == pytest.approx(25.0, rel=1e-6)
     assert abs(gauss - 25.0) > 0.1 * 25.0
 
