@@ -155,9 +155,11 @@ def test_the_slack_spell_runs_at_a_small_step_too() -> None:
     """At dt = 2e-4 s the slack line's damping switch, taken at the mean strain, jumps
     within a step (over a strain of delta_T / EA = 1e-7) and Newton fails at 0.25 s in
     the slack spell; the exact mean switch over the step (mean_taut_switch) keeps the
-    step smooth: the run reaches the snap and its peak is the 1e-3 s run's to 0.5 N
-    (the time discretisation of the swing, O(dt^2))."""
+    step smooth: every step converges at the model's own step (no halving needed), the
+    run reaches the snap and its peak is the 1e-3 s run's to 0.5 N (the time
+    discretisation of the swing, O(dt^2))."""
     res = _dropped_planar(time_step=2e-4)
     assert res.t[-1] == pytest.approx(0.6) and res.status == "slack", res.message
+    assert res.diagnostics["start"]["step_halving"]["refined_samples"] == 0
     assert res.snap["peak_tension"] == pytest.approx(_dropped_planar().snap["peak_tension"],
                                                      abs=0.5)
