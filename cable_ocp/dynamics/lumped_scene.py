@@ -35,7 +35,7 @@ from cable_ocp.dynamics.result import (
     slack_report,
     until_slack,
 )
-from cable_ocp.dynamics.snap import snap_report
+from cable_ocp.dynamics.snap import dropped_message, snap_report
 from cable_ocp.dynamics.stepping import MAX_CHUNKS
 from cable_ocp.errors import CableOCPError
 from cable_ocp.physics.current import current_velocity
@@ -162,7 +162,9 @@ def lumped_start(scene: DynamicScene, model: LumpedMassModel
     ``"static"``: the statics solver's solution of the scene
     (:func:`cable_ocp.dynamics.static.static_state`) interpolated at the nodes' unstretched
     arc lengths (cubic in s per coordinate), then refined to the lumped-mass equilibrium
-    by Newton. ``"unstrained"``: straight down from end_b, unstretched.
+    by Newton. ``"unstrained"``: straight down from end_b, unstretched. ``"dropped"``:
+    straight down and slack, every node raised by h (1 - s / L) (h =
+    ``simulation.drop_height``).
 
     Parameters
     ----------
@@ -183,11 +185,12 @@ def lumped_start(scene: DynamicScene, model: LumpedMassModel
     p = model.params
     s_nodes = p.node_arc_length
     info: dict[str, Any] = {"source": scene.simulation.start}
-    if scene.simulation.start == "unstrained":
+    if scene.simulation.start in ("unstrained", "dropped"):
         top = np.asarray(scene.top_position, float)
         pos = np.tile(top, (p.segments + 1, 1))
         pos[:, 2] -= p.length - s_nodes
-        info.update(converged=True, message="hanging straight down, unstretched, at rest")
+        pos[:, 2] += scene.simulation.drop_height * (1.0 - s_nodes / p.length)
+        info.update(converged=True, message=dropped_message(scene.simulation))
         return pos[model.free_nodes].reshape(-1), info
     from scipy.interpolate import CubicSpline
 

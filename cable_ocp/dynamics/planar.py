@@ -93,7 +93,7 @@ from cable_ocp.dynamics.result import (
     slack_report,
     until_slack,
 )
-from cable_ocp.dynamics.snap import snap_report
+from cable_ocp.dynamics.snap import dropped_message, snap_report
 from cable_ocp.dynamics.stepping import chunk_functions, halving, run_chunks
 from cable_ocp.errors import CableOCPError
 from cable_ocp.physics.added_mass import added_mass_per_length, line_added_mass_2d
@@ -607,13 +607,17 @@ class PlanarModel:
         (:func:`cable_ocp.dynamics.static.static_state`) interpolated at the nodes'
         unstretched arc lengths, then refined to the discrete model's own equilibrium by
         Newton, so that the run starts exactly at rest. ``"unstrained"``: hanging straight
-        down from end_b, unstretched, at rest (q = 0).
+        down from end_b, unstretched, at rest (q = 0). ``"dropped"``: straight down and
+        slack, every node raised by h (1 - y) (h = ``simulation.drop_height``), at rest.
         """
         nf2 = 2 * self.nf
         info: dict[str, Any] = {"source": self.scene.simulation.start}
-        if self.scene.simulation.start == "unstrained":
-            info.update(converged=True, message="hanging straight down, unstretched, at rest")
-            return np.zeros(2 * nf2), info
+        if self.scene.simulation.start in ("unstrained", "dropped"):
+            q = np.zeros((self.nf, 2))
+            q[:, 1] = self.scene.simulation.drop_height * (
+                1.0 - np.asarray(self.free, dtype=float) / self.n)
+            info.update(converged=True, message=dropped_message(self.scene.simulation))
+            return np.concatenate([q.ravel(), np.zeros(nf2)]), info
         from scipy.interpolate import CubicSpline
 
         from cable_ocp.dynamics.static import static_state

@@ -12,6 +12,11 @@ had. The peak is taken on the output samples: a run that must resolve it sets
 ``simulation.output_step`` to a few time steps at most (the closed-form check of a mass
 dropped on a line, tests/dynamics/test_snap.py, uses output_step = time_step).
 
+``simulation.start = "dropped"`` (with ``drop_height`` h, m) starts a run slack: the line
+straight down from end_b with every node raised by h (1 - s / L), the unit h above where
+the line goes taut, at rest (the planar and lumped-mass models; the closed form of the
+snap is W (1 + sqrt(1 + 2 k h / W)) for a massless line of stiffness k = EA / L).
+
 The models call it on their outputs (the planar and lumped-mass models; the axial model
 reports slack without following it): ``SimulationResult.snap``.
 """
@@ -24,11 +29,20 @@ import numpy as np
 
 from cable_ocp.physics.elasticity import SLACK_SMOOTHING
 
-__all__ = ["SLACK_TENSION", "no_snap", "snap_report"]
+__all__ = ["SLACK_TENSION", "dropped_message", "no_snap", "snap_report"]
 
 #: an element whose tension is at or below this is slack in :func:`snap_report`, N (the
 #: smooth no-compression law gives delta_T / 2 = 0.005 N at zero strain and less below)
 SLACK_TENSION = SLACK_SMOOTHING
+
+
+def dropped_message(sim: Any) -> str:
+    """The start's message of ``simulation.start = "unstrained"`` or ``"dropped"`` (the
+    scene's :class:`~cable_ocp.scene.dynamic_parts.Simulation`)."""
+    if sim.start == "dropped":
+        return (f"straight down from end_b and slack, the unit {sim.drop_height:g} m above "
+                "where the line goes taut, at rest")
+    return "hanging straight down, unstretched, at rest"
 
 
 def no_snap() -> dict[str, Any]:

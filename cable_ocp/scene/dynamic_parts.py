@@ -56,7 +56,7 @@ PAYOUT_LAWS = ("linear", "quadratic", "periodic", "table")
 _TOW_KEYS = {"speed", "heading_deg", "straight_length", "turn_diameter", "turn_angle_deg",
              "turn_direction"}
 _SIM_KEYS = {"model", "duration", "time_step", "output_step", "segments", "start", "scheme",
-             "tolerance", "max_iterations", "on_slack"}
+             "tolerance", "max_iterations", "on_slack", "drop_height"}
 _MODES_KEYS = {"count", "wave_band"}
 #: Relative slack allowed for rounded inputs when a weight in water is checked against
 #: the weight in air (the buoyancy must not be negative).
@@ -336,7 +336,7 @@ class Simulation:
     segments : int
         Elements along the line.
     start : str
-        ``"static"`` or ``"unstrained"``.
+        ``"static"``, ``"unstrained"`` or ``"dropped"``.
     scheme : str
         Time-integration scheme (:data:`SCHEMES`).
     tolerance : float
@@ -345,6 +345,9 @@ class Simulation:
         Newton iterations per step.
     on_slack : str
         ``"continue"`` or ``"stop"``.
+    drop_height : float
+        m, ``start = "dropped"``: the line straight down from end_b and slack, the unit
+        this far above where it goes taut (every node raised by h (1 - s / L)), at rest.
     """
 
     model: str
@@ -357,6 +360,7 @@ class Simulation:
     tolerance: float = 1e-10
     max_iterations: int = 20
     on_slack: str = "continue"
+    drop_height: float = 0.0
 
     @property
     def steps(self) -> int:
@@ -663,11 +667,24 @@ def parse_simulation(t: Any) -> Simulation:
                             "a whole number of output steps")
     scheme = _choice(t.get("scheme", DEFAULT_SCHEME[model]), f"{where}.scheme "
                      f"(model \"{model}\")", SCHEMES[model])
+    start = _choice(t.get("start", "static"), f"{where}.start",
+                    ("static", "unstrained", "dropped"))
+    drop = 0.0
+    if start == "dropped":
+        if "drop_height" not in t:
+            raise CableOCPError(f'{where}.drop_height is missing: start = "dropped" needs the '
+                                "height (m) the unit falls before the line goes taut")
+        drop = _number(t["drop_height"], f"{where}.drop_height", positive=True)
+        if model == "axial":
+            raise CableOCPError(f'{where}.start = "dropped": the axial model cannot follow a '
+                                'slack line; use model = "planar" or "lumped3d"')
+    elif "drop_height" in t:
+        raise CableOCPError(f'{where}.drop_height belongs to start = "dropped" (start is '
+                            f'"{start}")')
     return Simulation(
         model=model, duration=duration, time_step=dt, output_step=out,
         segments=_int(t.get("segments", 20), f"{where}.segments", 1, 100_000),
-        start=_choice(t.get("start", "static"), f"{where}.start", ("static", "unstrained")),
-        scheme=scheme,
+        start=start, drop_height=drop, scheme=scheme,
         tolerance=_number(t.get("tolerance", 1e-10), f"{where}.tolerance", positive=True),
         max_iterations=_int(t.get("max_iterations", 20), f"{where}.max_iterations", 1, 1000),
         on_slack=_choice(t.get("on_slack", "continue"), f"{where}.on_slack",

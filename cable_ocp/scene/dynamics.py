@@ -77,7 +77,10 @@ Schema of the dynamic keys (all SI; units in brackets)::
     segments = 20                number of elements along the line (default 20)
     start = "static"             "static" (the statics solution, default) | "unstrained"
                                  (at rest, unstretched, hanging straight down from end_b,
-                                 as Huang (1992) 5.7.1)
+                                 as Huang (1992) 5.7.1) | "dropped" (planar, lumped3d:
+                                 straight down and slack, the unit drop_height above
+                                 where the line goes taut, at rest)
+    drop_height                  m, with start = "dropped" (below cable.length)
     scheme = "midpoint"          time integration; valid values per model in SCHEMES
     tolerance = 1e-10            Newton tolerance of an implicit step (scaled residual:
                                  positions over the static elongation, accelerations over g)
@@ -418,9 +421,12 @@ def dynamic_scene_from_dict(data: dict[str, Any]) -> DynamicScene:
                     f"top_motion: hauling in {shrink:.4g} m would remove the whole top segment "
                     f"(cable.segments[{len(statics.segments) - 1}].length = {top_seg} m); "
                     "pay-out changes the top segment only")
-    if unit is None and sim.start == "unstrained":
-        raise CableOCPError('simulation.start = "unstrained" needs a unit at end_a: an '
+    if unit is None and sim.start in ("unstrained", "dropped"):
+        raise CableOCPError(f'simulation.start = "{sim.start}" needs a unit at end_a: an '
                             "anchored line cannot hang straight and unstretched")
+    if sim.start == "dropped" and sim.drop_height >= statics.cable.length:  # type: ignore[operator]
+        raise CableOCPError(f"simulation.drop_height = {sim.drop_height} m: must be below "
+                            f"cable.length = {statics.cable.length} m")
     meta = {str(k): str(v) for k, v in (data.get("meta") or {}).items()}
     return DynamicScene(statics=statics, cable=cable, unit=unit, bodies=tuple(bodies),
                         top_motion=top, simulation=sim, modes=modes, meta=meta, raw=raw)

@@ -16,9 +16,9 @@ import pytest
 from scipy.integrate import quad
 
 from cable_ocp.cli.dynamics import _series_table
-from cable_ocp.dynamics import dynamic_scene_from_dict, load_dynamic_scene, simulate
-from cable_ocp.dynamics.lumped_scene import LumpedSceneModel
+from cable_ocp.dynamics import load_dynamic_scene, simulate
 from cable_ocp.dynamics.planar import PlanarModel
+from cable_ocp.errors import CableOCPError
 from cable_ocp.numerics.quadrature import gauss_legendre
 from cable_ocp.physics.elasticity import mean_smooth_tension, mean_taut_switch, smooth_tension
 
@@ -27,30 +27,23 @@ EA, L, M, H, C = 1.0e5, 10.0, 100.0, 0.5, 50.0
 K, W = EA / L, M * G
 
 
-def _scene(model: str, max_iterations: int = 20, time_step: float = 1e-3) -> dict:
-    """A 10 m line (EA = 1e5 N: k = 1e4 N/m; 0.1 kg, 1/1000 of the unit) holding a
-    100 kg unit in air; damping c = 50 N s (damping ratio of the unit's swing
-    c / L / (2 sqrt(k M)) = 0.0025; it damps the light line's own waves)."""
-    return {"environment": {"water_depth": 500.0, "water_density": 1.225},
-            "cable": {"length": L, "diameter": 0.01, "weight_in_water": 0.01 * G,
-                      "axial_stiffness": EA, "mass_per_length": 0.01,
-                      "added_mass_coefficient": 0.0, "axial_damping": C},
-            "unit": {"mass": M, "weight_in_water": W},
-            "end_b": {"position": [0.0, 0.0, 200.0]},
-            "simulation": {"model": model, "duration": 0.6, "time_step": time_step,
-                           "output_step": time_step, "segments": 10, "start": "unstrained",
-                           "max_iterations": max_iterations}}
+DROP = "problems/dynamics/snap_drop.toml"
 
 
 @functools.cache
+def _dropped(model: str = "planar", max_iterations: int = 20, time_step: float = 1e-3):
+    """problems/dynamics/snap_drop.toml: a 10 m line (EA = 1e5 N: k = 1e4 N/m; 0.1 kg,
+    1/1000 of the unit) holding a 100 kg unit in air, damping c = 50 N s (damping ratio
+    of the unit's swing c / L / (2 sqrt(k M)) = 0.0025; it damps the light line's own
+    waves); start = "dropped": straight and slack, the unit H above where the line goes
+    taut, at rest."""
+    return simulate(load_dynamic_scene(DROP, {
+        "simulation.model": model, "simulation.max_iterations": max_iterations,
+        "simulation.time_step": time_step, "simulation.output_step": time_step}))
+
+
 def _dropped_planar(max_iterations: int = 20, time_step: float = 1e-3):
-    """The dropped start: the line straight and slack, every node raised by H (1 - y)
-    (the unit H above where the line goes taut), at rest."""
-    m = PlanarModel(dynamic_scene_from_dict(_scene("planar", max_iterations, time_step)))
-    y = np.arange(m.n + 1) / m.n
-    q = np.zeros((m.nf, 2))
-    q[:, 1] = H * (1.0 - y[m.free])
-    return m.simulate(state=np.concatenate([q.ravel(), np.zeros(2 * m.nf)]))
+    return _dropped("planar", max_iterations, time_step)
 
 
 def _closed() -> tuple[float, float, float]:
@@ -112,17 +105,30 @@ def test_the_lumped_model_follows_the_same_drop() -> None:
     """The lumped-mass model from the same dropped start: its snap equals the planar
     one to 0.1 N (the two are the same chain in the plane, to the Newton tolerance and
     their tension quadratures)."""
-    lm = LumpedSceneModel(dynamic_scene_from_dict(_scene("lumped3d")))
-    x0, info = lm.static_positions()  # "unstrained": straight down, at rest
-    x = np.asarray(x0, dtype=float).reshape(-1, 3).copy()
-    for j, i in enumerate(lm.free):
-        x[j, 2] += H * (1.0 - i / lm.n)
-    lm._static = (x.ravel(), info)  # the dropped start instead of the unstrained one
-    res = lm.simulate()
+    res = _dropped("lumped3d")
     planar = _dropped_planar()
     assert res.snap["occurred"]
     assert res.snap["peak_tension"] == pytest.approx(planar.snap["peak_tension"], abs=0.1)
     assert res.snap["time"] == pytest.approx(planar.snap["time"], abs=1e-9)
+
+
+def test_the_dropped_start_is_the_raised_slack_line() -> None:
+    """start = "dropped": the unit drop_height above the unstrained line's end, every
+    node raised by h (1 - s / L), at rest, the line slack from the start; the key is
+    validated (named errors)."""
+    sc = load_dynamic_scene(DROP)
+    x0, info = PlanarModel(sc).initial_state()
+    assert info["converged"] and "slack" in info["message"]
+    q = x0[:2 * 10].reshape(10, 2)
+    assert q[:, 1] == pytest.approx(H * (1.0 - np.arange(10) / 10.0), abs=1e-15)
+    assert not np.any(x0[20:])
+    base = {"simulation.start": "dropped"}
+    for over, words in [({"simulation.model": "axial"}, "cannot follow"),
+                        ({"simulation.drop_height": 10.0}, "below cable.length"),
+                        ({"simulation.start": "static"}, "belongs to start"),
+                        ({"simulation.drop_height": -1.0}, "drop_height")]:
+        with pytest.raises(CableOCPError, match=words):
+            load_dynamic_scene(DROP, {**base, **over})
 
 
 def test_step_halving_resolves_the_snap_when_the_full_step_fails() -> None:
