@@ -103,6 +103,7 @@ from cable_ocp.physics.elasticity import (
     SLACK_SMOOTHING,
     mean_smooth_tension,
     mean_taut_switch,
+    no_push,
     smooth_tension,
     taut_switch,
 )
@@ -366,7 +367,8 @@ class PlanarModel:
         u = (d0 + d1) / ca.repmat(l0 + l1, 2, 1)
         if self.c > 0.0:
             rate = ca.sum1(u * (vm[:, 1:] - vm[:, :-1])) / hm
-            tbar = tbar + self.c * rate * mean_taut_switch(e0, e1, self.ea, self.delta_t)
+            tbar = no_push(tbar + self.c * rate * mean_taut_switch(e0, e1, self.ea,
+                                                                   self.delta_t), self.delta_t)
         force = self._spread(ca.repmat(tbar, 2, 1) * u)
         # drag at the mean positions with the midpoint velocities
         zm = 0.5 * (self._heights(qa, m0) + self._heights(qb, m1))
@@ -463,7 +465,7 @@ class PlanarModel:
         tens = self._tension(eps)
         if self.c > 0.0:
             rate = ca.sum1(dd / ca.repmat(ll, 2, 1) * (vs[:, 1:] - vs[:, :-1])) / h
-            tens = tens + self.c * rate * self._taut(eps)
+            tens = no_push(tens + self.c * rate * self._taut(eps), self.delta_t)
         # the top: node N's balance, M_N a_N - (cable, weight, drag); a_N the material
         # acceleration a_b - L_tt R_y / L (the turning of the top tangent neglected)
         zs = rs[1, :]

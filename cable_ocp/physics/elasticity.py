@@ -353,3 +353,23 @@ def mean_taut_switch(strain0: Any, strain1: Any, axial_stiffness: Any,
     s0 = _sqrt(x0 * x0 + d * d)
     s1 = _sqrt(x1 * x1 + d * d)
     return 0.5 * (1.0 + (x0 + x1) / (s0 + s1))
+
+
+def no_push(tension: Any, slack_smoothing: Any) -> Any:
+    """The total tension of a cable that cannot push, N: the smooth positive part
+    (T + sqrt(T^2 + delta_T^2)) / 2 of an elastic-plus-damping tension T.
+
+    The material damping c (de/dt) s(e) of a taut element that shortens fast can take
+    the total below zero (the damper pushing); this caps it at the no-compression floor
+    with the smoothing of :func:`smooth_tension` (it is :func:`smooth_tension` with
+    EA e replaced by T). It changes a taut element's tension by at most
+    delta_T^2 / (4 T) and is dissipative but for that bound.
+
+    Parameters
+    ----------
+    tension : float, array or casadi expression
+        Elastic plus damping tension, N.
+    slack_smoothing : float
+        delta_T, N.
+    """
+    return 0.5 * (tension + _sqrt(tension * tension + slack_smoothing * slack_smoothing))

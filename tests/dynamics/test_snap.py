@@ -93,6 +93,8 @@ def test_a_mass_dropped_on_the_planar_line_matches_the_closed_form() -> None:
     assert snap["segment"] == 9 and snap["location"] == pytest.approx(9.5)  # the top
     assert snap["slack_from"] == 0.0
     assert res.t[-1] == pytest.approx(0.6)  # followed to the end
+    # the cable never pushes: elastic and damping tension together stay >= 0
+    assert res.min_tension >= 0.0 and res.segment_tensions.min() >= 0.0
     dd = json.loads(json.dumps(res.to_dict(), allow_nan=False))
     assert dd["snap"]["peak_tension"] == pytest.approx(snap["peak_tension"])
     header, rows = _series_table(res)
@@ -103,12 +105,13 @@ def test_a_mass_dropped_on_the_planar_line_matches_the_closed_form() -> None:
 
 def test_the_lumped_model_follows_the_same_drop() -> None:
     """The lumped-mass model from the same dropped start: its snap equals the planar
-    one to 0.1 N (the two are the same chain in the plane, to the Newton tolerance and
-    their tension quadratures)."""
+    one to 0.5 N (the same chain in the plane; the planar model caps the damper's push
+    at the no-compression floor, the lumped one lets the damping take a shortening
+    segment's tension below zero: 0.1 N on the peak here)."""
     res = _dropped("lumped3d")
     planar = _dropped_planar()
     assert res.snap["occurred"]
-    assert res.snap["peak_tension"] == pytest.approx(planar.snap["peak_tension"], abs=0.1)
+    assert res.snap["peak_tension"] == pytest.approx(planar.snap["peak_tension"], abs=0.5)
     assert res.snap["time"] == pytest.approx(planar.snap["time"], abs=1e-9)
 
 

@@ -24,6 +24,13 @@ MUTATIONS = [
          tests=(SNAP + "::test_the_slack_spell_runs_at_a_small_step_too",),
          description="planar step: the damping switch at the mean strain (jumps within a "
                      "step at slack) instead of its exact mean"),
+    dict(name="planar-damper-pushes", area="dynamics",
+         file="cable_ocp/dynamics/planar.py",
+         old="tens = no_push(tens + self.c * rate * self._taut(eps), self.delta_t)",
+         new="tens = tens + self.c * rate * self._taut(eps)",
+         tests=(SNAP + "::test_a_mass_dropped_on_the_planar_line_matches_the_closed_form",),
+         description="planar outputs: the damping may take the tension below zero (the "
+                     "cable pushes)"),
     dict(name="step-halving-off", area="dynamics",
          file="cable_ocp/dynamics/stepping.py",
          old="if bad.size and refine is not None:",
