@@ -367,8 +367,8 @@ class PlanarModel:
         u = (d0 + d1) / ca.repmat(l0 + l1, 2, 1)
         if self.c > 0.0:
             rate = ca.sum1(u * (vm[:, 1:] - vm[:, :-1])) / hm
-            tbar = no_push(tbar + self.c * rate * mean_taut_switch(e0, e1, self.ea,
-                                                                   self.delta_t), self.delta_t)
+            switch = mean_taut_switch(e0, e1, self.ea, self.delta_t)
+            tbar = no_push(tbar + self.c * rate * switch, self.delta_t)
         force = self._spread(ca.repmat(tbar, 2, 1) * u)
         # drag at the mean positions with the midpoint velocities
         zm = 0.5 * (self._heights(qa, m0) + self._heights(qb, m1))

@@ -19,8 +19,8 @@ MUTATIONS = [
          description="mean taut switch: (S1 - S0) / dx taken as half its value"),
     dict(name="planar-damping-switch-at-middle", area="dynamics",
          file="cable_ocp/dynamics/planar.py",
-         old="tbar = tbar + self.c * rate * mean_taut_switch(e0, e1, self.ea, self.delta_t)",
-         new="tbar = tbar + self.c * rate * self._taut(0.5 * (e0 + e1))",
+         old="switch = mean_taut_switch(e0, e1, self.ea, self.delta_t)",
+         new="switch = self._taut(0.5 * (e0 + e1))",
          tests=(SNAP + "::test_the_slack_spell_runs_at_a_small_step_too",),
          description="planar step: the damping switch at the mean strain (jumps within a "
                      "step at slack) instead of its exact mean"),
