@@ -114,9 +114,9 @@ __all__ = ["SLACK_MESSAGE", "PlanarModel", "check_planar"]
 
 #: the planar model's slack message (:func:`cable_ocp.dynamics.result.slack_report`)
 SLACK_MESSAGE = ("slack: tension <= 0 first at t = {t:.6g} s in element {segment} (s = "
-                 "{location:.4g} m from end_a); the planar model predicts slack but cannot "
-                 "follow it (Huang (1992) 4.5.1): {action}; the Hooke's-law tension EA e "
-                 "reached {hooke:.4g} N")
+                 "{location:.4g} m from end_a; Huang's (4.2)-(4.3) predict slack but cannot "
+                 "follow it, 4.5.1): {action}; the Hooke's-law tension EA e reached "
+                 "{hooke:.4g} N")
 
 class PlanarModel:
     """The discretised planar model of one scene (see the module docstring).
@@ -750,9 +750,10 @@ class PlanarModel:
         slack, status, message = slack_report(
             t_slack, e, where, status=status, message=message, on_slack=sim.on_slack,
             template=SLACK_MESSAGE,
-            continued="the run continued: a slack element carries no tension (the smooth "
-                      "no-compression law) and the model follows the slack cable only "
-                      "approximately (no bending, no contact, lumped)",
+            continued="the run continued through slack: a slack element carries no tension "
+                      "(the no-compression law, elastic and damping) and the lumps move "
+                      "freely until the line is taut again (no bending, no contact); the "
+                      "snap that ends it is in the result's snap",
             hooke=self.ea * min_strain)
         if status == "solved":
             message = f"{sim.steps} steps of {dt:g} s ({sim.scheme}), {self.n} elements"
