@@ -140,7 +140,7 @@ def test_step_halving_resolves_the_snap_when_the_full_step_fails() -> None:
     is that of the converged run to 0.5 N (the halved steps' own discretisation)."""
     fine = _dropped_planar()
     res = _dropped_planar(max_iterations=3)
-    stats = res.diagnostics["start"]["step_halving"]
+    stats = res.diagnostics["step_halving"]
     assert res.t[-1] == pytest.approx(0.6)
     assert stats["refined_samples"] > 0 and stats["finest_step_s"] < 1e-3
     assert res.snap["peak_tension"] == pytest.approx(fine.snap["peak_tension"], abs=0.5)
@@ -169,6 +169,6 @@ def test_the_slack_spell_runs_at_a_small_step_too() -> None:
     discretisation of the swing, O(dt^2))."""
     res = _dropped_planar(time_step=2e-4)
     assert res.t[-1] == pytest.approx(0.6) and res.status == "slack", res.message
-    assert res.diagnostics["start"]["step_halving"]["refined_samples"] == 0
+    assert res.diagnostics["step_halving"]["refined_samples"] == 0
     assert res.snap["peak_tension"] == pytest.approx(_dropped_planar().snap["peak_tension"],
                                                      abs=0.5)
