@@ -106,8 +106,9 @@ def test_fem_convergence_dezoysa_fixed_length(problems):
 def test_top_tension_variant_vs_collocation(problems, psi0):
     """problems/chucheepsakul_top_tension.toml (5000 N, calibrated to Table 2's column 1):
     length and bottom force against collocation with 80 elements. Measured at psi0 = 90:
-    L 316.1620 vs 316.1624 m; bottom force off by 7.6 N (slow, ~O(h^1.5-2) here: the cable leaves the seabed at
-    6.4 deg, nearly flat in z, which uniform z-elements resolve poorly); at 180: 0.2 N."""
+    L 316.1620 vs 316.1624 m; bottom force off by 7.6 N (slow, ~O(h^1.5-2) here: the cable
+    leaves the seabed at 6.4 deg, nearly flat in z, which uniform z-elements resolve poorly);
+    at 180: 0.2 N."""
     path = problems / "chucheepsakul_top_tension.toml"
     ov = {"layout.psi0_deg": psi0}
     sol = chucheepsakul.solve(load_scene(path, {**ov, "solver.intervals": 80,
