@@ -57,8 +57,8 @@ def _rms_tolerance(A: np.ndarray, G: np.ndarray, c: np.ndarray, h: float, n_samp
 
 def test_sea_realisation_has_the_stationary_boom_tip_variance() -> None:
     # wave_realisation samples the sea and vessel filters exactly (ZOH transition, Van Loan noise
-    # covariance), so at any step its boom tip has the stationary variance of the filters. 40 Wang
-    # et al. (1993) s at 0.25 s (160 Wang et al. (1993) samples, well beyond the ~6 s correlation
+    # covariance), so at any step its boom tip has the stationary variance of the filters. 40,000
+    # s at 0.25 s (160,000 samples, well beyond the ~6 s correlation
     # time): the RMS's 4-sigma band (computed from the model, _rms_tolerance) is +-3.4 %, far inside
     # the 41 % that doubling the noise variance would cause (and a 10 % error would fail).
     from cable_ocp.heave import design_loop as sim
