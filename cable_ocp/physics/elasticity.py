@@ -139,6 +139,27 @@ def axial_law_tension(strain: Any, strain_rate: Any, axial_stiffness: Any, dampi
     return kelvin_voigt_tension(strain, strain_rate, axial_stiffness, damping)
 
 
+def cable_material(axial_stiffness: float, table: TensionStrainTable | None = None,
+                   damping: float = 0.0, slack_smoothing: float = SLACK_SMOOTHING) -> Any:
+    """The no-compression material of a cable: :class:`NonlinearElastic` with a table,
+    else :class:`LinearElastic`.
+
+    Parameters
+    ----------
+    axial_stiffness : float
+        EA, N (the linear law).
+    table : TensionStrainTable, optional
+        The tension-strain law.
+    damping : float
+        Material damping c, N s.
+    slack_smoothing : float
+        delta_T, N.
+    """
+    if table is not None:
+        return NonlinearElastic(table, damping, slack_smoothing)
+    return LinearElastic(axial_stiffness, damping, slack_smoothing)
+
+
 def smooth_tension(strain: Any, axial_stiffness: Any, slack_smoothing: Any) -> Any:
     """Smooth no-compression tension (EA e + sqrt((EA e)^2 + delta_T^2)) / 2, N.
 
