@@ -62,6 +62,19 @@ def test_pchip_both_ways_through_rows_monotone_c1_casadi():
     assert np.allclose(tab.invert(np.array(tab.tension)), e, rtol=1e-10, atol=1e-15)
 
 
+def test_table_energy_is_the_integral_of_the_tension():
+    tab = TensionStrainTable(tuple(r[0] for r in rows(8)), tuple(r[1] for r in rows(8)))
+    for e in (-0.001, 0.0, 0.3 * tab.strain[-1], tab.strain[4], 1.3 * tab.strain[-1]):
+        knots = [k for k in tab.strain if 0.0 < k < e]  # the cubic's pieces, integrated each
+        ref = quad(lambda x: tab.tension_of(x), 0.0, e, epsabs=1e-13, limit=200,
+                   points=knots or None)[0]
+        assert tab.energy(e) == pytest.approx(ref, rel=1e-11, abs=1e-13)  # quad's accuracy
+    x = ca.SX.sym("x")
+    f = ca.Function("f", [x], [ca.jacobian(tab.energy(x), x)])
+    assert float(f(0.7 * tab.strain[-1])) == pytest.approx(tab.tension_of(0.7 * tab.strain[-1]),
+                                                           rel=1e-12)
+
+
 def test_linear_table_is_hooke():
     tab = TensionStrainTable((0.0, 1e4, 5e4), (0.0, 0.01, 0.05))
     e = np.linspace(-0.02, 0.1, 50)

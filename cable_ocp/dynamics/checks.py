@@ -19,8 +19,8 @@ __all__ = ["check_axial", "check_lumped", "check_lumped_plant", "check_material"
 def check_material(scene: DynamicScene, model: str) -> None:
     """Raise :class:`CableOCPError` (naming the key) when the cable's material law is one
     that ``model`` does not carry: the axial model has the table and the viscoelastic
-    law (not with its ``thesis`` scheme), the planar model the table, the lumped model
-    neither (its compiled segment kernel has the linear law).
+    law (not with its ``thesis`` scheme), the planar and lumped models the table (not
+    with the lumped ``thesis`` scheme, Huang's (5.21) with Hooke's (5.3)).
 
     Parameters
     ----------
@@ -32,20 +32,16 @@ def check_material(scene: DynamicScene, model: str) -> None:
     lines = scene.statics.lines
     table = any(c.tension_strain for c in lines)
     visco = any(c.viscoelastic is not None for c in lines)
-    if model == "axial" and (table or visco) and scene.simulation.scheme == "thesis":
+    if (table or visco) and scene.simulation.scheme == "thesis":
         key = "tension_strain" if table else "viscoelastic"
-        raise CableOCPError(f'cable.{key}: simulation.scheme = "thesis" (Huang\'s (3.8)-'
-                            "(3.10)) has the linear law; use midpoint, gauss4, trapezoidal "
-                            "or bdf2")
+        raise CableOCPError(f'cable.{key}: simulation.scheme = "thesis" (Huang\'s own '
+                            "scheme, (3.8)-(3.10) or (5.21)) has the linear law; use the "
+                            "model's other schemes (midpoint, trapezoidal, bdf2)")
     if visco and model != "axial":
         raise CableOCPError(f'cable.viscoelastic: simulation.model = "{model}" has no '
                             'internal strain state; the viscoelastic law runs in model = '
                             '"axial" (in the statics it is its static modulus '
                             "axial_stiffness)")
-    if table and model == "lumped3d":
-        raise CableOCPError('cable.tension_strain: simulation.model = "lumped3d" has the '
-                            'linear law (its compiled segment kernel); use model = "axial" '
-                            'or "planar", or give axial_stiffness')
 
 
 def check_axial(scene: DynamicScene) -> None:

@@ -160,6 +160,67 @@ def cable_material(axial_stiffness: float, table: TensionStrainTable | None = No
     return LinearElastic(axial_stiffness, damping, slack_smoothing)
 
 
+def strain_tension(strain: Any, axial_stiffness: Any, slack_smoothing: Any,
+                   table: TensionStrainTable | None = None) -> Any:
+    """No-compression tension, N: :func:`smooth_tension`, or with a table
+    :func:`smooth_positive` of its u(e).
+
+    Parameters
+    ----------
+    strain : float, array or casadi expression
+        Axial strain (-).
+    axial_stiffness : float or casadi expression
+        EA, N (the linear law).
+    slack_smoothing : float or casadi expression
+        delta_T, N.
+    table : TensionStrainTable, optional
+        The tension-strain law.
+    """
+    if table is None:
+        return smooth_tension(strain, axial_stiffness, slack_smoothing)
+    return smooth_positive(table.tension_of(strain), slack_smoothing)
+
+
+def strain_switch(strain: Any, axial_stiffness: Any, slack_smoothing: Any,
+                  table: TensionStrainTable | None = None) -> Any:
+    """0 (slack) .. 1 (taut), -: :func:`taut_switch`, or with a table
+    :func:`positive_switch` of its u(e).
+
+    Parameters
+    ----------
+    strain : float, array or casadi expression
+        Axial strain (-).
+    axial_stiffness : float or casadi expression
+        EA, N.
+    slack_smoothing : float or casadi expression
+        delta_T, N.
+    table : TensionStrainTable, optional
+        The tension-strain law.
+    """
+    if table is None:
+        return taut_switch(strain, axial_stiffness, slack_smoothing)
+    return positive_switch(table.tension_of(strain), slack_smoothing)
+
+
+def strain_stiffness(strain: Any, axial_stiffness: Any, slack_smoothing: Any,
+                     table: TensionStrainTable | None = None) -> Any:
+    """d/de of :func:`strain_tension`, N.
+
+    Parameters
+    ----------
+    strain : float, array or casadi expression
+        Axial strain (-).
+    axial_stiffness : float or casadi expression
+        EA, N.
+    slack_smoothing : float or casadi expression
+        delta_T, N.
+    table : TensionStrainTable, optional
+        The tension-strain law.
+    """
+    tangent = axial_stiffness if table is None else table.tangent(strain)
+    return tangent * strain_switch(strain, axial_stiffness, slack_smoothing, table)
+
+
 def smooth_tension(strain: Any, axial_stiffness: Any, slack_smoothing: Any) -> Any:
     """Smooth no-compression tension (EA e + sqrt((EA e)^2 + delta_T^2)) / 2, N.
 
@@ -509,6 +570,50 @@ class TensionStrainTable:
         out = 0.5 * (lo + hi)
         return out if np.ndim(tension) else float(out[0])
 
+    def energy(self, strain: Any) -> Any:
+        """int_0^e u(x) dx, J/m: the stored energy per unstretched length of
+        :meth:`tension_of` (exact for the piecewise cubic and its straight continuations;
+        numbers or CasADi symbols).
+
+        Parameters
+        ----------
+        strain : float, array or casadi expression
+            Axial strain (-).
+        """
+        xk, yk, dk = self._t_of_e()
+        n = len(xk)
+        h = np.diff(xk)
+        # integral of each piece of the Hermite cubic over its interval
+        full = h * (yk[:-1] + yk[1:]) / 2.0 + h * h * (dk[:-1] - dk[1:]) / 12.0
+        cum = np.concatenate([[0.0], np.cumsum(full)])
+
+        def part(i: int, x: Any) -> Any:  # int from x_i to x of piece i
+            t = (x - xk[i]) / h[i]
+            return h[i] * ((t**4 / 2 - t**3 + t) * yk[i] + (t**4 / 4 - 2 * t**3 / 3 + t * t / 2)
+                           * h[i] * dk[i] + (-t**4 / 2 + t**3) * yk[i + 1]
+                           + (t**4 / 4 - t**3 / 3) * h[i] * dk[i + 1])
+
+        def tail(x: Any) -> Any:
+            dx = x - xk[-1]
+            return cum[-1] + yk[-1] * dx + 0.5 * dk[-1] * dx * dx
+
+        def head(x: Any) -> Any:  # below the first row (x_0 = 0, y_0 = 0): the line d_0 x
+            return 0.5 * dk[0] * (x - xk[0]) ** 2 + yk[0] * (x - xk[0])
+
+        if _is_symbolic(strain):
+            out = tail(strain)
+            for i in range(n - 2, -1, -1):
+                out = ca.if_else(strain < xk[i + 1], cum[i] + part(i, strain), out)
+            return ca.if_else(strain < xk[0], head(strain), out)
+        x = np.asarray(strain, dtype=float)
+        idx = np.clip(np.searchsorted(xk, x, side="right") - 1, 0, n - 2)
+        vals = np.array([cum[i] + part(int(i), xi) for i, xi in zip(np.ravel(idx),
+                                                                      np.ravel(x),
+                                                                      strict=True)])
+        vals = np.where(np.ravel(x) < xk[0], head(np.ravel(x)),
+                        np.where(np.ravel(x) > xk[-1], tail(np.ravel(x)), vals))
+        return vals.reshape(x.shape) if x.ndim else float(vals[0])
+
     @property
     def initial_stiffness(self) -> float:
         """du/de at e = 0, N."""
@@ -577,8 +682,9 @@ class NonlinearElastic:
         return positive_switch(self.table.tension_of(strain), self.slack_smoothing)
 
     def energy(self, strain: Any) -> Any:
-        """Not offered for a table (the models that check energy use a linear law)."""
-        raise NotImplementedError("the strain energy of a tension-strain table")
+        """:meth:`TensionStrainTable.energy`, J/m: the table's own law (above the smooth
+        tension's energy by at most delta_T e / 2 while taut)."""
+        return self.table.energy(strain)
 
 
 @dataclass(frozen=True)
