@@ -60,6 +60,11 @@ def test_pchip_both_ways_through_rows_monotone_c1_casadi():
         assert float(der) == pytest.approx(tab.tangent(v), rel=1e-9)
     # the model's exact inverse of u(e) agrees with the statics' e(T) at the rows
     assert np.allclose(tab.invert(np.array(tab.tension)), e, rtol=1e-10, atol=1e-15)
+    # and past the last row, where both continue by the same straight line (1e-12: the
+    # bisection's round-off)
+    big = np.array([1.1, 2.0]) * tab.tension[-1]
+    assert np.allclose(tab.strain_of(big), tab.invert(big), rtol=1e-12)
+    assert np.all(np.diff(tab.strain_of(np.linspace(0.0, 2.0 * tab.tension[-1], 4001))) > 0)
 
 
 def test_table_energy_is_the_integral_of_the_tension():

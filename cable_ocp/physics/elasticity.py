@@ -33,8 +33,10 @@ object. A material is an object with the :class:`AxialMaterial` interface:
   the dynamics, e(T) in tension for the statics (stretch 1 + e(T)). Both pass through every
   row, are monotone and C1, and continue past the first and last rows by the straight line
   of the end slope (C1, so Newton sees a continuous stiffness everywhere). They are each
-  other's inverse at the rows and between them to the interpolation error of the table (a
-  linear table gives exactly EA e in both). The same code evaluates numbers and CasADi
+  other's inverse at the rows, between them to the interpolation error of the table (a
+  linear table gives exactly EA e in both), and past the rows exactly: e(T)'s end slopes
+  are the reciprocals of u(e)'s (capped at 3 secants, which keeps its end cubics
+  monotone). The same code evaluates numbers and CasADi
   symbols (a chain of ``if_else``), so the collocation NLP keeps exact derivatives;
 * :class:`StandardLinearSolid`: the rate-dependent spring-dashpot law of synthetic rope
   (polyester, nylon): a spring EA_s in parallel with a Maxwell arm (a spring EA_d - EA_s in
@@ -48,6 +50,12 @@ object. A material is an object with the :class:`AxialMaterial` interface:
   (:meth:`StandardLinearSolid.relaxation`); a load step T0 creeps as
   e(t) = T0 / EA_s - T0 (1 / EA_s - 1 / EA_d) exp(-t / tau_c), tau_c = tau EA_d / EA_s
   (:meth:`StandardLinearSolid.creep`).
+
+Where the models call them: the axial model :func:`axial_law_tension` (compression
+allowed), the planar model :func:`cable_material`, the lumped model :func:`strain_tension`,
+:func:`strain_switch` and :func:`strain_stiffness` (its segment law and compiled kernel), the
+statics ``Cable.strain_at`` (:meth:`TensionStrainTable.strain_of`). The standard linear
+solid runs in the axial model only.
 """
 
 from __future__ import annotations
@@ -519,7 +527,16 @@ class TensionStrainTable:
 
     def _e_of_t(self) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
         e, t = np.array(self.strain), np.array(self.tension)
-        return t, e, pchip_slopes(t, e)
+        slopes = pchip_slopes(t, e)
+        # the end slopes: the reciprocals of u(e)'s, so that both continuations past the
+        # rows are the same straight line, within the bound 3 x secant that keeps the end
+        # cubics monotone (Fritsch-Carlson)
+        d_u = pchip_slopes(e, t)
+        for end, nxt in ((0, 1), (-1, -2)):
+            secant = (e[end] - e[nxt]) / (t[end] - t[nxt])
+            if d_u[end] > 0.0:
+                slopes[end] = min(1.0 / d_u[end], 3.0 * secant)
+        return t, e, slopes
 
     def tension_of(self, strain: Any) -> Any:
         """u(e): the table's tension at a strain, N (PCHIP in strain; negative below 0).
