@@ -134,6 +134,16 @@ def test_vertical_hanging_line_elongation_integral(method):
                                                                            rel=1e-8)
 
 
+def test_tension_beyond_the_table_is_a_warning():
+    short = [r for r in rows() if r[0] < 0.8 * (W + WPL * L)]  # 12 kN top, table to 9.6 kN
+    sol = solve(scene_from_dict(hanging(short)))
+    assert sol.status == "solved"
+    assert any("above the last row of cable.tension_strain" in w
+               for w in sol.diagnostics.get("warnings", []))
+    full = solve(scene_from_dict(hanging(rows())))
+    assert not any("tension_strain" in w for w in full.diagnostics.get("warnings", []))
+
+
 def test_linear_table_statics_equals_axial_stiffness():
     lin = hanging([[0.0, 0.0], [1e4, 0.01], [5e4, 0.05]])
     a = solve(scene_from_dict(lin))
