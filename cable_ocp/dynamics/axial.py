@@ -19,6 +19,12 @@ material point only when the strain is neglected; the two differ by terms of ord
 (strain x pay-out speed). The drag is taken per stretched length (the factor 1 + e) as in
 Huang's (2.46); Huang's (3.1) omits it (a relative change of order the strain).
 
+Materials (:mod:`cable_ocp.physics.elasticity`, :func:`~cable_ocp.physics.elasticity.
+axial_law_tension`): with ``[cable] tension_strain`` T = u(e) + c e_t (the table's PCHIP);
+with ``[cable] viscoelastic`` T = EA_s e + (EA_d - EA_s)(e - e_v) + c e_t, each element's
+dashpot strain e_v a state, e_v,t = (e - e_v) / tau + (y L_t / L) e_v,y (carried with the
+material during pay-out; central differences between elements, one-sided at the ends).
+
 Fixed-domain transformation (Huang's (3.4)-(3.7), measured here from the unit): with
 y = s / L(t) in [0, 1] and the unknowns Z(y, t) = z(yL, t) and the material velocity
 V(y, t) = z_t(yL, t), the chain rule gives the first-order system::
