@@ -151,3 +151,20 @@ def test_uncontrolled_heave_matches_the_lyapunov_sigma(sea_run: rg.PrintedRun) -
 def test_unknown_gain_is_a_named_error() -> None:
     with pytest.raises(CableOCPError, match="'G4'.*valid: G3, G5"):
         rg.design_poles("G4")
+
+
+def test_example_script(tmp_path, capsys) -> None:  # noqa: ANN001
+    # examples/heave_printed_gains_6_2_6.py: prints the poles and the stated numbers, writes
+    # the figure (a short record: the script's own numbers are checked above)
+    import importlib.util
+    from pathlib import Path
+
+    path = Path(__file__).resolve().parents[2] / "examples" / "heave_printed_gains_6_2_6.py"
+    spec = importlib.util.spec_from_file_location("ex_gains", path)
+    mod = importlib.util.module_from_spec(spec)
+    spec.loader.exec_module(mod)
+    out = tmp_path / "g.png"
+    assert mod.main(["--out", str(out), "--duration", "45"]) == 0
+    cap = capsys.readouterr()
+    assert "G3 design poles" in cap.out and "G5: heave RMS" in cap.out
+    assert f"wrote {out}" in cap.err and out.stat().st_size > 1000
