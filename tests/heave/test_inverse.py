@@ -148,3 +148,24 @@ def test_bad_input_is_named(line_626: iv.LineParameters) -> None:
         iv.solve_parameters({"a": 7.3}, ["EA"], line_626)
     with pytest.raises(CableOCPError, match="needs velocity_std"):
         iv.solve_parameters({"b": 0.2}, ["unit_drag"], line_626)
+
+
+def test_cli_heave_inverse(tmp_path: Path, capsys: pytest.CaptureFixture[str]) -> None:
+    # cable-ocp heave-inverse: the round trip through the command (exit 0, JSON of the
+    # envelope), and the not-identifiable case as invalid input (exit 2, the error named)
+    import json
+
+    from cable_ocp.cli.app import main
+
+    f = str(ROOT / "problems" / "dynamics" / "huang_6_2_6.toml")
+    d = iv.design_coefficients(iv.from_dynamic_scene(load_dynamic_scene(f)))
+    js = tmp_path / "inv.json"
+    rc = main(["heave-inverse", f, "--a", repr(d["a"]), "--b-quadratic", repr(d["b_quadratic"]),
+               "--unknowns", "length", "unit_drag", "--json", str(js), "--quiet"])
+    assert rc == 0
+    res = json.loads(js.read_text())
+    assert res["status"] == "solved"
+    assert res["unknowns"]["length"] == pytest.approx(900.0, rel=1e-8)
+    capsys.readouterr()
+    assert main(["heave-inverse", f, "--a", "7.3", "--unknowns", "length", "unit_drag"]) == 2
+    assert "not identifiable" in capsys.readouterr().err
