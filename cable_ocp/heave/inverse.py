@@ -22,9 +22,15 @@ accuracy docs/heave.md measures (``a`` within 0.3 % of ``1 / omega_1^2`` for eve
   :func:`~cable_ocp.physics.drag.line_drag_factors`), and **b_q = c_q / K_1** (s^2/m), the
   ``b`` of (6.3);
 * the linear ``b`` of (6.2) is not a property of the system alone: it is the equivalent linear
-  damping of that drag at the unit's velocity, ``b = sqrt(8 / pi) sigma_v b_q`` for a Gaussian
-  velocity of standard deviation ``sigma_v`` (m/s), which must then be given
-  (docs/heave.md: the identified linear ``b`` varies fivefold between excitations).
+  damping of that drag at the unit's velocity, ``sqrt(8 / pi) sigma_v c_q`` for a Gaussian
+  velocity of standard deviation ``sigma_v`` (m/s), which must then be given (docs/heave.md:
+  the identified linear ``b`` varies fivefold between excitations), plus the line's material
+  damping ``T = EA e + c e'`` on the mode, ``c int phi'^2 ds``; over ``K_1``:
+  ``b = (c int phi'^2 ds + sqrt(8 / pi) sigma_v c_q) / K_1`` (s).
+
+(6.3) has no linear term: where the material damping is not small against the drag (the 113 m
+line of 6.3.6 at its 0.17 m excitation), the identification lumps it into ``b_q`` and the map's
+``b_q`` is low (docs/heave.md).
 
 **The inverse** (:func:`solve_parameters`): given data (``a``, and ``b_quadratic`` or ``b``
 with ``velocity_std``), the chosen unknowns among :data:`PARAMETERS` and every other parameter
@@ -54,7 +60,7 @@ __all__ = ["DATA", "PARAMETERS", "InverseResult", "LineParameters", "NotIdentifi
 
 #: the parameters that can be unknowns (attributes of :class:`LineParameters`)
 PARAMETERS = ("length", "axial_stiffness", "mass_per_length", "unit_mass", "added_mass",
-              "unit_drag", "tangential_drag", "diameter")
+              "unit_drag", "tangential_drag", "diameter", "axial_damping")
 #: the data that can be given
 DATA = ("a", "b_quadratic", "b")
 
@@ -90,6 +96,8 @@ class LineParameters:
         The line's tangential drag coefficient ``C_t`` (on ``pi d``), -.
     diameter : float
         Cable diameter, m.
+    axial_damping : float
+        The line's material damping ``c`` of ``T = EA e + c e'``, N s.
     water_density : float
         kg/m^3.
     """
@@ -102,6 +110,7 @@ class LineParameters:
     unit_drag: float = 0.0
     tangential_drag: float = 0.0
     diameter: float = 0.0
+    axial_damping: float = 0.0
     water_density: float = 1025.0
 
     def as_dict(self) -> dict[str, float]:
@@ -129,7 +138,7 @@ def from_dynamic_scene(scene: Any) -> LineParameters:
                           mass_per_length=mu, unit_mass=u.mass, added_mass=u.added_mass[2],
                           unit_drag=u.drag_coefficient[2] * u.drag_area[2],
                           tangential_drag=c.tangential_drag, diameter=c.diameter,
-                          water_density=rho)
+                          axial_damping=seg.axial_damping, water_density=rho)
 
 
 def _beta(ratio: float) -> float:
@@ -142,7 +151,8 @@ def _beta(ratio: float) -> float:
 def design_coefficients(p: LineParameters, velocity_std: float | None = None
                         ) -> dict[str, float]:
     """The forward map (module docstring): ``a`` (s^2), ``b_quadratic`` (s^2/m), ``omega_1``
-    (rad/s), and with ``velocity_std`` (m/s) the linear ``b`` (s).
+    (rad/s), ``b_material`` (s, the material damping's part of the linear ``b``), and with
+    ``velocity_std`` (m/s) the linear ``b`` (s).
 
     Parameters
     ----------
@@ -164,9 +174,11 @@ def design_coefficients(p: LineParameters, velocity_std: float | None = None
     K1 = (M + mu * int_phi2) * w1**2
     _, kt = line_drag_factors(p.water_density, p.diameter, 0.0, p.tangential_drag)
     cq = body_drag_factor(p.water_density, 1.0, p.unit_drag) + kt * int_phi3
-    out = {"a": 1.0 / w1**2, "b_quadratic": cq / K1, "omega_1": w1}
+    int_dphi2 = beta**2 * (1.0 + math.sin(2 * beta) / (2 * beta)) / (2 * L * sb**2)
+    b_mat = p.axial_damping * int_dphi2 / K1
+    out = {"a": 1.0 / w1**2, "b_quadratic": cq / K1, "omega_1": w1, "b_material": b_mat}
     if velocity_std is not None:
-        out["b"] = math.sqrt(8.0 / math.pi) * velocity_std * out["b_quadratic"]
+        out["b"] = b_mat + math.sqrt(8.0 / math.pi) * velocity_std * out["b_quadratic"]
     return out
 
 
@@ -222,7 +234,8 @@ def _check(data: dict[str, float], unknowns: tuple[str, ...], velocity_std: floa
             raise CableOCPError(f"{k} = {data[k]!r}: must be finite and > 0")
     if "b" in data and velocity_std is None:
         raise CableOCPError("the linear b of (6.2) needs velocity_std (m/s, the unit's "
-                            "velocity standard deviation): b = sqrt(8/pi) sigma_v b_q")
+                            "velocity standard deviation): b = b_material + sqrt(8/pi) "
+                            "sigma_v b_q")
     if "b" in data and "b_quadratic" in data:
         raise CableOCPError("give b or b_quadratic, not both: with velocity_std one follows "
                             "from the other")
