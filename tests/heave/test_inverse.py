@@ -85,21 +85,27 @@ def test_modal_integrals_against_quadrature(line_626: iv.LineParameters) -> None
     assert p.axial_stiffness * id2 == pytest.approx(K1, rel=1e-9)
 
 
-def test_forward_map_against_the_identification_on_the_900_m_line() -> None:
+@pytest.mark.parametrize(("heave_file", "over", "tol_b"), [
+    ("compare_6_2_6_cable.toml", {}, 0.1),
+    pytest.param("ex_6_3_6_cable.toml", {"cable.axial_damping": 0.0}, 0.02,
+                 marks=pytest.mark.slow)])
+def test_forward_map_against_the_identification(heave_file: str, over: dict,
+                                                tol_b: float) -> None:
     # The map replaces the experiment of 6.2.3: run it (identify_cable, multi-sine at the
-    # sea's RMS, 90 s, 20 elements to keep it quick) on the 6.2.6 line and compare. a: within
-    # 0.5 % (docs/heave.md: 0.3 % for every excitation, plus the coarser mesh); b of (6.3): 10 %
-    # (the fitted b_q moves by +-5 % between excitations; docs/heave.md).
+    # sea's RMS, 90 s, 20 elements to keep it quick) and compare. a: within 0.5 %
+    # (docs/heave.md: 0.3 % for every excitation, plus the coarser mesh). b of (6.3) on the
+    # 900 m line: 10 % (the fitted b_q moves by +-5 % between excitations). On the 113 m line
+    # the material damping would be lumped into the fitted b_q (docs/heave.md); without it the
+    # drag alone is fitted: 2 % (found 0.4 %).
     from cable_ocp.heave.identify_cable import identify_from_cable
     from cable_ocp.scene.heave import load_cable_scene, load_scene
 
-    sc = load_scene(ROOT / "problems" / "heave" / "compare_6_2_6_cable.toml",
-                    {"identification.duration": 90.0})
-    cs = load_cable_scene(sc).with_overrides({"simulation.segments": 20})
+    sc = load_scene(ROOT / "problems" / "heave" / heave_file, {"identification.duration": 90.0})
+    cs = load_cable_scene(sc).with_overrides({"simulation.segments": 20, **over})
     ident = identify_from_cable(sc, cs)
     d = iv.design_coefficients(iv.from_dynamic_scene(cs))
     assert ident.quadratic.a == pytest.approx(d["a"], rel=5e-3)
-    assert ident.quadratic.b == pytest.approx(d["b_quadratic"], rel=0.1)
+    assert ident.quadratic.b == pytest.approx(d["b_quadratic"], rel=tol_b)
 
 
 def test_forward_map_on_the_6_2_6_line(line_626: iv.LineParameters) -> None:
