@@ -32,7 +32,7 @@ control energy required which is manifested through the increase in magnitude of
 
 from __future__ import annotations
 
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 
 import numpy as np
 from scipy import linalg
@@ -40,7 +40,7 @@ from scipy import linalg
 from cable_ocp.errors import CableOCPError
 from cable_ocp.heave import lqr
 from cable_ocp.heave import plant as pl
-from cable_ocp.heave.closed_loop import Trace, run_loop, unstable_bound
+from cable_ocp.heave.closed_loop import Trace, run_loop, run_status, unstable_bound
 from cable_ocp.heave.controllers import Passive, StateFeedback
 from cable_ocp.heave.design_loop import build_models, wave_realisation
 from cable_ocp.heave.estimators import Estimator, Observation
@@ -286,6 +286,8 @@ class PrintedRun:
         run_status` statuses).
     warmup : float
         Start-up left out of the numbers, s.
+    gains : dict
+        Each gain's name -> its :class:`PrintedGain`.
     """
 
     t: np.ndarray
@@ -293,6 +295,7 @@ class PrintedRun:
     traces: dict
     statuses: dict
     warmup: float
+    gains: dict = field(default_factory=dict)
 
 
 def _run(sc: HeaveScene, ctrl: object, t: np.ndarray, x0: np.ndarray, xs: np.ndarray,
@@ -306,8 +309,7 @@ def _run(sc: HeaveScene, ctrl: object, t: np.ndarray, x0: np.ndarray, xs: np.nda
     bound = unstable_bound(x0[: n_ctrl * sc.simulation.substeps + 1]) if s0 is None else (
         1e3 * max(float(np.max(np.abs(s0))), 1e-3))
     run = run_loop(plant, ctrl, n_ctrl, bound)
-    status = run.stop if run.stop is not None else ("solved", "ran to the end")
-    return run.trace, status
+    return run.trace, run_status(run, "design-model")
 
 
 def simulate_printed(gains: tuple = ("G3", "G5"), *, duration: float = 300.0,
@@ -340,16 +342,17 @@ def simulate_printed(gains: tuple = ("G3", "G5"), *, duration: float = 300.0,
                            duration=duration, seed=seed, warmup=warmup)
     p = build_models(base).plant
     t, x0, xs = wave_realisation(p, duration + sample_time, sample_time / substeps, seed)
-    traces, statuses = {}, {}
+    traces, statuses, used = {}, {}, {}
     traces["uncontrolled"], statuses["uncontrolled"] = _run(base, Passive(), t, x0, xs)
     for name in gains:
         g = _gain(name)
+        used[g.name] = g
         sc = regulator_scene(g.tau, a=a, b=b, K=K, sample_time=sample_time,
                              substeps=substeps, duration=duration, seed=seed, warmup=warmup)
         traces[g.name], statuses[g.name] = _run(sc, printed_controller(g, sample_time), t,
                                                 x0, xs)
     tr = traces["uncontrolled"]
-    return PrintedRun(tr.t, tr.x0, traces, statuses, warmup)
+    return PrintedRun(tr.t, tr.x0, traces, statuses, warmup, used)
 
 
 def free_response(gain: PrintedGain | str, x_start: float = 1.0, *, duration: float = 30.0,
@@ -439,7 +442,7 @@ def stated_numbers(run: PrintedRun) -> dict:
                                             / out["uncontrolled"]["heave_rms"])
             row["opposition"] = float(np.corrcoef(u, x0)[0, 1])
             row["residual_ratio"] = float(np.sqrt(np.mean((x0 + u) ** 2) / np.mean(x0**2)))
-            row["J_c"] = float(np.sum(PRINTED[name].G ** 2))
+            row["J_c"] = float(np.sum(run.gains[name].G ** 2))
             row["J_w"] = float(np.sum(tr.u_dot[sel] ** 2) * dt)
         out[name] = row
     return out
