@@ -58,9 +58,10 @@ eigenproblem. The pay-out (advection) terms a R_y and a V_y use central differen
 the top a one-sided second-order difference.
 
 Time: the implicit midpoint rule with a discrete-gradient tension (the energy-momentum
-method of Simo & Tarnow (1992), Gonzalez (1996)): the element force is the exact mean of T
-over [e_0, e_1] (:func:`cable_ocp.physics.elasticity.mean_smooth_tension`, from the strain
-energy: exact across the no-compression kink when an element goes slack or taut) along
+method of Simo & Tarnow (1992), Gonzalez (1996)): the element force is the mean of T over
+[e_0, e_1] (:func:`cable_ocp.physics.elasticity.mean_material_tension`: exact from the strain
+energy for the linear law, across the no-compression kink when an element goes slack or
+taut; 3-point Gauss for a tension-strain table) along
 (d_0 + d_1) / (|d_0| + |d_1|), so that an undamped run in
 air conserves the discrete energy to the Newton tolerance, at any time step (A-stable,
 symplectic for the linear part, no numerical damping). The kinematic equation is
@@ -101,11 +102,10 @@ from cable_ocp.physics.current import profile_velocity
 from cable_ocp.physics.drag import line_drag_factors, point_drag, vector_drag_columns
 from cable_ocp.physics.elasticity import (
     SLACK_SMOOTHING,
-    mean_smooth_tension,
-    mean_taut_switch,
-    no_push,
-    smooth_tension,
-    taut_switch,
+    cable_material,
+    mean_material_switch,
+    mean_material_tension,
+    smooth_positive,
 )
 from cable_ocp.scene.dynamics import DynamicScene
 from cable_ocp.scene.motion import motion_function
@@ -173,6 +173,9 @@ class PlanarModel:
                                              cab.tangential_drag)
         self.delta = st.solver.smoothing
         self.delta_t = SLACK_SMOOTHING
+        #: the tension law (linear or a tension-strain table, physics.elasticity)
+        self.table = cab.strain_table
+        self.material = cable_material(self.ea, self.table, slack_smoothing=self.delta_t)
         self.rho = rho
         self.length0 = scene.length
         self.top0 = np.array([scene.top_position[0], scene.top_position[2]], dtype=float)
@@ -206,14 +209,14 @@ class PlanarModel:
 
     # ------------------------------------------------------------------ pieces
     def _tension(self, eps: Any) -> Any:
-        """Smooth no-compression Hooke's law, N (elementwise;
-        :func:`cable_ocp.physics.elasticity.smooth_tension`)."""
-        return smooth_tension(eps, self.ea, self.delta_t)
+        """Smooth no-compression tension law, N (elementwise; the material's
+        :meth:`~cable_ocp.physics.elasticity.AxialMaterial.tension`)."""
+        return self.material.tension(eps)
 
     def _taut(self, eps: Any) -> Any:
-        """Smooth switch 0 (slack) .. 1 (taut), - (elementwise;
-        :func:`cable_ocp.physics.elasticity.taut_switch`)."""
-        return taut_switch(eps, self.ea, self.delta_t)
+        """Smooth switch 0 (slack) .. 1 (taut), - (elementwise; the material's
+        :meth:`~cable_ocp.physics.elasticity.AxialMaterial.taut`)."""
+        return self.material.taut(eps)
 
     # The expressions below work on 2 x K matrices (columns = nodes or elements, rows =
     # x, z): a few dozen whole-matrix operations per expression, whatever N is.
@@ -363,12 +366,12 @@ class PlanarModel:
         # discrete-gradient tension (mean of T over [e0, e1] along (d0 + d1)/(l0 + l1))
         l0, l1 = self._norms(d0), self._norms(d1)
         e0, e1 = l0 / h0 - 1.0, l1 / h1 - 1.0
-        tbar = mean_smooth_tension(e0, e1, self.ea, self.delta_t)
+        tbar = mean_material_tension(self.material, e0, e1)
         u = (d0 + d1) / ca.repmat(l0 + l1, 2, 1)
         if self.c > 0.0:
             rate = ca.sum1(u * (vm[:, 1:] - vm[:, :-1])) / hm
-            switch = mean_taut_switch(e0, e1, self.ea, self.delta_t)
-            tbar = no_push(tbar + self.c * rate * switch, self.delta_t)
+            switch = mean_material_switch(self.material, e0, e1)
+            tbar = smooth_positive(tbar + self.c * rate * switch, self.delta_t)
         force = self._spread(ca.repmat(tbar, 2, 1) * u)
         # drag at the mean positions with the midpoint velocities
         zm = 0.5 * (self._heights(qa, m0) + self._heights(qb, m1))
@@ -465,7 +468,7 @@ class PlanarModel:
         tens = self._tension(eps)
         if self.c > 0.0:
             rate = ca.sum1(dd / ca.repmat(ll, 2, 1) * (vs[:, 1:] - vs[:, :-1])) / h
-            tens = no_push(tens + self.c * rate * self._taut(eps), self.delta_t)
+            tens = smooth_positive(tens + self.c * rate * self._taut(eps), self.delta_t)
         # the top: node N's balance, M_N a_N - (cable, weight, drag); a_N the material
         # acceleration a_b - L_tt R_y / L (the turning of the top tangent neglected)
         zs = rs[1, :]
@@ -494,7 +497,8 @@ class PlanarModel:
         dd = self._elements(qq, h)
         ll = self._norms(dd)
         eps = ll / h - 1.0
-        tens = self.ea * eps if linear else self._tension(eps)
+        tens = (self.ea * eps if self.table is None else self.table.tension_of(eps)) \
+            if linear else self._tension(eps)
         force = self._spread(ca.repmat(tens / ll, 2, 1) * dd)
         if with_drag:
             zs = self._heights(qq, mo)
@@ -745,7 +749,7 @@ class PlanarModel:
         top = top.reshape(n_t)
         length = length.reshape(n_t)
         min_strain = float(min(emin, np.min(eps)))
-        min_t = float(min(smooth_tension(min_strain, self.ea, self.delta_t), np.min(tens)))
+        min_t = float(min(self._tension(min_strain), np.min(tens)))
         e, where = slack_element(t_slack, e_slack, ts, length, self.n)
         slack, status, message = slack_report(
             t_slack, e, where, status=status, message=message, on_slack=sim.on_slack,

@@ -19,14 +19,14 @@ MUTATIONS = [
          description="mean taut switch: (S1 - S0) / dx taken as half its value"),
     dict(name="planar-damping-switch-at-middle", area="dynamics",
          file="cable_ocp/dynamics/planar.py",
-         old="switch = mean_taut_switch(e0, e1, self.ea, self.delta_t)",
+         old="switch = mean_material_switch(self.material, e0, e1)",
          new="switch = self._taut(0.5 * (e0 + e1))",
          tests=(SNAP + "::test_the_slack_spell_runs_at_a_small_step_too",),
          description="planar step: the damping switch at the mean strain (jumps within a "
                      "step at slack) instead of its exact mean"),
     dict(name="planar-damper-pushes", area="dynamics",
          file="cable_ocp/dynamics/planar.py",
-         old="tens = no_push(tens + self.c * rate * self._taut(eps), self.delta_t)",
+         old="tens = smooth_positive(tens + self.c * rate * self._taut(eps), self.delta_t)",
          new="tens = tens + self.c * rate * self._taut(eps)",
          tests=(SNAP + "::test_a_mass_dropped_on_the_planar_line_matches_the_closed_form",),
          description="planar outputs: the damping may take the tension below zero (the "
