@@ -23,13 +23,18 @@ exact and checkable:
 * mass: every segment carries mu l_j, half at each end node; the cut and the join only
   re-split the lengths (their sum is L(t)), so the line's mass sum(m_i) (the winch's share
   included) is mu L(t) plus the unit's and bodies' masses, to round-off;
-* a split puts the new node on the chord at the fraction f = l_e / l_top from the node
-  below, with the velocity interpolated likewise between that node and the material at the
-  winch (v_b - L' (1 + eps_top) t, t the top segment's unit tangent): the two new segments
-  keep the old one's strain (so its strain energy, l W(eps), exactly) and the line's
-  momentum (the winch's share at the material's velocity) exactly; its kinetic energy
-  drops by mu l_top f (1 - f) |v_below - v_winch|^2 / 4 (the lumped masses' own
-  redistribution, second order in the relative velocity across the top segment);
+* a split puts the new node on the chord, the stretched length shared so that the two
+  nodes keep their force balance: the lower part (l_e) at the strain eps - w_t (l_top -
+  l_e) / (2 EA), the upper one at eps + w_t l_e / (2 EA) (w_t the weight in water per
+  length along the chord; a hanging line's tension grows by w_t per length, and the new
+  node carries w l_top / 2); the strain energy then grows by w_t^2 l_e (l_top - l_e) l_top
+  / (8 EA) (second order in the strain step; keeping the strain instead sends an axial
+  wave of order w l_e / 2 down the line at every split). The velocity is interpolated at
+  f = l_e / l_top between the node below and the material at the winch (v_b - L' (1 +
+  eps_top) t, t the top segment's unit tangent), which keeps the line's momentum (the
+  winch's share at the material's velocity) exactly; its kinetic energy drops by mu l_top
+  f (1 - f) |v_below - v_winch|^2 / 4 (the lumped masses' own redistribution, second order
+  in the relative velocity across the top segment);
 * a merge gives the leaving node's mass to the node below (mu l_top / 2, with its momentum)
   and to the winch (mu l_below / 2, which leaves the free nodes with its momentum).
 
@@ -48,8 +53,14 @@ plus the strain energy sum_j l_j W(eps_j), W the stored energy of
                                                          the cable paid out)
 
 with P_gravity and P_drag the powers of the weights (and loads) and of the drag on the free
-nodes, which :meth:`PayoutLine.run` integrates (``energy=True``) so that the balance of a
-run is checkable (:mod:`tests.dynamics.test_lumped_payout`).
+nodes. The time step below keeps this identity exactly over each step (the midpoint rule
+with a diagonal mass, the discrete gradient, masses at the mean lengths): the step's works
+are dt v_m . F at the free nodes for gravity and drag, T_bar (t_m . dx_b - (1 + eps_mean)
+dL) for the winch (T_bar the top segment's mean tension, t_m its mean direction) and
+dL W_mean + mu dL (|v0|^2 + |v1|^2) / 8 for the inflow, so that E(t) - E(0) equals their
+sum plus the events' jumps to the Newton tolerance; :meth:`PayoutLine.run` sums them
+(``energy=True``) so that the balance of a run is checkable
+(:mod:`tests.dynamics.test_lumped_payout`).
 
 Time: the fixed-length model's implicit midpoint rule with the discrete-gradient tension
 (:func:`cable_ocp.dynamics.lumped_equations.segment_tension` with the unstretched lengths
@@ -129,6 +140,8 @@ class PayoutRun:
         The states at the recorded times (the first the start).
     tensions : list of ndarray
         Segment tensions (N) at the recorded times.
+    top_force : list of ndarray
+        The force of the winch on the line (N, 3) at the recorded times.
     status : str
         ``"solved"`` or ``"failed"``.
     message : str
@@ -149,6 +162,7 @@ class PayoutRun:
 
     states: list[PayoutState]
     tensions: list[np.ndarray]
+    top_force: list[np.ndarray] = field(default_factory=list)
     status: str = "solved"
     message: str = ""
     splits: int = 0
@@ -327,8 +341,9 @@ class PayoutLine:
     def functions(self, n: int) -> dict[str, ca.Function]:
         """The CasADi functions with ``n`` segments (built on first use, cached):
         ``step(q0, v0, l0, l1, t0, dt) -> (q1, v1)``, ``forces(q, v, l, t, ldot) ->
-        (tensions, strains, top_force)`` and ``power(q, v, l, t, ldot) -> (E, P_gravity,
-        P_drag, P_winch, P_inflow)`` (J, W).
+        (tensions, strains, top_force)``, ``energy(q, v, l, t, ldot) -> E`` (J) and
+        ``balance(q0, v0, q1, l0, l1, t0, dt) -> (W_gravity, W_drag, W_winch, W_inflow)``
+        (J, the step's works of the energy identity in the module docstring).
 
         Parameters
         ----------
@@ -356,12 +371,33 @@ class PayoutLine:
         vel = vel + [self._winch_velocity(n, rm, lm, ldot, tm)]
         terms = self._terms(n, rm, vel, lm)
         f = [terms["loads"][i] + terms["drag"][i] for i in range(n + 1)]
+        pr = self.props(n)
         for j in range(n):
             st = self._tension(n, j, r1[j + 1] - r1[j], l1[j], d0=r0[j + 1] - r0[j],
                                ell0=l0[j], dt=dt)
             fe = st["tension"] * st["num"] / st["den"]
             f[j] = f[j] + fe
             f[j + 1] = f[j + 1] - fe
+        # the step's exact energy balance (no line added mass, no material damping): the
+        # work of the loads and the drag on the free nodes, of the top segment's mean
+        # tension on the material at the winch, and the paid-out cable's energy
+        dl = l1[n - 1] - l0[n - 1]
+        ea_top = float(pr["axial_stiffness"][n - 1])
+        e0 = ca.norm_2(r0[n] - r0[n - 1]) / l0[n - 1] - 1.0
+        e1 = st["strain"]
+        w_load = dt * sum(ca.dot(vel[i], terms["loads"][i]) for i in free)
+        w_drag = dt * sum(ca.dot(vel[i], terms["drag"][i]) for i in free)
+        w_winch = st["tension"] * (ca.dot(st["num"] / st["den"], r1[n] - r0[n])
+                                   - (1.0 + 0.5 * (e0 + e1)) * dl)
+        w_in = dl * 0.5 * sum(smooth_strain_energy(e, ea_top, self.params.slack_smoothing)
+                              for e in (e0, e1))
+        if (n - 1) in free:
+            k = free.index(n - 1)
+            vv0, vv1 = v0[3 * k:3 * k + 3], v1[3 * k:3 * k + 3]
+            w_in = w_in + 0.125 * float(pr["mass_per_length"][n - 1]) * dl * (
+                ca.dot(vv0, vv0) + ca.dot(vv1, vv1))
+        balance = ca.Function("balance", [q0, v0, q1, l0, l1, t0, dt],
+                              [w_load, w_drag, w_winch, w_in])
         acc = (v1 - v0) / dt
         res = ca.vertcat(*[ca.mtimes(terms["mass"][i], acc[3 * k:3 * k + 3]) - f[i]
                            for k, i in enumerate(free)]) / self.force_scale
@@ -384,7 +420,6 @@ class PayoutLine:
             vv = [ca.SX.zeros(3)] + vv
         vall = vv + [vb]
         tens, strains, pot = [], [], 0
-        pr = self.props(n)
         for j in range(n):
             st = self._tension(n, j, r[j + 1] - r[j], ell[j])
             tens.append(st["tension"])
@@ -394,21 +429,19 @@ class PayoutLine:
                                                       self.params.slack_smoothing)
         d_top = r[n] - r[n - 1]
         t_hat = d_top / ca.norm_2(d_top)
-        top_force = -tens[-1] * t_hat  # the line's pull on the winch
+        one = self._terms(n, r, vall, ell)
+        # the force of the winch on the line: M_N a_b minus the forces on the winch's node
+        # (the top segment's pull, its share of the weight, its drag), as the fixed-length
+        # model's top_force
+        acc_b = ca.jacobian(self._top_v(t), t)
+        f_n = -tens[-1] * t_hat + one["loads"][n] + one["drag"][n]
+        top_force = ca.mtimes(one["mass"][n], acc_b) - f_n
         forces = ca.Function("forces", [q, v, ell, t, ld],
                              [ca.vertcat(*tens), ca.vertcat(*strains), top_force])
-        one = self._terms(n, r, vall, ell)
         kin = sum(0.5 * ca.dot(vall[i], ca.mtimes(one["mass"][i], vall[i])) for i in free)
-        p_grav = sum(ca.dot(one["loads"][i], vall[i]) for i in free)
-        p_drag = sum(ca.dot(one["drag"][i], vall[i]) for i in free)
-        p_winch = tens[-1] * ca.dot(t_hat, vb)
-        w_top = smooth_strain_energy(strains[-1], float(pr["axial_stiffness"][n - 1]),
-                                     self.params.slack_smoothing)
-        below = vall[n - 1] if (n - 1) in free else ca.SX.zeros(3)
-        p_in = ld * (w_top + 0.25 * float(pr["mass_per_length"][n - 1]) * ca.dot(below, below))
-        power = ca.Function("power", [q, v, ell, t, ld],
-                            [kin + pot, p_grav, p_drag, p_winch, p_in])
-        self._fns[n] = out = {"step": step, "forces": forces, "power": power}
+        energy = ca.Function("energy", [q, v, ell, t, ld], [kin + pot])
+        self._fns[n] = out = {"step": step, "forces": forces, "energy": energy,
+                              "balance": balance}
         return out
 
     # -- states --------------------------------------------------------------------------
@@ -460,7 +493,7 @@ class PayoutLine:
             The line.
         """
         q, v = self.free_vectors(state)
-        return float(self.functions(state.segments)["power"](
+        return float(self.functions(state.segments)["energy"](
             q, v, state.lengths, state.t, self.length(state.t)[1])[0])
 
     # -- events --------------------------------------------------------------------------
@@ -475,7 +508,16 @@ class PayoutLine:
         le = self.element_length
         ltop = state.lengths[-1]
         f = le / ltop
-        rn = state.r[-2] + f * (state.r[-1] - state.r[-2])
+        d = state.r[-1] - state.r[-2]
+        chord = float(np.linalg.norm(d))
+        n = state.segments
+        pr = self.props(n)
+        w_t = float(pr["weight_in_water"][n - 1]) * d[2] / chord
+        # the lower part's strain less w_t (l_top - l_e) / (2 EA), the upper's more by
+        # w_t l_e / (2 EA): the same stretched length, and both nodes keep their balance
+        eps_low = chord / ltop - 1.0 - w_t * (ltop - le) / (
+            2.0 * float(pr["axial_stiffness"][n - 1]))
+        rn = state.r[-2] + le * (1.0 + eps_low) * d / chord
         vn = state.v[-2] + f * (state.v[-1] - state.v[-2])
         lengths = np.concatenate([state.lengths[:-1], [le, ltop - le]])
         return PayoutState(state.t, lengths, np.insert(state.r, -1, rn, axis=0),
@@ -537,7 +579,8 @@ class PayoutLine:
         record_every : int
             Steps per recorded state.
         energy : bool
-            Integrate the energy balance (midpoint rule on each step's powers; slower).
+            Sum each step's exact energy balance (``balance`` of :meth:`functions`;
+            slower).
         progress : callable, optional
             ``progress(t_done, duration)`` (s), about 100 times.
         """
@@ -547,8 +590,8 @@ class PayoutLine:
         q = np.asarray(q0, float).copy()
         v = np.zeros_like(q)
         st = self.state(0.0, lengths, q, v)
-        out = PayoutRun(states=[st], tensions=[self._tensions(st)])
-        out.min_strain = float(np.min(self._strains(st)))
+        out = PayoutRun(states=[], tensions=[])
+        self._record(out, st)
         steps = int(round(duration / dt))
         en = None
         if energy:
@@ -575,12 +618,10 @@ class PayoutLine:
                                f"{float(resid[0]):.3g}); take a smaller simulation.time_step")
                 break
             if en is not None:
-                ld = (l1[-1] - lengths[-1]) / dt
-                _, pg, pd, pw, pi = (float(a) for a in fn["power"](
-                    0.5 * (q + q1), (q1 - q) / dt, 0.5 * (lengths + l1), t0 + 0.5 * dt, ld))
-                for key, val in zip(("gravity", "drag", "winch", "inflow"),
-                                    (pg, pd, pw, pi), strict=True):
-                    acc[key] += dt * val
+                works = fn["balance"](q, v, q1, lengths, l1, t0, dt)
+                for key, val in zip(("gravity", "drag", "winch", "inflow"), works,
+                                    strict=True):
+                    acc[key] += float(val)
             st = self.state(t0 + dt, l1, q1, v1)
             st, ok = self._events(st, out, en is not None, acc if en is not None else None)
             lengths = st.lengths
@@ -591,9 +632,7 @@ class PayoutLine:
                                f"{lengths[-1]:.3g} m (< {MERGE} element lengths) and no node "
                                "can leave (the unit, a body or another material is next)")
             if (k + 1) % record_every == 0 or not ok:
-                out.states.append(st)
-                out.tensions.append(self._tensions(st))
-                out.min_strain = min(out.min_strain, float(np.min(self._strains(st))))
+                self._record(out, st)
                 if en is not None:
                     en["t"].append(st.t)
                     en["E"].append(self.energy_of(st))
@@ -636,11 +675,16 @@ class PayoutLine:
             st = new
 
     def _tensions(self, st: PayoutState) -> np.ndarray:
-        q, v = self.free_vectors(st)
-        return np.asarray(self.functions(st.segments)["forces"](
-            q, v, st.lengths, st.t, self.length(st.t)[1])[0], float).ravel()
+        return self._forces(st)[0]
 
-    def _strains(self, st: PayoutState) -> np.ndarray:
+    def _forces(self, st: PayoutState) -> list[np.ndarray]:
         q, v = self.free_vectors(st)
-        return np.asarray(self.functions(st.segments)["forces"](
-            q, v, st.lengths, st.t, self.length(st.t)[1])[1], float).ravel()
+        return [np.asarray(a, float).ravel() for a in self.functions(st.segments)["forces"](
+            q, v, st.lengths, st.t, self.length(st.t)[1])]
+
+    def _record(self, out: PayoutRun, st: PayoutState) -> None:
+        tens, strain, top = self._forces(st)
+        out.states.append(st)
+        out.tensions.append(tens)
+        out.top_force.append(top)
+        out.min_strain = min(out.min_strain, float(np.min(strain)))
