@@ -14,8 +14,9 @@ y = s / L(t) = i / segments of the unstretched length (as the axial and planar m
 fixed domain), linearly interpolated in s between the model's nodes (exact at the unit
 and the winch); its segment tensions are interpolated at the output segments' middles,
 its top tension the force of the winch on the line (the top segment's pull with its
-share of the weight, drag and inertia at the winch, as the fixed-length model's). The number of the model's segments over
-time, the splits and merges and the element length are in ``diagnostics["payout"]``.
+share of the weight, drag and inertia at the winch, as the fixed-length model's). The
+number of the model's segments over time, the splits and merges and the element length
+are in ``diagnostics["payout"]``.
 """
 
 from __future__ import annotations
