@@ -29,8 +29,8 @@ VERTICAL = {"simulation.duration": 20.0, "simulation.time_step": 0.05,
             "simulation.output_step": 0.25, "simulation.segments": 10,
             "top_motion.payout_speed": 1.0, "top_motion.ramp_time": 5.0}
 #: Huang's 4.5.4 (planar: sway of the unit while lowered, 5 m horizontal top motion)
-#: shortened: 100 m, 1 m/s for 30 s
-PLANAR = {"simulation.duration": 30.0, "simulation.time_step": 0.05,
+#: shortened: 100 m, 1 m/s for 20 s
+PLANAR = {"simulation.duration": 20.0, "simulation.time_step": 0.05,
           "simulation.output_step": 0.5, "top_motion.payout_speed": 1.0,
           "cable.length": 100.0}
 
@@ -196,8 +196,8 @@ def test_vertical_payout_equals_axial() -> None:
 def test_planar_payout_equals_planar() -> None:
     """A planar pay-out in 3D is the planar model to the discretisation error: the unit's
     sway differs from the planar model's by less than the planar model's own change from
-    20 to 40 elements (measured 1.6 mm against 5.2 mm of a 0.77 m sway), and stays in
-    the plane."""
+    20 to 40 elements (measured 1.6 mm against 3.7 mm of a 0.77 m sway; 0.15 mm against
+    0.53 mm in height), and stays in the plane."""
     f = PROBLEMS / "huang_4_5_4.toml"
     pl20 = simulate(f, overrides={**PLANAR, "simulation.segments": 20})
     pl40 = simulate(f, overrides={**PLANAR, "simulation.segments": 40})
@@ -215,16 +215,16 @@ def test_deployment_in_a_turning_current() -> None:
     into the turned one (towards +y), drifts towards +y and its depth follows the
     pay-out."""
     f = PROBLEMS / "deployment_lumped3d_turning_current.toml"
-    r = simulate(f, overrides={"simulation.duration": 60.0})
+    r = simulate(f, overrides={"simulation.duration": 40.0})
     assert r.status == "solved", r.message
     pay = r.diagnostics["payout"]
-    assert pay["splits"] == 5 and pay["segments_end"] == 10  # 50 m -> 105 m, 10 m each
-    assert r.length[-1] == pytest.approx(105.0, abs=1e-9)
+    assert pay["splits"] == 3 and pay["segments_end"] == 8  # 50 m -> 85 m, 10 m each
+    assert r.length[-1] == pytest.approx(85.0, abs=1e-9)
     y = r.unit_position[:, 1]
     assert y[-1] > y[0] + 0.1 and r.unit_position[0, 0] > 0.0
     # the unit goes down with the pay-out, to the line's elongation (< 0.5 m)
     drop = r.unit_position[0, 2] - r.unit_position[-1, 2]
-    assert drop == pytest.approx(55.0, abs=0.5)
+    assert drop == pytest.approx(35.0, abs=0.5)
 
 
 def test_payout_scene_errors() -> None:
