@@ -643,8 +643,8 @@ class PayoutLine:
             if progress is not None and (k + 1) % every_progress == 0:
                 progress((k + 1) * dt, duration)
         if out.status == "solved":
-            out.message = (f"{steps} steps; {out.splits} nodes entered and {out.merges} left "
-                           f"at the winch (element length {self.element_length:.4g} m)")
+            out.message = (f"{steps} steps; nodes that entered at the winch: {out.splits}, "
+                           f"left: {out.merges} (element length {self.element_length:.4g} m)")
         if en is not None:
             out.energy = {k: np.asarray(val) for k, val in en.items()}
         out.wall_time_s = time.perf_counter() - wall

@@ -24,8 +24,8 @@ from cable_ocp.errors import CableOCPError
 PROBLEMS = Path(__file__).resolve().parents[2] / "problems" / "dynamics"
 
 #: Huang's 3.3.5 line (axial, heave and pay-out) shortened: 50 m, 10 elements of 5 m,
-#: 1 m/s after a 5 s ramp for 20 s (3 nodes enter), heave 0.5 m at 1.26 rad/s
-VERTICAL = {"simulation.duration": 20.0, "simulation.time_step": 0.05,
+#: 1 m/s after a 5 s ramp for 15 s (2 nodes enter), heave 0.5 m at 1.26 rad/s
+VERTICAL = {"simulation.duration": 15.0, "simulation.time_step": 0.05,
             "simulation.output_step": 0.25, "simulation.segments": 10,
             "top_motion.payout_speed": 1.0, "top_motion.ramp_time": 5.0}
 #: Huang's 4.5.4 (planar: sway of the unit while lowered, 5 m horizontal top motion)
@@ -179,18 +179,18 @@ def test_vertical_payout_equals_axial() -> None:
     nodes differing by the discretisation of the pay-out. The unit's height agrees to
     3e-5 m (of a 0.5 m heave): measured 1.5e-5 m, the difference of the two schemes' own
     time-discretisation errors (second order: 8e-7 m at dt = 0.01 s; the axial model moves
-    by 1e-6 m from 10 to 40 elements), and the top tension to 0.2 % (measured 12 N of
-    19 kN: the unresolved axial waves of the two meshes, dt = 0.05 s against an axial
+    by 1e-6 m from 10 to 40 elements), and the top tension to 0.1 % (measured 11 N of
+    55 kN: the unresolved axial waves of the two meshes, dt = 0.05 s against an axial
     period of 2 L / c = 0.06 s)."""
     f = PROBLEMS / "huang_3_3_5.toml"
     ax = simulate(f, overrides=VERTICAL)
     r3 = simulate(f, overrides={**VERTICAL, "simulation.model": "lumped3d"})
     assert ax.status == r3.status == "solved"
-    assert r3.diagnostics["payout"]["splits"] == 3
+    assert r3.diagnostics["payout"]["splits"] == 2
     assert np.allclose(r3.length, ax.length, rtol=0, atol=1e-12)
     assert np.max(np.abs(r3.unit_position[:, 2] - ax.unit_position[:, 2])) < 3e-5
     assert np.max(np.abs(r3.unit_position[:, :2])) < 1e-9  # stays on the axis
-    assert np.max(np.abs(r3.top_tension - ax.top_tension)) < 2e-3 * np.max(ax.top_tension)
+    assert np.max(np.abs(r3.top_tension - ax.top_tension)) < 1e-3 * np.max(ax.top_tension)
 
 
 def test_planar_payout_equals_planar() -> None:
