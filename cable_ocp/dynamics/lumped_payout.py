@@ -325,7 +325,15 @@ class PayoutLine:
         pr = self.props(n)
         return segment_tension(d1, ell1, float(pr["axial_stiffness"][j]),
                                float(pr["axial_damping"][j]), self.params.slack_smoothing,
-                               **kw)
+                               table=self.params.tension_strain, **kw)
+
+    def _energy_density(self, strain: Any, ea: float) -> Any:
+        """Stored energy per unstretched length (J/m) at ``strain``: the line's
+        tension-strain table's, or the smooth Hooke law's."""
+        table = self.params.tension_strain
+        if table is not None:
+            return table.energy(strain)
+        return smooth_strain_energy(strain, ea, self.params.slack_smoothing)
 
     def _nodes(self, n: int, q: Any, t: Any) -> list[Any]:
         nodes = [q[3 * k:3 * k + 3] for k in range(self.free(n).size)]
@@ -389,8 +397,7 @@ class PayoutLine:
         w_drag = dt * sum(ca.dot(vel[i], terms["drag"][i]) for i in free)
         w_winch = st["tension"] * (ca.dot(st["num"] / st["den"], r1[n] - r0[n])
                                    - (1.0 + 0.5 * (e0 + e1)) * dl)
-        w_in = dl * 0.5 * sum(smooth_strain_energy(e, ea_top, self.params.slack_smoothing)
-                              for e in (e0, e1))
+        w_in = dl * 0.5 * sum(self._energy_density(e, ea_top) for e in (e0, e1))
         if (n - 1) in free:
             k = free.index(n - 1)
             vv0, vv1 = v0[3 * k:3 * k + 3], v1[3 * k:3 * k + 3]
@@ -424,9 +431,8 @@ class PayoutLine:
             st = self._tension(n, j, r[j + 1] - r[j], ell[j])
             tens.append(st["tension"])
             strains.append(st["strain"])
-            pot = pot + ell[j] * smooth_strain_energy(st["strain"],
-                                                      float(pr["axial_stiffness"][j]),
-                                                      self.params.slack_smoothing)
+            pot = pot + ell[j] * self._energy_density(st["strain"],
+                                                      float(pr["axial_stiffness"][j]))
         d_top = r[n] - r[n - 1]
         t_hat = d_top / ca.norm_2(d_top)
         one = self._terms(n, r, vall, ell)
@@ -514,9 +520,13 @@ class PayoutLine:
         pr = self.props(n)
         w_t = float(pr["weight_in_water"][n - 1]) * d[2] / chord
         # the lower part's strain less w_t (l_top - l_e) / (2 EA), the upper's more by
-        # w_t l_e / (2 EA): the same stretched length, and both nodes keep their balance
-        eps_low = chord / ltop - 1.0 - w_t * (ltop - le) / (
-            2.0 * float(pr["axial_stiffness"][n - 1]))
+        # w_t l_e / (2 EA) (EA the tangent of a tension-strain table): the same stretched
+        # length, and both nodes keep their balance
+        eps = chord / ltop - 1.0
+        table = self.params.tension_strain
+        tangent = (float(pr["axial_stiffness"][n - 1]) if table is None
+                   else float(table.tangent(eps)))  # dT/deps of the material, N
+        eps_low = eps - w_t * (ltop - le) / (2.0 * tangent)
         rn = state.r[-2] + le * (1.0 + eps_low) * d / chord
         vn = state.v[-2] + f * (state.v[-1] - state.v[-2])
         lengths = np.concatenate([state.lengths[:-1], [le, ltop - le]])

@@ -43,7 +43,8 @@ Schema (SI units; see ``problems/heave/*.toml`` for commented examples)::
                                          # are identified from it unless a and b are given
 
     [controller]
-    q = 553.6                            # 1/m^2, weight on the unit's heave
+    q = 553.6                            # 1/m^2, weight on the unit's heave (default:
+                                         # calibrated, 6.3.6's LQR then gives 2.96e-4 m)
     r = 1.0                              # 1/m^2, weight on the command
     horizon = 50
     sample_time = 0.05                   # s
@@ -152,7 +153,7 @@ class UnitSpec:
 class ControllerSpec:
     """``[controller]``."""
 
-    q: float = 553.6
+    q: float = 553.6  # 1/m^2; a calibration: 6.3.6's LQR gives the thesis' 2.96e-4 m
     r: float = 1.0
     horizon: int = 50
     sample_time: float = 0.05

@@ -7,8 +7,8 @@ _T = "tests/dynamics/test_lumped_payout.py::test_"
 MUTATIONS = [
     dict(name="payout-split-keeps-one-strain", area="dynamics",
          file="cable_ocp/dynamics/lumped_payout.py",
-         old="eps_low = chord / ltop - 1.0 - w_t * (ltop - le) / (",
-         new="eps_low = chord / ltop - 1.0 - 0.0 * w_t * (ltop - le) / (",
+         old="eps_low = eps - w_t * (ltop - le) / (2.0 * tangent)",
+         new="eps_low = eps - 0.0 * w_t * (ltop - le) / (2.0 * tangent)",
          tests=(_T + "split_bookkeeping", _T + "vertical_payout_equals_axial"),
          description="3D pay-out split: both parts keep the old strain (the new node and the "
                      "one below lose their balance; an axial wave at every split)"),
