@@ -23,7 +23,9 @@ axial, planar     the axial and planar lines; vertical_line their coefficients, 
                   axial_thesis Huang's own axial scheme
 snap              the snap loads that end a slack spell (SimulationResult.snap)
 lumped            the 3D lumped-mass line: lumped_params, lumped_equations, lumped_kernel,
-                  lumped_run, lumped_scene, lumped_driven, lumped_thesis (Huang's (5.21))
+                  lumped_run, lumped_scene, lumped_driven, lumped_thesis (Huang's (5.21));
+                  lumped_payout its pay-out and haul-in (nodes enter and leave at the
+                  winch), lumped_payout_run a lumped3d scene with a pay-out run
 """
 
 from cable_ocp.dynamics.modal import modes

@@ -137,14 +137,8 @@ def check_planar(scene: DynamicScene) -> None:
 
 def check_lumped(scene: DynamicScene) -> None:
     """Raise :class:`CableOCPError` (naming the key) when the scene has what the lumped-mass
-    model cannot run: a pay-out (its length is fixed) or what :func:`check_lumped_plant`
-    refuses."""
-    tm = scene.top_motion
-    if tm.varying_length:
-        key = tm.payout_key
-        raise CableOCPError(f'top_motion.{key}: simulation.model = "lumped3d" has a fixed '
-                            'length (Huang (1992) ch. 5); pay-out needs model = "axial" or '
-                            '"planar"')
+    model cannot run: what :func:`check_lumped_plant` refuses (a pay-out runs on
+    :mod:`cable_ocp.dynamics.lumped_payout_run`)."""
     check_lumped_plant(scene)
 
 

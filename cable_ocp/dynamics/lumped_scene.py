@@ -378,8 +378,15 @@ class LumpedSceneModel:
         (:meth:`~cable_ocp.dynamics.lumped.LumpedMassModel.step_function`) or ``"thesis"``
         (Huang's (5.21), :mod:`cable_ocp.dynamics.lumped_thesis`). ``simulation.tolerance``
         is the Newton tolerance on the nodal force residual over the force scale (the
-        largest of the total weight in water and the largest static tension).
+        largest of the total weight in water and the largest static tension). A pay-out
+        (``[top_motion]`` varying the length) runs
+        :func:`cable_ocp.dynamics.lumped_payout_run.simulate_payout` (nodes enter and
+        leave at the winch; midpoint rule only).
         """
+        if self.scene.top_motion.varying_length:
+            from cable_ocp.dynamics.lumped_payout_run import simulate_payout
+
+            return simulate_payout(self, progress)
         scene, model = self.scene, self.model
         sim = scene.simulation
         x0, info = self.static_positions()

@@ -56,7 +56,7 @@ PAYOUT_LAWS = ("linear", "quadratic", "periodic", "table")
 _TOW_KEYS = {"speed", "heading_deg", "straight_length", "turn_diameter", "turn_angle_deg",
              "turn_direction"}
 _SIM_KEYS = {"model", "duration", "time_step", "output_step", "segments", "start", "scheme",
-             "tolerance", "max_iterations", "on_slack", "drop_height"}
+             "tolerance", "max_iterations", "on_slack", "drop_height", "element_length"}
 _MODES_KEYS = {"count", "wave_band"}
 #: Relative slack allowed for rounded inputs when a weight in water is checked against
 #: the weight in air (the buoyancy must not be negative).
@@ -348,6 +348,10 @@ class Simulation:
     drop_height : float
         m, ``start = "dropped"``: the line straight down from end_b and slack, the unit
         this far above where it goes taut (every node raised by h (1 - s / L)), at rest.
+    element_length : float or None
+        Length l_e (m) of the segments that enter and leave at the winch in a lumped3d
+        pay-out (:mod:`cable_ocp.dynamics.lumped_payout`); None: the top segment's initial
+        length.
     """
 
     model: str
@@ -361,6 +365,7 @@ class Simulation:
     max_iterations: int = 20
     on_slack: str = "continue"
     drop_height: float = 0.0
+    element_length: float | None = None
 
     @property
     def steps(self) -> int:
@@ -689,7 +694,17 @@ def parse_simulation(t: Any) -> Simulation:
         max_iterations=_int(t.get("max_iterations", 20), f"{where}.max_iterations", 1, 1000),
         on_slack=_choice(t.get("on_slack", "continue"), f"{where}.on_slack",
                          ("continue", "stop")),
+        element_length=_element_length(t, model, where),
     )
+
+
+def _element_length(t: dict[str, Any], model: str, where: str) -> float | None:
+    if "element_length" not in t:
+        return None
+    if model != "lumped3d":
+        raise CableOCPError(f'{where}.element_length: only simulation.model = "lumped3d" '
+                            f'takes it (model "{model}" has simulation.segments elements)')
+    return _number(t["element_length"], f"{where}.element_length", positive=True)
 
 
 def parse_modes(t: Any) -> ModesOptions:

@@ -3,8 +3,8 @@ including a sudden stop (Huang (1992) Fig. 3.24, 004_7da4a1ee8042db40.txt line ~
 
 The speed table is linear in speed between rows, so the length is its exact integral
 (:func:`cable_ocp.scene.motion.table_length_expr`); the sudden stop of a unit on a light
-elastic line is checked against the massless-spring closed form, in the axial and the
-planar models (the two models that vary the length)."""
+elastic line is checked against the massless-spring closed form in every model that varies
+the length (axial, planar, lumped3d)."""
 
 from __future__ import annotations
 
@@ -70,7 +70,7 @@ def test_a_length_table_is_linear_between_rows_and_held_after() -> None:
     assert speed.tolist() == pytest.approx([2.0, -0.5, 0.0], abs=1e-12)
 
 
-@pytest.mark.parametrize("model", ["axial", "planar"])
+@pytest.mark.parametrize("model", ["axial", "planar", "lumped3d"])
 def test_sudden_stop_peak_tension(model: str) -> None:
     """A unit lowered at v = 0.5 m/s is stopped at once at L = 101.19 m: on a massless
     line it swings on the spring k = EA / L with the peak tension W + v sqrt(k M) a
@@ -137,12 +137,6 @@ def test_bad_tables_raise_named_errors(top: dict, words: str) -> None:
     with pytest.raises(CableOCPError, match="top_motion") as err:
         dynamic_scene_from_dict(_scene(top=top))
     assert words in str(err.value)
-
-
-def test_lumped3d_names_the_table_key() -> None:
-    """The lumped-mass model has a fixed length: the error names the table's key."""
-    with pytest.raises(CableOCPError, match="payout_speed_table"):
-        simulate(dynamic_scene_from_dict(_scene("lumped3d")))
 
 
 def test_hauling_in_past_the_line_names_the_table_key() -> None:
