@@ -9,6 +9,7 @@ from __future__ import annotations
 
 import math
 
+from cable_ocp.dynamics.bending_terms import check_planar_segments
 from cable_ocp.errors import CableOCPError
 from cable_ocp.scene.dynamics import DynamicScene
 
@@ -65,9 +66,10 @@ def check_planar(scene: DynamicScene) -> None:
     st = scene.statics
     tm = scene.top_motion
     why = 'simulation.model = "planar" moves in the vertical x-z plane: '
-    if st.segments or st.bodies:
-        raise CableOCPError(why + "[[cable.segments]] and [[bodies]] are not supported; give a "
-                            'single [cable] (or use model = "lumped3d")')
+    if st.bodies:
+        raise CableOCPError(why + "[[bodies]] are not supported (or use model = "
+                            '"lumped3d")')
+    check_planar_segments(scene, why)
     if st.environment.seabed is not None:
         raise CableOCPError(why + "[environment.seabed]: the model has no seabed contact; "
                             "remove the table")
@@ -98,7 +100,9 @@ def check_planar(scene: DynamicScene) -> None:
                                 f"= {scene.top_position[1]} (the plane y = const)")
     else:
         unit = scene.unit
-        if unit.weight_in_water <= 0.0 and cur is None:
+        cantilever = (scene.simulation.top_end == "clamped"
+                      and any(c.bending_stiffness > 0.0 for c in st.lines))
+        if unit.weight_in_water <= 0.0 and cur is None and not cantilever:
             raise CableOCPError(why + f"unit.weight_in_water = {unit.weight_in_water} N: "
                                 "without a current nothing keeps the line taut (it needs a "
                                 "weight > 0)")

@@ -79,6 +79,7 @@ from typing import Any
 import casadi as ca
 import numpy as np
 
+from cable_ocp.dynamics.bending_terms import LineBending
 from cable_ocp.dynamics.checks import check_planar
 from cable_ocp.dynamics.driven import planar_driven_step
 from cable_ocp.dynamics.model import DrivenStep
@@ -170,6 +171,8 @@ class PlanarModel:
         self.delta_t = SLACK_SMOOTHING
         self.rho = rho
         self.length0 = scene.length
+        #: the hinges of a line with bending stiffness (:mod:`cable_ocp.dynamics.bending_terms`)
+        self.bending = LineBending(scene, np.full(self.n, self.length0 / self.n))
         self.top0 = np.array([scene.top_position[0], scene.top_position[2]], dtype=float)
         self.y_plane = float(scene.top_position[1])
         unit = scene.unit
@@ -366,6 +369,7 @@ class PlanarModel:
             rate = ca.sum1(u * (vm[:, 1:] - vm[:, :-1])) / hm
             tbar = tbar + self.c * rate * self._taut(em)
         force = self._spread(ca.repmat(tbar, 2, 1) * u)
+        force = force + self.bending.node_forces(dm, mm["L"] / self.length0)
         # drag at the mean positions with the midpoint velocities
         zm = 0.5 * (self._heights(qa, m0) + self._heights(qb, m1))
         urel = (self._current(0.5 * (zm[:, :-1] + zm[:, 1:]))
@@ -467,6 +471,7 @@ class PlanarModel:
         zs = rs[1, :]
         d_top = dd[:, n - 1]
         f_n = -tens[n - 1] * d_top / ll[n - 1] + self._weights(h)[:, n]
+        f_n = f_n + self.bending.node_forces(dd, mo["L"] / self.length0)[:, n]
         urel = (self._current(0.5 * (zs[:, n - 1] + zs[:, n]))
                 - 0.5 * (vs[:, n - 1] + vs[:, n]))
         f_n = f_n + 0.5 * self._element_drag(d_top, urel)
@@ -491,7 +496,7 @@ class PlanarModel:
         ll = self._norms(dd)
         eps = ll / h - 1.0
         tens = self.ea * eps if linear else self._tension(eps)
-        force = self._spread(ca.repmat(tens / ll, 2, 1) * dd)
+        force = self._spread(ca.repmat(tens / ll, 2, 1) * dd) + self.bending.node_forces(dd)
         if with_drag:
             zs = self._heights(qq, mo)
             force = force + self._halves(self._element_drag(
@@ -635,6 +640,7 @@ class PlanarModel:
         ref_x = self.top0[0]
         ref_z = self.top0[1] - self.length0 * (1.0 - s_nodes / self.length0)
         q = np.column_stack([guess[:, 0] - ref_x, guess[:, 2] - ref_z])[self.free].ravel()
+        self.bending.set_clamp(guess[-1, [0, 2]] - guess[-2, [0, 2]])
         qe, newton = self.static_equilibrium(q)
         shift = float(np.abs(qe - q).max())
         info.update(converged=newton["converged"], iterations=newton["iterations"],

@@ -52,7 +52,9 @@ _LAW_KEYS = {"linear": {"payout_speed"},
 _TOW_KEYS = {"speed", "heading_deg", "straight_length", "turn_diameter", "turn_angle_deg",
              "turn_direction"}
 _SIM_KEYS = {"model", "duration", "time_step", "output_step", "segments", "start", "scheme",
-             "tolerance", "max_iterations", "on_slack"}
+             "tolerance", "max_iterations", "on_slack", "top_end"}
+#: ``simulation.top_end``: the bending condition at end_b (with bending stiffness)
+TOP_ENDS = ("pinned", "clamped")
 _MODES_KEYS = {"count", "wave_band"}
 #: Relative slack allowed for rounded inputs when a weight in water is checked against
 #: the weight in air (the buoyancy must not be negative).
@@ -323,6 +325,10 @@ class Simulation:
         Newton iterations per step.
     on_slack : str
         ``"continue"`` or ``"stop"``.
+    top_end : str
+        ``"pinned"`` (default: no bending moment at end_b) or ``"clamped"`` (the top
+        tangent held at its static direction; a line with bending stiffness,
+        :mod:`cable_ocp.dynamics.bending_terms`).
     """
 
     model: str
@@ -335,6 +341,7 @@ class Simulation:
     tolerance: float = 1e-10
     max_iterations: int = 20
     on_slack: str = "continue"
+    top_end: str = "pinned"
 
     @property
     def steps(self) -> int:
@@ -609,6 +616,7 @@ def parse_simulation(t: Any) -> Simulation:
         max_iterations=_int(t.get("max_iterations", 20), f"{where}.max_iterations", 1, 1000),
         on_slack=_choice(t.get("on_slack", "continue"), f"{where}.on_slack",
                          ("continue", "stop")),
+        top_end=_choice(t.get("top_end", "pinned"), f"{where}.top_end", TOP_ENDS),
     )
 
 

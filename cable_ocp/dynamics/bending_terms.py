@@ -1,0 +1,225 @@
+"""Bending stiffness in the dynamic models: the hinge terms of the planar and lumped lines.
+
+The law is :mod:`cable_ocp.physics.bending` (Huang (1992) 12.4.6; Bielański 003 eqs
+(4)-(7)): a hinge at every interior node with the energy EI / (2 hbar) |u_{j+1} - u_j|^2
+(u_j = d_j / h_j the stretched tangent of element j), quadratic in the node positions. This
+module places the hinges on a model's nodes and adds their forces to the model's nodal
+forces; the models call it in one line each (:mod:`cable_ocp.dynamics.planar`,
+:mod:`cable_ocp.dynamics.lumped_equations`, :mod:`cable_ocp.dynamics.lumped_kernel`).
+
+* **Where EI comes from**: ``bending_stiffness`` (EI, N m^2) of each ``[[cable.segments]]``
+  entry, the key of the statics (:mod:`cable_ocp.statics.formulation`), so that a line with
+  EI starts from its EI statics. An element takes the EI of the segment holding its
+  midpoint; a hinge between elements of EI_1 and EI_2 takes 2 EI_1 EI_2 / (EI_1 + EI_2)
+  (two half elements in series: EI where both are equal, 0 where a flexible part meets a
+  stiff one, the pin M = 0 of the statics).
+* **Ends** (``[simulation] top_end``): end_a (a unit, a free tail or an anchor) and a
+  ``"pinned"`` end_b carry no moment. ``"clamped"`` holds the top tangent along the top
+  element's direction at t = 0 (the static state, or vertical for ``start =
+  "unstrained"``) with the half-element clamp hinge of :func:`cable_ocp.physics.bending.
+  clamp_energy` (second order).
+* **Time**: the forces are linear in the positions, so the midpoint rule's force at the
+  mean positions is the exact discrete gradient of the bending energy: an undamped run
+  in air conserves kinetic + strain + weight + bending energy to the Newton tolerance
+  (tests/dynamics/test_bending.py). Their Jacobian is a constant matrix (:meth:`stiffness`).
+"""
+
+from __future__ import annotations
+
+from dataclasses import replace
+from typing import Any
+
+import casadi as ca
+import numpy as np
+
+from cable_ocp.errors import CableOCPError
+from cable_ocp.physics.bending import (
+    clamp_energy,
+    clamp_force,
+    hinge_energy,
+    hinge_forces,
+    hinge_moment,
+)
+from cable_ocp.scene.dynamics import DynamicScene
+
+__all__ = ["LineBending", "check_planar_segments", "element_bending_stiffness",
+           "hinge_stiffness"]
+
+
+def check_planar_segments(scene: DynamicScene, why: str) -> None:
+    """Raise :class:`CableOCPError` unless the ``[[cable.segments]]`` of a planar scene
+    differ only in their ``bending_stiffness`` (the planar model's line is otherwise
+    uniform: one mass, weight, EA, diameter and drag).
+
+    Parameters
+    ----------
+    scene : DynamicScene
+        The scene.
+    why : str
+        The message's start (the model and its limits).
+    """
+    segs = scene.statics.segments
+    if not segs:
+        return
+    first = replace(segs[0], length=None, bending_stiffness=0.0)
+    for i, (c, d) in enumerate(zip(segs, scene.cable, strict=False)):
+        if replace(c, length=None, bending_stiffness=0.0) != first or d != scene.cable[0]:
+            raise CableOCPError(
+                why + f"cable.segments[{i}] differs from cable.segments[0] in more than "
+                "bending_stiffness: the planar line is uniform apart from its EI; give "
+                'equal properties (or use model = "lumped3d")')
+
+
+def element_bending_stiffness(scene: DynamicScene, lengths: np.ndarray) -> np.ndarray:
+    """EI of each element (N m^2): the segment holding the element's midpoint.
+
+    Parameters
+    ----------
+    scene : DynamicScene
+        The scene (``bending_stiffness`` of its statics segments).
+    lengths : numpy.ndarray
+        Unstretched element lengths from end_a, m.
+    """
+    lines = scene.statics.lines
+    ends = np.cumsum([float(c.length) for c in lines])  # type: ignore[arg-type]
+    mids = np.cumsum(lengths) - 0.5 * np.asarray(lengths)
+    k = np.minimum(np.searchsorted(ends, mids), len(lines) - 1)
+    return np.array([float(lines[i].bending_stiffness) for i in k])
+
+
+def hinge_stiffness(ei_elements: np.ndarray) -> np.ndarray:
+    """EI of each hinge (interior node) between elements, 2 EI_1 EI_2 / (EI_1 + EI_2),
+    N m^2 (0 where either element is flexible).
+
+    Parameters
+    ----------
+    ei_elements : numpy.ndarray
+        EI of each element, N m^2.
+    """
+    a, b = ei_elements[:-1], ei_elements[1:]
+    s = a + b
+    return np.where(s > 0.0, 2.0 * a * b / np.where(s > 0.0, s, 1.0), 0.0)
+
+
+class LineBending:
+    """The hinges of one line of ``n`` elements (see the module docstring).
+
+    Parameters
+    ----------
+    scene : DynamicScene
+        The scene: segments' ``bending_stiffness`` and ``simulation.top_end``.
+    lengths : numpy.ndarray
+        Unstretched element lengths from end_a at t = 0, m (they scale with the length
+        when it varies: :meth:`node_forces` takes the current ones).
+    dim : int
+        2 (the planar model's x, z rows) or 3.
+
+    Attributes
+    ----------
+    active : bool
+        True when any hinge has EI > 0 (else every method returns zeros and the models
+        build nothing).
+    clamp_direction : numpy.ndarray
+        The clamp's unit direction (dim), -; set by :meth:`set_clamp`.
+    """
+
+    def __init__(self, scene: DynamicScene, lengths: np.ndarray, dim: int = 2) -> None:
+        self.dim = dim
+        self.lengths0 = np.asarray(lengths, dtype=float)
+        self.ei_elements = element_bending_stiffness(scene, self.lengths0)
+        self.ei = hinge_stiffness(self.ei_elements)
+        self.clamped = scene.simulation.top_end == "clamped"
+        self.ei_top = float(self.ei_elements[-1])
+        self.active = bool(np.any(self.ei > 0.0) or (self.clamped and self.ei_top > 0.0))
+        self.clamp_direction = np.eye(dim)[-1]
+
+    def set_clamp(self, top_element: np.ndarray) -> None:
+        """Hold the clamp along ``top_element`` (the top element's vector at t = 0, m).
+
+        Parameters
+        ----------
+        top_element : numpy.ndarray
+            Vector from node N-1 to node N (dim), m; a zero vector keeps the vertical.
+        """
+        v = np.asarray(top_element, dtype=float).reshape(-1)
+        norm = float(np.linalg.norm(v))
+        if norm > 0.0:
+            self.clamp_direction = v / norm
+
+    def _scaled(self, scale: Any) -> tuple[Any, Any, Any]:
+        h = ca.DM(self.lengths0).T * scale
+        return h[:, :-1], h[:, 1:], h[:, -1]
+
+    def node_forces(self, dd: Any, scale: Any = 1.0) -> Any:
+        """Hinge forces on every node (dim x (N+1), N) for the element vectors ``dd``
+        (dim x N, m) and the element lengths ``lengths * scale``.
+
+        Parameters
+        ----------
+        dd : casadi expression (dim x N)
+            Element vectors r_{j+1} - r_j, m.
+        scale : float or casadi expression
+            L(t) / L(0), - (1 at a fixed length).
+        """
+        n = dd.shape[1]
+        dim = self.dim
+        out = ca.SX.zeros(dim, n + 1) if isinstance(dd, ca.SX) else ca.MX.zeros(dim, n + 1)
+        if not self.active:
+            return out
+        hp, hn, htop = self._scaled(scale)
+        if n >= 2:
+            ei = ca.DM(self.ei).T
+            fa, fb, fc = hinge_forces(dd[:, :-1], dd[:, 1:], ca.repmat(ei, dim, 1),
+                                      ca.repmat(hp, dim, 1), ca.repmat(hn, dim, 1))
+            z1 = ca.DM.zeros(dim, 1)
+            z2 = ca.DM.zeros(dim, 2)
+            out = (out + ca.horzcat(fa, z2) + ca.horzcat(z1, fb, z1) + ca.horzcat(z2, fc))
+        if self.clamped and self.ei_top > 0.0:
+            # the far node of the clamp hinge is N-1: the element vector from N to N-1
+            f = clamp_force(-dd[:, n - 1], ca.DM(self.clamp_direction), self.ei_top, htop)
+            out = out + ca.horzcat(ca.DM.zeros(dim, n - 1), f, -f)
+        return out
+
+    def energy(self, dd: Any, scale: Any = 1.0) -> Any:
+        """Bending energy of the line (J) for element vectors ``dd`` (dim x N, m).
+
+        Parameters
+        ----------
+        dd : casadi expression or numpy.ndarray (dim x N)
+            Element vectors, m.
+        scale : float
+            L(t) / L(0), -.
+        """
+        dd = np.asarray(dd, dtype=float) if not isinstance(dd, (ca.SX, ca.MX)) else dd
+        h = self.lengths0 * scale
+        e = 0.0
+        if dd.shape[1] >= 2:
+            e = e + hinge_energy(dd[:, :-1], dd[:, 1:], self.ei, h[:-1], h[1:])
+            e = ca.sum2(e) if isinstance(e, (ca.SX, ca.MX)) else float(np.sum(e))
+        if self.clamped and self.ei_top > 0.0:
+            ec = clamp_energy(dd[:, -1:], self.clamp_direction.reshape(-1, 1), self.ei_top,
+                              h[-1])
+            e = e + (ec if isinstance(ec, (ca.SX, ca.MX)) else float(np.sum(ec)))
+        return e
+
+    def moments(self, dd: Any, scale: Any = 1.0) -> Any:
+        """Bending moment at the interior nodes 1..N-1 (1 x (N-1), N m).
+
+        Parameters
+        ----------
+        dd : casadi expression (dim x N)
+            Element vectors, m.
+        scale : float or casadi expression
+            L(t) / L(0), -.
+        """
+        hp, hn, _ = self._scaled(scale)
+        return hinge_moment(dd[:, :-1], dd[:, 1:], ca.DM(self.ei).T, hp, hn)
+
+    def stiffness(self) -> np.ndarray:
+        """-d(forces)/d(positions) at a fixed length: the constant bending stiffness matrix
+        of all nodes (dim (N+1) square, node-major, N/m)."""
+        n = self.lengths0.size
+        r = ca.SX.sym("r", self.dim * (n + 1))
+        rr = ca.reshape(r, self.dim, n + 1)
+        f = ca.vec(self.node_forces(rr[:, 1:] - rr[:, :-1]))
+        return -np.asarray(ca.evalf(ca.jacobian(f, r)))
