@@ -106,13 +106,15 @@ class LineBending:
 
     Parameters
     ----------
-    scene : DynamicScene
-        The scene: segments' ``bending_stiffness`` and ``simulation.top_end``.
+    ei_elements : numpy.ndarray
+        EI of each element from end_a, N m^2 (:func:`element_bending_stiffness`).
     lengths : numpy.ndarray
         Unstretched element lengths from end_a at t = 0, m (they scale with the length
         when it varies: :meth:`node_forces` takes the current ones).
     dim : int
         2 (the planar model's x, z rows) or 3.
+    clamped : bool
+        True for ``simulation.top_end = "clamped"``.
 
     Attributes
     ----------
@@ -123,15 +125,61 @@ class LineBending:
         The clamp's unit direction (dim), -; set by :meth:`set_clamp`.
     """
 
-    def __init__(self, scene: DynamicScene, lengths: np.ndarray, dim: int = 2) -> None:
+    def __init__(self, ei_elements: np.ndarray, lengths: np.ndarray, dim: int = 2,
+                 clamped: bool = False) -> None:
         self.dim = dim
-        self.lengths0 = np.asarray(lengths, dtype=float)
-        self.ei_elements = element_bending_stiffness(scene, self.lengths0)
+        self.lengths0 = np.asarray(lengths, dtype=float).reshape(-1)
+        self.ei_elements = np.broadcast_to(np.asarray(ei_elements, dtype=float),
+                                           self.lengths0.shape).copy()
         self.ei = hinge_stiffness(self.ei_elements)
-        self.clamped = scene.simulation.top_end == "clamped"
+        self.clamped = bool(clamped)
         self.ei_top = float(self.ei_elements[-1])
         self.active = bool(np.any(self.ei > 0.0) or (self.clamped and self.ei_top > 0.0))
         self.clamp_direction = np.eye(dim)[-1]
+
+    @classmethod
+    def from_scene(cls, scene: DynamicScene, lengths: np.ndarray, dim: int = 2
+                   ) -> LineBending:
+        """The hinges of a scene's line cut into elements of ``lengths`` (m).
+
+        Parameters
+        ----------
+        scene : DynamicScene
+            The scene: segments' ``bending_stiffness`` and ``simulation.top_end``.
+        lengths : numpy.ndarray
+            Unstretched element lengths from end_a, m.
+        dim : int
+            2 or 3.
+        """
+        return cls(element_bending_stiffness(scene, np.asarray(lengths, dtype=float)),
+                   lengths, dim, scene.simulation.top_end == "clamped")
+
+    def node_list_forces(self, r: list[Any]) -> list[Any]:
+        """:meth:`node_forces` on a list of node positions (3-vectors, m): a list of
+        node forces (N), at a fixed length (the lumped-mass model).
+
+        Parameters
+        ----------
+        r : list of casadi expression
+            Node positions from end_a, m.
+        """
+        if not self.active:
+            return [0.0 * ri for ri in r]
+        dd = ca.horzcat(*[r[j + 1] - r[j] for j in range(len(r) - 1)])
+        f = self.node_forces(dd)
+        return [f[:, i] for i in range(len(r))]
+
+    def node_list_energy(self, r: list[Any]) -> Any:
+        """:meth:`energy` on a list of node positions (m), J.
+
+        Parameters
+        ----------
+        r : list of casadi expression
+            Node positions from end_a, m.
+        """
+        if not self.active:
+            return 0.0
+        return self.energy(ca.horzcat(*[r[j + 1] - r[j] for j in range(len(r) - 1)]))
 
     def set_clamp(self, top_element: np.ndarray) -> None:
         """Hold the clamp along ``top_element`` (the top element's vector at t = 0, m).
@@ -168,9 +216,7 @@ class LineBending:
             return out
         hp, hn, htop = self._scaled(scale)
         if n >= 2:
-            ei = ca.DM(self.ei).T
-            fa, fb, fc = hinge_forces(dd[:, :-1], dd[:, 1:], ca.repmat(ei, dim, 1),
-                                      ca.repmat(hp, dim, 1), ca.repmat(hn, dim, 1))
+            fa, fb, fc = hinge_forces(dd[:, :-1], dd[:, 1:], ca.DM(self.ei).T, hp, hn)
             z1 = ca.DM.zeros(dim, 1)
             z2 = ca.DM.zeros(dim, 2)
             out = (out + ca.horzcat(fa, z2) + ca.horzcat(z1, fb, z1) + ca.horzcat(z2, fc))
@@ -190,16 +236,17 @@ class LineBending:
         scale : float
             L(t) / L(0), -.
         """
-        dd = np.asarray(dd, dtype=float) if not isinstance(dd, (ca.SX, ca.MX)) else dd
+        is_ca = isinstance(dd, (ca.SX, ca.MX))
+        dd = dd if is_ca else np.asarray(dd, dtype=float)
         h = self.lengths0 * scale
-        e = 0.0
+        e: Any = 0.0
         if dd.shape[1] >= 2:
-            e = e + hinge_energy(dd[:, :-1], dd[:, 1:], self.ei, h[:-1], h[1:])
-            e = ca.sum2(e) if isinstance(e, (ca.SX, ca.MX)) else float(np.sum(e))
+            eh = hinge_energy(dd[:, :-1], dd[:, 1:], self.ei, h[:-1], h[1:])
+            e = ca.sum2(eh) if is_ca else float(np.sum(eh))
         if self.clamped and self.ei_top > 0.0:
-            ec = clamp_energy(dd[:, -1:], self.clamp_direction.reshape(-1, 1), self.ei_top,
-                              h[-1])
-            e = e + (ec if isinstance(ec, (ca.SX, ca.MX)) else float(np.sum(ec)))
+            top = dd[:, dd.shape[1] - 1] if is_ca else dd[:, -1:]
+            ec = clamp_energy(top, self.clamp_direction, self.ei_top, h[-1])
+            e = e + (ec if is_ca else float(np.sum(ec)))
         return e
 
     def moments(self, dd: Any, scale: Any = 1.0) -> Any:
@@ -214,6 +261,32 @@ class LineBending:
         """
         hp, hn, _ = self._scaled(scale)
         return hinge_moment(dd[:, :-1], dd[:, 1:], ca.DM(self.ei).T, hp, hn)
+
+    def free_blocks(self, first: int, count: int) -> tuple[np.ndarray, np.ndarray, Any]:
+        """:meth:`stiffness` on the free nodes ``first .. first + count - 1`` split for a
+        block-tridiagonal Newton matrix: the diagonal 3x3 blocks and the blocks (a, a + 1)
+        as row-major columns (9 x count, 9 x (count - 1)), and the rest (the blocks two
+        nodes apart) as a sparse matrix (dim count square), N/m.
+
+        Parameters
+        ----------
+        first : int
+            The first free node.
+        count : int
+            Number of free nodes.
+        """
+        d = self.dim
+        k = self.stiffness()[d * first:d * (first + count), d * first:d * (first + count)]
+        diag = np.stack([k[d * a:d * a + d, d * a:d * a + d].reshape(-1)
+                         for a in range(count)], axis=1)
+        off = np.zeros((d * d, max(count - 1, 0)))
+        for a in range(count - 1):
+            off[:, a] = k[d * a:d * a + d, d * (a + 1):d * (a + 1) + d].reshape(-1)
+        rest = k.copy()
+        for a in range(count):
+            for b in range(max(0, a - 1), min(count, a + 2)):
+                rest[d * a:d * a + d, d * b:d * b + d] = 0.0
+        return diag, off, ca.sparsify(ca.DM(rest))
 
     def stiffness(self) -> np.ndarray:
         """-d(forces)/d(positions) at a fixed length: the constant bending stiffness matrix

@@ -130,6 +130,7 @@ def check_lumped_plant(scene: DynamicScene) -> None:
         raise CableOCPError('[environment.seabed]: simulation.model = "lumped3d" has no '
                             "seabed contact; remove the table (the seabed is then only "
                             "checked in the static start)")
-    if any(c.bending_stiffness > 0 for c in scene.statics.lines):
-        raise CableOCPError('cable.segments[].bending_stiffness: simulation.model = '
-                            '"lumped3d" is a flexible cable (no bending stiffness)')
+    if scene.simulation.top_end != "pinned":
+        raise CableOCPError(f'simulation.top_end = "{scene.simulation.top_end}": '
+                            'simulation.model = "lumped3d" has a pinned top (valid: "pinned"; '
+                            'a clamped top needs model = "planar")')

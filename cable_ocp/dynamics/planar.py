@@ -172,7 +172,7 @@ class PlanarModel:
         self.rho = rho
         self.length0 = scene.length
         #: the hinges of a line with bending stiffness (:mod:`cable_ocp.dynamics.bending_terms`)
-        self.bending = LineBending(scene, np.full(self.n, self.length0 / self.n))
+        self.bending = LineBending.from_scene(scene, np.full(self.n, self.length0 / self.n))
         self.top0 = np.array([scene.top_position[0], scene.top_position[2]], dtype=float)
         self.y_plane = float(scene.top_position[1])
         unit = scene.unit

@@ -58,9 +58,24 @@ def _sum_rows(x: Any) -> Any:
     return ca.sum1(x) if _is_ca(x) else np.sum(x, axis=0, keepdims=True)
 
 
+def _row(x: Any, like: Any) -> Any:
+    """A number or row (1 x K) as CasADi when ``like`` is CasADi, else numpy."""
+    if _is_ca(like):
+        return x if _is_ca(x) else ca.DM(np.asarray(x, dtype=float).reshape(1, -1))
+    return np.asarray(x, dtype=float).reshape(1, -1) if np.ndim(x) else x
+
+
+def _spread(x: Any, like: Any) -> Any:
+    """A row broadcast to the rows of ``like`` (CasADi needs it explicitly)."""
+    x = _row(x, like)
+    if _is_ca(like) and x.shape[0] == 1 and like.shape[0] > 1:
+        return ca.repmat(x, like.shape[0], 1)
+    return x
+
+
 def _hinge_jump(d_prev: Any, d_next: Any, h_prev: Any, h_next: Any) -> Any:
     """u_{j+1} - u_j of the hinges (columns), -."""
-    return d_next / h_next - d_prev / h_prev
+    return d_next / _spread(h_next, d_next) - d_prev / _spread(h_prev, d_prev)
 
 
 def hinge_energy(d_prev: Any, d_next: Any, ei: Any, h_prev: Any, h_next: Any) -> Any:
@@ -76,7 +91,8 @@ def hinge_energy(d_prev: Any, d_next: Any, ei: Any, h_prev: Any, h_next: Any) ->
         The two elements' unstretched lengths, m.
     """
     jump = _hinge_jump(d_prev, d_next, h_prev, h_next)
-    return ei / (h_prev + h_next) * _sum_rows(jump * jump)
+    coef = _row(ei, jump) / (_row(h_prev, jump) + _row(h_next, jump))
+    return coef * _sum_rows(jump * jump)
 
 
 def hinge_forces(d_prev: Any, d_next: Any, ei: Any, h_prev: Any, h_next: Any
@@ -94,9 +110,10 @@ def hinge_forces(d_prev: Any, d_next: Any, ei: Any, h_prev: Any, h_next: Any
     h_prev, h_next : float or row (1 x K)
         The two elements' unstretched lengths, m.
     """
-    b = (2.0 * ei / (h_prev + h_next)) * _hinge_jump(d_prev, d_next, h_prev, h_next)
-    f_a = -b / h_prev
-    f_c = -b / h_next
+    jump = _hinge_jump(d_prev, d_next, h_prev, h_next)
+    b = _spread(2.0 * _row(ei, jump) / (_row(h_prev, jump) + _row(h_next, jump)), jump) * jump
+    f_a = -b / _spread(h_prev, jump)
+    f_c = -b / _spread(h_next, jump)
     return f_a, -(f_a + f_c), f_c
 
 
@@ -115,7 +132,7 @@ def hinge_moment(d_prev: Any, d_next: Any, ei: Any, h_prev: Any, h_next: Any) ->
     """
     jump = _hinge_jump(d_prev, d_next, h_prev, h_next)
     norm = ca.sqrt(_sum_rows(jump * jump)) if _is_ca(jump) else np.sqrt(_sum_rows(jump * jump))
-    return 2.0 * ei / (h_prev + h_next) * norm
+    return 2.0 * _row(ei, jump) / (_row(h_prev, jump) + _row(h_next, jump)) * norm
 
 
 def turning_angle(d_prev: Any, d_next: Any) -> Any:
@@ -136,6 +153,8 @@ def turning_angle(d_prev: Any, d_next: Any) -> Any:
 
 
 def _normal_part(d: Any, t_c: Any) -> Any:
+    t_c = ca.DM(np.asarray(t_c, dtype=float).reshape(-1, 1)) if _is_ca(d) and not _is_ca(
+        t_c) else (t_c if _is_ca(d) else np.asarray(t_c, dtype=float).reshape(-1, 1))
     along = _sum_rows(d * t_c)
     return d - along * t_c
 
