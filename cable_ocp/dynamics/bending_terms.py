@@ -48,33 +48,30 @@ __all__ = ["LineBending", "check_planar_segments", "element_bending_stiffness",
            "flexible_warm_start", "hinge_stiffness"]
 
 
-def flexible_warm_start(statics: Scene, failed: StaticsSolution) -> StaticsSolution:
-    """The EI statics of a line whose direct solve ``failed``, warm-started from the same
-    line without bending stiffness (its solution is the start of the EI solve's Newton;
-    a towed line with a free tail at end_a, whose flexible statics converge from the
-    default guess where the EI statics do not). Returns ``failed`` when the line has no
-    EI or the flexible solve fails too.
+def flexible_warm_start(statics: Scene) -> StaticsSolution | None:
+    """The EI statics of a line warm-started from the same line without bending stiffness
+    (its solution starts the EI solve's Newton: a towed line with a free tail at end_a,
+    whose flexible statics converge from the default guess where the EI statics' own
+    continuation does not). None when the line has no EI or the flexible solve fails.
 
     Parameters
     ----------
     statics : Scene
         The statics scene of the initial state.
-    failed : StaticsSolution
-        Its failed direct solve.
     """
     from cable_ocp.statics.solver import solve  # heavy import, only when needed
 
     if not any(c.bending_stiffness > 0.0 for c in statics.lines) or not statics.segments:
-        return failed
+        return None
     flex = replace(statics, cable=replace(statics.cable, bending_stiffness=0.0),
                    segments=tuple(replace(c, bending_stiffness=0.0)
                                   for c in statics.segments))
     start = solve(flex)
     if not start.success:
-        return failed
+        return None
     sol = solve(statics, warm_start=start)
     sol.diagnostics["warm_start"] = "the same line without bending stiffness"
-    return sol if sol.success else failed
+    return sol
 
 
 def check_planar_segments(scene: DynamicScene, why: str) -> None:

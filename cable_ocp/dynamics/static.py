@@ -53,9 +53,9 @@ def static_state(scene: DynamicScene, max_updates: int = 8) -> StaticsSolution:
     """
     from cable_ocp.statics.solver import solve  # heavy import, only when needed
 
-    sol = solve(scene.statics)
-    if not sol.success:  # a line with EI: from its flexible statics
-        sol = flexible_warm_start(scene.statics, sol)
+    sol = flexible_warm_start(scene.statics)  # a line with EI: from its flexible statics
+    if sol is None or not sol.success:
+        sol = solve(scene.statics)
     cur = scene.statics.environment.current
     if scene.unit is None or cur is None or cur.uniform or not sol.success:
         return sol
