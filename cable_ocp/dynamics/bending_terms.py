@@ -232,14 +232,15 @@ class LineBending:
 
         Parameters
         ----------
-        dd : casadi expression (dim x N)
+        dd : casadi SX, MX or DM (dim x N)
             Element vectors r_{j+1} - r_j, m.
         scale : float or casadi expression
             L(t) / L(0), - (1 at a fixed length).
         """
         n = dd.shape[1]
         dim = self.dim
-        out = ca.SX.zeros(dim, n + 1) if isinstance(dd, ca.SX) else ca.MX.zeros(dim, n + 1)
+        kind = ca.SX if isinstance(dd, ca.SX) else ca.MX if isinstance(dd, ca.MX) else ca.DM
+        out = kind.zeros(dim, n + 1)
         if not self.active:
             return out
         hp, hn, htop = self._scaled(scale)
