@@ -32,7 +32,6 @@ from typing import Any
 import casadi as ca
 import numpy as np
 
-from cable_ocp.errors import CableOCPError
 from cable_ocp.physics.bending import (
     clamp_energy,
     clamp_force,
@@ -44,8 +43,8 @@ from cable_ocp.scene import Scene
 from cable_ocp.scene.dynamics import DynamicScene
 from cable_ocp.statics.solution import StaticsSolution
 
-__all__ = ["LineBending", "check_planar_segments", "element_bending_stiffness",
-           "flexible_warm_start", "hinge_stiffness"]
+__all__ = ["LineBending", "element_bending_stiffness", "flexible_warm_start",
+           "hinge_stiffness"]
 
 
 def flexible_warm_start(statics: Scene) -> StaticsSolution | None:
@@ -72,30 +71,6 @@ def flexible_warm_start(statics: Scene) -> StaticsSolution | None:
     sol = solve(statics, warm_start=start)
     sol.diagnostics["warm_start"] = "the same line without bending stiffness"
     return sol
-
-
-def check_planar_segments(scene: DynamicScene, why: str) -> None:
-    """Raise :class:`CableOCPError` unless the ``[[cable.segments]]`` of a planar scene
-    differ only in their ``bending_stiffness`` (the planar model's line is otherwise
-    uniform: one mass, weight, EA, diameter and drag).
-
-    Parameters
-    ----------
-    scene : DynamicScene
-        The scene.
-    why : str
-        The message's start (the model and its limits).
-    """
-    segs = scene.statics.segments
-    if not segs:
-        return
-    first = replace(segs[0], length=None, bending_stiffness=0.0)
-    for i, (c, d) in enumerate(zip(segs, scene.cable, strict=False)):
-        if replace(c, length=None, bending_stiffness=0.0) != first or d != scene.cable[0]:
-            raise CableOCPError(
-                why + f"cable.segments[{i}] differs from cable.segments[0] in more than "
-                "bending_stiffness: the planar line is uniform apart from its EI; give "
-                'equal properties (or use model = "lumped3d")')
 
 
 def element_bending_stiffness(scene: DynamicScene, lengths: np.ndarray) -> np.ndarray:

@@ -9,7 +9,6 @@ from __future__ import annotations
 
 import math
 
-from cable_ocp.dynamics.bending_terms import check_planar_segments
 from cable_ocp.errors import CableOCPError
 from cable_ocp.scene.dynamics import DynamicScene
 
@@ -69,7 +68,6 @@ def check_planar(scene: DynamicScene) -> None:
     if st.bodies:
         raise CableOCPError(why + "[[bodies]] are not supported (or use model = "
                             '"lumped3d")')
-    check_planar_segments(scene, why)
     if st.environment.seabed is not None:
         raise CableOCPError(why + "[environment.seabed]: the model has no seabed contact; "
                             "remove the table")
