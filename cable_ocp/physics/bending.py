@@ -1,7 +1,9 @@
 """Bending stiffness of a discretised cable: the hinge law between adjacent elements, once.
 
-Huang (1992), ch. 12.4.6, adds the bending moment M = EI kappa to the cable equations (a
-beam-cable: the shear -dM/ds turns the internal force out of the tangent); Bielański (003,
+Huang (1992), 12.4.6, eqs (12.29)-(12.31), adds the bending moment M = EI kappa to the
+cable equations (a beam-cable: the shear dM/ds = tau (1 + e) turns the internal force out
+of the tangent; for a taut, nearly straight line mu y_tt - T y_ss + EI y_ssss = F_y,
+(12.31), whence the dispersion omega = k sqrt(T / mu + EI k^2 / mu)); Bielański (003,
 eqs (4)-(7)) treats the towed object as such a beam. In a lumped-mass chain the curvature
 lives at the hinges, the interior nodes: with the element vectors d_j = r_{j+1} - r_j
 (m), unstretched lengths h_j (m) and the stretched tangents u_j = d_j / h_j (-), the
@@ -14,7 +16,9 @@ d_{j+1}): at equal strains e, |u_{j+1} - u_j| = 2 (1 + e) sin(phi_j / 2), so
 E_j = EI (1 + e)^2 (1 - cos phi_j) / hbar_j ~ EI phi_j^2 / (2 hbar_j) = (EI kappa^2 / 2)
 hbar_j with the curvature kappa = phi_j / hbar_j: the discrete form of the beam energy
 integral of EI kappa^2 / 2 ds, and the moment is M_j = EI |u_{j+1} - u_j| / hbar_j ~
-EI phi_j / hbar_j (N m). The energy is quadratic in the node positions: the forces are
+EI phi_j / hbar_j (N m). Against Huang's M = EI kappa (kappa the curvature of the stretched
+line, his EI (x_s y_ss - y_s x_ss) / (1 + e)^3) this is EI kappa (1 + e)^3: the same to
+O(e), the strain of a cable (1e-5 .. 1e-2). The energy is quadratic in the node positions: the forces are
 linear in them, the implicit midpoint rule conserves it exactly, and the Jacobian is
 constant. Its coupling to the stretch (it also sees (e_{j+1} - e_j)^2) is of relative
 order EI / (EA h^2), negligible for a cable. On a straight line the linearised hinge

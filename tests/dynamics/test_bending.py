@@ -1,8 +1,9 @@
 """Bending stiffness in the dynamic models (Huang (1992) 12.4.6; Bielański 003 eqs (4)-(7);
 cable_ocp/physics/bending.py, cable_ocp/dynamics/bending_terms.py), against closed forms:
 
-* the dispersion relation of a taut string with EI (a pinned beam under tension),
-  omega = k sqrt(T / mu + EI k^2 / mu), k = n pi / L, mu with the normal added mass,
+* the dispersion relation of a taut string with EI (a pinned beam under tension; Huang
+  (1992) 12.4.6 after (12.31)), omega = k sqrt(T / mu + EI k^2 / mu), k = n pi / L, mu
+  with the normal added mass,
   from the planar model's linearised modes;
 * the natural frequencies of a clamped-free beam (a cantilever, no tension, in air),
   omega_n = (beta_n L)^2 sqrt(EI / (mu L^4)), beta_n L = 1.8751, 4.6941, 7.8548, 10.9955;
