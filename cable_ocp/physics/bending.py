@@ -20,8 +20,8 @@ EI phi_j / hbar_j (N m). Against Huang's M = EI kappa (kappa the curvature of th
 line, his EI (x_s y_ss - y_s x_ss) / (1 + e)^3) this is EI kappa (1 + e)^3: the same to
 O(e), the strain of a cable (1e-5 .. 1e-2). The energy is quadratic in the node
 positions: the forces are linear in them, the implicit midpoint rule conserves it exactly,
-and the Jacobian is constant. Its coupling to the stretch (it also sees (e_{j+1} - e_j)^2) is of relative
-order EI / (EA h^2), negligible for a cable. On a straight line the linearised hinge
+and the Jacobian is constant. Its coupling to the stretch (it also sees
+(e_{j+1} - e_j)^2) is of relative order EI / (EA h^2), negligible for a cable. On a straight line the linearised hinge
 forces are EI / h^4 times the fourth difference of the transverse displacements: the
 beam term EI w'''' to O(h^2).
 
