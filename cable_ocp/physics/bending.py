@@ -16,14 +16,14 @@ d_{j+1}): at equal strains e, |u_{j+1} - u_j| = 2 (1 + e) sin(phi_j / 2), so
 E_j = EI (1 + e)^2 (1 - cos phi_j) / hbar_j ~ EI phi_j^2 / (2 hbar_j) = (EI kappa^2 / 2)
 hbar_j with the curvature kappa = phi_j / hbar_j: the discrete form of the beam energy
 integral of EI kappa^2 / 2 ds, and the moment is M_j = EI |u_{j+1} - u_j| / hbar_j ~
-EI phi_j / hbar_j (N m). Against Huang's M = EI kappa (kappa the curvature of the stretched
-line, his EI (x_s y_ss - y_s x_ss) / (1 + e)^3) this is EI kappa (1 + e)^3: the same to
-O(e), the strain of a cable (1e-5 .. 1e-2). The energy is quadratic in the node
+EI phi_j / hbar_j (N m). Against Huang's M = EI kappa (kappa the curvature of the
+stretched line, his EI (x_s y_ss - y_s x_ss) / (1 + e)^3) this is EI kappa (1 + e)^3: the
+same to O(e), the strain of a cable (1e-5 .. 1e-2). The energy is quadratic in the node
 positions: the forces are linear in them, the implicit midpoint rule conserves it exactly,
 and the Jacobian is constant. Its coupling to the stretch (it also sees
-(e_{j+1} - e_j)^2) is of relative order EI / (EA h^2), negligible for a cable. On a straight line the linearised hinge
-forces are EI / h^4 times the fourth difference of the transverse displacements: the
-beam term EI w'''' to O(h^2).
+(e_{j+1} - e_j)^2) is of relative order EI / (EA h^2), negligible for a cable. On a
+straight line the linearised hinge forces are EI / h^4 times the fourth difference of the
+transverse displacements: the beam term EI d^4w/ds^4 to O(h^2).
 
 Ends: a pinned or free end carries no hinge (M = 0 there). A clamped end (the end tangent
 held along t_c) is a hinge of half an element between the clamp and the end element:
