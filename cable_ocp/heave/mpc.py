@@ -226,6 +226,10 @@ class LinearMPC:
         # Known additive boom-tip input on the unit's x0 channel.
         e_x0 = np.zeros((n, 1))
         e_x0[plant.blocks["unit"].start + 1, 0] = 1.0 / plant.a
+        comp = plant.blocks.get("comp")
+        if comp is not None and comp.stop > comp.start:
+            # the compensator sees x0 as it sees the winch output u
+            e_x0[comp.start, 0] = plant.A[comp.start, plant.blocks["winch"].start]
         cx = plant.e("x")
         mdl = discretize_delayed(plant.A, plant.B1, h, tau, e_x0)
         self.model = mdl
