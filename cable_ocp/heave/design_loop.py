@@ -249,7 +249,11 @@ def compare(scene: HeaveScene, controllers: tuple | None = None,
     # Designs on the linear plants (with the compensator for the phc* controllers); a
     # failure is the status of the controllers that need it.
     designs = {False: _lqr_design(p, c, h, tau)}
-    if any(base_controller(nm)[1] for nm in runs):
+    phc_names = [nm for nm in runs if base_controller(nm)[1]]
+    if phc_names and models.plant_phc is None:
+        raise CableOCPError(f"controllers {', '.join(phc_names)}: need a [passive_compensator] "
+                            "table in the scene (area, gas_volume, damping, stroke_max, ...)")
+    if phc_names:
         designs[True] = _lqr_design(models.plant_phc, c, h, tau)
     settings = mpc_mod.settings_from_scene(scene)
 
@@ -400,4 +404,5 @@ def _make_controller(name: str, p: pl.HeavePlant, mdl: DelayedDiscreteModel,
         return StateFeedback("lqg", G, KalmanFilter((mdl.Ad, mdl.Bd, M), C, n, d))
     if name == "mpc":
         return MPCController(mpc_mod.LinearMPC(p, tau, settings), FullState(n, d))
-    raise CableOCPError(f"controller {name!r} is unknown; valid: passive, lqr, lqg, mpc")
+    raise CableOCPError(f"controller {name!r} is unknown; valid: passive, lqr, lqg, mpc, "
+                        "phc, phc+lqr, phc+lqg, phc+mpc")
