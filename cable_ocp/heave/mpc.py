@@ -20,6 +20,12 @@ Limits (docs/conventions.md, "Heave compensation"):
 * soft: cable tension ``T = T_0 + (m/a) (x0 + u - x) >= T_min`` through a nonnegative slack with
   quadratic and exact linear (L1) penalties, when the plant carries tension (``[unit] mass`` and
   ``static_tension`` given).
+* the winch motor (``[winch] drum_radius``, :mod:`cable_ocp.physics.winch_drive`): the torque
+  ``|R T + J u''/R| <= torque_max`` (hard; linear in the state and the commands) and the power
+  ``|tau u'/R| <= power_max``. The power is bilinear: the QP linearises it about the static
+  tension (drum at rest), ``|T0 u'| <= power_max``, a speed limit; the IPOPT formulation
+  keeps it exact. Both at the samples, once the sample's command is applied
+  (:meth:`LinearMPC._drive_rows`).
 
 Wave preview: the boom-tip motion known ``preview_time`` s ahead enters as a known additive input
 on the unit's ``x0`` channel that corrects the shaping-filter prediction to the forecast.
@@ -110,6 +116,14 @@ class MPCSettings:
     solver_options : dict
         Extra options passed to the CasADi solver plugin (for ``"daqp"``: DAQP settings such as
         ``primal_tol``).
+    drum_radius, drum_inertia : float or None
+        The winch drum's radius (m) and inertia at its shaft (kg m^2).
+    torque_max : float or None
+        Hard limit on the motor torque ``|R T + J u''/R|``, N m (needs the tension data and
+        ``drum_radius``).
+    power_max : float or None
+        Limit on the motor power ``|tau u'/R|``, W: linearised about the static tension
+        (``|T0 u'| <= power_max``) in the QP, exact (bilinear) with ``"ipopt"``.
     """
 
     horizon: int = 50
@@ -129,6 +143,10 @@ class MPCSettings:
     terminal: str = "dare"
     nonlinear_b: float = 0.0
     solver_options: dict = field(default_factory=dict, hash=False)
+    drum_radius: float | None = None
+    drum_inertia: float = 0.0
+    torque_max: float | None = None
+    power_max: float | None = None
 
 
 @dataclass(frozen=True)
@@ -160,7 +178,8 @@ class MPCStep:
 class _Row:
     """One limit at prediction step ``k``: ``c_z z_k + c_u u0_k + c_p u0_{k-1} + c_D D_k``
     (plus a tension slack if ``slack``) within ``[-limit, limit]``, or ``>= limit`` if
-    ``lo_only``."""
+    ``lo_only``; ``tag`` ``"power"`` marks the linearised power rows (IPOPT writes the power
+    exactly instead)."""
 
     k: int
     cz: np.ndarray
@@ -170,6 +189,7 @@ class _Row:
     limit: float
     lo_only: bool
     slack: bool
+    tag: str = ""
 
 
 def _winch_indices(plant: HeavePlant) -> tuple[int, int | None]:
@@ -360,7 +380,8 @@ class LinearMPC:
             return c, 1.0
 
         def add(k: int, cz: np.ndarray, cu: float, limit: float, cp: float = 0.0,
-                cd: float = 0.0, lo_only: bool = False, slack: bool = False) -> None:
+                cd: float = 0.0, lo_only: bool = False, slack: bool = False,
+                tag: str = "") -> None:
             rU = cz @ self._T[k]
             if k < N:
                 rU = rU.copy()
@@ -370,7 +391,8 @@ class LinearMPC:
                 rU[k - 1] += cp
             if np.max(np.abs(rU)) < 1e-14:
                 return  # fixed by the past: nothing to decide
-            rows.append(_Row(k, cz, cu, cp, cd if k < N else 0.0, limit, lo_only, slack))
+            rows.append(_Row(k, cz, cu, cp, cd if k < N else 0.0, limit, lo_only, slack,
+                             tag))
 
         eu = np.zeros(nz)
         eu[iu] = 1.0
@@ -399,6 +421,9 @@ class LinearMPC:
         if s.command_rate_max is not None:
             for k in range(N):
                 add(k, np.zeros(nz), 1.0, s.command_rate_max, cp=-1.0)
+        self.drive_terms: dict[int, tuple] = {}
+        if s.torque_max is not None or s.power_max is not None:
+            self._drive_rows(plant, add, applied, eu, iu, iud)
         if s.tension_min is not None:
             c_str, _ = plant.output_row("stretch")
             cs_ = np.zeros(nz)
@@ -439,6 +464,49 @@ class LinearMPC:
         lo_only_a = np.array([r.lo_only for r in rows], dtype=bool)
         self.lb0 = np.where(lo_only_a, lim_a, -lim_a)
         self.ub0 = np.where(lo_only_a, np.inf, lim_a)
+
+    def _drive_rows(self, plant: HeavePlant, add: Any, applied: Any, eu: np.ndarray, iu: int,
+                    iud: int | None) -> None:
+        """The winch motor's limits (:mod:`cable_ocp.physics.winch_drive`) at the samples
+        ``k = 0 .. N-1``, once the command of sample ``k`` is applied: the torque ``R T0 +
+        R k_c stretch_k + (J/R) u''_k`` within ``[-torque_max, torque_max]`` (linear in the
+        state and the commands; ``u''`` the first-order winch's ``-K u' = -K^2 (v - u)`` just
+        after the sample, the second-order winch's ``w^2 (v - u) - 2 zeta w u'``), and the
+        power ``tau u'/R`` linearised about the static tension, ``|T0 u'_k| <= power_max``,
+        a speed limit (rows tagged ``"power"``; :class:`_NonlinearMPC` writes the bilinear
+        power instead). ``drive_terms[k]`` keeps the torque's and the speed's rows for it."""
+        s = self.settings
+        if not (s.unit_mass > 0 and s.static_tension > 0) or s.drum_radius is None:
+            raise CableOCPError("winch.torque_max, winch.power_max: need winch.drum_radius (m), "
+                                "unit.mass > 0 (kg) and unit.static_tension > 0 (N)")
+        N, nz, n = self.N, self.nz, self.n
+        R, J, t0 = s.drum_radius, s.drum_inertia, s.static_tension
+        kc = s.unit_mass / plant.a
+        c_str, _ = plant.output_row("stretch")
+        cs_ = np.zeros(nz)
+        cs_[:n] = c_str
+        eud = np.zeros(nz)
+        if iud is not None:
+            eud[iud] = 1.0
+            ww2 = float(-plant.A[iu + 1, iu])
+            two_zw = float(-plant.A[iu + 1, iu + 1])
+        for k in range(N):
+            cz, cu = applied(k)
+            if iud is None:
+                K = plant.K
+                sz, su = K * (cz - eu), K * cu              # u' = K (v - u)
+                az, au = -K * sz, -K * su                   # u'' = -K u'
+            else:
+                sz, su = eud, 0.0
+                az, au = ww2 * (cz - eu) - two_zw * eud, ww2 * cu
+            tz, tu, td = R * kc * cs_ + J / R * az, J / R * au, R * kc
+            self.drive_terms[k] = (tz, tu, td, sz, su)
+            if s.torque_max is not None:
+                # R T0 + tz z + tu u0 + td D <= torque_max, and >= -torque_max
+                add(k, -tz, -tu, -(s.torque_max - R * t0), cd=-td, lo_only=True)
+                add(k, tz, tu, -(s.torque_max + R * t0), cd=td, lo_only=True)
+            if s.power_max is not None:
+                add(k, t0 * sz, t0 * su, s.power_max, tag="power")
 
     def _build_qp(self) -> None:
         s = self.settings
@@ -621,7 +689,9 @@ def _check_settings(s: MPCSettings) -> None:
              ("controller", "sample_time", s.sample_time, True),
              ("controller", "q", s.q, False), ("controller", "r", s.r, True),
              ("controller", "preview_time", s.preview_time, False),
-             ("controller", "tension_penalty", s.tension_penalty, True)]
+             ("controller", "tension_penalty", s.tension_penalty, True),
+             ("winch", "torque_max", s.torque_max, True),
+             ("winch", "power_max", s.power_max, True)]
     for table, key, val, strict in rules:
         if val is None:
             continue
@@ -730,6 +800,15 @@ class _NonlinearMPC:
         ubg = [0.0] * (nz * (N + 1))
         for i, r in enumerate(mpc.rows):
             k = r.k
+            if r.tag == "power":  # the bilinear power tau u' / R, exactly
+                tz, tu, td, sz, su = mpc.drive_terms[k]
+                R = s.drum_radius
+                tau = (R * s.static_tension + cs.mtimes(cs.DM(tz).T, Z[:, k]) + tu * U[k]
+                       + td * PD[k])
+                g.append(tau * (cs.mtimes(cs.DM(sz).T, Z[:, k]) + su * U[k]) / R)
+                lbg.append(-s.power_max)
+                ubg.append(s.power_max)
+                continue
             e = cs.mtimes(cs.DM(r.cz).T, Z[:, k])
             if k < N:
                 e = e + r.cu * U[k] + r.cd * PD[k]
@@ -830,4 +909,6 @@ def settings_from_scene(scene: Any) -> MPCSettings:
         accel_max=w.accel_max, tension_min=w.tension_min, unit_mass=u.mass,
         static_tension=u.static_tension, tension_penalty=c.tension_penalty,
         preview_time=c.preview_time, terminal=c.terminal,
-        nonlinear_b=u.b_quadratic if u.model == "quadratic" else 0.0)
+        nonlinear_b=u.b_quadratic if u.model == "quadratic" else 0.0,
+        drum_radius=w.drum_radius, drum_inertia=w.drum_inertia, torque_max=w.torque_max,
+        power_max=w.power_max)
