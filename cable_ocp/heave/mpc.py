@@ -25,7 +25,7 @@ Limits (docs/conventions.md, "Heave compensation"):
   ``|tau u'/R| <= power_max``. The power is bilinear: the QP linearises it about the static
   tension (drum at rest), ``|T0 u'| <= power_max``, a speed limit; the IPOPT formulation
   keeps it exact. Both at the samples, once the sample's command is applied
-  (:meth:`LinearMPC._drive_rows`).
+  (:func:`cable_ocp.heave.mpc_drive.drive_rows`).
 
 Wave preview: the boom-tip motion known ``preview_time`` s ahead enters as a known additive input
 on the unit's ``x0`` channel that corrects the shaping-filter prediction to the forecast.
@@ -67,6 +67,7 @@ from cable_ocp.errors import CableOCPError
 from cable_ocp.heave.delay import DelayLine
 from cable_ocp.heave.discrete import discretize_cost, discretize_delayed
 from cable_ocp.heave.mpc_daqp import DaqpQP
+from cable_ocp.heave.mpc_drive import drive_rows
 from cable_ocp.heave.plant import HeavePlant
 from cable_ocp.numerics import interrupt
 from cable_ocp.physics.drag import quadratic_drag
@@ -423,7 +424,7 @@ class LinearMPC:
                 add(k, np.zeros(nz), 1.0, s.command_rate_max, cp=-1.0)
         self.drive_terms: dict[int, tuple] = {}
         if s.torque_max is not None or s.power_max is not None:
-            self._drive_rows(plant, add, applied, eu, iu, iud)
+            self.drive_terms = drive_rows(self, plant, add, applied, eu, iu, iud)
         if s.tension_min is not None:
             c_str, _ = plant.output_row("stretch")
             cs_ = np.zeros(nz)
@@ -464,49 +465,6 @@ class LinearMPC:
         lo_only_a = np.array([r.lo_only for r in rows], dtype=bool)
         self.lb0 = np.where(lo_only_a, lim_a, -lim_a)
         self.ub0 = np.where(lo_only_a, np.inf, lim_a)
-
-    def _drive_rows(self, plant: HeavePlant, add: Any, applied: Any, eu: np.ndarray, iu: int,
-                    iud: int | None) -> None:
-        """The winch motor's limits (:mod:`cable_ocp.physics.winch_drive`) at the samples
-        ``k = 0 .. N-1``, once the command of sample ``k`` is applied: the torque ``R T0 +
-        R k_c stretch_k + (J/R) u''_k`` within ``[-torque_max, torque_max]`` (linear in the
-        state and the commands; ``u''`` the first-order winch's ``-K u' = -K^2 (v - u)`` just
-        after the sample, the second-order winch's ``w^2 (v - u) - 2 zeta w u'``), and the
-        power ``tau u'/R`` linearised about the static tension, ``|T0 u'_k| <= power_max``,
-        a speed limit (rows tagged ``"power"``; :class:`_NonlinearMPC` writes the bilinear
-        power instead). ``drive_terms[k]`` keeps the torque's and the speed's rows for it."""
-        s = self.settings
-        if not (s.unit_mass > 0 and s.static_tension > 0) or s.drum_radius is None:
-            raise CableOCPError("winch.torque_max, winch.power_max: need winch.drum_radius (m), "
-                                "unit.mass > 0 (kg) and unit.static_tension > 0 (N)")
-        N, nz, n = self.N, self.nz, self.n
-        R, J, t0 = s.drum_radius, s.drum_inertia, s.static_tension
-        kc = s.unit_mass / plant.a
-        c_str, _ = plant.output_row("stretch")
-        cs_ = np.zeros(nz)
-        cs_[:n] = c_str
-        eud = np.zeros(nz)
-        if iud is not None:
-            eud[iud] = 1.0
-            ww2 = float(-plant.A[iu + 1, iu])
-            two_zw = float(-plant.A[iu + 1, iu + 1])
-        for k in range(N):
-            cz, cu = applied(k)
-            if iud is None:
-                K = plant.K
-                sz, su = K * (cz - eu), K * cu              # u' = K (v - u)
-                az, au = -K * sz, -K * su                   # u'' = -K u'
-            else:
-                sz, su = eud, 0.0
-                az, au = ww2 * (cz - eu) - two_zw * eud, ww2 * cu
-            tz, tu, td = R * kc * cs_ + J / R * az, J / R * au, R * kc
-            self.drive_terms[k] = (tz, tu, td, sz, su)
-            if s.torque_max is not None:
-                # R T0 + tz z + tu u0 + td D <= torque_max, and >= -torque_max
-                add(k, -tz, -tu, -(s.torque_max - R * t0), cd=-td, lo_only=True)
-                add(k, tz, tu, -(s.torque_max + R * t0), cd=td, lo_only=True)
-            if s.power_max is not None:
-                add(k, t0 * sz, t0 * su, s.power_max, tag="power")
 
     def _build_qp(self) -> None:
         s = self.settings
