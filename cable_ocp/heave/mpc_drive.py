@@ -29,9 +29,10 @@ def drive_rows(mpc: Any, plant: HeavePlant, add: Callable, applied: Callable, eu
     state and the commands; ``u''`` the first-order winch's ``-K u' = -K^2 (v - u)`` just
     after the sample, the second-order winch's ``w^2 (v - u) - 2 zeta w u'``), and the
     power ``tau u'/R`` linearised about the static tension, ``|T0 u'_k| <= power_max``,
-    a speed limit (rows tagged ``"power"``; the IPOPT formulation of :mod:`cable_ocp.heave.mpc`
-    writes the bilinear power instead). Returns ``{k: (tz, tu, td, sz, su)}``: the torque ``R T0 + tz z_k + tu u0_k
-    + td D_k`` and the speed ``sz z_k + su u0_k`` at each sample.
+    a speed limit (rows tagged ``"power"``; the IPOPT formulation of
+    :mod:`cable_ocp.heave.mpc` writes the bilinear power instead). Returns ``{k: (tz, tu,
+    td, sz, su)}``: the torque ``R T0 + tz z_k + tu u0_k + td D_k`` and the speed ``sz z_k +
+    su u0_k`` at each sample.
 
     Parameters
     ----------
