@@ -21,7 +21,9 @@ Limits (docs/conventions.md, "Heave compensation"):
   quadratic and exact linear (L1) penalties, when the plant carries tension (``[unit] mass`` and
   ``static_tension`` given).
 * the winch motor (``[winch] drum_radius``, :mod:`cable_ocp.physics.winch_drive`): the torque
-  ``|R T + J u''/R| <= torque_max`` (hard; linear in the state and the commands) and the power
+  ``|R T + J u''/R| <= torque_max`` (soft, exact while feasible: the tension's slack and
+  penalties, the rows scaled to metres of stretch; linear in the state and the commands) and
+  the power
   ``|tau u'/R| <= power_max``. The power is bilinear: the QP linearises it about the static
   tension (drum at rest), ``|T0 u'| <= power_max``, a speed limit; the IPOPT formulation
   keeps it exact. Both at the samples, once the sample's command is applied
@@ -120,8 +122,8 @@ class MPCSettings:
     drum_radius, drum_inertia : float or None
         The winch drum's radius (m) and inertia at its shaft (kg m^2).
     torque_max : float or None
-        Hard limit on the motor torque ``|R T + J u''/R|``, N m (needs the tension data and
-        ``drum_radius``).
+        Soft limit on the motor torque ``|R T + J u''/R|``, N m (needs the tension data and
+        ``drum_radius``; the tension's penalties, exact while the limit can be kept).
     power_max : float or None
         Limit on the motor power ``|tau u'/R|``, W: linearised about the static tension
         (``|T0 u'| <= power_max``) in the QP, exact (bilinear) with ``"ipopt"``.
@@ -423,8 +425,9 @@ class LinearMPC:
             for k in range(N):
                 add(k, np.zeros(nz), 1.0, s.command_rate_max, cp=-1.0)
         self.drive_terms: dict[int, tuple] = {}
-        if s.torque_max is not None or s.power_max is not None:
-            self.drive_terms = drive_rows(self, plant, add, applied, eu, iu, iud)
+        drive = s.torque_max is not None or s.power_max is not None
+        if drive:  # the power's hard rows before the soft rows
+            self.drive_terms = drive_rows(self, plant, add, applied, eu, iu, iud, "power")
         if s.tension_min is not None:
             c_str, _ = plant.output_row("stretch")
             cs_ = np.zeros(nz)
@@ -435,6 +438,8 @@ class LinearMPC:
                 # The known boom-tip correction D_k adds to the stretch.
                 add(k, cs_, 0.0, smin, cd=1.0, lo_only=True, slack=True)
             self.stretch_min = smin
+        if drive:  # the torque's soft rows last, after the tension's (mpc_daqp's stages)
+            drive_rows(self, plant, add, applied, eu, iu, iud, "torque")
         self.rows = rows
         m = len(rows)
         self.slack_of_row = np.full(m, -1)

@@ -22,11 +22,12 @@ __all__ = ["drive_rows"]
 
 
 def drive_rows(mpc: Any, plant: HeavePlant, add: Callable, applied: Callable, eu: np.ndarray,
-               iu: int, iud: int | None) -> dict[int, tuple]:
+               iu: int, iud: int | None, part: str) -> dict[int, tuple]:
     """The winch motor's limits (:mod:`cable_ocp.physics.winch_drive`) at the samples
     ``k = 0 .. N-1``, once the command of sample ``k`` is applied: the torque ``R T0 +
-    R k_c stretch_k + (J/R) u''_k`` within ``[-torque_max, torque_max]`` (linear in the
-    state and the commands; ``u''`` the first-order winch's ``-K u' = -K^2 (v - u)`` just
+    R k_c stretch_k + (J/R) u''_k`` within ``[-torque_max, torque_max]``, soft (a slack with
+    the tension limit's penalties, the row divided by ``R k_c`` so that its slack is in metres
+    of stretch as theirs; linear in the state and the commands; ``u''`` the first-order winch's ``-K u' = -K^2 (v - u)`` just
     after the sample, the second-order winch's ``w^2 (v - u) - 2 zeta w u'``), and the
     power ``tau u'/R`` linearised about the static tension, ``|T0 u'_k| <= power_max``,
     a speed limit (rows tagged ``"power"``; the IPOPT formulation of
@@ -48,6 +49,9 @@ def drive_rows(mpc: Any, plant: HeavePlant, add: Callable, applied: Callable, eu
         The row that picks the winch output ``u`` from the state.
     iu, iud : int, int or None
         The indices of ``u`` and (second-order winch) ``u'`` in the state.
+    part : {"power", "torque"}
+        Which rows to add: the hard power rows go before the soft rows, the torque's after
+        the tension's (the soft rows last, as :mod:`cable_ocp.heave.mpc_daqp` needs them).
     """
     s = mpc.settings
     if not (s.unit_mass > 0 and s.static_tension > 0) or s.drum_radius is None:
@@ -76,10 +80,14 @@ def drive_rows(mpc: Any, plant: HeavePlant, add: Callable, applied: Callable, eu
             az, au = ww2 * (cz - eu) - two_zw * eud, ww2 * cu
         tz, tu, td = R * kc * cs_ + J / R * az, J / R * au, R * kc
         terms[k] = (tz, tu, td, sz, su)
-        if s.torque_max is not None:
-            # R T0 + tz z + tu u0 + td D <= torque_max, and >= -torque_max
-            add(k, -tz, -tu, -(s.torque_max - R * t0), cd=-td, lo_only=True)
-            add(k, tz, tu, -(s.torque_max + R * t0), cd=td, lo_only=True)
-        if s.power_max is not None:
+        if s.torque_max is not None and part == "torque":
+            # R T0 + tz z + tu u0 + td D <= torque_max, and >= -torque_max; soft, in metres
+            # of stretch (divided by R k_c) so that the tension's penalties fit
+            sc = R * kc
+            add(k, -tz / sc, -tu / sc, -(s.torque_max - R * t0) / sc, cd=-td / sc,
+                lo_only=True, slack=True)
+            add(k, tz / sc, tu / sc, -(s.torque_max + R * t0) / sc, cd=td / sc, lo_only=True,
+                slack=True)
+        if s.power_max is not None and part == "power":
             add(k, t0 * sz, t0 * su, s.power_max, tag="power")
     return terms

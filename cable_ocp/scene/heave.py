@@ -33,7 +33,7 @@ Schema (SI units; see ``problems/heave/*.toml`` for commented examples)::
     tension_min = 5000.0                 # N        (soft; needs [unit] mass, static_tension)
     drum_radius = 0.5                    # m        (the drive: torque, power; needs tension)
     drum_inertia = 500.0                 # kg m^2   (drum, gear and motor at the drum shaft)
-    torque_max = 4.0e4                   # N m      (hard in the MPC; needs drum_radius)
+    torque_max = 4.0e4                   # N m      (soft in the MPC; needs drum_radius)
     power_max = 5.0e4                    # W        (the MPC: linearised, a speed limit)
 
     [unit]
