@@ -28,7 +28,8 @@ def drive_rows(mpc: Any, plant: HeavePlant, add: Callable, applied: Callable, eu
     R k_c stretch_k + (J/R) u''_k`` within ``[-torque_max, torque_max]``, soft (a slack with
     the tension limit's penalties, the row divided by ``R k_c`` so that its slack is in metres
     of stretch as theirs; linear in the state and the commands; ``u''`` the first-order
-    winch's ``-K u' = -K^2 (v - u)`` just after the sample, the second-order winch's ``w^2 (v - u) - 2 zeta w u'``), and the
+    winch's ``-K u' = -K^2 (v - u)`` just after the sample, the second-order winch's
+    ``w^2 (v - u) - 2 zeta w u'``), and the
     power ``tau u'/R`` linearised about the static tension, ``|T0 u'_k| <= power_max``,
     a speed limit (rows tagged ``"power"``; the IPOPT formulation of
     :mod:`cable_ocp.heave.mpc` writes the bilinear power instead). Returns ``{k: (tz, tu,
