@@ -146,13 +146,16 @@ class Comparison:
         """The traces as an ``xarray.Dataset`` over dimensions ``controller`` and ``time``
         (s): ``unit_heave``, ``tip_heave``, ``winch_output``, ``command`` (m),
         ``winch_speed`` (m/s), and on a cable plant ``tension_unit``, ``tension_top`` (N)
-        and ``deployment_length`` (m); NaN after a stopped run's last sample. Needs
-        xarray (the extra ``[io]``)."""
+        and ``deployment_length`` (m); where known ``line_tension`` (N), ``motor_torque``
+        (N m), ``motor_power`` (W) and ``phc_stroke`` (m); NaN after a stopped run's last
+        sample. Needs xarray (the extra ``[io]``)."""
         xr = optional_module("xarray", f"{type(self).__name__}.to_xarray()")
         names = {"x": ("unit_heave", "m"), "x0": ("tip_heave", "m"),
                  "u": ("winch_output", "m"), "u_dot": ("winch_speed", "m/s"),
                  "u0": ("command", "m"), "tension_unit": ("tension_unit", "N"),
-                 "tension_top": ("tension_top", "N"), "length": ("deployment_length", "m")}
+                 "tension_top": ("tension_top", "N"), "length": ("deployment_length", "m"),
+                 "tension": ("line_tension", "N"), "torque": ("motor_torque", "N m"),
+                 "power": ("motor_power", "W"), "stroke_phc": ("phc_stroke", "m")}
         parts = []
         for tr in self.traces.values():
             data = {var: ("time", np.asarray(getattr(tr, key), dtype=float), {"units": unit})
