@@ -12,6 +12,9 @@ import pytest
 
 from cable_ocp.errors import CableOCPError
 from cable_ocp.heave import design_loop as sm
+from cable_ocp.heave.closed_loop import make_wave, run_loop
+from cable_ocp.heave.controllers import Controller
+from cable_ocp.heave.loop_plants import ModelLine, WinchedLine
 from cable_ocp.heave.mpc import LinearMPC, settings_from_scene
 from cable_ocp.physics.winch_drive import drum_power, drum_torque, linearised_power
 from cable_ocp.scene.heave import load_scene
@@ -144,3 +147,35 @@ def test_json_fields_and_scene_errors(tmp_path: Path) -> None:
     with pytest.raises(CableOCPError, match="winch.drum_radius"):
         load_scene(ROOT / "problems" / "heave" / "ex_6_3_6.toml", {"winch.drum_radius": 0.5,
                                                                   "unit.static_tension": 0.0})
+
+
+class _Sine(Controller):
+    """A command of 0.1 m at 0.8 rad/s (the winch moves, so the inertia term is not 0)."""
+
+    name = "sine"
+
+    def step(self, obs: object) -> float:  # noqa: ARG002
+        self.k = getattr(self, "k", -1) + 1
+        return 0.1 * np.sin(0.8 * 0.05 * self.k)
+
+
+def test_line_plant_torque_uses_the_top_tension() -> None:
+    # the plant of the cable comparison (WinchedLine), here with the design model as its line
+    sc = load_scene(PHC, {"winch.delay": 0.0})
+    h, m = sc.controller.sample_time, 5
+    n = 400
+    t = np.arange(n * m + 1) * (h / m)
+    wave = make_wave(t, 0.2 * np.sin(0.6 * t), h, m, n, lambda tt: np.full_like(tt, 100.0),
+                     5.0)
+    un = sc.unit
+    line = ModelLine(un.a, un.b, 0.0, False, m, h / m, un.mass, un.static_tension,
+                     un.static_tension + 1.0e4)
+    plant = WinchedLine(sc, line, wave, np.zeros((n + 1, 3)))
+    tr = run_loop(plant, _Sine(), n, bound=1e3).trace
+    R, J, K = sc.winch.drum_radius, sc.winch.drum_inertia, sc.winch.gain
+    i = np.arange(1, n * m)
+    # tau = R T_top + J (-K u') / R on the sub-step grid, exactly the law (rounding only)
+    assert np.allclose(tr.torque[i], R * tr.tension_top[i] - J * K * tr.u_dot[i] / R,
+                       rtol=1e-12, atol=1e-6)
+    assert np.max(np.abs(tr.u_dot[i])) > 0.02  # the winch moves
+    assert np.allclose(tr.power[i], tr.torque[i] * tr.u_dot[i] / R, rtol=1e-12, atol=1e-6)
