@@ -188,6 +188,9 @@ class LumpedParams:
         Vertical blend of the componentwise law (-).
     slack_smoothing : float
         Force scale delta_T of the smooth no-compression law, N.
+    tension_strain : TensionStrainTable or None
+        The line's tension-strain law u(e) in place of EA e (every segment;
+        :class:`cable_ocp.physics.elasticity.TensionStrainTable`), None for the linear law.
     """
 
     segment_length: np.ndarray
@@ -212,6 +215,7 @@ class LumpedParams:
     smoothing: float = 1e-5
     vertical_blend: float = 1e-2
     slack_smoothing: float = 1e-2
+    tension_strain: Any = None
 
     def __post_init__(self) -> None:
         names = ("segment_length", "axial_stiffness", "diameter", "mass_per_length",

@@ -151,7 +151,7 @@ def lumped_params(scene: DynamicScene, segments: int | None = None) -> LumpedPar
         water_density=env.water_density, gravity=env.gravity, unit=unit,
         end_a_position=end_a, bodies=tuple(bodies), current=current,
         drag_law=st.cable.drag_law, smoothing=st.solver.smoothing,
-        vertical_blend=st.solver.vertical_blend)
+        vertical_blend=st.solver.vertical_blend, tension_strain=st.cable.strain_table)
 
 
 def lumped_start(scene: DynamicScene, model: LumpedMassModel

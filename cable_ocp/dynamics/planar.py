@@ -97,7 +97,7 @@ from cable_ocp.numerics.quadrature import gauss_legendre
 from cable_ocp.physics.added_mass import added_mass_per_length, line_added_mass_2d
 from cable_ocp.physics.current import profile_velocity
 from cable_ocp.physics.drag import line_drag_factors, point_drag, vector_drag_columns
-from cable_ocp.physics.elasticity import SLACK_SMOOTHING, smooth_tension, taut_switch
+from cable_ocp.physics.elasticity import SLACK_SMOOTHING, cable_material
 from cable_ocp.scene.dynamics import DynamicScene
 from cable_ocp.scene.motion import motion_function
 
@@ -168,6 +168,9 @@ class PlanarModel:
                                              cab.tangential_drag)
         self.delta = st.solver.smoothing
         self.delta_t = SLACK_SMOOTHING
+        #: the tension law (linear or a tension-strain table, physics.elasticity)
+        self.table = cab.strain_table
+        self.material = cable_material(self.ea, self.table, slack_smoothing=self.delta_t)
         self.rho = rho
         self.length0 = scene.length
         self.top0 = np.array([scene.top_position[0], scene.top_position[2]], dtype=float)
@@ -201,14 +204,14 @@ class PlanarModel:
 
     # ------------------------------------------------------------------ pieces
     def _tension(self, eps: Any) -> Any:
-        """Smooth no-compression Hooke's law, N (elementwise;
-        :func:`cable_ocp.physics.elasticity.smooth_tension`)."""
-        return smooth_tension(eps, self.ea, self.delta_t)
+        """Smooth no-compression tension law, N (elementwise; the material's
+        :meth:`~cable_ocp.physics.elasticity.AxialMaterial.tension`)."""
+        return self.material.tension(eps)
 
     def _taut(self, eps: Any) -> Any:
-        """Smooth switch 0 (slack) .. 1 (taut), - (elementwise;
-        :func:`cable_ocp.physics.elasticity.taut_switch`)."""
-        return taut_switch(eps, self.ea, self.delta_t)
+        """Smooth switch 0 (slack) .. 1 (taut), - (elementwise; the material's
+        :meth:`~cable_ocp.physics.elasticity.AxialMaterial.taut`)."""
+        return self.material.taut(eps)
 
     # The expressions below work on 2 x K matrices (columns = nodes or elements, rows =
     # x, z): a few dozen whole-matrix operations per expression, whatever N is.
@@ -490,7 +493,8 @@ class PlanarModel:
         dd = self._elements(qq, h)
         ll = self._norms(dd)
         eps = ll / h - 1.0
-        tens = self.ea * eps if linear else self._tension(eps)
+        tens = (self.ea * eps if self.table is None else self.table.tension_of(eps)) \
+            if linear else self._tension(eps)
         force = self._spread(ca.repmat(tens / ll, 2, 1) * dd)
         if with_drag:
             zs = self._heights(qq, mo)
@@ -733,7 +737,7 @@ class PlanarModel:
         top = top.reshape(n_t)
         length = length.reshape(n_t)
         min_strain = float(min(emin, np.min(eps)))
-        min_t = float(min(smooth_tension(min_strain, self.ea, self.delta_t), np.min(tens)))
+        min_t = float(min(self._tension(min_strain), np.min(tens)))
         e, where = slack_element(t_slack, e_slack, ts, length, self.n)
         slack, status, message = slack_report(
             t_slack, e, where, status=status, message=message, on_slack=sim.on_slack,

@@ -90,7 +90,9 @@ class MPCSettings:
     sample_time : float
         ``h``, s.
     q : float
-        Weight on the unit's heave, 1/m^2.
+        Weight on the unit's heave, 1/m^2. The default 553.6 is a calibration (Huang 1992,
+        6.3.6, states no weights): fitted so that the delay-free 11-state LQR gives the
+        thesis' controlled 2.96e-4 m.
     r : float
         Weight on the winch command, 1/m^2.
     solver : str
@@ -131,7 +133,7 @@ class MPCSettings:
 
     horizon: int = 50
     sample_time: float = 0.05
-    q: float = 553.6
+    q: float = 553.6  # 1/m^2; a calibration: 6.3.6's LQR gives the thesis' 2.96e-4 m
     r: float = 1.0
     solver: str = "daqp"
     stroke_max: float | None = None

@@ -56,7 +56,8 @@ Schema (SI units; see ``problems/heave/*.toml`` for commented examples)::
     stroke_max = 2.0                     # m, the end stops at +-stroke_max from static
 
     [controller]
-    q = 553.6                            # 1/m^2, weight on the unit's heave
+    q = 553.6                            # 1/m^2, weight on the unit's heave (default:
+                                         # calibrated, 6.3.6's LQR then gives 2.96e-4 m)
     r = 1.0                              # 1/m^2, weight on the command
     horizon = 50
     sample_time = 0.05                   # s
@@ -184,7 +185,7 @@ class UnitSpec:
 class ControllerSpec:
     """``[controller]``."""
 
-    q: float = 553.6
+    q: float = 553.6  # 1/m^2; a calibration: 6.3.6's LQR gives the thesis' 2.96e-4 m
     r: float = 1.0
     horizon: int = 50
     sample_time: float = 0.05
