@@ -96,9 +96,9 @@ def check_planar(scene: DynamicScene) -> None:
     st = scene.statics
     tm = scene.top_motion
     why = 'simulation.model = "planar" moves in the vertical x-z plane: '
-    if st.segments or st.bodies:
-        raise CableOCPError(why + "[[cable.segments]] and [[bodies]] are not supported; give a "
-                            'single [cable] (or use model = "lumped3d")')
+    if st.bodies:
+        raise CableOCPError(why + "[[bodies]] are not supported (or use model = "
+                            '"lumped3d")')
     if st.environment.seabed is not None:
         raise CableOCPError(why + "[environment.seabed]: the model has no seabed contact; "
                             "remove the table")
@@ -129,7 +129,9 @@ def check_planar(scene: DynamicScene) -> None:
                                 f"= {scene.top_position[1]} (the plane y = const)")
     else:
         unit = scene.unit
-        if unit.weight_in_water <= 0.0 and cur is None:
+        cantilever = (scene.simulation.top_end == "clamped"
+                      and any(c.bending_stiffness > 0.0 for c in st.lines))
+        if unit.weight_in_water <= 0.0 and cur is None and not cantilever:
             raise CableOCPError(why + f"unit.weight_in_water = {unit.weight_in_water} N: "
                                 "without a current nothing keeps the line taut (it needs a "
                                 "weight > 0)")
@@ -152,6 +154,7 @@ def check_lumped_plant(scene: DynamicScene) -> None:
         raise CableOCPError('[environment.seabed]: simulation.model = "lumped3d" has no '
                             "seabed contact; remove the table (the seabed is then only "
                             "checked in the static start)")
-    if any(c.bending_stiffness > 0 for c in scene.statics.lines):
-        raise CableOCPError('cable.segments[].bending_stiffness: simulation.model = '
-                            '"lumped3d" is a flexible cable (no bending stiffness)')
+    if scene.simulation.top_end != "pinned":
+        raise CableOCPError(f'simulation.top_end = "{scene.simulation.top_end}": '
+                            'simulation.model = "lumped3d" has a pinned top (valid: "pinned"; '
+                            'a clamped top needs model = "planar")')

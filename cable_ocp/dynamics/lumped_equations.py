@@ -32,6 +32,7 @@ from typing import Any
 import casadi as ca
 import numpy as np
 
+from cable_ocp.dynamics.bending_terms import LineBending
 from cable_ocp.dynamics.lumped_params import LumpedParams
 from cable_ocp.numerics.quadrature import gauss_legendre
 from cable_ocp.physics.added_mass import (
@@ -314,6 +315,8 @@ class LumpedEquations:
             for coef in (p.added_mass_coefficient, p.tangential_added_mass_coefficient))
         #: normal and tangential added mass of each segment, kg
         self.added_mass = tuple(a * p.segment_length for a in self.added_mass_per_length)
+        #: the hinges of a line with bending stiffness (:mod:`cable_ocp.dynamics.bending_terms`)
+        self.bending = LineBending(p.bending_stiffness, p.segment_length, 3)
 
     def zeros(self) -> list[Any]:
         """A zero 3-vector per node."""
@@ -394,6 +397,9 @@ class LumpedEquations:
             fe = st["tension"] * st["num"] / st["den"]
             f[j] = f[j] + fe
             f[j + 1] = f[j + 1] - fe
+        if self.bending.active:  # at the mean positions: the exact discrete gradient
+            rb = r0 if r1 is None else [0.5 * (a + b) for a, b in zip(r0, r1, strict=True)]
+            f = self.total(f, self.bending.node_list_forces(rb))
         return f
 
     def current(self, z: Any) -> Any:
@@ -530,4 +536,4 @@ class LumpedEquations:
                                if p.tension_strain is None else p.tension_strain.energy(eps))
         for i in range(p.segments + 1):
             pot = pot + float(self.node_weight[i]) * r[i][2]
-        return kin, pot
+        return kin, pot + self.bending.node_list_energy(r)

@@ -360,6 +360,9 @@ class LumpedStepper:
         z9 = sym.zeros(9, 1)
         fpt, cpt = self.point_terms(rm, vel, gamma, sym)
         force = ca.horzcat(fa, z3) + ca.horzcat(z3, fb) + static + fpt
+        bend = self.model.eq.bending
+        if bend.active:  # linear in the positions (cable_ocp.dynamics.bending_terms)
+            force = force + bend.node_forces(rm[:, 1:] - rm[:, :-1])
         mass = node_m + ca.horzcat(madd, z9) + ca.horzcat(z9, madd)
         free = slice(first, n)
         if scheme == "midpoint":
@@ -372,10 +375,16 @@ class LumpedStepper:
             z9, cb) + cpt
         diag_b = alpha * mass[:, free] + kc[:, free]
         off_b = -kb[:, first:n - 1] + cb[:, first:n - 1]
+        if bend.active:  # its constant Jacobian (d rm / d x1 = beta); off_b is symmetric
+            kd, ko, k_rest = bend.free_blocks(first, nf)
+            diag_b = diag_b + beta * ca.DM(kd)
+            off_b = off_b + beta * ca.DM(ko)
         vals = ca.vertcat(ca.vec(diag_b), ca.vec(off_b))
         if compile_kernel:
             jac = ca.MX(sp, 0)
             jac.nz[:] = vals[src_sorted]
+            if bend.active and k_rest.nnz() > 0:  # the blocks two nodes apart
+                jac = jac + beta * k_rest
             gj = ca.Function("gj", [x1, zsym, t0, dt], [res, jac, fres])
         else:
             # the Newton update by block-tridiagonal elimination (3x3 blocks, no pivoting:

@@ -101,7 +101,7 @@ def lumped_params(scene: DynamicScene, segments: int | None = None) -> LumpedPar
     cols: dict[str, list[float]] = {k: [] for k in (
         "segment_length", "axial_stiffness", "diameter", "mass_per_length", "weight_in_water",
         "normal_drag", "tangential_drag", "added_mass_coefficient",
-        "tangential_added_mass_coefficient", "axial_damping")}
+        "tangential_added_mass_coefficient", "axial_damping", "bending_stiffness")}
     for c, dyn, k in zip(lines, scene.cable, counts, strict=True):
         vals = {"segment_length": float(c.length) / k, "axial_stiffness": c.axial_stiffness,  # type: ignore[arg-type]
                 "diameter": c.diameter, "mass_per_length": dyn.mass_per_length,
@@ -109,7 +109,7 @@ def lumped_params(scene: DynamicScene, segments: int | None = None) -> LumpedPar
                 "tangential_drag": c.tangential_drag,
                 "added_mass_coefficient": dyn.added_mass_coefficient,
                 "tangential_added_mass_coefficient": dyn.tangential_added_mass_coefficient,
-                "axial_damping": dyn.axial_damping}
+                "axial_damping": dyn.axial_damping, "bending_stiffness": c.bending_stiffness}
         for key, v in vals.items():
             cols[key] += [float(v)] * k
     joints = np.concatenate([[0], np.cumsum(counts)])

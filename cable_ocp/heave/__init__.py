@@ -27,6 +27,8 @@ inverse     the inverse problem of 6.4 (2): cable and unit parameters from an id
 stochastic  Lyapunov (6.31) and spectral (6.33)-(6.35) variances, LQG, winch-gain study (6.3.5)
 mpc         condensed linear MPC (CasADi ``conic``) and nonlinear MPC (IPOPT), built once
 mpc_daqp    the DAQP backend of the linear MPC
+mpc_drive   the winch motor's torque and power limits of the linear MPC
+drive       the winch drive along a run: line tension, motor torque and power
 design_loop closed-loop comparison on one seeded wave realisation (the design model)
 identify_cable  the identification experiment (6.2.3) on a cable scene's line
 axial_plant     the axial line as the plant, stepped one control sample per call

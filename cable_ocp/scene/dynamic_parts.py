@@ -56,7 +56,10 @@ PAYOUT_LAWS = ("linear", "quadratic", "periodic", "table")
 _TOW_KEYS = {"speed", "heading_deg", "straight_length", "turn_diameter", "turn_angle_deg",
              "turn_direction"}
 _SIM_KEYS = {"model", "duration", "time_step", "output_step", "segments", "start", "scheme",
-             "tolerance", "max_iterations", "on_slack", "drop_height", "element_length"}
+             "tolerance", "max_iterations", "on_slack", "drop_height", "element_length",
+             "top_end"}
+#: ``simulation.top_end``: the bending condition at end_b (with bending stiffness)
+TOP_ENDS = ("pinned", "clamped")
 _MODES_KEYS = {"count", "wave_band"}
 #: Relative slack allowed for rounded inputs when a weight in water is checked against
 #: the weight in air (the buoyancy must not be negative).
@@ -352,6 +355,10 @@ class Simulation:
         Length l_e (m) of the segments that enter and leave at the winch in a lumped3d
         pay-out (:mod:`cable_ocp.dynamics.lumped_payout`); None: the top segment's initial
         length.
+    top_end : str
+        ``"pinned"`` (default: no bending moment at end_b) or ``"clamped"`` (the top
+        tangent held at its static direction; a line with bending stiffness,
+        :mod:`cable_ocp.dynamics.bending_terms`).
     """
 
     model: str
@@ -366,6 +373,7 @@ class Simulation:
     on_slack: str = "continue"
     drop_height: float = 0.0
     element_length: float | None = None
+    top_end: str = "pinned"
 
     @property
     def steps(self) -> int:
@@ -695,6 +703,7 @@ def parse_simulation(t: Any) -> Simulation:
         on_slack=_choice(t.get("on_slack", "continue"), f"{where}.on_slack",
                          ("continue", "stop")),
         element_length=_element_length(t, model, where),
+        top_end=_choice(t.get("top_end", "pinned"), f"{where}.top_end", TOP_ENDS),
     )
 
 

@@ -92,6 +92,9 @@ Schema of the dynamic keys (all SI; units in brackets)::
     on_slack = "continue"        "continue" | "stop": what to do when a tension <= 0 is
                                  found (Huang (1992) 4.5.1: the model predicts slack but
                                  cannot follow it); either way the result says so
+    top_end = "pinned"           "pinned" (default) | "clamped": with bending stiffness, the
+                                 top tangent held at its static direction (a cantilever;
+                                 planar model only; cable_ocp.dynamics.bending_terms)
     [modes]                      modal analysis and the deployment chart
     count = 6                    number of modes (default 6)
     wave_band = [0.314, 1.571]   rad/s, the wave-frequency band shaded on the chart

@@ -26,8 +26,8 @@ MUTATIONS = [
                      "step at slack) instead of its exact mean"),
     dict(name="planar-damper-pushes", area="dynamics",
          file="cable_ocp/dynamics/planar.py",
-         old="tens = smooth_positive(tens + self.c * rate * self._taut(eps), self.delta_t)",
-         new="tens = tens + self.c * rate * self._taut(eps)",
+         old='tens = smooth_positive(tens + self.line.value("c") * rate * self._taut(eps),',
+         new='tens = (tens + self.line.value("c") * rate * self._taut(eps)) + 0.0 * (',
          tests=(SNAP + "::test_a_mass_dropped_on_the_planar_line_matches_the_closed_form",),
          description="planar outputs: the damping may take the tension below zero (the "
                      "cable pushes)"),
