@@ -19,7 +19,7 @@ import pytest
 
 from cable_ocp.dynamics import dynamic_scene_from_dict, load_dynamic_scene, modes, simulate
 from cable_ocp.errors import CableOCPError
-from cable_ocp.physics.elasticity import StandardLinearSolid
+from cable_ocp.physics.viscoelastic import StandardLinearSolid
 
 ROOT = Path(__file__).resolve().parents[2]
 P333 = ROOT / "problems" / "dynamics" / "huang_3_3_3.toml"
