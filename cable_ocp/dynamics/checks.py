@@ -18,9 +18,9 @@ __all__ = ["check_axial", "check_lumped", "check_lumped_plant", "check_material"
 
 def check_material(scene: DynamicScene, model: str) -> None:
     """Raise :class:`CableOCPError` (naming the key) when the cable's material law is one
-    that ``model`` does not carry: the axial model has the table and the viscoelastic
-    law (not with its ``thesis`` scheme), the planar and lumped models the table (not
-    with the lumped ``thesis`` scheme, Huang's (5.21) with Hooke's (5.3)).
+    that ``model`` does not carry: the axial and planar models have the table and the
+    viscoelastic law (not with the axial ``thesis`` scheme), the lumped model the table
+    (not with its ``thesis`` scheme, Huang's (5.21) with Hooke's (5.3)).
 
     Parameters
     ----------
@@ -37,10 +37,10 @@ def check_material(scene: DynamicScene, model: str) -> None:
         raise CableOCPError(f'cable.{key}: simulation.scheme = "thesis" (Huang\'s own '
                             "scheme, (3.8)-(3.10) or (5.21)) has the linear law; use the "
                             "model's other schemes (midpoint, trapezoidal, bdf2)")
-    if visco and model != "axial":
+    if visco and model not in ("axial", "planar"):
         raise CableOCPError(f'cable.viscoelastic: simulation.model = "{model}" has no '
                             'internal strain state; the viscoelastic law runs in model = '
-                            '"axial" (in the statics it is its static modulus '
+                            '"axial" and "planar" (in the statics it is its static modulus '
                             "axial_stiffness)")
 
 
