@@ -59,6 +59,7 @@ import numpy as np
 from cable_ocp.dynamics.lumped_equations import LumpedEquations
 from cable_ocp.dynamics.lumped_kernel import SCHEMES, LumpedStepper
 from cable_ocp.dynamics.lumped_params import LumpedParams, TimeFunction
+from cable_ocp.errors import CableOCPError
 
 __all__ = ["SCHEMES", "LumpedMassModel"]
 
@@ -87,7 +88,10 @@ class LumpedMassModel:
         ``tensions(x, t) -> (T, strain)``: elastic tension (N) and strain (-) per segment
         (without the material damping term).
     segment_tension : casadi.Function
-        ``segment_tension(x, v, t) -> T`` (N), with the material damping term.
+        ``segment_tension(x, v, t) -> T`` (N), with the material damping term; with the
+        viscoelastic law (``params.viscoelastic``) ``(x, v, t, e_v)``, and so
+        :attr:`top_force` and :attr:`energy` (the dashpot strains e_v per segment, -, the
+        stepped state's last N numbers).
     top_force : casadi.Function
         ``top_force(x, v, t) -> F`` (N): the force end_b's attachment applies to the cable
         (node N's balance: its mass times the prescribed acceleration minus the tension of
@@ -111,6 +115,10 @@ class LumpedMassModel:
         self.n_free = int(self.free_nodes.size)
         #: the terms of the equations of motion (:mod:`cable_ocp.dynamics.lumped_equations`)
         self.eq = LumpedEquations(p)
+        #: the standard linear solid (None: elastic) and its dashpot strains' symbol
+        self.solid = p.viscoelastic
+        self._ev = ca.SX.sym("ev", n) if self.solid is not None else None
+        self._names = ["x", "v", "t"] + ([] if self._ev is None else ["ev"])
 
     # -- the CasADi functions, each built on first use -----------------------------------
     @cached_property
@@ -188,8 +196,9 @@ class LumpedMassModel:
     def segment_tension(self) -> ca.Function:
         """``segment_tension(x, v, t) -> T`` (N), with the material damping term."""
         x, v, t, r, vel = self._symbols
-        return ca.Function("segment_tension", [x, v, t], [self.eq.tensions(r, vel)[0]],
-                           ["x", "v", "t"], ["T"])
+        ev = [] if self._ev is None else [self._ev]
+        return ca.Function("segment_tension", [x, v, t, *ev],
+                           [self.eq.tensions(r, vel, self._ev)[0]], self._names, ["T"])
 
     @cached_property
     def top_force(self) -> ca.Function:
@@ -197,18 +206,21 @@ class LumpedMassModel:
         x, v, t, r, vel = self._symbols
         # the force the attachment applies to node N: M_N a_b - (cable, weight, drag)
         acc_b = ca.jacobian(vel[-1], t)
-        f_n = self.eq.total(self.eq.elastic(r, None, vel, None), self.eq.static_loads(),
-                        self.eq.drag(r, vel))[-1]
+        f_n = self.eq.total(self.eq.elastic(r, None, vel, None, self._ev),
+                            self.eq.static_loads(), self.eq.drag(r, vel))[-1]
+        ev = [] if self._ev is None else [self._ev]
         return ca.Function(
-            "top_force", [x, v, t], [ca.mtimes(self.eq.mass_blocks(r)[-1], acc_b) - f_n],
-            ["x", "v", "t"], ["F"])
+            "top_force", [x, v, t, *ev], [ca.mtimes(self.eq.mass_blocks(r)[-1], acc_b) - f_n],
+            self._names, ["F"])
 
     @cached_property
     def energy(self) -> ca.Function:
         """``energy(x, v, t) -> (kinetic, potential)`` (J)."""
         x, v, t, r, _ = self._symbols
-        return ca.Function("energy", [x, v, t], list(self.eq.energy(v, self.mass_expr(r), r)),
-                           ["x", "v", "t"], ["kinetic", "potential"])
+        ev = [] if self._ev is None else [self._ev]
+        return ca.Function("energy", [x, v, t, *ev],
+                           list(self.eq.energy(v, self.mass_expr(r), r, self._ev)),
+                           self._names, ["kinetic", "potential"])
 
     @cached_property
     def static_stiffness(self) -> ca.Function:
@@ -345,9 +357,12 @@ class LumpedMassModel:
         ``(x, v, a)`` for ``"midpoint"`` and ``"trapezoidal"`` (a: the acceleration, used by
         the trapezoidal rule and, for the midpoint rule, only by the Newton predictor);
         ``(x, v, x_prev, v_prev, started)`` for ``"bdf2"`` (started = 0 before the first
-        step, which is then a backward-Euler step).
+        step, which is then a backward-Euler step). With the viscoelastic law (midpoint
+        only) the N dashpot strains e_v follow.
         """
         nf3 = 3 * self.n_free
+        if self.solid is not None:
+            return 3 * nf3 + self.params.segments
         return 4 * nf3 + 1 if scheme == "bdf2" else 3 * nf3
 
     def initial_state(self, x: np.ndarray, v: np.ndarray | None = None,
@@ -368,6 +383,13 @@ class LumpedMassModel:
         """
         x = np.asarray(x, float).reshape(-1)
         v = np.zeros_like(x) if v is None else np.asarray(v, float).reshape(-1)
+        if self.solid is not None:
+            if scheme != "midpoint":
+                raise CableOCPError(f'scheme = "{scheme}": the viscoelastic law steps with '
+                                    'the midpoint rule (valid: "midpoint")')
+            # relaxed at rest: e_v = e (0 where a segment is slack: an unloaded rope)
+            eps = np.asarray(self.tensions(x, t)[1]).ravel()
+            return np.concatenate([x, v, np.zeros_like(x), np.maximum(eps, 0.0)])
         if scheme == "bdf2":
             return np.concatenate([x, v, x, v, [0.0]])
         a = np.zeros_like(x)
