@@ -224,11 +224,16 @@ class LumpedMassModel:
 
     @cached_property
     def static_stiffness(self) -> ca.Function:
-        """``static_stiffness(x, t) -> K`` (N/m): -dF/dx of the forces without drag."""
+        """``static_stiffness(x, t) -> K`` (N/m): -dF/dx of the forces without drag (the
+        viscoelastic law: with its dashpot strains held at the relaxed e_v = e(x), the
+        fast-load stiffness EA_d, as the axial model's modes)."""
         x, _, t, r, _ = self._symbols
-        f0 = self.free(self.eq.total(self.eq.elastic(r, None, None, None), self.eq.static_loads()))
-        return ca.Function("static_stiffness", [x, t], [-ca.jacobian(f0, x)], ["x", "t"],
-                           ["K"])
+        f0 = self.free(self.eq.total(self.eq.elastic(r, None, None, None, self._ev),
+                                     self.eq.static_loads()))
+        k = -ca.jacobian(f0, x)
+        if self._ev is not None:
+            k = ca.substitute(k, self._ev, self.eq.tensions(r)[1])
+        return ca.Function("static_stiffness", [x, t], [k], ["x", "t"], ["K"])
 
     @cached_property
     def _static_fj(self) -> ca.Function:
