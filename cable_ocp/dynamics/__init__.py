@@ -24,6 +24,7 @@ planar_line       the planar line's properties per element (segments on the grid
 axial, planar     the axial and planar lines; vertical_line their coefficients, stepping
                   their chunked time loop, driven their steps with the top as an input,
                   axial_thesis Huang's own axial scheme
+snap              the snap loads that end a slack spell (SimulationResult.snap)
 lumped            the 3D lumped-mass line: lumped_params, lumped_equations, lumped_kernel,
                   lumped_run, lumped_scene, lumped_driven, lumped_thesis (Huang's (5.21));
                   lumped_payout its pay-out and haul-in (nodes enter and leave at the
