@@ -136,7 +136,7 @@ def test_the_dropped_start_is_the_raised_slack_line() -> None:
 
 def test_step_halving_resolves_the_snap_when_the_full_step_fails() -> None:
     """With 3 Newton iterations a step the snap no longer converges: those samples are
-    computed again with the step halved (29 of them, down to dt / 8 here) and the peak
+    computed again with the step halved (14 of them, down to dt / 8 here) and the peak
     is that of the converged run to 0.5 N (the halved steps' own discretisation)."""
     fine = _dropped_planar()
     res = _dropped_planar(max_iterations=3)
