@@ -26,7 +26,10 @@ Huang (1992), eq. (5.1)-(5.2):
   (``slack_smoothing``, N; default 0.01 N), which changes a taut segment's tension by at
   most ``delta_T^2 / (4 T)`` and leaves a slack one with a vanishing pull. Slack
   (``eps <= 0``) is reported by the simulator. An optional material damping adds
-  ``c deps/dt`` while the segment is taut (the same smooth switch);
+  ``c deps/dt`` while the segment is taut (the same smooth switch). A tension-strain table
+  replaces EA eps; the viscoelastic law (``[cable] viscoelastic``, midpoint scheme) adds each
+  segment's dashpot strain e_v to the stepped state, advanced by the midpoint rule in
+  closed form (:mod:`cable_ocp.physics.viscoelastic`; the kernel's strain shift);
 * at end_a a subsea unit (Huang eq. (5.6)): mass, added mass per axis, weight in water,
   drag area and coefficient, an external load (thrust); or end_a fixed;
 * at end_b the prescribed top motion (5.5), a function of time.

@@ -347,6 +347,8 @@ class LumpedEquations:
             The chord, m.
         ell1 : float or casadi expression, optional
             Unstretched length, m (default the segment's).
+        internal : casadi expression, optional
+            The segment's dashpot strain e_v (-), viscoelastic law only.
         **kw
             Further keywords of :func:`segment_tension`.
         """

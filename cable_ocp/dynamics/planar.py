@@ -65,10 +65,11 @@ Time: the implicit midpoint rule with a discrete-gradient tension (the energy-mo
 method of Simo & Tarnow (1992), Gonzalez (1996)): the element force is the mean of T over
 [e_0, e_1] (:func:`cable_ocp.physics.elasticity.mean_material_tension`: exact from the strain
 energy for the linear law, across the no-compression kink when an element goes slack or
-taut; 3-point Gauss for a tension-strain table) along
-(d_0 + d_1) / (|d_0| + |d_1|), so that an undamped run in
-air conserves the discrete energy to the Newton tolerance, at any time step (A-stable,
-symplectic for the linear part, no numerical damping). The kinematic equation is
+taut; 3-point Gauss for a tension-strain table; ``[cable] viscoelastic``: the exact mean of
+its step's law, each element's e_v by the same midpoint rule in closed form,
+:mod:`cable_ocp.physics.viscoelastic`) along (d_0 + d_1) / (|d_0| + |d_1|), so that an
+undamped run in air conserves the discrete energy to the Newton tolerance, at any time
+step (A-stable, symplectic for the linear part, no numerical damping). The kinematic equation is
 eliminated (V_m = (R_1 - R_0) / dt - a R_y,m), the step is a Newton ``rootfinder`` in the
 2N new positions (sparse LU, exact Jacobian), folded over an output interval and
 ``mapaccum``'d in chunks: no Python runs per step; one call per chunk drives the progress
