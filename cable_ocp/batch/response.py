@@ -392,20 +392,25 @@ class ResponseResult:
             "diagnostics": self.diagnostics,
         }
 
-    def plot(self, path: str | Path | None = None, **kwargs: Any) -> Any:
-        """The figure (:func:`cable_ocp.plots.response.plot_response`), saved when ``path``
-        is given.
+    def plot(self, ax: Any = None, **kwargs: Any) -> tuple[Any, Any]:
+        """Draw the sweep (matplotlib): ``fig, axes = res.plot()``.
 
         Parameters
         ----------
-        path : str or Path, optional
-            Where to save it.
+        ax : matplotlib Axes, optional
+            Draw the first output's amplitude ratio on it; None (default): the figure of
+            ``cable-ocp response --plot`` (:func:`cable_ocp.plots.response.response_figure`).
         **kwargs
-            Passed on (``title``, ``normalise``).
-        """
-        from cable_ocp.plots.response import plot_response, response_figure
+            ``title``.
 
-        return plot_response(self, path, **kwargs) if path else response_figure(self, **kwargs)
+        Returns
+        -------
+        (fig, ax)
+            The figure and the Axes drawn on (with ``ax=None``: an array of its panels).
+        """
+        from cable_ocp.plots.accessors import plot_response_result
+
+        return plot_response_result(self, ax, **kwargs)
 
 
 def _num(x: Any) -> float | None:

@@ -11,6 +11,7 @@ app       :func:`main` and :func:`build_parser`: the parser, the exit codes of e
 output    the shared contract of the commands
 statics, heave, dynamics, batch, bench, cost   the command groups, and the cost estimates
 system    mooring systems: solve on a system or a MoorDyn file, convert, mooring-checks
+response  frequency-response curves of a dynamic scene
 """
 
 from cable_ocp.cli.app import build_parser, main

@@ -17,6 +17,8 @@ model             the model interface that simulate and modes dispatch on; check
 result            the result types (SimulationResult, ModesResult, DeploymentChart)
 simulation        simulate: the time integration of any model
 modal             modes: the linearisation about the static state, the deployment chart
+response          the frequency response to a harmonic top motion: the outputs, the harmonic
+                  fit of a time run and the linear transfer function of the modes
 static            the static start of a dynamic scene
 axial, planar     the axial and planar lines; vertical_line their coefficients, stepping
                   their chunked time loop, driven their steps with the top as an input,
