@@ -539,7 +539,7 @@ def frequency_response(problem: str | Path | dict[str, Any], frequencies: Sequen
     run_message = np.full(shape, "not run (interrupted)", dtype=object)
     periods = np.full(shape, np.nan)
     change = np.full(shape, np.nan)
-    for i, case in enumerate(cases):
+    for i in range(len(cases)):
         row = rows.get(i)
         if row is None:
             continue
