@@ -39,6 +39,7 @@ from cable_ocp.batch.cases import Case
 from cable_ocp.batch.executors import RunnerSpec, run_dask, run_local, run_serial
 from cable_ocp.batch.kinds import Runner
 from cable_ocp.dynamics.response import (
+    EXCITATIONS,
     LinearResponse,
     check_response_scene,
     excitation_keys,
@@ -116,7 +117,7 @@ class ResponseSettings:
     samples_per_period : int
         Output samples per excitation period (default 64).
     ramp_periods : float
-        Periods of the smooth ramp of the motion (default 3; 0 keeps the scene's
+        Periods of the smooth ramp of the motion (default 10; 0 keeps the scene's
         ``ramp_time``).
     min_periods : int
         Periods after the ramp in the first run (default 12).
@@ -130,7 +131,7 @@ class ResponseSettings:
     """
 
     samples_per_period: int = 64
-    ramp_periods: float = 3.0
+    ramp_periods: float = 10.0
     min_periods: int = 12
     max_periods: int = 192
     tolerance: float = 0.01
@@ -443,7 +444,9 @@ def frequency_response(problem: str | Path | dict[str, Any], frequencies: Sequen
         Output names (default ``top_tension, unit_tension`` and the unit's motion along
         the excitation: ``unit_z`` for heave and circular, ``unit_x`` for horizontal).
     excitation : str, optional
-        ``"heave"``, ``"horizontal"`` or ``"circular"`` (default: the one the scene gives).
+        ``"heave"``, ``"horizontal"`` or ``"circular"`` (default: the one the scene gives);
+        the swept motion replaces the scene's harmonic top motion (its other harmonic
+        components are set to 0).
     settings : ResponseSettings, optional
         The periodicity test and the runs' lengths.
     damping_ratio : float
@@ -480,8 +483,14 @@ def frequency_response(problem: str | Path | dict[str, Any], frequencies: Sequen
         data = apply_overrides(data, overrides)
     scene = dynamic_scene_from_dict(data)
     kind = excitation_kind(scene) if excitation is None else excitation
-    check_response_scene(scene, kind)
     amp_key, freq_key = excitation_keys(kind)
+    # the swept motion replaces the scene's harmonic motion: the other components go to 0
+    others = {f"top_motion.{a}": 0.0 for k, (a, _, _) in EXCITATIONS.items()
+              if k != kind and getattr(scene.top_motion, a) != 0.0}
+    if others:
+        data = apply_overrides(data, others)
+        scene = dynamic_scene_from_dict(data)
+    check_response_scene(scene, kind)
     freqs = np.asarray(frequencies, dtype=float).ravel()
     if freqs.size == 0 or not np.all(np.isfinite(freqs)) or np.any(freqs <= 0):
         raise CableOCPError(f"--frequencies: expected finite frequencies > 0 (rad/s), got "

@@ -57,6 +57,9 @@ def register(sub: argparse._SubParsersAction, parent: argparse.ArgumentParser) -
                         "counts as periodic (default 0.01)")
     p.add_argument("--max-periods", type=int, metavar="N",
                    help="cap on the periods of a run after the ramp (default 192)")
+    p.add_argument("--ramp-periods", type=float, metavar="N",
+                   help="periods of the smooth ramp-in of the motion (default 10; longer for "
+                        "an undamped line, whose free vibration a short ramp starts)")
     p.add_argument("--workers", type=int, metavar="N",
                    help="local worker processes (default: every core; 0 = in this process)")
     p.add_argument("--scheduler", metavar="ADDRESS",
@@ -90,10 +93,12 @@ def _options(args: argparse.Namespace, defaults: Any) -> dict[str, Any]:
     if args.workers is not None and not 0 <= args.workers <= 1024:
         raise CableOCPError(f"--workers {args.workers}: give 0..1024")
     zeta = args.damping_ratio if args.damping_ratio is not None else defaults.damping_ratio
+    ramp = args.ramp_periods if args.ramp_periods is not None else defaults.ramp_periods
     base = ResponseSettings()
     settings = ResponseSettings(
         tolerance=base.tolerance if tol is None else float(tol),
-        max_periods=base.max_periods if cap is None else int(cap))
+        max_periods=base.max_periods if cap is None else int(cap),
+        ramp_periods=base.ramp_periods if ramp is None else float(ramp))
     return {"frequencies": freqs, "amplitudes": amps, "outputs": outputs,
             "excitation": args.excitation or defaults.excitation, "settings": settings,
             "damping_ratio": float(zeta or 0.0)}

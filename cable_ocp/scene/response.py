@@ -13,6 +13,8 @@ Schema (all optional; the command line wins)::
     tolerance = 0.01                relative amplitude change over the last two periods
                                     that counts as periodic (-)
     max_periods = 192               cap on the periods of a time run after the ramp
+    ramp_periods = 10.0             periods of the smooth ramp-in of the motion (an undamped
+                                    line keeps the free vibration a short ramp starts)
 """
 
 from __future__ import annotations
@@ -26,7 +28,7 @@ from cable_ocp.scene.fields import check_keys, choice, integer, number
 __all__ = ["RESPONSE_KEYS", "ResponseDefaults", "parse_response"]
 
 RESPONSE_KEYS = {"frequencies", "amplitudes", "outputs", "excitation", "damping_ratio",
-                 "tolerance", "max_periods"}
+                 "tolerance", "max_periods", "ramp_periods"}
 
 
 @dataclass(frozen=True)
@@ -49,6 +51,8 @@ class ResponseDefaults:
         -.
     max_periods : int or None
         Periods.
+    ramp_periods : float or None
+        Periods.
     """
 
     frequencies: tuple[float, float, int] | None = None
@@ -58,6 +62,7 @@ class ResponseDefaults:
     damping_ratio: float | None = None
     tolerance: float | None = None
     max_periods: int | None = None
+    ramp_periods: float | None = None
 
 
 def parse_response(t: Any) -> ResponseDefaults:
@@ -101,5 +106,8 @@ def parse_response(t: Any) -> ResponseDefaults:
         else None
     cap = integer(t["max_periods"], "response.max_periods", 2, 100000) \
         if "max_periods" in t else None
+    ramp = number(t["ramp_periods"], "response.ramp_periods", nonneg=True) \
+        if "ramp_periods" in t else None
     return ResponseDefaults(frequencies=freqs, amplitudes=amps, outputs=outs, excitation=exc,
-                            damping_ratio=zeta, tolerance=tol, max_periods=cap)
+                            damping_ratio=zeta, tolerance=tol, max_periods=cap,
+                            ramp_periods=ramp)
