@@ -262,9 +262,12 @@ def period_change(t: np.ndarray, y: np.ndarray, omega: float) -> tuple[float, fl
     """(amplitude over the last period, over the one before, their relative change) of the
     harmonic fit at ``omega``: the periodicity test of a time run.
 
-    The change is |a_1 - a_0| / max(a_1, a_0, floor), floor = 1e-9 max(|mean|, 1): an
-    output that does not move (a sway under pure heave) counts as periodic. NaN when the
-    samples do not cover two periods.
+    The change is the larger of |a_1 - a_0| (the Fourier amplitudes at ``omega``) and
+    |h_1 - h_0| (the half ranges (max - min) / 2), over max(h_1, h_0, floor),
+    floor = 1e-9 max(|mean|, 1): measured against the size of the oscillation, so that an
+    output that moves at 2 w (a pendulum's tension under horizontal motion) is judged by
+    its half range, and one that does not move (a sway under pure heave) counts as
+    periodic. NaN when the samples do not cover two periods.
 
     Parameters
     ----------
@@ -287,8 +290,9 @@ def period_change(t: np.ndarray, y: np.ndarray, omega: float) -> tuple[float, fl
     f1 = harmonic_fit(t[last], y[last], omega)
     f0 = harmonic_fit(t[prev], y[prev], omega)
     a1, a0 = f1["amplitude"], f0["amplitude"]
+    h1, h0 = f1["half_range"], f0["half_range"]
     floor = 1e-9 * max(abs(f1["mean"]), 1.0)
-    return a1, a0, abs(a1 - a0) / max(a1, a0, floor)
+    return a1, a0, max(abs(a1 - a0), abs(h1 - h0)) / max(h1, h0, floor)
 
 
 def window_fit(t: np.ndarray, y: np.ndarray, omega: float, periods: int
