@@ -93,6 +93,36 @@ def test_linear_curve_peaks_at_the_first_natural_frequency() -> None:
     assert damped.rao[0, 0] == pytest.approx(1.0 / 0.1, rel=0.02)
 
 
+def test_tensions_carry_the_wire_inertia() -> None:
+    """With the wire's own mass (vertical_in_air.toml: 7.85 kg on the 100 kg unit), the top
+    element's tension exceeds the unit's by the wire's inertia: the continuous rod with a
+    tip mass under base motion, u = a cos(b y) + c sin(b y) (y up from the unit,
+    b = w sqrt(mu / EA)), EA u'(0) = -M w^2 u(0) at the unit, u(L) = 1 at the top,
+    T(y) = EA u'(y), at the elements' middles (y = h / 2 and L - h / 2)."""
+    scene = load_dynamic_scene(AIR)
+    ea, mu, length, n = 7.0e6, 0.0785, 100.0, 20
+    h = length / n
+    w = np.array([10.0, 20.0, 40.0])
+    lin = linear_response(scene, w, ["top_tension", "unit_tension", "unit_z"])
+    b = w * math.sqrt(mu / ea)
+    # a (1) + c (0) with EA b c = -M w^2 a and a cos(b L) + c sin(b L) = 1
+    ratio = -M * w**2 / (ea * b)
+    a = 1.0 / (np.cos(b * length) + ratio * np.sin(b * length))
+    c = ratio * a
+
+    def tension(y: float) -> np.ndarray:
+        return ea * b * (-a * np.sin(b * y) + c * np.cos(b * y))
+
+    # 1e-3: 20 lumped masses against the continuous rod, (b h)^2 / 12 < 1e-5, and the
+    # rod's own mass split half and half at the unit's node
+    assert np.abs(lin.transfer[:, 0]) == pytest.approx(np.abs(tension(length - h / 2)),
+                                                       rel=1e-3)
+    assert np.abs(lin.transfer[:, 1]) == pytest.approx(np.abs(tension(h / 2)), rel=1e-3)
+    assert np.abs(lin.transfer[:, 2]) == pytest.approx(np.abs(a), rel=1e-3)
+    # the wire's inertia is visible: the two tensions differ by more than 1 %
+    assert np.all(np.abs(np.abs(lin.transfer[:, 0] / lin.transfer[:, 1]) - 1.0) > 0.01)
+
+
 def test_time_runs_equal_the_linear_curve_off_resonance() -> None:
     """Fourier amplitude, half range and the linear transfer function agree off
     resonance; every run is periodic."""
