@@ -123,10 +123,10 @@ def cmd_response(args: argparse.Namespace) -> int:
                                  progress=lambda done, total: bar(done, total))
     title = scene.meta.get("title", Path(args.file).stem)
     with interrupt.deferred():
-        return _outputs(args, res, title)
+        return _outputs(args, res, title, scene.response)
 
 
-def _outputs(args: argparse.Namespace, res: Any, title: str) -> int:
+def _outputs(args: argparse.Namespace, res: Any, title: str, defaults: Any) -> int:
     """The text, JSON, CSV and figure of a finished (or interrupted) sweep."""
     lin = res.linear
     if out.stdout_free(args):
@@ -154,5 +154,7 @@ def _outputs(args: argparse.Namespace, res: Any, title: str) -> int:
     if args.plot:
         from cable_ocp.plots.response import plot_response
 
-        out.emit_plot(args, lambda path: plot_response(res, path, title=title))
+        out.emit_plot(args, lambda path: plot_response(
+            res, path, title=title, tension_scale=defaults.tension_scale,
+            frequency_scale=defaults.frequency_scale))
     return out.EXIT_OK if res.success else out.EXIT_NOT_SUCCESS

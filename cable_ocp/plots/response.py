@@ -3,7 +3,11 @@ output, the amplitude ratio (the response amplitude operator, amplitude / A) aga
 excitation frequency; the linear transfer function of the modes as a line, the time runs
 as points (filled: the Fourier amplitude at the excitation frequency; open: the half range
 (max - min) / 2; crosses: runs that were not periodic or went slack), the natural
-frequencies as dashed vertical lines.
+frequencies as dashed vertical lines. The ratio axis is logarithmic when the ratios span
+more than two decades (an undamped resonance). With ``tension_scale`` K (N/m) a tension's
+ratio is plotted divided by K, and with ``frequency_scale`` w_ref (rad/s) the frequency
+axis is w / w_ref: Fig. 3.5's (T_max - T_static) / (K x0) against w / w_nc (3.3.3:
+K = 380 N/m, w_nc = 1.1 Hz).
 """
 
 from __future__ import annotations
@@ -29,7 +33,8 @@ def _label(name: str) -> str:
     return f"node {node} {axis[-1]}"
 
 
-def response_figure(res: Any, title: str = "") -> Figure:
+def response_figure(res: Any, title: str = "", tension_scale: float | None = None,
+                    frequency_scale: float | None = None) -> Figure:
     """The figure of :func:`plot_response`, not saved.
 
     Parameters
@@ -38,6 +43,10 @@ def response_figure(res: Any, title: str = "") -> Figure:
         The sweep (:func:`cable_ocp.batch.response.frequency_response`).
     title : str
         The figure's title.
+    tension_scale : float, optional
+        K, N/m: the tensions' ratios are plotted divided by it (dimensionless).
+    frequency_scale : float, optional
+        w_ref, rad/s: the frequency axis is w / w_ref.
     """
     n = len(res.outputs)
     fig = new_figure(6.4, 2.5 * n + 0.9)
@@ -46,37 +55,48 @@ def response_figure(res: Any, title: str = "") -> Figure:
     colors = [f"C{i}" for i in range(max(1, res.amplitudes.size))]
     curve = res.linear_curve
     nat = np.asarray(res.linear.natural_frequencies, dtype=float)
-    lo, hi = float(np.min(res.frequencies)), float(np.max(res.frequencies))
+    fs = float(frequency_scale) if frequency_scale else 1.0
+    freqs = np.asarray(res.frequencies, dtype=float) / fs
+    lo, hi = float(np.min(freqs)), float(np.max(freqs))
     for k, (ax, name, unit) in enumerate(zip(axes, res.outputs, res.units, strict=True)):
-        ratio_unit = "N/m" if unit == "N" else "m/m"
+        scale = float(tension_scale) if (tension_scale and unit == "N") else 1.0
+        ratio_unit = ("-" if scale != 1.0 else "N/m") if unit == "N" else "m/m"
+        values = [res.rao[:, :, k] / scale, res.half_range[:, :, k]
+                  / res.amplitudes[:, None] / scale]
         if curve.status == "solved":
-            rao = curve.rao[:, k]
-            top = np.nanmax(res.rao[:, :, k]) if np.isfinite(res.rao[:, :, k]).any() else 0.0
-            cap = 3.0 * max(float(top), float(np.nanmedian(rao)) if rao.size else 0.0)
-            shown = np.where(rao <= cap, rao, np.nan) if cap > 0 else rao
-            h, = ax.plot(curve.frequencies, shown, "-", color="0.25", lw=1.3,
+            rao = curve.rao[:, k] / scale
+            values.append(rao)
+            h, = ax.plot(curve.frequencies / fs, rao, "-", color="0.25", lw=1.3,
                          label="linear transfer function of the modes")
             handles.append(h)
         for a, amp in enumerate(res.amplitudes):
             ok = res.run_status[a] == "solved"
             c = colors[a % len(colors)]
-            h1, = ax.plot(res.frequencies[ok], res.rao[a, ok, k], "o", color=c, ms=5,
+            h1, = ax.plot(freqs[ok], res.rao[a, ok, k] / scale, "o", color=c, ms=5,
                           label=f"time runs, A = {amp:g} m: Fourier amplitude")
-            h2, = ax.plot(res.frequencies, res.half_range[a, :, k] / amp, "o", mfc="none",
+            h2, = ax.plot(freqs, res.half_range[a, :, k] / amp / scale, "o", mfc="none",
                           color=c, ms=8, lw=0, label=f"A = {amp:g} m: (max - min) / 2")
             bad = ~ok
             if bad.any():
-                h3, = ax.plot(res.frequencies[bad], res.rao[a, bad, k], "x", color="C3",
+                h3, = ax.plot(freqs[bad], res.rao[a, bad, k] / scale, "x", color="C3",
                               ms=7, label="not periodic, slack or failed")
                 handles.append(h3)
             handles += [h1, h2]
-        for w in nat[(nat >= lo) & (nat <= hi)]:
-            hn = ax.axvline(w, ls="--", color="C7", lw=1.0, label="natural frequencies")
+        for w in nat[(nat >= lo * fs) & (nat <= hi * fs)]:
+            hn = ax.axvline(w / fs, ls="--", color="C7", lw=1.0, label="natural frequencies")
             handles.append(hn)
-        ax.set_ylabel(f"{_label(name)} / A ({ratio_unit})")
-        ax.set_ylim(bottom=0.0)
+        what = f"{_label(name)} / A" + (f" / {scale:g} N/m" if scale != 1.0 else "")
+        ax.set_ylabel(f"{what} ({ratio_unit})")
+        pos = np.concatenate([np.ravel(v) for v in values])
+        pos = pos[np.isfinite(pos) & (pos > 0)]
+        if pos.size and pos.max() > 100.0 * max(pos.min(), 1e-300):
+            ax.set_yscale("log")
+            ax.set_ylim(max(pos.min(), pos.max() * 1e-6) / 2.0, pos.max() * 2.0)
+        else:
+            ax.set_ylim(bottom=0.0)
         ax.grid(alpha=0.3)
-    axes[-1].set_xlabel("excitation frequency (rad/s)")
+    axes[-1].set_xlabel("excitation frequency (rad/s)" if fs == 1.0 else
+                        f"excitation frequency / {fs:.4g} rad/s (-)")
     axes[-1].set_xlim(lo - 0.02 * (hi - lo), hi + 0.02 * (hi - lo))
     if title:
         fig.suptitle(title)
@@ -84,7 +104,9 @@ def response_figure(res: Any, title: str = "") -> Figure:
     return fig
 
 
-def plot_response(res: Any, path: str | Path, title: str = "") -> Figure:
+def plot_response(res: Any, path: str | Path, title: str = "",
+                  tension_scale: float | None = None,
+                  frequency_scale: float | None = None) -> Figure:
     """Save the frequency-response figure (module docstring) to ``path``.
 
     Parameters
@@ -95,7 +117,11 @@ def plot_response(res: Any, path: str | Path, title: str = "") -> Figure:
         The file; its suffix picks the format.
     title : str
         The figure's title.
+    tension_scale : float, optional
+        K, N/m: the tensions' ratios divided by it.
+    frequency_scale : float, optional
+        w_ref, rad/s: the frequency axis as w / w_ref.
     """
-    fig = response_figure(res, title)
+    fig = response_figure(res, title, tension_scale, frequency_scale)
     save(fig, path)
     return fig

@@ -15,6 +15,10 @@ Schema (all optional; the command line wins)::
     max_periods = 192               cap on the periods of a time run after the ramp
     ramp_periods = 10.0             periods of the smooth ramp-in of the motion (an undamped
                                     line keeps the free vibration a short ramp starts)
+    tension_scale = 380.0           N/m: the figure plots the tensions' ratios divided by
+                                    it (Fig. 3.5's K)
+    frequency_scale = 6.912         rad/s: the figure's frequency axis as w / it (Fig.
+                                    3.5's omega_nc)
 """
 
 from __future__ import annotations
@@ -28,7 +32,8 @@ from cable_ocp.scene.fields import check_keys, choice, integer, number
 __all__ = ["RESPONSE_KEYS", "ResponseDefaults", "parse_response"]
 
 RESPONSE_KEYS = {"frequencies", "amplitudes", "outputs", "excitation", "damping_ratio",
-                 "tolerance", "max_periods", "ramp_periods"}
+                 "tolerance", "max_periods", "ramp_periods",
+                 "tension_scale", "frequency_scale"}
 
 
 @dataclass(frozen=True)
@@ -53,6 +58,10 @@ class ResponseDefaults:
         Periods.
     ramp_periods : float or None
         Periods.
+    tension_scale : float or None
+        N/m (the figure only).
+    frequency_scale : float or None
+        rad/s (the figure only).
     """
 
     frequencies: tuple[float, float, int] | None = None
@@ -63,6 +72,8 @@ class ResponseDefaults:
     tolerance: float | None = None
     max_periods: int | None = None
     ramp_periods: float | None = None
+    tension_scale: float | None = None
+    frequency_scale: float | None = None
 
 
 def parse_response(t: Any) -> ResponseDefaults:
@@ -108,6 +119,8 @@ def parse_response(t: Any) -> ResponseDefaults:
         if "max_periods" in t else None
     ramp = number(t["ramp_periods"], "response.ramp_periods", nonneg=True) \
         if "ramp_periods" in t else None
+    scales = {k: number(t[k], f"response.{k}", positive=True)
+              for k in ("tension_scale", "frequency_scale") if k in t}
     return ResponseDefaults(frequencies=freqs, amplitudes=amps, outputs=outs, excitation=exc,
                             damping_ratio=zeta, tolerance=tol, max_periods=cap,
-                            ramp_periods=ramp)
+                            ramp_periods=ramp, **scales)
