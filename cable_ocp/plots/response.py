@@ -61,11 +61,15 @@ def response_figure(res: Any, title: str = "", tension_scale: float | None = Non
     for k, (ax, name, unit) in enumerate(zip(axes, res.outputs, res.units, strict=True)):
         scale = float(tension_scale) if (tension_scale and unit == "N") else 1.0
         ratio_unit = ("-" if scale != 1.0 else "N/m") if unit == "N" else "m/m"
-        values = [res.rao[:, :, k] / scale, res.half_range[:, :, k]
-                  / res.amplitudes[:, None] / scale]
+        half = res.half_range[:, :, k] / res.amplitudes[:, None] / scale
+        fourier = res.rao[:, :, k] / scale
+        # the axis follows the time runs and the linear values at the swept frequencies
+        # (an undamped linear peak runs off the top; a Fourier amplitude far below the half
+        # range, an output at 2 w, off the bottom)
+        values = [half, np.where(fourier >= 1e-3 * half, fourier, np.nan),
+                  res.linear.rao[:, k] / scale]
         if curve.status == "solved":
             rao = curve.rao[:, k] / scale
-            values.append(rao)
             h, = ax.plot(curve.frequencies / fs, rao, "-", color="0.25", lw=1.3,
                          label="linear transfer function of the modes")
             handles.append(h)
@@ -89,9 +93,11 @@ def response_figure(res: Any, title: str = "", tension_scale: float | None = Non
         ax.set_ylabel(f"{what} ({ratio_unit})")
         pos = np.concatenate([np.ravel(v) for v in values])
         pos = pos[np.isfinite(pos) & (pos > 0)]
-        if pos.size and pos.max() > 100.0 * max(pos.min(), 1e-300):
+        if pos.size and pos.max() > 100.0 * pos.min():
             ax.set_yscale("log")
-            ax.set_ylim(max(pos.min(), pos.max() * 1e-6) / 2.0, pos.max() * 2.0)
+            ax.set_ylim(max(pos.min(), pos.max() * 1e-6) / 2.0, pos.max() * 3.0)
+        elif pos.size:
+            ax.set_ylim(0.0, 1.3 * pos.max())
         else:
             ax.set_ylim(bottom=0.0)
         ax.grid(alpha=0.3)
