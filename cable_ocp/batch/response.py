@@ -195,7 +195,9 @@ def steady_run(data: dict[str, Any], kind: str, outputs: Sequence[str], omega: f
     (status, message, values)
         ``values``: ``"{output}_{field}"`` for the fields of :data:`FIT_FIELDS`, and
         ``periods`` (after the ramp), ``change`` (the largest relative change over the
-        outputs between the last two periods), ``simulation_wall_time`` (s).
+        outputs between the last two periods), ``min_tension`` (the smallest element
+        tension of the run, N: <= 0 where it went slack, also before a failed step) and
+        ``simulation_wall_time`` (s).
     """
     from cable_ocp.dynamics.simulation import simulate
     from cable_ocp.scene.dynamics import dynamic_scene_from_dict
@@ -208,9 +210,12 @@ def steady_run(data: dict[str, Any], kind: str, outputs: Sequence[str], omega: f
             apply_overrides(data, _run_overrides(data, kind, omega, amplitude, periods, st)))
         res = simulate(scene)
         wall += res.wall_time_s
-        values: dict[str, Any] = {"periods": periods, "simulation_wall_time": wall}
+        values: dict[str, Any] = {"periods": periods, "simulation_wall_time": wall,
+                                  "min_tension": res.min_tension}
         if res.status not in ("solved", "slack") or res.t.size < 8:
-            return str(res.status), res.message, values
+            low = res.min_tension
+            tail = f" (smallest tension before: {low:.3g} N)" if math.isfinite(low) else ""
+            return str(res.status), res.message + tail, values
         t = np.asarray(res.t, dtype=float)
         change = 0.0
         for name in outputs:
@@ -246,7 +251,8 @@ class ResponseRunner(Runner):
         for name in self.options["outputs"]:
             u = output_unit(name)
             cols += [f"{name}_{f} [{'rad' if f == 'phase' else u}]" for f in FIT_FIELDS]
-        return cols + ["periods [-]", "change [-]", "simulation_wall_time [s]"]
+        return cols + ["periods [-]", "change [-]", "min_tension [N]",
+                       "simulation_wall_time [s]"]
 
     def _run(self, case: Case) -> tuple[str, str, dict[str, Any]]:
         amp_key, freq_key = excitation_keys(self.options["kind"])
@@ -260,6 +266,7 @@ class ResponseRunner(Runner):
             for f in FIT_FIELDS:
                 out[f"{name}_{f} [{'rad' if f == 'phase' else u}]"] = vals.get(f"{name}_{f}")
         out.update({"periods [-]": vals.get("periods"), "change [-]": vals.get("change"),
+                    "min_tension [N]": vals.get("min_tension"),
                     "simulation_wall_time [s]": vals.get("simulation_wall_time")})
         return status, msg, out
 
@@ -299,6 +306,8 @@ class ResponseResult:
         Per run, what its status means.
     periods, change : ndarray (n_a, n_f)
         Periods run after the ramp; the largest relative change between the last two.
+    min_tension : ndarray (n_a, n_f)
+        The smallest element tension of each run, N (<= 0: slack, also before a failure).
     linear : LinearResponse
         The transfer function at ``frequencies``; ``linear_curve`` on a dense grid.
     status : Status
@@ -324,6 +333,7 @@ class ResponseResult:
     run_message: np.ndarray
     periods: np.ndarray
     change: np.ndarray
+    min_tension: np.ndarray
     linear: LinearResponse
     linear_curve: LinearResponse
     status: Status
@@ -342,7 +352,8 @@ class ResponseResult:
 
     def table(self) -> tuple[list[str], list[list[Any]]]:
         """(header, rows) of the CSV: one row per amplitude and frequency."""
-        head = ["amplitude [m]", "frequency [rad/s]", "status", "periods [-]", "change [-]"]
+        head = ["amplitude [m]", "frequency [rad/s]", "status", "periods [-]", "change [-]",
+                "min_tension [N]"]
         for name, u in zip(self.outputs, self.units, strict=True):
             head += [f"{name}_amplitude [{u}]", f"{name}_rao [{u}/m]",
                      f"{name}_half_range [{u}]", f"{name}_max [{u}]",
@@ -351,7 +362,8 @@ class ResponseResult:
         for a, amp in enumerate(self.amplitudes):
             for f, w in enumerate(self.frequencies):
                 row: list[Any] = [float(amp), float(w), str(self.run_status[a, f]),
-                                  _num(self.periods[a, f]), _num(self.change[a, f])]
+                                  _num(self.periods[a, f]), _num(self.change[a, f]),
+                                  _num(self.min_tension[a, f])]
                 for k in range(len(self.outputs)):
                     row += [_num(self.amplitude[a, f, k]), _num(self.rao[a, f, k]),
                             _num(self.half_range[a, f, k]), _num(self.peak[a, f, k]),
@@ -380,7 +392,8 @@ class ResponseResult:
                 "status": [[str(s) for s in r] for r in self.run_status],
                 "message": [[str(s) for s in r] for r in self.run_message],
                 "periods": [[_num(v) for v in r] for r in self.periods],
-                "change": [[_num(v) for v in r] for r in self.change]},
+                "change": [[_num(v) for v in r] for r in self.change],
+                "min_tension_N": [[_num(v) for v in r] for r in self.min_tension]},
             "linear": {
                 "status": lin.status, "message": lin.message,
                 "natural_frequencies_rad_s": [float(w) for w in lin.natural_frequencies],
@@ -548,6 +561,7 @@ def frequency_response(problem: str | Path | dict[str, Any], frequencies: Sequen
     run_message = np.full(shape, "not run (interrupted)", dtype=object)
     periods = np.full(shape, np.nan)
     change = np.full(shape, np.nan)
+    min_tension = np.full(shape, np.nan)
     for i in range(len(cases)):
         row = rows.get(i)
         if row is None:
@@ -558,6 +572,8 @@ def frequency_response(problem: str | Path | dict[str, Any], frequencies: Sequen
         periods[a, f] = row.get("periods [-]") if row.get("periods [-]") is not None \
             else np.nan
         change[a, f] = row.get("change [-]") if row.get("change [-]") is not None else np.nan
+        if row.get("min_tension [N]") is not None:
+            min_tension[a, f] = row["min_tension [N]"]
         for k, name in enumerate(names):
             u = output_unit(name)
             for fld in FIT_FIELDS:
@@ -586,5 +602,6 @@ def frequency_response(problem: str | Path | dict[str, Any], frequencies: Sequen
         units=[output_unit(n) for n in names], excitation=kind,
         amplitude=fits["amplitude"], half_range=fits["half_range"], mean=fits["mean"],
         peak=fits["max"], phase=fits["phase"], run_status=run_status,
-        run_message=run_message, periods=periods, change=change, linear=lin,
+        run_message=run_message, periods=periods, change=change, min_tension=min_tension,
+        linear=lin,
         linear_curve=curve, status=status, message=msg, diagnostics=diag)
