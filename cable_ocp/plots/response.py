@@ -2,7 +2,8 @@
 output, the amplitude ratio (the response amplitude operator, amplitude / A) against the
 excitation frequency; the linear transfer function of the modes as a line, the time runs
 as points (filled: the Fourier amplitude at the excitation frequency; open: the half range
-(max - min) / 2; crosses: runs that were not periodic or went slack), the natural
+(max - min) / 2; crosses: runs that were not periodic or went slack; triangles on the
+frequency axis: runs that failed and have no amplitude), the natural
 frequencies as dashed vertical lines. The ratio axis is logarithmic when the ratios span
 more than two decades (an undamped resonance). With ``tension_scale`` K (N/m) a tension's
 ratio is plotted divided by K, and with ``frequency_scale`` w_ref (rad/s) the frequency
@@ -85,6 +86,12 @@ def response_figure(res: Any, title: str = "", tension_scale: float | None = Non
                 h3, = ax.plot(freqs[bad], res.rao[a, bad, k] / scale, "x", color="C3",
                               ms=7, label="not periodic, slack or failed")
                 handles.append(h3)
+            lost = ~np.isfinite(res.rao[a, :, k])
+            if lost.any():  # no number (a failed step): marked on the frequency axis
+                h4, = ax.plot(freqs[lost], np.full(int(lost.sum()), 0.03), "v", color="C3",
+                              ms=7, transform=ax.get_xaxis_transform(), clip_on=False,
+                              label="run failed (no amplitude)")
+                handles.append(h4)
             handles += [h1, h2]
         for w in nat[(nat >= lo * fs) & (nat <= hi * fs)]:
             hn = ax.axvline(w / fs, ls="--", color="C7", lw=1.0, label="natural frequencies")
