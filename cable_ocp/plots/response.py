@@ -88,9 +88,9 @@ def response_figure(res: Any, title: str = "", tension_scale: float | None = Non
                 handles.append(h3)
             lost = ~np.isfinite(res.rao[a, :, k])
             if lost.any():  # no number (a failed step): marked on the frequency axis
-                h4, = ax.plot(freqs[lost], np.full(int(lost.sum()), 0.03), "v", color="C3",
-                              ms=7, transform=ax.get_xaxis_transform(), clip_on=False,
-                              label="run failed (no amplitude)")
+                h4, = ax.plot(freqs[lost], np.full(int(lost.sum()), 0.03 + 0.05 * a), "v",
+                              color=c, ms=7, transform=ax.get_xaxis_transform(),
+                              clip_on=False, label=f"A = {amp:g} m: run failed (no amplitude)")
                 handles.append(h4)
             handles += [h1, h2]
         for w in nat[(nat >= lo * fs) & (nat <= hi * fs)]:

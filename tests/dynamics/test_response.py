@@ -212,8 +212,8 @@ def test_cli_outputs_and_exit_codes(tmp_path: Path, capsys: pytest.CaptureFixtur
     js, cs = tmp_path / "r.json", tmp_path / "r.csv"
     rc = main(["response", str(AIR), "--frequencies", "5:15:2", "--amplitudes", "0.002",
                "--outputs", "unit_z", "--workers", "0", "--json", str(js), "--csv", str(cs),
-               "--quiet", *_spring_args()])
-    assert rc == 0
+               "--plot", str(tmp_path / "r.png"), "--quiet", *_spring_args()])
+    assert rc == 0 and (tmp_path / "r.png").stat().st_size > 0
     d = json.loads(js.read_text())
     assert d["status"] == "solved" and d["excitation"] == "heave"
     assert d["linear"]["natural_frequencies_rad_s"][0] == pytest.approx(math.sqrt(K / M),
