@@ -5,7 +5,8 @@ of the delay treatments, and draws the trade-off curves J_d, J_v (6.16)-(6.17) a
 winch-speed energy J_w = int u'^2 dt on a seeded Pierson-Moskowitz boom-tip record
 (Hs = 6 m, Tz = 14 s, Fig. 6.10). The thesis plots against J_c = sum G_i^2 (6.18); that
 depends on the state realisation of a Pade design, J_w does not
-(:func:`cable_ocp.heave.lqr.tradeoff_data`).
+(:func:`cable_ocp.heave.lqr.tradeoff_data`). The printed gains simulated in closed loop (Figs.
+6.14-6.17): ``examples/heave_printed_gains_6_2_6.py``.
 
 Run:  python examples/heave_regulator_6_2_6.py [--out heave_regulator_6_2_6.png]
       [--duration 200] [--seed 2]

@@ -22,7 +22,7 @@ from cable_ocp.heave import sea
 from cable_ocp.heave import stochastic as st
 from cable_ocp.heave.thesis import A_636, B_636, HS_636, KV_636, WM_636, WV_636, ZETA_V_636
 
-Q_636 = 553.6
+Q_636 = 553.6  # 1/m^2: a calibration, fitted so that the LQR gives SIGMA_636 (no weights in 6.3.6)
 SIGMA_636 = 2.96e-4  # m, the controlled sigma of Huang (1992), section 6.3.6 (Fig. 6.24)
 
 

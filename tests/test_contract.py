@@ -25,7 +25,7 @@ ROOT = Path(__file__).resolve().parents[1]
 DEZOYSA = ROOT / "problems" / "dezoysa_sea_buggy.toml"
 FOOTPRINT = ROOT / "problems" / "footprint_tethered_unit.toml"
 HEAVE = ROOT / "problems" / "heave" / "ex_6_3_6.toml"
-HEAVE_626 = ROOT / "problems" / "heave" / "ex_6_2_6.toml"
+HEAVE_626 = ROOT / "problems" / "heave" / "compare_6_2_6.toml"
 #: a short heave run: every controller is designed, built and simulated
 SHORT = ["--duration", "3", "--set", "simulation.warmup=1"]
 
@@ -228,7 +228,7 @@ def test_heave_message_in_the_statics_style(capsys: Any, no_work: None) -> None:
 
 def test_heave_zero_crossing_period_overflow(tmp_path: Path, capsys: Any, no_work: None
                                              ) -> None:
-    # OverflowError before (ex_6_2_6 gives the sea by its zero-crossing period)
+    # OverflowError before (compare_6_2_6 gives the sea by its zero-crossing period)
     input_error(capsys, "heave", HEAVE_626, "--set", "sea.zero_crossing_period=1e-300",
                 names="sea.zero_crossing_period")
 

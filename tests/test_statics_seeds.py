@@ -149,9 +149,9 @@ def test_vector_law_differs_in_3d(problems, dezoysa_sweep):
 
 
 def test_chucheepsakul_free_length(problems):
-    """Chucheepsakul (1991) Table 2 at psi0 = 0 (315 m) with our reading of the unprinted top
-    tension
-    (5000 N, see the problem file), to the 1 m the table prints. The cable leaves its
+    """Chucheepsakul (1991) Table 2 at psi0 = 0 (315 m) with the unprinted top tension
+    calibrated to this very column (5000 N, see the problem file): a check of the
+    calibration, not an independent reproduction, to the 1 m the table prints. The cable leaves its
     anchor 0.1 deg below horizontal and dips 0.34 mm below it (an independent shooting
     agrees, test_statics_kinks.py): within the cable's 11.5 mm radius, so the cable
     touches the seabed there: solved, with a warning that says so."""

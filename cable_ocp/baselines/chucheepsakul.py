@@ -37,6 +37,11 @@ smoothing), with the actual current vector (any heading, depth profile) and the 
 of ``solver.vertical_blend`` is applied as in the main solver) or ``"vector"``. Chucheepsakul
 (1991)'s eqs (5)-(7), (11)-(12) square the flow components without sign and its eq. (5) lacks the pi
 of the perimeter; both are corrected here (Wang et al. 1993, eq. (4) has pi D).
+``solve_fem(..., signed_drag=False)`` keeps the sign-free form (with pi D) to show what it
+gives: a reversed current gives the same loads, so the sea buggy's length repeats after
+180 deg of psi0, and it does not give the paper's Table 2 either (docs/baselines.md,
+"Chucheepsakul & Subwonglee's Table 2"; the 5000 N top tension of
+``problems/chucheepsakul_top_tension.toml`` is calibrated to that table's first column).
 
 Wang et al. (1993) Table 1 gives "Chucheepsakul (1991)", 20 elements, for Berteaux: 3016 m, 90.4
 deg, 35.7 deg. With (13) as derived we get 3013.30 m, 90.24 deg, 36.29 deg (= Wang's and the
@@ -156,10 +161,20 @@ class FemProblem:
     tangential_in_tension : bool, default True
         Keep the tangential-drag integral in the tension, Chucheepsakul (1991) eq. (13) as
         derived (see the module docstring); False drops it, eq. (14).
+    signed_drag : bool, default True
+        The componentwise drag with the modulus signs (Wang et al. 1993); False squares the
+        flow components without sign, as Chucheepsakul (1991) eqs (5)-(7) print them
+        (``drag_law = "componentwise"`` only; see the module docstring).
     """
 
-    def __init__(self, scene: Scene, elements: int, tangential_in_tension: bool = True):
+    def __init__(self, scene: Scene, elements: int, tangential_in_tension: bool = True,
+                 signed_drag: bool = True):
         self.tangential_in_tension = tangential_in_tension
+        self.signed_drag = signed_drag
+        if not signed_drag and scene.cable.drag_law != "componentwise":
+            raise CableOCPError(f"cable.drag_law = {scene.cable.drag_law!r}: the sign-free "
+                                "drag of Chucheepsakul (1991) eqs (5)-(7) needs "
+                                "\"componentwise\"")
         ea, eb = scene.end_a, scene.end_b
         za, zb = rising_fixed_ends(
             scene, METHOD, "Chucheepsakul (1991) fixes both ends and integrates in z between them")
@@ -242,7 +257,8 @@ class FemProblem:
         cab = self.cable
         return drag_per_length_np(cab.drag_law, self.velocity(z), t, rho=self.rho,
                                   diameter=cab.diameter, normal_drag=cab.normal_drag,
-                                  tangential_drag=cab.tangential_drag, blend=self.blend)
+                                  tangential_drag=cab.tangential_drag, blend=self.blend,
+                                  signed=self.signed_drag)
 
     def _dtdz_parts(self, z: np.ndarray, g: np.ndarray) -> np.ndarray:
         """P_t S (N/m per unit height): the drag part of -dT/dz (Chucheepsakul 1991, eq. (13)); zero
@@ -557,7 +573,7 @@ def solve(scene: Scene, warm_start: StaticsSolution | None = None) -> StaticsSol
 
 
 def solve_fem(scene: Scene, warm_start: StaticsSolution | None = None,
-              tangential_in_tension: bool = True) -> StaticsSolution:
+              tangential_in_tension: bool = True, signed_drag: bool = True) -> StaticsSolution:
     """Solve a scene with Chucheepsakul & Subwonglee's variational FEM (Chucheepsakul 1991, eqs
     (8)-(20)).
 
@@ -572,6 +588,9 @@ def solve_fem(scene: Scene, warm_start: StaticsSolution | None = None,
     tangential_in_tension : bool
         False drops the P_t integral from the tension, Chucheepsakul (1991) eq. (14) (for comparison
         with Wang et al. (1993) Table 1's "Chucheepsakul (1991)" column; see the module docstring).
+    signed_drag : bool
+        False squares the flow components without sign, Chucheepsakul (1991) eqs (5)-(7) as
+        printed (to show what that law gives for its Table 2; see the module docstring).
 
     Returns
     -------
@@ -588,7 +607,7 @@ def solve_fem(scene: Scene, warm_start: StaticsSolution | None = None,
         If the scene cannot be represented with z as the independent variable.
     """
     n = scene.solver.intervals
-    fem = FemProblem(scene, n, tangential_in_tension)
+    fem = FemProblem(scene, n, tangential_in_tension, signed_drag)
     tol = scene.solver.tolerance
     max_it = max(scene.solver.max_iterations, 200)
     diag: dict = {"method": METHOD, "elements": n, "gauss_points": GAUSS_POINTS,

@@ -13,7 +13,7 @@ import numpy as np
 from cable_ocp.cli import output as out
 from cable_ocp.numerics.text_table import MISSING, WIDTH, table
 
-CONTROLLERS = ("passive", "lqr", "lqg", "mpc")
+CONTROLLERS = ("passive", "lqr", "lqg", "mpc", "phc", "phc+lqr", "phc+lqg", "phc+mpc")
 
 
 def register(sub: argparse._SubParsersAction, parent: argparse.ArgumentParser) -> None:
@@ -107,6 +107,13 @@ def cmd_heave(args: argparse.Namespace) -> int:
             header += [f"{k}_unit_heave [m]", f"{k}_winch_output [m]", f"{k}_winch_speed [m/s]",
                        f"{k}_command [m]"]
             cols += [tr.x, tr.u, tr.u_dot, tr.u0]
+            # the line tension, the winch motor and the passive compensator, where known
+            for key, label in (("tension", "tension [N]"), ("torque", "torque [N m]"),
+                               ("power", "power [W]"), ("stroke_phc", "phc_stroke [m]")):
+                series = getattr(tr, key, None)
+                if series is not None:
+                    header.append(f"{k}_{label}")
+                    cols.append(series)
         out.emit_csv(args, header, np.column_stack(cols).tolist(), partial=stopped)
     if stopped:
         raise KeyboardInterrupt
@@ -167,6 +174,17 @@ def heave_table(res: Any) -> str:
              _num(m.max_stroke, ".3f"), _num(m.winch_speed_rms, ".3f"),
              _num(m.energy_index, ".2f"), _num(m.max_constraint_violation, ".3f"),
              _num(m.solve_time_median_s, ".2e")] for name, m in res.metrics.items()]
+    # the winch motor and the passive compensator, where the scene has them
+    extra = [("peak_torque", "peak tau", "[kN m]", 1e3), ("peak_power", "peak P", "[kW]", 1e3),
+             ("max_stroke_phc", "max |delta|", "[m]", 1.0),
+             ("stop_time_phc", "at stops", "[s]", 1.0)]
+    for key, head, unit, scale in extra:
+        vals = [getattr(m, key, None) for m in res.metrics.values()]
+        if any(v is not None for v in vals):
+            hdr.append(head)
+            units.append(unit)
+            for row, v in zip(rows, vals, strict=True):
+                row.append(_num(v, ".2f", scale))
     return table(hdr, rows, units, left=1)
 
 

@@ -20,11 +20,16 @@ modal             modes: the linearisation about the static state, the deploymen
 response          the frequency response to a harmonic top motion: the outputs, the harmonic
                   fit of a time run and the linear transfer function of the modes
 static            the static start of a dynamic scene
+bending_terms     bending stiffness (EI) in the planar and lumped lines: the hinges of
+                  cable_ocp.physics.bending on the nodes, the clamped top
+planar_line       the planar line's properties per element (segments on the grid)
 axial, planar     the axial and planar lines; vertical_line their coefficients, stepping
                   their chunked time loop, driven their steps with the top as an input,
                   axial_thesis Huang's own axial scheme
 lumped            the 3D lumped-mass line: lumped_params, lumped_equations, lumped_kernel,
-                  lumped_run, lumped_scene, lumped_driven, lumped_thesis (Huang's (5.21))
+                  lumped_run, lumped_scene, lumped_driven, lumped_thesis (Huang's (5.21));
+                  lumped_payout its pay-out and haul-in (nodes enter and leave at the
+                  winch), lumped_payout_run a lumped3d scene with a pay-out run
 """
 
 from cable_ocp.dynamics.modal import modes

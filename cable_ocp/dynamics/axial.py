@@ -19,6 +19,12 @@ material point only when the strain is neglected; the two differ by terms of ord
 (strain x pay-out speed). The drag is taken per stretched length (the factor 1 + e) as in
 Huang's (2.46); Huang's (3.1) omits it (a relative change of order the strain).
 
+Materials (:mod:`cable_ocp.physics.elasticity`, :func:`~cable_ocp.physics.elasticity.
+axial_law_tension`): with ``[cable] tension_strain`` T = u(e) + c e_t (the table's PCHIP);
+with ``[cable] viscoelastic`` T = EA_s e + (EA_d - EA_s)(e - e_v) + c e_t, each element's
+dashpot strain e_v a state, e_v,t = (e - e_v) / tau + (y L_t / L) e_v,y (carried with the
+material during pay-out; central differences between elements, one-sided at the ends).
+
 Fixed-domain transformation (Huang's (3.4)-(3.7), measured here from the unit): with
 y = s / L(t) in [0, 1] and the unknowns Z(y, t) = z(yL, t) and the material velocity
 V(y, t) = z_t(yL, t), the chain rule gives the first-order system::
@@ -83,7 +89,7 @@ from cable_ocp.dynamics.stepping import chunk_functions, run_chunks
 from cable_ocp.dynamics.vertical_line import vertical_line
 from cable_ocp.errors import CableOCPError
 from cable_ocp.physics.drag import quadratic_drag
-from cable_ocp.physics.elasticity import kelvin_voigt_tension
+from cable_ocp.physics.elasticity import axial_law_tension
 from cable_ocp.scene.dynamics import DynamicScene
 from cable_ocp.scene.motion import motion_function
 
@@ -156,6 +162,11 @@ class AxialModel:
         self.mu = line.mass_per_length
         self.w = line.weight_per_length
         self.c = float(scene.cable[0].axial_damping)
+        cab = scene.statics.cable
+        #: the tension-strain table (None: linear) and the standard linear solid (None:
+        #: elastic); with the solid the state carries each element's dashpot strain e_v
+        self.table = cab.strain_table
+        self.solid = cab.viscoelastic.law(cab.axial_stiffness) if cab.viscoelastic else None
         self.k_drag = line.drag_factor
         self.unit_mass = line.unit_mass
         self.unit_weight = line.unit_weight
@@ -188,7 +199,7 @@ class AxialModel:
         fields of the initial state, which is at rest, before the motion starts (t = 0-).
         """
         n = self.n
-        zeta, vel = x[:n], x[n:]
+        zeta, vel = x[:n], x[n:2 * n]
         length, dl, ddl, xb, vb, ab = self.motion(t)
         if top_at_rest:
             dl, ddl, vb, ab = 0.0 * dl, 0.0 * ddl, 0.0 * vb, 0.0 * ab
@@ -203,12 +214,14 @@ class AxialModel:
         v_top = vb[2] - dl * (1.0 + zeta_y_top / length)
         v_full = ca.vertcat(vel, v_top)
         eps_dot = (v_full[1:] - v_full[:-1]) / h
-        tension = kelvin_voigt_tension(eps, eps_dot, self.ea, self.c)
+        e_v = x[2 * n:3 * n] if self.solid is not None else None
+        tension = axial_law_tension(eps, eps_dot, self.ea, self.c, table=self.table,
+                                    solid=self.solid, internal_strain=e_v)
         y = ca.DM(np.arange(n + 1) / n)
         heights = z_full + xb[2] - length * (1.0 - y)
         return dict(zeta=zeta, vel=vel, length=length, dl=dl, ddl=ddl, vb=vb, ab=ab, h=h,
                     dy=dy, z_full=z_full, v_full=v_full, eps=eps, tension=tension,
-                    heights=heights)
+                    heights=heights, e_v=e_v)
 
     def rhs(self, t: Any, x: Any) -> Any:
         """Time derivative of the state (CasADi expression).
@@ -242,7 +255,19 @@ class AxialModel:
             acc.append((ten[i] - ten[i - 1] - h * (self.w + drag[i])) / (self.mu * h)
                        + adv[i] * vy)
             dz.append(vel[i] + ref_rate + adv[i] * zy)
-        return ca.vertcat(*dz, *acc)
+        if self.solid is None:
+            return ca.vertcat(*dz, *acc)
+        # the dashpot strain of the material at the element mid-points y_{i+1/2}, carried
+        # with the material as the grid moves through it (pay-out): e_v,t + adv e_v,y
+        e_v = f["e_v"]
+        y_mid = (np.arange(n) + 0.5) / n
+        dev = []
+        for i in range(n):
+            lo, hi = max(i - 1, 0), min(i + 1, n - 1)
+            dvy = (e_v[hi] - e_v[lo]) / ((hi - lo) * dy) if hi > lo else 0.0
+            dev.append(self.solid.internal_rate(eps[i], e_v[i])
+                       + y_mid[i] * f["dl"] / f["length"] * dvy)
+        return ca.vertcat(*dz, *acc, *dev)
 
     def outputs(self, t: Any, x: Any, top_at_rest: bool = False
                 ) -> tuple[Any, Any, Any, Any, Any]:
@@ -276,7 +301,7 @@ class AxialModel:
         """State at t = 0: the closed-form static profile ("static") or the unstretched
         line hanging straight down from end_b ("unstrained", zeta = 0), at rest."""
         if self.scene.simulation.start == "unstrained":
-            return np.zeros(2 * self.n)
+            return np.zeros(self.state_size())
         return self.rest_state()
 
     def rest_state(self) -> np.ndarray:
@@ -285,11 +310,20 @@ class AxialModel:
         s = np.arange(n) * self.length0 / n
         z, _ = static_profile(self.scene, s)
         zeta = z - (self.z_top0 - (self.length0 - s))
+        if self.table is not None:
+            # the discrete static state: element i carries W + w h (i + 1/2), at the strain
+            # of the model's own law u(e) (exact inverse, not the statics' e(T))
+            h = self.length0 / n
+            eps = self.table.invert(self.unit_weight + self.w * h * (np.arange(n) + 0.5))
+            zeta = -np.cumsum((h * eps)[::-1])[::-1]
+        if self.solid is not None:  # at rest the dashpot carries the static strain
+            eps = np.diff(np.append(zeta, 0.0)) / (self.length0 / n)
+            return np.concatenate([zeta, np.zeros(n), eps])
         return np.concatenate([zeta, np.zeros(n)])
 
     def state_size(self) -> int:
         """The nodes' height offsets zeta and material velocities V: ``2 N``."""
-        return 2 * self.n
+        return 3 * self.n if self.solid is not None else 2 * self.n
 
     def static_state(self) -> tuple[np.ndarray, dict[str, Any]]:
         """:meth:`initial_state` (``simulation.start``) and its source."""
@@ -301,7 +335,11 @@ class AxialModel:
     def driven_step(self, dt: float | None = None) -> DrivenStep:
         """The midpoint step with the top's height and the length as inputs over a step of
         ``dt`` s (default ``simulation.time_step``;
-        :func:`cable_ocp.dynamics.driven.axial_driven_step`)."""
+        :func:`cable_ocp.dynamics.driven.axial_driven_step`; the linear law only)."""
+        if self.table is not None or self.solid is not None:
+            raise CableOCPError("cable.tension_strain / cable.viscoelastic: the driven axial "
+                                "step (the heave plant) has the linear law only; give "
+                                "axial_stiffness alone")
         return axial_driven_step(self, self.scene.simulation.time_step if dt is None
                                  else float(dt))
 
@@ -314,7 +352,7 @@ class AxialModel:
     def _rhs_function(self) -> ca.Function:
         if self._rhs_fn is None:
             t = ca.SX.sym("t")
-            x = ca.SX.sym("x", 2 * self.n)
+            x = ca.SX.sym("x", self.state_size())
             self._rhs_fn = ca.Function("rhs", [t, x], [self.rhs(t, x)])
         return self._rhs_fn
 
@@ -337,12 +375,13 @@ class AxialModel:
         max_iter : int
             Newton iterations per step.
         """
-        n2 = 2 * self.n
+        n2 = self.state_size()
         f = self._rhs_function()
         # residual scales: positions in units of the static elongation of the line (the
         # displacement scale of the motion), accelerations in units of g, so that the
         # tolerance bounds the force balance of every node relative to its weight
-        scale_x = ca.DM([1.0 / self.elongation] * self.n + [1.0 / (dt * self.gravity)] * self.n)
+        scale_x = ca.DM([1.0 / self.elongation] * self.n + [1.0 / (dt * self.gravity)] * self.n
+                        + [self.length0 / self.elongation] * (n2 - 2 * self.n))
         x0 = ca.SX.sym("x0", n2)
         t0 = ca.SX.sym("t0")
         params = [x0, t0]
@@ -430,7 +469,7 @@ class AxialModel:
         n_steps = sim.steps
         every = sim.output_every
         n_out = n_steps // every
-        n2 = 2 * self.n
+        n2 = self.state_size()
         t_build = time.perf_counter()
         chunk_fn, per_chunk = chunk_functions(
             self.step_function(scheme, dt, sim.tolerance, sim.max_iterations), every, n_out)
@@ -525,16 +564,21 @@ class AxialModel:
         length = self.length0 if length is None else length
         n = self.n
         h = length / n
-        k = self.ea / h
+        k = np.full(n, self.ea / h)
+        if self.table is not None:  # the tangent EA(e) of each element at rest
+            t_el = self.unit_weight + self.w * h * (np.arange(n) + 0.5)
+            k = self.table.tangent(self.table.invert(t_el)) / h
+        elif self.solid is not None:  # vibration much faster than 1 / tau: EA_d
+            k = np.full(n, self.solid.dynamic_stiffness / h)
         mass = np.full(n, self.mu * h)
         mass[0] = self.unit_mass + 0.5 * self.mu * h
         stiff = np.zeros((n, n))
         for e in range(n):  # element e joins nodes e and e+1 (node n is fixed)
-            stiff[e, e] += k
+            stiff[e, e] += k[e]
             if e + 1 < n:
-                stiff[e + 1, e + 1] += k
-                stiff[e, e + 1] -= k
-                stiff[e + 1, e] -= k
+                stiff[e + 1, e + 1] += k[e]
+                stiff[e, e + 1] -= k[e]
+                stiff[e + 1, e] -= k[e]
         return np.diag(mass), stiff
 
     def modes(self, count: int) -> ModesResult:

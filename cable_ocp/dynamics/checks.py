@@ -12,7 +12,36 @@ import math
 from cable_ocp.errors import CableOCPError
 from cable_ocp.scene.dynamics import DynamicScene
 
-__all__ = ["check_axial", "check_lumped", "check_lumped_plant", "check_planar"]
+__all__ = ["check_axial", "check_lumped", "check_lumped_plant", "check_material",
+           "check_planar"]
+
+
+def check_material(scene: DynamicScene, model: str) -> None:
+    """Raise :class:`CableOCPError` (naming the key) when the cable's material law is one
+    that ``model`` does not carry: the axial model has the table and the viscoelastic
+    law (not with its ``thesis`` scheme), the planar and lumped models the table (not
+    with the lumped ``thesis`` scheme, Huang's (5.21) with Hooke's (5.3)).
+
+    Parameters
+    ----------
+    scene : DynamicScene
+        The scene.
+    model : str
+        ``"axial"``, ``"planar"`` or ``"lumped3d"``.
+    """
+    lines = scene.statics.lines
+    table = any(c.tension_strain for c in lines)
+    visco = any(c.viscoelastic is not None for c in lines)
+    if (table or visco) and scene.simulation.scheme == "thesis":
+        key = "tension_strain" if table else "viscoelastic"
+        raise CableOCPError(f'cable.{key}: simulation.scheme = "thesis" (Huang\'s own '
+                            "scheme, (3.8)-(3.10) or (5.21)) has the linear law; use the "
+                            "model's other schemes (midpoint, trapezoidal, bdf2)")
+    if visco and model != "axial":
+        raise CableOCPError(f'cable.viscoelastic: simulation.model = "{model}" has no '
+                            'internal strain state; the viscoelastic law runs in model = '
+                            '"axial" (in the statics it is its static modulus '
+                            "axial_stiffness)")
 
 
 def check_axial(scene: DynamicScene) -> None:
@@ -36,6 +65,7 @@ def check_axial(scene: DynamicScene) -> None:
         raise CableOCPError(why + "remove [top_motion.tow] (or use model = \"lumped3d\")")
     if any(r[1] != 0.0 or r[2] != 0.0 for r in tm.series):
         raise CableOCPError(why + "top_motion.series: the horizontal offsets dx, dy must be 0")
+    check_material(scene, "axial")
     unit = scene.unit
     if unit.weight_in_water <= 0.0 and st.cable.weight_in_water <= 0.0:
         raise CableOCPError(why + f"unit.weight_in_water = {unit.weight_in_water} N and "
@@ -62,12 +92,13 @@ def _off_plane(heading_deg: float) -> bool:
 def check_planar(scene: DynamicScene) -> None:
     """Raise :class:`CableOCPError` (naming the key) when the scene leaves the x-z plane
     or has what the planar model cannot represent."""
+    check_material(scene, "planar")
     st = scene.statics
     tm = scene.top_motion
     why = 'simulation.model = "planar" moves in the vertical x-z plane: '
-    if st.segments or st.bodies:
-        raise CableOCPError(why + "[[cable.segments]] and [[bodies]] are not supported; give a "
-                            'single [cable] (or use model = "lumped3d")')
+    if st.bodies:
+        raise CableOCPError(why + "[[bodies]] are not supported (or use model = "
+                            '"lumped3d")')
     if st.environment.seabed is not None:
         raise CableOCPError(why + "[environment.seabed]: the model has no seabed contact; "
                             "remove the table")
@@ -98,7 +129,9 @@ def check_planar(scene: DynamicScene) -> None:
                                 f"= {scene.top_position[1]} (the plane y = const)")
     else:
         unit = scene.unit
-        if unit.weight_in_water <= 0.0 and cur is None:
+        cantilever = (scene.simulation.top_end == "clamped"
+                      and any(c.bending_stiffness > 0.0 for c in st.lines))
+        if unit.weight_in_water <= 0.0 and cur is None and not cantilever:
             raise CableOCPError(why + f"unit.weight_in_water = {unit.weight_in_water} N: "
                                 "without a current nothing keeps the line taut (it needs a "
                                 "weight > 0)")
@@ -106,14 +139,8 @@ def check_planar(scene: DynamicScene) -> None:
 
 def check_lumped(scene: DynamicScene) -> None:
     """Raise :class:`CableOCPError` (naming the key) when the scene has what the lumped-mass
-    model cannot run: a pay-out (its length is fixed) or what :func:`check_lumped_plant`
-    refuses."""
-    tm = scene.top_motion
-    if tm.varying_length:
-        key = "payout_amplitude" if tm.payout_law == "periodic" else "payout_speed"
-        raise CableOCPError(f'top_motion.{key}: simulation.model = "lumped3d" has a fixed '
-                            'length (Huang (1992) ch. 5); pay-out needs model = "axial" or '
-                            '"planar"')
+    model cannot run: what :func:`check_lumped_plant` refuses (a pay-out runs on
+    :mod:`cable_ocp.dynamics.lumped_payout_run`)."""
     check_lumped_plant(scene)
 
 
@@ -122,10 +149,12 @@ def check_lumped_plant(scene: DynamicScene) -> None:
     lumped-mass model cannot represent, its ``[top_motion]`` aside (the heave plant,
     :class:`cable_ocp.heave.cable_models.LumpedCablePlant`, moves the top and pays cable
     out itself)."""
+    check_material(scene, "lumped3d")
     if scene.statics.environment.seabed is not None:
         raise CableOCPError('[environment.seabed]: simulation.model = "lumped3d" has no '
                             "seabed contact; remove the table (the seabed is then only "
                             "checked in the static start)")
-    if any(c.bending_stiffness > 0 for c in scene.statics.lines):
-        raise CableOCPError('cable.segments[].bending_stiffness: simulation.model = '
-                            '"lumped3d" is a flexible cable (no bending stiffness)')
+    if scene.simulation.top_end != "pinned":
+        raise CableOCPError(f'simulation.top_end = "{scene.simulation.top_end}": '
+                            'simulation.model = "lumped3d" has a pinned top (valid: "pinned"; '
+                            'a clamped top needs model = "planar")')

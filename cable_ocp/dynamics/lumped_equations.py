@@ -32,6 +32,7 @@ from typing import Any
 import casadi as ca
 import numpy as np
 
+from cable_ocp.dynamics.bending_terms import LineBending
 from cable_ocp.dynamics.lumped_params import LumpedParams
 from cable_ocp.numerics.quadrature import gauss_legendre
 from cable_ocp.physics.added_mass import (
@@ -41,7 +42,12 @@ from cable_ocp.physics.added_mass import (
 )
 from cable_ocp.physics.drag import drag_per_length
 from cable_ocp.physics.drag import point_drag as physics_point_drag
-from cable_ocp.physics.elasticity import material_damping, smooth_strain_energy, smooth_tension
+from cable_ocp.physics.elasticity import (
+    material_damping,
+    smooth_strain_energy,
+    strain_switch,
+    strain_tension,
+)
 
 __all__ = ["GAUSS_W", "GAUSS_X", "LumpedEquations", "added_mass_share", "node_loads",
            "node_masses", "node_weights", "point_drag", "point_drag_items", "segment_drag",
@@ -59,7 +65,8 @@ GAUSS_W = tuple(0.5 * float(v) for v in gauss_legendre(3)[1])
 
 def segment_tension(d1: Any, ell1: Any, ea: Any, c: Any, delta_t: Any, *,
                     d0: Any = None, ell0: Any = None, dt: Any = None, dv: Any = None,
-                    mid: Any = None, length_rate: Any = None) -> dict[str, Any]:
+                    mid: Any = None, length_rate: Any = None, table: Any = None
+                    ) -> dict[str, Any]:
     """A segment's tension and the direction it pulls along (the law (5.3) with damping).
 
     One level (``d0`` None): ``T(eps1)`` along ``d1``, plus the damping ``c deps/dt
@@ -93,6 +100,9 @@ def segment_tension(d1: Any, ell1: Any, ea: Any, c: Any, delta_t: Any, *,
         The kernel's switch (-).
     length_rate : casadi expression, optional
         Rate of the unstretched length, m/s (one level).
+    table : TensionStrainTable, optional
+        A tension-strain law in place of EA e
+        (:func:`cable_ocp.physics.elasticity.strain_tension`).
 
     Returns
     -------
@@ -106,20 +116,20 @@ def segment_tension(d1: Any, ell1: Any, ea: Any, c: Any, delta_t: Any, *,
     e1 = l1 / ell1 - 1.0
     out: dict[str, Any] = {"strain": e1, "l1": l1}
     if d0 is None:
-        tens = smooth_tension(e1, ea, delta_t)
+        tens = strain_tension(e1, ea, delta_t, table)
         damp: Any = 0.0
         if dv is not None:
             rate = ca.dot(d1, dv) / (l1 * ell1)
             if length_rate is not None:
                 rate = rate - l1 * length_rate / ell1**2  # d/dt (|d| / l) with l changing
-            damp = material_damping(rate, e1, c, ea, delta_t)
+            damp = _damping(rate, e1, c, ea, delta_t, table)
             tens = tens + damp
         out.update(tension=tens, num=d1, den=l1, damping=damp)
         return out
     l0 = ca.norm_2(d0)
     e0 = l0 / (ell1 if ell0 is None else ell0) - 1.0
     em, de = 0.5 * (e0 + e1), 0.5 * (e1 - e0)
-    tbar = sum(w * smooth_tension(em + g * de, ea, delta_t)
+    tbar = sum(w * strain_tension(em + g * de, ea, delta_t, table)
                for g, w in zip(GAUSS_X, GAUSS_W, strict=True))
     if ell0 is None:  # a constant unstretched length
         step_rate = (l1 - l0) / (ell1 * dt)
@@ -129,10 +139,16 @@ def segment_tension(d1: Any, ell1: Any, ea: Any, c: Any, delta_t: Any, *,
         rate = mid * (l1 - l0) / (ell1 * dt) + (1.0 - mid) * ca.dot(d1, dv) / (l1 * ell1)
     else:
         rate = step_rate
-    damp = material_damping(rate, em, c, ea, delta_t)
+    damp = _damping(rate, em, c, ea, delta_t, table)
     tbar = tbar + damp
     out.update(tension=tbar, num=d0 + d1, den=l0 + l1, damping=damp, l0=l0, em=em, de=de)
     return out
+
+
+def _damping(rate: Any, strain: Any, c: Any, ea: Any, delta_t: Any, table: Any) -> Any:
+    if table is None:
+        return material_damping(rate, strain, c, ea, delta_t)
+    return c * rate * strain_switch(strain, ea, delta_t, table)
 
 
 def segment_drag(drag_law: str, dm: Any, urel: Any, *, rho: float, diameter: float,
@@ -299,6 +315,8 @@ class LumpedEquations:
             for coef in (p.added_mass_coefficient, p.tangential_added_mass_coefficient))
         #: normal and tangential added mass of each segment, kg
         self.added_mass = tuple(a * p.segment_length for a in self.added_mass_per_length)
+        #: the hinges of a line with bending stiffness (:mod:`cable_ocp.dynamics.bending_terms`)
+        self.bending = LineBending(p.bending_stiffness, p.segment_length, 3)
 
     def zeros(self) -> list[Any]:
         """A zero 3-vector per node."""
@@ -327,7 +345,8 @@ class LumpedEquations:
         p = self.params
         ell1 = float(p.segment_length[j]) if ell1 is None else ell1
         return segment_tension(d1, ell1, float(p.axial_stiffness[j]),
-                               float(p.axial_damping[j]), p.slack_smoothing, **kw)
+                               float(p.axial_damping[j]), p.slack_smoothing,
+                               table=p.tension_strain, **kw)
 
     def tensions(self, r: list[Any], vel: list[Any] | None = None) -> tuple[Any, Any]:
         """Segment tensions (N; with the material damping where velocities are given) and
@@ -378,6 +397,9 @@ class LumpedEquations:
             fe = st["tension"] * st["num"] / st["den"]
             f[j] = f[j] + fe
             f[j + 1] = f[j + 1] - fe
+        if self.bending.active:  # at the mean positions: the exact discrete gradient
+            rb = r0 if r1 is None else [0.5 * (a + b) for a, b in zip(r0, r1, strict=True)]
+            f = self.total(f, self.bending.node_list_forces(rb))
         return f
 
     def current(self, z: Any) -> Any:
@@ -509,8 +531,9 @@ class LumpedEquations:
         for j in range(p.segments):
             ell = float(p.segment_length[j])
             eps = ca.norm_2(r[j + 1] - r[j]) / ell - 1.0
-            pot = pot + ell * smooth_strain_energy(eps, float(p.axial_stiffness[j]),
-                                                   p.slack_smoothing)
+            pot = pot + ell * (smooth_strain_energy(eps, float(p.axial_stiffness[j]),
+                                                    p.slack_smoothing)
+                               if p.tension_strain is None else p.tension_strain.energy(eps))
         for i in range(p.segments + 1):
             pot = pot + float(self.node_weight[i]) * r[i][2]
-        return kin, pot
+        return kin, pot + self.bending.node_list_energy(r)

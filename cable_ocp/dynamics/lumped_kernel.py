@@ -32,7 +32,7 @@ from cable_ocp.errors import CableOCPError
 from cable_ocp.numerics.block_tridiagonal import block_tridiagonal_solve
 from cable_ocp.numerics.compile import compile_function
 from cable_ocp.physics.drag import line_drag_kernel, point_drag_jacobian
-from cable_ocp.physics.elasticity import taut_switch
+from cable_ocp.physics.elasticity import strain_stiffness, strain_switch
 
 if TYPE_CHECKING:
     from cable_ocp.dynamics.lumped import LumpedMassModel
@@ -271,9 +271,9 @@ class LumpedStepper:
         nf = self.model.n_free
         nf3 = 3 * nf
         first = 1 if p.fixed_a else 0
-        kern = segment_kernel(p.drag_law, compile_kernel).map(n, "serial")
+        kern = segment_kernel(p.drag_law, compile_kernel, p.tension_strain).map(n, "serial")
         if not compile_kernel:
-            kern = segment_kernel_expr(p.drag_law).map(n, "unroll")
+            kern = segment_kernel_expr(p.drag_law, p.tension_strain).map(n, "unroll")
         par = ca.DM(self.segment_parameters())
         ends = self.model.ends
         node_m = ca.DM(np.vstack([np.diag(m).T.reshape(-1) for m in self.model.eq.node_mass]).T)
@@ -360,6 +360,9 @@ class LumpedStepper:
         z9 = sym.zeros(9, 1)
         fpt, cpt = self.point_terms(rm, vel, gamma, sym)
         force = ca.horzcat(fa, z3) + ca.horzcat(z3, fb) + static + fpt
+        bend = self.model.eq.bending
+        if bend.active:  # linear in the positions (cable_ocp.dynamics.bending_terms)
+            force = force + bend.node_forces(rm[:, 1:] - rm[:, :-1])
         mass = node_m + ca.horzcat(madd, z9) + ca.horzcat(z9, madd)
         free = slice(first, n)
         if scheme == "midpoint":
@@ -372,10 +375,16 @@ class LumpedStepper:
             z9, cb) + cpt
         diag_b = alpha * mass[:, free] + kc[:, free]
         off_b = -kb[:, first:n - 1] + cb[:, first:n - 1]
+        if bend.active:  # its constant Jacobian (d rm / d x1 = beta); off_b is symmetric
+            kd, ko, k_rest = bend.free_blocks(first, nf)
+            diag_b = diag_b + beta * ca.DM(kd)
+            off_b = off_b + beta * ca.DM(ko)
         vals = ca.vertcat(ca.vec(diag_b), ca.vec(off_b))
         if compile_kernel:
             jac = ca.MX(sp, 0)
             jac.nz[:] = vals[src_sorted]
+            if bend.active and k_rest.nnz() > 0:  # the blocks two nodes apart
+                jac = jac + beta * k_rest
             gj = ca.Function("gj", [x1, zsym, t0, dt], [res, jac, fres])
         else:
             # the Newton update by block-tridiagonal elimination (3x3 blocks, no pivoting:
@@ -578,7 +587,7 @@ KERNEL_PARAMS = ("l", "ea", "c", "d", "cn", "ct", "en", "et", "rho", "delta", "d
                   "blend")
 
 
-def segment_kernel_expr(drag_law: str) -> ca.Function:
+def segment_kernel_expr(drag_law: str, table: Any = None) -> ca.Function:
     """One segment's contribution to a time step, as a CasADi Function (SX).
 
     Inputs: node positions at the two levels ``ra0, rb0, ra1, rb1`` (m), node velocities
@@ -596,6 +605,13 @@ def segment_kernel_expr(drag_law: str) -> ca.Function:
     derivative of the mean tension along e e^T plus T / |d| across, times beta = 1/2 for
     the midpoint, 1 otherwise; plus gamma (c/l) H e e^T) and ``cb`` = gamma |d| D / 4
     (N/m) of :meth:`LumpedMassModel.step_function`.
+
+    Parameters
+    ----------
+    drag_law : str
+        The normal drag's law.
+    table : TensionStrainTable, optional
+        The line's tension-strain law (None: EA e with ``ea`` of ``par``).
     """
     ra0, rb0, ra1, rb1, va, vb, u_c = (ca.SX.sym(n, 3) for n in
                                        ("ra0", "rb0", "ra1", "rb1", "va", "vb", "u"))
@@ -607,11 +623,12 @@ def segment_kernel_expr(drag_law: str) -> ca.Function:
     # form of the model), then their Newton blocks
     d0 = rb0 - ra0
     d1 = rb1 - ra1
-    st_ = segment_tension(d1, ell, ea, c, delta_t, d0=d0, dt=dt, dv=vb - va, mid=mid)
+    st_ = segment_tension(d1, ell, ea, c, delta_t, d0=d0, dt=dt, dv=vb - va, mid=mid,
+                          table=table)
     l0, l1, em, de, tbar = st_["l0"], st_["l1"], st_["em"], st_["de"], st_["tension"]
     f_el = tbar * st_["num"] / st_["den"]
     # derivative of the Gauss mean with respect to eps1 (the midpoint's Newton matrix)
-    dtbar = sum(w * ea * taut_switch(em + g * de, ea, delta_t) * 0.5 * (1.0 + g)
+    dtbar = sum(w * strain_stiffness(em + g * de, ea, delta_t, table) * 0.5 * (1.0 + g)
                 for g, w in zip(GAUSS_X, GAUSS_W, strict=True))
     # drag and added mass at the mean positions
     dm = 0.5 * (d0 + d1)
@@ -631,7 +648,7 @@ def segment_kernel_expr(drag_law: str) -> ca.Function:
     # e1). Not symmetric for the midpoint: the strain at level 1 follows e1, the force u.
     uet = ca.mtimes((d0 + d1) / (l0 + l1), (d1 / l1).T)
     kb = 2.0 * beta * (dtbar / ell * uet + tbar / (l0 + l1) * (eye - uet)) + gamma * c / ell * (
-        taut_switch(em, ea, delta_t) * uet)
+        strain_switch(em, ea, delta_t, table) * uet)
     cb = 0.25 * gamma * lm * dmat
     # the terms share subexpressions that their functions build again (the tangent's
     # t t^T, the strain switch, ...): merged once (the same operations, fewer of them)
@@ -643,7 +660,7 @@ def segment_kernel_expr(drag_law: str) -> ca.Function:
         ["fa", "fb", "madd", "kb", "cb"])
 
 
-_KERNELS: dict[str, ca.Function] = {}
+_KERNELS: dict[Any, ca.Function] = {}
 
 
 def switch(name: str, cond: Any, if_true: ca.Function, if_false: ca.Function,
@@ -668,7 +685,8 @@ def switch(name: str, cond: Any, if_true: ca.Function, if_false: ca.Function,
     return ca.Function.if_else(name, if_true, if_false)(cond, *args)
 
 
-def segment_kernel(drag_law: str, compile_kernel: bool = True) -> ca.Function:
+def segment_kernel(drag_law: str, compile_kernel: bool = True, table: Any = None
+                   ) -> ca.Function:
     """The segment kernel of ``drag_law``, compiled to C once and cached on disk when a C
     compiler is available (:func:`cable_ocp.numerics.compile.compile_function`), else
     interpreted.
@@ -679,9 +697,11 @@ def segment_kernel(drag_law: str, compile_kernel: bool = True) -> ca.Function:
         The normal drag's law.
     compile_kernel : bool
         Compile to C (else the SX function).
+    table : TensionStrainTable, optional
+        The line's tension-strain law (None: EA e), built into the kernel.
     """
-    key = f"{drag_law}:{compile_kernel}"
+    key = (drag_law, compile_kernel, table)
     if key not in _KERNELS:
-        fn = segment_kernel_expr(drag_law)
+        fn = segment_kernel_expr(drag_law, table)
         _KERNELS[key] = compile_function(fn, "-O2") if compile_kernel else fn
     return _KERNELS[key]

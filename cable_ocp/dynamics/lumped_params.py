@@ -163,6 +163,9 @@ class LumpedParams:
         Tangential added-mass coefficient (-); Huang (1992) ch. 5 takes 0.
     axial_damping : ndarray (N,)
         Internal (material) damping c, N s: T = EA eps + c deps/dt while taut (default 0).
+    bending_stiffness : ndarray (N,)
+        EI, N m^2 (default 0: a flexible cable), the hinge law of
+        :mod:`cable_ocp.dynamics.bending_terms` (pinned ends).
     top_position : callable
         r_b(t), m: end_b's prescribed position (a CasADi-compatible function of t).
     top_velocity : callable or None
@@ -188,6 +191,9 @@ class LumpedParams:
         Vertical blend of the componentwise law (-).
     slack_smoothing : float
         Force scale delta_T of the smooth no-compression law, N.
+    tension_strain : TensionStrainTable or None
+        The line's tension-strain law u(e) in place of EA e (every segment;
+        :class:`cable_ocp.physics.elasticity.TensionStrainTable`), None for the linear law.
     """
 
     segment_length: np.ndarray
@@ -201,6 +207,7 @@ class LumpedParams:
     tangential_added_mass_coefficient: np.ndarray
     top_position: TimeFunction
     axial_damping: np.ndarray | float = 0.0
+    bending_stiffness: np.ndarray | float = 0.0
     top_velocity: TimeFunction | None = None
     water_density: float = 1025.0
     gravity: float = 9.81
@@ -212,12 +219,13 @@ class LumpedParams:
     smoothing: float = 1e-5
     vertical_blend: float = 1e-2
     slack_smoothing: float = 1e-2
+    tension_strain: Any = None
 
     def __post_init__(self) -> None:
         names = ("segment_length", "axial_stiffness", "diameter", "mass_per_length",
                  "weight_in_water", "normal_drag", "tangential_drag",
                  "added_mass_coefficient", "tangential_added_mass_coefficient",
-                 "axial_damping")
+                 "axial_damping", "bending_stiffness")
         n = np.size(self.segment_length)
         for name in names:
             a = np.asarray(getattr(self, name), dtype=float).reshape(-1)
@@ -238,7 +246,7 @@ class LumpedParams:
             raise CableOCPError("segment_length and axial_stiffness must be > 0")
         for name in ("diameter", "mass_per_length", "normal_drag", "tangential_drag",
                      "added_mass_coefficient", "tangential_added_mass_coefficient",
-                     "axial_damping"):
+                     "axial_damping", "bending_stiffness"):
             if np.any(getattr(self, name) < 0):
                 raise CableOCPError(f"{name} must be >= 0")
         if (self.unit is None) == (self.end_a_position is None):

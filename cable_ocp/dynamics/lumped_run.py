@@ -196,7 +196,8 @@ def run(model: LumpedMassModel, x0: np.ndarray, v0: np.ndarray | None, duration:
     chunk = rec.mapaccum("chunk", c)
     compiled = "none"
     if compile == "kernel" and solver == "newton" and segment_kernel(
-            model.params.drag_law, True).class_name() == "External":
+            model.params.drag_law, True, model.params.tension_strain
+    ).class_name() == "External":
         compiled = "kernel"
     if compile == "step":
         cc = compile_function(chunk, "-O1")  # -O2: 4x the compile time, the same speed here

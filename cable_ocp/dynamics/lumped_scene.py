@@ -100,7 +100,7 @@ def lumped_params(scene: DynamicScene, segments: int | None = None) -> LumpedPar
     cols: dict[str, list[float]] = {k: [] for k in (
         "segment_length", "axial_stiffness", "diameter", "mass_per_length", "weight_in_water",
         "normal_drag", "tangential_drag", "added_mass_coefficient",
-        "tangential_added_mass_coefficient", "axial_damping")}
+        "tangential_added_mass_coefficient", "axial_damping", "bending_stiffness")}
     for c, dyn, k in zip(lines, scene.cable, counts, strict=True):
         vals = {"segment_length": float(c.length) / k, "axial_stiffness": c.axial_stiffness,  # type: ignore[arg-type]
                 "diameter": c.diameter, "mass_per_length": dyn.mass_per_length,
@@ -108,7 +108,7 @@ def lumped_params(scene: DynamicScene, segments: int | None = None) -> LumpedPar
                 "tangential_drag": c.tangential_drag,
                 "added_mass_coefficient": dyn.added_mass_coefficient,
                 "tangential_added_mass_coefficient": dyn.tangential_added_mass_coefficient,
-                "axial_damping": dyn.axial_damping}
+                "axial_damping": dyn.axial_damping, "bending_stiffness": c.bending_stiffness}
         for key, v in vals.items():
             cols[key] += [float(v)] * k
     joints = np.concatenate([[0], np.cumsum(counts)])
@@ -151,7 +151,7 @@ def lumped_params(scene: DynamicScene, segments: int | None = None) -> LumpedPar
         water_density=env.water_density, gravity=env.gravity, unit=unit,
         end_a_position=end_a, bodies=tuple(bodies), current=current,
         drag_law=st.cable.drag_law, smoothing=st.solver.smoothing,
-        vertical_blend=st.solver.vertical_blend)
+        vertical_blend=st.solver.vertical_blend, tension_strain=st.cable.strain_table)
 
 
 def lumped_start(scene: DynamicScene, model: LumpedMassModel
@@ -373,8 +373,15 @@ class LumpedSceneModel:
         (:meth:`~cable_ocp.dynamics.lumped.LumpedMassModel.step_function`) or ``"thesis"``
         (Huang's (5.21), :mod:`cable_ocp.dynamics.lumped_thesis`). ``simulation.tolerance``
         is the Newton tolerance on the nodal force residual over the force scale (the
-        largest of the total weight in water and the largest static tension).
+        largest of the total weight in water and the largest static tension). A pay-out
+        (``[top_motion]`` varying the length) runs
+        :func:`cable_ocp.dynamics.lumped_payout_run.simulate_payout` (nodes enter and
+        leave at the winch; midpoint rule only).
         """
+        if self.scene.top_motion.varying_length:
+            from cable_ocp.dynamics.lumped_payout_run import simulate_payout
+
+            return simulate_payout(self, progress)
         scene, model = self.scene, self.model
         sim = scene.simulation
         x0, info = self.static_positions()

@@ -48,6 +48,10 @@ straight down from the current top, R_ref(y, t) = (x_b(t), z_b(t) - L(t) (1 - y)
 element vectors R_{i+1} - R_i = (0, L/N) + (q_{i+1} - q_i) then carry no round-off from
 the absolute heights.
 
+A line of ``[[cable.segments]]`` whose joints fall on the grid's nodes has each element's
+own properties (:mod:`cable_ocp.dynamics.planar_line`; no pay-out then), and bending
+stiffness adds the hinge forces of :mod:`cable_ocp.dynamics.bending_terms`.
+
 Space: lumped-mass finite differences on the uniform grid y_i = i / N, as the axial model
 (:mod:`cable_ocp.dynamics.axial`): node i carries half of each adjacent element's mass
 and added mass, element tensions act along the element chords, drag acts on each element
@@ -79,9 +83,11 @@ from typing import Any
 import casadi as ca
 import numpy as np
 
+from cable_ocp.dynamics.bending_terms import LineBending
 from cable_ocp.dynamics.checks import check_planar
 from cable_ocp.dynamics.driven import planar_driven_step
 from cable_ocp.dynamics.model import DrivenStep
+from cable_ocp.dynamics.planar_line import PlanarLine
 from cable_ocp.dynamics.result import (
     ModesResult,
     SimulationResult,
@@ -96,8 +102,8 @@ from cable_ocp.errors import CableOCPError
 from cable_ocp.numerics.quadrature import gauss_legendre
 from cable_ocp.physics.added_mass import added_mass_per_length, line_added_mass_2d
 from cable_ocp.physics.current import profile_velocity
-from cable_ocp.physics.drag import line_drag_factors, point_drag, vector_drag_columns
-from cable_ocp.physics.elasticity import SLACK_SMOOTHING, smooth_tension, taut_switch
+from cable_ocp.physics.drag import line_drag_factors, point_drag
+from cable_ocp.physics.elasticity import SLACK_SMOOTHING, cable_material
 from cable_ocp.scene.dynamics import DynamicScene
 from cable_ocp.scene.motion import motion_function
 
@@ -166,10 +172,22 @@ class PlanarModel:
         self.c = float(dyn.axial_damping)
         self.kn, self.kt = line_drag_factors(rho, cab.diameter, cab.normal_drag,
                                              cab.tangential_drag)
+        #: per-element properties of a line of segments (:mod:`cable_ocp.dynamics.planar_line`)
+        self.line = PlanarLine(scene, self.n)
         self.delta = st.solver.smoothing
         self.delta_t = SLACK_SMOOTHING
+        #: the tension law (linear or a tension-strain table, physics.elasticity)
+        self.table = cab.strain_table
+        if self.table is not None and not self.line.uniform:
+            raise CableOCPError("cable.tension_strain: the planar model takes a tension-strain "
+                                "table on a line of one segment only (valid: one "
+                                "[[cable.segments]] entry, or axial_stiffness per segment)")
+        self.material = cable_material(self.line.value("ea"), self.table,
+                                       slack_smoothing=self.delta_t)
         self.rho = rho
         self.length0 = scene.length
+        #: the hinges of a line with bending stiffness (:mod:`cable_ocp.dynamics.bending_terms`)
+        self.bending = LineBending.from_scene(scene, np.full(self.n, self.length0 / self.n))
         self.top0 = np.array([scene.top_position[0], scene.top_position[2]], dtype=float)
         self.y_plane = float(scene.top_position[1])
         unit = scene.unit
@@ -191,24 +209,25 @@ class PlanarModel:
         self.current = cur
         self.motion = motion_function(scene)
         self.gravity = env.gravity
-        weight = abs(self.unit_weight) + abs(self.w) * self.length0
+        weight = abs(self.unit_weight) + float(np.mean(np.abs(self.line.rows["w"]))
+                                                 ) * self.length0
         #: force scale of the Newton residuals, N: the total weight in water (>= 1 N),
         #: raised to the largest static tension by :meth:`initial_state`
         self.force_scale = max(weight, 1.0)
         #: a strain below -slack_strain is slack: a tension EA e below -1e-9 of the static
         #: top weight, clear of round-off where a line released unstretched carries no load
-        self.slack_strain = 1e-9 * max(weight, 1.0) / self.ea
+        self.slack_strain = 1e-9 * max(weight, 1.0) / float(np.min(self.line.rows["ea"]))
 
     # ------------------------------------------------------------------ pieces
     def _tension(self, eps: Any) -> Any:
-        """Smooth no-compression Hooke's law, N (elementwise;
-        :func:`cable_ocp.physics.elasticity.smooth_tension`)."""
-        return smooth_tension(eps, self.ea, self.delta_t)
+        """Smooth no-compression tension law, N (elementwise; the material's
+        :meth:`~cable_ocp.physics.elasticity.AxialMaterial.tension`)."""
+        return self.material.tension(eps)
 
     def _taut(self, eps: Any) -> Any:
-        """Smooth switch 0 (slack) .. 1 (taut), - (elementwise;
-        :func:`cable_ocp.physics.elasticity.taut_switch`)."""
-        return taut_switch(eps, self.ea, self.delta_t)
+        """Smooth switch 0 (slack) .. 1 (taut), - (elementwise; the material's
+        :meth:`~cable_ocp.physics.elasticity.AxialMaterial.taut`)."""
+        return self.material.taut(eps)
 
     # The expressions below work on 2 x K matrices (columns = nodes or elements, rows =
     # x, z): a few dozen whole-matrix operations per expression, whatever N is.
@@ -269,11 +288,11 @@ class PlanarModel:
         (2 x N): per stretched length |d| times the vector law
         (:func:`cable_ocp.physics.drag.vector_drag_columns`)."""
         k = dd.shape[1]
-        if self.kn == 0.0 and self.kt == 0.0:
+        if not (np.any(self.line.rows["kn"]) or np.any(self.line.rows["kt"])):
             return ca.SX.zeros(2, k)
         ll = self._norms(dd)
         tt = dd / ca.repmat(ll, 2, 1)
-        f = vector_drag_columns(urel, tt, self.kn, self.kt, self.delta)
+        f = self.line.drag(urel, tt, self.delta)
         return ca.repmat(ll, 2, 1) * f
 
     def _unit_drag(self, z0: Any, v0: Any) -> Any:
@@ -295,10 +314,11 @@ class PlanarModel:
         kg): half of each adjacent element's mass and added mass (normal and tangential
         to its chord), plus the unit's."""
         n = self.n
-        base = self.mu * h * ca.DM(self._share()).T
+        base = h * self.line.nodes("mu")
         mxx, mxz, mzz = base, ca.SX.zeros(1, n + 1), base
-        if self.man != 0.0 or self.mat != 0.0:
-            axx, axz, azz = line_added_mass_2d(dd, self.man, self.mat, 0.5 * h)
+        if np.any(self.line.rows["man"]) or np.any(self.line.rows["mat"]):
+            axx, axz, azz = line_added_mass_2d(dd, self.line.value("man"),
+                                               self.line.value("mat"), 0.5 * h)
             z1 = ca.SX.zeros(1, 1)
             mxx = mxx + ca.horzcat(axx, z1) + ca.horzcat(z1, axx)
             mxz = mxz + ca.horzcat(axz, z1) + ca.horzcat(z1, axz)
@@ -312,7 +332,7 @@ class PlanarModel:
 
     def _weights(self, h: Any) -> Any:
         """Weights in water at the nodes (2 x (N+1), N; z negative)."""
-        wz = self.w * h * ca.DM(self._share()).T
+        wz = h * self.line.nodes("w")
         if not self.anchored:
             unit = np.zeros(self.n + 1)
             unit[0] = self.unit_weight
@@ -362,10 +382,11 @@ class PlanarModel:
         tbar = sum(wg * self._tension(em + g * de)
                    for g, wg in zip(*_MEAN_RULE, strict=True))
         u = (d0 + d1) / ca.repmat(l0 + l1, 2, 1)
-        if self.c > 0.0:
+        if np.any(self.line.rows["c"] > 0.0):
             rate = ca.sum1(u * (vm[:, 1:] - vm[:, :-1])) / hm
-            tbar = tbar + self.c * rate * self._taut(em)
+            tbar = tbar + self.line.value("c") * rate * self._taut(em)
         force = self._spread(ca.repmat(tbar, 2, 1) * u)
+        force = force + self.bending.node_forces(dm, mm["L"] / self.length0)
         # drag at the mean positions with the midpoint velocities
         zm = 0.5 * (self._heights(qa, m0) + self._heights(qb, m1))
         urel = (self._current(0.5 * (zm[:, :-1] + zm[:, 1:]))
@@ -459,14 +480,15 @@ class PlanarModel:
         ll = self._norms(dd)
         eps = ll / h - 1.0
         tens = self._tension(eps)
-        if self.c > 0.0:
+        if np.any(self.line.rows["c"] > 0.0):
             rate = ca.sum1(dd / ca.repmat(ll, 2, 1) * (vs[:, 1:] - vs[:, :-1])) / h
-            tens = tens + self.c * rate * self._taut(eps)
+            tens = tens + self.line.value("c") * rate * self._taut(eps)
         # the top: node N's balance, M_N a_N - (cable, weight, drag); a_N the material
         # acceleration a_b - L_tt R_y / L (the turning of the top tangent neglected)
         zs = rs[1, :]
         d_top = dd[:, n - 1]
         f_n = -tens[n - 1] * d_top / ll[n - 1] + self._weights(h)[:, n]
+        f_n = f_n + self.bending.node_forces(dd, mo["L"] / self.length0)[:, n]
         urel = (self._current(0.5 * (zs[:, n - 1] + zs[:, n]))
                 - 0.5 * (vs[:, n - 1] + vs[:, n]))
         f_n = f_n + 0.5 * self._element_drag(d_top, urel)
@@ -490,8 +512,9 @@ class PlanarModel:
         dd = self._elements(qq, h)
         ll = self._norms(dd)
         eps = ll / h - 1.0
-        tens = self.ea * eps if linear else self._tension(eps)
-        force = self._spread(ca.repmat(tens / ll, 2, 1) * dd)
+        tens = (self.line.value("ea") * eps if self.table is None
+                else self.table.tension_of(eps)) if linear else self._tension(eps)
+        force = self._spread(ca.repmat(tens / ll, 2, 1) * dd) + self.bending.node_forces(dd)
         if with_drag:
             zs = self._heights(qq, mo)
             force = force + self._halves(self._element_drag(
@@ -635,6 +658,7 @@ class PlanarModel:
         ref_x = self.top0[0]
         ref_z = self.top0[1] - self.length0 * (1.0 - s_nodes / self.length0)
         q = np.column_stack([guess[:, 0] - ref_x, guess[:, 2] - ref_z])[self.free].ravel()
+        self.bending.set_clamp(guess[-1, [0, 2]] - guess[-2, [0, 2]])
         qe, newton = self.static_equilibrium(q)
         shift = float(np.abs(qe - q).max())
         info.update(converged=newton["converged"], iterations=newton["iterations"],
@@ -733,7 +757,8 @@ class PlanarModel:
         top = top.reshape(n_t)
         length = length.reshape(n_t)
         min_strain = float(min(emin, np.min(eps)))
-        min_t = float(min(smooth_tension(min_strain, self.ea, self.delta_t), np.min(tens)))
+        min_t = float(min(np.min(np.asarray(self._tension(min_strain), dtype=float)),
+                          np.min(tens)))
         e, where = slack_element(t_slack, e_slack, ts, length, self.n)
         slack, status, message = slack_report(
             t_slack, e, where, status=status, message=message, on_slack=sim.on_slack,

@@ -10,6 +10,7 @@ from __future__ import annotations
 
 from dataclasses import replace
 
+from cable_ocp.dynamics.bending_terms import flexible_warm_start
 from cable_ocp.scene import End, Scene
 from cable_ocp.scene.dynamics import DynamicScene, current_at
 from cable_ocp.statics.solution import StaticsSolution
@@ -52,7 +53,9 @@ def static_state(scene: DynamicScene, max_updates: int = 8) -> StaticsSolution:
     """
     from cable_ocp.statics.solver import solve  # heavy import, only when needed
 
-    sol = solve(scene.statics)
+    sol = flexible_warm_start(scene.statics)  # a line with EI: from its flexible statics
+    if sol is None or not sol.success:
+        sol = solve(scene.statics)
     cur = scene.statics.environment.current
     if scene.unit is None or cur is None or cur.uniform or not sol.success:
         return sol

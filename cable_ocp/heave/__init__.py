@@ -22,9 +22,13 @@ plant       state-space blocks (6.1)/(6.5), (6.2), (6.25), delay models (6.13)-(
 discrete    exact sampled-data models: ZOH with an input delay, cost and noise discretisation
 identify    Gauss-Newton identification of (6.2) and (6.3) (section 6.2.3)
 lqr         LQR designs with the delay handled three ways, delay margins, indices (6.16)-(6.18)
+regulator   the thesis' printed gains G3, G5 (6.2.4-6.2.6) in the closed loop, Figs. 6.14-6.17
+inverse     the inverse problem of 6.4 (2): cable and unit parameters from an identified a, b
 stochastic  Lyapunov (6.31) and spectral (6.33)-(6.35) variances, LQG, winch-gain study (6.3.5)
 mpc         condensed linear MPC (CasADi ``conic``) and nonlinear MPC (IPOPT), built once
 mpc_daqp    the DAQP backend of the linear MPC
+mpc_drive   the winch motor's torque and power limits of the linear MPC
+drive       the winch drive along a run: line tension, motor torque and power
 design_loop closed-loop comparison on one seeded wave realisation (the design model)
 identify_cable  the identification experiment (6.2.3) on a cable scene's line
 axial_plant     the axial line as the plant, stepped one control sample per call

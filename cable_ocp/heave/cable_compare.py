@@ -127,6 +127,11 @@ def _compare_on_cable(sc: HeaveScene, sd: HeaveScene, dyn: DynamicScene,
     n_ctrl = int(round(T / h))
     controllers = tuple(controllers or c.controllers)
     for name in controllers:
+        if name.startswith("phc"):
+            raise CableOCPError(
+                f"controller {name!r} on the cable plant (simulation.plant = \"cable\"): the "
+                "passive compensator is modelled on the design model only; run it with "
+                "simulation.plant = \"model\"")
         if name not in ("passive", "lqr", "lqg", "mpc"):
             raise CableOCPError(f"controller {name!r} is unknown; valid: passive, lqr, lqg, "
                                 "mpc")

@@ -69,6 +69,14 @@ class Trace:
     x, x0, u, u_dot, u0 : numpy.ndarray
         Unit heave (m), boom-tip heave (m), winch output (m), winch speed (m/s), applied
         (delayed) command (m).
+    tension : numpy.ndarray or None
+        Line tension at the drum, N (the design model's ``T0 + (m/a) stretch``; None without
+        ``[unit] mass`` and ``static_tension``).
+    torque, power : numpy.ndarray or None
+        The winch motor's torque (N m) and power (W) (:mod:`cable_ocp.heave.drive`; None
+        without ``[winch] drum_radius``).
+    stroke_phc : numpy.ndarray or None
+        The passive compensator's compression, m (None without one).
     """
 
     t: np.ndarray
@@ -77,6 +85,10 @@ class Trace:
     u: np.ndarray
     u_dot: np.ndarray
     u0: np.ndarray
+    tension: np.ndarray | None = field(default=None, kw_only=True)
+    torque: np.ndarray | None = field(default=None, kw_only=True)
+    power: np.ndarray | None = field(default=None, kw_only=True)
+    stroke_phc: np.ndarray | None = field(default=None, kw_only=True)
 
 
 @dataclass(frozen=True)

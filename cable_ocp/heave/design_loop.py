@@ -14,6 +14,12 @@ run_loop`. Controllers (:mod:`cable_ocp.heave.controllers`) act every ``h`` seco
 * ``lqg``: the same gain on a discrete Kalman filter (current estimator) that measures the
   unit's heave with white noise of standard deviation ``measurement_noise``.
 * ``mpc``: :class:`cable_ocp.heave.mpc.LinearMPC` with full state (and wave preview if asked).
+* ``phc``: the passive compensator of ``[passive_compensator]`` (an in-line gas-spring
+  cylinder, Huang (1992) 6.1.4) with the winch held still; ``phc+lqr``, ``phc+lqg``,
+  ``phc+mpc``: the compensator and the active controller, designed on the plant with the
+  compensator linearised (:func:`cable_ocp.heave.plant.compensator_block`), simulated with
+  the gas spring exact and its end stops (:class:`cable_ocp.heave.loop_plants.
+  UnitWinchPlant`).
 
 The unit and winch start at rest in a sea that starts in its stationary state; that start is
 artificial, so **every** metric is taken over the same window ``t >= [simulation] warmup``
@@ -76,9 +82,10 @@ from cable_ocp.heave.stochastic import (
     output_variance_lyapunov,
 )
 from cable_ocp.numerics import interrupt
-from cable_ocp.scene.heave import HeaveScene
+from cable_ocp.physics.gas_spring import gas_stiffness
+from cable_ocp.scene.heave import HeaveScene, compensator_pressure
 
-__all__ = ["Models", "build_models", "compare", "wave_realisation"]
+__all__ = ["Models", "base_controller", "build_models", "compare", "wave_realisation"]
 
 
 @dataclass(frozen=True)
@@ -89,6 +96,8 @@ class Models:
     filter_fit: sea_mod.FilterFit
     plant: pl.HeavePlant
     sigma_uncontrolled: float
+    #: the plant with the passive compensator (block ``"comp"``), None without one
+    plant_phc: pl.HeavePlant | None = None
 
 
 #: exceptions of the numerical libraries that mean "this design cannot be computed"
@@ -119,7 +128,26 @@ def build_models(scene: HeaveScene) -> Models:
     with np.errstate(all="ignore"):
         var = output_variance_lyapunov(plant.A, plant.B2, plant.e("x"))
     sig = float(np.sqrt(var)) if np.isfinite(var) and var >= 0 else None
-    return Models(spec, fit, plant, sig)
+    plant_phc = None
+    pc = scene.passive_compensator
+    if pc is not None:
+        k_p = gas_stiffness(0.0, compensator_pressure(scene), pc.gas_volume, pc.area,
+                            pc.polytropic_exponent)
+        comp = pl.compensator_block(k_p, pc.damping, scene.unit.mass / scene.unit.a)
+        plant_phc = pl.assemble_plant(scene.unit.a, scene.unit.b, winch, vessel=vessel,
+                                      sea=fit.filter, compensator=comp)
+    return Models(spec, fit, plant, sig, plant_phc)
+
+
+def base_controller(name: str) -> tuple[str, bool]:
+    """``(active controller, with the passive compensator)`` of a controller's name:
+    ``"phc"`` is ``("passive", True)``, ``"phc+lqr"`` ``("lqr", True)``, ``"lqr"``
+    ``("lqr", False)``."""
+    if name == "phc":
+        return "passive", True
+    if name.startswith("phc+"):
+        return name[4:], True
+    return name, False
 
 
 def wave_realisation(plant: pl.HeavePlant, t_end: float, h_sim: float, seed: int
@@ -218,18 +246,15 @@ def compare(scene: HeaveScene, controllers: tuple | None = None,
     runs = controllers if "passive" in controllers else controllers + ("passive",)
     bound = unstable_bound(x0[: n_ctrl * m + 1])
 
-    # Designs on the linear plant; a failure is the status of the controllers that need it.
-    mdl = discretize_delayed(p.A, p.B1, h, tau)
-    try:
-        with np.errstate(all="ignore"):
-            G = discrete_delay_lqr(p.A, p.B1, p.e("x"), c.q, c.r, h, tau)
-        if not np.all(np.isfinite(G)):
-            raise ArithmeticError("the LQR gain is not finite")
-        design_error = None
-    except CableOCPError:
-        raise
-    except _DESIGN_ERRORS as exc:
-        G, design_error = None, f"{type(exc).__name__}: {exc}"
+    # Designs on the linear plants (with the compensator for the phc* controllers); a
+    # failure is the status of the controllers that need it.
+    designs = {False: _lqr_design(p, c, h, tau)}
+    phc_names = [nm for nm in runs if base_controller(nm)[1]]
+    if phc_names and models.plant_phc is None:
+        raise CableOCPError(f"controllers {', '.join(phc_names)}: need a [passive_compensator] "
+                            "table in the scene (area, gas_volume, damping, stroke_max, ...)")
+    if phc_names:
+        designs[True] = _lqr_design(models.plant_phc, c, h, tau)
     settings = mpc_mod.settings_from_scene(scene)
 
     traces, metrics, statuses, messages = {}, {}, {}, {}
@@ -245,13 +270,17 @@ def compare(scene: HeaveScene, controllers: tuple | None = None,
         report = None if progress is None else (
             lambda k, n_done=n_done: progress(n_done * n_ctrl + k, total, None))
         try:
-            status, message, ctrl = _design(name, p, mdl, G, design_error, settings, tau, c, h)
+            base, phc = base_controller(name)
+            pn, mdl, G, design_error = designs[phc]
+            status, message, ctrl = _design(base, pn, mdl, G, design_error, settings, tau, c, h)
+            if ctrl is not None:
+                ctrl.name = name
             if status == "failed":
                 if name in controllers:
                     statuses[name], messages[name] = status, message
                     metrics[name] = Metrics(None, None, None, None, None, None, None, None)
                 continue
-            plant = UnitWinchPlant(scene, p, t, x0, xs_sea, meas_noise, n_ctrl)
+            plant = UnitWinchPlant(scene, pn, t, x0, xs_sea, meas_noise, n_ctrl, phc=phc)
             run = run_loop(plant, ctrl, n_ctrl, bound, report)
         except (KeyboardInterrupt, Exception) as exc:  # a CasADi error may be a Ctrl-C
             # an interruption: keep the runs finished; this one and the rest: interrupted
@@ -271,7 +300,7 @@ def compare(scene: HeaveScene, controllers: tuple | None = None,
                 warnings.append(f"mpc: the QP failed at {failures} of {run.times.size} "
                                 "samples; the shifted previous plan was applied there")
         energy = ctrl.energy_index
-        times = run.times if name == "mpc" else None
+        times = run.times if base == "mpc" else None
         if status == "solved":
             mt = run_metrics(scene, tr, cmds, energy, times, h)
             lim = limit_warning(name, limit_excess(scene, tr, cmds, h))
@@ -301,6 +330,22 @@ def compare(scene: HeaveScene, controllers: tuple | None = None,
     return Comparison(models.sigma_uncontrolled, metrics, traces, models, solve_times,
                       failures, statuses, messages, passive_rms, warnings,
                       interrupted=stopped is not None)
+
+
+def _lqr_design(p: pl.HeavePlant, c: Any, h: float, tau: float
+                ) -> tuple[pl.HeavePlant, DelayedDiscreteModel, np.ndarray | None, str | None]:
+    """``(plant, sampled model, LQR gain or None, the design's error or None)``."""
+    mdl = discretize_delayed(p.A, p.B1, h, tau)
+    try:
+        with np.errstate(all="ignore"):
+            G = discrete_delay_lqr(p.A, p.B1, p.e("x"), c.q, c.r, h, tau)
+        if not np.all(np.isfinite(G)):
+            raise ArithmeticError("the LQR gain is not finite")
+        return p, mdl, G, None
+    except CableOCPError:
+        raise
+    except _DESIGN_ERRORS as exc:
+        return p, mdl, None, f"{type(exc).__name__}: {exc}"
 
 
 def _spectral_radius(A: np.ndarray) -> float:  # noqa: N803
@@ -359,4 +404,5 @@ def _make_controller(name: str, p: pl.HeavePlant, mdl: DelayedDiscreteModel,
         return StateFeedback("lqg", G, KalmanFilter((mdl.Ad, mdl.Bd, M), C, n, d))
     if name == "mpc":
         return MPCController(mpc_mod.LinearMPC(p, tau, settings), FullState(n, d))
-    raise CableOCPError(f"controller {name!r} is unknown; valid: passive, lqr, lqg, mpc")
+    raise CableOCPError(f"controller {name!r} is unknown; valid: passive, lqr, lqg, mpc, "
+                        "phc, phc+lqr, phc+lqg, phc+mpc")

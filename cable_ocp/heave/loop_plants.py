@@ -31,9 +31,11 @@ from scipy import linalg
 from cable_ocp.heave import plant as pl
 from cable_ocp.heave.closed_loop import CableTrace, LoopPlant, Sample, Trace, Wave
 from cable_ocp.heave.discrete import delay_steps
+from cable_ocp.heave.drive import design_tension, drive_series
 from cable_ocp.heave.estimators import Observation
 from cable_ocp.heave.plant import unit_acceleration
-from cable_ocp.scene.heave import HeaveScene
+from cable_ocp.physics.gas_spring import gas_force
+from cable_ocp.scene.heave import HeaveScene, compensator_pressure
 
 __all__ = ["CableLine", "ModelLine", "UnitWinchPlant", "WinchedLine", "winch_maps"]
 
@@ -57,10 +59,17 @@ class UnitWinchPlant(LoopPlant):
         The depth sensor's noise per sample, m.
     n_ctrl : int
         Control samples (the trace's length).
+    phc : bool
+        With the passive compensator of ``[passive_compensator]`` (``p`` then has its block
+        ``"comp"``): the gas spring exact (:func:`cable_ocp.physics.gas_spring.
+        compensator_force`), the massless piston's stroke ``c delta' = T - F_gas(delta)``
+        with ``T = T0 + (m/a)(x0 + u - delta - x)``, held at the end stops
+        ``|delta| <= stroke_max`` while the force pushes into them.
     """
 
     def __init__(self, sc: HeaveScene, p: pl.HeavePlant, t: np.ndarray, x0: np.ndarray,
-                 sea_states: np.ndarray, noise: np.ndarray, n_ctrl: int) -> None:
+                 sea_states: np.ndarray, noise: np.ndarray, n_ctrl: int,
+                 phc: bool = False) -> None:
         c, u, w = sc.controller, sc.unit, sc.winch
         self.sample_time = h = c.sample_time
         self.substeps = m = sc.simulation.substeps
@@ -77,23 +86,49 @@ class UnitWinchPlant(LoopPlant):
         self.t, self.x0, self.sea, self.noise = t, x0, sea_states, noise
         self.n_fore = int(round(c.preview_time / self.hs)) if c.preview_time > 0 else None
         self.nfine = n_ctrl * m
-        self.s = np.zeros(self.nuw)
+        self.scene = sc
+        self.phc = phc
+        self.ns = self.nuw + (1 if phc else 0)
+        if phc:
+            pc = sc.passive_compensator
+            self.ic = p.blocks["comp"].start
+            self.gas = (compensator_pressure(sc), pc.gas_volume, pc.area,
+                        pc.polytropic_exponent)
+            self.c_p, self.smax = pc.damping, pc.stroke_max
+            self.kc, self.t0 = sc.unit.mass / u.a, sc.unit.static_tension
+        self.s = np.zeros(self.ns)
+        self.deltas: list[float] = [0.0]
 
     def _f(self, s: np.ndarray, x0: float, v: float) -> np.ndarray:
-        acc = unit_acceleration(s[0], s[1], x0 + s[2], self.a, self.b, self.bq, self.quad)
+        top = x0 + s[2] - (s[self.nuw] if self.phc else 0.0)
+        acc = unit_acceleration(s[0], s[1], top, self.a, self.b, self.bq, self.quad)
         if self.first:
-            return np.array([s[1], acc, self.K * (v - s[2])])
-        wn = self.wn
-        return np.array([s[1], acc, s[3], wn**2 * (v - s[2]) - 2 * self.zeta * wn * s[3]])
+            out = [s[1], acc, self.K * (v - s[2])]
+        else:
+            wn = self.wn
+            out = [s[1], acc, s[3], wn**2 * (v - s[2]) - 2 * self.zeta * wn * s[3]]
+        if self.phc:
+            out.append(self._stroke_rate(s[self.nuw], top - s[0]))
+        return np.array(out)
+
+    def _stroke_rate(self, d: float, stretch: float) -> float:
+        """``delta'`` of the massless piston, 0 at an end stop the force pushes into."""
+        rate = (self.t0 + self.kc * stretch - gas_force(d, *self.gas)) / self.c_p
+        if (d >= self.smax and rate > 0) or (d <= -self.smax and rate < 0):
+            return 0.0
+        return rate
 
     def start(self) -> dict[str, float]:
-        self.s = np.zeros(self.nuw)  # the unit and winch at rest; the sea stationary
+        self.s = np.zeros(self.ns)  # the unit and winch at rest; the sea stationary
+        self.deltas = [0.0]
         return {"x": float(self.s[0])}
 
     def observe(self, k: int) -> Observation:
         i = k * self.substeps
         z = np.empty(self.n)
-        z[: self.nuw] = self.s
+        z[: self.nuw] = self.s[: self.nuw]
+        if self.phc:
+            z[self.ic] = self.s[self.nuw]
         z[self.lo:] = self.sea[i]
         fore = (self.x0[i: i + self.n_fore + 1: self.substeps] if self.n_fore is not None
                 else None)
@@ -124,6 +159,9 @@ class UnitWinchPlant(LoopPlant):
             k3 = f(s + hs / 2 * k2, xm, v)
             k4 = f(s + hs * k3, xb, v)
             s = s + hs / 6 * (k1 + 2 * k2 + 2 * k3 + k4)
+            if self.phc:  # the end stops
+                s[self.nuw] = min(max(s[self.nuw], -self.smax), self.smax)
+                self.deltas.append(float(s[self.nuw]))
             xs[j] = s[0]
         us[m] = s[2]
         self.s = s
@@ -147,7 +185,15 @@ class UnitWinchPlant(LoopPlant):
             Not used.
         """
         n = self.nfine + 1
-        return Trace(self.t[:n], x, self.x0[:n], u, u_dot, u0)
+        x0 = self.x0[:n]
+        delta = None
+        if self.phc:
+            delta = np.full(n, np.nan)
+            delta[: len(self.deltas)] = self.deltas[:n]
+        tension = design_tension(self.scene, x, x0, u, delta)
+        torque, power = drive_series(self.scene, tension, u, u_dot, u0)
+        return Trace(self.t[:n], x, x0, u, u_dot, u0, tension=tension, torque=torque,
+                     power=power, stroke_phc=delta)
 
 
 def winch_maps(scene: HeaveScene, dt: float) -> tuple[np.ndarray, np.ndarray, np.ndarray,
@@ -200,6 +246,7 @@ class WinchedLine(LoopPlant):
         self.delay = delay_steps(sc.winch.delay, h)
         self.Phi, self.Gam, self.Cw, self.Dw = winch_maps(sc, h / m)
         self.line, self.wave, self.noise = line, wave, noise
+        self.scene = sc
         self.n_preview = int(round(c.preview_time / h))
         self.x0_samples = wave.x0[::m]
         self.w = np.zeros(self.Phi.shape[0])
@@ -273,10 +320,13 @@ class WinchedLine(LoopPlant):
             The smallest element tension per sample, N.
         """
         wave = self.wave
+        top = channels["tension_top"]
+        torque, power = drive_series(self.scene, top, u, u_dot, u0)
         return CableTrace(t=wave.t, x=x, x0=wave.x0, u=u, u_dot=u_dot, u0=u0,
                           tension_unit=channels["tension_unit"],
-                          tension_top=channels["tension_top"], length=wave.ldep,
-                          min_element_tension=per_sample)
+                          tension_top=top, length=wave.ldep,
+                          min_element_tension=per_sample, tension=top, torque=torque,
+                          power=power)
 
 
 class CableLine:

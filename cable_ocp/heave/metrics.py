@@ -37,7 +37,11 @@ class Metrics:
 
     Every field is None (JSON null) where the number does not exist: all but
     ``energy_index`` and ``solve_time_median_s`` for a controller whose status is not
-    ``"solved"``; ``reduction_pct`` when the passive baseline has no heave.
+    ``"solved"``; ``reduction_pct`` when the passive baseline has no heave;
+    ``peak_torque`` (N m) and ``peak_power`` (W, the largest ``|tau|`` and ``|P|`` of the
+    winch motor) without ``[winch] drum_radius``; ``max_stroke_phc`` (m, the passive
+    compensator's largest ``|delta|``) and ``stop_time_phc`` (s, the time it spent at its end
+    stops) for a controller without the compensator.
     """
 
     heave_rms: float | None
@@ -48,6 +52,10 @@ class Metrics:
     max_constraint_violation: float | None
     solve_time_median_s: float | None
     winch_speed_rms: float | None
+    peak_torque: float | None = None
+    peak_power: float | None = None
+    max_stroke_phc: float | None = None
+    stop_time_phc: float | None = None
 
     def as_dict(self) -> dict:
         """Plain dict for JSON."""
@@ -138,13 +146,16 @@ class Comparison:
         """The traces as an ``xarray.Dataset`` over dimensions ``controller`` and ``time``
         (s): ``unit_heave``, ``tip_heave``, ``winch_output``, ``command`` (m),
         ``winch_speed`` (m/s), and on a cable plant ``tension_unit``, ``tension_top`` (N)
-        and ``deployment_length`` (m); NaN after a stopped run's last sample. Needs
-        xarray (the extra ``[io]``)."""
+        and ``deployment_length`` (m); where known ``line_tension`` (N), ``motor_torque``
+        (N m), ``motor_power`` (W) and ``phc_stroke`` (m); NaN after a stopped run's last
+        sample. Needs xarray (the extra ``[io]``)."""
         xr = optional_module("xarray", f"{type(self).__name__}.to_xarray()")
         names = {"x": ("unit_heave", "m"), "x0": ("tip_heave", "m"),
                  "u": ("winch_output", "m"), "u_dot": ("winch_speed", "m/s"),
                  "u0": ("command", "m"), "tension_unit": ("tension_unit", "N"),
-                 "tension_top": ("tension_top", "N"), "length": ("deployment_length", "m")}
+                 "tension_top": ("tension_top", "N"), "length": ("deployment_length", "m"),
+                 "tension": ("line_tension", "N"), "torque": ("motor_torque", "N m"),
+                 "power": ("motor_power", "W"), "stroke_phc": ("phc_stroke", "m")}
         parts = []
         for tr in self.traces.values():
             data = {var: ("time", np.asarray(getattr(tr, key), dtype=float), {"units": unit})
@@ -237,7 +248,8 @@ def with_reduction(mt: Metrics, base: float | None) -> Metrics:
 #: the winch's limits, in the order :func:`limit_excess` checks them: key, what, unit
 WINCH_LIMITS = (("stroke_max", "stroke", "m"), ("speed_max", "winch speed", "m/s"),
                 ("command_rate_max", "command change", "m per sample"),
-                ("accel_max", "winch acceleration", "m/s^2"))
+                ("accel_max", "winch acceleration", "m/s^2"),
+                ("torque_max", "motor torque", "N m"), ("power_max", "motor power", "W"))
 
 
 def limit_excess(scene: HeaveScene, tr: Trace, cmds: np.ndarray, h: float
@@ -247,7 +259,9 @@ def limit_excess(scene: HeaveScene, tr: Trace, cmds: np.ndarray, h: float
     holds). Stroke ``|u|`` and speed ``|u'|``; the change of the command per sample (command
     ``k`` is issued at ``t = k h``, command -1 is the initial 0; its change from command
     ``k - 1`` counts if ``k h >= warm-up``); the acceleration for the second-order winch only
-    (docs/conventions.md, "Heave compensation"). The plant does not saturate: a run past a
+    (docs/conventions.md, "Heave compensation"); the motor's torque and power (``|tau|``,
+    ``|P|``, :mod:`cable_ocp.heave.drive`) where ``[winch] drum_radius`` is given. The plant
+    does not saturate: a run past a
     limit assumes a winch that can do what it was asked.
 
     Parameters
@@ -275,6 +289,9 @@ def limit_excess(scene: HeaveScene, tr: Trace, cmds: np.ndarray, h: float
             largest["command_rate_max"] = float(np.max(np.abs(dcmd)))
     if w.accel_max is not None and w.model == "second_order" and np.any(keep):
         largest["accel_max"] = float(np.max(np.abs(np.gradient(tr.u_dot, tr.t)[keep])))
+    for key, series in (("torque_max", tr.torque), ("power_max", tr.power)):
+        if series is not None and np.any(keep):
+            largest[key] = float(np.max(np.abs(series[keep])))
     out = []
     for key, _, unit in WINCH_LIMITS:
         limit = getattr(w, key, None)
@@ -382,7 +399,26 @@ def run_metrics(scene: HeaveScene, tr: Trace, cmds: np.ndarray, energy: float | 
         solve_time_median_s=float(np.median(times)) if times is not None and times.size
         else None,
         winch_speed_rms=float(np.sqrt(np.mean(ud**2))),
+        peak_torque=_peak(tr.torque, keep),
+        peak_power=_peak(tr.power, keep),
+        max_stroke_phc=_peak(tr.stroke_phc, keep),
+        stop_time_phc=_stop_time(scene, tr, keep),
     )
+
+
+def _peak(series: np.ndarray | None, keep: np.ndarray) -> float | None:
+    """The largest ``|series|`` after the warm-up, or None without the series."""
+    return None if series is None else float(np.max(np.abs(series[keep])))
+
+
+def _stop_time(scene: HeaveScene, tr: Trace, keep: np.ndarray) -> float | None:
+    """The time (s) the passive compensator spent at its end stops after the warm-up (to
+    1e-9 of its stroke), or None without one."""
+    if tr.stroke_phc is None or scene.passive_compensator is None:
+        return None
+    smax = scene.passive_compensator.stroke_max
+    dt = float(tr.t[1] - tr.t[0]) if tr.t.size > 1 else 0.0
+    return float(np.count_nonzero(np.abs(tr.stroke_phc[keep]) >= smax * (1 - 1e-9)) * dt)
 
 
 #: the cable-plant fields of a controller's metrics (None where the run is not solved)
@@ -413,8 +449,7 @@ def cable_run_metrics(scene: HeaveScene, run: LoopRun, energy: float | None) -> 
     """
     times = run.times
     if run_status(run)[0] != "solved":
-        d = dict.fromkeys(("heave_rms", "reduction_pct", "peak_winch_speed", "max_stroke",
-                           "max_constraint_violation", "winch_speed_rms") + CABLE_FIELDS)
+        d = dict.fromkeys(tuple(Metrics.__dataclass_fields__) + CABLE_FIELDS)
         d["energy_index"] = energy
         d["solve_time_median_s"] = (float(np.median(times)) if times is not None
                                     and times.size else None)

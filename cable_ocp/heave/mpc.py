@@ -20,6 +20,14 @@ Limits (docs/conventions.md, "Heave compensation"):
 * soft: cable tension ``T = T_0 + (m/a) (x0 + u - x) >= T_min`` through a nonnegative slack with
   quadratic and exact linear (L1) penalties, when the plant carries tension (``[unit] mass`` and
   ``static_tension`` given).
+* the winch motor (``[winch] drum_radius``, :mod:`cable_ocp.physics.winch_drive`): the torque
+  ``|R T + J u''/R| <= torque_max`` (soft, exact while feasible: the tension's slack and
+  penalties, the rows scaled to metres of stretch; linear in the state and the commands) and
+  the power
+  ``|tau u'/R| <= power_max``. The power is bilinear: the QP linearises it about the static
+  tension (drum at rest), ``|T0 u'| <= power_max``, a speed limit; the IPOPT formulation
+  keeps it exact. Both at the samples, once the sample's command is applied
+  (:func:`cable_ocp.heave.mpc_drive.drive_rows`).
 
 Wave preview: the boom-tip motion known ``preview_time`` s ahead enters as a known additive input
 on the unit's ``x0`` channel that corrects the shaping-filter prediction to the forecast.
@@ -61,6 +69,7 @@ from cable_ocp.errors import CableOCPError
 from cable_ocp.heave.delay import DelayLine
 from cable_ocp.heave.discrete import discretize_cost, discretize_delayed
 from cable_ocp.heave.mpc_daqp import DaqpQP
+from cable_ocp.heave.mpc_drive import drive_rows
 from cable_ocp.heave.plant import HeavePlant
 from cable_ocp.numerics import interrupt
 from cable_ocp.physics.drag import quadratic_drag
@@ -81,7 +90,9 @@ class MPCSettings:
     sample_time : float
         ``h``, s.
     q : float
-        Weight on the unit's heave, 1/m^2.
+        Weight on the unit's heave, 1/m^2. The default 553.6 is a calibration (Huang 1992,
+        6.3.6, states no weights): fitted so that the delay-free 11-state LQR gives the
+        thesis' controlled 2.96e-4 m.
     r : float
         Weight on the winch command, 1/m^2.
     solver : str
@@ -110,11 +121,19 @@ class MPCSettings:
     solver_options : dict
         Extra options passed to the CasADi solver plugin (for ``"daqp"``: DAQP settings such as
         ``primal_tol``).
+    drum_radius, drum_inertia : float or None
+        The winch drum's radius (m) and inertia at its shaft (kg m^2).
+    torque_max : float or None
+        Soft limit on the motor torque ``|R T + J u''/R|``, N m (needs the tension data and
+        ``drum_radius``; the tension's penalties, exact while the limit can be kept).
+    power_max : float or None
+        Limit on the motor power ``|tau u'/R|``, W: linearised about the static tension
+        (``|T0 u'| <= power_max``) in the QP, exact (bilinear) with ``"ipopt"``.
     """
 
     horizon: int = 50
     sample_time: float = 0.05
-    q: float = 553.6
+    q: float = 553.6  # 1/m^2; a calibration: 6.3.6's LQR gives the thesis' 2.96e-4 m
     r: float = 1.0
     solver: str = "daqp"
     stroke_max: float | None = None
@@ -129,6 +148,10 @@ class MPCSettings:
     terminal: str = "dare"
     nonlinear_b: float = 0.0
     solver_options: dict = field(default_factory=dict, hash=False)
+    drum_radius: float | None = None
+    drum_inertia: float = 0.0
+    torque_max: float | None = None
+    power_max: float | None = None
 
 
 @dataclass(frozen=True)
@@ -160,7 +183,8 @@ class MPCStep:
 class _Row:
     """One limit at prediction step ``k``: ``c_z z_k + c_u u0_k + c_p u0_{k-1} + c_D D_k``
     (plus a tension slack if ``slack``) within ``[-limit, limit]``, or ``>= limit`` if
-    ``lo_only``."""
+    ``lo_only``; ``tag`` ``"power"`` marks the linearised power rows (IPOPT writes the power
+    exactly instead)."""
 
     k: int
     cz: np.ndarray
@@ -170,6 +194,7 @@ class _Row:
     limit: float
     lo_only: bool
     slack: bool
+    tag: str = ""
 
 
 def _winch_indices(plant: HeavePlant) -> tuple[int, int | None]:
@@ -226,6 +251,10 @@ class LinearMPC:
         # Known additive boom-tip input on the unit's x0 channel.
         e_x0 = np.zeros((n, 1))
         e_x0[plant.blocks["unit"].start + 1, 0] = 1.0 / plant.a
+        comp = plant.blocks.get("comp")
+        if comp is not None and comp.stop > comp.start:
+            # the compensator sees x0 as it sees the winch output u
+            e_x0[comp.start, 0] = plant.A[comp.start, plant.blocks["winch"].start]
         cx = plant.e("x")
         mdl = discretize_delayed(plant.A, plant.B1, h, tau, e_x0)
         self.model = mdl
@@ -356,7 +385,8 @@ class LinearMPC:
             return c, 1.0
 
         def add(k: int, cz: np.ndarray, cu: float, limit: float, cp: float = 0.0,
-                cd: float = 0.0, lo_only: bool = False, slack: bool = False) -> None:
+                cd: float = 0.0, lo_only: bool = False, slack: bool = False,
+                tag: str = "") -> None:
             rU = cz @ self._T[k]
             if k < N:
                 rU = rU.copy()
@@ -366,7 +396,8 @@ class LinearMPC:
                 rU[k - 1] += cp
             if np.max(np.abs(rU)) < 1e-14:
                 return  # fixed by the past: nothing to decide
-            rows.append(_Row(k, cz, cu, cp, cd if k < N else 0.0, limit, lo_only, slack))
+            rows.append(_Row(k, cz, cu, cp, cd if k < N else 0.0, limit, lo_only, slack,
+                             tag))
 
         eu = np.zeros(nz)
         eu[iu] = 1.0
@@ -395,6 +426,10 @@ class LinearMPC:
         if s.command_rate_max is not None:
             for k in range(N):
                 add(k, np.zeros(nz), 1.0, s.command_rate_max, cp=-1.0)
+        self.drive_terms: dict[int, tuple] = {}
+        drive = s.torque_max is not None or s.power_max is not None
+        if drive:  # the power's hard rows before the soft rows
+            self.drive_terms = drive_rows(self, plant, add, applied, eu, iu, iud, "power")
         if s.tension_min is not None:
             c_str, _ = plant.output_row("stretch")
             cs_ = np.zeros(nz)
@@ -405,6 +440,8 @@ class LinearMPC:
                 # The known boom-tip correction D_k adds to the stretch.
                 add(k, cs_, 0.0, smin, cd=1.0, lo_only=True, slack=True)
             self.stretch_min = smin
+        if drive:  # the torque's soft rows last, after the tension's (mpc_daqp's stages)
+            drive_rows(self, plant, add, applied, eu, iu, iud, "torque")
         self.rows = rows
         m = len(rows)
         self.slack_of_row = np.full(m, -1)
@@ -617,7 +654,9 @@ def _check_settings(s: MPCSettings) -> None:
              ("controller", "sample_time", s.sample_time, True),
              ("controller", "q", s.q, False), ("controller", "r", s.r, True),
              ("controller", "preview_time", s.preview_time, False),
-             ("controller", "tension_penalty", s.tension_penalty, True)]
+             ("controller", "tension_penalty", s.tension_penalty, True),
+             ("winch", "torque_max", s.torque_max, True),
+             ("winch", "power_max", s.power_max, True)]
     for table, key, val, strict in rules:
         if val is None:
             continue
@@ -726,6 +765,15 @@ class _NonlinearMPC:
         ubg = [0.0] * (nz * (N + 1))
         for i, r in enumerate(mpc.rows):
             k = r.k
+            if r.tag == "power":  # the bilinear power tau u' / R, exactly
+                tz, tu, td, sz, su = mpc.drive_terms[k]
+                R = s.drum_radius
+                tau = (R * s.static_tension + cs.mtimes(cs.DM(tz).T, Z[:, k]) + tu * U[k]
+                       + td * PD[k])
+                g.append(tau * (cs.mtimes(cs.DM(sz).T, Z[:, k]) + su * U[k]) / R)
+                lbg.append(-s.power_max)
+                ubg.append(s.power_max)
+                continue
             e = cs.mtimes(cs.DM(r.cz).T, Z[:, k])
             if k < N:
                 e = e + r.cu * U[k] + r.cd * PD[k]
@@ -826,4 +874,6 @@ def settings_from_scene(scene: Any) -> MPCSettings:
         accel_max=w.accel_max, tension_min=w.tension_min, unit_mass=u.mass,
         static_tension=u.static_tension, tension_penalty=c.tension_penalty,
         preview_time=c.preview_time, terminal=c.terminal,
-        nonlinear_b=u.b_quadratic if u.model == "quadratic" else 0.0)
+        nonlinear_b=u.b_quadratic if u.model == "quadratic" else 0.0,
+        drum_radius=w.drum_radius, drum_inertia=w.drum_inertia, torque_max=w.torque_max,
+        power_max=w.power_max)

@@ -17,6 +17,9 @@ block                  equation (Huang (1992))                      signals (in 
 sea filter             (6.21)-(6.23), :mod:`.sea`           ``w -> eta``
 =====================  ==================================  ==========================
 
+The passive compensator (section 6.1.4; :func:`compensator_block`, ``x0, u, x -> delta``):
+``c delta' + k_p delta = k_c (x0 + u - delta - x)``, the unit then sees ``x0 + u - delta``.
+
 ``x`` is the unit's heave (m, up), ``x0`` the boom-tip heave (m, up), ``u`` the winch output
 (m, counted like ``x0``: ``u > 0`` hauls the unit up), ``u0`` the winch command (m), ``u0d`` the
 command after the delay ``tau``. ``stretch = x0 + u - x`` (m) is the cable's extension beyond its
@@ -140,6 +143,41 @@ def winch_second(omega: float, zeta: float) -> ct.StateSpace:
                  states=["u", "u_dot"], name="winch")
 
 
+def compensator_block(stiffness: float, damping: float, line_stiffness: float
+                      ) -> ct.StateSpace:
+    """The passive compensator linearised about its static position: a massless piston on the
+    gas spring ``k_p`` (:func:`cable_ocp.physics.gas_spring.gas_stiffness` at zero stroke) and
+    the damper ``c``, in series with the line of stiffness ``k_c = m / a`` (the design model's,
+    docs/heave.md, "Passive compensator"):
+
+        c delta' + k_p delta = k_c (x0 + u - delta - x),
+
+    ``delta`` the compression (m; it lowers the line's top, which is at ``x0 + u - delta``).
+
+    Parameters
+    ----------
+    stiffness : float
+        ``k_p``, N/m (> 0).
+    damping : float
+        ``c``, N s/m (> 0).
+    line_stiffness : float
+        ``k_c``, N/m (> 0).
+
+    Returns
+    -------
+    control.StateSpace
+        State ``[delta]``; inputs ``[x0, u, x]``; output ``delta``.
+    """
+    if not (stiffness > 0 and damping > 0 and line_stiffness > 0):
+        raise CableOCPError(
+            f"passive compensator: stiffness = {stiffness!r} N/m, damping = {damping!r} N s/m, "
+            f"line stiffness = {line_stiffness!r} N/m: all must be > 0")
+    kc, c = line_stiffness, damping
+    return ct.ss([[-(stiffness + kc) / c]], [[kc / c, kc / c, -kc / c]], [[1.0]],
+                 [[0.0, 0.0, 0.0]], inputs=["x0", "u", "x"], outputs=["delta"],
+                 states=["delta"], name="comp")
+
+
 def delay_block(kind: str, tau: float, order: int = 2) -> ct.StateSpace:
     """A model of the command delay ``u0d(t) = u0(t - tau)``.
 
@@ -226,8 +264,8 @@ class HeavePlant:
         (boom-tip motion as an exogenous signal, the regulator of Huang (1992) (6.6)/(6.14));
         outputs ``["x", "x_dot", "stretch", "u", "u_dot", ("u_ddot",) "x0"]``.
     blocks : dict
-        Slices of the state vector per block: ``"unit"``, ``"winch"``, ``"delay"``, ``"vessel"``,
-        ``"sea"``.
+        Slices of the state vector per block: ``"unit"``, ``"winch"``, ``"delay"``, (``"comp"``,
+        the passive compensator,) ``"vessel"``, ``"sea"``.
     a, b, K : float
         Unit coefficients (s^2, s) and winch gain (1/s; 0 for the second-order winch).
     winch_model : str
@@ -282,6 +320,7 @@ def assemble_plant(
     delay: ct.StateSpace | None = None,
     vessel: ct.StateSpace | None = None,
     sea: ct.StateSpace | None = None,
+    compensator: ct.StateSpace | None = None,
 ) -> HeavePlant:
     """Assemble the plant from blocks (Huang 1992, eq. (6.28) when ``vessel`` and ``sea`` are
     given).
@@ -297,6 +336,9 @@ def assemble_plant(
     vessel, sea : control.StateSpace, optional
         Both or neither. With both, the disturbance input is the unit white noise ``w``; with
         neither, it is the boom-tip motion ``x0`` (the regulator plant (6.6)/(6.14)).
+    compensator : control.StateSpace, optional
+        :func:`compensator_block`: the passive compensator between the boom tip and the line
+        (the unit then sees ``x0 + u - delta``; its block ``"comp"`` after the delay's).
 
     Returns
     -------
@@ -308,8 +350,13 @@ def assemble_plant(
     if delay is None:
         delay = delay_block("none", 0.0)
     blocks = [unit, winch, delay]
+    names = ["unit", "winch", "delay"]
+    if compensator is not None:
+        blocks.append(compensator)
+        names.append("comp")
     if sea is not None:
         blocks += [vessel, sea]
+        names += ["vessel", "sea"]
         dist = "w"
     else:
         dist = "x0"
@@ -327,10 +374,17 @@ def assemble_plant(
     inplist = [["delay.u0"], ["sea.w"] if sea is not None else ["unit.x0"]]
     if sea is not None:
         conns += [["unit.x0", "vessel.x0"], ["vessel.eta", "sea.eta"]]
+    if compensator is not None:
+        # the line's top is at x0 + u - delta
+        conns[0] = ["unit.u", "winch.u", "-comp.delta"]
+        conns += [["comp.u", "winch.u"], ["comp.x", "unit.x"]]
+        if sea is not None:
+            conns.append(["comp.x0", "vessel.x0"])
+        else:
+            inplist[1] = ["unit.x0", "comp.x0"]
     sys = ct.interconnect(blocks, connections=conns, inplist=inplist, inputs=["u0", dist],
                           outlist=outs, outputs=outputs, name="plant")
     sizes = [blk.nstates for blk in blocks]
-    names = ["unit", "winch", "delay", "vessel", "sea"][: len(blocks)]
     offs = np.concatenate([[0], np.cumsum(sizes)])
     slices = {nm: slice(int(offs[i]), int(offs[i + 1])) for i, nm in enumerate(names)}
     model = "second_order" if winch.nstates == 2 else "first_order"

@@ -7,6 +7,8 @@ physics < scene). The homes (docs/laws.md lists them with their equations and so
   local-basis and kernel (value + Jacobian) forms; point-body drag (vector and per axis);
 * :mod:`~cable_ocp.physics.current`: the current profile (CasADi and numpy) and its kinks;
 * :mod:`~cable_ocp.physics.elasticity`: axial tension (EA, damping, no compression);
+* :mod:`~cable_ocp.physics.bending`: bending stiffness of a discretised line (the hinge law
+  between adjacent elements, EI and the turning angle);
 * :mod:`~cable_ocp.physics.added_mass`: added mass of a line element and a body, weight in
   water and buoyancy;
 * :mod:`~cable_ocp.physics.seabed`: the seabed plane and the grounded line;
@@ -14,7 +16,10 @@ physics < scene). The homes (docs/laws.md lists them with their equations and so
   ropes) from a nominal diameter, MoorPy's scaling laws;
 * :mod:`~cable_ocp.physics.smooth`: the smooth modulus and its bound;
 * :mod:`~cable_ocp.physics.hydrostatics`: a rigid body's weight, buoyancy, waterplane
-  restoring and their exact derivatives.
+  restoring and their exact derivatives;
+* :mod:`~cable_ocp.physics.gas_spring`: the polytropic gas spring of a passive heave
+  compensator (force, stiffness, damping);
+* :mod:`~cable_ocp.physics.winch_drive`: the winch drum's torque and power.
 """
 
 from cable_ocp.physics.current import current_velocity, profile_velocity, profile_velocity_np

@@ -302,11 +302,18 @@ def drag_per_length_np(
     tangential_drag: float,
     delta: float = 0.0,
     blend: float = 1e-2,
+    signed: bool = True,
 ) -> np.ndarray:
     """:func:`drag_per_length` in numpy, vectorised over the leading axes, N/m.
 
     The same law and vertical blend; ``delta`` = 0 (the default) keeps the exact modulus
     (the baselines), > 0 the smooth one of the CasADi form (they then agree to rounding).
+    ``signed = False`` gives the componentwise law as Chucheepsakul & Subwonglee (1991)
+    print it, eqs (5)-(7): each flow component squared without its sign (u_b^2 e_b +
+    u_n^2 e_n normal, u_t^2 t tangential), so the load never changes direction with the
+    flow and a reversed current gives the same load. Wang et al. (1993), eqs (4)-(6), show
+    that the modulus signs are needed; the sign-free form is kept only to show what it gives
+    (``docs/baselines.md``, "Chucheepsakul & Subwonglee's Table 2").
 
     Parameters
     ----------
@@ -326,6 +333,9 @@ def drag_per_length_np(
         Smoothing velocity, m/s (0 = exact modulus).
     blend : float
         Vertical blend beta of the componentwise law (-).
+    signed : bool
+        False: the sign-free componentwise law of Chucheepsakul & Subwonglee (1991), eqs
+        (5)-(7) (``law`` must be ``"componentwise"``).
 
     Returns
     -------
@@ -334,8 +344,12 @@ def drag_per_length_np(
     """
     u, t = np.asarray(u, dtype=float), np.asarray(t, dtype=float)
     kn, kt = line_drag_factors(rho, diameter, normal_drag, tangential_drag)
+    if not signed and law != "componentwise":
+        raise ValueError(f"the sign-free law is componentwise only, not {law!r}")
 
     def mod(x: np.ndarray) -> np.ndarray:
+        if not signed:
+            return x
         return np.abs(x) if delta == 0.0 else np.sqrt(x * x + delta * delta)
 
     ut = np.sum(u * t, axis=-1)

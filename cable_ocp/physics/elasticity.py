@@ -22,12 +22,40 @@ with two additions that the models share:
   c (de/dt) s(e) (:func:`material_damping`).
 
 These functions take numbers (floats, numpy arrays or CasADi expressions) and no model
-object. A material is an object with the :class:`AxialMaterial` interface;
-:class:`LinearElastic` is the one the models use. A nonlinear material (a tension-strain
-table, interpolated with the same no-compression switch) or a viscoelastic one (a
-Kelvin-Voigt or standard-solid law whose internal strain is a state) is another class with
-the same methods: a model that asks its material for ``tension``, ``stiffness`` and
-``taut`` needs no change. Not implemented here.
+object. A material is an object with the :class:`AxialMaterial` interface:
+
+* :class:`LinearElastic`: T = EA e (the models' default);
+* :class:`NonlinearElastic`: a measured tension-strain table ``[[T_k, e_k], ...]`` (004
+  (12.4): T = T(e), EA = dT/de depending on the tension; Huang (1992) 3.4), with the same
+  no-compression switch applied to the table's tension u(e): T = (u + sqrt(u^2 +
+  delta_T^2)) / 2. The table (:class:`TensionStrainTable`) is interpolated by monotone
+  piecewise-cubic Hermite polynomials (PCHIP, Fritsch-Carlson slopes): u(e) in strain for
+  the dynamics, e(T) in tension for the statics (stretch 1 + e(T)). Both pass through every
+  row, are monotone and C1, and continue past the first and last rows by the straight line
+  of the end slope (C1, so Newton sees a continuous stiffness everywhere). They are each
+  other's inverse at the rows, between them to the interpolation error of the table (a
+  linear table gives exactly EA e in both), and past the rows exactly: e(T)'s end slopes
+  are the reciprocals of u(e)'s (capped at 3 secants, which keeps its end cubics
+  monotone). The same code evaluates numbers and CasADi
+  symbols (a chain of ``if_else``), so the collocation NLP keeps exact derivatives;
+* :class:`StandardLinearSolid`: the rate-dependent spring-dashpot law of synthetic rope
+  (polyester, nylon): a spring EA_s in parallel with a Maxwell arm (a spring EA_d - EA_s in
+  series with a dashpot (EA_d - EA_s) tau). Its internal state is the dashpot's strain
+  e_v (one per element)::
+
+      T = EA_s e + (EA_d - EA_s) (e - e_v),   de_v/dt = (e - e_v) / tau
+
+  A fast load sees EA_d (the dynamic modulus), a slow one EA_s (the static one: at rest
+  e_v = e). A strain step e0 relaxes as T(t) = e0 (EA_s + (EA_d - EA_s) exp(-t / tau))
+  (:meth:`StandardLinearSolid.relaxation`); a load step T0 creeps as
+  e(t) = T0 / EA_s - T0 (1 / EA_s - 1 / EA_d) exp(-t / tau_c), tau_c = tau EA_d / EA_s
+  (:meth:`StandardLinearSolid.creep`).
+
+Where the models call them: the axial model :func:`axial_law_tension` (compression
+allowed), the planar model :func:`cable_material`, the lumped model :func:`strain_tension`,
+:func:`strain_switch` and :func:`strain_stiffness` (its segment law and compiled kernel), the
+statics ``Cable.strain_at`` (:meth:`TensionStrainTable.strain_of`). The standard linear
+solid runs in the axial model only.
 """
 
 from __future__ import annotations
@@ -37,6 +65,7 @@ from typing import Any, Protocol
 
 import casadi as ca
 import numpy as np
+from scipy.interpolate import PchipInterpolator
 
 #: force scale of the smooth no-compression law of the dynamic models, N
 SLACK_SMOOTHING = 0.01
@@ -86,6 +115,118 @@ def kelvin_voigt_tension(strain: Any, strain_rate: Any, axial_stiffness: Any,
         c, N s.
     """
     return axial_stiffness * strain + damping * strain_rate
+
+
+def axial_law_tension(strain: Any, strain_rate: Any, axial_stiffness: Any, damping: Any, *,
+                      table: TensionStrainTable | None = None,
+                      solid: StandardLinearSolid | None = None,
+                      internal_strain: Any = None) -> Any:
+    """The axial model's tension, N (compression allowed, as (3.2)-(3.3)): u(e) + c de/dt
+    with a table, T_SLS(e, e_v) + c de/dt with a standard linear solid, else
+    :func:`kelvin_voigt_tension`.
+
+    Parameters
+    ----------
+    strain, strain_rate : float, array or casadi expression
+        e (-) and de/dt (1/s).
+    axial_stiffness : float
+        EA, N (the linear law).
+    damping : float
+        c, N s.
+    table : TensionStrainTable, optional
+        The nonlinear law u(e).
+    solid : StandardLinearSolid, optional
+        The viscoelastic law; needs ``internal_strain``.
+    internal_strain : float, array or casadi expression, optional
+        The dashpot strain e_v (-).
+    """
+    if table is not None:
+        return table.tension_of(strain) + damping * strain_rate
+    if solid is not None:
+        return solid.tension(strain, internal_strain) + damping * strain_rate
+    return kelvin_voigt_tension(strain, strain_rate, axial_stiffness, damping)
+
+
+def cable_material(axial_stiffness: float, table: TensionStrainTable | None = None,
+                   damping: float = 0.0, slack_smoothing: float = SLACK_SMOOTHING) -> Any:
+    """The no-compression material of a cable: :class:`NonlinearElastic` with a table,
+    else :class:`LinearElastic`.
+
+    Parameters
+    ----------
+    axial_stiffness : float
+        EA, N (the linear law).
+    table : TensionStrainTable, optional
+        The tension-strain law.
+    damping : float
+        Material damping c, N s.
+    slack_smoothing : float
+        delta_T, N.
+    """
+    if table is not None:
+        return NonlinearElastic(table, damping, slack_smoothing)
+    return LinearElastic(axial_stiffness, damping, slack_smoothing)
+
+
+def strain_tension(strain: Any, axial_stiffness: Any, slack_smoothing: Any,
+                   table: TensionStrainTable | None = None) -> Any:
+    """No-compression tension, N: :func:`smooth_tension`, or with a table
+    :func:`smooth_positive` of its u(e).
+
+    Parameters
+    ----------
+    strain : float, array or casadi expression
+        Axial strain (-).
+    axial_stiffness : float or casadi expression
+        EA, N (the linear law).
+    slack_smoothing : float or casadi expression
+        delta_T, N.
+    table : TensionStrainTable, optional
+        The tension-strain law.
+    """
+    if table is None:
+        return smooth_tension(strain, axial_stiffness, slack_smoothing)
+    return smooth_positive(table.tension_of(strain), slack_smoothing)
+
+
+def strain_switch(strain: Any, axial_stiffness: Any, slack_smoothing: Any,
+                  table: TensionStrainTable | None = None) -> Any:
+    """0 (slack) .. 1 (taut), -: :func:`taut_switch`, or with a table
+    :func:`positive_switch` of its u(e).
+
+    Parameters
+    ----------
+    strain : float, array or casadi expression
+        Axial strain (-).
+    axial_stiffness : float or casadi expression
+        EA, N.
+    slack_smoothing : float or casadi expression
+        delta_T, N.
+    table : TensionStrainTable, optional
+        The tension-strain law.
+    """
+    if table is None:
+        return taut_switch(strain, axial_stiffness, slack_smoothing)
+    return positive_switch(table.tension_of(strain), slack_smoothing)
+
+
+def strain_stiffness(strain: Any, axial_stiffness: Any, slack_smoothing: Any,
+                     table: TensionStrainTable | None = None) -> Any:
+    """d/de of :func:`strain_tension`, N.
+
+    Parameters
+    ----------
+    strain : float, array or casadi expression
+        Axial strain (-).
+    axial_stiffness : float or casadi expression
+        EA, N.
+    slack_smoothing : float or casadi expression
+        delta_T, N.
+    table : TensionStrainTable, optional
+        The tension-strain law.
+    """
+    tangent = axial_stiffness if table is None else table.tangent(strain)
+    return tangent * strain_switch(strain, axial_stiffness, slack_smoothing, table)
 
 
 def smooth_tension(strain: Any, axial_stiffness: Any, slack_smoothing: Any) -> Any:
@@ -267,3 +408,370 @@ class LinearElastic:
     def energy(self, strain: Any) -> Any:
         """:func:`smooth_strain_energy`, J/m."""
         return smooth_strain_energy(strain, self.axial_stiffness, self.slack_smoothing)
+
+
+def _is_symbolic(x: Any) -> bool:
+    return isinstance(x, (ca.SX, ca.MX))
+
+
+def smooth_positive(force: Any, slack_smoothing: Any) -> Any:
+    """(u + sqrt(u^2 + delta_T^2)) / 2, N: the no-compression switch applied to a tension u.
+
+    Parameters
+    ----------
+    force : float, array or casadi expression
+        The material law's tension u, N (negative in compression).
+    slack_smoothing : float
+        delta_T, N.
+    """
+    return 0.5 * (force + _sqrt(force * force + slack_smoothing * slack_smoothing))
+
+
+def positive_switch(force: Any, slack_smoothing: Any) -> Any:
+    """d/du of :func:`smooth_positive`: (1 + u / sqrt(u^2 + delta_T^2)) / 2 in (0, 1).
+
+    Parameters
+    ----------
+    force : float, array or casadi expression
+        The material law's tension u, N.
+    slack_smoothing : float
+        delta_T, N.
+    """
+    return 0.5 * (1.0 + force / _sqrt(force * force + slack_smoothing * slack_smoothing))
+
+
+def hermite(x: Any, knots: np.ndarray, values: np.ndarray, slopes: np.ndarray,
+            derivative: bool = False) -> Any:
+    """Piecewise-cubic Hermite interpolant through (knots, values) with ``slopes``,
+    continued by the end slopes' straight lines outside [knots[0], knots[-1]] (C1).
+
+    Parameters
+    ----------
+    x : float, array or casadi expression
+        Where to evaluate (the knots' unit).
+    knots, values, slopes : ndarray
+        Strictly increasing abscissae, the values and the derivatives there.
+    derivative : bool
+        Return the derivative instead of the value.
+    """
+    xk, yk, dk = (np.asarray(a, dtype=float) for a in (knots, values, slopes))
+    n = len(xk)
+
+    def piece(i: int, xx: Any) -> Any:
+        h = xk[i + 1] - xk[i]
+        t = (xx - xk[i]) / h
+        if derivative:
+            return ((6 * t * t - 6 * t) / h * yk[i] + (3 * t * t - 4 * t + 1) * dk[i]
+                    + (-6 * t * t + 6 * t) / h * yk[i + 1] + (3 * t * t - 2 * t) * dk[i + 1])
+        return ((2 * t**3 - 3 * t * t + 1) * yk[i] + (t**3 - 2 * t * t + t) * h * dk[i]
+                + (-2 * t**3 + 3 * t * t) * yk[i + 1] + (t**3 - t * t) * h * dk[i + 1])
+
+    def line(j: int, xx: Any) -> Any:
+        return dk[j] + 0.0 * xx if derivative else yk[j] + dk[j] * (xx - xk[j])
+
+    if _is_symbolic(x):
+        out = line(n - 1, x)
+        for i in range(n - 2, -1, -1):
+            out = ca.if_else(x < xk[i + 1], piece(i, x), out)
+        return ca.if_else(x < xk[0], line(0, x), out)
+    xa = np.asarray(x, dtype=float)
+    idx = np.clip(np.searchsorted(xk, xa, side="right") - 1, 0, n - 2)
+    h = xk[idx + 1] - xk[idx]
+    t = (xa - xk[idx]) / h
+    if derivative:
+        out = ((6 * t * t - 6 * t) / h * yk[idx] + (3 * t * t - 4 * t + 1) * dk[idx]
+               + (-6 * t * t + 6 * t) / h * yk[idx + 1] + (3 * t * t - 2 * t) * dk[idx + 1])
+        out = np.where(xa < xk[0], dk[0], np.where(xa > xk[-1], dk[-1], out))
+    else:
+        out = ((2 * t**3 - 3 * t * t + 1) * yk[idx] + (t**3 - 2 * t * t + t) * h * dk[idx]
+               + (-2 * t**3 + 3 * t * t) * yk[idx + 1] + (t**3 - t * t) * h * dk[idx + 1])
+        out = np.where(xa < xk[0], yk[0] + dk[0] * (xa - xk[0]),
+                       np.where(xa > xk[-1], yk[-1] + dk[-1] * (xa - xk[-1]), out))
+    return out if np.ndim(out) else float(out)
+
+
+def pchip_slopes(knots: np.ndarray, values: np.ndarray) -> np.ndarray:
+    """Monotone (Fritsch-Carlson) PCHIP derivatives at the knots (scipy's
+    ``PchipInterpolator``; a straight line for two knots).
+
+    Parameters
+    ----------
+    knots, values : ndarray
+        Strictly increasing abscissae and monotone values.
+    """
+    xk, yk = np.asarray(knots, dtype=float), np.asarray(values, dtype=float)
+    if len(xk) == 2:
+        s = (yk[1] - yk[0]) / (xk[1] - xk[0])
+        return np.array([s, s])
+    return np.asarray(PchipInterpolator(xk, yk).derivative()(xk), dtype=float)
+
+
+@dataclass(frozen=True)
+class TensionStrainTable:
+    """A measured tension-strain curve (``[cable] tension_strain``), interpolated both ways.
+
+    Attributes
+    ----------
+    tension : tuple of float
+        T_k, N: 0 first, strictly increasing.
+    strain : tuple of float
+        e_k (-): 0 first, strictly increasing.
+    """
+
+    tension: tuple[float, ...]
+    strain: tuple[float, ...]
+
+    def _t_of_e(self) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+        e, t = np.array(self.strain), np.array(self.tension)
+        return e, t, pchip_slopes(e, t)
+
+    def _e_of_t(self) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+        e, t = np.array(self.strain), np.array(self.tension)
+        slopes = pchip_slopes(t, e)
+        # the end slopes: the reciprocals of u(e)'s, so that both continuations past the
+        # rows are the same straight line, within the bound 3 x secant that keeps the end
+        # cubics monotone (Fritsch-Carlson)
+        d_u = pchip_slopes(e, t)
+        for end, nxt in ((0, 1), (-1, -2)):
+            secant = (e[end] - e[nxt]) / (t[end] - t[nxt])
+            if d_u[end] > 0.0:
+                slopes[end] = min(1.0 / d_u[end], 3.0 * secant)
+        return t, e, slopes
+
+    def tension_of(self, strain: Any) -> Any:
+        """u(e): the table's tension at a strain, N (PCHIP in strain; negative below 0).
+
+        Parameters
+        ----------
+        strain : float, array or casadi expression
+            Axial strain (-).
+        """
+        return hermite(strain, *self._t_of_e())
+
+    def tangent(self, strain: Any) -> Any:
+        """du/de, N: the tangent axial stiffness EA(e) of :meth:`tension_of`.
+
+        Parameters
+        ----------
+        strain : float, array or casadi expression
+            Axial strain (-).
+        """
+        return hermite(strain, *self._t_of_e(), derivative=True)
+
+    def strain_of(self, tension: Any) -> Any:
+        """e(T): the table's strain at a tension (-), PCHIP in tension (the statics' law).
+
+        Parameters
+        ----------
+        tension : float, array or casadi expression
+            Tension, N.
+        """
+        return hermite(tension, *self._e_of_t())
+
+    def invert(self, tension: Any) -> np.ndarray:
+        """The strain e with u(e) = T exactly (numbers only; bisection on the monotone
+        :meth:`tension_of`): the dynamics' own static strain.
+
+        Parameters
+        ----------
+        tension : float or array
+            Tension, N.
+        """
+        tt = np.atleast_1d(np.asarray(tension, dtype=float))
+        lo = np.minimum(self.strain_of(tt), 0.0) - 1.0
+        hi = np.maximum(self.strain_of(tt), 0.0) + 1.0
+        for _ in range(200):  # 2 / 2^200: below round-off
+            mid = 0.5 * (lo + hi)
+            up = self.tension_of(mid) > tt
+            hi, lo = np.where(up, mid, hi), np.where(up, lo, mid)
+        out = 0.5 * (lo + hi)
+        return out if np.ndim(tension) else float(out[0])
+
+    def energy(self, strain: Any) -> Any:
+        """int_0^e u(x) dx, J/m: the stored energy per unstretched length of
+        :meth:`tension_of` (exact for the piecewise cubic and its straight continuations;
+        numbers or CasADi symbols).
+
+        Parameters
+        ----------
+        strain : float, array or casadi expression
+            Axial strain (-).
+        """
+        xk, yk, dk = self._t_of_e()
+        n = len(xk)
+        h = np.diff(xk)
+        # integral of each piece of the Hermite cubic over its interval
+        full = h * (yk[:-1] + yk[1:]) / 2.0 + h * h * (dk[:-1] - dk[1:]) / 12.0
+        cum = np.concatenate([[0.0], np.cumsum(full)])
+
+        def part(i: int, x: Any) -> Any:  # int from x_i to x of piece i
+            t = (x - xk[i]) / h[i]
+            return h[i] * ((t**4 / 2 - t**3 + t) * yk[i] + (t**4 / 4 - 2 * t**3 / 3 + t * t / 2)
+                           * h[i] * dk[i] + (-t**4 / 2 + t**3) * yk[i + 1]
+                           + (t**4 / 4 - t**3 / 3) * h[i] * dk[i + 1])
+
+        def tail(x: Any) -> Any:
+            dx = x - xk[-1]
+            return cum[-1] + yk[-1] * dx + 0.5 * dk[-1] * dx * dx
+
+        def head(x: Any) -> Any:  # below the first row (x_0 = 0, y_0 = 0): the line d_0 x
+            return 0.5 * dk[0] * (x - xk[0]) ** 2 + yk[0] * (x - xk[0])
+
+        if _is_symbolic(strain):
+            out = tail(strain)
+            for i in range(n - 2, -1, -1):
+                out = ca.if_else(strain < xk[i + 1], cum[i] + part(i, strain), out)
+            return ca.if_else(strain < xk[0], head(strain), out)
+        x = np.asarray(strain, dtype=float)
+        idx = np.clip(np.searchsorted(xk, x, side="right") - 1, 0, n - 2)
+        vals = np.array([cum[i] + part(int(i), xi) for i, xi in zip(np.ravel(idx),
+                                                                      np.ravel(x),
+                                                                      strict=True)])
+        vals = np.where(np.ravel(x) < xk[0], head(np.ravel(x)),
+                        np.where(np.ravel(x) > xk[-1], tail(np.ravel(x)), vals))
+        return vals.reshape(x.shape) if x.ndim else float(vals[0])
+
+    @property
+    def initial_stiffness(self) -> float:
+        """du/de at e = 0, N."""
+        return float(self._t_of_e()[2][0])
+
+    @property
+    def max_stiffness(self) -> float:
+        """The largest tangent stiffness of :meth:`tension_of` over the rows, N (the
+        fastest axial wave; the PCHIP's extreme slopes are at or near the knots)."""
+        e = np.array(self.strain)
+        fine = np.linspace(e[0], e[-1], 40 * len(e))
+        return float(max(np.max(self.tangent(fine)), np.max(self._t_of_e()[2])))
+
+    @property
+    def linear(self) -> bool:
+        """True when every row lies on one line through 0 (then u = EA e exactly)."""
+        e, t = np.array(self.strain), np.array(self.tension)
+        return bool(np.allclose(t[1:] / e[1:], t[-1] / e[-1], rtol=1e-12, atol=0.0))
+
+
+@dataclass(frozen=True)
+class NonlinearElastic:
+    """A tension-strain table with material damping and the no-compression switch.
+
+    Attributes
+    ----------
+    table : TensionStrainTable
+        The law u(e).
+    damping : float
+        Material damping c, N s.
+    slack_smoothing : float
+        delta_T, N.
+    """
+
+    table: TensionStrainTable
+    damping: float = 0.0
+    slack_smoothing: float = SLACK_SMOOTHING
+
+    @property
+    def bound(self) -> float:
+        """:func:`no_compression_bound`, N."""
+        return no_compression_bound(self.slack_smoothing)
+
+    def tension(self, strain: Any, strain_rate: Any = None) -> Any:
+        """smooth_positive(u(e)) plus c (de/dt) s when a strain rate is given, N.
+
+        Parameters
+        ----------
+        strain : float, array or casadi expression
+            Axial strain (-).
+        strain_rate : float, array, casadi expression or None
+            Strain rate, 1/s (None: no damping term).
+        """
+        u = self.table.tension_of(strain)
+        out = smooth_positive(u, self.slack_smoothing)
+        if strain_rate is not None and self.damping != 0.0:
+            out = out + self.damping * strain_rate * positive_switch(u, self.slack_smoothing)
+        return out
+
+    def stiffness(self, strain: Any) -> Any:
+        """u'(e) s(u), N."""
+        return self.table.tangent(strain) * self.taut(strain)
+
+    def taut(self, strain: Any) -> Any:
+        """:func:`positive_switch` of u(e)."""
+        return positive_switch(self.table.tension_of(strain), self.slack_smoothing)
+
+    def energy(self, strain: Any) -> Any:
+        """:meth:`TensionStrainTable.energy`, J/m: the table's own law (above the smooth
+        tension's energy by at most delta_T e / 2 while taut)."""
+        return self.table.energy(strain)
+
+
+@dataclass(frozen=True)
+class StandardLinearSolid:
+    """Spring EA_s in parallel with a Maxwell arm (EA_d - EA_s, dashpot (EA_d - EA_s) tau).
+
+    Attributes
+    ----------
+    static_stiffness : float
+        EA_s, N: the modulus under a slow (static) load.
+    dynamic_stiffness : float
+        EA_d, N (>= EA_s): the modulus under a fast load.
+    relaxation_time : float
+        tau, s: the Maxwell arm's relaxation time.
+    """
+
+    static_stiffness: float
+    dynamic_stiffness: float
+    relaxation_time: float
+
+    def tension(self, strain: Any, internal_strain: Any) -> Any:
+        """T = EA_s e + (EA_d - EA_s) (e - e_v), N (negative in compression).
+
+        Parameters
+        ----------
+        strain : float, array or casadi expression
+            Axial strain e (-).
+        internal_strain : float, array or casadi expression
+            The dashpot's strain e_v (-).
+        """
+        arm = self.dynamic_stiffness - self.static_stiffness
+        return self.static_stiffness * strain + arm * (strain - internal_strain)
+
+    def internal_rate(self, strain: Any, internal_strain: Any) -> Any:
+        """de_v/dt = (e - e_v) / tau, 1/s.
+
+        Parameters
+        ----------
+        strain : float, array or casadi expression
+            Axial strain e (-).
+        internal_strain : float, array or casadi expression
+            The dashpot's strain e_v (-).
+        """
+        return (strain - internal_strain) / self.relaxation_time
+
+    def relaxation(self, time: Any, strain: float) -> Any:
+        """Tension after a strain step ``strain`` at t = 0 held since, N.
+
+        Parameters
+        ----------
+        time : float or array
+            Time since the step, s (>= 0).
+        strain : float
+            The step e0 (-).
+        """
+        arm = self.dynamic_stiffness - self.static_stiffness
+        return strain * (self.static_stiffness
+                         + arm * np.exp(-np.asarray(time) / self.relaxation_time))
+
+    def creep(self, time: Any, tension: float) -> Any:
+        """Strain after a tension step ``tension`` at t = 0 held since (-).
+
+        Parameters
+        ----------
+        time : float or array
+            Time since the step, s (>= 0).
+        tension : float
+            The step T0, N.
+        """
+        es, ed = self.static_stiffness, self.dynamic_stiffness
+        tau_c = self.relaxation_time * ed / es
+        return tension / es - tension * (1.0 / es - 1.0 / ed) * np.exp(-np.asarray(time)
+                                                                        / tau_c)

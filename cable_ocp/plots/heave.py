@@ -56,6 +56,10 @@ CONTROLLER_STYLE: dict[str, dict[str, Any]] = {
     "lqr": {"color": "#1f77b4", "ls": "-"},
     "lqg": {"color": "#ff7f0e", "ls": "-"},
     "mpc": {"color": "#2ca02c", "ls": "--"},
+    "phc": {"color": "#9467bd", "ls": "-"},
+    "phc+lqr": {"color": "#8c564b", "ls": "-"},
+    "phc+lqg": {"color": "#e377c2", "ls": "-"},
+    "phc+mpc": {"color": "#17becf", "ls": "--"},
 }
 BOOM_STYLE = {"color": "#9ecae1", "ls": "-"}
 LIMIT_STYLE = {"color": "#d62728", "ls": "--", "lw": 1.2, "gid": "limit"}

@@ -52,7 +52,9 @@ _LAW_KEYS = {"linear": {"payout_speed"},
 _TOW_KEYS = {"speed", "heading_deg", "straight_length", "turn_diameter", "turn_angle_deg",
              "turn_direction"}
 _SIM_KEYS = {"model", "duration", "time_step", "output_step", "segments", "start", "scheme",
-             "tolerance", "max_iterations", "on_slack"}
+             "tolerance", "max_iterations", "on_slack", "element_length", "top_end"}
+#: ``simulation.top_end``: the bending condition at end_b (with bending stiffness)
+TOP_ENDS = ("pinned", "clamped")
 _MODES_KEYS = {"count", "wave_band"}
 #: Relative slack allowed for rounded inputs when a weight in water is checked against
 #: the weight in air (the buoyancy must not be negative).
@@ -323,6 +325,14 @@ class Simulation:
         Newton iterations per step.
     on_slack : str
         ``"continue"`` or ``"stop"``.
+    element_length : float or None
+        Length l_e (m) of the segments that enter and leave at the winch in a lumped3d
+        pay-out (:mod:`cable_ocp.dynamics.lumped_payout`); None: the top segment's initial
+        length.
+    top_end : str
+        ``"pinned"`` (default: no bending moment at end_b) or ``"clamped"`` (the top
+        tangent held at its static direction; a line with bending stiffness,
+        :mod:`cable_ocp.dynamics.bending_terms`).
     """
 
     model: str
@@ -335,6 +345,8 @@ class Simulation:
     tolerance: float = 1e-10
     max_iterations: int = 20
     on_slack: str = "continue"
+    element_length: float | None = None
+    top_end: str = "pinned"
 
     @property
     def steps(self) -> int:
@@ -609,7 +621,18 @@ def parse_simulation(t: Any) -> Simulation:
         max_iterations=_int(t.get("max_iterations", 20), f"{where}.max_iterations", 1, 1000),
         on_slack=_choice(t.get("on_slack", "continue"), f"{where}.on_slack",
                          ("continue", "stop")),
+        element_length=_element_length(t, model, where),
+        top_end=_choice(t.get("top_end", "pinned"), f"{where}.top_end", TOP_ENDS),
     )
+
+
+def _element_length(t: dict[str, Any], model: str, where: str) -> float | None:
+    if "element_length" not in t:
+        return None
+    if model != "lumped3d":
+        raise CableOCPError(f'{where}.element_length: only simulation.model = "lumped3d" '
+                            f'takes it (model "{model}" has simulation.segments elements)')
+    return _number(t["element_length"], f"{where}.element_length", positive=True)
 
 
 def parse_modes(t: Any) -> ModesOptions:

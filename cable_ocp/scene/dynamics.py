@@ -18,6 +18,10 @@ Schema of the dynamic keys (all SI; units in brackets)::
                                  "if it is accelerated longitudinally no hydrodynamic
                                  reaction due to inertia occurs")
     axial_damping = 0.0          N s, internal (material) damping c: T = EA e + c de/dt
+    tension_strain, viscoelastic the statics' [cable] keys of a nonlinear (table) or a
+                                 viscoelastic rope (docs/dynamics.md "Cable materials";
+                                 cable_ocp.dynamics.checks.check_material: which model
+                                 carries which)
     [unit]                       the subsea unit at end_a (replaces [end_a])
     mass = 5000.0                kg (in air), >= 0
     added_mass = 8000.0          kg, >= 0; a number or [x, y, z] per axis (default 0)
@@ -79,6 +83,9 @@ Schema of the dynamic keys (all SI; units in brackets)::
     on_slack = "continue"        "continue" | "stop": what to do when a tension <= 0 is
                                  found (Huang (1992) 4.5.1: the model predicts slack but
                                  cannot follow it); either way the result says so
+    top_end = "pinned"           "pinned" (default) | "clamped": with bending stiffness, the
+                                 top tangent held at its static direction (a cantilever;
+                                 planar model only; cable_ocp.dynamics.bending_terms)
     [response]                   defaults of `cable-ocp response` (frequencies, amplitudes,
                                  outputs, ...: :mod:`cable_ocp.scene.response`)
     [modes]                      modal analysis and the deployment chart

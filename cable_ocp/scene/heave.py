@@ -31,6 +31,10 @@ Schema (SI units; see ``problems/heave/*.toml`` for commented examples)::
     command_rate_max = 0.1               # m/sample (hard, first order)
     accel_max = 1.0                      # m/s^2    (hard, second order)
     tension_min = 5000.0                 # N        (soft; needs [unit] mass, static_tension)
+    drum_radius = 0.5                    # m        (the drive: torque, power; needs tension)
+    drum_inertia = 500.0                 # kg m^2   (drum, gear and motor at the drum shaft)
+    torque_max = 4.0e4                   # N m      (soft in the MPC; needs drum_radius)
+    power_max = 5.0e4                    # W        (the MPC: linearised, a speed limit)
 
     [unit]
     a = 0.8959                           # s^2 (6.2)
@@ -42,8 +46,18 @@ Schema (SI units; see ``problems/heave/*.toml`` for commented examples)::
     cable_scene = "../dynamics/x.toml"   # a dynamic scene (path relative to this file): a, b
                                          # are identified from it unless a and b are given
 
+    [passive_compensator]                # an in-line gas-spring cylinder (controllers phc*)
+    area = 0.05                          # m^2, piston area
+    gas_volume = 0.5                     # m^3, gas volume at the static position
+    pressure = 1.0e6                     # Pa at the static position (default static_tension
+                                         # / area; must carry the static tension)
+    polytropic_exponent = 1.4            # 1 isothermal, 1.4 adiabatic
+    damping = 2.0e4                      # N s/m (> 0: the massless piston's only dynamics)
+    stroke_max = 2.0                     # m, the end stops at +-stroke_max from static
+
     [controller]
-    q = 553.6                            # 1/m^2, weight on the unit's heave
+    q = 553.6                            # 1/m^2, weight on the unit's heave (default:
+                                         # calibrated, 6.3.6's LQR then gives 2.96e-4 m)
     r = 1.0                              # 1/m^2, weight on the command
     horizon = 50
     sample_time = 0.05                   # s
@@ -53,7 +67,8 @@ Schema (SI units; see ``problems/heave/*.toml`` for commented examples)::
     winch_noise = 0.001                  # m, std of the winch-position sensor (cable plant)
     boom_tip_noise = 0.05                # m, std of the motion sensor's boom-tip heave
     depth_bias_time = 60.0               # s, estimator time constant of a depth offset
-    controllers = ["passive", "lqr", "lqg", "mpc"]
+    controllers = ["passive", "lqr", "lqg", "mpc"]   # and "phc", "phc+lqr", "phc+lqg",
+                                                     # "phc+mpc" (passive compensator)
 
     [simulation]
     duration = 300.0                     # s
@@ -90,6 +105,7 @@ from typing import Any
 import numpy as np
 
 from cable_ocp.errors import CableOCPError
+from cable_ocp.physics.gas_spring import gas_stiffness
 from cable_ocp.scene.fields import check_keys, choice, integer, number
 from cable_ocp.scene.files import apply_overrides, check_kind, read_problem
 from cable_ocp.scene.parts import parse_meta
@@ -133,6 +149,23 @@ class WinchSpec:
     command_rate_max: float | None = None
     accel_max: float | None = None
     tension_min: float | None = None
+    drum_radius: float | None = None
+    drum_inertia: float = 0.0
+    torque_max: float | None = None
+    power_max: float | None = None
+
+
+@dataclass(frozen=True)
+class PassiveCompensatorSpec:
+    """``[passive_compensator]``: an in-line gas-spring cylinder between the boom tip and the
+    line (:mod:`cable_ocp.physics.gas_spring`); ``pressure`` None: ``static_tension / area``."""
+
+    area: float = 0.05
+    gas_volume: float = 0.5
+    pressure: float | None = None
+    polytropic_exponent: float = 1.4
+    damping: float = 2.0e4
+    stroke_max: float = 2.0
 
 
 @dataclass(frozen=True)
@@ -152,7 +185,7 @@ class UnitSpec:
 class ControllerSpec:
     """``[controller]``."""
 
-    q: float = 553.6
+    q: float = 553.6  # 1/m^2; a calibration: 6.3.6's LQR gives the thesis' 2.96e-4 m
     r: float = 1.0
     horizon: int = 50
     sample_time: float = 0.05
@@ -219,6 +252,7 @@ class HeaveScene:
     simulation: SimulationSpec = field(default_factory=SimulationSpec)
     identification: IdentificationSpec = field(default_factory=IdentificationSpec)
     deployment: DeploymentSpec | None = None
+    passive_compensator: PassiveCompensatorSpec | None = None
     meta: dict[str, str] = field(default_factory=dict, compare=False, hash=False)
     raw: dict[str, Any] = field(default_factory=dict, compare=False, hash=False, repr=False)
 
@@ -243,7 +277,7 @@ _CHOICES = {
     ("simulation", "plant"): ("model", "cable"),
     ("identification", "excitation"): ("multisine", "chirp", "step", "sea"),
 }
-_CONTROLLERS = ("passive", "lqr", "lqg", "mpc")
+_CONTROLLERS = ("passive", "lqr", "lqg", "mpc", "phc", "phc+lqr", "phc+lqg", "phc+mpc")
 
 
 @dataclass(frozen=True)
@@ -311,6 +345,14 @@ RULES: dict[tuple[str, str], _Num | _Int] = {
                                  why="winch accelerations are a few m/s^2"),
     ("winch", "tension_min"): _Num("N", low=0.0, high=1e10,
                                    why="above any cable's breaking load"),
+    ("winch", "drum_radius"): _Num("m", positive=True, high=100.0,
+                                   why="winch drums have radii of 0.2-3 m"),
+    ("winch", "drum_inertia"): _Num("kg m^2", low=0.0, high=1e9,
+                                    why="drum, gear and motor referred to the drum shaft"),
+    ("winch", "torque_max"): _Num("N m", positive=True, high=1e10,
+                                  why="above any winch motor's torque"),
+    ("winch", "power_max"): _Num("W", positive=True, high=1e10,
+                                 why="above any winch drive's power (tens of MW)"),
     ("unit", "a"): _Num("s^2", low=1e-3, high=1e4,
                         why="the unit's natural period 2 pi sqrt(a) from 0.2 s to 10 min"),
     ("unit", "b"): _Num("s", positive=True, high=1e4,
@@ -370,6 +412,24 @@ DEPLOYMENT_RULES: dict[str, _Num] = {
 }
 
 
+#: ``[passive_compensator]`` keys, checked only when the table is given.
+COMPENSATOR_RULES: dict[str, _Num] = {
+    "area": _Num("m^2", positive=True, high=100.0, why="piston areas of 0.01-1 m^2"),
+    "gas_volume": _Num("m^3", positive=True, high=1e4,
+                       why="the cylinder's and accumulators' gas volume"),
+    "pressure": _Num("Pa", positive=True, high=1e9, why="gas pressures up to ~40 MPa"),
+    "polytropic_exponent": _Num("-", low=1.0, high=1.67,
+                                why="1 isothermal to 5/3 adiabatic monatomic gas"),
+    "damping": _Num("N s/m", positive=True, high=1e10,
+                    why="the massless piston's stroke moves at the rate force / damping"),
+    "stroke_max": _Num("m", positive=True, high=100.0,
+                       why="compensator strokes are a few metres"),
+}
+
+#: the relative mismatch of ``pressure * area`` and the static tension allowed
+COMPENSATOR_BALANCE = 0.01
+
+
 def _key(table: str, key: str) -> str:
     return f"{table}.{key}"
 
@@ -394,6 +454,8 @@ def _value(table: str, key: str, val: Any) -> Any:
         return _number_list(name, val, 2 if key == "band" else None)
     if table == "deployment":
         return _checked(DEPLOYMENT_RULES[key], val, name)
+    if table == "passive_compensator":
+        return _checked(COMPENSATOR_RULES[key], val, name)
     return _checked(RULES[(table, key)], val, name)
 
 
@@ -427,7 +489,8 @@ def _build(cls: type, table: str, data: Any) -> Any:
 
 _TABLES = {"sea": SeaSpec, "vessel": VesselSpec, "winch": WinchSpec, "unit": UnitSpec,
            "controller": ControllerSpec, "simulation": SimulationSpec,
-           "identification": IdentificationSpec, "deployment": DeploymentSpec}
+           "identification": IdentificationSpec, "deployment": DeploymentSpec,
+           "passive_compensator": PassiveCompensatorSpec}
 
 
 def scene_from_dict(data: dict[str, Any], base_dir: str | Path | None = None) -> HeaveScene:
@@ -540,6 +603,15 @@ def _check_integration(sc: HeaveScene) -> None:
         modes += [(complex(v), "winch.natural_frequency")
                   for v in np.roots([1.0, 2 * w.damping_ratio * w.natural_frequency,
                                      w.natural_frequency**2])]
+    pc = sc.passive_compensator
+    if pc is not None and sc.unit.mass > 0:
+        # the unit on the line in series with the compensator (its stiffest point: the end
+        # stop in compression): (a s^2 + b s)(c s + k_p + k_c) + c s + k_p = 0
+        k_p = gas_stiffness(pc.stroke_max, compensator_pressure(sc), pc.gas_volume, pc.area,
+                            pc.polytropic_exponent)
+        k_c, c = sc.unit.mass / a, pc.damping
+        modes += [(complex(v), "passive_compensator.damping")
+                  for v in np.roots([a * c, a * (k_p + k_c) + b * c, b * (k_p + k_c) + c, k_p])]
     lam, key = max(modes, key=lambda m: abs(m[0]))
     if abs(lam) * h > RK4_MAX_STEP:
         need = int(math.ceil(abs(lam) * sc.controller.sample_time / RK4_MAX_STEP))
@@ -570,6 +642,11 @@ def check(scene: HeaveScene) -> None:
             val = getattr(scene.deployment, key)
             if val is not None:
                 _checked(rule, val, _key("deployment", key))
+    if scene.passive_compensator is not None:
+        for key, rule in COMPENSATOR_RULES.items():
+            val = getattr(scene.passive_compensator, key)
+            if val is not None:
+                _checked(rule, val, _key("passive_compensator", key))
     for (table, key), options in _CHOICES.items():
         choice(getattr(getattr(scene, table), key), _key(table, key), options)
     s = scene.sea
@@ -601,7 +678,78 @@ def check(scene: HeaveScene) -> None:
     if scene.simulation.warmup >= scene.simulation.duration:
         raise CableOCPError(f"simulation.warmup = {scene.simulation.warmup!r}: must be less than "
                             f"simulation.duration = {scene.simulation.duration} s")
+    _check_drive(scene)
+    _check_compensator(scene)
     _check_integration(scene)
+
+
+def _has_tension(sc: HeaveScene) -> bool:
+    """The plant carries a tension: ``[unit] mass`` and ``static_tension``, or a cable."""
+    return (sc.unit.mass > 0 and sc.unit.static_tension > 0) or sc.unit.cable_scene is not None
+
+
+def _check_drive(sc: HeaveScene) -> None:
+    """The winch drive's keys: ``drum_radius`` needs a tension, the limits need the radius."""
+    w = sc.winch
+    for key in ("torque_max", "power_max"):
+        if getattr(w, key) is not None and w.drum_radius is None:
+            raise CableOCPError(f"winch.{key}: needs winch.drum_radius (m), the drum the "
+                                "torque acts on")
+    if w.drum_radius is not None and not _has_tension(sc):
+        raise CableOCPError("winch.drum_radius: the torque R T needs the line tension: give "
+                            "unit.mass > 0 (kg) and unit.static_tension > 0 (N), or "
+                            "unit.cable_scene")
+
+
+def compensator_pressure(sc: HeaveScene) -> float:
+    """The compensator's static gas pressure, Pa: ``[passive_compensator] pressure``, else
+    ``unit.static_tension / area``.
+
+    Parameters
+    ----------
+    sc : HeaveScene
+        A scene with ``[passive_compensator]``.
+    """
+    pc = sc.passive_compensator
+    return pc.pressure if pc.pressure is not None else sc.unit.static_tension / pc.area
+
+
+def _check_compensator(sc: HeaveScene) -> None:
+    """Controllers ``phc*`` need ``[passive_compensator]``; it needs the unit's mass and
+    static tension (the cable's stiffness ``m / a`` and the load it carries), a pressure that
+    carries that load, a gas volume the stroke cannot exhaust, and the design model as the
+    plant."""
+    pc = sc.passive_compensator
+    phc = [c for c in sc.controller.controllers if c.startswith("phc")]
+    if pc is None:
+        if phc:
+            raise CableOCPError(f"controller.controllers = {list(sc.controller.controllers)}: "
+                                f"{', '.join(phc)} need a [passive_compensator] table (area, "
+                                "gas_volume, damping, stroke_max, ...)")
+        return
+    if not (sc.unit.mass > 0 and sc.unit.static_tension > 0):
+        raise CableOCPError("[passive_compensator]: needs unit.mass > 0 (kg; the line's "
+                            "stiffness is mass / a) and unit.static_tension > 0 (N; the load "
+                            "the gas carries)")
+    if sc.simulation.plant == "cable" and phc:
+        raise CableOCPError(
+            f'controller.controllers = {list(sc.controller.controllers)} with simulation.plant '
+            f'= "cable": the passive compensator ({", ".join(phc)}) is modelled on the design '
+            'model only; run it with simulation.plant = "model"')
+    p0 = compensator_pressure(sc)
+    load = p0 * pc.area
+    t0 = sc.unit.static_tension
+    if abs(load - t0) > COMPENSATOR_BALANCE * t0:
+        raise CableOCPError(
+            f"passive_compensator.pressure = {p0:g} Pa: with area = {pc.area:g} m^2 the gas "
+            f"carries {load:.6g} N, not unit.static_tension = {t0:g} N (more than "
+            f"{100 * COMPENSATOR_BALANCE:g} % off); give pressure = {t0 / pc.area:.6g} Pa or "
+            "leave it out")
+    if not pc.area * pc.stroke_max < 0.9 * pc.gas_volume:
+        raise CableOCPError(
+            f"passive_compensator.stroke_max = {pc.stroke_max:g} m: area x stroke = "
+            f"{pc.area * pc.stroke_max:g} m^3 must be < 0.9 gas_volume = "
+            f"{0.9 * pc.gas_volume:g} m^3 (the gas cannot be compressed to nothing)")
 
 
 def _check_cable(sc: HeaveScene) -> None:

@@ -14,6 +14,7 @@ from typing import Any
 from cable_ocp.errors import CableOCPError
 from cable_ocp.physics import seabed as _seabed
 from cable_ocp.physics.current import is_uniform, profile_velocity_np
+from cable_ocp.physics.elasticity import StandardLinearSolid, TensionStrainTable
 from cable_ocp.scene.fields import FREE, check_keys, number, require, vector3
 
 END_KEYS = {"position", "force", "tension"}
@@ -166,6 +167,14 @@ class Cable:
         EI, N m^2 (``[[cable.segments]]`` only); 0 = a perfectly flexible cable. A segment
         with EI > 0 is a planar beam-cable in the x-z plane
         (:mod:`cable_ocp.statics.formulation`).
+    tension_strain : tuple of (float, float)
+        ``[cable] tension_strain`` rows (T_k N, e_k -), () for the linear law. With a
+        table, ``axial_stiffness`` holds its largest tangent stiffness (N; the wave
+        speeds and scales), and the law is the table
+        (:class:`cable_ocp.physics.elasticity.TensionStrainTable`).
+    viscoelastic : Viscoelastic or None
+        ``[cable] viscoelastic``: the standard linear solid of the dynamics, whose static
+        modulus is ``axial_stiffness``.
     """
 
     length: float | None
@@ -176,11 +185,154 @@ class Cable:
     tangential_drag: float = 0.0
     drag_law: str = "vector"
     bending_stiffness: float = 0.0
+    tension_strain: tuple[tuple[float, float], ...] = ()
+    viscoelastic: Viscoelastic | None = None
 
     @property
     def elastic(self) -> bool:
         """True when EA is finite."""
         return math.isfinite(self.axial_stiffness)
+
+    @property
+    def strain_table(self) -> TensionStrainTable | None:
+        """The tension-strain table's law, or None for the linear law."""
+        if not self.tension_strain:
+            return None
+        return TensionStrainTable(tuple(r[0] for r in self.tension_strain),
+                                  tuple(r[1] for r in self.tension_strain))
+
+    def strain_at(self, tension: Any) -> Any:
+        """Static strain at a tension (-): e(T) of the table, else T / EA (the static
+        modulus of a viscoelastic cable).
+
+        Parameters
+        ----------
+        tension : float, array or casadi expression
+            Tension, N.
+        """
+        table = self.strain_table
+        if table is not None:
+            return table.strain_of(tension)
+        return tension / self.axial_stiffness
+
+
+@dataclass(frozen=True)
+class Viscoelastic:
+    """``[cable] viscoelastic = {dynamic_stiffness, relaxation_time}``: a standard linear
+    solid (:class:`cable_ocp.physics.elasticity.StandardLinearSolid`) whose static modulus
+    is the cable's ``axial_stiffness``.
+
+    Attributes
+    ----------
+    dynamic_stiffness : float
+        EA_d, N (>= axial_stiffness): the modulus under a fast load.
+    relaxation_time : float
+        tau, s.
+    """
+
+    dynamic_stiffness: float
+    relaxation_time: float
+
+    def law(self, static_stiffness: float) -> StandardLinearSolid:
+        """The law with EA_s = ``static_stiffness`` (N).
+
+        Parameters
+        ----------
+        static_stiffness : float
+            EA_s, N.
+        """
+        return StandardLinearSolid(static_stiffness, self.dynamic_stiffness,
+                                   self.relaxation_time)
+
+
+#: keys of ``[cable] viscoelastic``
+VISCOELASTIC_KEYS = {"dynamic_stiffness", "relaxation_time"}
+#: the largest strain of a tension-strain row, -: synthetic ropes break at 15-40 %
+STRAIN_MAX = 1.0
+
+
+def parse_tension_strain(value: Any, key: str = "cable.tension_strain"
+                         ) -> tuple[tuple[float, float], ...]:
+    """``[[T_k, e_k], ...]`` -> validated rows: (0, 0) first, then at least one more row,
+    tension and strain both strictly increasing (a monotone law), 0 < e <= 1.
+
+    Parameters
+    ----------
+    value : Any
+        The TOML value: an array of [tension (N), strain (-)] pairs.
+    key : str
+        Dotted key for the messages.
+    """
+    form = (f"{key}: expected an array of [tension_N, strain] pairs starting at [0, 0], "
+            "e.g. [[0, 0], [1e4, 0.01], [3e4, 0.02]]")
+    if not isinstance(value, list) or len(value) < 2:
+        raise CableOCPError(form + f" (got {value!r}: at least two rows)")
+    rows = []
+    for i, r in enumerate(value):
+        if not isinstance(r, list) or len(r) != 2:
+            raise CableOCPError(form + f"; row {i} is {r!r}")
+        t = number(r[0], f"{key}[{i}][0]", nonneg=True, high=FORCE_MAX, unit="N",
+                   why=FORCE_WHY)
+        e = number(r[1], f"{key}[{i}][1]", nonneg=True, high=STRAIN_MAX, unit="-",
+                   why="synthetic ropes break at 15-40 % strain")
+        rows.append((t, e))
+    if rows[0] != (0.0, 0.0):
+        raise CableOCPError(f"{key}[0] = {value[0]!r}: the first row must be [0, 0] (no "
+                            "tension at zero strain)")
+    for i in range(1, len(rows)):
+        if not (rows[i][0] > rows[i - 1][0] and rows[i][1] > rows[i - 1][1]):
+            raise CableOCPError(
+                f"{key}[{i}] = {value[i]!r}: not monotonic: tension and strain must both "
+                f"increase from row {i - 1} ({value[i - 1]!r})")
+    return tuple(rows)
+
+
+def parse_material(cab_t: dict[str, Any], where: str = "cable"
+                   ) -> tuple[float | None, tuple[tuple[float, float], ...],
+                              Viscoelastic | None]:
+    """``tension_strain`` and ``viscoelastic`` of a cable table -> (axial_stiffness to
+    use or None (the key's own), rows, viscoelastic law).
+
+    Parameters
+    ----------
+    cab_t : dict
+        The ``[cable]`` table.
+    where : str
+        Its dotted key.
+    """
+    rows: tuple[tuple[float, float], ...] = ()
+    ea = None
+    if "tension_strain" in cab_t:
+        if "axial_stiffness" in cab_t:
+            raise CableOCPError(f"{where}.axial_stiffness: give either axial_stiffness (a "
+                                "linear law) or tension_strain (a table), not both")
+        rows = parse_tension_strain(cab_t["tension_strain"], f"{where}.tension_strain")
+        table = TensionStrainTable(tuple(r[0] for r in rows), tuple(r[1] for r in rows))
+        ea = table.max_stiffness
+    visco = None
+    if "viscoelastic" in cab_t:
+        vk = f"{where}.viscoelastic"
+        v_t = cab_t["viscoelastic"]
+        if not isinstance(v_t, dict):
+            raise CableOCPError(f"{vk}: expected a table {{dynamic_stiffness = N, "
+                                "relaxation_time = s}")
+        v_t = check_keys(v_t, VISCOELASTIC_KEYS, vk)
+        if rows:
+            raise CableOCPError(f"{vk}: a viscoelastic law needs a linear static modulus "
+                                f"({where}.axial_stiffness); remove {where}.tension_strain")
+        if "axial_stiffness" not in cab_t:
+            raise CableOCPError(f"{vk}: give {where}.axial_stiffness, the static modulus "
+                                "EA_s (N)")
+        ea_s = cable_number(cab_t["axial_stiffness"], f"{where}.axial_stiffness",
+                            "axial_stiffness")
+        ea_d = number(require(v_t, "dynamic_stiffness", vk), f"{vk}.dynamic_stiffness",
+                      positive=True, low=ea_s, high=1e14, unit="N",
+                      why=f"at least the static modulus {where}.axial_stiffness = {ea_s:g} N")
+        tau = number(require(v_t, "relaxation_time", vk), f"{vk}.relaxation_time",
+                     positive=True, high=1e9, unit="s",
+                     why="synthetic ropes relax in 0.1 s to days")
+        visco = Viscoelastic(ea_d, tau)
+    return ea, rows, visco
 
 
 @dataclass(frozen=True)
@@ -443,6 +595,7 @@ def parse_single_cable(cab_t: dict[str, Any], need_drag: bool) -> Cable:
     else:
         length = cable_number(length_v, "cable.length", "length")
     law = parse_law(cab_t)
+    ea_table, rows, visco = parse_material(cab_t)
 
     def opt(key: str) -> float:
         if need_drag or key in cab_t:
@@ -454,11 +607,13 @@ def parse_single_cable(cab_t: dict[str, Any], need_drag: bool) -> Cable:
         diameter=opt("diameter"),
         weight_in_water=cable_number(require(cab_t, "weight_in_water", "cable"),
                                      "cable.weight_in_water", "weight_in_water"),
-        axial_stiffness=cable_number(cab_t.get("axial_stiffness", math.inf),
-                                     "cable.axial_stiffness", "axial_stiffness"),
+        axial_stiffness=ea_table if ea_table is not None else cable_number(
+            cab_t.get("axial_stiffness", math.inf), "cable.axial_stiffness", "axial_stiffness"),
         normal_drag=opt("normal_drag"),
         tangential_drag=opt("tangential_drag"),
         drag_law=law,
+        tension_strain=rows,
+        viscoelastic=visco,
     )
 
 

@@ -261,6 +261,8 @@ _SCHEMA: dict[str, Any] = {
         "tangential_drag",
         "drag_law",
         "segments",
+        "tension_strain",
+        "viscoelastic",
     },
     "bodies": "list",
     "footprint": {"max_length", "min_length", "bound", "thrust_max", "thrust_x_max",
@@ -389,6 +391,15 @@ def scene_from_dict(data: dict[str, Any]) -> Scene:
     method = sol_t.get("method", defaults.method)
     if method not in METHODS:
         raise CableOCPError(f"solver.method = {method!r}: valid are {', '.join(METHODS)}")
+    if cable.tension_strain:
+        if method not in ("collocation", "multiple_shooting"):
+            raise CableOCPError(
+                f"solver.method = {method!r}: cable.tension_strain (a nonlinear law) is "
+                'solved by "collocation" or "multiple_shooting" only')
+        if seabed is not None:
+            raise CableOCPError("cable.tension_strain: [environment.seabed] (the grounded "
+                                "part's closed-form stretch) needs a linear law; give "
+                                "axial_stiffness or remove the seabed table")
     scheme = sol_t.get("scheme", defaults.scheme)
     if scheme not in ("legendre", "radau"):
         raise CableOCPError(f'solver.scheme = {scheme!r}: valid are "legendre", "radau"')

@@ -37,6 +37,8 @@ def check_physical(scene: Scene, sol: StaticsSolution) -> StaticsSolution:
       contact is modelled and penetration is judged by the solver's contact logic.
 
     Only results that would otherwise be used (``"solved"``, ``"inaccurate"``) are marked.
+    A tension above the last row of ``cable.tension_strain`` is a warning (the law there is
+    the table's straight continuation).
 
     Parameters
     ----------
@@ -51,6 +53,16 @@ def check_physical(scene: Scene, sol: StaticsSolution) -> StaticsSolution:
     """
     if sol.status not in ("solved", "inaccurate") or not np.all(np.isfinite(sol.position)):
         return sol
+    table = scene.cable.tension_strain
+    if table and not scene.segments:
+        t_max = float(np.max(np.linalg.norm(sol.tension_vector, axis=1)))
+        if t_max > table[-1][0]:
+            warnings = sol.diagnostics.setdefault("warnings", [])
+            note = (f"the largest tension, {t_max:.6g} N, is above the last row of "
+                    f"cable.tension_strain ({table[-1][0]:.6g} N): the law there is the "
+                    "straight continuation of the table's end slope; extend the table")
+            if note not in warnings:
+                warnings.append(note)
     tol = REL_TOL * max(float(sol.length), 1.0)
     z = sol.position[:, 2]
     depth = scene.environment.water_depth

@@ -18,6 +18,12 @@ per unstretched length (Huang (1992), eq. (2.46), uses the strained segment leng
 docs/conventions.md, "Drag").
 No current: no drag terms are built.
 
+A cable with a tension-strain table (``[cable] tension_strain``; 004 (12.4), EA depending
+on the tension) has the stretch 1 + e(|T|) in place of 1 + |T|/EA, e(T) the table's
+monotone PCHIP in tension (:meth:`cable_ocp.scene.parts.Cable.strain_at`,
+:class:`cable_ocp.physics.elasticity.TensionStrainTable`); a viscoelastic cable is at rest
+here and has its static modulus (``axial_stiffness``).
+
 The equations are solved in scaled form: sigma = s/L in [0, 1], r = ell * rho,
 T = F * tau, with a length scale ell and a force scale F chosen from the scene, so that
 every unknown and residual is O(1) for the solvers.
@@ -97,6 +103,7 @@ def _structure_key(scene: Scene) -> tuple:
         c.diameter,
         c.weight_in_water,
         c.axial_stiffness,
+        c.tension_strain,
         c.normal_drag,
         c.tangential_drag,
         c.drag_law,
@@ -270,7 +277,7 @@ class Formulation:
         t = ca.vertcat(ca.cos(theta), 0, ca.sin(theta))
         stretch = 1.0
         if cab.elastic:
-            stretch = 1.0 + sc.force * ca.dot(tau, t) / cab.axial_stiffness
+            stretch = 1.0 + cab.strain_at(sc.force * ca.dot(tau, t))
         f = ca.vertcat(0, 0, -cab.weight_in_water)
         if env.current is not None:
             cur = env.current
@@ -334,7 +341,7 @@ class Formulation:
         t = tau / tmag
         stretch = 1.0
         if cab.elastic:
-            stretch = 1.0 + sc.force * tmag / cab.axial_stiffness
+            stretch = 1.0 + cab.strain_at(sc.force * tmag)
         # loads per unstretched length, N/m
         f = ca.vertcat(0, 0, -cab.weight_in_water)
         if env.current is not None:
@@ -482,7 +489,7 @@ class Formulation:
                     normal_drag=c.normal_drag, tangential_drag=c.tangential_drag,
                     delta=self.scene.solver.smoothing)
                 total += per_len * c.length * (
-                    1.0 + (max_tension / c.axial_stiffness if c.elastic else 0.0))
+                    1.0 + (float(c.strain_at(max_tension)) if c.elastic else 0.0))
             delta = self.scene.solver.smoothing
             for b in self.scene.bodies:
                 if b.has_drag:  # |sqrt(u^2 + d^2) u - |u| u| <= d^2 / 2
@@ -494,5 +501,5 @@ class Formulation:
             normal_drag=cab.normal_drag, tangential_drag=cab.tangential_drag,
             delta=self.scene.solver.smoothing,
         )
-        stretch = 1.0 + (max_tension / cab.axial_stiffness if cab.elastic else 0.0)
+        stretch = 1.0 + (float(cab.strain_at(max_tension)) if cab.elastic else 0.0)
         return per_len * length * stretch

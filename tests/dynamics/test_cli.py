@@ -36,9 +36,10 @@ def test_simulate_json_fields_and_csv(tmp_path: Path) -> None:
 
 
 def test_simulate_slack_exits_1(tmp_path: Path) -> None:
-    """Huang's 3.3.1 rope at 2 Hz goes slack: status "slack", where and when, exit 1."""
+    """Huang's 3.3.1 rope started impulsively at 2 Hz goes slack: status "slack", where and
+    when, exit 1."""
     js = tmp_path / "s.json"
-    rc = main(["simulate", str(ROOT / "problems" / "dynamics" / "huang_3_3_1.toml"),
+    rc = main(["simulate", str(ROOT / "problems" / "dynamics" / "huang_3_3_1_impulsive.toml"),
                "--set", "simulation.duration=1.0", "--json", str(js), "--quiet"])
     d = json.loads(js.read_text())
     assert rc == 1 and d["status"] == "slack"

@@ -426,8 +426,8 @@ def test_loop_turn_problem_runs(problems) -> None:
 
 
 def test_scene_errors(problems) -> None:
-    """Pay-out is not part of the fixed-length lumped model (Huang ch. 5): the error names
-    the key."""
+    """A pay-out runs on the midpoint rule only (cable_ocp/dynamics/lumped_payout.py): the
+    error names the key."""
     f = problems / "dynamics" / "huang_5_7.toml"
-    with pytest.raises(CableOCPError, match="top_motion.payout_speed"):
-        simulate(f, overrides={"top_motion.payout_speed": 0.5})
+    with pytest.raises(CableOCPError, match="simulation.scheme"):
+        simulate(f, overrides={"top_motion.payout_speed": 0.5, "simulation.scheme": "bdf2"})

@@ -217,10 +217,10 @@ def test_mpc_keeps_its_hard_limits_on_the_cable(short_json: dict) -> None:
 
 @pytest.fixture(scope="module")
 def long_run() -> tuple:
-    """ex_6_2_6_cable.toml (900 m, omega_1 = 0.371 rad/s at the peak of the 6 m PM sea),
+    """compare_6_2_6_cable.toml (900 m, omega_1 = 0.371 rad/s at the peak of the 6 m PM sea),
     10 elements, 90 s (60 s after the warm-up), LQR and the depth-only LQG, identification
     over 60 s."""
-    sc = load_scene(HEAVE / "ex_6_2_6_cable.toml", {
+    sc = load_scene(HEAVE / "compare_6_2_6_cable.toml", {
         "simulation.duration": 90.0, "identification.duration": 60.0,
         "controller.controllers": ["passive", "lqr", "lqg"]})
     dyn = load_cable_scene(sc).with_overrides({"simulation.segments": 10})
@@ -363,7 +363,7 @@ def test_cli_failed_controller_on_the_cable_exit_1(tmp_path: Path) -> None:
     "failed" and the controller's message, null metrics (no NaN), and the figure written."""
     text = (ROOT / "problems" / "dynamics" / "huang_6_2_6.toml").read_text()
     assert "segments = 50" in text
-    heave = heave_with_line(tmp_path, "ex_6_2_6_cable.toml",
+    heave = heave_with_line(tmp_path, "compare_6_2_6_cable.toml",
                             text.replace("segments = 50", "segments = 10"))
     out, fig = tmp_path / "out.json", tmp_path / "fig.png"
     rc = main(["heave", str(heave), "--json", str(out), "--plot", str(fig),

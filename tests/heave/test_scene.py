@@ -12,7 +12,7 @@ from cable_ocp.scene.heave import load_scene, scene_from_dict
 ROOT = Path(__file__).resolve().parents[2]
 
 
-@pytest.mark.parametrize("name", ["ex_6_2_6.toml", "ex_6_3_6.toml"])
+@pytest.mark.parametrize("name", ["compare_6_2_6.toml", "ex_6_3_6.toml"])
 def test_problem_files_load(name: str) -> None:
     sc = load_scene(ROOT / "problems" / "heave" / name)
     assert sc.meta["source"] and sc.title

@@ -57,8 +57,8 @@ def _rms_tolerance(A: np.ndarray, G: np.ndarray, c: np.ndarray, h: float, n_samp
 
 def test_sea_realisation_has_the_stationary_boom_tip_variance() -> None:
     # wave_realisation samples the sea and vessel filters exactly (ZOH transition, Van Loan noise
-    # covariance), so at any step its boom tip has the stationary variance of the filters. 40 Wang
-    # et al. (1993) s at 0.25 s (160 Wang et al. (1993) samples, well beyond the ~6 s correlation
+    # covariance), so at any step its boom tip has the stationary variance of the filters. 40,000
+    # s at 0.25 s (160,000 samples, well beyond the ~6 s correlation
     # time): the RMS's 4-sigma band (computed from the model, _rms_tolerance) is +-3.4 %, far inside
     # the 41 % that doubling the noise variance would cause (and a 10 % error would fail).
     from cable_ocp.heave import design_loop as sim
@@ -155,7 +155,7 @@ def test_simulated_delay_and_winch_are_exact(short_636: sm.Comparison) -> None:
 
 
 def test_quadratic_unit_follows_6_3_against_solve_ivp() -> None:
-    # The simulated (6.3) unit a x'' + b_q |x'| x' + x = x0 + u (ex_6_2_6 with
+    # The simulated (6.3) unit a x'' + b_q |x'| x' + x = x0 + u (compare_6_2_6 with
     # model = "quadratic", b_q = 0.0719 s^2/m), passive (u = 0), against the same equation
     # integrated here by solve_ivp (DOP853, rtol 1e-10) with the trace's boom tip, linear
     # between its fine grid points as in the simulation. RK4 at 0.01 s on this slow unit
@@ -164,7 +164,7 @@ def test_quadratic_unit_follows_6_3_against_solve_ivp() -> None:
     # convention b_q x'^2 changes x by metres.
     from scipy.integrate import solve_ivp
 
-    sc = load_scene(ROOT / "problems" / "heave" / "ex_6_2_6.toml")
+    sc = load_scene(ROOT / "problems" / "heave" / "compare_6_2_6.toml")
     sc = dataclasses.replace(
         sc, unit=dataclasses.replace(sc.unit, model="quadratic"),
         simulation=dataclasses.replace(sc.simulation, duration=30.0, warmup=0.0))
@@ -183,7 +183,7 @@ def test_quadratic_unit_follows_6_3_against_solve_ivp() -> None:
 
 def test_nonlinear_plant_runs_and_mpc_keeps_limits() -> None:
     # (6.3) plant: controllers designed on (6.2) still reduce the heave; hard limits hold.
-    sc = load_scene(ROOT / "problems" / "heave" / "ex_6_2_6.toml")
+    sc = load_scene(ROOT / "problems" / "heave" / "compare_6_2_6.toml")
     sc = dataclasses.replace(
         sc, unit=dataclasses.replace(sc.unit, model="quadratic"),
         simulation=dataclasses.replace(sc.simulation, duration=60.0, warmup=10.0))
