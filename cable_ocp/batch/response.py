@@ -439,7 +439,8 @@ def frequency_response(problem: str | Path | dict[str, Any], frequencies: Sequen
                        amplitudes: Sequence[float] | None = None,
                        outputs: Sequence[str] | str | None = None, *,
                        excitation: str | None = None,
-                       settings: ResponseSettings | None = None, damping_ratio: float = 0.0,
+                       settings: ResponseSettings | None = None,
+                       damping_ratio: float | None = None,
                        overrides: dict[str, Any] | None = None, workers: int | None = 0,
                        scheduler: Any = None, curve_points: int = 400,
                        progress: Callable[[int, int], None] | None = None) -> ResponseResult:
@@ -452,7 +453,9 @@ def frequency_response(problem: str | Path | dict[str, Any], frequencies: Sequen
     frequencies : sequence of float
         Excitation frequencies, rad/s (> 0).
     amplitudes : sequence of float, optional
-        Excitation amplitudes, m (default: the scene's amplitude of the excitation).
+        Excitation amplitudes, m (default: ``[response] amplitudes``, else the scene's
+        amplitude of the excitation). Every ``None`` below takes the scene's ``[response]``
+        value where it gives one (:mod:`cable_ocp.scene.response`).
     outputs : sequence of str or str, optional
         Output names (default ``top_tension, unit_tension`` and the unit's motion along
         the excitation: ``unit_z`` for heave and circular, ``unit_x`` for horizontal).
@@ -461,9 +464,11 @@ def frequency_response(problem: str | Path | dict[str, Any], frequencies: Sequen
         the swept motion replaces the scene's harmonic top motion (its other harmonic
         components are set to 0).
     settings : ResponseSettings, optional
-        The periodicity test and the runs' lengths.
-    damping_ratio : float
-        Modal damping ratio of the linear transfer function (-), default 0.
+        The periodicity test and the runs' lengths (default: ``[response] tolerance``,
+        ``max_periods``, ``ramp_periods``, else :class:`ResponseSettings`' defaults).
+    damping_ratio : float, optional
+        Modal damping ratio of the linear transfer function (-), default
+        ``[response] damping_ratio`` or 0.
     overrides : dict, optional
         Dotted keys applied to the problem first (``--set``).
     workers : int or None
@@ -495,6 +500,21 @@ def frequency_response(problem: str | Path | dict[str, Any], frequencies: Sequen
     if overrides:
         data = apply_overrides(data, overrides)
     scene = dynamic_scene_from_dict(data)
+    dflt = scene.response
+    excitation = dflt.excitation if excitation is None else excitation
+    if amplitudes is None and dflt.amplitudes:
+        amplitudes = list(dflt.amplitudes)
+    if outputs is None and dflt.outputs:
+        outputs = list(dflt.outputs)
+    if damping_ratio is None:
+        damping_ratio = dflt.damping_ratio or 0.0
+    if settings is None:
+        base = ResponseSettings()
+        settings = ResponseSettings(
+            tolerance=base.tolerance if dflt.tolerance is None else dflt.tolerance,
+            max_periods=base.max_periods if dflt.max_periods is None else dflt.max_periods,
+            ramp_periods=base.ramp_periods if dflt.ramp_periods is None
+            else dflt.ramp_periods)
     kind = excitation_kind(scene) if excitation is None else excitation
     amp_key, freq_key = excitation_keys(kind)
     # the swept motion replaces the scene's harmonic motion: the other components go to 0

@@ -360,16 +360,37 @@ class LinearResponse:
         return np.abs(self.transfer)
 
 
-def _element_data(model: Any) -> tuple[np.ndarray, np.ndarray, np.ndarray, list[int]]:
-    """(EA (N), damping c (N s), unstretched length (m)) per element and the free nodes."""
+def _element_data(model: Any, kmat: np.ndarray
+                  ) -> tuple[np.ndarray, np.ndarray, np.ndarray, list[int]]:
+    """(axial stiffness EA (N), damping c (N s), unstretched length (m)) per element and the
+    free nodes. The axial model's EA is the one its K holds (the tangent of a
+    tension-strain table, the standard linear solid's dynamic stiffness): K[e, e+1] = -EA/h.
+
+    Raises
+    ------
+    CableOCPError
+        A planar or lumped3d line with a tension-strain table (its tangent EA along the
+        line is not formed here).
+    """
+    if model.name != "axial" and getattr(getattr(model, "scene", None), "statics", None) \
+            is not None and model.scene.statics.cable.strain_table is not None:
+        raise CableOCPError("cable.tension_strain: the linear tension of a planar or "
+                            "lumped3d line with a tension-strain table is not formed")
     if model.name == "lumped3d":
         p = model.params
         return (np.asarray(p.axial_stiffness, float), np.asarray(p.axial_damping, float),
                 np.asarray(p.segment_length, float), list(model.free))
     n = model.n
-    free = list(model.free) if model.name == "planar" else list(range(n))
-    return (np.full(n, float(model.ea)), np.full(n, float(model.c)),
-            np.full(n, float(model.length0) / n), free)
+    h = float(model.length0) / n
+    if model.name == "planar":
+        rows = model.line.rows
+        return (np.asarray(rows["ea"], float), np.asarray(rows["c"], float), np.full(n, h),
+                list(model.free))
+    k = np.empty(n)  # axial: element e joins nodes e and e + 1 (node n the fixed top)
+    for e in range(n - 1):
+        k[e] = -kmat[e, e + 1]
+    k[n - 1] = kmat[n - 1, n - 1] - (k[n - 2] if n >= 2 else 0.0)
+    return k * h, np.full(n, float(model.c)), np.full(n, h), list(range(n))
 
 
 def linear_response(scene: DynamicScene, frequencies: Sequence[float] | np.ndarray,
@@ -431,7 +452,10 @@ def linear_response(scene: DynamicScene, frequencies: Sequence[float] | np.ndarr
     if modes.status != "solved":
         return failed(f"the static state: {modes.message}")
     kmat, mmat = model.linearize()
-    ea, cc, l0, free = _element_data(model)
+    try:
+        ea, cc, l0, free = _element_data(model, kmat)
+    except CableOCPError as exc:
+        return failed(str(exc))
     n_el = ea.size
     dim = kmat.shape[0] // len(free)
     axes = {1: [2], 2: [0, 2], 3: [0, 1, 2]}[dim]
