@@ -20,7 +20,8 @@ MUTATIONS = [
                      "(G5 held over 50 ms then passes it)"),
     dict(name="printed-g5-sample-check-dropped", area="scene",
          file="cable_ocp/scene/heave.py",
-         old="        if abs(ratio - round(ratio)) > 1e-9:\n            raise CableOCPError(f\"{ctrl}:",
+         old=("        if abs(ratio - round(ratio)) > 1e-9:\n"
+              "            raise CableOCPError(f\"{ctrl}:"),
          new="        if False:\n            raise CableOCPError(f\"{ctrl}:",
          tests=(SCENE,),
          description="a printed-g5 scene whose sample time does not divide G5's 0.2 s delay "
