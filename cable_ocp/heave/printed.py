@@ -154,8 +154,8 @@ def printed_run(scene: HeaveScene, name: str) -> tuple[HeaveScene, StateFeedback
     gain's design delay as ``[winch] delay``, the controller (named ``name``), and the status
     and message of its design: ``"unstable"`` when the loop sampled at the scene's
     ``sample_time`` with that delay, on the scene's unit (a, b) and winch gain K, has a pole
-    outside the unit circle (:func:`cable_ocp.heave.lqr.true_discrete_loop`), else
-    ``"solved"``.
+    outside the unit circle (:func:`cable_ocp.heave.lqr.true_discrete_loop`), ``"failed"``
+    when that loop cannot be computed (non-finite numbers), else ``"solved"``.
 
     Parameters
     ----------
@@ -169,12 +169,17 @@ def printed_run(scene: HeaveScene, name: str) -> tuple[HeaveScene, StateFeedback
     sc = dataclasses.replace(scene, winch=dataclasses.replace(scene.winch, delay=g.tau))
     ctrl = printed_controller(g, h)
     ctrl.name = name
-    des = lqr.design_from_gains(scene.unit.a, scene.unit.b, g.G, tau=g.tau,
-                                method=g.delay_model, K=scene.winch.gain)
-    with np.errstate(all="ignore"):
-        rho = float(np.max(np.abs(np.linalg.eigvals(lqr.true_discrete_loop(des, g.tau, h).A))))
     what = (f"the thesis' {g.name} ({g.figures}) on its plant: winch delay {g.tau:g} s, "
             f"K = {scene.winch.gain:g} 1/s")
+    try:
+        des = lqr.design_from_gains(scene.unit.a, scene.unit.b, g.G, tau=g.tau,
+                                    method=g.delay_model, K=scene.winch.gain)
+        with np.errstate(all="ignore"):
+            loop = lqr.true_discrete_loop(des, g.tau, h).A
+            rho = float(np.max(np.abs(np.linalg.eigvals(loop))))
+    except (ArithmeticError, ValueError, np.linalg.LinAlgError) as exc:
+        return sc, ctrl, "failed", (f"{what}: its sampled loop cannot be computed: "
+                                    f"{type(exc).__name__}: {exc}")
     if not rho < 1.0:
         return sc, ctrl, "unstable", (f"{what}: the sampled loop is unstable (spectral radius "
                                       f"{rho:.6g} >= 1)")

@@ -86,7 +86,7 @@ def test_g5_sampled_too_slowly_is_unstable_and_the_run_confirms_it() -> None:
     from cable_ocp.heave import compare
 
     sc = load_scene(EX, {"controller.sample_time": 0.05, "simulation.substeps": 5,
-                         "simulation.duration": 120.0})
+                         "simulation.duration": 60.0})
     res = compare(sc)
     assert res.statuses["printed-g3"] == "solved"
     assert res.statuses["printed-g5"] == "unstable"
@@ -110,3 +110,22 @@ BASE = {"sea": {"modal_frequency": 0.32}}
 def test_named_errors(doc: dict, match: str) -> None:
     with pytest.raises(CableOCPError, match=match):
         scene_from_dict({**BASE, **doc})
+
+
+def test_a_loop_that_cannot_be_computed_is_failed_and_the_others_run(
+        monkeypatch: pytest.MonkeyPatch) -> None:
+    # A non-finite sampled loop (forced here) is the status "failed" with the solver's
+    # error, its metrics None; the other controllers of the scene still run (2 s record).
+    from cable_ocp.heave import compare, lqr
+
+    def broken(*_: object, **__: object) -> None:
+        raise np.linalg.LinAlgError("Array must not contain infs or NaNs")
+
+    monkeypatch.setattr(lqr, "true_discrete_loop", broken)
+    sc = load_scene(EX, {"simulation.duration": 2.0, "simulation.warmup": 0.5})
+    res = compare(sc)
+    for name in ("printed-g3", "printed-g5"):
+        assert res.statuses[name] == "failed"
+        assert "LinAlgError: Array must not contain infs" in res.messages[name]
+        assert res.metrics[name].heave_rms is None
+    assert res.statuses["passive"] == "solved" and res.metrics["passive"].heave_rms > 0
