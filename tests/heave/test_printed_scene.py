@@ -129,3 +129,11 @@ def test_a_loop_that_cannot_be_computed_is_failed_and_the_others_run(
         assert "LinAlgError: Array must not contain infs" in res.messages[name]
         assert res.metrics[name].heave_rms is None
     assert res.statuses["passive"] == "solved" and res.metrics["passive"].heave_rms > 0
+
+
+def test_printed_gains_on_the_cable_plant_are_a_named_error() -> None:
+    with pytest.raises(CableOCPError, match=r'printed-g3\) run on the design model only; give '
+                                            r'simulation.plant = "model"'):
+        load_scene(ROOT / "problems" / "heave" / "compare_6_2_6_cable.toml",
+                   {"controller.controllers": ["passive", "printed-g3"],
+                    "controller.sample_time": 0.01})
