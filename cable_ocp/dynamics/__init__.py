@@ -17,6 +17,8 @@ model             the model interface that simulate and modes dispatch on; check
 result            the result types (SimulationResult, ModesResult, DeploymentChart)
 simulation        simulate: the time integration of any model
 modal             modes: the linearisation about the static state, the deployment chart
+response          the frequency response to a harmonic top motion: the outputs, the harmonic
+                  fit of a time run and the linear transfer function of the modes
 static            the static start of a dynamic scene
 bending_terms     bending stiffness (EI) in the planar and lumped lines: the hinges of
                   cable_ocp.physics.bending on the nodes, the clamped top

@@ -95,6 +95,8 @@ Schema of the dynamic keys (all SI; units in brackets)::
     top_end = "pinned"           "pinned" (default) | "clamped": with bending stiffness, the
                                  top tangent held at its static direction (a cantilever;
                                  planar model only; cable_ocp.dynamics.bending_terms)
+    [response]                   defaults of `cable-ocp response` (frequencies, amplitudes,
+                                 outputs, ...: :mod:`cable_ocp.scene.response`)
     [modes]                      modal analysis and the deployment chart
     count = 6                    number of modes (default 6)
     wave_band = [0.314, 1.571]   rad/s, the wave-frequency band shaded on the chart
@@ -146,6 +148,7 @@ from cable_ocp.scene.fields import require as _require
 from cable_ocp.scene.files import apply_overrides, check_kind, read_problem
 from cable_ocp.scene.motion import length_numeric
 from cable_ocp.scene.parts import Current, End
+from cable_ocp.scene.response import ResponseDefaults, parse_response
 from cable_ocp.scene.statics import TOP_LEVEL_TABLES, Scene, scene_from_dict
 
 __all__ = [
@@ -188,6 +191,8 @@ class DynamicScene:
         Time-domain settings.
     modes : ModesOptions
         Modal-analysis settings.
+    response : ResponseDefaults
+        Defaults of ``cable-ocp response`` (:mod:`cable_ocp.scene.response`).
     """
 
     statics: Scene
@@ -197,6 +202,7 @@ class DynamicScene:
     top_motion: TopMotion
     simulation: Simulation
     modes: ModesOptions = field(default_factory=ModesOptions)
+    response: ResponseDefaults = field(default_factory=ResponseDefaults)
     meta: dict[str, str] = field(default_factory=dict, compare=False, hash=False)
     raw: dict[str, Any] = field(default_factory=dict, compare=False, hash=False, repr=False)
 
@@ -411,6 +417,7 @@ def dynamic_scene_from_dict(data: dict[str, Any]) -> DynamicScene:
                 "t = 0)")
     sim = parse_simulation(dyn["simulation"])
     modes = parse_modes(dyn.get("modes", {}))
+    response = parse_response(dyn.get("response", {}))
 
     if top.varying_length:
         lmin, tmin = _length_history_min(top, statics.cable.length, sim.duration)  # type: ignore[arg-type]
@@ -436,7 +443,8 @@ def dynamic_scene_from_dict(data: dict[str, Any]) -> DynamicScene:
                             f"cable.length = {statics.cable.length} m")
     meta = {str(k): str(v) for k, v in (data.get("meta") or {}).items()}
     return DynamicScene(statics=statics, cable=cable, unit=unit, bodies=tuple(bodies),
-                        top_motion=top, simulation=sim, modes=modes, meta=meta, raw=raw)
+                        top_motion=top, simulation=sim, modes=modes, response=response,
+                        meta=meta, raw=raw)
 
 
 def load_dynamic_scene(path: str | Path,
