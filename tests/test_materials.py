@@ -14,7 +14,8 @@ import pytest
 from scipy.integrate import quad
 
 from cable_ocp.errors import CableOCPError
-from cable_ocp.physics.elasticity import StandardLinearSolid, TensionStrainTable
+from cable_ocp.physics.elasticity import TensionStrainTable
+from cable_ocp.physics.viscoelastic import StandardLinearSolid
 from cable_ocp.scene import scene_from_dict
 from cable_ocp.statics.solver import solve
 

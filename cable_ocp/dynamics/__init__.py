@@ -22,7 +22,8 @@ response          the frequency response to a harmonic top motion: the outputs, 
 static            the static start of a dynamic scene
 bending_terms     bending stiffness (EI) in the planar and lumped lines: the hinges of
                   cable_ocp.physics.bending on the nodes, the clamped top
-planar_line       the planar line's properties per element (segments on the grid)
+planar_line       the planar line's properties per element (segments on the grid), the
+                  damped Newton of its static state
 axial, planar     the axial and planar lines; vertical_line their coefficients, stepping
                   their chunked time loop, driven their steps with the top as an input,
                   axial_thesis Huang's own axial scheme

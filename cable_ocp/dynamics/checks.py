@@ -18,9 +18,9 @@ __all__ = ["check_axial", "check_lumped", "check_lumped_plant", "check_material"
 
 def check_material(scene: DynamicScene, model: str) -> None:
     """Raise :class:`CableOCPError` (naming the key) when the cable's material law is one
-    that ``model`` does not carry: the axial model has the table and the viscoelastic
-    law (not with its ``thesis`` scheme), the planar and lumped models the table (not
-    with the lumped ``thesis`` scheme, Huang's (5.21) with Hooke's (5.3)).
+    that ``model`` does not carry: the three models have the table and the viscoelastic
+    law, not with the ``thesis`` schemes (Huang's (3.8)-(3.10) and (5.21) with Hooke's
+    law), the lumped model's viscoelastic law with its midpoint scheme only.
 
     Parameters
     ----------
@@ -37,11 +37,10 @@ def check_material(scene: DynamicScene, model: str) -> None:
         raise CableOCPError(f'cable.{key}: simulation.scheme = "thesis" (Huang\'s own '
                             "scheme, (3.8)-(3.10) or (5.21)) has the linear law; use the "
                             "model's other schemes (midpoint, trapezoidal, bdf2)")
-    if visco and model != "axial":
-        raise CableOCPError(f'cable.viscoelastic: simulation.model = "{model}" has no '
-                            'internal strain state; the viscoelastic law runs in model = '
-                            '"axial" (in the statics it is its static modulus '
-                            "axial_stiffness)")
+    if visco and model == "lumped3d" and scene.simulation.scheme != "midpoint":
+        raise CableOCPError(f'cable.viscoelastic: simulation.scheme = '
+                            f'"{scene.simulation.scheme}": the lumped3d model steps the '
+                            'viscoelastic law with the midpoint rule (valid: "midpoint")')
 
 
 def check_axial(scene: DynamicScene) -> None:
@@ -139,16 +138,30 @@ def check_planar(scene: DynamicScene) -> None:
 
 def check_lumped(scene: DynamicScene) -> None:
     """Raise :class:`CableOCPError` (naming the key) when the scene has what the lumped-mass
-    model cannot run: what :func:`check_lumped_plant` refuses (a pay-out runs on
-    :mod:`cable_ocp.dynamics.lumped_payout_run`)."""
-    check_lumped_plant(scene)
+    model cannot run: what :func:`check_lumped_plant` refuses, the viscoelastic law aside,
+    and the viscoelastic law with a pay-out (a pay-out runs on
+    :mod:`cable_ocp.dynamics.lumped_payout_run`, whose nodes carry no dashpot strain)."""
+    visco = any(c.viscoelastic is not None for c in scene.statics.lines)
+    if visco and scene.top_motion.varying_length:
+        raise CableOCPError('cable.viscoelastic: simulation.model = "lumped3d" with a '
+                            "pay-out (nodes entering and leaving at the winch) has the "
+                            'elastic laws only; use model = "axial" for a vertical '
+                            "viscoelastic pay-out, or give axial_stiffness alone")
+    _check_lumped_line(scene)
 
 
 def check_lumped_plant(scene: DynamicScene) -> None:
     """Raise :class:`CableOCPError` (naming the key) when the scene's line has what the
     lumped-mass model cannot represent, its ``[top_motion]`` aside (the heave plant,
     :class:`cable_ocp.heave.cable_models.LumpedCablePlant`, moves the top and pays cable
-    out itself)."""
+    out itself; its driven step has the elastic laws only)."""
+    if any(c.viscoelastic is not None for c in scene.statics.lines):
+        raise CableOCPError('cable.viscoelastic: the lumped3d heave plant (its driven step) '
+                            "has the elastic laws only; give axial_stiffness alone")
+    _check_lumped_line(scene)
+
+
+def _check_lumped_line(scene: DynamicScene) -> None:
     check_material(scene, "lumped3d")
     if scene.statics.environment.seabed is not None:
         raise CableOCPError('[environment.seabed]: simulation.model = "lumped3d" has no '

@@ -131,6 +131,9 @@ def planar_driven_step(model: PlanarModel, dt: float | None = None) -> DrivenSte
         When the static state fails.
     """
     sc = model.scene
+    if model.solid is not None:
+        raise CableOCPError("cable.viscoelastic: the driven planar step (the heave plant) has "
+                            "the elastic laws only; give axial_stiffness alone")
     base = model if sc.simulation.start == "static" else type(model)(
         sc.with_overrides({"simulation.start": "static"}), model.n)
     x_start, info = base.initial_state()
@@ -143,7 +146,7 @@ def planar_driven_step(model: PlanarModel, dt: float | None = None) -> DrivenSte
     p = ca.SX.sym("p", 4)
     md.motion_params = ca.vertcat(p, dts) if dt is None else p
     md.motion = sampled_motion(sc.top_position, p, dts)
-    q1, q0, v0, t0, res, v1, _, pred = md._step_expressions(dts)
+    q1, q0, v0, t0, res, v1, _, pred = md._step_expressions(dts)[:8]
     res, v1, pred = ca.substitute([res, v1, pred], [t0], [ca.SX(0.0)])
     # outputs at the end of the step (t = dt)
     rs, tens, top, _, vel, _ = md.output_function()(dts, q1, v1, md.motion_params)

@@ -26,7 +26,10 @@ Huang (1992), eq. (5.1)-(5.2):
   (``slack_smoothing``, N; default 0.01 N), which changes a taut segment's tension by at
   most ``delta_T^2 / (4 T)`` and leaves a slack one with a vanishing pull. Slack
   (``eps <= 0``) is reported by the simulator. An optional material damping adds
-  ``c deps/dt`` while the segment is taut (the same smooth switch);
+  ``c deps/dt`` while the segment is taut (the same smooth switch). A tension-strain table
+  replaces EA eps; the viscoelastic law (``[cable] viscoelastic``, midpoint scheme) adds each
+  segment's dashpot strain e_v to the stepped state, advanced by the midpoint rule in
+  closed form (:mod:`cable_ocp.physics.viscoelastic`; the kernel's strain shift);
 * at end_a a subsea unit (Huang eq. (5.6)): mass, added mass per axis, weight in water,
   drag area and coefficient, an external load (thrust); or end_a fixed;
 * at end_b the prescribed top motion (5.5), a function of time.
@@ -59,6 +62,7 @@ import numpy as np
 from cable_ocp.dynamics.lumped_equations import LumpedEquations
 from cable_ocp.dynamics.lumped_kernel import SCHEMES, LumpedStepper
 from cable_ocp.dynamics.lumped_params import LumpedParams, TimeFunction
+from cable_ocp.errors import CableOCPError
 
 __all__ = ["SCHEMES", "LumpedMassModel"]
 
@@ -87,7 +91,10 @@ class LumpedMassModel:
         ``tensions(x, t) -> (T, strain)``: elastic tension (N) and strain (-) per segment
         (without the material damping term).
     segment_tension : casadi.Function
-        ``segment_tension(x, v, t) -> T`` (N), with the material damping term.
+        ``segment_tension(x, v, t) -> T`` (N), with the material damping term; with the
+        viscoelastic law (``params.viscoelastic``) ``(x, v, t, e_v)``, and so
+        :attr:`top_force` and :attr:`energy` (the dashpot strains e_v per segment, -, the
+        stepped state's last N numbers).
     top_force : casadi.Function
         ``top_force(x, v, t) -> F`` (N): the force end_b's attachment applies to the cable
         (node N's balance: its mass times the prescribed acceleration minus the tension of
@@ -111,6 +118,10 @@ class LumpedMassModel:
         self.n_free = int(self.free_nodes.size)
         #: the terms of the equations of motion (:mod:`cable_ocp.dynamics.lumped_equations`)
         self.eq = LumpedEquations(p)
+        #: the standard linear solid (None: elastic) and its dashpot strains' symbol
+        self.solid = p.viscoelastic
+        self._ev = ca.SX.sym("ev", n) if self.solid is not None else None
+        self._names = ["x", "v", "t"] + ([] if self._ev is None else ["ev"])
 
     # -- the CasADi functions, each built on first use -----------------------------------
     @cached_property
@@ -188,8 +199,9 @@ class LumpedMassModel:
     def segment_tension(self) -> ca.Function:
         """``segment_tension(x, v, t) -> T`` (N), with the material damping term."""
         x, v, t, r, vel = self._symbols
-        return ca.Function("segment_tension", [x, v, t], [self.eq.tensions(r, vel)[0]],
-                           ["x", "v", "t"], ["T"])
+        ev = [] if self._ev is None else [self._ev]
+        return ca.Function("segment_tension", [x, v, t, *ev],
+                           [self.eq.tensions(r, vel, self._ev)[0]], self._names, ["T"])
 
     @cached_property
     def top_force(self) -> ca.Function:
@@ -197,26 +209,34 @@ class LumpedMassModel:
         x, v, t, r, vel = self._symbols
         # the force the attachment applies to node N: M_N a_b - (cable, weight, drag)
         acc_b = ca.jacobian(vel[-1], t)
-        f_n = self.eq.total(self.eq.elastic(r, None, vel, None), self.eq.static_loads(),
-                        self.eq.drag(r, vel))[-1]
+        f_n = self.eq.total(self.eq.elastic(r, None, vel, None, self._ev),
+                            self.eq.static_loads(), self.eq.drag(r, vel))[-1]
+        ev = [] if self._ev is None else [self._ev]
         return ca.Function(
-            "top_force", [x, v, t], [ca.mtimes(self.eq.mass_blocks(r)[-1], acc_b) - f_n],
-            ["x", "v", "t"], ["F"])
+            "top_force", [x, v, t, *ev], [ca.mtimes(self.eq.mass_blocks(r)[-1], acc_b) - f_n],
+            self._names, ["F"])
 
     @cached_property
     def energy(self) -> ca.Function:
         """``energy(x, v, t) -> (kinetic, potential)`` (J)."""
         x, v, t, r, _ = self._symbols
-        return ca.Function("energy", [x, v, t], list(self.eq.energy(v, self.mass_expr(r), r)),
-                           ["x", "v", "t"], ["kinetic", "potential"])
+        ev = [] if self._ev is None else [self._ev]
+        return ca.Function("energy", [x, v, t, *ev],
+                           list(self.eq.energy(v, self.mass_expr(r), r, self._ev)),
+                           self._names, ["kinetic", "potential"])
 
     @cached_property
     def static_stiffness(self) -> ca.Function:
-        """``static_stiffness(x, t) -> K`` (N/m): -dF/dx of the forces without drag."""
+        """``static_stiffness(x, t) -> K`` (N/m): -dF/dx of the forces without drag (the
+        viscoelastic law: with its dashpot strains held at the relaxed e_v = e(x), the
+        fast-load stiffness EA_d, as the axial model's modes)."""
         x, _, t, r, _ = self._symbols
-        f0 = self.free(self.eq.total(self.eq.elastic(r, None, None, None), self.eq.static_loads()))
-        return ca.Function("static_stiffness", [x, t], [-ca.jacobian(f0, x)], ["x", "t"],
-                           ["K"])
+        f0 = self.free(self.eq.total(self.eq.elastic(r, None, None, None, self._ev),
+                                     self.eq.static_loads()))
+        k = -ca.jacobian(f0, x)
+        if self._ev is not None:
+            k = ca.substitute(k, self._ev, self.eq.tensions(r)[1])
+        return ca.Function("static_stiffness", [x, t], [k], ["x", "t"], ["K"])
 
     @cached_property
     def _static_fj(self) -> ca.Function:
@@ -345,9 +365,12 @@ class LumpedMassModel:
         ``(x, v, a)`` for ``"midpoint"`` and ``"trapezoidal"`` (a: the acceleration, used by
         the trapezoidal rule and, for the midpoint rule, only by the Newton predictor);
         ``(x, v, x_prev, v_prev, started)`` for ``"bdf2"`` (started = 0 before the first
-        step, which is then a backward-Euler step).
+        step, which is then a backward-Euler step). With the viscoelastic law (midpoint
+        only) the N dashpot strains e_v follow.
         """
         nf3 = 3 * self.n_free
+        if self.solid is not None:
+            return 3 * nf3 + self.params.segments
         return 4 * nf3 + 1 if scheme == "bdf2" else 3 * nf3
 
     def initial_state(self, x: np.ndarray, v: np.ndarray | None = None,
@@ -368,6 +391,13 @@ class LumpedMassModel:
         """
         x = np.asarray(x, float).reshape(-1)
         v = np.zeros_like(x) if v is None else np.asarray(v, float).reshape(-1)
+        if self.solid is not None:
+            if scheme != "midpoint":
+                raise CableOCPError(f'scheme = "{scheme}": the viscoelastic law steps with '
+                                    'the midpoint rule (valid: "midpoint")')
+            # relaxed at rest: e_v = e (0 where a segment is slack: an unloaded rope)
+            eps = np.asarray(self.tensions(x, t)[1]).ravel()
+            return np.concatenate([x, v, np.zeros_like(x), np.maximum(eps, 0.0)])
         if scheme == "bdf2":
             return np.concatenate([x, v, x, v, [0.0]])
         a = np.zeros_like(x)

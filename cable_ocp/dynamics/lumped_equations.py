@@ -65,8 +65,8 @@ GAUSS_W = tuple(0.5 * float(v) for v in gauss_legendre(3)[1])
 
 def segment_tension(d1: Any, ell1: Any, ea: Any, c: Any, delta_t: Any, *,
                     d0: Any = None, ell0: Any = None, dt: Any = None, dv: Any = None,
-                    mid: Any = None, length_rate: Any = None, table: Any = None
-                    ) -> dict[str, Any]:
+                    mid: Any = None, length_rate: Any = None, table: Any = None,
+                    shift: Any = 0.0) -> dict[str, Any]:
     """A segment's tension and the direction it pulls along (the law (5.3) with damping).
 
     One level (``d0`` None): ``T(eps1)`` along ``d1``, plus the damping ``c deps/dt
@@ -103,6 +103,11 @@ def segment_tension(d1: Any, ell1: Any, ea: Any, c: Any, delta_t: Any, *,
     table : TensionStrainTable, optional
         A tension-strain law in place of EA e
         (:func:`cable_ocp.physics.elasticity.strain_tension`).
+    shift : float or casadi expression
+        A strain subtracted from the strains in the law, EA (e - shift) (-): the
+        viscoelastic law, EA_d (e - (EA_d - EA_s) e_v / EA_d) at an instant, or its
+        midpoint step's k (e - F_0 / k)
+        (:class:`cable_ocp.physics.viscoelastic.StandardLinearSolid`); 0 otherwise.
 
     Returns
     -------
@@ -116,20 +121,20 @@ def segment_tension(d1: Any, ell1: Any, ea: Any, c: Any, delta_t: Any, *,
     e1 = l1 / ell1 - 1.0
     out: dict[str, Any] = {"strain": e1, "l1": l1}
     if d0 is None:
-        tens = strain_tension(e1, ea, delta_t, table)
+        tens = strain_tension(e1 - shift, ea, delta_t, table)
         damp: Any = 0.0
         if dv is not None:
             rate = ca.dot(d1, dv) / (l1 * ell1)
             if length_rate is not None:
                 rate = rate - l1 * length_rate / ell1**2  # d/dt (|d| / l) with l changing
-            damp = _damping(rate, e1, c, ea, delta_t, table)
+            damp = _damping(rate, e1 - shift, c, ea, delta_t, table)
             tens = tens + damp
         out.update(tension=tens, num=d1, den=l1, damping=damp)
         return out
     l0 = ca.norm_2(d0)
     e0 = l0 / (ell1 if ell0 is None else ell0) - 1.0
     em, de = 0.5 * (e0 + e1), 0.5 * (e1 - e0)
-    tbar = sum(w * strain_tension(em + g * de, ea, delta_t, table)
+    tbar = sum(w * strain_tension(em - shift + g * de, ea, delta_t, table)
                for g, w in zip(GAUSS_X, GAUSS_W, strict=True))
     if ell0 is None:  # a constant unstretched length
         step_rate = (l1 - l0) / (ell1 * dt)
@@ -139,7 +144,7 @@ def segment_tension(d1: Any, ell1: Any, ea: Any, c: Any, delta_t: Any, *,
         rate = mid * (l1 - l0) / (ell1 * dt) + (1.0 - mid) * ca.dot(d1, dv) / (l1 * ell1)
     else:
         rate = step_rate
-    damp = _damping(rate, em, c, ea, delta_t, table)
+    damp = _damping(rate, em - shift, c, ea, delta_t, table)
     tbar = tbar + damp
     out.update(tension=tbar, num=d0 + d1, den=l0 + l1, damping=damp, l0=l0, em=em, de=de)
     return out
@@ -327,9 +332,12 @@ class LumpedEquations:
         """The node-wise sum of lists of node terms."""
         return [sum(c[i] for c in parts) for i in range(len(parts[0]))]
 
-    def tension(self, j: int, d1: Any, ell1: Any = None, **kw: Any) -> dict[str, Any]:
+    def tension(self, j: int, d1: Any, ell1: Any = None, internal: Any = None,
+                **kw: Any) -> dict[str, Any]:
         """:func:`segment_tension` of segment ``j`` with chord ``d1`` (m): its EA, c and
-        unstretched length (or ``ell1``, m; further keywords as there).
+        unstretched length (or ``ell1``, m; further keywords as there); with the
+        viscoelastic law and the dashpot strain ``internal`` (-) its tension at the
+        instant (EA_d, shifted), without it the relaxed law EA_s.
 
         Parameters
         ----------
@@ -339,18 +347,26 @@ class LumpedEquations:
             The chord, m.
         ell1 : float or casadi expression, optional
             Unstretched length, m (default the segment's).
+        internal : casadi expression, optional
+            The segment's dashpot strain e_v (-), viscoelastic law only.
         **kw
             Further keywords of :func:`segment_tension`.
         """
         p = self.params
         ell1 = float(p.segment_length[j]) if ell1 is None else ell1
-        return segment_tension(d1, ell1, float(p.axial_stiffness[j]),
-                               float(p.axial_damping[j]), p.slack_smoothing,
+        ea = float(p.axial_stiffness[j])
+        if internal is not None and p.viscoelastic is not None:
+            sls = p.viscoelastic
+            ea = sls.dynamic_stiffness
+            kw["shift"] = (ea - sls.static_stiffness) * internal / ea
+        return segment_tension(d1, ell1, ea, float(p.axial_damping[j]), p.slack_smoothing,
                                table=p.tension_strain, **kw)
 
-    def tensions(self, r: list[Any], vel: list[Any] | None = None) -> tuple[Any, Any]:
+    def tensions(self, r: list[Any], vel: list[Any] | None = None,
+                 internal: Any = None) -> tuple[Any, Any]:
         """Segment tensions (N; with the material damping where velocities are given) and
-        strains (-) at node positions ``r``.
+        strains (-) at node positions ``r`` (and the dashpot strains ``internal``, -, of
+        the viscoelastic law).
 
         Parameters
         ----------
@@ -358,18 +374,21 @@ class LumpedEquations:
             Node positions, m.
         vel : list of casadi expression, optional
             Node velocities, m/s.
+        internal : casadi expression (N,), optional
+            The dashpot strains e_v (-).
         """
         ts, es = [], []
         p = self.params
         for j in range(p.segments):
             dv = vel[j + 1] - vel[j] if (vel is not None and p.axial_damping[j] > 0) else None
-            st = self.tension(j, r[j + 1] - r[j], dv=dv)
+            st = self.tension(j, r[j + 1] - r[j], dv=dv,
+                              internal=None if internal is None else internal[j])
             ts.append(st["tension"])
             es.append(st["strain"])
         return ca.vertcat(*ts), ca.vertcat(*es)
 
     def elastic(self, r0: list[Any], r1: list[Any] | None, vel: list[Any] | None,
-                dt: float | None) -> list[Any]:
+                dt: float | None, internal: Any = None) -> list[Any]:
         """The segments' pulls on the nodes, N: at the positions ``r0`` (``r1`` None; the
         material damping from the velocities ``vel`` unless None), or the discrete
         gradient between ``r0`` and ``r1`` over ``dt`` (:func:`segment_tension`).
@@ -384,6 +403,8 @@ class LumpedEquations:
             Node velocities, m/s (one level).
         dt : float or None
             The step, s (two levels).
+        internal : casadi expression (N,), optional
+            The dashpot strains e_v of the viscoelastic law (-; one level only).
         """
         p = self.params
         f = self.zeros()
@@ -391,7 +412,8 @@ class LumpedEquations:
             c = float(p.axial_damping[j])
             if r1 is None:
                 dv = vel[j + 1] - vel[j] if (c > 0 and vel is not None) else None
-                st = self.tension(j, r0[j + 1] - r0[j], dv=dv)
+                st = self.tension(j, r0[j + 1] - r0[j], dv=dv,
+                                  internal=None if internal is None else internal[j])
             else:
                 st = self.tension(j, r1[j + 1] - r1[j], d0=r0[j + 1] - r0[j], dt=dt)
             fe = st["tension"] * st["num"] / st["den"]
@@ -511,10 +533,13 @@ class LumpedEquations:
             blocks[j + 1] = blocks[j + 1] + add
         return blocks
 
-    def energy(self, v: Any, mass: Any, r: list[Any]) -> tuple[Any, Any]:
+    def energy(self, v: Any, mass: Any, r: list[Any], internal: Any = None
+               ) -> tuple[Any, Any]:
         """Kinetic energy 1/2 v^T M v (``mass`` the free nodes' mass matrix) and potential
         energy (strain, :func:`cable_ocp.physics.elasticity.smooth_strain_energy` per
-        unstretched length, and weight), J.
+        unstretched length, and weight), J; with the viscoelastic law and its dashpot
+        strains ``internal`` the strain energy of its two springs
+        (:meth:`~cable_ocp.physics.viscoelastic.StandardLinearSolid.energy`, a taut line).
 
         Parameters
         ----------
@@ -524,6 +549,8 @@ class LumpedEquations:
             The free nodes' mass matrix, kg.
         r : list of casadi expression
             Node positions, m.
+        internal : casadi expression (N,), optional
+            The dashpot strains e_v (-).
         """
         p = self.params
         kin = 0.5 * ca.dot(v, ca.mtimes(mass, v))
@@ -531,6 +558,9 @@ class LumpedEquations:
         for j in range(p.segments):
             ell = float(p.segment_length[j])
             eps = ca.norm_2(r[j + 1] - r[j]) / ell - 1.0
+            if internal is not None and p.viscoelastic is not None:
+                pot = pot + ell * p.viscoelastic.energy(eps, internal[j])
+                continue
             pot = pot + ell * (smooth_strain_energy(eps, float(p.axial_stiffness[j]),
                                                     p.slack_smoothing)
                                if p.tension_strain is None else p.tension_strain.energy(eps))

@@ -114,6 +114,9 @@ class LumpedStepper:
             self._steps[key] = step
             return step
         p = self.model.params
+        if p.viscoelastic is not None:
+            raise CableOCPError('solver = "rootfinder": the viscoelastic law steps with the '
+                                'Newton solver (valid: "newton")')
         nf3 = 3 * self.model.n_free
         fscale = self.model.force_scale() if force_scale is None else float(force_scale)
         x1 = ca.SX.sym("x1", nf3)
@@ -271,9 +274,11 @@ class LumpedStepper:
         nf = self.model.n_free
         nf3 = 3 * nf
         first = 1 if p.fixed_a else 0
-        kern = segment_kernel(p.drag_law, compile_kernel, p.tension_strain).map(n, "serial")
+        solid = p.viscoelastic is not None
+        kern = segment_kernel(p.drag_law, compile_kernel, p.tension_strain, solid
+                              ).map(n, "serial")
         if not compile_kernel:
-            kern = segment_kernel_expr(p.drag_law, p.tension_strain).map(n, "unroll")
+            kern = segment_kernel_expr(p.drag_law, p.tension_strain, solid).map(n, "unroll")
         par = ca.DM(self.segment_parameters())
         ends = self.model.ends
         node_m = ca.DM(np.vstack([np.diag(m).T.reshape(-1) for m in self.model.eq.node_mass]).T)
@@ -350,6 +355,13 @@ class LumpedStepper:
             vel = nodes(v1, va1, vb1)
         alpha, beta, gamma = coef
         scv = ca.vertcat(dt, mid, beta, gamma)
+        if solid:  # the midpoint step's law k (e - F_0 / k) (physics.viscoelastic)
+            sls = p.viscoelastic
+            k_step = sls.step_stiffness(dt)
+            ev0 = ca.reshape(zsym[3 * nf3:3 * nf3 + n], 1, n)
+            ea_row = KERNEL_PARAMS.index("ea")
+            par = ca.vertcat(par[:ea_row, :], k_step * sym.ones(1, n), par[ea_row + 1:, :],
+                             sls.step_offset(ev0, dt) / k_step)
         if cur is not None:
             ucur = cur(0.5 * (rm[2, 0:n] + rm[2, 1:n + 1]))
         else:
@@ -515,6 +527,11 @@ class LumpedStepper:
         resid = switch("final_residual", done, known, last, rni, xi, zsym, t0)
         x1m = xi
         z1, _ = next_state(scheme, x1m, zsym, dt, nf3)
+        sls = self.model.params.viscoelastic
+        if sls is not None:  # e_v by the midpoint rule of de_v/dt = (e - e_v) / tau
+            strains = self.model.tensions
+            z1 = ca.vertcat(z1, sls.step_internal(strains(x0, t0)[1], strains(x1m, t0 + dt)[1],
+                                                  zsym[3 * nf3:], dt))
         return ca.Function(f"core_{scheme}", [zsym, t0], [z1, resid, count, done])
 
     def halving_step(self, dt: float, scheme: str, tol: float, max_iter: int,
@@ -587,7 +604,8 @@ KERNEL_PARAMS = ("l", "ea", "c", "d", "cn", "ct", "en", "et", "rho", "delta", "d
                   "blend")
 
 
-def segment_kernel_expr(drag_law: str, table: Any = None) -> ca.Function:
+def segment_kernel_expr(drag_law: str, table: Any = None, solid: bool = False
+                        ) -> ca.Function:
     """One segment's contribution to a time step, as a CasADi Function (SX).
 
     Inputs: node positions at the two levels ``ra0, rb0, ra1, rb1`` (m), node velocities
@@ -612,10 +630,14 @@ def segment_kernel_expr(drag_law: str, table: Any = None) -> ca.Function:
         The normal drag's law.
     table : TensionStrainTable, optional
         The line's tension-strain law (None: EA e with ``ea`` of ``par``).
+    solid : bool
+        The viscoelastic law's step: ``par`` has a 13th row, the strain shift s of the
+        step's law ``ea`` (e - s) (:func:`segment_tension`'s ``shift``).
     """
     ra0, rb0, ra1, rb1, va, vb, u_c = (ca.SX.sym(n, 3) for n in
                                        ("ra0", "rb0", "ra1", "rb1", "va", "vb", "u"))
-    par = ca.SX.sym("par", len(KERNEL_PARAMS))
+    par = ca.SX.sym("par", len(KERNEL_PARAMS) + (1 if solid else 0))
+    shift = par[len(KERNEL_PARAMS)] if solid else 0.0
     sc = ca.SX.sym("sc", 4)
     ell, ea, c, d, cn, ct, en, et, rho, delta, delta_t, blend = (par[k] for k in range(12))
     dt, mid, beta, gamma = sc[0], sc[1], sc[2], sc[3]
@@ -624,11 +646,11 @@ def segment_kernel_expr(drag_law: str, table: Any = None) -> ca.Function:
     d0 = rb0 - ra0
     d1 = rb1 - ra1
     st_ = segment_tension(d1, ell, ea, c, delta_t, d0=d0, dt=dt, dv=vb - va, mid=mid,
-                          table=table)
+                          table=table, shift=shift)
     l0, l1, em, de, tbar = st_["l0"], st_["l1"], st_["em"], st_["de"], st_["tension"]
     f_el = tbar * st_["num"] / st_["den"]
     # derivative of the Gauss mean with respect to eps1 (the midpoint's Newton matrix)
-    dtbar = sum(w * strain_stiffness(em + g * de, ea, delta_t, table) * 0.5 * (1.0 + g)
+    dtbar = sum(w * strain_stiffness(em - shift + g * de, ea, delta_t, table) * 0.5 * (1.0 + g)
                 for g, w in zip(GAUSS_X, GAUSS_W, strict=True))
     # drag and added mass at the mean positions
     dm = 0.5 * (d0 + d1)
@@ -648,7 +670,7 @@ def segment_kernel_expr(drag_law: str, table: Any = None) -> ca.Function:
     # e1). Not symmetric for the midpoint: the strain at level 1 follows e1, the force u.
     uet = ca.mtimes((d0 + d1) / (l0 + l1), (d1 / l1).T)
     kb = 2.0 * beta * (dtbar / ell * uet + tbar / (l0 + l1) * (eye - uet)) + gamma * c / ell * (
-        strain_switch(em, ea, delta_t, table) * uet)
+        strain_switch(em - shift, ea, delta_t, table) * uet)
     cb = 0.25 * gamma * lm * dmat
     # the terms share subexpressions that their functions build again (the tangent's
     # t t^T, the strain switch, ...): merged once (the same operations, fewer of them)
@@ -685,8 +707,8 @@ def switch(name: str, cond: Any, if_true: ca.Function, if_false: ca.Function,
     return ca.Function.if_else(name, if_true, if_false)(cond, *args)
 
 
-def segment_kernel(drag_law: str, compile_kernel: bool = True, table: Any = None
-                   ) -> ca.Function:
+def segment_kernel(drag_law: str, compile_kernel: bool = True, table: Any = None,
+                   solid: bool = False) -> ca.Function:
     """The segment kernel of ``drag_law``, compiled to C once and cached on disk when a C
     compiler is available (:func:`cable_ocp.numerics.compile.compile_function`), else
     interpreted.
@@ -699,9 +721,11 @@ def segment_kernel(drag_law: str, compile_kernel: bool = True, table: Any = None
         Compile to C (else the SX function).
     table : TensionStrainTable, optional
         The line's tension-strain law (None: EA e), built into the kernel.
+    solid : bool
+        The viscoelastic law's kernel (:func:`segment_kernel_expr`).
     """
-    key = (drag_law, compile_kernel, table)
+    key = (drag_law, compile_kernel, table, solid)
     if key not in _KERNELS:
-        fn = segment_kernel_expr(drag_law, table)
+        fn = segment_kernel_expr(drag_law, table, solid)
         _KERNELS[key] = compile_function(fn, "-O2") if compile_kernel else fn
     return _KERNELS[key]

@@ -194,6 +194,11 @@ class LumpedParams:
     tension_strain : TensionStrainTable or None
         The line's tension-strain law u(e) in place of EA e (every segment;
         :class:`cable_ocp.physics.elasticity.TensionStrainTable`), None for the linear law.
+    viscoelastic : StandardLinearSolid or None
+        The line's standard linear solid (every segment;
+        :class:`cable_ocp.physics.viscoelastic.StandardLinearSolid`, its static modulus
+        the segments' ``axial_stiffness``): each segment carries its dashpot strain in the
+        stepped state; None for an elastic line.
     """
 
     segment_length: np.ndarray
@@ -220,6 +225,7 @@ class LumpedParams:
     vertical_blend: float = 1e-2
     slack_smoothing: float = 1e-2
     tension_strain: Any = None
+    viscoelastic: Any = None
 
     def __post_init__(self) -> None:
         names = ("segment_length", "axial_stiffness", "diameter", "mass_per_length",

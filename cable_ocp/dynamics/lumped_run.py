@@ -196,8 +196,8 @@ def run(model: LumpedMassModel, x0: np.ndarray, v0: np.ndarray | None, duration:
     chunk = rec.mapaccum("chunk", c)
     compiled = "none"
     if compile == "kernel" and solver == "newton" and segment_kernel(
-            model.params.drag_law, True, model.params.tension_strain
-    ).class_name() == "External":
+            model.params.drag_law, True, model.params.tension_strain,
+            model.params.viscoelastic is not None).class_name() == "External":
         compiled = "kernel"
     if compile == "step":
         cc = compile_function(chunk, "-O1")  # -O2: 4x the compile time, the same speed here
@@ -272,8 +272,10 @@ def run(model: LumpedMassModel, x0: np.ndarray, v0: np.ndarray | None, duration:
     vel = np.asarray(model.node_velocities.map(n)(vs.T, tall[None, :]))
     velocities = vel.reshape(3, n, model.params.segments + 1).transpose(1, 2, 0)
     strain = model.tensions.map(n)(xs.T, tall[None, :])[1]
-    tens = model.segment_tension.map(n)(xs.T, vs.T, tall[None, :])
-    ftop = np.asarray(model.top_force.map(n)(xs.T, vs.T, tall[None, :])).T
+    # the viscoelastic law's tensions need the dashpot strains (the state's last N)
+    evs = [zall[:, 3 * nf3:].T] if model.solid is not None else []
+    tens = model.segment_tension.map(n)(xs.T, vs.T, tall[None, :], *evs)
+    ftop = np.asarray(model.top_force.map(n)(xs.T, vs.T, tall[None, :], *evs)).T
     steps = (len(tall) - 1) * k
     return LumpedRun(
         status=status, message=message, t=tall, x=xs, v=vs, positions=positions,

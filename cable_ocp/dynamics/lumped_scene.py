@@ -140,6 +140,13 @@ def lumped_params(scene: DynamicScene, segments: int | None = None) -> LumpedPar
         def current(z: Any) -> Any:
             return current_velocity(cur, z)
 
+    visco = None
+    if any(c.viscoelastic is not None for c in lines):
+        if len(lines) > 1:
+            raise CableOCPError('cable.viscoelastic: simulation.model = "lumped3d" takes the '
+                                "viscoelastic law on a line of one segment only (valid: one "
+                                "[[cable.segments]] entry)")
+        visco = st.cable.viscoelastic.law(st.cable.axial_stiffness)  # type: ignore[union-attr]
     tm = scene.top_motion
     top0 = ca.DM([float(v) for v in scene.top_position])
     ts = ca.SX.sym("t")
@@ -152,7 +159,8 @@ def lumped_params(scene: DynamicScene, segments: int | None = None) -> LumpedPar
         water_density=env.water_density, gravity=env.gravity, unit=unit,
         end_a_position=end_a, bodies=tuple(bodies), current=current,
         drag_law=st.cable.drag_law, smoothing=st.solver.smoothing,
-        vertical_blend=st.solver.vertical_blend, tension_strain=st.cable.strain_table)
+        vertical_blend=st.solver.vertical_blend, tension_strain=st.cable.strain_table,
+        viscoelastic=visco)
 
 
 def lumped_start(scene: DynamicScene, model: LumpedMassModel

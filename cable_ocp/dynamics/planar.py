@@ -65,10 +65,11 @@ Time: the implicit midpoint rule with a discrete-gradient tension (the energy-mo
 method of Simo & Tarnow (1992), Gonzalez (1996)): the element force is the mean of T over
 [e_0, e_1] (:func:`cable_ocp.physics.elasticity.mean_material_tension`: exact from the strain
 energy for the linear law, across the no-compression kink when an element goes slack or
-taut; 3-point Gauss for a tension-strain table) along
-(d_0 + d_1) / (|d_0| + |d_1|), so that an undamped run in
-air conserves the discrete energy to the Newton tolerance, at any time step (A-stable,
-symplectic for the linear part, no numerical damping). The kinematic equation is
+taut; 3-point Gauss for a tension-strain table; ``[cable] viscoelastic``: the exact mean of
+its step's law, each element's e_v by the same midpoint rule in closed form,
+:mod:`cable_ocp.physics.viscoelastic`) along (d_0 + d_1) / (|d_0| + |d_1|), so that an
+undamped run in air conserves the discrete energy to the Newton tolerance, at any time
+step (A-stable, symplectic for the linear part, no numerical damping). The kinematic equation is
 eliminated (V_m = (R_1 - R_0) / dt - a R_y,m), the step is a Newton ``rootfinder`` in the
 2N new positions (sparse LU, exact Jacobian), folded over an output interval and
 ``mapaccum``'d in chunks: no Python runs per step; one call per chunk drives the progress
@@ -79,7 +80,6 @@ from __future__ import annotations
 
 import math
 import time
-import warnings
 from collections.abc import Callable
 from typing import Any
 
@@ -90,7 +90,7 @@ from cable_ocp.dynamics.bending_terms import LineBending
 from cable_ocp.dynamics.checks import check_planar
 from cable_ocp.dynamics.driven import planar_driven_step
 from cable_ocp.dynamics.model import DrivenStep
-from cable_ocp.dynamics.planar_line import PlanarLine
+from cable_ocp.dynamics.planar_line import PlanarLine, damped_newton
 from cable_ocp.dynamics.result import (
     ModesResult,
     SimulationResult,
@@ -113,6 +113,7 @@ from cable_ocp.physics.elasticity import (
     mean_material_tension,
     smooth_positive,
 )
+from cable_ocp.physics.viscoelastic import mean_solid_tension, solid_tension
 from cable_ocp.scene.dynamics import DynamicScene
 from cable_ocp.scene.motion import motion_function
 
@@ -189,6 +190,14 @@ class PlanarModel:
                                 "[[cable.segments]] entry, or axial_stiffness per segment)")
         self.material = cable_material(self.line.value("ea"), self.table,
                                        slack_smoothing=self.delta_t)
+        #: the standard linear solid (``[cable] viscoelastic``, None: elastic): each
+        #: element's dashpot strain e_v follows the state (q, V, e_v), the material (EA_s)
+        #: is its relaxed law (the static start and the statics)
+        self.solid = cab.viscoelastic.law(self.ea) if cab.viscoelastic else None
+        if self.solid is not None and not self.line.uniform:
+            raise CableOCPError("cable.viscoelastic: the planar model takes the viscoelastic "
+                                "law on a line of one segment only (valid: one "
+                                "[[cable.segments]] entry)")
         self.rho = rho
         self.length0 = scene.length
         #: the hinges of a line with bending stiffness (:mod:`cable_ocp.dynamics.bending_terms`)
@@ -367,6 +376,7 @@ class PlanarModel:
         q1 = ca.SX.sym("q1", 2 * nf)
         q0 = ca.SX.sym("q0", 2 * nf)
         v0 = ca.SX.sym("v0", 2 * nf)
+        ev0 = ca.SX.sym("ev0", n if self.solid is not None else 0)
         t0 = ca.SX.sym("t0")
         m0, m1, mm = self._motion(t0), self._motion(t0 + dt), self._motion(t0 + 0.5 * dt)
         h0, h1, hm = m0["L"] / n, m1["L"] / n, mm["L"] / n
@@ -383,11 +393,17 @@ class PlanarModel:
         # discrete-gradient tension (mean of T over [e0, e1] along (d0 + d1)/(l0 + l1))
         l0, l1 = self._norms(d0), self._norms(d1)
         e0, e1 = l0 / h0 - 1.0, l1 / h1 - 1.0
-        tbar = mean_material_tension(self.material, e0, e1)
+        if self.solid is None:
+            tbar = mean_material_tension(self.material, e0, e1)
+            ev1 = ev0
+        else:  # the midpoint rule of de_v/dt = (e - e_v) / tau, its e_v1 in closed form
+            tbar, sw_solid = mean_solid_tension(self.solid, e0, e1, ev0.T, dt, self.delta_t)
+            ev1 = self.solid.step_internal(e0, e1, ev0.T, dt).T
         u = (d0 + d1) / ca.repmat(l0 + l1, 2, 1)
         if np.any(self.line.rows["c"] > 0.0):
             rate = ca.sum1(u * (vm[:, 1:] - vm[:, :-1])) / hm
-            switch = mean_material_switch(self.material, e0, e1)
+            switch = (mean_material_switch(self.material, e0, e1) if self.solid is None
+                      else sw_solid)
             tbar = smooth_positive(tbar + self.line.value("c") * rate * switch, self.delta_t)
         force = self._spread(ca.repmat(tbar, 2, 1) * u)
         force = force + self.bending.node_forces(dm, mm["L"] / self.length0)
@@ -415,14 +431,16 @@ class PlanarModel:
         adv0 = ca.repmat(y * m0["Lt"] / m0["L"], 2, 1)
         rate0 = self._free_cols(adv0 * self._tangent_y(d0) - vref) + vv0
         pred = q0 + dt * ca.vec(rate0)
-        return (q1, q0, v0, t0, ca.vec(res) / self.force_scale, ca.vec(v1), e1.T, pred)
+        return (q1, q0, v0, t0, ca.vec(res) / self.force_scale, ca.vec(v1), e1.T, pred,
+                ev0, ev1)
 
     def step_function(self, dt: float, tol: float, max_iter: int) -> ca.Function:
         """One step as a CasADi function ``(acc, t0) -> acc``.
 
         ``acc`` stacks the offsets q (2 n_free), the material velocities V (2 n_free), the
-        largest scaled Newton residual so far, the smallest element strain so far, the
-        time of the first slack strain (s, inf if none) and that element's index.
+        dashpot strains e_v (N, with ``[cable] viscoelastic`` only), the largest scaled
+        Newton residual so far, the smallest element strain so far, the time of the first
+        slack strain (s, inf if none) and that element's index.
 
         Parameters
         ----------
@@ -433,22 +451,22 @@ class PlanarModel:
         max_iter : int
             Newton iterations allowed per step.
         """
-        q1, q0, v0, t0, res, v1, eps1, pred = self._step_expressions(dt)
+        q1, q0, v0, t0, res, v1, eps1, pred, ev0, ev1 = self._step_expressions(dt)
         nf2 = 2 * self.nf
-        p = ca.vertcat(q0, v0, t0)
+        ne = ev0.shape[0]
+        p = ca.vertcat(q0, v0, ev0, t0)
         guess = ca.Function("guess", [p], [pred])
         rf = ca.rootfinder("rf", "newton", {"x": q1, "p": p, "g": res},
                            {"abstol": tol, "abstolStep": 1e-14 * tol, "max_iter": max_iter,
                             "error_on_fail": False})
-        post = ca.Function("post", [q1, p], [v1, ca.norm_inf(res), eps1])
-        acc = ca.MX.sym("acc", 2 * nf2 + 4)
+        post = ca.Function("post", [q1, p], [ca.vertcat(v1, ev1), ca.norm_inf(res), eps1])
+        acc = ca.MX.sym("acc", 2 * nf2 + ne + 4)
         tm = ca.MX.sym("t")
-        qa, va = acc[:nf2], acc[nf2:2 * nf2]
-        pv = ca.vertcat(qa, va, tm)
+        pv = ca.vertcat(acc[:2 * nf2 + ne], tm)
         qn = rf(guess(pv), pv)
         vn, r, eps = post(qn, pv)
         emin_step = ca.mmin(eps)
-        rmax, emin, t_slack, e_slack = (acc[2 * nf2 + k] for k in range(4))
+        rmax, emin, t_slack, e_slack = (acc[2 * nf2 + ne + k] for k in range(4))
         idx = ca.DM(np.arange(self.n, dtype=float))
         is_min = eps <= emin_step
         e_now = ca.dot(idx, is_min) / ca.sum1(is_min)
@@ -464,13 +482,16 @@ class PlanarModel:
     def output_function(self) -> ca.Function:
         """``(t, q, V) -> (node positions (2, N+1), element tensions (N), top tension,
         L, node velocities (2, N+1), strains (N))`` (m, N, N, m, m/s, -); with
-        :attr:`motion_params` set, ``(t, q, V, p)``."""
+        :attr:`motion_params` set, ``(t, q, V, p)``; with the viscoelastic law
+        ``(t, q, V, e_v)``."""
         n = self.n
         t = ca.SX.sym("t")
         q = ca.SX.sym("q", 2 * self.nf)
         v = ca.SX.sym("v", 2 * self.nf)
         mo = self._motion(t)
         extra = [] if self.motion_params is None else [self.motion_params]
+        if self.solid is not None:
+            extra = [ca.SX.sym("ev", n), *extra]
         h = mo["L"] / n
         qq = self._offsets(q, mo)
         dd = self._elements(qq, h)
@@ -483,11 +504,13 @@ class PlanarModel:
         vs = ca.horzcat(*cols)
         ll = self._norms(dd)
         eps = ll / h - 1.0
-        tens = self._tension(eps)
+        if self.solid is None:
+            tens, taut = self._tension(eps), self._taut(eps)
+        else:
+            tens, taut = solid_tension(self.solid, eps, extra[0].T, self.delta_t)
         if np.any(self.line.rows["c"] > 0.0):
             rate = ca.sum1(dd / ca.repmat(ll, 2, 1) * (vs[:, 1:] - vs[:, :-1])) / h
-            tens = smooth_positive(tens + self.line.value("c") * rate * self._taut(eps),
-                                   self.delta_t)
+            tens = smooth_positive(tens + self.line.value("c") * rate * taut, self.delta_t)
         # the top: node N's balance, M_N a_N - (cable, weight, drag); a_N the material
         # acceleration a_b - L_tt R_y / L (the turning of the top tangent neglected)
         zs = rs[1, :]
@@ -505,10 +528,12 @@ class PlanarModel:
                            [rs, tens.T, top, mo["L"], vs, eps.T])
 
     # ------------------------------------------------------------------ statics
-    def _static_function(self, with_drag: bool = True, linear: bool = False) -> ca.Function:
+    def _static_function(self, with_drag: bool = True, linear: bool = False,
+                         internal: Any = None) -> ca.Function:
         """``q -> (F, dF/dq)``: the nodal forces (N) at rest at t = 0 (every node at rest,
         the current's drag included if ``with_drag``; ``linear``: Hooke's law EA e in
-        tension and compression)."""
+        tension and compression; ``internal``: the viscoelastic law with these dashpot
+        strains e_v held, the fast-load stiffness EA_d of the modes)."""
         n = self.n
         q = ca.SX.sym("q", 2 * self.nf)
         mo = self._motion(0.0)
@@ -519,6 +544,8 @@ class PlanarModel:
         eps = ll / h - 1.0
         tens = (self.line.value("ea") * eps if self.table is None
                 else self.table.tension_of(eps)) if linear else self._tension(eps)
+        if internal is not None:
+            tens = solid_tension(self.solid, eps, ca.DM(internal).T, self.delta_t)[0]
         force = self._spread(ca.repmat(tens / ll, 2, 1) * dd) + self.bending.node_forces(dd)
         if with_drag:
             zs = self._heights(qq, mo)
@@ -580,51 +607,9 @@ class PlanarModel:
 
     def _newton(self, fj: ca.Function, q: np.ndarray, tol: float, max_iter: int
                 ) -> tuple[np.ndarray, dict[str, Any]]:
-        """Damped Newton on the nodal forces of ``fj`` (see :meth:`static_equilibrium`)."""
-        from scipy.sparse import csc_matrix
-        from scipy.sparse.linalg import spsolve
-
-        q = q.copy()
-
-        def ev(x: np.ndarray) -> tuple[np.ndarray, Any]:
-            f, j = fj(x)
-            return np.asarray(f).ravel(), j
-
-        f, jac = ev(q)
-        stalled = False
-        it = 0
-        for it in range(1, max_iter + 1):  # noqa: B007 - reported
-            if not np.all(np.isfinite(f)) or np.abs(f).max() <= tol * self.force_scale:
-                it -= 1
-                break
-            try:
-                with warnings.catch_warnings():  # a singular Jacobian: NaN, reported below
-                    warnings.simplefilter("ignore")
-                    dq = -spsolve(csc_matrix(jac.sparse()), f)
-            except Exception:  # noqa: BLE001 - reported, never raised
-                break
-            if not np.all(np.isfinite(dq)):
-                break
-            n0 = np.linalg.norm(f)
-            lam = 1.0
-            while lam > 1e-6:
-                fn, jn = ev(q + lam * dq)
-                if np.all(np.isfinite(fn)) and np.linalg.norm(fn) < (1.0 - 1e-4 * lam) * n0:
-                    break
-                lam *= 0.5
-            else:  # no decrease along the Newton step: the rounding floor (or a failure)
-                stalled = True
-                break
-            q = q + lam * dq
-            f, jac = fn, jn
-            # the rounding floor of a stiff line: steps of 1e-13 of the length
-            stalled = lam * np.abs(dq).max() <= 1e-13 * self.length0
-            if stalled and np.abs(f).max() <= 1e-9 * self.force_scale:
-                break
-        rmax = float(np.abs(f).max()) if np.all(np.isfinite(f)) else math.inf
-        ok = rmax <= tol * self.force_scale or (stalled and rmax <= 1e-9 * self.force_scale)
-        return q, {"converged": bool(ok), "iterations": it, "residual_N": rmax,
-                   "relative_residual": rmax / self.force_scale}
+        """:func:`~cable_ocp.dynamics.planar_line.damped_newton` on the nodal forces of
+        ``fj`` (see :meth:`static_equilibrium`)."""
+        return damped_newton(fj, q, tol, max_iter, self.force_scale, self.length0)
 
     def initial_state(self) -> tuple[np.ndarray | None, dict[str, Any]]:
         """(q, V) at t = 0 stacked, and information on how it was found.
@@ -643,7 +628,7 @@ class PlanarModel:
             q[:, 1] = self.scene.simulation.drop_height * (
                 1.0 - np.asarray(self.free, dtype=float) / self.n)
             info.update(converged=True, message=dropped_message(self.scene.simulation))
-            return np.concatenate([q.ravel(), np.zeros(nf2)]), info
+            return self._with_internal(np.concatenate([q.ravel(), np.zeros(nf2)])), info
         from scipy.interpolate import CubicSpline
 
         from cable_ocp.dynamics.static import static_state
@@ -679,7 +664,15 @@ class PlanarModel:
             return None, info
         info["message"] = (f"statics solution refined to the discrete equilibrium (largest "
                            f"node shift {shift:.3g} m)")
-        return np.concatenate([qe, np.zeros(nf2)]), info
+        return self._with_internal(np.concatenate([qe, np.zeros(nf2)])), info
+
+    def _with_internal(self, x: np.ndarray) -> np.ndarray:
+        """(q, V) with, for the viscoelastic law, the relaxed dashpot strains appended:
+        e_v = e at rest (0 where an element is slack, e <= 0: an unloaded rope)."""
+        if self.solid is None:
+            return x
+        eps = np.asarray(self._strain_function()(x[:2 * self.nf])).ravel()
+        return np.concatenate([x, np.maximum(eps, 0.0)])
 
     # ------------------------------------------------------------------ simulate
     def simulate(self, progress: Callable[[int, int], None] | None = None,
@@ -694,7 +687,8 @@ class PlanarModel:
         state : numpy.ndarray, optional
             The initial (q, V) stacked (offsets from the unstretched line hanging from
             end_b, m, and material velocities, m/s, of the free nodes, node-major (x, z)
-            pairs), instead of ``simulation.start``.
+            pairs; then the N dashpot strains e_v with ``[cable] viscoelastic``), instead
+            of ``simulation.start``.
         """
         sc = self.scene
         sim = sc.simulation
@@ -708,9 +702,11 @@ class PlanarModel:
                 return self._failed(info)
         else:
             x0 = np.asarray(state, dtype=float).reshape(-1)
-            if x0.size != 2 * nf2:
-                raise CableOCPError(f"state: expected {2 * nf2} numbers (q and V of "
-                                    f"{self.nf} free nodes), got {x0.size}")
+            if x0.size != self.state_size():
+                raise CableOCPError(f"state: expected {self.state_size()} numbers (q and V "
+                                    f"of {self.nf} free nodes"
+                                    f"{', e_v' if self.solid is not None else ''}), got "
+                                    f"{x0.size}")
             info = {"source": "given", "converged": True, "message": "the given state"}
             eps = np.asarray(self._strain_function()(x0[:nf2])).ravel()
             self.force_scale = max(self.force_scale, self.ea * float(np.max(eps)))
@@ -719,10 +715,10 @@ class PlanarModel:
             self.step_function(dt, sim.tolerance, sim.max_iterations), every, n_out)
         post = self.output_function()
         build_time = time.perf_counter() - t_build
-        eps0 = float(np.min(np.asarray(post(0.0, x0[:nf2], x0[nf2:])[5])))
+        eps0 = float(np.min(np.asarray(post(0.0, *self._split(x0))[5])))
         acc = np.concatenate([x0, [0.0, eps0, np.inf, -1.0]])
         tol_fail = max(1e3 * sim.tolerance, 1e-6)
-        off = 2 * nf2
+        off = self.state_size()
         stats: dict[str, Any] = {}
         ts, xs, acc, status, message, wall = run_chunks(
             chunk_fn, acc, n_out, per_chunk, every, dt, off, off, tol_fail,
@@ -745,10 +741,9 @@ class PlanarModel:
         sc = self.scene
         sim = sc.simulation
         dt = sim.time_step
-        nf2 = 2 * self.nf
         rmax, emin, t_slack, e_slack = (float(v) for v in tail)
         n_t = ts.size
-        outs = post.map(n_t)(ts.reshape(1, -1), xs[:nf2], xs[nf2:])
+        outs = post.map(n_t)(ts.reshape(1, -1), *self._split(xs))
         pos, tens, top, length, vel, eps = (np.asarray(v) for v in outs)
         n1 = self.n + 1
         # map stacks the (2, N + 1) outputs side by side, one block per time
@@ -818,8 +813,15 @@ class PlanarModel:
 
     # ------------------------------------------------------------------ the interface
     def state_size(self) -> int:
-        """Offsets q and material velocities V of the free nodes: ``4 n_free``."""
-        return 4 * self.nf
+        """Offsets q and material velocities V of the free nodes: ``4 n_free`` (and the N
+        dashpot strains e_v with ``[cable] viscoelastic``)."""
+        return 4 * self.nf + (self.n if self.solid is not None else 0)
+
+    def _split(self, x: np.ndarray) -> list[np.ndarray]:
+        """The state (or states, columns) as the output function's (q, V[, e_v])."""
+        nf2 = 2 * self.nf
+        parts = [x[:nf2], x[nf2:2 * nf2]]
+        return parts + ([x[2 * nf2:]] if self.solid is not None else [])
 
     def static_state(self) -> tuple[np.ndarray | None, dict[str, Any]]:
         """:meth:`initial_state`."""
@@ -853,7 +855,10 @@ class PlanarModel:
         symmetric and its velocity part is damping); M with the added mass normal and
         tangential to the chords at q.
         """
-        fj = self._static_function(with_drag=False)
+        internal = None
+        if self.solid is not None:  # vibration much faster than 1 / tau: EA_d about q
+            internal = np.asarray(self._strain_function()(q)).ravel()
+        fj = self._static_function(with_drag=False, internal=internal)
         k = -np.asarray(ca.densify(fj(q)[1]))
         m = np.asarray(ca.densify(self._mass_function()(q)))
         return 0.5 * (k + k.T), 0.5 * (m + m.T)
@@ -881,7 +886,7 @@ class PlanarModel:
             big = s.reshape(-1)[int(np.argmax(np.abs(s)))]
             shapes[k, :, 0] = s[:, 0] / big
             shapes[k, :, 2] = s[:, 1] / big
-        pos = np.asarray(self.output_function()(0.0, q, np.zeros(2 * self.nf))[0]).T
+        pos = np.asarray(self.output_function()(0.0, *self._split(x0))[0]).T
         nodes = np.column_stack([pos[:, 0], np.full(n + 1, self.y_plane), pos[:, 1]])
         status, msg = "solved", f"{count} in-plane modes, {n} elements"
         if np.any(lam < 0):

@@ -9,11 +9,14 @@ elements' (half of each element's mass and weight, as on a uniform line). A pay-
 every element alike, which would move the joints along the material: a line of different
 segments keeps its length. A uniform line (a single ``[cable]``, or segments that differ only
 in their bending stiffness, :mod:`cable_ocp.dynamics.bending_terms`) has plain numbers, so its
-expressions are unchanged.
+expressions are unchanged. Also here: the damped Newton of the planar static state
+(:func:`damped_newton`).
 """
 
 from __future__ import annotations
 
+import math
+import warnings
 from dataclasses import replace
 from typing import Any
 
@@ -25,7 +28,7 @@ from cable_ocp.physics.added_mass import added_mass_per_length
 from cable_ocp.physics.drag import line_drag_factors, vector_drag_columns
 from cable_ocp.scene.dynamics import DynamicScene
 
-__all__ = ["PlanarLine"]
+__all__ = ["PlanarLine", "damped_newton"]
 
 #: the per-element quantities (units: kg/m, kg/m, kg/m, N/m, N, N s, N s^2/m^3, N s^2/m^3)
 NAMES = ("mu", "man", "mat", "w", "ea", "c", "kn", "kt")
@@ -140,3 +143,70 @@ class PlanarLine:
         ft = vector_drag_columns(urel, tt, 0.0, 1.0, delta)
         return (ca.repmat(ca.DM(self.rows["kn"][-k:]).T, rows, 1) * fn
                 + ca.repmat(ca.DM(self.rows["kt"][-k:]).T, rows, 1) * ft)
+
+
+def damped_newton(fj: ca.Function, q: np.ndarray, tol: float, max_iter: int,
+                  force_scale: float, length: float) -> tuple[np.ndarray, dict[str, Any]]:
+    """Damped Newton on the nodal forces of ``fj`` (``q -> (F, dF/dq)``, N and N/m) from
+    the offsets ``q`` (m): the planar model's static equilibrium
+    (:meth:`cable_ocp.dynamics.planar.PlanarModel.static_equilibrium`).
+
+    Parameters
+    ----------
+    fj : casadi.Function
+        The forces and their Jacobian.
+    q : numpy.ndarray
+        The start, m.
+    tol : float
+        Tolerance on the forces, times ``force_scale`` (-).
+    max_iter : int
+        Newton iterations allowed.
+    force_scale : float
+        N.
+    length : float
+        The line's length, m (the rounding floor of the steps: 1e-13 of it).
+    """
+    from scipy.sparse import csc_matrix
+    from scipy.sparse.linalg import spsolve
+
+    q = q.copy()
+
+    def ev(x: np.ndarray) -> tuple[np.ndarray, Any]:
+        f, j = fj(x)
+        return np.asarray(f).ravel(), j
+
+    f, jac = ev(q)
+    stalled = False
+    it = 0
+    for it in range(1, max_iter + 1):  # noqa: B007 - reported
+        if not np.all(np.isfinite(f)) or np.abs(f).max() <= tol * force_scale:
+            it -= 1
+            break
+        try:
+            with warnings.catch_warnings():  # a singular Jacobian: NaN, reported below
+                warnings.simplefilter("ignore")
+                dq = -spsolve(csc_matrix(jac.sparse()), f)
+        except Exception:  # noqa: BLE001 - reported, never raised
+            break
+        if not np.all(np.isfinite(dq)):
+            break
+        n0 = np.linalg.norm(f)
+        lam = 1.0
+        while lam > 1e-6:
+            fn, jn = ev(q + lam * dq)
+            if np.all(np.isfinite(fn)) and np.linalg.norm(fn) < (1.0 - 1e-4 * lam) * n0:
+                break
+            lam *= 0.5
+        else:  # no decrease along the Newton step: the rounding floor (or a failure)
+            stalled = True
+            break
+        q = q + lam * dq
+        f, jac = fn, jn
+        # the rounding floor of a stiff line: steps of 1e-13 of the length
+        stalled = lam * np.abs(dq).max() <= 1e-13 * length
+        if stalled and np.abs(f).max() <= 1e-9 * force_scale:
+            break
+    rmax = float(np.abs(f).max()) if np.all(np.isfinite(f)) else math.inf
+    ok = rmax <= tol * force_scale or (stalled and rmax <= 1e-9 * force_scale)
+    return q, {"converged": bool(ok), "iterations": it, "residual_N": rmax,
+               "relative_residual": rmax / force_scale}

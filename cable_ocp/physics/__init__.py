@@ -7,6 +7,8 @@ physics < scene). The homes (docs/laws.md lists them with their equations and so
   local-basis and kernel (value + Jacobian) forms; point-body drag (vector and per axis);
 * :mod:`~cable_ocp.physics.current`: the current profile (CasADi and numpy) and its kinks;
 * :mod:`~cable_ocp.physics.elasticity`: axial tension (EA, damping, no compression);
+* :mod:`~cable_ocp.physics.viscoelastic`: the standard linear solid (a spring-dashpot rope
+  law with an internal strain per element) and its midpoint step;
 * :mod:`~cable_ocp.physics.bending`: bending stiffness of a discretised line (the hinge law
   between adjacent elements, EI and the turning angle);
 * :mod:`~cable_ocp.physics.added_mass`: added mass of a line element and a body, weight in

@@ -38,7 +38,8 @@ object. A material is an object with the :class:`AxialMaterial` interface:
   are the reciprocals of u(e)'s (capped at 3 secants, which keeps its end cubics
   monotone). The same code evaluates numbers and CasADi
   symbols (a chain of ``if_else``), so the collocation NLP keeps exact derivatives;
-* :class:`StandardLinearSolid`: the rate-dependent spring-dashpot law of synthetic rope
+* :class:`~cable_ocp.physics.viscoelastic.StandardLinearSolid` (its own module): the
+  rate-dependent spring-dashpot law of synthetic rope
   (polyester, nylon): a spring EA_s in parallel with a Maxwell arm (a spring EA_d - EA_s in
   series with a dashpot (EA_d - EA_s) tau). Its internal state is the dashpot's strain
   e_v (one per element)::
@@ -47,25 +48,31 @@ object. A material is an object with the :class:`AxialMaterial` interface:
 
   A fast load sees EA_d (the dynamic modulus), a slow one EA_s (the static one: at rest
   e_v = e). A strain step e0 relaxes as T(t) = e0 (EA_s + (EA_d - EA_s) exp(-t / tau))
-  (:meth:`StandardLinearSolid.relaxation`); a load step T0 creeps as
+  (``relaxation``); a load step T0 creeps as
   e(t) = T0 / EA_s - T0 (1 / EA_s - 1 / EA_d) exp(-t / tau_c), tau_c = tau EA_d / EA_s
-  (:meth:`StandardLinearSolid.creep`).
+  (``creep``).
 
 Where the models call them: the axial model :func:`axial_law_tension` (compression
 allowed), the planar model :func:`cable_material`, the lumped model :func:`strain_tension`,
 :func:`strain_switch` and :func:`strain_stiffness` (its segment law and compiled kernel), the
 statics ``Cable.strain_at`` (:meth:`TensionStrainTable.strain_of`). The standard linear
-solid runs in the axial model only.
+solid: the axial model through :func:`axial_law_tension` (its e_v in the state, the
+model's own time schemes), the planar and lumped models' midpoint steps through
+:mod:`cable_ocp.physics.viscoelastic` (``mean_solid_tension``, ``step_internal``: e_v
+advanced in closed form each step; ``solid_tension`` at an instant).
 """
 
 from __future__ import annotations
 
 from dataclasses import dataclass
-from typing import Any, Protocol
+from typing import TYPE_CHECKING, Any, Protocol
 
 import casadi as ca
 import numpy as np
 from scipy.interpolate import PchipInterpolator
+
+if TYPE_CHECKING:
+    from cable_ocp.physics.viscoelastic import StandardLinearSolid
 
 #: force scale of the smooth no-compression law of the dynamic models, N
 SLACK_SMOOTHING = 0.01
@@ -704,79 +711,6 @@ class NonlinearElastic:
         return self.table.energy(strain)
 
 
-@dataclass(frozen=True)
-class StandardLinearSolid:
-    """Spring EA_s in parallel with a Maxwell arm (EA_d - EA_s, dashpot (EA_d - EA_s) tau).
-
-    Attributes
-    ----------
-    static_stiffness : float
-        EA_s, N: the modulus under a slow (static) load.
-    dynamic_stiffness : float
-        EA_d, N (>= EA_s): the modulus under a fast load.
-    relaxation_time : float
-        tau, s: the Maxwell arm's relaxation time.
-    """
-
-    static_stiffness: float
-    dynamic_stiffness: float
-    relaxation_time: float
-
-    def tension(self, strain: Any, internal_strain: Any) -> Any:
-        """T = EA_s e + (EA_d - EA_s) (e - e_v), N (negative in compression).
-
-        Parameters
-        ----------
-        strain : float, array or casadi expression
-            Axial strain e (-).
-        internal_strain : float, array or casadi expression
-            The dashpot's strain e_v (-).
-        """
-        arm = self.dynamic_stiffness - self.static_stiffness
-        return self.static_stiffness * strain + arm * (strain - internal_strain)
-
-    def internal_rate(self, strain: Any, internal_strain: Any) -> Any:
-        """de_v/dt = (e - e_v) / tau, 1/s.
-
-        Parameters
-        ----------
-        strain : float, array or casadi expression
-            Axial strain e (-).
-        internal_strain : float, array or casadi expression
-            The dashpot's strain e_v (-).
-        """
-        return (strain - internal_strain) / self.relaxation_time
-
-    def relaxation(self, time: Any, strain: float) -> Any:
-        """Tension after a strain step ``strain`` at t = 0 held since, N.
-
-        Parameters
-        ----------
-        time : float or array
-            Time since the step, s (>= 0).
-        strain : float
-            The step e0 (-).
-        """
-        arm = self.dynamic_stiffness - self.static_stiffness
-        return strain * (self.static_stiffness
-                         + arm * np.exp(-np.asarray(time) / self.relaxation_time))
-
-    def creep(self, time: Any, tension: float) -> Any:
-        """Strain after a tension step ``tension`` at t = 0 held since (-).
-
-        Parameters
-        ----------
-        time : float or array
-            Time since the step, s (>= 0).
-        tension : float
-            The step T0, N.
-        """
-        es, ed = self.static_stiffness, self.dynamic_stiffness
-        tau_c = self.relaxation_time * ed / es
-        return tension / es - tension * (1.0 / es - 1.0 / ed) * np.exp(-np.asarray(time)
-                                                                        / tau_c)
-
-
 def _if_else(cond: Any, a: Any, b: Any) -> Any:
     if any(_is_symbolic(v) for v in (cond, a, b)):
         return ca.if_else(cond, a, b)
@@ -890,3 +824,4 @@ def mean_material_switch(material: Any, strain0: Any, strain1: Any) -> Any:
     u0 = material.table.tension_of(strain0)
     u1 = material.table.tension_of(strain1)
     return 0.5 * (1.0 + (u0 + u1) / (_sqrt(u0 * u0 + d * d) + _sqrt(u1 * u1 + d * d)))
+

@@ -14,7 +14,8 @@ from typing import Any
 from cable_ocp.errors import CableOCPError
 from cable_ocp.physics import seabed as _seabed
 from cable_ocp.physics.current import is_uniform, profile_velocity_np
-from cable_ocp.physics.elasticity import StandardLinearSolid, TensionStrainTable
+from cable_ocp.physics.elasticity import TensionStrainTable
+from cable_ocp.physics.viscoelastic import StandardLinearSolid
 from cable_ocp.scene.fields import FREE, check_keys, number, require, vector3
 
 END_KEYS = {"position", "force", "tension"}

@@ -13,7 +13,7 @@ MUTATIONS = [
          description="statics: the stretch 1 + T / EA (the table's largest tangent) in place "
                      "of 1 + e(T)"),
     dict(name="materials-sls-relaxation-rate", area="physics",
-         file="cable_ocp/physics/elasticity.py",
+         file="cable_ocp/physics/viscoelastic.py",
          old="return (strain - internal_strain) / self.relaxation_time",
          new="return (strain - internal_strain) / (2.0 * self.relaxation_time)",
          tests=(_ST, _DY),
@@ -27,8 +27,8 @@ MUTATIONS = [
                      "inverse of the model's u(e) (not at rest)"),
     dict(name="materials-lumped-step-linear", area="dynamics",
          file="cable_ocp/dynamics/lumped_equations.py",
-         old="tbar = sum(w * strain_tension(em + g * de, ea, delta_t, table)",
-         new="tbar = sum(w * strain_tension(em + g * de, ea, delta_t, None)",
+         old="tbar = sum(w * strain_tension(em - shift + g * de, ea, delta_t, table)",
+         new="tbar = sum(w * strain_tension(em - shift + g * de, ea, delta_t, None)",
          tests=(_DY,),
          description="lumped: the time step's discrete-gradient tension with EA e in place "
                      "of the table"),
