@@ -643,7 +643,7 @@ MUTATIONS: tuple[Mutation, ...] = (
              AXIAL, "Huang's scheme: the pay-out cross term C = -2 mu v y / l of (3.5) with "
              "the wrong sign"),
     Mutation("lumped-static-start-ignored", DYN, "cable_ocp/dynamics/lumped_scene.py",
-             'if scene.simulation.start == "unstrained":', "if True:", LUMPED,
+             'if scene.simulation.start in ("unstrained", "dropped"):', "if True:", LUMPED,
              "lumped: start = \"static\" starts from the unstretched vertical line"),
     Mutation("planar-unit-drag-no-half", DYN, PL_F,
              "point_drag(u, self.unit_cs, rho=self.rho,",
