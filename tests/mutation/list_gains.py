@@ -3,7 +3,7 @@ the inverse problem of 6.4 (2) (cable_ocp/heave/inverse.py)."""
 
 MUTATIONS = [
     dict(name="gains-taylor-filter-input", area="heave",
-         file="cable_ocp/heave/regulator.py",
+         file="cable_ocp/heave/printed.py",
          old="self.w = self.Phi @ self.w + self.Gam * u0",
          new="self.w = self.Phi @ self.w + self.Gam * (-u0)",
          tests=("tests/heave/test_thesis_gains.py",),
