@@ -72,7 +72,7 @@ def res() -> object:
 def test_stiff_line_with_phc_equals_the_design_model(res: object) -> None:
     """On the stiff short line the cable with the compensator is (6.3) with it: the unit's
     heave and the stroke on the cable and on the design model (the same sea, winch held)
-    agree to 3 % of their RMS. What differs is the line's inertia, which the massless spring
+    agree to 1.5 % of their RMS (seen: 0.75 % and 0.45 %). What differs is the line's inertia, which the massless spring
     has not: the line is 0.65 % of the unit's mass, and under the compensator the top moves
     about three times as much as the unit does (the reduction is ~65 %), so the tension that
     drives the stroke differs by ~mu L / (2 M) x 3 ~ 1 %; the cable's midpoint steps and the
@@ -82,7 +82,7 @@ def test_stiff_line_with_phc_equals_the_design_model(res: object) -> None:
     for a, b in ((tr.x, pr.x), (tr.stroke_phc, pr.stroke_phc)):
         rms = math.sqrt(np.mean(b[keep] ** 2))
         assert rms > 0.02  # the compensator works: the unit heaves and the stroke moves
-        assert math.sqrt(np.mean((a[keep] - b[keep]) ** 2)) < 0.03 * rms
+        assert math.sqrt(np.mean((a[keep] - b[keep]) ** 2)) < 0.015 * rms
     m = res.metrics["phc"]
     assert res.statuses["phc"] == "solved"
     assert m.reduction_pct == pytest.approx(m.reduction_predicted_pct, abs=2.0)
