@@ -7,8 +7,9 @@ from the cable (Huang (1992), section 6.2.3; :mod:`cable_ocp.heave.identify_cabl
 (:func:`cable_ocp.heave.design_loop.compare`) on that model, ``"cable"`` runs every controller
 against the cable (the axial, planar or lumped3d model of the cable scene,
 :func:`cable_ocp.heave.cable_models.cable_plant`) and against the design model
-for the prediction, and a ``[deployment]`` table lowers the unit through resonance
-(:mod:`cable_ocp.heave.deployment`). :func:`compare` takes any heave scene.
+for the prediction (the ``phc*`` controllers with the passive compensator at the line's top,
+designed on the design model with it), and a ``[deployment]`` table lowers the unit through
+resonance (:mod:`cable_ocp.heave.deployment`). :func:`compare` takes any heave scene.
 """
 
 from __future__ import annotations

@@ -18,7 +18,10 @@
 
 Both integrate the unit model with :func:`cable_ocp.heave.plant.unit_acceleration` (its one
 home); they differ in the winch (inside the RK4 step, or exact) because each is the plant of
-its own comparison.
+its own comparison. The passive compensator's piston (:class:`Piston`, the one home of its
+law in the loop) goes with either: RK4 with the design model (:class:`UnitWinchPlant`,
+:class:`ModelLine`), an implicit-midpoint step with each of the cable's time steps
+(:class:`CableLine`).
 """
 
 from __future__ import annotations
