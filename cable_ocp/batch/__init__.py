@@ -11,6 +11,8 @@ executors  in-process, local worker processes, dask
 store      CSV + JSON lines written as rows arrive; the lock, the meta record, resume
 arrays     per-case arrays in one netCDF file; the envelope across cases (range graph)
 summary    the extremes of every output and the parameter values of the cases that gave them
+response   frequency-response sweeps: time runs until periodic, one case per frequency and
+           amplitude, beside the linear transfer function (frequency_response)
 
 Example
 -------

@@ -12,6 +12,7 @@ output    the shared contract of the commands
 statics, heave, dynamics, batch, bench, cost   the command groups, and the cost estimates
 inverse   heave-inverse: the parameters that give an identified a, b (Huang 6.4 (2))
 system    mooring systems: solve on a system or a MoorDyn file, convert, mooring-checks
+response  frequency-response curves of a dynamic scene
 """
 
 from cable_ocp.cli.app import build_parser, main

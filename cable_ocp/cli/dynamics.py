@@ -153,7 +153,16 @@ def _series_rows(res: Any, t: Any) -> list[tuple[str, str]]:
         ("unit heave", f"{g(np.nanmin(res.unit_position[:, 2]))} .. "
                        f"{g(np.nanmax(res.unit_position[:, 2]))} m (z)"),
         ("slack", _slack_text(res.slack)),
+        ("snap", _snap_text(res.snap)),
     ]
+
+
+def _snap_text(snap: dict[str, Any]) -> str:
+    if not snap.get("occurred"):
+        return "none"
+    return (f"peak {snap['peak_tension']:.4g} N at t = {snap['time']:.4g} s in element "
+            f"{snap['segment']} (s = {snap['location']:.4g} m from end_a), taut again at "
+            f"{snap['taut_at']:.4g} s; {snap['count']} snap(s)")
 
 
 def _slack_text(slack: dict[str, Any]) -> str:
@@ -167,15 +176,20 @@ def _slack_text(slack: dict[str, Any]) -> str:
 
 def _series_table(res: Any) -> tuple[list[str], list[list[float]]]:
     """One row per sample: t, length, top and unit positions, top tension, then every node's
-    x, y, z and every element's tension."""
+    x, y, z, every element's tension and the snap-peak marker."""
     n_nodes = res.node_positions.shape[1]
     header = ["t [s]", "length [m]", "top_x [m]", "top_y [m]", "top_z [m]", "unit_x [m]",
               "unit_y [m]", "unit_z [m]", "top_tension [N]"]
     header += [f"node{i}_{c} [m]" for i in range(n_nodes) for c in "xyz"]
     header += [f"element{i}_tension [N]" for i in range(res.segment_tensions.shape[1])]
+    header += ["snap_peak [-]"]
+    # 1 on the sample of the largest snap's peak (SimulationResult.snap), else 0
+    peak = np.zeros((len(res.t), 1))
+    if res.snap.get("occurred"):
+        peak[int(np.argmin(np.abs(res.t - res.snap["time"]))), 0] = 1.0
     cols = [res.t[:, None], res.length[:, None], res.top_position, res.unit_position,
             res.top_tension[:, None], res.node_positions.reshape(len(res.t), -1),
-            res.segment_tensions]
+            res.segment_tensions, peak]
     return header, np.hstack(cols).tolist()
 
 

@@ -13,7 +13,8 @@ import numpy as np
 from cable_ocp.cli import output as out
 from cable_ocp.numerics.text_table import MISSING, WIDTH, table
 
-CONTROLLERS = ("passive", "lqr", "lqg", "mpc", "phc", "phc+lqr", "phc+lqg", "phc+mpc")
+CONTROLLERS = ("passive", "lqr", "lqg", "mpc", "phc", "phc+lqr", "phc+lqg", "phc+mpc",
+               "printed-g3", "printed-g5")
 
 
 def register(sub: argparse._SubParsersAction, parent: argparse.ArgumentParser) -> None:
@@ -260,6 +261,8 @@ def _print_table(sc: Any, args: argparse.Namespace, res: Any) -> None:
     for name, st in res.statuses.items():
         if st != "solved":
             print(_wrap(f"{name}: {st}: {res.messages[name]}"))
+        elif name.startswith("printed-"):  # the plant it ran on (its own delay)
+            print(_wrap(f"{name}: {res.messages[name]}"))
     for w in res.warnings:
         print(_wrap(f"WARNING {w}"))
     extra = getattr(res, "json_extra", None) or {}

@@ -35,6 +35,7 @@ from cable_ocp.dynamics.result import (
     slack_report,
     until_slack,
 )
+from cable_ocp.dynamics.snap import snap_report
 from cable_ocp.errors import CableOCPError
 from cable_ocp.scene.dynamics import DynamicScene
 from cable_ocp.scene.motion import length_expr
@@ -201,5 +202,7 @@ def simulate_payout(model: LumpedSceneModel,
         out["positions"], t=ts, length=out["length"], top_tension=out["top_tension"],
         segment_tensions=out["tensions"], node_velocities=out["velocities"],
         min_tension=float(np.min(min_t)) if min_t.size else math.nan, slack=slack,
+        snap=snap_report(ts, out["tensions"], (np.arange(sim.segments) + 0.5) / sim.segments
+                         * np.asarray(out["length"])[:, None]),
         status=status, message=message, warnings=warnings, wall_time_s=run.wall_time_s,
         model="lumped3d", scheme=sim.scheme, diagnostics=diagnostics)

@@ -35,6 +35,7 @@ from cable_ocp.dynamics.result import (
     slack_report,
     until_slack,
 )
+from cable_ocp.dynamics.snap import dropped_message, snap_report
 from cable_ocp.dynamics.stepping import MAX_CHUNKS
 from cable_ocp.errors import CableOCPError
 from cable_ocp.physics.current import current_velocity
@@ -161,7 +162,9 @@ def lumped_start(scene: DynamicScene, model: LumpedMassModel
     ``"static"``: the statics solver's solution of the scene
     (:func:`cable_ocp.dynamics.static.static_state`) interpolated at the nodes' unstretched
     arc lengths (cubic in s per coordinate), then refined to the lumped-mass equilibrium
-    by Newton. ``"unstrained"``: straight down from end_b, unstretched.
+    by Newton. ``"unstrained"``: straight down from end_b, unstretched. ``"dropped"``:
+    straight down and slack, every node raised by h (1 - s / L) (h =
+    ``simulation.drop_height``).
 
     Parameters
     ----------
@@ -182,11 +185,12 @@ def lumped_start(scene: DynamicScene, model: LumpedMassModel
     p = model.params
     s_nodes = p.node_arc_length
     info: dict[str, Any] = {"source": scene.simulation.start}
-    if scene.simulation.start == "unstrained":
+    if scene.simulation.start in ("unstrained", "dropped"):
         top = np.asarray(scene.top_position, float)
         pos = np.tile(top, (p.segments + 1, 1))
         pos[:, 2] -= p.length - s_nodes
-        info.update(converged=True, message="hanging straight down, unstretched, at rest")
+        pos[:, 2] += scene.simulation.drop_height * (1.0 - s_nodes / p.length)
+        info.update(converged=True, message=dropped_message(scene.simulation))
         return pos[model.free_nodes].reshape(-1), info
     from scipy.interpolate import CubicSpline
 
@@ -274,7 +278,8 @@ def _result(scene: DynamicScene, model: LumpedMassModel, out: LumpedRun,
         positions, t=ts, length=np.full(ts.size, p.length), top_tension=top,
         segment_tensions=tens, node_velocities=velocities,
         min_tension=float(np.min(tens)) if tens.size else math.nan, slack=slack,
-        status=status, message=message, warnings=warnings, wall_time_s=out.wall_time_s,
+        snap=snap_report(ts, tens, s_mid), status=status, message=message,
+        warnings=warnings, wall_time_s=out.wall_time_s,
         model="lumped3d", scheme=sim.scheme, diagnostics=diagnostics)
 
 

@@ -63,7 +63,10 @@ the top a one-sided second-order difference.
 
 Time: the implicit midpoint rule with a discrete-gradient tension (the energy-momentum
 method of Simo & Tarnow (1992), Gonzalez (1996)): the element force is the mean of T over
-[e_0, e_1] (3-point Gauss) along (d_0 + d_1) / (|d_0| + |d_1|), so that an undamped run in
+[e_0, e_1] (:func:`cable_ocp.physics.elasticity.mean_material_tension`: exact from the strain
+energy for the linear law, across the no-compression kink when an element goes slack or
+taut; 3-point Gauss for a tension-strain table) along
+(d_0 + d_1) / (|d_0| + |d_1|), so that an undamped run in
 air conserves the discrete energy to the Newton tolerance, at any time step (A-stable,
 symplectic for the linear part, no numerical damping). The kinematic equation is
 eliminated (V_m = (R_1 - R_0) / dt - a R_y,m), the step is a Newton ``rootfinder`` in the
@@ -97,13 +100,19 @@ from cable_ocp.dynamics.result import (
     slack_report,
     until_slack,
 )
-from cable_ocp.dynamics.stepping import chunk_functions, run_chunks
+from cable_ocp.dynamics.snap import dropped_message, snap_report
+from cable_ocp.dynamics.stepping import chunk_functions, halving, run_chunks
 from cable_ocp.errors import CableOCPError
-from cable_ocp.numerics.quadrature import gauss_legendre
 from cable_ocp.physics.added_mass import added_mass_per_length, line_added_mass_2d
 from cable_ocp.physics.current import profile_velocity
 from cable_ocp.physics.drag import line_drag_factors, point_drag
-from cable_ocp.physics.elasticity import SLACK_SMOOTHING, cable_material
+from cable_ocp.physics.elasticity import (
+    SLACK_SMOOTHING,
+    cable_material,
+    mean_material_switch,
+    mean_material_tension,
+    smooth_positive,
+)
 from cable_ocp.scene.dynamics import DynamicScene
 from cable_ocp.scene.motion import motion_function
 
@@ -111,13 +120,9 @@ __all__ = ["SLACK_MESSAGE", "PlanarModel", "check_planar"]
 
 #: the planar model's slack message (:func:`cable_ocp.dynamics.result.slack_report`)
 SLACK_MESSAGE = ("slack: tension <= 0 first at t = {t:.6g} s in element {segment} (s = "
-                 "{location:.4g} m from end_a); the planar model predicts slack but cannot "
-                 "follow it (Huang (1992) 4.5.1): {action}; the Hooke's-law tension EA e "
-                 "reached {hooke:.4g} N")
-#: 3-point Gauss-Legendre rule on [-1, 1], weights halved (the mean of the tension over a
-#: strain interval)
-_MEAN_RULE = ([float(v) for v in gauss_legendre(3)[0]],
-              [0.5 * float(v) for v in gauss_legendre(3)[1]])
+                 "{location:.4g} m from end_a; Huang's (4.2)-(4.3) predict slack but cannot "
+                 "follow it, 4.5.1): {action}; the Hooke's-law tension EA e reached "
+                 "{hooke:.4g} N")
 
 class PlanarModel:
     """The discretised planar model of one scene (see the module docstring).
@@ -378,13 +383,12 @@ class PlanarModel:
         # discrete-gradient tension (mean of T over [e0, e1] along (d0 + d1)/(l0 + l1))
         l0, l1 = self._norms(d0), self._norms(d1)
         e0, e1 = l0 / h0 - 1.0, l1 / h1 - 1.0
-        em, de = 0.5 * (e0 + e1), 0.5 * (e1 - e0)
-        tbar = sum(wg * self._tension(em + g * de)
-                   for g, wg in zip(*_MEAN_RULE, strict=True))
+        tbar = mean_material_tension(self.material, e0, e1)
         u = (d0 + d1) / ca.repmat(l0 + l1, 2, 1)
         if np.any(self.line.rows["c"] > 0.0):
             rate = ca.sum1(u * (vm[:, 1:] - vm[:, :-1])) / hm
-            tbar = tbar + self.line.value("c") * rate * self._taut(em)
+            switch = mean_material_switch(self.material, e0, e1)
+            tbar = smooth_positive(tbar + self.line.value("c") * rate * switch, self.delta_t)
         force = self._spread(ca.repmat(tbar, 2, 1) * u)
         force = force + self.bending.node_forces(dm, mm["L"] / self.length0)
         # drag at the mean positions with the midpoint velocities
@@ -482,7 +486,8 @@ class PlanarModel:
         tens = self._tension(eps)
         if np.any(self.line.rows["c"] > 0.0):
             rate = ca.sum1(dd / ca.repmat(ll, 2, 1) * (vs[:, 1:] - vs[:, :-1])) / h
-            tens = tens + self.line.value("c") * rate * self._taut(eps)
+            tens = smooth_positive(tens + self.line.value("c") * rate * self._taut(eps),
+                                   self.delta_t)
         # the top: node N's balance, M_N a_N - (cable, weight, drag); a_N the material
         # acceleration a_b - L_tt R_y / L (the turning of the top tangent neglected)
         zs = rs[1, :]
@@ -628,13 +633,17 @@ class PlanarModel:
         (:func:`cable_ocp.dynamics.static.static_state`) interpolated at the nodes'
         unstretched arc lengths, then refined to the discrete model's own equilibrium by
         Newton, so that the run starts exactly at rest. ``"unstrained"``: hanging straight
-        down from end_b, unstretched, at rest (q = 0).
+        down from end_b, unstretched, at rest (q = 0). ``"dropped"``: straight down and
+        slack, every node raised by h (1 - y) (h = ``simulation.drop_height``), at rest.
         """
         nf2 = 2 * self.nf
         info: dict[str, Any] = {"source": self.scene.simulation.start}
-        if self.scene.simulation.start == "unstrained":
-            info.update(converged=True, message="hanging straight down, unstretched, at rest")
-            return np.zeros(2 * nf2), info
+        if self.scene.simulation.start in ("unstrained", "dropped"):
+            q = np.zeros((self.nf, 2))
+            q[:, 1] = self.scene.simulation.drop_height * (
+                1.0 - np.asarray(self.free, dtype=float) / self.n)
+            info.update(converged=True, message=dropped_message(self.scene.simulation))
+            return np.concatenate([q.ravel(), np.zeros(nf2)]), info
         from scipy.interpolate import CubicSpline
 
         from cable_ocp.dynamics.static import static_state
@@ -714,9 +723,13 @@ class PlanarModel:
         acc = np.concatenate([x0, [0.0, eps0, np.inf, -1.0]])
         tol_fail = max(1e3 * sim.tolerance, 1e-6)
         off = 2 * nf2
+        stats: dict[str, Any] = {}
         ts, xs, acc, status, message, wall = run_chunks(
             chunk_fn, acc, n_out, per_chunk, every, dt, off, off, tol_fail,
-            sim.on_slack == "stop", progress)
+            sim.on_slack == "stop", progress,
+            refine=halving(lambda h: self.step_function(h, sim.tolerance, sim.max_iterations),
+                           dt, every), stats=stats)
+        info = {**info, "step_halving": stats}
         times, states = [0.0, *ts], [x0, *xs]
         return self._result(np.asarray(times), np.stack(states, axis=1), acc[off:off + 4],
                             post, status, message, wall, build_time, info)
@@ -763,9 +776,10 @@ class PlanarModel:
         slack, status, message = slack_report(
             t_slack, e, where, status=status, message=message, on_slack=sim.on_slack,
             template=SLACK_MESSAGE,
-            continued="the run continued: a slack element carries no tension (the smooth "
-                      "no-compression law) and the model follows the slack cable only "
-                      "approximately (no bending, no contact, lumped)",
+            continued="the run continued through slack: a slack element carries no tension "
+                      "(the no-compression law, elastic and damping) and the lumps move "
+                      "freely until the line is taut again (no bending, no contact); the "
+                      "snap that ends it is in the result's snap",
             hooke=self.ea * min_strain)
         if status == "solved":
             message = f"{sim.steps} steps of {dt:g} s ({sim.scheme}), {self.n} elements"
@@ -789,7 +803,8 @@ class PlanarModel:
             "elements": self.n,
             "max_scaled_residual": rmax,
             "tolerance": sim.tolerance,
-            "start": info,
+            "start": {k: v for k, v in info.items() if k != "step_halving"},
+            "step_halving": info.get("step_halving"),
             "min_strain": min_strain,
             "min_linear_tension_N": self.ea * min_strain,
             "wall_time_per_simulated_second": wall / ts[-1] if n_t > 1 else None,
@@ -797,6 +812,7 @@ class PlanarModel:
         return SimulationResult.from_nodes(
             nodes, t=ts, length=length, top_tension=top, segment_tensions=tens,
             min_tension=min_t, slack=slack, status=status, message=message, warnings=warnings,
+            snap=snap_report(ts, tens, (np.arange(self.n) + 0.5) / self.n * length[:, None]),
             wall_time_s=wall, model="planar", scheme=sim.scheme, diagnostics=diagnostics,
             node_velocities=velocities)
 

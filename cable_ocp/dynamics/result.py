@@ -227,6 +227,11 @@ class SimulationResult(_StatusVocabulary):
         Everything else: build time, steps, Newton residuals, the static start, ...
     node_velocities : ndarray, shape (n_t, n_nodes, 3), or None
         Material velocities of the nodes, m/s (None when a model does not provide them).
+    snap : dict
+        The largest snap load, the peak tension that ends a slack spell
+        (:func:`cable_ocp.dynamics.snap.snap_report`): ``occurred``, ``count``,
+        ``peak_tension`` (N), ``time`` (s), ``segment``, ``location`` (m from end_a),
+        ``slack_from``, ``taut_at`` (s); empty for a model that does not follow slack.
     """
 
     t: np.ndarray
@@ -246,6 +251,7 @@ class SimulationResult(_StatusVocabulary):
     scheme: str = ""
     diagnostics: dict[str, Any] = field(default_factory=dict)
     node_velocities: np.ndarray | None = None
+    snap: dict[str, Any] = field(default_factory=dict)
 
     @classmethod
     def from_nodes(cls, node_positions: np.ndarray, **fields: Any) -> SimulationResult:
@@ -306,6 +312,7 @@ class SimulationResult(_StatusVocabulary):
              ("max_top_tension", self._ok(self.top_tension), "N"),
              ("min_tension", self.min_tension, "N"),
              ("slack", bool(self.slack.get("occurred")), ""),
+             ("snap_peak_tension", self.snap.get("peak_tension"), "N"),
              ("warnings", len(self.warnings), ""), ("wall_time_s", self.wall_time_s, "s")],
             {"t": self.t, "top_tension": self.top_tension,
              "node_positions": self.node_positions, "segment_tensions": self.segment_tensions,
@@ -370,7 +377,8 @@ class SimulationResult(_StatusVocabulary):
 
         Fields: ``status``, ``message``, ``model``, ``scheme``, ``t`` (s), ``length`` (m,
         unstretched), ``top_position`` ([[x, y, z], ...], m), ``unit_position``,
-        ``top_tension`` (N), ``min_tension`` (N), ``slack``, ``wall_time_s``, ``warnings``,
+        ``top_tension`` (N), ``min_tension`` (N), ``slack``, ``snap``, ``wall_time_s``,
+        ``warnings``,
         ``diagnostics``; with ``full`` also ``node_positions`` (m), ``segment_tensions``
         (N) and ``node_velocities`` (m/s, when the model gives them).
         """
@@ -386,6 +394,7 @@ class SimulationResult(_StatusVocabulary):
             "top_tension": self.top_tension,
             "min_tension": self.min_tension,
             "slack": self.slack,
+            "snap": self.snap,
             "wall_time_s": self.wall_time_s,
             "warnings": list(self.warnings),
             "diagnostics": self.diagnostics,

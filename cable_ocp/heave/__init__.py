@@ -22,6 +22,7 @@ plant       state-space blocks (6.1)/(6.5), (6.2), (6.25), delay models (6.13)-(
 discrete    exact sampled-data models: ZOH with an input delay, cost and noise discretisation
 identify    Gauss-Newton identification of (6.2) and (6.3) (section 6.2.3)
 lqr         LQR designs with the delay handled three ways, delay margins, indices (6.16)-(6.18)
+printed     the thesis' printed gains G3, G5 (6.2.4-6.2.6) as controllers of a heave scene
 regulator   the thesis' printed gains G3, G5 (6.2.4-6.2.6) in the closed loop, Figs. 6.14-6.17
 inverse     the inverse problem of 6.4 (2): cable and unit parameters from an identified a, b
 stochastic  Lyapunov (6.31) and spectral (6.33)-(6.35) variances, LQG, winch-gain study (6.3.5)

@@ -20,6 +20,9 @@ run_loop`. Controllers (:mod:`cable_ocp.heave.controllers`) act every ``h`` seco
   compensator linearised (:func:`cable_ocp.heave.plant.compensator_block`), simulated with
   the gas spring exact and its end stops (:class:`cable_ocp.heave.loop_plants.
   UnitWinchPlant`).
+* ``printed-g3``, ``printed-g5``: the thesis' printed gains G3, G5 of 6.2.6, each on the
+  scene's winch with the delay it was designed for (none, 0.2 s), the scene's ``[winch]
+  delay`` being the other controllers' (:mod:`cable_ocp.heave.printed`).
 
 The unit and winch start at rest in a sea that starts in its stationary state; that start is
 artificial, so **every** metric is taken over the same window ``t >= [simulation] warmup``
@@ -76,6 +79,7 @@ from cable_ocp.heave.metrics import (
     run_metrics,
     with_reduction,
 )
+from cable_ocp.heave.printed import printed_run
 from cable_ocp.heave.stochastic import (
     WHITE_NOISE_INTENSITY,
     discrete_delay_lqr,
@@ -83,7 +87,7 @@ from cable_ocp.heave.stochastic import (
 )
 from cable_ocp.numerics import interrupt
 from cable_ocp.physics.gas_spring import gas_stiffness
-from cable_ocp.scene.heave import HeaveScene, compensator_pressure
+from cable_ocp.scene.heave import PRINTED_CONTROLLERS, HeaveScene, compensator_pressure
 
 __all__ = ["Models", "base_controller", "build_models", "compare", "wave_realisation"]
 
@@ -271,8 +275,14 @@ def compare(scene: HeaveScene, controllers: tuple | None = None,
             lambda k, n_done=n_done: progress(n_done * n_ctrl + k, total, None))
         try:
             base, phc = base_controller(name)
-            pn, mdl, G, design_error = designs[phc]
-            status, message, ctrl = _design(base, pn, mdl, G, design_error, settings, tau, c, h)
+            sc_run = scene
+            if name in PRINTED_CONTROLLERS:  # the thesis' gain on the plant of its design
+                pn = p
+                sc_run, ctrl, status, message = printed_run(scene, name)
+            else:
+                pn, mdl, G, design_error = designs[phc]
+                status, message, ctrl = _design(base, pn, mdl, G, design_error, settings, tau,
+                                                c, h)
             if ctrl is not None:
                 ctrl.name = name
             if status == "failed":
@@ -280,7 +290,7 @@ def compare(scene: HeaveScene, controllers: tuple | None = None,
                     statuses[name], messages[name] = status, message
                     metrics[name] = Metrics(None, None, None, None, None, None, None, None)
                 continue
-            plant = UnitWinchPlant(scene, pn, t, x0, xs_sea, meas_noise, n_ctrl, phc=phc)
+            plant = UnitWinchPlant(sc_run, pn, t, x0, xs_sea, meas_noise, n_ctrl, phc=phc)
             run = run_loop(plant, ctrl, n_ctrl, bound, report)
         except (KeyboardInterrupt, Exception) as exc:  # a CasADi error may be a Ctrl-C
             # an interruption: keep the runs finished; this one and the rest: interrupted
@@ -405,4 +415,4 @@ def _make_controller(name: str, p: pl.HeavePlant, mdl: DelayedDiscreteModel,
     if name == "mpc":
         return MPCController(mpc_mod.LinearMPC(p, tau, settings), FullState(n, d))
     raise CableOCPError(f"controller {name!r} is unknown; valid: passive, lqr, lqg, mpc, "
-                        "phc, phc+lqr, phc+lqg, phc+mpc")
+                        "phc, phc+lqr, phc+lqg, phc+mpc, printed-g3, printed-g5")

@@ -12,6 +12,8 @@ first-order winch (6.5) with K = 1 1/s: 6.2.6 never states K (docs/conventions.m
 controller of G5 cannot measure the two Taylor states; it computes them by running the filter
 (6.13) on its own commands, sampled exactly with its command held over the sample
 (:class:`TaylorFilterEstimator`), while the plant gets the command delayed by exactly ``tau``.
+The gains and their controllers live in :mod:`cable_ocp.heave.printed` (a heave scene runs
+them as the controllers ``"printed-g3"``, ``"printed-g5"``: ``problems/heave/ex_6_2_6.toml``).
 
 Each gain runs on its plant through the one closed loop,
 :func:`cable_ocp.heave.closed_loop.run_loop`, on the design-model plant
@@ -35,65 +37,27 @@ from __future__ import annotations
 from dataclasses import dataclass, field
 
 import numpy as np
-from scipy import linalg
 
 from cable_ocp.errors import CableOCPError
 from cable_ocp.heave import lqr
 from cable_ocp.heave import plant as pl
 from cable_ocp.heave.closed_loop import Trace, run_loop, run_status, unstable_bound
-from cable_ocp.heave.controllers import Passive, StateFeedback
+from cable_ocp.heave.controllers import Passive
 from cable_ocp.heave.design_loop import build_models, wave_realisation
-from cable_ocp.heave.estimators import Estimator, Observation
 from cable_ocp.heave.loop_plants import UnitWinchPlant
-from cable_ocp.heave.thesis import A_626, B_626, G3_626, G5_626, HS_626, TAU_626, TZ_626
+from cable_ocp.heave.printed import (
+    PRINTED,
+    PrintedGain,
+    TaylorFilterEstimator,
+    printed_controller,
+)
+from cable_ocp.heave.printed import printed_gain as _gain
+from cable_ocp.heave.thesis import A_626, B_626, HS_626, TZ_626
 from cable_ocp.scene.heave import HeaveScene, scene_from_dict
 
 __all__ = ["PRINTED", "PrintedGain", "PrintedRun", "TaylorFilterEstimator", "decay_rate",
            "design_matrices", "design_poles", "free_response", "printed_controller",
            "regulator_scene", "simulate_printed", "stated_numbers", "true_loop_poles"]
-
-#: unit and winch states of the regulator plant (6.6): ``[x, x', u]``
-N_PLANT = 3
-
-
-@dataclass(frozen=True)
-class PrintedGain:
-    """A gain printed in the thesis and the plant it was designed for.
-
-    Attributes
-    ----------
-    name : str
-        ``"G3"`` or ``"G5"``.
-    G : numpy.ndarray, shape (1, 3) or (1, 5)
-        The gain, ``u0 = -G z`` (m of command per m, per m/s, ...).
-    delay_model : str
-        ``"none"`` (state (6.6)) or ``"taylor"`` (state (6.14)).
-    tau : float
-        The delay of its plant, s.
-    figures : str
-        The thesis' figures of its response.
-    """
-
-    name: str
-    G: np.ndarray
-    delay_model: str
-    tau: float
-    figures: str
-
-
-#: the thesis' printed gains (Figs. 6.15-6.17)
-PRINTED = {
-    "G3": PrintedGain("G3", G3_626, "none", 0.0, "Figs. 6.14-6.16"),
-    "G5": PrintedGain("G5", G5_626, "taylor", TAU_626, "Fig. 6.17"),
-}
-
-
-def _gain(gain: PrintedGain | str) -> PrintedGain:
-    if isinstance(gain, PrintedGain):
-        return gain
-    if gain not in PRINTED:
-        raise CableOCPError(f"printed gain {gain!r} is unknown; valid: {', '.join(PRINTED)}")
-    return PRINTED[gain]
 
 
 def design_matrices(gain: PrintedGain | str, a: float = A_626, b: float = B_626,
@@ -163,62 +127,6 @@ def true_loop_poles(gain: PrintedGain | str, h: float, a: float = A_626, b: floa
     z = z[np.abs(z) > 1e-12]
     s = np.log(z.astype(complex)) / h
     return s[np.argsort(s.real)]
-
-
-class TaylorFilterEstimator(Estimator):
-    """The plant's unit and winch states as measured, and the two states of the Taylor delay
-    model (6.13) computed by running that filter on the controller's own commands (held over
-    the sample, sampled exactly).
-
-    Parameters
-    ----------
-    tau : float
-        The design delay of the filter, s (> 0).
-    h : float
-        Sample time, s.
-    """
-
-    def __init__(self, tau: float, h: float) -> None:
-        super().__init__(N_PLANT, 0)
-        blk = pl.delay_block("taylor", tau)
-        A, B = np.asarray(blk.A), np.asarray(blk.B)
-        M = linalg.expm(np.block([[A, B], [np.zeros((1, 3))]]) * h)
-        self.Phi, self.Gam = M[:2, :2], M[:2, 2]
-        self.w = np.zeros(2)
-
-    def reset(self) -> None:
-        super().reset()
-        self.w = np.zeros(2)
-
-    def update(self, obs: Observation) -> np.ndarray:
-        return np.concatenate([obs.state[:N_PLANT], self.w])
-
-    def predict(self, u0: float) -> None:
-        self.w = self.Phi @ self.w + self.Gam * u0
-
-
-class _UnitWinchOnly(Estimator):
-    """The plant's unit and winch states ``[x, x', u]`` as measured."""
-
-    def update(self, obs: Observation) -> np.ndarray:
-        return np.asarray(obs.state[:N_PLANT], dtype=float)
-
-
-def printed_controller(gain: PrintedGain | str, h: float) -> StateFeedback:
-    """The printed gain as a :class:`cable_ocp.heave.controllers.StateFeedback` on
-    ``[x, x', u]`` (G3) or on ``[x, x', u]`` and the Taylor filter's states (G5).
-
-    Parameters
-    ----------
-    gain : PrintedGain or str
-        The gain.
-    h : float
-        Sample time, s.
-    """
-    g = _gain(gain)
-    est = (TaylorFilterEstimator(g.tau, h) if g.delay_model == "taylor"
-           else _UnitWinchOnly(N_PLANT, 0))
-    return StateFeedback(g.name, np.asarray(g.G, dtype=float), est)
 
 
 def regulator_scene(tau: float = 0.0, *, a: float = A_626, b: float = B_626, K: float = 1.0,

@@ -775,3 +775,118 @@ class StandardLinearSolid:
         tau_c = self.relaxation_time * ed / es
         return tension / es - tension * (1.0 / es - 1.0 / ed) * np.exp(-np.asarray(time)
                                                                         / tau_c)
+
+
+def _if_else(cond: Any, a: Any, b: Any) -> Any:
+    if any(_is_symbolic(v) for v in (cond, a, b)):
+        return ca.if_else(cond, a, b)
+    return np.where(cond, a, b)
+
+
+#: below this relative width |x1 - x0| / sqrt(x_m^2 + delta_T^2) (x = EA e),
+#: :func:`mean_smooth_tension` takes its series
+MEAN_SERIES_WIDTH = 1e-3
+
+
+def mean_smooth_tension(strain0: Any, strain1: Any, axial_stiffness: Any,
+                        slack_smoothing: Any) -> Any:
+    """Exact mean of :func:`smooth_tension` over the strain interval [e0, e1], N.
+
+    The discrete gradient (W(e1) - W(e0)) / (e1 - e0), W = :func:`smooth_strain_energy`
+    (Gonzalez (1996)). With x = EA e, d = delta_T, S = sqrt(x^2 + d^2): the mean is
+    (x_0 + x_1) / 4 + (F(x_1) - F(x_0)) / (2 (x_1 - x_0)), F = (x S + d^2 asinh(x / d)) / 2,
+    with x_1 S_1 - x_0 S_0 = (x_1 - x_0) ((S_0 + S_1) / 2 + (x_0 + x_1)^2 / (2 (S_0 + S_1)))
+    (no cancellation); below :data:`MEAN_SERIES_WIDTH` the series S(x_m) + d^2 h^2 /
+    (6 S(x_m)^3) (h the half width; next term of relative order (h / S)^4 <= 1e-12).
+    Unlike a Gauss rule it is exact across the kink at e = 0, and C^1 in e1.
+
+    Parameters
+    ----------
+    strain0, strain1 : float, array or casadi expression
+        The strains e0, e1 at the ends of the interval (-).
+    axial_stiffness : float
+        EA, N.
+    slack_smoothing : float
+        delta_T, N (> 0).
+    """
+    d = slack_smoothing
+    x0, x1 = axial_stiffness * strain0, axial_stiffness * strain1
+    s0, s1 = _sqrt(x0 * x0 + d * d), _sqrt(x1 * x1 + d * d)
+    dx, xm = x1 - x0, 0.5 * (x0 + x1)
+    sm = _sqrt(xm * xm + d * d)
+    small = abs(dx) <= MEAN_SERIES_WIDTH * sm
+    xs_part = 0.5 * ((s0 + s1) / 2.0 + (x0 + x1) ** 2 / (2.0 * (s0 + s1)))
+    as_part = 0.5 * d * d * (_asinh(x1 / d) - _asinh(x0 / d)) / _if_else(small, 1.0, dx)
+    series = sm + d * d / sm**3 * (0.5 * dx) ** 2 / 6.0
+    return 0.5 * (xm + _if_else(small, series, xs_part + as_part))
+
+
+def mean_taut_switch(strain0: Any, strain1: Any, axial_stiffness: Any,
+                     slack_smoothing: Any) -> Any:
+    """Exact mean of :func:`taut_switch` over [e0, e1], - (0 .. 1): (T(e1) - T(e0)) /
+    (EA (e1 - e0)) written without the division, (1 + (x_0 + x_1) / (S_0 + S_1)) / 2 with
+    x = EA e, S = sqrt(x^2 + delta_T^2) (the switch itself at e0 = e1). The planar step's
+    damping switch: smooth in e1 where the switch at the mean strain jumps over a strain
+    delta_T / EA.
+
+    Parameters
+    ----------
+    strain0, strain1 : float, array or casadi expression
+        The strains e0, e1 at the ends of the interval (-).
+    axial_stiffness : float
+        EA, N.
+    slack_smoothing : float
+        delta_T, N (> 0).
+    """
+    d = slack_smoothing
+    x0, x1 = axial_stiffness * strain0, axial_stiffness * strain1
+    return 0.5 * (1.0 + (x0 + x1) / (_sqrt(x0 * x0 + d * d) + _sqrt(x1 * x1 + d * d)))
+
+
+def mean_material_tension(material: Any, strain0: Any, strain1: Any) -> Any:
+    """Mean of a material's no-compression tension over [e0, e1], N: the discrete-gradient
+    tension of the planar step.
+
+    :class:`LinearElastic`: exact (:func:`mean_smooth_tension`, from the strain energy,
+    exact across the kink at e = 0); another material (a tension-strain table): the
+    3-point Gauss mean of its ``tension`` (its ``energy`` is the table's own law, not the
+    smoothed one, so its difference quotient is not the mean).
+
+    Parameters
+    ----------
+    material : AxialMaterial
+        The material (:func:`cable_material`).
+    strain0, strain1 : float, array or casadi expression
+        The strains e0, e1 at the ends of the interval (-).
+    """
+    if isinstance(material, LinearElastic):
+        return mean_smooth_tension(strain0, strain1, material.axial_stiffness,
+                                   material.slack_smoothing)
+    from cable_ocp.numerics.quadrature import gauss_legendre
+
+    x, w = gauss_legendre(3)
+    em, de = 0.5 * (strain0 + strain1), 0.5 * (strain1 - strain0)
+    return sum(0.5 * float(wi) * material.tension(em + float(xi) * de)
+               for xi, wi in zip(x, w, strict=True))
+
+
+def mean_material_switch(material: Any, strain0: Any, strain1: Any) -> Any:
+    """Mean of a material's taut switch over [e0, e1], - (0 .. 1): the damping switch of
+    the planar step. :class:`LinearElastic`: exact (:func:`mean_taut_switch`); a
+    tension-strain table: the same identity in its tension u,
+    (1 + (u_0 + u_1) / (S_0 + S_1)) / 2 with S = sqrt(u^2 + delta_T^2) (the mean over u).
+
+    Parameters
+    ----------
+    material : AxialMaterial
+        The material (:func:`cable_material`).
+    strain0, strain1 : float, array or casadi expression
+        The strains e0, e1 at the ends of the interval (-).
+    """
+    if isinstance(material, LinearElastic):
+        return mean_taut_switch(strain0, strain1, material.axial_stiffness,
+                                material.slack_smoothing)
+    d = material.slack_smoothing
+    u0 = material.table.tension_of(strain0)
+    u1 = material.table.tension_of(strain1)
+    return 0.5 * (1.0 + (u0 + u1) / (_sqrt(u0 * u0 + d * d) + _sqrt(u1 * u1 + d * d)))

@@ -10,6 +10,8 @@ heave           heave-compensation comparisons (spectra, time series, running RM
                 trade-off curves); heave_cable the deployment through resonance
 system          mooring systems: plan and 3D views coloured by tension, the offset curve
 batch           an output of a load-case batch over its swept keys
+response        frequency-response curves: amplitude ratio against frequency, linear and
+                time runs, natural frequencies marked
 bench           the work-precision diagrams
 accessors       the results' ``.plot(ax=None)`` methods
 common          the shared style: constrained layout, legends below the panels, units as "x (m)"

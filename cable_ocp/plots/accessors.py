@@ -19,14 +19,15 @@ from matplotlib.figure import Figure
 from cable_ocp.plots.batch import batch_figure, default_columns
 from cable_ocp.plots.dynamics import deployment_figure, modes_figure, simulation_figure
 from cable_ocp.plots.heave import comparison_figure
+from cable_ocp.plots.response import response_figure
 from cable_ocp.plots.statics import elevation_plane, statics_figure
 from cable_ocp.plots.statics_series import footprint_figure
 from cable_ocp.plots.system import draw_plan, system_figure
 from cable_ocp.scene.units import key_label
 
 __all__ = ["plot_batch_result", "plot_deployment_chart", "plot_footprint_result",
-           "plot_heave_result", "plot_modes_result", "plot_simulation_result",
-           "plot_statics_result", "plot_system_result"]
+           "plot_heave_result", "plot_modes_result", "plot_response_result",
+           "plot_simulation_result", "plot_statics_result", "plot_system_result"]
 
 
 def _panels(fig: Figure) -> tuple[Figure, np.ndarray]:
@@ -272,6 +273,34 @@ def plot_system_result(result: Any, ax: Any = None, **kwargs: Any) -> tuple[Figu
     sm = draw_plan(ax, result)
     ax.figure.colorbar(sm, ax=ax, label="line tension (kN)")
     title = kwargs.get("title")
+    if title:
+        ax.set_title(title)
+    ax.legend(fontsize=8)
+    return ax.figure, ax
+
+
+def plot_response_result(res: Any, ax: Any = None, title: str = "") -> tuple[Figure, Any]:
+    """``ResponseResult.plot``: the panels of :func:`response_figure`, or the first
+    output's amplitude ratio against the excitation frequency (rad/s) drawn on ``ax``.
+
+    Parameters
+    ----------
+    res : ResponseResult
+        The sweep (amplitudes in N or m, frequencies in rad/s).
+    ax : matplotlib Axes, optional
+        Where to draw; None: a new figure.
+    title : str
+        The title.
+    """
+    if ax is None:
+        return _panels(response_figure(res, title))
+    if res.linear_curve.status == "solved":
+        ax.plot(res.linear_curve.frequencies, res.linear_curve.rao[:, 0], "-", color="0.25",
+                label="linear")
+    for a, amp in enumerate(res.amplitudes):
+        ax.plot(res.frequencies, res.rao[a, :, 0], "o", label=f"time runs, A = {amp:g} m")
+    ax.set_xlabel("excitation frequency (rad/s)")
+    ax.set_ylabel(f"{res.outputs[0]} / A ({res.units[0]}/m)")
     if title:
         ax.set_title(title)
     ax.legend(fontsize=8)

@@ -60,6 +60,8 @@ CONTROLLER_STYLE: dict[str, dict[str, Any]] = {
     "phc+lqr": {"color": "#8c564b", "ls": "-"},
     "phc+lqg": {"color": "#e377c2", "ls": "-"},
     "phc+mpc": {"color": "#17becf", "ls": "--"},
+    "printed-g3": {"color": "#4d004b", "ls": "-"},
+    "printed-g5": {"color": "#bcbd22", "ls": "--"},
 }
 BOOM_STYLE = {"color": "#9ecae1", "ls": "-"}
 LIMIT_STYLE = {"color": "#d62728", "ls": "--", "lw": 1.2, "gid": "limit"}

@@ -15,6 +15,7 @@ statics  the statics scene (:class:`Scene`), its schema and :func:`load_scene`
 dynamics the dynamic scene (:class:`~cable_ocp.scene.dynamics.DynamicScene`) and its
          prescribed top motion (``motion``)
 dynamic_parts  the parts of a dynamic scene (a segment's dynamics, the top motion, ...)
+response the ``[response]`` table of a dynamic scene (defaults of ``cable-ocp response``)
 heave    the heave-compensation scene (:class:`HeaveScene`)
 system   mooring systems: line types, points, bodies, lines (:class:`SystemScene`)
 loader   :func:`load`: any problem file -> its scene (statics, dynamics or heave)

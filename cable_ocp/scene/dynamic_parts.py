@@ -20,7 +20,8 @@ from cable_ocp.scene.fields import number as _number
 from cable_ocp.scene.fields import require as _require
 
 __all__ = ["BODY_DYN_KEYS", "CABLE_DYN_KEYS", "DEFAULT_SCHEME", "DYNAMIC_TABLES", "MAX_STEPS",
-           "MODELS", "ROUNDING", "SCHEMES", "BodyDynamics", "ModesOptions", "SegmentDynamics",
+           "MODELS", "PAYOUT_LAWS", "ROUNDING", "SCHEMES", "BodyDynamics", "ModesOptions",
+           "SegmentDynamics",
            "Simulation", "TopMotion", "Tow", "Unit", "parse_modes", "parse_segment_dynamics",
            "parse_simulation", "parse_top_motion", "parse_tow", "parse_unit",
            "vec_or_scalar"]
@@ -35,7 +36,7 @@ SCHEMES: dict[str, tuple[str, ...]] = {
 DEFAULT_SCHEME = {m: s[0] for m, s in SCHEMES.items()}
 
 #: Top-level tables that only dynamic scenes have (their presence marks a dynamic scene).
-DYNAMIC_TABLES = ("unit", "top_motion", "simulation", "modes")
+DYNAMIC_TABLES = ("unit", "top_motion", "simulation", "modes", "response")
 CABLE_DYN_KEYS = {"mass_per_length", "added_mass_coefficient",
                    "tangential_added_mass_coefficient", "axial_damping"}
 _UNIT_KEYS = {"mass", "added_mass", "weight_in_water", "volume", "drag_area",
@@ -45,14 +46,18 @@ _TOP_KEYS = {"heave_amplitude", "heave_frequency", "horizontal_amplitude",
              "horizontal_frequency", "horizontal_heading_deg", "circular_radius",
              "circular_frequency", "circular_heading_deg", "series", "ramp_time",
              "payout_law", "payout_speed", "payout_acceleration", "payout_amplitude",
-             "payout_frequency", "tow"}
+             "payout_frequency", "payout_speed_table", "payout_length_table", "tow"}
 _LAW_KEYS = {"linear": {"payout_speed"},
              "quadratic": {"payout_speed", "payout_acceleration"},
-             "periodic": {"payout_amplitude", "payout_frequency"}}
+             "periodic": {"payout_amplitude", "payout_frequency"},
+             "table": {"payout_speed_table", "payout_length_table"}}
+#: the pay-out laws of ``top_motion.payout_law``
+PAYOUT_LAWS = ("linear", "quadratic", "periodic", "table")
 _TOW_KEYS = {"speed", "heading_deg", "straight_length", "turn_diameter", "turn_angle_deg",
              "turn_direction"}
 _SIM_KEYS = {"model", "duration", "time_step", "output_step", "segments", "start", "scheme",
-             "tolerance", "max_iterations", "on_slack", "element_length", "top_end"}
+             "tolerance", "max_iterations", "on_slack", "drop_height", "element_length",
+             "top_end"}
 #: ``simulation.top_end``: the bending condition at end_b (with bending stiffness)
 TOP_ENDS = ("pinned", "clamped")
 _MODES_KEYS = {"count", "wave_band"}
@@ -251,13 +256,18 @@ class TopMotion:
     ramp_time : float
         s, smooth start of amplitudes and speeds (0 = none).
     payout_law : str
-        ``"linear"``, ``"quadratic"`` or ``"periodic"`` (Huang (1992) 3.1).
+        ``"linear"``, ``"quadratic"``, ``"periodic"`` (Huang (1992) 3.1) or ``"table"``.
     payout_speed : float
         v, m/s of unstretched cable (> 0 lowers the unit).
     payout_acceleration : float
         a, m/s^2 (quadratic law).
     payout_amplitude, payout_frequency : float
         p (m), w (rad/s) of the periodic law.
+    payout_table : tuple of (t, value)
+        The table law's rows: (s, m/s) of ``payout_speed_table`` or (s, m) of
+        ``payout_length_table`` (:func:`cable_ocp.scene.motion.length_expr`).
+    payout_table_kind : str
+        ``"speed"`` or ``"length"`` (the table law), else ``""``.
     tow : Tow or None
         Towing path.
     """
@@ -277,13 +287,26 @@ class TopMotion:
     payout_acceleration: float = 0.0
     payout_amplitude: float = 0.0
     payout_frequency: float = 0.0
+    payout_table: tuple[tuple[float, float], ...] = ()
+    payout_table_kind: str = ""
     tow: Tow | None = None
 
     @property
     def varying_length(self) -> bool:
         """True when the unstretched length changes with time."""
+        if self.payout_law == "table":
+            vals = [r[1] for r in self.payout_table]
+            return (any(v != 0.0 for v in vals) if self.payout_table_kind == "speed"
+                    else any(v != vals[0] for v in vals))
         return (self.payout_speed != 0.0 or self.payout_acceleration != 0.0
                 or self.payout_amplitude != 0.0)
+
+    @property
+    def payout_key(self) -> str:
+        """The ``[top_motion]`` key that sets the pay-out (for messages)."""
+        if self.payout_law == "table":
+            return f"payout_{self.payout_table_kind}_table"
+        return "payout_amplitude" if self.payout_law == "periodic" else "payout_speed"
 
     @property
     def horizontal(self) -> bool:
@@ -316,7 +339,7 @@ class Simulation:
     segments : int
         Elements along the line.
     start : str
-        ``"static"`` or ``"unstrained"``.
+        ``"static"``, ``"unstrained"`` or ``"dropped"``.
     scheme : str
         Time-integration scheme (:data:`SCHEMES`).
     tolerance : float
@@ -325,6 +348,9 @@ class Simulation:
         Newton iterations per step.
     on_slack : str
         ``"continue"`` or ``"stop"``.
+    drop_height : float
+        m, ``start = "dropped"``: the line straight down from end_b and slack, the unit
+        this far above where it goes taut (every node raised by h (1 - s / L)), at rest.
     element_length : float or None
         Length l_e (m) of the segments that enter and leave at the winch in a lumped3d
         pay-out (:mod:`cable_ocp.dynamics.lumped_payout`); None: the top segment's initial
@@ -345,6 +371,7 @@ class Simulation:
     tolerance: float = 1e-10
     max_iterations: int = 20
     on_slack: str = "continue"
+    drop_height: float = 0.0
     element_length: float | None = None
     top_end: str = "pinned"
 
@@ -561,8 +588,7 @@ def parse_top_motion(t: Any) -> TopMotion:
             raise CableOCPError(f"{where}.series[0]: the offsets at t = 0 must be 0 (end_b "
                                 "starts at end_b.position)")
         kw["series"] = tuple(out)
-    law = _choice(t.get("payout_law", "linear"), f"{where}.payout_law",
-                  ("linear", "quadratic", "periodic"))
+    law = _choice(t.get("payout_law", "linear"), f"{where}.payout_law", PAYOUT_LAWS)
     kw["payout_law"] = law
     all_law_keys = set().union(*_LAW_KEYS.values())
     for key in sorted(all_law_keys & set(t)):
@@ -581,9 +607,51 @@ def parse_top_motion(t: Any) -> TopMotion:
                                 "\"periodic\": L = L0 + p sin(w t))")
         kw["payout_frequency"] = _number(t["payout_frequency"], f"{where}.payout_frequency",
                                          positive=True)
+    if law == "table":
+        kw["payout_table_kind"], kw["payout_table"] = _payout_table(t, where)
     if "tow" in t:
         kw["tow"] = parse_tow(t["tow"])
     return TopMotion(**kw)
+
+
+def _payout_table(t: dict[str, Any], where: str
+                  ) -> tuple[str, tuple[tuple[float, float], ...]]:
+    """(kind, rows) of ``payout_law = "table"``: exactly one of ``payout_speed_table``
+    ([[t, v], ...], s and m/s; times from 0, non-decreasing, a time given twice is a jump
+    in speed such as a sudden stop) and ``payout_length_table`` ([[t, L], ...], s and m;
+    times from 0, increasing)."""
+    given = [k for k in ("payout_speed_table", "payout_length_table") if k in t]
+    if len(given) != 1:
+        raise CableOCPError(
+            f'{where}.payout_law = "table" needs exactly one of {where}.payout_speed_table '
+            f"([[t, v], ...], s and m/s) and {where}.payout_length_table ([[t, L], ...], s "
+            f"and m); got {', '.join(given) if given else 'neither'}")
+    key = given[0]
+    kind = "speed" if key == "payout_speed_table" else "length"
+    unit = "m/s" if kind == "speed" else "m"
+    rows = t[key]
+    if not isinstance(rows, list) or len(rows) < 2:
+        raise CableOCPError(f"{where}.{key}: expected at least two rows [t, "
+                            f"{'v' if kind == 'speed' else 'L'}] (s, {unit})")
+    out = []
+    for i, r in enumerate(rows):
+        if not isinstance(r, list) or len(r) != 2:
+            raise CableOCPError(f"{where}.{key}[{i}] = {r!r}: expected [t, "
+                                f"{'v' if kind == 'speed' else 'L'}] (s, {unit})")
+        out.append((_number(r[0], f"{where}.{key}[{i}][0]", nonneg=True),
+                    _number(r[1], f"{where}.{key}[{i}][1]", positive=kind == "length")))
+    if out[0][0] != 0.0:
+        raise CableOCPError(f"{where}.{key}[0][0] = {out[0][0]}: the table starts at t = 0 s")
+    for i, (a, b) in enumerate(zip(out, out[1:], strict=False)):
+        if b[0] < a[0] or (b[0] == a[0] and kind == "length"):
+            raise CableOCPError(
+                f"{where}.{key}[{i + 1}][0] = {b[0]} s: times must "
+                + ("not decrease (a time given twice is a jump in speed)" if kind == "speed"
+                   else "increase strictly (a length cannot jump)"))
+        if kind == "speed" and i + 2 < len(out) and out[i + 2][0] == a[0] == b[0]:
+            raise CableOCPError(f"{where}.{key}[{i + 2}][0] = {a[0]} s: a time may be given "
+                                "at most twice (the speeds before and after a jump)")
+    return kind, tuple(out)
 
 
 def parse_simulation(t: Any) -> Simulation:
@@ -612,11 +680,24 @@ def parse_simulation(t: Any) -> Simulation:
                             "a whole number of output steps")
     scheme = _choice(t.get("scheme", DEFAULT_SCHEME[model]), f"{where}.scheme "
                      f"(model \"{model}\")", SCHEMES[model])
+    start = _choice(t.get("start", "static"), f"{where}.start",
+                    ("static", "unstrained", "dropped"))
+    drop = 0.0
+    if start == "dropped":
+        if "drop_height" not in t:
+            raise CableOCPError(f'{where}.drop_height is missing: start = "dropped" needs the '
+                                "height (m) the unit falls before the line goes taut")
+        drop = _number(t["drop_height"], f"{where}.drop_height", positive=True)
+        if model == "axial":
+            raise CableOCPError(f'{where}.start = "dropped": the axial model cannot follow a '
+                                'slack line; use model = "planar" or "lumped3d"')
+    elif "drop_height" in t:
+        raise CableOCPError(f'{where}.drop_height belongs to start = "dropped" (start is '
+                            f'"{start}")')
     return Simulation(
         model=model, duration=duration, time_step=dt, output_step=out,
         segments=_int(t.get("segments", 20), f"{where}.segments", 1, 100_000),
-        start=_choice(t.get("start", "static"), f"{where}.start", ("static", "unstrained")),
-        scheme=scheme,
+        start=start, drop_height=drop, scheme=scheme,
         tolerance=_number(t.get("tolerance", 1e-10), f"{where}.tolerance", positive=True),
         max_iterations=_int(t.get("max_iterations", 20), f"{where}.max_iterations", 1, 1000),
         on_slack=_choice(t.get("on_slack", "continue"), f"{where}.on_slack",

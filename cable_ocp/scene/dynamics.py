@@ -56,10 +56,16 @@ Schema of the dynamic keys (all SI; units in brackets)::
                                  5.6.1: avoid impulsive loading); 0 = start at once
     payout_law = "linear"        "linear" | "quadratic" | "periodic" (Huang (1992) 3.1):
                                  L = L0 + v t  |  L0 + v t + a t^2/2  |  L0 + p sin(w t)
+                                 | "table" (one of the two tables below)
     payout_speed = 0.0           v, m/s of unstretched cable; > 0 pays out (lowers the unit)
     payout_acceleration = 0.0    a, m/s^2 (quadratic)
     payout_amplitude = 0.0       p, m (periodic)
     payout_frequency             w, rad/s (periodic)
+    payout_speed_table = [[t, v], ...]   s, m/s (table): v linear in t between rows, held
+                                 after the last; L its exact integral; rows from t = 0, a
+                                 time given twice is a jump in speed (a sudden stop)
+    payout_length_table = [[t, L], ...]  s, m (table): L linear in t between rows, held
+                                 after the last; the first L is cable.length
     [top_motion.tow]             a towing path (Huang (1992) 5.7.4): straight, turn, straight
     speed = 4.0                  m/s along the path
     heading_deg = 0.0            deg, initial direction from +x towards +y
@@ -75,7 +81,10 @@ Schema of the dynamic keys (all SI; units in brackets)::
     segments = 20                number of elements along the line (default 20)
     start = "static"             "static" (the statics solution, default) | "unstrained"
                                  (at rest, unstretched, hanging straight down from end_b,
-                                 as Huang (1992) 5.7.1)
+                                 as Huang (1992) 5.7.1) | "dropped" (planar, lumped3d:
+                                 straight down and slack, the unit drop_height above
+                                 where the line goes taut, at rest)
+    drop_height                  m, with start = "dropped" (below cable.length)
     scheme = "midpoint"          time integration; valid values per model in SCHEMES
     tolerance = 1e-10            Newton tolerance of an implicit step (scaled residual:
                                  positions over the static elongation, accelerations over g)
@@ -86,6 +95,8 @@ Schema of the dynamic keys (all SI; units in brackets)::
     top_end = "pinned"           "pinned" (default) | "clamped": with bending stiffness, the
                                  top tangent held at its static direction (a cantilever;
                                  planar model only; cable_ocp.dynamics.bending_terms)
+    [response]                   defaults of `cable-ocp response` (frequencies, amplitudes,
+                                 outputs, ...: :mod:`cable_ocp.scene.response`)
     [modes]                      modal analysis and the deployment chart
     count = 6                    number of modes (default 6)
     wave_band = [0.314, 1.571]   rad/s, the wave-frequency band shaded on the chart
@@ -137,6 +148,7 @@ from cable_ocp.scene.fields import require as _require
 from cable_ocp.scene.files import apply_overrides, check_kind, read_problem
 from cable_ocp.scene.motion import length_numeric
 from cable_ocp.scene.parts import Current, End
+from cable_ocp.scene.response import ResponseDefaults, parse_response
 from cable_ocp.scene.statics import TOP_LEVEL_TABLES, Scene, scene_from_dict
 
 __all__ = [
@@ -179,6 +191,8 @@ class DynamicScene:
         Time-domain settings.
     modes : ModesOptions
         Modal-analysis settings.
+    response : ResponseDefaults
+        Defaults of ``cable-ocp response`` (:mod:`cable_ocp.scene.response`).
     """
 
     statics: Scene
@@ -188,6 +202,7 @@ class DynamicScene:
     top_motion: TopMotion
     simulation: Simulation
     modes: ModesOptions = field(default_factory=ModesOptions)
+    response: ResponseDefaults = field(default_factory=ResponseDefaults)
     meta: dict[str, str] = field(default_factory=dict, compare=False, hash=False)
     raw: dict[str, Any] = field(default_factory=dict, compare=False, hash=False, repr=False)
 
@@ -393,13 +408,21 @@ def dynamic_scene_from_dict(data: dict[str, Any]) -> DynamicScene:
         bodies.append(BodyDynamics(mass=mass, added_mass=added))
 
     top = parse_top_motion(dyn.get("top_motion", {}))
+    if top.payout_table_kind == "length" and statics.cable.length is not None:
+        l_first = top.payout_table[0][1]
+        if abs(l_first - statics.cable.length) > 1e-9 * statics.cable.length:
+            raise CableOCPError(
+                f"top_motion.payout_length_table[0][1] = {l_first} m: the table's first "
+                f"length must be cable.length = {statics.cable.length} m (the length at "
+                "t = 0)")
     sim = parse_simulation(dyn["simulation"])
     modes = parse_modes(dyn.get("modes", {}))
+    response = parse_response(dyn.get("response", {}))
 
     if top.varying_length:
         lmin, tmin = _length_history_min(top, statics.cable.length, sim.duration)  # type: ignore[arg-type]
         if lmin <= 0.0:
-            key = ("payout_amplitude" if top.payout_law == "periodic" else "payout_speed")
+            key = top.payout_key
             raise CableOCPError(
                 f"top_motion.{key}: the unstretched length reaches {lmin:.4g} m at t = "
                 f"{tmin:.4g} s (within simulation.duration = {sim.duration} s); it must stay "
@@ -412,12 +435,16 @@ def dynamic_scene_from_dict(data: dict[str, Any]) -> DynamicScene:
                     f"top_motion: hauling in {shrink:.4g} m would remove the whole top segment "
                     f"(cable.segments[{len(statics.segments) - 1}].length = {top_seg} m); "
                     "pay-out changes the top segment only")
-    if unit is None and sim.start == "unstrained":
-        raise CableOCPError('simulation.start = "unstrained" needs a unit at end_a: an '
+    if unit is None and sim.start in ("unstrained", "dropped"):
+        raise CableOCPError(f'simulation.start = "{sim.start}" needs a unit at end_a: an '
                             "anchored line cannot hang straight and unstretched")
+    if sim.start == "dropped" and sim.drop_height >= statics.cable.length:  # type: ignore[operator]
+        raise CableOCPError(f"simulation.drop_height = {sim.drop_height} m: must be below "
+                            f"cable.length = {statics.cable.length} m")
     meta = {str(k): str(v) for k, v in (data.get("meta") or {}).items()}
     return DynamicScene(statics=statics, cable=cable, unit=unit, bodies=tuple(bodies),
-                        top_motion=top, simulation=sim, modes=modes, meta=meta, raw=raw)
+                        top_motion=top, simulation=sim, modes=modes, response=response,
+                        meta=meta, raw=raw)
 
 
 def load_dynamic_scene(path: str | Path,

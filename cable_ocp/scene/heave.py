@@ -70,6 +70,8 @@ Schema (SI units; see ``problems/heave/*.toml`` for commented examples)::
     depth_bias_time = 60.0               # s, estimator time constant of a depth offset
     controllers = ["passive", "lqr", "lqg", "mpc"]   # and "phc", "phc+lqr", "phc+lqg",
                                                      # "phc+mpc" (passive compensator)
+                                                     # "printed-g3", "printed-g5" (the
+                                                     # thesis' gains G3, G5 of 6.2.6)
 
     [simulation]
     duration = 300.0                     # s
@@ -280,6 +282,11 @@ _CHOICES = {
     ("identification", "excitation"): ("multisine", "chirp", "step", "sea"),
 }
 _CONTROLLERS = ("passive", "lqr", "lqg", "mpc", "phc", "phc+lqr", "phc+lqg", "phc+mpc")
+#: the thesis' printed gains as controllers (Huang 1992, 6.2.4-6.2.6) -> the delay, s, of the
+#: plant each was designed for (G3: none, (6.6); G5: the 0.2 s of Fig. 6.17, (6.14));
+#: :mod:`cable_ocp.heave.printed` runs them on that delay
+PRINTED_CONTROLLERS = {"printed-g3": 0.0, "printed-g5": 0.2}
+_CONTROLLERS += tuple(PRINTED_CONTROLLERS)
 
 
 @dataclass(frozen=True)
@@ -682,6 +689,7 @@ def check(scene: HeaveScene) -> None:
                             f"simulation.duration = {scene.simulation.duration} s")
     _check_drive(scene)
     _check_compensator(scene)
+    _check_printed(scene)
     _check_integration(scene)
 
 
@@ -767,6 +775,31 @@ def check_compensator_load(sc: HeaveScene, load: float, what: str) -> None:
             f"carries {force:.6g} N, not {what} = {load:g} N (more than "
             f"{100 * COMPENSATOR_BALANCE:g} % off); give pressure = {load / pc.area:.6g} Pa "
             "or leave it out")
+
+
+def _check_printed(sc: HeaveScene) -> None:
+    """Controllers ``printed-g3``, ``printed-g5`` (the thesis' gains on ``[x, x', u]`` of
+    (6.6)): a first-order winch, the design model as the plant, and a design delay that is a
+    whole number of samples."""
+    names = [c for c in sc.controller.controllers if c in PRINTED_CONTROLLERS]
+    if not names:
+        return
+    ctrl = f"controller.controllers = {list(sc.controller.controllers)}"
+    if sc.winch.model != "first_order":
+        raise CableOCPError(f'{ctrl} with winch.model = "{sc.winch.model}": the printed gains '
+                            f"({', '.join(names)}) act on [x, x', u] of the first-order winch "
+                            '(6.5), (6.6); give winch.model = "first_order"')
+    if sc.simulation.plant == "cable":
+        raise CableOCPError(f'{ctrl} with simulation.plant = "cable": the printed gains '
+                            f"({', '.join(names)}) run on the design model only; give "
+                            'simulation.plant = "model"')
+    h = sc.controller.sample_time
+    for name in names:
+        ratio = PRINTED_CONTROLLERS[name] / h
+        if abs(ratio - round(ratio)) > 1e-9:
+            raise CableOCPError(f"{ctrl}: {name} runs on a {PRINTED_CONTROLLERS[name]:g} s "
+                                f"winch delay, not a whole number of controller.sample_time "
+                                f"= {h:g} s; give a sample time that divides it (e.g. 0.01)")
 
 
 def _check_cable(sc: HeaveScene) -> None:

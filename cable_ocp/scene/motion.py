@@ -142,6 +142,8 @@ def length_expr(tm: TopMotion, length0: float, t: ca.SX) -> ca.SX:
     t : casadi.SX
         Scalar symbolic time, s.
     """
+    if tm.payout_law == "table":
+        return table_length_expr(tm.payout_table, tm.payout_table_kind, length0, t)
     r, big_r = _ramp(tm, t)
     if tm.payout_law == "periodic":
         return length0 + r * tm.payout_amplitude * ca.sin(tm.payout_frequency * t)
@@ -149,6 +151,52 @@ def length_expr(tm: TopMotion, length0: float, t: ca.SX) -> ca.SX:
     if tm.payout_law == "quadratic":
         out = out + 0.5 * tm.payout_acceleration * t**2
     return out
+
+
+def table_length_expr(rows: Sequence[tuple[float, float]], kind: str, length0: float,
+                      t: ca.SX) -> ca.SX:
+    """Unstretched length L(t), m, of ``payout_law = "table"``.
+
+    ``kind = "speed"`` (rows (t_j, v_j), s and m/s): the speed is linear in t between rows
+    and held after the last, and L is its exact integral from ``length0``: on
+    [t_j, t_j+1], L = L_j + v_j (t - t_j) + (v_j+1 - v_j) (t - t_j)^2 / (2 (t_j+1 - t_j)),
+    L_j the trapezoidal sums (exact for a linear speed); a time given twice is a jump in
+    speed (a sudden stop), L continuous through it. ``kind = "length"`` (rows (t_j, L_j),
+    s and m): L linear in t between rows (the speed piecewise constant, jumping at the
+    rows), held after the last row. ``top_motion.ramp_time`` does not act on a table.
+
+    Parameters
+    ----------
+    rows : sequence of (float, float)
+        The table (validated by :mod:`cable_ocp.scene.dynamic_parts`).
+    kind : str
+        ``"speed"`` or ``"length"``.
+    length0 : float
+        Unstretched length at t = 0, m (a length table's first length).
+    t : casadi.SX
+        Scalar symbolic time, s.
+    """
+    ts = [float(r[0]) for r in rows]
+    vs = [float(r[1]) for r in rows]
+    if kind == "length":
+        expr = ca.SX(vs[-1])
+        for j in range(len(ts) - 2, -1, -1):
+            seg = vs[j] + (vs[j + 1] - vs[j]) * (t - ts[j]) / (ts[j + 1] - ts[j])
+            expr = ca.if_else(t < ts[j + 1], seg, expr)
+        return expr
+    # L_j at each row: trapezoidal sums of the linear speed (zero over a jump)
+    ls = [float(length0)]
+    for j in range(len(ts) - 1):
+        ls.append(ls[-1] + 0.5 * (vs[j] + vs[j + 1]) * (ts[j + 1] - ts[j]))
+    expr = ls[-1] + vs[-1] * (t - ts[-1])
+    for j in range(len(ts) - 2, -1, -1):
+        width = ts[j + 1] - ts[j]
+        if width == 0.0:
+            continue  # a jump: no time between the two rows
+        tau = t - ts[j]
+        seg = ls[j] + vs[j] * tau + (vs[j + 1] - vs[j]) * tau * tau / (2.0 * width)
+        expr = ca.if_else(t < ts[j + 1], seg, expr)
+    return expr
 
 
 def motion_function(scene: DynamicScene) -> ca.Function:
