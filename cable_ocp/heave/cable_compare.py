@@ -7,13 +7,15 @@ from the cable (Huang (1992), section 6.2.3; :mod:`cable_ocp.heave.identify_cabl
 (:func:`cable_ocp.heave.design_loop.compare`) on that model, ``"cable"`` runs every controller
 against the cable (the axial, planar or lumped3d model of the cable scene,
 :func:`cable_ocp.heave.cable_models.cable_plant`) and against the design model
-for the prediction, and a ``[deployment]`` table lowers the unit through resonance
-(:mod:`cable_ocp.heave.deployment`). :func:`compare` takes any heave scene.
+for the prediction (the ``phc*`` controllers with the passive compensator at the line's top,
+designed on the design model with it), and a ``[deployment]`` table lowers the unit through
+resonance (:mod:`cable_ocp.heave.deployment`). :func:`compare` takes any heave scene.
 """
 
 from __future__ import annotations
 
 from collections.abc import Callable
+from dataclasses import replace
 from typing import Any
 
 import numpy as np
@@ -32,7 +34,7 @@ from cable_ocp.heave.closed_loop import (
 )
 from cable_ocp.heave.deployment import deploy
 from cable_ocp.heave.design import cable_controller, design_damping, design_scene, design_table
-from cable_ocp.heave.loop_plants import CableLine, ModelLine, WinchedLine
+from cable_ocp.heave.loop_plants import CableLine, ModelLine, Piston, WinchedLine
 from cable_ocp.heave.metrics import (
     CableComparison,
     CableMetrics,
@@ -45,7 +47,7 @@ from cable_ocp.heave.metrics import (
 )
 from cable_ocp.numerics import interrupt
 from cable_ocp.scene.dynamics import DynamicScene
-from cable_ocp.scene.heave import HeaveScene, load_cable_scene
+from cable_ocp.scene.heave import HeaveScene, check_compensator_load, load_cable_scene
 
 __all__ = ["compare", "compare_cable"]
 
@@ -106,6 +108,8 @@ def compare_cable(scene: HeaveScene, controllers: tuple | None = None,
     if scene.deployment is not None:
         res = deploy(scene, sd, dyn, ident, extra, progress)
     elif scene.simulation.plant == "model":
+        if sd.passive_compensator is not None:
+            check_compensator_load(sd, sd.unit.static_tension, "unit.static_tension")
         r = sm.compare(sd, controllers, progress)
         res = CableComparison(r.sigma_uncontrolled, r.metrics, r.traces, r.models,
                               r.mpc_solve_times, r.mpc_failures, r.statuses, r.messages,
@@ -118,6 +122,35 @@ def compare_cable(scene: HeaveScene, controllers: tuple | None = None,
     return res
 
 
+def _compensator_design(sd: HeaveScene, length: float, t_top0: float, dyn: DynamicScene
+                        ) -> tuple[Any, Any, str | None, HeaveScene, Any]:
+    """The phc* designs on the cable plant: ``(table, plant, design error or None, the
+    design scene with the compensator's pressure, the cable plant one time step per
+    call)``.
+
+    The cylinder sits at the line's top and carries its static top tension ``t_top0`` (N):
+    ``[passive_compensator] pressure`` defaults to ``t_top0 / area`` and a given one must
+    carry it (:func:`cable_ocp.scene.heave.check_compensator_load`). The design is
+    :func:`cable_ocp.heave.design.design_table` on the design model with the compensator.
+    """
+    pc = sd.passive_compensator
+    check_compensator_load(sd, t_top0, "the cable's static top tension")
+    if pc.pressure is None:
+        sd = replace(sd, passive_compensator=replace(pc, pressure=t_top0 / pc.area))
+    try:
+        with np.errstate(all="ignore"):
+            table, p = design_table(sd, np.array([length]), np.array([sd.unit.a]),
+                                    np.array([sd.unit.b]), compensator=True)
+        err = None
+    except CableOCPError:
+        raise
+    except sm._DESIGN_ERRORS as exc:
+        table, p = None, None
+        err = (f"the design on the design model with the compensator failed: "
+               f"{type(exc).__name__}: {exc}")
+    return table, p, err, sd, cable_plant(dyn, dyn.simulation.time_step)
+
+
 def _compare_on_cable(sc: HeaveScene, sd: HeaveScene, dyn: DynamicScene,
                       controllers: tuple | None, progress: Callable | None, extra: dict
                       ) -> CableComparison:
@@ -126,15 +159,14 @@ def _compare_on_cable(sc: HeaveScene, sd: HeaveScene, dyn: DynamicScene,
     T = sc.simulation.duration
     n_ctrl = int(round(T / h))
     controllers = tuple(controllers or c.controllers)
+    valid = ("passive", "lqr", "lqg", "mpc", "phc", "phc+lqr", "phc+lqg", "phc+mpc")
     for name in controllers:
-        if name.startswith("phc"):
-            raise CableOCPError(
-                f"controller {name!r} on the cable plant (simulation.plant = \"cable\"): the "
-                "passive compensator is modelled on the design model only; run it with "
-                "simulation.plant = \"model\"")
-        if name not in ("passive", "lqr", "lqg", "mpc"):
-            raise CableOCPError(f"controller {name!r} is unknown; valid: passive, lqr, lqg, "
-                                "mpc")
+        if name not in valid:
+            raise CableOCPError(f"controller {name!r} is unknown; valid: {', '.join(valid)}")
+    with_phc = any(sm.base_controller(name)[1] for name in controllers)
+    if with_phc and sd.passive_compensator is None:
+        raise CableOCPError(f"controllers {', '.join(controllers)}: the phc* controllers need "
+                            "a [passive_compensator] table in the scene")
     # the passive run is the baseline of every reduction, run when not asked for
     runs_of = controllers if "passive" in controllers else controllers + ("passive",)
     models = sm.build_models(sd)
@@ -163,6 +195,9 @@ def _compare_on_cable(sc: HeaveScene, sd: HeaveScene, dyn: DynamicScene,
     bound = unstable_bound(wave.x0)
     t_u0, t_t0 = plant_c.static_tensions()
     quad = sd.unit.model == "quadratic"
+    # the compensator (phc*): at the line's top it carries the static top tension; designed
+    # on the design model with it, stepped with the cable one time step at a time
+    phc_design = _compensator_design(sd, L0, t_t0, dyn) if with_phc else None
     total = 2 * n_ctrl * len(runs_of)
     metrics, traces, predicted, statuses, messages = {}, {}, {}, {}, {}
     solve_times, failures = None, 0
@@ -180,8 +215,10 @@ def _compare_on_cable(sc: HeaveScene, sd: HeaveScene, dyn: DynamicScene,
     empty = no_cable_metrics()
     stopped = None  # the index in runs_of where a Ctrl-C stopped the comparison
     for idx, name in enumerate(runs_of):
-        if design_error is not None and name != "passive":
-            statuses[name], messages[name] = "failed", design_error
+        kind_of, phc = sm.base_controller(name)
+        tbl, pn, err = (table, p, design_error) if not phc else phc_design[:3]
+        if err is not None and kind_of != "passive":
+            statuses[name], messages[name] = "failed", err
             metrics[name] = (empty, empty)
             continue
         runs = {}
@@ -193,12 +230,16 @@ def _compare_on_cable(sc: HeaveScene, sd: HeaveScene, dyn: DynamicScene,
                     if progress is not None:
                         progress(base + k, total, None)
 
-                mpc = (mpc_mod.LinearMPC(p, sc.winch.delay, settings) if name == "mpc"
+                mpc = (mpc_mod.LinearMPC(pn, sc.winch.delay, settings) if kind_of == "mpc"
                        else None)
-                ctrl = cable_controller(name, None if name == "passive" else table, mpc)
+                ctrl = cable_controller(kind_of, None if kind_of == "passive" else tbl, mpc)
+                ctrl.name = name
+                piston = Piston(phc_design[3]) if phc else None
                 if kind == "model":
                     line: Any = ModelLine(sd.unit.a, sd.unit.b, sd.unit.b_quadratic, quad, m,
-                                          h / m, sd.unit.mass, t_u0, t_t0)
+                                          h / m, sd.unit.mass, t_u0, t_t0, piston)
+                elif phc:
+                    line = CableLine(phc_design[4], piston)
                 else:
                     line = CableLine(plant_c)
                 runs[kind] = run_loop(WinchedLine(sc, line, wave, noise), ctrl, n_ctrl,
@@ -225,7 +266,7 @@ def _compare_on_cable(sc: HeaveScene, sd: HeaveScene, dyn: DynamicScene,
                 warnings.append(lim)
         traces[name] = runs["cable"].trace
         predicted[name] = runs["model"].trace
-        if name == "mpc":
+        if kind_of == "mpc" and (name == "mpc" or solve_times is None):
             solve_times = runs["cable"].times
             failures = runs["cable"].failures
             if failures:

@@ -173,9 +173,9 @@ class DesignTable:
                             self.n, self.nz - self.n)
 
 
-def _design(sc: HeaveScene, a: float, b: float) -> tuple[pl.HeavePlant, np.ndarray,
-                                                           np.ndarray, np.ndarray, np.ndarray,
-                                                           np.ndarray, np.ndarray, int]:
+def _design(sc: HeaveScene, a: float, b: float, compensator: bool = False
+            ) -> tuple[pl.HeavePlant, np.ndarray, np.ndarray, np.ndarray, np.ndarray,
+                       np.ndarray, np.ndarray, int]:
     """Plant (6.28) with ``a, b``; the estimator's sampled model (delayed design model plus
     a depth offset); LQR gain; Kalman gains; measurement rows; ``nz``.
 
@@ -191,7 +191,8 @@ def _design(sc: HeaveScene, a: float, b: float) -> tuple[pl.HeavePlant, np.ndarr
     from cable_ocp.heave.design_loop import build_models
 
     s2 = replace(sc, unit=replace(sc.unit, a=a, b=b))
-    p = build_models(s2).plant
+    models = build_models(s2)
+    p = models.plant_phc if compensator else models.plant
     c = sc.controller
     h, tau = c.sample_time, sc.winch.delay
     G = np.atleast_2d(discrete_delay_lqr(p.A, p.B1, p.e("x"), c.q, c.r, h, tau))
@@ -224,8 +225,8 @@ def _design(sc: HeaveScene, a: float, b: float) -> tuple[pl.HeavePlant, np.ndarr
     return p, Ad, Bd, Ge, M3, M1, C3, nz
 
 
-def design_table(scene: HeaveScene, lengths: np.ndarray, a: np.ndarray, b: np.ndarray
-                 ) -> tuple[DesignTable, pl.HeavePlant]:
+def design_table(scene: HeaveScene, lengths: np.ndarray, a: np.ndarray, b: np.ndarray,
+                 compensator: bool = False) -> tuple[DesignTable, pl.HeavePlant]:
     """Designs (LQR gain, Kalman gains, sampled model) at each ``(length, a, b)``.
 
     Parameters
@@ -236,8 +237,13 @@ def design_table(scene: HeaveScene, lengths: np.ndarray, a: np.ndarray, b: np.nd
         Deployment lengths of the designs, m.
     a, b : numpy.ndarray
         The design model's coefficients there, s^2 and s.
+    compensator : bool
+        On the plant with the passive compensator (``[passive_compensator]``, the block
+        ``"comp"``: :attr:`cable_ocp.heave.design_loop.Models.plant_phc`), whose stroke the
+        Kalman filter estimates from the same sensors.
     """
-    rows = [_design(scene, float(ai), float(bi)) for ai, bi in zip(a, b, strict=True)]
+    rows = [_design(scene, float(ai), float(bi), compensator)
+            for ai, bi in zip(a, b, strict=True)]
     p = rows[0][0]
     return DesignTable(lengths=np.asarray(lengths, dtype=float), a=np.asarray(a, dtype=float),
                        b=np.asarray(b, dtype=float),

@@ -259,7 +259,9 @@ def _sea_band_amplitude(sc: HeaveScene) -> tuple[float, float, Any]:
     from cable_ocp.heave.design_loop import build_models
     from cable_ocp.heave.stochastic import output_variance_lyapunov
 
-    models = build_models(replace(sc, unit=replace(sc.unit, cable_scene=None)))
+    # the sea and vessel filters only (the unit and a compensator are not known yet)
+    models = build_models(replace(sc, unit=replace(sc.unit, cable_scene=None),
+                                  passive_compensator=None))
     p = models.plant
     lo = p.blocks["vessel"].start
     cx0, _ = p.output_row("x0")

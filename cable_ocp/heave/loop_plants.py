@@ -18,11 +18,15 @@
 
 Both integrate the unit model with :func:`cable_ocp.heave.plant.unit_acceleration` (its one
 home); they differ in the winch (inside the RK4 step, or exact) because each is the plant of
-its own comparison.
+its own comparison. The passive compensator's piston (:class:`Piston`, the one home of its
+law in the loop) goes with either: RK4 with the design model (:class:`UnitWinchPlant`,
+:class:`ModelLine`), an implicit-midpoint step with each of the cable's time steps
+(:class:`CableLine`).
 """
 
 from __future__ import annotations
 
+from collections.abc import Callable
 from typing import Any
 
 import numpy as np
@@ -34,10 +38,129 @@ from cable_ocp.heave.discrete import delay_steps
 from cable_ocp.heave.drive import design_tension, drive_series
 from cable_ocp.heave.estimators import Observation
 from cable_ocp.heave.plant import unit_acceleration
-from cable_ocp.physics.gas_spring import gas_force
+from cable_ocp.physics.gas_spring import gas_force, gas_stiffness
 from cable_ocp.scene.heave import HeaveScene, compensator_pressure
 
-__all__ = ["CableLine", "ModelLine", "UnitWinchPlant", "WinchedLine", "winch_maps"]
+__all__ = ["CableLine", "ModelLine", "Piston", "UnitWinchPlant", "WinchedLine", "winch_maps"]
+
+
+class Piston:
+    """The massless piston of the in-line passive compensator: its one law in the loop.
+
+    ``c delta' = T - F_gas(delta)`` (``T`` the line tension the cylinder carries, N;
+    :func:`cable_ocp.physics.gas_spring.gas_force`), the stroke ``delta`` (m, positive into
+    the gas: it lowers the line's top by ``delta``) held at the end stops ``|delta| <=
+    stroke_max`` while the force pushes into them. The design model's plants integrate
+    :meth:`rate` by RK4 and :meth:`clip` after each step (:class:`UnitWinchPlant`,
+    :class:`ModelLine`); the cable plant, whose top tension answers the stroke through the
+    stiff top element, takes :meth:`implicit_step` (:class:`CableLine`).
+
+    Parameters
+    ----------
+    sc : HeaveScene
+        A scene with ``[passive_compensator]`` (its static pressure from
+        :func:`cable_ocp.scene.heave.compensator_pressure`).
+    """
+
+    #: force residual of :meth:`implicit_step`, relative to the static gas force
+    TOLERANCE = 1e-10
+    #: Newton iterations of :meth:`implicit_step` before it gives up
+    MAX_ITERATIONS = 8
+
+    def __init__(self, sc: HeaveScene) -> None:
+        pc = sc.passive_compensator
+        self.gas = (compensator_pressure(sc), pc.gas_volume, pc.area, pc.polytropic_exponent)
+        self.c, self.smax = pc.damping, pc.stroke_max
+        self.f0 = self.gas[0] * pc.area
+        #: the line's tangent stiffness at the top seen by the stroke (N/m), learnt by
+        #: :meth:`implicit_step` (a secant)
+        self.k_line: float | None = None
+
+    def rate(self, d: float, tension: float) -> float:
+        """``delta'`` (m/s) at the stroke ``d`` (m) under the tension ``tension`` (N); 0 at an
+        end stop the force pushes into.
+
+        Parameters
+        ----------
+        d : float
+            The stroke, m.
+        tension : float
+            The tension the cylinder carries, N.
+        """
+        rate = (tension - gas_force(d, *self.gas)) / self.c
+        if (d >= self.smax and rate > 0) or (d <= -self.smax and rate < 0):
+            return 0.0
+        return rate
+
+    def clip(self, d: float) -> float:
+        """The stroke ``d`` (m) held inside the end stops."""
+        return min(max(d, -self.smax), self.smax)
+
+    def implicit_step(self, d0: float, dt: float, t_start: float,
+                      tension_of: Callable[[float], Any]) -> tuple[float, Any, float]:
+        """One implicit-midpoint step of the stroke, then the stops:
+        ``c (d1 - d0) / dt = (T0 + T1) / 2 - F_gas((d0 + d1) / 2)``.
+
+        Implicit because the stroke is stiff against the line: ``T`` answers ``d1``
+        through the top element (its stiffness and its internal damping, ``dT/dd ~ -EA / l
+        - c_a / (l dt)``), so ``k dt / c`` is far above the stability limit of an explicit
+        step. The midpoint form is the cable's own step (the cable plants are implicit
+        midpoint, the top linear over the step), second order like it; the tension at the
+        step's end alone (backward Euler) goes unstable against the top element's damping
+        on a fine mesh. Solved by Newton's method with the line's stiffness from a secant
+        (exact for a linear line after one correction).
+
+        Parameters
+        ----------
+        d0 : float
+            The stroke at the step's start, m.
+        dt : float
+            The step, s.
+        t_start : float
+            ``T0``: the top tension at the step's start, N.
+        tension_of : callable
+            ``tension_of(d1) -> (T1, result)``: the line stepped with the stroke ``d1`` at
+            the step's end (its top at ``x0 + u - d1``), its top tension there ``T1`` (N) and
+            what the step returns (kept for the accepted ``d1``).
+
+        Returns
+        -------
+        d1 : float
+            The stroke at the step's end, m.
+        result
+            ``tension_of(d1)[1]``.
+        residual : float
+            The force residual, relative to the static gas force (0 at a stop).
+        """
+        def resid(d: float, tension: float) -> float:
+            return (self.c * (d - d0) / dt - 0.5 * (t_start + tension)
+                    + gas_force(0.5 * (d0 + d), *self.gas))
+
+        d = d0
+        tension, res = tension_of(d)
+        f = resid(d, tension)
+        tol = self.TOLERANCE * self.f0
+        for _ in range(self.MAX_ITERATIONS):
+            if abs(f) <= tol:
+                break
+            k = self.k_line
+            if k is None:  # the first step: the line's stiffness by a difference
+                eps = 1e-6 * max(self.smax, 1e-3)
+                t_eps = tension_of(d + eps)[0]
+                k = self.k_line = max((tension - t_eps) / eps, 0.0)
+            slope = self.c / dt + 0.5 * (k + gas_stiffness(0.5 * (d0 + d), *self.gas))
+            d_new = self.clip(d - f / slope)
+            if d_new == d:  # held at a stop
+                break
+            t_new, res_new = tension_of(d_new)
+            k_sec = -(t_new - tension) / (d_new - d)
+            if np.isfinite(k_sec) and k_sec > 0:
+                self.k_line = float(k_sec)
+            d, tension, res = d_new, t_new, res_new
+            f = resid(d, tension)
+        if abs(d) >= self.smax:  # at a stop: the force holds it there
+            return d, res, 0.0
+        return d, res, abs(f) / self.f0
 
 
 class UnitWinchPlant(LoopPlant):
@@ -64,7 +187,7 @@ class UnitWinchPlant(LoopPlant):
         ``"comp"``): the gas spring exact (:func:`cable_ocp.physics.gas_spring.
         compensator_force`), the massless piston's stroke ``c delta' = T - F_gas(delta)``
         with ``T = T0 + (m/a)(x0 + u - delta - x)``, held at the end stops
-        ``|delta| <= stroke_max`` while the force pushes into them.
+        ``|delta| <= stroke_max`` while the force pushes into them (:class:`Piston`).
     """
 
     def __init__(self, sc: HeaveScene, p: pl.HeavePlant, t: np.ndarray, x0: np.ndarray,
@@ -90,11 +213,8 @@ class UnitWinchPlant(LoopPlant):
         self.phc = phc
         self.ns = self.nuw + (1 if phc else 0)
         if phc:
-            pc = sc.passive_compensator
             self.ic = p.blocks["comp"].start
-            self.gas = (compensator_pressure(sc), pc.gas_volume, pc.area,
-                        pc.polytropic_exponent)
-            self.c_p, self.smax = pc.damping, pc.stroke_max
+            self.piston = Piston(sc)
             self.kc, self.t0 = sc.unit.mass / u.a, sc.unit.static_tension
         self.s = np.zeros(self.ns)
         self.deltas: list[float] = [0.0]
@@ -108,15 +228,8 @@ class UnitWinchPlant(LoopPlant):
             wn = self.wn
             out = [s[1], acc, s[3], wn**2 * (v - s[2]) - 2 * self.zeta * wn * s[3]]
         if self.phc:
-            out.append(self._stroke_rate(s[self.nuw], top - s[0]))
+            out.append(self.piston.rate(s[self.nuw], self.t0 + self.kc * (top - s[0])))
         return np.array(out)
-
-    def _stroke_rate(self, d: float, stretch: float) -> float:
-        """``delta'`` of the massless piston, 0 at an end stop the force pushes into."""
-        rate = (self.t0 + self.kc * stretch - gas_force(d, *self.gas)) / self.c_p
-        if (d >= self.smax and rate > 0) or (d <= -self.smax and rate < 0):
-            return 0.0
-        return rate
 
     def start(self) -> dict[str, float]:
         self.s = np.zeros(self.ns)  # the unit and winch at rest; the sea stationary
@@ -160,7 +273,7 @@ class UnitWinchPlant(LoopPlant):
             k4 = f(s + hs * k3, xb, v)
             s = s + hs / 6 * (k1 + 2 * k2 + 2 * k3 + k4)
             if self.phc:  # the end stops
-                s[self.nuw] = min(max(s[self.nuw], -self.smax), self.smax)
+                s[self.nuw] = self.piston.clip(s[self.nuw])
                 self.deltas.append(float(s[self.nuw]))
             xs[j] = s[0]
         us[m] = s[2]
@@ -322,28 +435,50 @@ class WinchedLine(LoopPlant):
         wave = self.wave
         top = channels["tension_top"]
         torque, power = drive_series(self.scene, top, u, u_dot, u0)
+        strokes = getattr(self.line, "strokes", None)
+        stroke = None
+        if strokes is not None:  # the compensator's stroke (NaN after a stopped run's end)
+            stroke = np.full(wave.t.size, np.nan)
+            stroke[: len(strokes)] = strokes[: wave.t.size]
         return CableTrace(t=wave.t, x=x, x0=wave.x0, u=u, u_dot=u_dot, u0=u0,
                           tension_unit=channels["tension_unit"],
                           tension_top=top, length=wave.ldep,
                           min_element_tension=per_sample, tension=top, torque=torque,
-                          power=power)
+                          power=power, stroke_phc=stroke)
 
 
 class CableLine:
     """The cable plant as the line: heave relative to the static depth at ``L_dep``.
 
+    With a ``piston`` (:class:`Piston`) the passive compensator sits between the boom tip
+    and the line's top: the top follows ``x0 + u - delta`` (the winch pays in ``u``, the
+    cylinder lowers the top by its stroke ``delta``), and the stroke is stepped with the
+    cable, one of the cable's time steps at a time (:meth:`Piston.implicit_step` on the
+    top tension the cable's step returns).
+
     Parameters
     ----------
     plant : SampledCablePlant
         The cable stepped one sample per call (:func:`cable_ocp.heave.cable_models.
-        cable_plant`), shared by the runs.
+        cable_plant`), shared by the runs; with a ``piston``, one of the cable's time steps
+        per call (the plant built with the cable scene's ``time_step`` as its sample).
+    piston : Piston, optional
+        The passive compensator at the top (None: the line hangs from the boom tip).
     """
 
-    def __init__(self, plant: Any) -> None:
+    def __init__(self, plant: Any, piston: Piston | None = None) -> None:
+        if piston is not None and plant.substeps != 1:
+            raise ValueError("CableLine with a piston: the plant must take one time step "
+                             "per call (internal error)")
         self.p = plant
+        self.piston = piston
         self.substeps = plant.substeps
         self.x = plant.initial_state()
         self.heave = 0.0
+        self.delta = 0.0
+        self.t_top = 0.0
+        #: the stroke at the sub-step points, m (None without a piston)
+        self.strokes: list[float] | None = None if piston is None else [0.0]
         self.failed_at: int | None = None
         self.max_residual = 0.0
         #: (status, message) where the plant refused a sample (its ``out["stop"]``)
@@ -363,10 +498,15 @@ class CableLine:
         """
         self.x = self.p.initial_state()
         self.heave = x0_start  # the static line hangs from the displaced top, at rest
+        self.delta = 0.0
+        if self.piston is not None:
+            self.strokes = [0.0]
         self.stop = None
         self.failed_at = None
         self.max_residual = 0.0
-        return self.p.static_tensions(ldep0)
+        tensions = self.p.static_tensions(ldep0)
+        self.t_top = tensions[1]  # the piston's tension at the step's start, N
+        return tensions
 
     def advance(self, k: int, u: np.ndarray, x0: np.ndarray, ldep: np.ndarray
                 ) -> tuple[np.ndarray, np.ndarray, np.ndarray, float]:
@@ -380,7 +520,10 @@ class CableLine:
         u, x0, ldep : numpy.ndarray, shape (m + 1,)
             Winch output, boom-tip heave and deployment length at the sub-step points, m.
         """
-        x, out = self.p.advance(self.x, ldep - u, self.p.z_top0 + x0)
+        if self.piston is not None:
+            x, out = self._advance_piston(ldep - u, x0)
+        else:
+            x, out = self.p.advance(self.x, ldep - u, self.p.z_top0 + x0)
         if "stop" in out and self.stop is None:
             self.stop = ("failed", f"at t = {k * self.p.h:.2f} s {out['stop']}; the run "
                          "stops there")
@@ -392,6 +535,45 @@ class CableLine:
         heave = out["z_unit"] - self.p.static_unit_height(ldep[1:])
         self.heave = float(heave[-1])
         return heave, out["t_unit"], out["t_top"], out["t_min"]
+
+    def _advance_piston(self, lengths: np.ndarray, x0: np.ndarray
+                        ) -> tuple[np.ndarray, dict[str, Any]]:
+        """The sample's time steps one by one, each with the piston's implicit step; the
+        outputs as :meth:`SampledCablePlant.advance` returns them for the whole sample."""
+        p, piston = self.p, self.piston
+        m = lengths.size - 1
+        x = self.x
+        cols: dict[str, Any] = {k: np.empty(m) for k in ("z_unit", "v_unit", "t_unit",
+                                                        "t_top")}
+        t_min, rmax, worst = np.inf, 0.0, 0.0
+        stop = None
+        for j in range(m):
+            d0 = self.delta
+            lj = lengths[j: j + 2]
+            za = p.z_top0 + x0[j] - d0
+
+            def tension_of(d1: float, x: np.ndarray = x, lj: np.ndarray = lj,
+                           za: float = za, j: int = j) -> tuple[float, Any]:
+                r = p.advance(x, lj, np.array([za, p.z_top0 + x0[j + 1] - d1]))
+                return float(r[1]["t_top"][0]), r
+
+            d1, (x, out), res = piston.implicit_step(d0, p.dt, self.t_top, tension_of)
+            self.t_top = float(out["t_top"][0])
+            self.delta = d1
+            self.strokes.append(d1)
+            for k in cols:
+                cols[k][j] = out[k][0]
+            t_min = min(t_min, out["t_min"])
+            rmax = max(rmax, out["residual"])
+            worst = max(worst, res)
+            if "stop" in out and stop is None:
+                stop = out["stop"]
+        out = {**cols, "t_min": t_min, "residual": rmax}
+        if not worst <= 1e3 * piston.TOLERANCE:  # the piston's Newton did not converge
+            out["residual"] = np.inf
+        if stop is not None:
+            out["stop"] = stop
+        return x, out
 
 
 class ModelLine:
@@ -414,18 +596,26 @@ class ModelLine:
         Unit mass with its added mass, kg.
     t_unit0, t_top0 : float
         Static tensions at the unit and the top, N.
+    piston : Piston, optional
+        The passive compensator at the top (as :class:`CableLine`): the input is ``x0 + u
+        - delta``, the stroke integrated with the unit by the same RK4 under the top
+        tension ``t_top0 + (m/a)(x0 + u - delta - x)``, as :class:`UnitWinchPlant` does.
     """
 
     def __init__(self, a: float, b: float, b_quadratic: float, quadratic: bool,
-                 substeps: int, dt: float, mass: float, t_unit0: float, t_top0: float) -> None:
+                 substeps: int, dt: float, mass: float, t_unit0: float, t_top0: float,
+                 piston: Piston | None = None) -> None:
         self.a, self.b, self.bq, self.quad = a, b, b_quadratic, quadratic
         self.substeps, self.dt = substeps, dt
         self.k = mass / a
         self.t0, self.tt0 = t_unit0, t_top0
-        self.s = [0.0, 0.0]
+        self.piston = piston
+        self.s = [0.0, 0.0, 0.0]
         self.heave = 0.0
         self.failed_at: int | None = None
         self.max_residual = 0.0
+        #: the stroke at the sub-step points, m (None without a piston)
+        self.strokes: list[float] | None = None if piston is None else [0.0]
 
     def start(self, x0_start: float, ldep0: float) -> tuple[float, float]:  # noqa: ARG002
         """At rest; returns the static tensions (N).
@@ -437,12 +627,17 @@ class ModelLine:
         ldep0 : float
             The deployment length at the start, m (not used by the model).
         """
-        self.s = [x0_start, 0.0]
+        self.s = [x0_start, 0.0, 0.0]
         self.heave = x0_start
+        if self.piston is not None:
+            self.strokes = [0.0]
         return self.t0, self.tt0
 
-    def _f(self, x: float, v: float, inp: float) -> tuple[float, float]:
-        return v, unit_acceleration(x, v, inp, self.a, self.b, self.bq, self.quad)
+    def _f(self, x: float, v: float, d: float, inp: float) -> tuple[float, float, float]:
+        top = inp - d
+        rate = (0.0 if self.piston is None
+                else self.piston.rate(d, self.tt0 + self.k * (top - x)))
+        return v, unit_acceleration(x, v, top, self.a, self.b, self.bq, self.quad), rate
 
     def advance(self, k: int, u: np.ndarray, x0: np.ndarray, ldep: np.ndarray  # noqa: ARG002
                 ) -> tuple[np.ndarray, np.ndarray, np.ndarray, float]:
@@ -457,21 +652,24 @@ class ModelLine:
         ldep : numpy.ndarray
             Deployment length there, m (not used).
         """
-        m, dt = self.substeps, self.dt
-        x, v = self.s
+        m, dt, f = self.substeps, self.dt, self._f
+        x, v, d = self.s
         inp = (x0 + u).tolist()
-        xs = np.empty(m)
+        xs, ds = np.empty(m), np.empty(m)
         for j in range(m):
             ia, ib = inp[j], inp[j + 1]
             im = 0.5 * (ia + ib)
-            k1 = self._f(x, v, ia)
-            k2 = self._f(x + 0.5 * dt * k1[0], v + 0.5 * dt * k1[1], im)
-            k3 = self._f(x + 0.5 * dt * k2[0], v + 0.5 * dt * k2[1], im)
-            k4 = self._f(x + dt * k3[0], v + dt * k3[1], ib)
+            k1 = f(x, v, d, ia)
+            k2 = f(x + 0.5 * dt * k1[0], v + 0.5 * dt * k1[1], d + 0.5 * dt * k1[2], im)
+            k3 = f(x + 0.5 * dt * k2[0], v + 0.5 * dt * k2[1], d + 0.5 * dt * k2[2], im)
+            k4 = f(x + dt * k3[0], v + dt * k3[1], d + dt * k3[2], ib)
             x += dt / 6 * (k1[0] + 2 * k2[0] + 2 * k3[0] + k4[0])
             v += dt / 6 * (k1[1] + 2 * k2[1] + 2 * k3[1] + k4[1])
-            xs[j] = x
-        self.s = [x, v]
+            if self.piston is not None:  # the end stops
+                d = self.piston.clip(d + dt / 6 * (k1[2] + 2 * k2[2] + 2 * k3[2] + k4[2]))
+                self.strokes.append(d)
+            xs[j], ds[j] = x, d
+        self.s = [x, v, d]
         self.heave = x
-        dyn = self.k * (x0[1:] + u[1:] - xs)
+        dyn = self.k * (x0[1:] + u[1:] - ds - xs)
         return xs, self.t0 + dyn, self.tt0 + dyn, float(np.min(self.t0 + dyn))

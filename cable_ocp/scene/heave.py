@@ -49,8 +49,9 @@ Schema (SI units; see ``problems/heave/*.toml`` for commented examples)::
     [passive_compensator]                # an in-line gas-spring cylinder (controllers phc*)
     area = 0.05                          # m^2, piston area
     gas_volume = 0.5                     # m^3, gas volume at the static position
-    pressure = 1.0e6                     # Pa at the static position (default static_tension
-                                         # / area; must carry the static tension)
+    pressure = 1.0e6                     # Pa at the static position (default: the static
+                                         # tension it carries / area: static_tension, or
+                                         # the cable's static top tension on plant "cable")
     polytropic_exponent = 1.4            # 1 isothermal, 1.4 adiabatic
     damping = 2.0e4                      # N s/m (> 0: the massless piston's only dynamics)
     stroke_max = 2.0                     # m, the end stops at +-stroke_max from static
@@ -160,7 +161,8 @@ class WinchSpec:
 @dataclass(frozen=True)
 class PassiveCompensatorSpec:
     """``[passive_compensator]``: an in-line gas-spring cylinder between the boom tip and the
-    line (:mod:`cable_ocp.physics.gas_spring`); ``pressure`` None: ``static_tension / area``."""
+    line (:mod:`cable_ocp.physics.gas_spring`); ``pressure`` None: the static tension it
+    carries over ``area`` (:func:`compensator_pressure`)."""
 
     area: float = 0.05
     gas_volume: float = 0.5
@@ -724,9 +726,10 @@ def compensator_pressure(sc: HeaveScene) -> float:
 
 def _check_compensator(sc: HeaveScene) -> None:
     """Controllers ``phc*`` need ``[passive_compensator]``; it needs the unit's mass and
-    static tension (the cable's stiffness ``m / a`` and the load it carries), a pressure that
-    carries that load, a gas volume the stroke cannot exhaust, and the design model as the
-    plant."""
+    static tension (the cable's stiffness ``m / a`` and the load it carries; on a cable
+    scene they may come from it, and the load is then checked when the comparison runs,
+    :func:`check_compensator_load`), a pressure that carries that load and a gas volume the
+    stroke cannot exhaust."""
     pc = sc.passive_compensator
     phc = [c for c in sc.controller.controllers if c.startswith("phc")]
     if pc is None:
@@ -735,29 +738,43 @@ def _check_compensator(sc: HeaveScene) -> None:
                                 f"{', '.join(phc)} need a [passive_compensator] table (area, "
                                 "gas_volume, damping, stroke_max, ...)")
         return
+    on_cable = sc.unit.cable_scene is not None
     if not (sc.unit.mass > 0 and sc.unit.static_tension > 0):
-        raise CableOCPError("[passive_compensator]: needs unit.mass > 0 (kg; the line's "
-                            "stiffness is mass / a) and unit.static_tension > 0 (N; the load "
-                            "the gas carries)")
-    if sc.simulation.plant == "cable" and phc:
-        raise CableOCPError(
-            f'controller.controllers = {list(sc.controller.controllers)} with simulation.plant '
-            f'= "cable": the passive compensator ({", ".join(phc)}) is modelled on the design '
-            'model only; run it with simulation.plant = "model"')
-    p0 = compensator_pressure(sc)
-    load = p0 * pc.area
-    t0 = sc.unit.static_tension
-    if abs(load - t0) > COMPENSATOR_BALANCE * t0:
-        raise CableOCPError(
-            f"passive_compensator.pressure = {p0:g} Pa: with area = {pc.area:g} m^2 the gas "
-            f"carries {load:.6g} N, not unit.static_tension = {t0:g} N (more than "
-            f"{100 * COMPENSATOR_BALANCE:g} % off); give pressure = {t0 / pc.area:.6g} Pa or "
-            "leave it out")
+        if not on_cable:
+            raise CableOCPError("[passive_compensator]: needs unit.mass > 0 (kg; the line's "
+                                "stiffness is mass / a) and unit.static_tension > 0 (N; the "
+                                "load the gas carries)")
+    elif not (on_cable and sc.simulation.plant == "cable"):
+        check_compensator_load(sc, sc.unit.static_tension, "unit.static_tension")
     if not pc.area * pc.stroke_max < 0.9 * pc.gas_volume:
         raise CableOCPError(
             f"passive_compensator.stroke_max = {pc.stroke_max:g} m: area x stroke = "
             f"{pc.area * pc.stroke_max:g} m^3 must be < 0.9 gas_volume = "
             f"{0.9 * pc.gas_volume:g} m^3 (the gas cannot be compressed to nothing)")
+
+
+def check_compensator_load(sc: HeaveScene, load: float, what: str) -> None:
+    """Refuse a ``[passive_compensator] pressure`` whose gas force differs from the static
+    ``load`` it carries by more than :data:`COMPENSATOR_BALANCE`.
+
+    Parameters
+    ----------
+    sc : HeaveScene
+        A scene with ``[passive_compensator]``.
+    load : float
+        The static tension the cylinder carries, N.
+    what : str
+        What ``load`` is, for the message (``"unit.static_tension"``, ...).
+    """
+    pc = sc.passive_compensator
+    p0 = pc.pressure if pc.pressure is not None else load / pc.area
+    force = p0 * pc.area
+    if abs(force - load) > COMPENSATOR_BALANCE * load:
+        raise CableOCPError(
+            f"passive_compensator.pressure = {p0:g} Pa: with area = {pc.area:g} m^2 the gas "
+            f"carries {force:.6g} N, not {what} = {load:g} N (more than "
+            f"{100 * COMPENSATOR_BALANCE:g} % off); give pressure = {load / pc.area:.6g} Pa "
+            "or leave it out")
 
 
 def _check_printed(sc: HeaveScene) -> None:

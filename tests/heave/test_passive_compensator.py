@@ -154,11 +154,3 @@ def test_scene_errors_name_the_keys() -> None:
     data["unit"]["mass"] = 0.0
     with pytest.raises(CableOCPError, match=r"\[passive_compensator\]: needs unit.mass"):
         scene_from_dict(data)
-
-
-def test_cable_plant_refuses_the_compensator() -> None:
-    with pytest.raises(CableOCPError, match='simulation.plant = "model"'):
-        load_scene(ROOT / "problems" / "heave" / "ex_6_3_6_cable.toml",
-                   {"controller.controllers": ["passive", "phc"],
-                    "passive_compensator.area": 0.05, "unit.mass": 125000.0,
-                    "unit.static_tension": 50000.0, "simulation.plant": "cable"})
