@@ -108,12 +108,14 @@ RUNS = [
     Run("footprint", ["footprint", str(P / "footprint_tethered_unit.toml"), "--directions",
                       "36", "--json", "f.json", "--csv", "f.csv", *LINE], ("cpu", 2.5),
         outputs=("f.json", "f.csv")),
-    # the time steps of 600 s of the lumped line run from about 1.1 to 8 s of CPU (120 s
-    # ended at ~2.4 s on a faster machine: the Ctrl-C then came after the run); a Ctrl-C
-    # there gave exit 3 (CasADi's RuntimeError) or was lost (exit 0)
+    # the time steps of 600 s of the lumped line run from about 2 to 10-14 s of CPU (the
+    # build before them took up to 2.0 s, so a moment at 1.9 s sometimes came before the
+    # first step: nothing finished, nothing written; 120 s ended at ~2.4 s on a faster
+    # machine: the Ctrl-C then came after the run); a Ctrl-C there gave exit 3 (CasADi's
+    # RuntimeError) or was lost (exit 0)
     Run("simulate", ["simulate", str(P / "dynamics" / "line_6_3_6_lumped3d.toml"), "--set",
                      "simulation.duration=600", "--json", "m.json", "--csv", "m.csv", *LINE],
-        ("cpu", 1.9), outputs=("m.json", "m.csv")),
+        ("cpu", 3.5), outputs=("m.json", "m.csv")),
     Run("heave", ["heave", str(P / "heave" / "ex_6_3_6.toml"), "--duration", "60",
                   "--json", "h.json", *LINE], ("cpu", 1.5), outputs=("h.json",)),
     # a terminal's Ctrl-C reaches the workers too: they printed ~60 lines of tracebacks

@@ -119,6 +119,20 @@ def test_importing_the_library_loads_no_face_module() -> None:
     assert res.stdout.strip() == "[]", res.stdout + res.stderr
 
 
+
+def test_the_command_line_parser_loads_no_model_package() -> None:
+    """Building the ``cable-ocp`` parser (every command's options) in a fresh interpreter
+    loads neither the heave, dynamics nor batch packages nor python-control: each command
+    imports what it runs, so the start-up of a statics command stays the import of the
+    statics (a heave-inverse option list that imported cable_ocp.heave cost every command
+    1.3 s of CPU, and moved test_interrupt's moments)."""
+    heavy = ["cable_ocp.heave", "cable_ocp.dynamics", "cable_ocp.batch", "control"]
+    code = ("import sys\nfrom cable_ocp.cli.app import build_parser\nbuild_parser()\n"
+            f"print([m for m in {heavy!r} if m in sys.modules])")
+    res = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True,
+                         check=True, cwd=PKG.parent)
+    assert res.stdout.strip() == "[]", res.stdout + res.stderr
+
 def test_no_import_cycles() -> None:
     """The import graph between cable_ocp modules (module-level and function-level imports;
     a package's __init__ counts as the package) has no cycle."""

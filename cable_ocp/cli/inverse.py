@@ -20,7 +20,7 @@ def register(sub: argparse._SubParsersAction, parent: argparse.ArgumentParser) -
     parent : argparse.ArgumentParser
         The common options (:func:`cable_ocp.cli.output.common_parent`).
     """
-    from cable_ocp.heave.inverse import PARAMETERS
+    from cable_ocp.scene.heave import INVERSE_UNKNOWNS as PARAMETERS
 
     p = sub.add_parser(
         "heave-inverse", parents=[parent],

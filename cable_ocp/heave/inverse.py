@@ -54,13 +54,13 @@ from scipy import optimize
 
 from cable_ocp.errors import CableOCPError
 from cable_ocp.physics.drag import body_drag_factor, line_drag_factors
+from cable_ocp.scene.heave import INVERSE_UNKNOWNS
 
 __all__ = ["DATA", "PARAMETERS", "InverseResult", "LineParameters", "NotIdentifiableError",
            "design_coefficients", "from_dynamic_scene", "solve_parameters"]
 
 #: the parameters that can be unknowns (attributes of :class:`LineParameters`)
-PARAMETERS = ("length", "axial_stiffness", "mass_per_length", "unit_mass", "added_mass",
-              "unit_drag", "tangential_drag", "diameter", "axial_damping")
+PARAMETERS = INVERSE_UNKNOWNS
 #: the data that can be given
 DATA = ("a", "b_quadratic", "b")
 

@@ -113,6 +113,11 @@ from cable_ocp.scene.fields import check_keys, choice, integer, number
 from cable_ocp.scene.files import apply_overrides, check_kind, read_problem
 from cable_ocp.scene.parts import parse_meta
 
+#: the parameters of a cable scene's line and unit that the inverse problem of Huang (1992)
+#: 6.4 (2) can solve for (:mod:`cable_ocp.heave.inverse`; here so that the command line
+#: names them without importing the heave package)
+INVERSE_UNKNOWNS = ("length", "axial_stiffness", "mass_per_length", "unit_mass",
+                    "added_mass", "unit_drag", "tangential_drag", "diameter", "axial_damping")
 
 @dataclass(frozen=True)
 class SeaSpec:
