@@ -125,6 +125,7 @@ def axial_twin(scene: DynamicScene) -> DynamicScene:
         return scene
     raw = copy.deepcopy(scene.raw)
     raw.setdefault("simulation", {})["model"] = "axial"
+    raw["simulation"].pop("element_length", None)  # the lumped3d pay-out's key
     raw.pop("top_motion", None)
     if isinstance(raw.get("environment"), dict):
         raw["environment"].pop("current", None)
