@@ -6,9 +6,9 @@ ramped in and out over ``ramp_time``, 20 s held at the end) in the scene's sea, 
 (:mod:`cable_ocp.heave.closed_loop`): the axial plant of a ``model = "axial"`` cable scene, or,
 for ``model = "lumped3d"``, the 3D lumped-mass line whose nodes enter and leave at the winch
 (:class:`cable_ocp.heave.lumped_deploy.LumpedPayoutPlant`: the unit lowered in a current of
-any heading and profile, e.g. one that turns with depth). On the way the first axial natural frequency
-``omega_1(L)`` falls through the wave band (Huang (1992), section 3.3.5 lowers through resonance
-without control), and the design model (6.2) changes with it: ``a(L) ~ 1 / omega_1(L)^2``.
+any heading and profile, e.g. one that turns with depth). On the way the first axial
+natural frequency ``omega_1(L)`` falls through the wave band (Huang (1992), section 3.3.5
+lowers through resonance without control), and the design model (6.2) changes with it: ``a(L) ~ 1 / omega_1(L)^2``.
 
 Three compensators are compared on the same sea:
 
@@ -23,8 +23,8 @@ Three compensators are compared on the same sea:
 The unit's heave is measured from the static depth at the current paid-out length (in the
 current, on the lumped3d plant). Results per ``window`` metres of length: unit heave RMS,
 tension extremes at the unit and the top, slack samples; on the lumped3d plant also the
-unit's mean horizontal position and the line's segments. A Ctrl-C during a run keeps the runs finished (the others ``interrupted``,
-no per-length rows).
+unit's mean horizontal position and the line's segments. A Ctrl-C during a run keeps the
+runs finished (the others ``interrupted``, no per-length rows).
 """
 
 from __future__ import annotations
