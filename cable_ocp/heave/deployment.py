@@ -8,7 +8,8 @@ for ``model = "lumped3d"``, the 3D lumped-mass line whose nodes enter and leave 
 (:class:`cable_ocp.heave.lumped_deploy.LumpedPayoutPlant`: the unit lowered in a current of
 any heading and profile, e.g. one that turns with depth). On the way the first axial
 natural frequency ``omega_1(L)`` falls through the wave band (Huang (1992), section 3.3.5
-lowers through resonance without control), and the design model (6.2) changes with it: ``a(L) ~ 1 / omega_1(L)^2``.
+lowers through resonance without control), and the design model (6.2) changes with it:
+``a(L) ~ 1 / omega_1(L)^2``.
 
 Three compensators are compared on the same sea:
 
