@@ -15,9 +15,12 @@ tension, the masses at the mean lengths, the top raised linearly over each step)
 solved by CasADi's Newton ``rootfinder``, with the outputs. It is built on first use and
 cached for the run (the three controllers of a deployment share it): about 0.15 s at 5
 segments, 0.4 s at 20, several seconds at 100 (the symbolic build grows with ``n``; the
-step itself about 0.4 ms at 5 segments). After each sample the top segment is checked:
-above ``SPLIT`` element lengths a node enters at the winch, below ``MERGE`` the top node
-leaves (:meth:`~cable_ocp.dynamics.lumped_payout.PayoutLine.split`, ``merge``: the mass and
+step itself about 0.4 ms at 5 segments). A sample whose Newton steps do not converge (a
+line going slack, where the no-compression law bends sharply) is taken again with 2, 4 and
+8 times the steps (:data:`HALVINGS`; each such function also built once). After each
+sample the top segment is checked: above ``SPLIT`` element lengths a node enters at the
+winch, below ``MERGE`` the top node leaves
+(:meth:`~cable_ocp.dynamics.lumped_payout.PayoutLine.split`, ``merge``: the mass and
 momentum bookkeeping of :mod:`cable_ocp.dynamics.lumped_payout`); so events fall on the
 sample grid (the top segment overshoots a threshold by at most the length paid out in one
 sample, ``h dL/dt``).
@@ -53,10 +56,12 @@ from cable_ocp.errors import CableOCPError
 from cable_ocp.heave.axial_plant import SampledCablePlant
 from cable_ocp.scene.dynamics import DynamicScene
 
-__all__ = ["STATIC_POINTS", "THRESHOLDS", "LumpedPayoutPlant"]
+__all__ = ["HALVINGS", "STATIC_POINTS", "THRESHOLDS", "LumpedPayoutPlant"]
 
 #: lengths at which the static height of the unit is solved for the heave's reference
 STATIC_POINTS = 9
+#: a sample whose Newton steps do not converge is taken again with 2, 4, 8 times the steps
+HALVINGS = 3
 
 
 class LumpedPayoutPlant(SampledCablePlant):
@@ -91,7 +96,7 @@ class LumpedPayoutPlant(SampledCablePlant):
         if x0 is None:
             raise CableOCPError(f"cable scene: the static state failed: {info['message']}")
         self.model = start  # ``model.n``: the segments at the start
-        self._fns: dict[int, ca.Function] = {}
+        self._fns: dict[tuple[int, int], ca.Function] = {}
         self._top0 = np.asarray(self.line._top(0.0, 0.0), float).ravel()
         self._x0 = self.line.state(0.0, np.asarray(start.params.segment_length, float),
                                    np.asarray(x0, float), np.zeros(len(x0)))
@@ -129,15 +134,16 @@ class LumpedPayoutPlant(SampledCablePlant):
         self._spline = CubicSpline(pts, z)
         self._range = (lo, hi)
 
-    def _sample_fn(self, n: int) -> ca.Function:
+    def _sample_fn(self, n: int, substeps: int | None = None) -> ca.Function:
         """The sample function with ``n`` segments (built on first use, cached):
         ``(q, v, l_low, l_top, z) -> (q1, v1, z_unit, v_unit, t_unit, t_top, t_min,
-        residual)`` over ``substeps`` steps, ``l_low`` the fixed segments' lengths (m),
-        ``l_top`` and ``z`` the top segment's length and the top's rise at the sub-step
-        points (m)."""
-        if n in self._fns:
-            return self._fns[n]
-        line, m, dt = self.line, self.substeps, self.dt
+        residual)`` over ``substeps`` steps (default the plant's), ``l_low`` the fixed
+        segments' lengths (m), ``l_top`` and ``z`` the top segment's length and the top's
+        rise at the sub-step points (m)."""
+        m = self.substeps if substeps is None else int(substeps)
+        if (n, m) in self._fns:
+            return self._fns[(n, m)]
+        line, dt = self.line, self.h / m
         fns = line.functions(n)
         step, forces = fns["step_top"], fns["forces_top"]
         nf = line.free(n).size
@@ -168,10 +174,10 @@ class LumpedPayoutPlant(SampledCablePlant):
             tmin.append(ca.mmin(ea * strain))
             res.append(r)
             q, v = q1, v1
-        fn = ca.Function(f"lumped_payout_sample_{n}", [q0s, v0s, low, ltop, z], [
+        fn = ca.Function(f"lumped_payout_sample_{n}_{m}", [q0s, v0s, low, ltop, z], [
             q, v, ca.vertcat(*zu), ca.vertcat(*vu), ca.vertcat(*tu), ca.vertcat(*tt),
             ca.mmin(ca.vertcat(*tmin)), ca.mmax(ca.vertcat(*res))])
-        self._fns[n] = fn
+        self._fns[(n, m)] = fn
         return fn
 
     def _args(self, x: PayoutState, lengths: np.ndarray, rise: np.ndarray) -> list[Any]:
@@ -233,6 +239,20 @@ class LumpedPayoutPlant(SampledCablePlant):
         n = x.segments
         q1, v1, zu, vu, tu, tt, tmin, res = (np.asarray(a, float).ravel()
                                              for a in self._sample_fn(n)(*args))
+        fail = max(1e3 * self.tolerance, 1e-6)  # the closed loop's failure threshold
+        for k in range(1, HALVINGS + 1):
+            if res[0] <= fail and np.all(np.isfinite(q1)):
+                break
+            # a step whose Newton did not converge: the sample again in 2^k times the steps
+            # (inputs linear between the sub-step points; outputs at the plant's sub-steps)
+            fine = self.substeps * 2**k
+            s_c = np.arange(self.substeps + 1) / self.substeps
+            s_f = np.arange(fine + 1) / fine
+            a_f = args[:3] + [np.interp(s_f, s_c, args[3]), np.interp(s_f, s_c, args[4])]
+            q1, v1, zu, vu, tu, tt, tmin, res = (np.asarray(a, float).ravel()
+                                                 for a in self._sample_fn(n, fine)(*a_f))
+            pick = slice(2**k - 1, None, 2**k)
+            zu, vu, tu, tt = zu[pick], vu[pick], tu[pick], tt[pick]
         line, dt = self.line, self.dt
         new = line.state(0.0, np.concatenate([x.lengths[:-1], [args[3][-1]]]), q1, v1)
         new.r[-1, 2] = float(tops[-1])  # the raised top; its velocity the last step's
