@@ -134,3 +134,29 @@ def test_shipped_deployment_scene_is_lumped3d() -> None:
     assert sc.deployment.final_length == 200.0
     assert dyn.simulation.model == "lumped3d" and dyn.simulation.element_length == 12.5
     assert dyn.length == 50.0
+
+
+def test_failed_sample_is_taken_again_in_finer_steps() -> None:
+    """A sample whose Newton residual exceeds the failure threshold is stepped again with
+    2 times the sub-steps (HALVINGS): the unit's height of the finer sample agrees with the
+    plain one to 1e-5 m (seen 1e-6 m: the midpoint rule's O(dt^2) on 1 cm of pay-out and
+    1 mm of heave per sample) and the length is the same."""
+    plant = LumpedPayoutPlant(_vertical("lumped3d"), 0.05, (50.0, 50.5))
+    lengths = np.linspace(50.0, 50.01, plant.substeps + 1)
+    tops = plant.z_top0 + np.linspace(0.0, 0.001, plant.substeps + 1)
+    x1, o1 = plant.advance(plant.initial_state(), lengths, tops)
+    real, finer = plant._sample_fn, []
+
+    def failing(n: int, sub: int | None = None):  # the plain sample "fails"
+        fn = real(n, sub)
+        if sub is None:
+            return lambda *a: [math.inf if i == 7 else v for i, v in enumerate(fn(*a))]
+        finer.append(sub)
+        return fn
+
+    plant._sample_fn = failing
+    x2, o2 = plant.advance(plant.initial_state(), lengths, tops)
+    assert finer == [2 * plant.substeps]
+    assert np.max(np.abs(o1["z_unit"] - o2["z_unit"])) < 1e-5
+    assert o2["residual"] < 1e-6
+    np.testing.assert_allclose(x2.lengths, x1.lengths, rtol=0, atol=1e-12)
