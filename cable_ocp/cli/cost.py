@@ -57,6 +57,9 @@ CABLE_S_PER_ELEMENT_STEP = 1.5e-6
 #: loop around it as for the axial one), rounded up
 CABLE_S_PER_ELEMENT_STEP_BY_MODEL = {"axial": CABLE_S_PER_ELEMENT_STEP, "planar": 1e-5,
                                      "lumped3d": 1.2e-5}
+#: the lumped3d deployment plant (heave/lumped_deploy.py: CasADi's rootfinder, not compiled,
+#: Python per sample): measured 3.3 ms per step at about 10 segments on the loaded machine
+LUMPED_PAYOUT_S_PER_ELEMENT_STEP = 3e-4
 
 
 @dataclass
@@ -267,6 +270,10 @@ def _cable_cost(sc: Any, cost: Cost, runs: int) -> None:
     else:
         return
     steps = dur / dt
+    if dep is not None and dyn.simulation.model == "lumped3d":  # the pay-out plant
+        le = dyn.simulation.element_length or dyn.length / n
+        n = max(1, int(round(0.5 * (dyn.length + dep.final_length) / le)))  # on average
+        per_step = LUMPED_PAYOUT_S_PER_ELEMENT_STEP * n
     cost.add(f"{what} ({steps:.0f} steps of a {n}-element line each)",
              nruns * steps * per_step, 8.0 * steps * 12 * nruns, keys)
 

@@ -220,9 +220,12 @@ class PayoutLine:
         self.top_first = max([self.top_first] + body_nodes)
         self.force_scale = max(float(np.sum(np.abs(self.eq.node_weight))), 1.0)
         self._fns: dict[int, dict[str, ca.Function]] = {}
-        ts = ca.SX.sym("t")
-        self._top = ca.Function("top", [ts], [ca.vec(p.top_position(ts))])
-        self._top_v = ca.Function("top_v", [ts], [ca.jacobian(ca.vec(p.top_position(ts)), ts)])
+        ts, zs, zr = ca.SX.sym("t"), ca.SX.sym("dz"), ca.SX.sym("dz_rate")
+        ez = ca.DM([0.0, 0.0, 1.0])
+        # the top at t, raised by dz (m; the heave plant's boom tip, 0 for a scene's run)
+        self._top = ca.Function("top", [ts, zs], [ca.vec(p.top_position(ts)) + zs * ez])
+        self._top_v = ca.Function("top_v", [ts, zr], [
+            ca.jacobian(ca.vec(p.top_position(ts)), ts) + zr * ez])
         if p.fixed_a:
             self._a = ca.Function("a", [ts], [ca.vec(p.end_a_position(ts))])
 
@@ -335,23 +338,28 @@ class PayoutLine:
             return table.energy(strain)
         return smooth_strain_energy(strain, ea, self.params.slack_smoothing)
 
-    def _nodes(self, n: int, q: Any, t: Any) -> list[Any]:
+    def _nodes(self, n: int, q: Any, t: Any, dz: Any = 0.0) -> list[Any]:
         nodes = [q[3 * k:3 * k + 3] for k in range(self.free(n).size)]
         if self.params.fixed_a:
             nodes = [self._a(t)] + nodes
-        return nodes + [self._top(t)]
+        return nodes + [self._top(t, dz)]
 
-    def _winch_velocity(self, n: int, r: list[Any], ell: Any, ldot: Any, t: Any) -> Any:
+    def _winch_velocity(self, n: int, r: list[Any], ell: Any, ldot: Any, t: Any,
+                        dz_rate: Any = 0.0) -> Any:
         """The velocity of the material at the winch, v_b - L' (1 + eps_top) t (m/s)."""
         d = r[n] - r[n - 1]
-        return self._top_v(t) - ldot * d / ell[n - 1]
+        return self._top_v(t, dz_rate) - ldot * d / ell[n - 1]
 
     def functions(self, n: int) -> dict[str, ca.Function]:
         """The CasADi functions with ``n`` segments (built on first use, cached):
         ``step(q0, v0, l0, l1, t0, dt) -> (q1, v1)``, ``forces(q, v, l, t, ldot) ->
         (tensions, strains, top_force)``, ``energy(q, v, l, t, ldot) -> E`` (J) and
         ``balance(q0, v0, q1, l0, l1, t0, dt) -> (W_gravity, W_drag, W_winch, W_inflow)``
-        (J, the step's works of the energy identity in the module docstring).
+        (J, the step's works of the energy identity in the module docstring); and, for the
+        heave plant (:mod:`cable_ocp.heave.lumped_deploy`), ``step_top(q0, v0, l0, l1, t0,
+        dt, z0, z1)`` with the top raised by ``z0`` at t0 and ``z1`` at t0 + dt (m, linear
+        between) and ``forces_top(q, v, l, t, ldot, z, z_rate)`` (m, m/s): ``step`` and
+        ``forces`` are these at ``z = 0``.
 
         Parameters
         ----------
@@ -364,10 +372,11 @@ class PayoutLine:
         sx = ca.SX.sym
         q0, v0, q1 = sx("q0", 3 * nf), sx("v0", 3 * nf), sx("q1", 3 * nf)
         l0, l1, t0, dt = sx("l0", n), sx("l1", n), sx("t0"), sx("dt")
+        z0, z1 = sx("z0"), sx("z1")  # the top's extra height at t0 and t0 + dt, m
         free = [int(i) for i in self.free(n)]
         # -- the step: implicit midpoint, discrete-gradient tension -----------------------
         tm = t0 + 0.5 * dt
-        r0, r1 = self._nodes(n, q0, t0), self._nodes(n, q1, t0 + dt)
+        r0, r1 = self._nodes(n, q0, t0, z0), self._nodes(n, q1, t0 + dt, z1)
         rm = [0.5 * (a + b) for a, b in zip(r0, r1, strict=True)]
         lm = 0.5 * (l0 + l1)
         vm = (q1 - q0) / dt
@@ -376,7 +385,7 @@ class PayoutLine:
         vel = [vm[3 * k:3 * k + 3] for k in range(nf)]
         if self.params.fixed_a:
             vel = [(r1[0] - r0[0]) / dt] + vel
-        vel = vel + [self._winch_velocity(n, rm, lm, ldot, tm)]
+        vel = vel + [self._winch_velocity(n, rm, lm, ldot, tm, (z1 - z0) / dt)]
         terms = self._terms(n, rm, vel, lm)
         f = [terms["loads"][i] + terms["drag"][i] for i in range(n + 1)]
         pr = self.props(n)
@@ -403,26 +412,31 @@ class PayoutLine:
             vv0, vv1 = v0[3 * k:3 * k + 3], v1[3 * k:3 * k + 3]
             w_in = w_in + 0.125 * float(pr["mass_per_length"][n - 1]) * dl * (
                 ca.dot(vv0, vv0) + ca.dot(vv1, vv1))
+        zero = ca.vertcat(z0, z1)
         balance = ca.Function("balance", [q0, v0, q1, l0, l1, t0, dt],
-                              [w_load, w_drag, w_winch, w_in])
+                              ca.substitute([w_load, w_drag, w_winch, w_in], [zero],
+                                            [ca.DM.zeros(2)]))
         acc = (v1 - v0) / dt
         res = ca.vertcat(*[ca.mtimes(terms["mass"][i], acc[3 * k:3 * k + 3]) - f[i]
                            for k, i in enumerate(free)]) / self.force_scale
-        pars = ca.vertcat(v0, l0, l1, t0, dt, q0)
+        pars = ca.vertcat(v0, l0, l1, t0, dt, q0, z0, z1)
         g = ca.Function("g", [q1, pars], [res])
         rf = ca.rootfinder("rf", "newton", g, {"abstol": self.tol, "max_iter": self.max_iter,
                                                 "error_on_fail": False})
-        guess = q0 + dt * v0
+        guess = q0 + dt * v0 + ca.repmat(ca.vertcat(0.0, 0.0, z1 - z0), nf, 1)
         q1s = rf(guess, pars)
+        step_out = [q1s, 2.0 * (q1s - q0) / dt - v0, ca.norm_inf(ca.substitute(res, q1, q1s))]
+        names = (["q0", "v0", "l0", "l1", "t0", "dt"], ["q1", "v1", "residual"])
+        step_top = ca.Function("step_top", [q0, v0, l0, l1, t0, dt, z0, z1], step_out,
+                               names[0] + ["z0", "z1"], names[1])
         step = ca.Function("step", [q0, v0, l0, l1, t0, dt],
-                           [q1s, 2.0 * (q1s - q0) / dt - v0,
-                            ca.norm_inf(ca.substitute(res, q1, q1s))],
-                           ["q0", "v0", "l0", "l1", "t0", "dt"], ["q1", "v1", "residual"])
+                           ca.substitute(step_out, [zero], [ca.DM.zeros(2)]), *names)
         # -- one level: tensions, energy and powers ---------------------------------------
         q, v, ell, t, ld = sx("q", 3 * nf), sx("v", 3 * nf), sx("l", n), sx("t"), sx("ld")
-        r = self._nodes(n, q, t)
+        z, zr = sx("z"), sx("z_rate")
+        r = self._nodes(n, q, t, z)
         vv = [v[3 * k:3 * k + 3] for k in range(nf)]
-        vb = self._winch_velocity(n, r, ell, ld, t)
+        vb = self._winch_velocity(n, r, ell, ld, t, zr)
         if self.params.fixed_a:
             vv = [ca.SX.zeros(3)] + vv
         vall = vv + [vb]
@@ -439,15 +453,22 @@ class PayoutLine:
         # the force of the winch on the line: M_N a_b minus the forces on the winch's node
         # (the top segment's pull, its share of the weight, its drag), as the fixed-length
         # model's top_force
-        acc_b = ca.jacobian(self._top_v(t), t)
+        # (the scene's top acceleration: the heave plant's extra height z is linear over
+        # each step, and its top tension is the balance without the acceleration)
+        acc_b = ca.jacobian(self._top_v(t, zr), t)
         f_n = -tens[-1] * t_hat + one["loads"][n] + one["drag"][n]
         top_force = ca.mtimes(one["mass"][n], acc_b) - f_n
+        f_out = [ca.vertcat(*tens), ca.vertcat(*strains), top_force]
+        forces_top = ca.Function("forces_top", [q, v, ell, t, ld, z, zr], f_out)
+        still = ca.vertcat(z, zr)
         forces = ca.Function("forces", [q, v, ell, t, ld],
-                             [ca.vertcat(*tens), ca.vertcat(*strains), top_force])
+                             ca.substitute(f_out, [still], [ca.DM.zeros(2)]))
         kin = sum(0.5 * ca.dot(vall[i], ca.mtimes(one["mass"][i], vall[i])) for i in free)
-        energy = ca.Function("energy", [q, v, ell, t, ld], [kin + pot])
+        energy = ca.Function("energy", [q, v, ell, t, ld],
+                             [ca.substitute(kin + pot, still, ca.DM.zeros(2))])
         self._fns[n] = out = {"step": step, "forces": forces, "energy": energy,
-                              "balance": balance}
+                              "balance": balance, "step_top": step_top,
+                              "forces_top": forces_top}
         return out
 
     # -- states --------------------------------------------------------------------------
@@ -473,9 +494,9 @@ class PayoutLine:
         vv[fr] = np.asarray(v, float).reshape(-1, 3)
         if self.params.fixed_a:
             rr[0] = np.asarray(self._a(t), float).ravel()
-        rr[-1] = np.asarray(self._top(t), float).ravel()
+        rr[-1] = np.asarray(self._top(t, 0.0), float).ravel()
         ldot = self.length(t)[1]
-        vv[-1] = (np.asarray(self._top_v(t), float).ravel()
+        vv[-1] = (np.asarray(self._top_v(t, 0.0), float).ravel()
                   - ldot * (rr[-1] - rr[-2]) / lengths[-1])
         return PayoutState(float(t), np.asarray(lengths, float).copy(), rr, vv)
 

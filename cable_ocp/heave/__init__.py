@@ -44,6 +44,7 @@ loop_plants the plants of the closed loop: the design model with its winch, a li
 closed_loop the closed loop: any plant with any controller
 metrics     the results and metrics of a comparison
 deployment  lowering the unit through resonance, with gain scheduling
+lumped_deploy   the 3D lumped-mass line with pay-out as a deployment's plant
 cable_compare   :func:`compare` for every scene: on the design model, or on the cable
 (the scene schema lives in :mod:`cable_ocp.scene.heave`)
 """

@@ -12,8 +12,9 @@
   Huang (1992), ch. 5 (:class:`cable_ocp.dynamics.lumped.LumpedMassModel`): the same heave
   and pay-out at the top, the winch paying cable in and out through the line's top
   segment (whose unstretched length must stay within :data:`TOP_SEGMENT_RANGE` of its
-  nominal one: no re-meshing, so no ``[deployment]``); a current of any heading and
-  profile swings the line out of the vertical in 3D.
+  nominal one: no re-meshing; a ``[deployment]`` runs on the pay-out plant of
+  :mod:`cable_ocp.heave.lumped_deploy`); a current of any heading and profile swings the
+  line out of the vertical in 3D.
 
 The plants have the interface that the closed loop (:func:`cable_ocp.heave.closed_loop.run_loop`
 through :class:`cable_ocp.heave.loop_plants.CableLine`) and the identification experiment
@@ -124,6 +125,7 @@ def axial_twin(scene: DynamicScene) -> DynamicScene:
         return scene
     raw = copy.deepcopy(scene.raw)
     raw.setdefault("simulation", {})["model"] = "axial"
+    raw["simulation"].pop("element_length", None)  # the lumped3d pay-out's key
     raw.pop("top_motion", None)
     if isinstance(raw.get("environment"), dict):
         raw["environment"].pop("current", None)
@@ -303,13 +305,13 @@ class _OneLengthPlant(SampledCablePlant):
 
     def static_unit_height(self, length: float | np.ndarray) -> np.ndarray:
         """Static height of the unit (m) at the scene's length (the discrete equilibrium,
-        in the current if any). Known at that length only: a deployment (another length)
-        needs the axial plant."""
+        in the current if any). Known at that length only."""
         length = np.asarray(length, dtype=float)
         if np.any(np.abs(length - self.length0) > 1e-9 * self.length0):
             raise CableOCPError(f'the {self.model_name} heave plant knows the static depth at '
-                                f'the cable scene\'s length ({self.length0} m) only: a '
-                                '[deployment] needs simulation.model = "axial"')
+                                f'the cable scene\'s length ({self.length0} m) only (a '
+                                '[deployment] runs on the axial or the lumped3d pay-out '
+                                'plant)')
         return np.full(length.shape, self._z_static) if length.shape else np.asarray(
             self._z_static)
 

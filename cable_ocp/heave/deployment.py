@@ -3,9 +3,13 @@
 The heave scene's ``[deployment]`` table lowers the unit of ``[unit] cable_scene`` from the
 cable scene's length to ``final_length`` at ``payout_speed`` (after the warm-up, the speed
 ramped in and out over ``ramp_time``, 20 s held at the end) in the scene's sea, on the cable plant
-(:mod:`cable_ocp.heave.closed_loop`). On the way the first axial natural frequency
-``omega_1(L)`` falls through the wave band (Huang (1992), section 3.3.5 lowers through resonance
-without control), and the design model (6.2) changes with it: ``a(L) ~ 1 / omega_1(L)^2``.
+(:mod:`cable_ocp.heave.closed_loop`): the axial plant of a ``model = "axial"`` cable scene, or,
+for ``model = "lumped3d"``, the 3D lumped-mass line whose nodes enter and leave at the winch
+(:class:`cable_ocp.heave.lumped_deploy.LumpedPayoutPlant`: the unit lowered in a current of
+any heading and profile, e.g. one that turns with depth). On the way the first axial
+natural frequency ``omega_1(L)`` falls through the wave band (Huang (1992), section 3.3.5
+lowers through resonance without control), and the design model (6.2) changes with it:
+``a(L) ~ 1 / omega_1(L)^2``.
 
 Three compensators are compared on the same sea:
 
@@ -17,10 +21,11 @@ Three compensators are compared on the same sea:
   identification (6.2.3) at each length; the gain, the filter's gains and its sampled model
   are interpolated linearly in the paid-out length as it changes (gain scheduling).
 
-The unit's heave is measured from the static depth at the current paid-out length. Results
-per ``window`` metres of length: unit heave RMS, tension extremes at the unit and the top,
-slack samples. A Ctrl-C during a run keeps the runs finished (the others ``interrupted``,
-no per-length rows).
+The unit's heave is measured from the static depth at the current paid-out length (in the
+current, on the lumped3d plant). Results per ``window`` metres of length: unit heave RMS,
+tension extremes at the unit and the top, slack samples; on the lumped3d plant also the
+unit's mean horizontal position and the line's segments. A Ctrl-C during a run keeps the
+runs finished (the others ``interrupted``, no per-length rows).
 """
 
 from __future__ import annotations
@@ -36,6 +41,7 @@ from cable_ocp.heave.closed_loop import INTERRUPTED, LoopRun, make_wave, run_loo
 from cable_ocp.heave.design import cable_controller, design_damping, design_table
 from cable_ocp.heave.identify_cable import CableIdentification, identify_from_cable
 from cable_ocp.heave.loop_plants import CableLine, WinchedLine
+from cable_ocp.heave.lumped_deploy import LumpedPayoutPlant
 from cable_ocp.heave.metrics import (
     CableComparison,
     CableMetrics,
@@ -121,7 +127,7 @@ def deploy(scene: HeaveScene, design: HeaveScene, cable_scene: DynamicScene,
     design : HeaveScene
         The design scene.
     cable_scene : DynamicScene
-        The cable scene (axial).
+        The cable scene (axial or lumped3d).
     ident0 : CableIdentification
         The identification at the start.
     extra : dict
@@ -161,7 +167,9 @@ def deploy(scene: HeaveScene, design: HeaveScene, cable_scene: DynamicScene,
     T = warm + abs(L1 - L0) / dep.payout_speed + dep.ramp_time + 20.0
     n_ctrl = int(math.ceil(T / h))
     models = sm.build_models(design)
-    plant = AxialCablePlant(cable_scene, h)
+    lumped = cable_scene.simulation.model == "lumped3d"
+    plant = (LumpedPayoutPlant(cable_scene, h, (lo, hi)) if lumped
+             else AxialCablePlant(cable_scene, h))
     m = plant.substeps
     t_f, x0_f, _ = sm.wave_realisation(models.plant, n_ctrl * h + 2 * h,
                                        h / scene.simulation.substeps, scene.simulation.seed)
@@ -174,6 +182,7 @@ def deploy(scene: HeaveScene, design: HeaveScene, cable_scene: DynamicScene,
     total = n_ctrl * len(CONTROLLERS)
     bound = unstable_bound(wave.x0)
     runs: dict[str, LoopRun] = {}
+    offsets: dict[str, tuple[np.ndarray, np.ndarray]] = {}
     energy: dict[str, float | None] = {}
     for idx, name in enumerate(CONTROLLERS):
         table = {"passive": None, "lqr_fixed": fixed, "lqr_scheduled": sched}[name]
@@ -187,6 +196,9 @@ def deploy(scene: HeaveScene, design: HeaveScene, cable_scene: DynamicScene,
         try:
             runs[name] = run_loop(WinchedLine(scene, CableLine(plant), wave, noise), ctrl,
                                   n_ctrl, bound, prog)
+            if lumped:  # the unit's (x, y) and the segments at the end of each sample
+                offsets[name] = (np.array(plant.unit_xy).reshape(-1, 2),
+                                 np.array(plant.segment_counts, dtype=int))
         except (KeyboardInterrupt, Exception) as exc:  # a CasADi error may be a Ctrl-C
             # an interruption: keep the runs finished; this one and the rest: interrupted
             if not interrupt.is_interruption(exc):
@@ -200,7 +212,7 @@ def deploy(scene: HeaveScene, design: HeaveScene, cable_scene: DynamicScene,
     base = None
     for name, run in runs.items():
         d = cable_run_metrics(design, run, energy[name])
-        statuses[name], messages[name] = cable_status(run, d, "axial")
+        statuses[name], messages[name] = cable_status(run, d, cable_scene.simulation.model)
         if statuses[name] == "solved" or statuses[name] == "slack":
             lim = limit_warning(name, limit_excess(design, run.trace, run.commands, h))
             if lim:
@@ -215,6 +227,8 @@ def deploy(scene: HeaveScene, design: HeaveScene, cable_scene: DynamicScene,
 
     window = dep.window if dep.window is not None else (hi - lo) / 40.0
     table = _per_length(runs, scene, lo, hi, window)
+    if lumped:
+        _per_length_3d(table, runs, offsets, scene, lo, hi, window)
     w1 = np.array([first_frequency(cable_scene.with_overrides({"cable.length": float(L)}))
                    if abs(L - cable_scene.length) > 1e-9 else ident0.omega_1 for L in lengths])
     extra = dict(extra)
@@ -229,6 +243,10 @@ def deploy(scene: HeaveScene, design: HeaveScene, cable_scene: DynamicScene,
         "window": window, "per_length": table,
     }
     extra["cable_plant"] = {"segments": plant.model.n, "time_step": plant.dt, "substeps": m}
+    if lumped:
+        extra["cable_plant"].update(
+            model="lumped3d", element_length=plant.line.element_length,
+            segments_end={k: int(v[1][-1]) if v[1].size else None for k, v in offsets.items()})
     traces = {k: r.trace for k, r in runs.items()}
     return CableComparison(models.sigma_uncontrolled, metrics, traces, models, None, 0,
                               statuses, messages, base, warnings, stopped,
@@ -281,6 +299,37 @@ def _per_length(runs: dict[str, LoopRun], sc: HeaveScene, lo: float, hi: float,
                 (tr.min_element_tension <= 0.0) & kok & (kidx == j))))
         out[name] = rows
     return out
+
+
+def _per_length_3d(table: dict[str, Any], runs: dict[str, LoopRun],
+                   offsets: dict[str, tuple[np.ndarray, np.ndarray]], sc: HeaveScene,
+                   lo: float, hi: float, window: float) -> None:
+    """Add to the per-length ``table`` the unit's mean horizontal position (``unit_x``,
+    ``unit_y``, m) and the largest number of the line's segments per window (lumped3d)."""
+    edges = np.arange(lo, hi + 0.5 * window, window)
+    if edges[-1] < hi - 1e-9:
+        edges = np.append(edges, hi)
+    n_win = edges.size - 1
+    warm = sc.simulation.warmup
+    h = sc.controller.sample_time
+    for name, (xy, segs) in offsets.items():
+        tr = runs[name].trace
+        m = (tr.t.size - 1) // max(1, xy.shape[0]) if xy.shape[0] else 1
+        k = np.arange(xy.shape[0])
+        lk = tr.length[np.minimum((k + 1) * m, tr.length.size - 1)]
+        idx = np.clip(np.searchsorted(edges, lk, side="right") - 1, 0, n_win - 1)
+        ok = (k + 1) * h >= warm - 1e-12
+        rows = table[name]
+        rows["unit_x"], rows["unit_y"], rows["segments"] = [], [], []
+        for j in range(n_win):
+            sel = ok & (idx == j)
+            if not np.any(sel):
+                for key in ("unit_x", "unit_y", "segments"):
+                    rows[key].append(None)
+                continue
+            rows["unit_x"].append(float(np.mean(xy[sel, 0])))
+            rows["unit_y"].append(float(np.mean(xy[sel, 1])))
+            rows["segments"].append(int(np.max(segs[sel])))
 
 
 def summary(per_length: dict[str, Any], sample_time: float) -> dict[str, dict[str, Any]]:

@@ -810,7 +810,7 @@ def _check_printed(sc: HeaveScene) -> None:
 def _check_cable(sc: HeaveScene) -> None:
     """The cable-scene keys: ``[unit] cable_scene`` readable and an axial, planar or
     lumped3d line with a unit, ``[simulation] plant = "cable"`` and ``[deployment]`` only
-    with a cable scene (and an axial one)."""
+    with a cable scene (an axial or lumped3d one)."""
     if sc.unit.cable_scene is None:
         if sc.simulation.plant == "cable":
             raise CableOCPError('simulation.plant = "cable": needs unit.cable_scene = "PATH" '
@@ -827,11 +827,11 @@ def _check_cable(sc: HeaveScene) -> None:
             'the heave plant and the identification take model = "axial" (a vertical line), '
             '"planar" (a line in the x-z plane, in a current along x) or "lumped3d" (a line '
             "in 3D, in any current)")
-    if model != "axial" and sc.deployment is not None:
+    if model == "planar" and sc.deployment is not None:
         raise CableOCPError(
             f"[deployment] with unit.cable_scene = {sc.unit.cable_scene!r}: its "
-            f'simulation.model = "{model}"; a deployment (a changing length, a schedule over '
-            'lengths) needs model = "axial"')
+            'simulation.model = "planar"; a deployment (a changing length, a schedule over '
+            'lengths) needs model = "axial" or "lumped3d"')
     if model != "axial" and dyn.unit is None:
         raise CableOCPError(f"unit.cable_scene = {sc.unit.cable_scene!r}: needs a [unit] at "
                             "end_a (the unit the winch lifts), not an anchor")

@@ -245,13 +245,13 @@ def test_identification_reference_frequency_of_lumped3d_lines(tmp_path: Path) ->
     assert first_frequency(two) == pytest.approx(omega, rel=1e-9)
 
 
-def test_lumped3d_deployment_and_out_of_range_lengths_are_refused() -> None:
+def test_lumped3d_fixed_plant_refuses_other_lengths() -> None:
+    """A ``[deployment]`` on a lumped3d line is accepted (it runs on the pay-out plant,
+    tests/heave/test_deployment_lumped3d.py); the fixed-length plant refuses other lengths."""
     doc = {"sea": {"modal_frequency": 0.7},
            "unit": {"cable_scene": "line_6_3_6_lumped3d.toml"},
            "deployment": {"final_length": 200.0, "payout_speed": 1.0}}
-    with pytest.raises(CableOCPError, match=r'\[deployment\].*simulation.model = "lumped3d".*'
-                                            r'model = "axial"'):
-        scene_from_dict(doc, DYN)
+    assert scene_from_dict(doc, DYN).deployment.final_length == 200.0
     p = cable_plant(_lumped(DYN / "line_6_3_6.toml"), 0.05)
     with pytest.raises(CableOCPError, match="deployment"):
         p.static_unit_height(120.0)
