@@ -11,12 +11,14 @@ import functools
 import json
 import math
 
+import casadi as ca
 import numpy as np
 import pytest
 from scipy.integrate import quad
 
 from cable_ocp.cli.dynamics import _series_table
 from cable_ocp.dynamics import load_dynamic_scene, simulate
+from cable_ocp.dynamics.lumped_kernel import KERNEL_PARAMS, segment_kernel_expr
 from cable_ocp.dynamics.planar import PlanarModel
 from cable_ocp.errors import CableOCPError
 from cable_ocp.numerics.quadrature import gauss_legendre
@@ -154,6 +156,38 @@ def test_the_lumped_slack_spell_runs_at_a_small_step_too() -> None:
     assert res.segment_tensions.min() >= -1e-9
     assert res.snap["peak_tension"] == pytest.approx(_dropped_lumped().snap["peak_tension"],
                                                      abs=0.5)
+
+
+@pytest.mark.parametrize("c", [C, 0.0])
+def test_the_lumped_kernel_newton_block_is_the_derivative_of_its_pull(c: float) -> None:
+    """The compiled kernel's tension block kb (lumped_kernel.segment_kernel_expr, the
+    midpoint: mid = 1, beta = 1/2, gamma = 1/dt) against CasADi's derivative of the
+    segment's pull on end a in its end b's new position (the damping rate follows from
+    the chord lengths, so that derivative is the whole tension block; no drag in air
+    without drag coefficients), taut, slack, across the kink both ways, on a tiny
+    interval (the mean's series) and where the damper would push: to 1e-9 of the taut
+    stiffness EA / l (rounding: the slack law's (x + S) / 2 cancels in its derivative)."""
+    fn = segment_kernel_expr("vector")
+    sym = {k: ca.SX.sym(k, 3) for k in ("ra0", "rb0", "ra1", "rb1", "va", "vb", "u")}
+    par, sc = ca.SX.sym("par", len(KERNEL_PARAMS)), ca.SX.sym("sc", 4)
+    fa, _, _, kb, _ = fn(*sym.values(), par, sc)
+    f = ca.Function("f", [*sym.values(), par, sc], [kb, ca.jacobian(fa, sym["rb1"])])
+    ell, dt = 1.0, 1e-3
+    pars = dict(l=ell, ea=EA, c=c, d=0.01, cn=0.0, ct=0.0, en=0.0, et=0.0, rho=0.0,
+                delta=0.01, delta_t=0.01, blend=0.1)
+    pv = [pars[k] for k in KERNEL_PARAMS]
+    rng = np.random.default_rng(7)
+    for e0, e1 in [(0.01, 0.0102), (-1e-3, 1e-3), (1e-3, -1e-3), (-1e-7, 2e-7),
+                   (4e-6, 3e-6), (0.01, 0.01 + 1e-9), (-0.01, -0.0099), (2e-3, 1e-3)]:
+        t0 = rng.normal(size=3)
+        t0 /= np.linalg.norm(t0)
+        t1 = t0 + 1e-3 * rng.normal(size=3)
+        t1 /= np.linalg.norm(t1)
+        b0, b1 = ell * (1.0 + e0) * t0, ell * (1.0 + e1) * t1
+        z3 = np.zeros(3)
+        kb_v, jac = f(z3, b0, z3, b1, z3, (b1 - b0) / dt, z3, pv, [dt, 1.0, 0.5, 1.0 / dt])
+        kb_m = np.asarray(kb_v).reshape(3, 3)  # row-major
+        assert np.abs(kb_m - np.asarray(jac)).max() <= 1e-9 * EA / ell, (e0, e1)
 
 
 def test_the_dropped_start_is_the_raised_slack_line() -> None:

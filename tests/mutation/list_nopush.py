@@ -25,7 +25,8 @@ MUTATIONS = [
          file="cable_ocp/dynamics/lumped_kernel.py",
          old="        gamma * dtrate / ell * uet)",
          new="        0.0 * dtrate / ell * uet)",
-         tests=(SNAP + "::test_the_lumped_line_cannot_push_and_its_snap_matches_the_closed_form",),
+         tests=(SNAP + "::test_the_lumped_kernel_newton_block_is_the_derivative_of_its_pull",
+                SNAP + "::test_the_lumped_line_cannot_push_and_its_snap_matches_the_closed_form"),
          description="lumped kernel: the Newton blocks leave out the damping's derivative in "
                      "the strain rate (Newton converges linearly, not quadratically)"),
 ]
