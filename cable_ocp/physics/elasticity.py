@@ -53,8 +53,12 @@ object. A material is an object with the :class:`AxialMaterial` interface:
   (``creep``).
 
 Where the models call them: the axial model :func:`axial_law_tension` (compression
-allowed), the planar model :func:`cable_material`, the lumped model :func:`strain_tension`,
-:func:`strain_switch` and :func:`strain_stiffness` (its segment law and compiled kernel), the
+allowed), the planar model :func:`cable_material` (over a step
+:func:`mean_material_tension`, :func:`mean_material_switch`), the lumped model
+:func:`strain_tension` and :func:`strain_switch` at an instant and
+:func:`mean_strain_tension`, :func:`mean_strain_switch` over a step (its segment law and
+compiled kernel; both models pass a damped element's elastic plus damping tension through
+:func:`smooth_positive`: a cable cannot push), the
 statics ``Cable.strain_at`` (:meth:`TensionStrainTable.strain_of`). The standard linear
 solid: the axial model through :func:`axial_law_tension` (its e_v in the state, the
 model's own time schemes), the planar and lumped models' midpoint steps through
@@ -215,25 +219,6 @@ def strain_switch(strain: Any, axial_stiffness: Any, slack_smoothing: Any,
     if table is None:
         return taut_switch(strain, axial_stiffness, slack_smoothing)
     return positive_switch(table.tension_of(strain), slack_smoothing)
-
-
-def strain_stiffness(strain: Any, axial_stiffness: Any, slack_smoothing: Any,
-                     table: TensionStrainTable | None = None) -> Any:
-    """d/de of :func:`strain_tension`, N.
-
-    Parameters
-    ----------
-    strain : float, array or casadi expression
-        Axial strain (-).
-    axial_stiffness : float or casadi expression
-        EA, N.
-    slack_smoothing : float or casadi expression
-        delta_T, N.
-    table : TensionStrainTable, optional
-        The tension-strain law.
-    """
-    tangent = axial_stiffness if table is None else table.tangent(strain)
-    return tangent * strain_switch(strain, axial_stiffness, slack_smoothing, table)
 
 
 def smooth_tension(strain: Any, axial_stiffness: Any, slack_smoothing: Any) -> Any:
