@@ -454,13 +454,17 @@ class LumpedMassModel:
             tension, x1 - x0 = dt (v0 + v1) / 2 and
             M(x_m) (v1 - v0) = dt [F_T(x0, x1) + F_other(x_m, (x1 - x0) / dt, t0 + dt/2)],
             where each segment pulls with T_bar (d0 + d1) / (|d0| + |d1|), T_bar the mean
-            of T over [eps0, eps1] (3-point Gauss) and d the segment vectors at the two
-            levels (the energy-momentum method of Simo & Tarnow (1992), Gonzalez (1996)).
-            The elastic work then equals the change of the strain energy, weights are
-            constant forces and the mass is constant in air, so an undamped run in air
-            conserves the energy (up to the Newton tolerance and the quadrature of T where a
-            segment turns slack). No numerical damping: |amplification| = 1 for every
-            undamped linear mode, at any dt.
+            of T over [eps0, eps1] (exact for EA e, also across the no-compression kink;
+            3-point Gauss for a tension-strain table:
+            :func:`~cable_ocp.dynamics.lumped_equations.interval_tension`) and d the
+            segment vectors at the two levels (the energy-momentum method of Simo &
+            Tarnow (1992), Gonzalez (1996)). The elastic work then equals the change of the
+            strain energy, weights are constant forces and the mass is constant in air, so
+            an undamped run in air conserves the energy (up to the Newton tolerance; with a
+            table, up to the quadrature of T where a segment turns slack). A damped
+            segment's elastic plus damping tension cannot push (smooth_positive). No
+            numerical damping: |amplification| = 1 for every undamped linear mode, at any
+            dt.
         ``"trapezoidal"``: x1 - x0 = dt (v0 + v1)/2, v1 - v0 = dt (a0 + a1)/2 with
             M(x1) a1 = F(x1, v1, t1) (Newmark's average acceleration). Same linear stability
             as the midpoint rule, not energy-conserving for the nonlinear springs.

@@ -72,7 +72,7 @@ class DrivenLumpedStep:
             r1 - r0 = dt (v0 + v1) / 2
 
         with the discrete-gradient tension of each segment: the mean of T over
-        ``[eps0, eps1]`` (3-point Gauss) along ``(d0 + d1) / (|d0| + |d1|)``, where the
+        ``[eps0, eps1]`` (exact for EA e) along ``(d0 + d1) / (|d0| + |d1|)``, where the
         strain of each level is taken with that level's unstretched length
         (``eps_k = |d_k| / l_k - 1``), and the material damping at the strain rate
         ``(eps1 - eps0) / dt`` (:func:`~cable_ocp.dynamics.lumped_equations.segment_tension`).

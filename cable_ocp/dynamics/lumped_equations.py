@@ -12,7 +12,13 @@ segment's length as inputs (:mod:`cable_ocp.dynamics.lumped_driven`, the heave p
   ``T = (EA eps + sqrt((EA eps)^2 + delta_T^2)) / 2`` plus the material damping
   ``c deps/dt`` while taut (:mod:`cable_ocp.physics.elasticity`), along the chord (one
   level), or, over a time step, the discrete gradient of Simo & Tarnow (1992) / Gonzalez
-  (1996): the mean of T over ``[eps0, eps1]`` (3-point Gauss) along ``(d0 + d1) / (|d0| + |d1|)``;
+  (1996): the mean of T over ``[eps0, eps1]`` (exact for EA e,
+  :func:`~cable_ocp.physics.elasticity.mean_strain_tension`) along
+  ``(d0 + d1) / (|d0| + |d1|)``, its damping switch the mean switch over the interval
+  (:func:`~cable_ocp.physics.elasticity.mean_strain_switch`). A damped segment cannot push:
+  elastic plus damping tension pass through
+  :func:`~cable_ocp.physics.elasticity.smooth_positive` (:func:`interval_tension`), as in
+  the planar model;
 * a segment's drag (:func:`segment_drag`): the drag per stretched length of
   :func:`cable_ocp.physics.drag.drag_per_length` (in the kernel its form with the
   Jacobian, :func:`cable_ocp.physics.drag.line_drag_kernel`) in the relative flow ``U(z) - (v_a +
@@ -34,7 +40,6 @@ import numpy as np
 
 from cable_ocp.dynamics.bending_terms import LineBending
 from cable_ocp.dynamics.lumped_params import LumpedParams
-from cable_ocp.numerics.quadrature import gauss_legendre
 from cable_ocp.physics.added_mass import (
     added_mass_per_length,
     line_added_mass,
@@ -44,19 +49,17 @@ from cable_ocp.physics.drag import drag_per_length
 from cable_ocp.physics.drag import point_drag as physics_point_drag
 from cable_ocp.physics.elasticity import (
     material_damping,
+    mean_strain_switch,
+    mean_strain_tension,
+    smooth_positive,
     smooth_strain_energy,
     strain_switch,
     strain_tension,
 )
 
-__all__ = ["GAUSS_W", "GAUSS_X", "LumpedEquations", "added_mass_share", "node_loads",
-           "node_masses", "node_weights", "point_drag", "point_drag_items", "segment_drag",
-           "segment_tension"]
-
-#: 3-point Gauss-Legendre rule on [-1, 1] (:func:`cable_ocp.numerics.quadrature.gauss_legendre`),
-#: its weights halved: the mean of the tension over a strain interval
-GAUSS_X = tuple(float(v) for v in gauss_legendre(3)[0])
-GAUSS_W = tuple(0.5 * float(v) for v in gauss_legendre(3)[1])
+__all__ = ["LumpedEquations", "added_mass_share", "interval_tension", "node_loads",
+           "node_masses", "node_weights", "no_push", "point_drag", "point_drag_items",
+           "segment_drag", "segment_tension"]
 
 
 # --------------------------------------------------------------------------------------
@@ -73,12 +76,13 @@ def segment_tension(d1: Any, ell1: Any, ea: Any, c: Any, delta_t: Any, *,
     taut(eps1)`` where the ends' relative velocity ``dv`` (m/s) is given, with
     ``deps/dt = d1 . dv / (|d1| l1)`` (less ``|d1| l1' / l1^2`` where the unstretched
     length changes at ``length_rate``, m/s). Two levels (``d0`` given, the start of a step
-    of ``dt`` seconds): the mean of T over ``[eps0, eps1]`` (3-point Gauss) along
-    ``(d0 + d1) / (|d0| + |d1|)``, plus ``c deps/dt taut(eps_m)`` with ``deps/dt =
-    (|d1| - |d0|) / (l dt)`` (``(eps1 - eps0) / dt`` where ``ell0`` differs from
+    of ``dt`` seconds): :func:`interval_tension`, the mean of T over ``[eps0, eps1]`` plus
+    ``c deps/dt`` times the mean switch, along ``(d0 + d1) / (|d0| + |d1|)``, with
+    ``deps/dt = (|d1| - |d0|) / (l dt)`` (``(eps1 - eps0) / dt`` where ``ell0`` differs from
     ``ell1``). With ``mid`` (the compiled kernel's switch between the two, 1 or 0, where
     ``d0 = d1`` when 0) the damping rate is ``mid`` times the two-level one plus ``1 - mid``
-    times the one-level one.
+    times the one-level one. Where damped (c > 0), elastic plus damping tension pass
+    through :func:`no_push` at both levels: the segment cannot push.
 
     Parameters
     ----------
@@ -112,10 +116,11 @@ def segment_tension(d1: Any, ell1: Any, ea: Any, c: Any, delta_t: Any, *,
     Returns
     -------
     dict
-        ``tension`` (N, with the damping), ``num`` and ``den`` (the pull on end a is
+        ``tension`` (N, with the damping, >= 0), ``num`` and ``den`` (the pull on end a is
         ``tension * num / den``, end b takes the opposite), ``strain`` (eps1), ``l1`` (m),
-        ``damping`` (N, 0 where there is none) and, for two levels, ``l0``, ``em``,
-        ``de`` (the strain interval's centre and half width).
+        ``damping`` (N, the damping term before :func:`no_push`, 0 where there is none)
+        and, for two levels, ``l0``, ``e0`` (eps0) and ``rate`` (the damping's strain
+        rate, 1/s).
     """
     l1 = ca.norm_2(d1)
     e1 = l1 / ell1 - 1.0
@@ -128,14 +133,11 @@ def segment_tension(d1: Any, ell1: Any, ea: Any, c: Any, delta_t: Any, *,
             if length_rate is not None:
                 rate = rate - l1 * length_rate / ell1**2  # d/dt (|d| / l) with l changing
             damp = _damping(rate, e1 - shift, c, ea, delta_t, table)
-            tens = tens + damp
+            tens = no_push(tens + damp, c, delta_t)
         out.update(tension=tens, num=d1, den=l1, damping=damp)
         return out
     l0 = ca.norm_2(d0)
     e0 = l0 / (ell1 if ell0 is None else ell0) - 1.0
-    em, de = 0.5 * (e0 + e1), 0.5 * (e1 - e0)
-    tbar = sum(w * strain_tension(em - shift + g * de, ea, delta_t, table)
-               for g, w in zip(GAUSS_X, GAUSS_W, strict=True))
     if ell0 is None:  # a constant unstretched length
         step_rate = (l1 - l0) / (ell1 * dt)
     else:
@@ -144,10 +146,57 @@ def segment_tension(d1: Any, ell1: Any, ea: Any, c: Any, delta_t: Any, *,
         rate = mid * (l1 - l0) / (ell1 * dt) + (1.0 - mid) * ca.dot(d1, dv) / (l1 * ell1)
     else:
         rate = step_rate
-    damp = _damping(rate, em - shift, c, ea, delta_t, table)
-    tbar = tbar + damp
-    out.update(tension=tbar, num=d0 + d1, den=l0 + l1, damping=damp, l0=l0, em=em, de=de)
+    tbar, damp = interval_tension(e0, e1, rate, ea, c, delta_t, table, shift)
+    out.update(tension=tbar, num=d0 + d1, den=l0 + l1, damping=damp, l0=l0, e0=e0, rate=rate)
     return out
+
+
+def interval_tension(strain0: Any, strain1: Any, rate: Any, ea: Any, c: Any, delta_t: Any,
+                     table: Any = None, shift: Any = 0.0) -> tuple[Any, Any]:
+    """A segment's tension over a time step, N, and its damping term, N: the mean of the
+    no-compression law over the step's strains
+    (:func:`~cable_ocp.physics.elasticity.mean_strain_tension`: exact for EA e, also across
+    the kink at e = 0) plus ``c rate`` times the mean taut switch
+    (:func:`~cable_ocp.physics.elasticity.mean_strain_switch`), through :func:`no_push`
+    where damped. The planar step's law (:mod:`cable_ocp.dynamics.planar`).
+
+    Parameters
+    ----------
+    strain0, strain1 : float or casadi expression
+        The strains at the start and end of the step (-).
+    rate : float or casadi expression
+        The damping's strain rate, 1/s.
+    ea, c, delta_t : float or casadi expression
+        EA (N), the material damping c (N s) and the smoothing force scale (N).
+    table : TensionStrainTable, optional
+        A tension-strain law in place of EA e.
+    shift : float or casadi expression
+        A strain subtracted from both strains (-; :func:`segment_tension`).
+    """
+    a, b = strain0 - shift, strain1 - shift
+    damp = c * rate * mean_strain_switch(a, b, ea, delta_t, table)
+    return no_push(mean_strain_tension(a, b, ea, delta_t, table) + damp, c, delta_t), damp
+
+
+def no_push(tension: Any, c: Any, delta_t: Any) -> Any:
+    """A segment's elastic plus damping tension that cannot push, N:
+    :func:`~cable_ocp.physics.elasticity.smooth_positive` of it where the segment is damped
+    (c > 0; >= 0, above max(T, 0) by at most delta_T / 2); unchanged where c = 0 (the
+    elastic law alone is positive already, and the step's tension stays the discrete
+    gradient of the strain energy: an undamped line conserves energy).
+
+    Parameters
+    ----------
+    tension : float or casadi expression
+        Elastic plus damping tension, N.
+    c : float or casadi expression
+        The material damping, N s.
+    delta_t : float or casadi expression
+        The smoothing force scale delta_T, N.
+    """
+    if isinstance(c, (ca.SX, ca.MX)):
+        return ca.if_else(c > 0, smooth_positive(tension, delta_t), tension)
+    return smooth_positive(tension, delta_t) if float(c) > 0 else tension
 
 
 def _damping(rate: Any, strain: Any, c: Any, ea: Any, delta_t: Any, table: Any) -> Any:

@@ -21,9 +21,8 @@ import casadi as ca
 import numpy as np
 
 from cable_ocp.dynamics.lumped_equations import (
-    GAUSS_W,
-    GAUSS_X,
     added_mass_share,
+    interval_tension,
     point_drag,
     point_drag_items,
     segment_tension,
@@ -32,7 +31,6 @@ from cable_ocp.errors import CableOCPError
 from cable_ocp.numerics.block_tridiagonal import block_tridiagonal_solve
 from cable_ocp.numerics.compile import compile_function
 from cable_ocp.physics.drag import line_drag_kernel, point_drag_jacobian
-from cable_ocp.physics.elasticity import strain_stiffness, strain_switch
 
 if TYPE_CHECKING:
     from cable_ocp.dynamics.lumped import LumpedMassModel
@@ -615,14 +613,16 @@ def segment_kernel_expr(drag_law: str, table: Any = None, solid: bool = False
 
     With ``mid = 1`` the tension is the discrete gradient between the levels (mean of T
     over [eps0, eps1] along (d0 + d1) / (|d0| + |d1|)) and the damping c (|d1| - |d0|) /
-    (l dt); with ``mid = 0`` (and r0 = r1) it is T(eps1) along d1 and c d1.(vb - va) /
-    (|d1| l). Drag and added mass are taken at the mean positions (r0 + r1) / 2.
+    (l dt) times the mean switch; with ``mid = 0`` (and r0 = r1) it is T(eps1) along d1 and
+    c d1.(vb - va) / (|d1| l). Elastic plus damping tension cannot push
+    (:func:`~cable_ocp.dynamics.lumped_equations.interval_tension`). Drag and added mass are
+    taken at the mean positions (r0 + r1) / 2.
 
     Outputs: the forces on nodes a and b (N), the added-mass share of each node (3x3,
-    kg, row-major 9-vector), and the Newton blocks ``kb`` (the tension's stiffness: the
-    derivative of the mean tension along e e^T plus T / |d| across, times beta = 1/2 for
-    the midpoint, 1 otherwise; plus gamma (c/l) H e e^T) and ``cb`` = gamma |d| D / 4
-    (N/m) of :meth:`LumpedMassModel.step_function`.
+    kg, row-major 9-vector), and the Newton blocks ``kb`` (the tension's stiffness: its
+    derivative in eps1 along e e^T plus T / |d| across, times beta = 1/2 for the midpoint,
+    1 otherwise; plus gamma (dT/drate / l) e e^T, the damping's) and ``cb`` =
+    gamma |d| D / 4 (N/m) of :meth:`LumpedMassModel.step_function`.
 
     Parameters
     ----------
@@ -647,11 +647,15 @@ def segment_kernel_expr(drag_law: str, table: Any = None, solid: bool = False
     d1 = rb1 - ra1
     st_ = segment_tension(d1, ell, ea, c, delta_t, d0=d0, dt=dt, dv=vb - va, mid=mid,
                           table=table, shift=shift)
-    l0, l1, em, de, tbar = st_["l0"], st_["l1"], st_["em"], st_["de"], st_["tension"]
+    l0, l1, tbar = st_["l0"], st_["l1"], st_["tension"]
     f_el = tbar * st_["num"] / st_["den"]
-    # derivative of the Gauss mean with respect to eps1 (the midpoint's Newton matrix)
-    dtbar = sum(w * strain_stiffness(em - shift + g * de, ea, delta_t, table) * 0.5 * (1.0 + g)
-                for g, w in zip(GAUSS_X, GAUSS_W, strict=True))
+    # the step's tension's partial derivatives in eps1 and in the damping's strain rate
+    # (the mean law, its mean switch and the no-push cap: lumped_equations.interval_tension,
+    # differentiated by CasADi and evaluated at the segment's eps1 and rate)
+    e1s, rs = ca.SX.sym("e1"), ca.SX.sym("rate")
+    t_s = interval_tension(st_["e0"], e1s, rs, ea, c, delta_t, table, shift)[0]
+    dtbar, dtrate = ca.substitute([ca.jacobian(t_s, e1s), ca.jacobian(t_s, rs)], [e1s, rs],
+                                  [st_["strain"], st_["rate"]])
     # drag and added mass at the mean positions
     dm = 0.5 * (d0 + d1)
     lm = ca.norm_2(dm)
@@ -666,11 +670,13 @@ def segment_kernel_expr(drag_law: str, table: Any = None, solid: bool = False
     # Newton blocks
     # d(T u)/d d1 with u = (d0 + d1) / (|d0| + |d1|), e1 = d1 / |d1|:
     # (dT/deps1 / l) u e1^T + T (I - u e1^T) / (|d0| + |d1|), times 2 beta (beta = 1/2 for
-    # the midpoint, where T is the Gauss mean; 1 with r0 = r1, where dtbar = T'/2 and u =
-    # e1). Not symmetric for the midpoint: the strain at level 1 follows e1, the force u.
+    # the midpoint, where T is the mean over [eps0, eps1]; 1 with r0 = r1, where T is
+    # symmetric in eps0, eps1, so dtbar = T'/2, and u = e1), plus the damping's
+    # (dT/drate) (drate/d d1) = (dT/drate) gamma e1^T / l. Not symmetric for the midpoint:
+    # the strain at level 1 follows e1, the force u.
     uet = ca.mtimes((d0 + d1) / (l0 + l1), (d1 / l1).T)
-    kb = 2.0 * beta * (dtbar / ell * uet + tbar / (l0 + l1) * (eye - uet)) + gamma * c / ell * (
-        strain_switch(em - shift, ea, delta_t, table) * uet)
+    kb = 2.0 * beta * (dtbar / ell * uet + tbar / (l0 + l1) * (eye - uet)) + (
+        gamma * dtrate / ell * uet)
     cb = 0.25 * gamma * lm * dmat
     # the terms share subexpressions that their functions build again (the tangent's
     # t t^T, the strain switch, ...): merged once (the same operations, fewer of them)

@@ -53,8 +53,12 @@ object. A material is an object with the :class:`AxialMaterial` interface:
   (``creep``).
 
 Where the models call them: the axial model :func:`axial_law_tension` (compression
-allowed), the planar model :func:`cable_material`, the lumped model :func:`strain_tension`,
-:func:`strain_switch` and :func:`strain_stiffness` (its segment law and compiled kernel), the
+allowed), the planar model :func:`cable_material` (over a step
+:func:`mean_material_tension`, :func:`mean_material_switch`), the lumped model
+:func:`strain_tension` and :func:`strain_switch` at an instant and
+:func:`mean_strain_tension`, :func:`mean_strain_switch` over a step (its segment law and
+compiled kernel; both models pass a damped element's elastic plus damping tension through
+:func:`smooth_positive`: a cable cannot push), the
 statics ``Cable.strain_at`` (:meth:`TensionStrainTable.strain_of`). The standard linear
 solid: the axial model through :func:`axial_law_tension` (its e_v in the state, the
 model's own time schemes), the planar and lumped models' midpoint steps through
@@ -215,25 +219,6 @@ def strain_switch(strain: Any, axial_stiffness: Any, slack_smoothing: Any,
     if table is None:
         return taut_switch(strain, axial_stiffness, slack_smoothing)
     return positive_switch(table.tension_of(strain), slack_smoothing)
-
-
-def strain_stiffness(strain: Any, axial_stiffness: Any, slack_smoothing: Any,
-                     table: TensionStrainTable | None = None) -> Any:
-    """d/de of :func:`strain_tension`, N.
-
-    Parameters
-    ----------
-    strain : float, array or casadi expression
-        Axial strain (-).
-    axial_stiffness : float or casadi expression
-        EA, N.
-    slack_smoothing : float or casadi expression
-        delta_T, N.
-    table : TensionStrainTable, optional
-        The tension-strain law.
-    """
-    tangent = axial_stiffness if table is None else table.tangent(strain)
-    return tangent * strain_switch(strain, axial_stiffness, slack_smoothing, table)
 
 
 def smooth_tension(strain: Any, axial_stiffness: Any, slack_smoothing: Any) -> Any:
@@ -777,38 +762,83 @@ def mean_taut_switch(strain0: Any, strain1: Any, axial_stiffness: Any,
     return 0.5 * (1.0 + (x0 + x1) / (_sqrt(x0 * x0 + d * d) + _sqrt(x1 * x1 + d * d)))
 
 
-def mean_material_tension(material: Any, strain0: Any, strain1: Any) -> Any:
-    """Mean of a material's no-compression tension over [e0, e1], N: the discrete-gradient
-    tension of the planar step.
+def mean_strain_tension(strain0: Any, strain1: Any, axial_stiffness: Any,
+                        slack_smoothing: Any, table: TensionStrainTable | None = None) -> Any:
+    """Mean of :func:`strain_tension` over the strain interval [e0, e1], N: the
+    discrete-gradient tension of the planar and lumped steps.
 
-    :class:`LinearElastic`: exact (:func:`mean_smooth_tension`, from the strain energy,
-    exact across the kink at e = 0); another material (a tension-strain table): the
-    3-point Gauss mean of its ``tension`` (its ``energy`` is the table's own law, not the
-    smoothed one, so its difference quotient is not the mean).
+    The linear law: exact (:func:`mean_smooth_tension`, from the strain energy, exact across
+    the kink at e = 0); a tension-strain table: the 3-point Gauss mean (its ``energy`` is
+    the table's own law, not the smoothed one, so its difference quotient is not the mean).
 
     Parameters
     ----------
-    material : AxialMaterial
-        The material (:func:`cable_material`).
     strain0, strain1 : float, array or casadi expression
         The strains e0, e1 at the ends of the interval (-).
+    axial_stiffness : float or casadi expression
+        EA, N (the linear law).
+    slack_smoothing : float or casadi expression
+        delta_T, N (> 0).
+    table : TensionStrainTable, optional
+        The tension-strain law.
     """
-    if isinstance(material, LinearElastic):
-        return mean_smooth_tension(strain0, strain1, material.axial_stiffness,
-                                   material.slack_smoothing)
+    if table is None:
+        return mean_smooth_tension(strain0, strain1, axial_stiffness, slack_smoothing)
     from cable_ocp.numerics.quadrature import gauss_legendre
 
     x, w = gauss_legendre(3)
     em, de = 0.5 * (strain0 + strain1), 0.5 * (strain1 - strain0)
-    return sum(0.5 * float(wi) * material.tension(em + float(xi) * de)
+    return sum(0.5 * float(wi) * strain_tension(em + float(xi) * de, axial_stiffness,
+                                                slack_smoothing, table)
                for xi, wi in zip(x, w, strict=True))
+
+
+def mean_strain_switch(strain0: Any, strain1: Any, axial_stiffness: Any,
+                       slack_smoothing: Any, table: TensionStrainTable | None = None) -> Any:
+    """Mean of :func:`strain_switch` over [e0, e1], - (0 .. 1): the damping switch of the
+    planar and lumped steps. The linear law: exact (:func:`mean_taut_switch`); a
+    tension-strain table: the same identity in its tension u (:func:`mean_taut_switch` of
+    u_0, u_1 with EA = 1: the mean over u).
+
+    Parameters
+    ----------
+    strain0, strain1 : float, array or casadi expression
+        The strains e0, e1 at the ends of the interval (-).
+    axial_stiffness : float or casadi expression
+        EA, N (the linear law).
+    slack_smoothing : float or casadi expression
+        delta_T, N (> 0).
+    table : TensionStrainTable, optional
+        The tension-strain law.
+    """
+    if table is None:
+        return mean_taut_switch(strain0, strain1, axial_stiffness, slack_smoothing)
+    return mean_taut_switch(table.tension_of(strain0), table.tension_of(strain1), 1.0,
+                            slack_smoothing)
+
+
+def mean_material_tension(material: Any, strain0: Any, strain1: Any) -> Any:
+    """Mean of a material's no-compression tension over [e0, e1], N: the discrete-gradient
+    tension of the planar step (:func:`mean_strain_tension` of the material's law).
+
+    Parameters
+    ----------
+    material : AxialMaterial
+        The material (:func:`cable_material`: :class:`LinearElastic` or
+        :class:`NonlinearElastic`).
+    strain0, strain1 : float, array or casadi expression
+        The strains e0, e1 at the ends of the interval (-).
+    """
+    if isinstance(material, LinearElastic):
+        return mean_strain_tension(strain0, strain1, material.axial_stiffness,
+                                   material.slack_smoothing)
+    return mean_strain_tension(strain0, strain1, None, material.slack_smoothing,
+                               material.table)
 
 
 def mean_material_switch(material: Any, strain0: Any, strain1: Any) -> Any:
     """Mean of a material's taut switch over [e0, e1], - (0 .. 1): the damping switch of
-    the planar step. :class:`LinearElastic`: exact (:func:`mean_taut_switch`); a
-    tension-strain table: the same identity in its tension u,
-    (1 + (u_0 + u_1) / (S_0 + S_1)) / 2 with S = sqrt(u^2 + delta_T^2) (the mean over u).
+    the planar step (:func:`mean_strain_switch` of the material's law).
 
     Parameters
     ----------
@@ -818,10 +848,7 @@ def mean_material_switch(material: Any, strain0: Any, strain1: Any) -> Any:
         The strains e0, e1 at the ends of the interval (-).
     """
     if isinstance(material, LinearElastic):
-        return mean_taut_switch(strain0, strain1, material.axial_stiffness,
-                                material.slack_smoothing)
-    d = material.slack_smoothing
-    u0 = material.table.tension_of(strain0)
-    u1 = material.table.tension_of(strain1)
-    return 0.5 * (1.0 + (u0 + u1) / (_sqrt(u0 * u0 + d * d) + _sqrt(u1 * u1 + d * d)))
-
+        return mean_strain_switch(strain0, strain1, material.axial_stiffness,
+                                  material.slack_smoothing)
+    return mean_strain_switch(strain0, strain1, None, material.slack_smoothing,
+                              material.table)

@@ -27,8 +27,8 @@ MUTATIONS = [
                      "inverse of the model's u(e) (not at rest)"),
     dict(name="materials-lumped-step-linear", area="dynamics",
          file="cable_ocp/dynamics/lumped_equations.py",
-         old="tbar = sum(w * strain_tension(em - shift + g * de, ea, delta_t, table)",
-         new="tbar = sum(w * strain_tension(em - shift + g * de, ea, delta_t, None)",
+         old="return no_push(mean_strain_tension(a, b, ea, delta_t, table) + damp, c, delta_t)",
+         new="return no_push(mean_strain_tension(a, b, ea, delta_t, None) + damp, c, delta_t)",
          tests=(_DY,),
          description="lumped: the time step's discrete-gradient tension with EA e in place "
                      "of the table"),
