@@ -181,9 +181,10 @@ def test_the_graph_sees_known_edges() -> None:
 # -- the layer order ---------------------------------------------------------------------
 #: each package's layer: a module imports only from lower layers, from its own package, and
 #: ``cable_ocp.errors`` (the one exception type, below everything). baselines and dynamics
-#: are peers (neither imports the other), so are plots and report.
+#: are peers (neither imports the other), so are batch and schedule, plots and report.
 LAYERS = {"numerics": 0, "physics": 1, "scene": 2, "statics": 3, "baselines": 4,
-          "dynamics": 4, "mooring": 4, "heave": 5, "batch": 6, "bench": 7, "plots": 8, "report": 8,
+          "dynamics": 4, "mooring": 4, "heave": 5, "batch": 6, "schedule": 6, "bench": 7,
+          "plots": 8, "report": 8,
           "cli": 9, "__main__": 10}
 #: modules that sit outside the layers: the error type, the status vocabulary and the version
 #: (imported

@@ -16,6 +16,7 @@ dynamics the dynamic scene (:class:`~cable_ocp.scene.dynamics.DynamicScene`) and
          prescribed top motion (``motion``)
 dynamic_parts  the parts of a dynamic scene (a segment's dynamics, the top motion, ...)
 response the ``[response]`` table of a dynamic scene (defaults of ``cable-ocp response``)
+deployment the ``[deployment]`` table of a dynamic scene (the optimal pay-out problem)
 heave    the heave-compensation scene (:class:`HeaveScene`)
 system   mooring systems: line types, points, bodies, lines (:class:`SystemScene`)
 loader   :func:`load`: any problem file -> its scene (statics, dynamics or heave)

@@ -36,7 +36,7 @@ SCHEMES: dict[str, tuple[str, ...]] = {
 DEFAULT_SCHEME = {m: s[0] for m, s in SCHEMES.items()}
 
 #: Top-level tables that only dynamic scenes have (their presence marks a dynamic scene).
-DYNAMIC_TABLES = ("unit", "top_motion", "simulation", "modes", "response")
+DYNAMIC_TABLES = ("unit", "top_motion", "simulation", "modes", "response", "deployment")
 CABLE_DYN_KEYS = {"mass_per_length", "added_mass_coefficient",
                    "tangential_added_mass_coefficient", "axial_damping"}
 _UNIT_KEYS = {"mass", "added_mass", "weight_in_water", "volume", "drag_area",

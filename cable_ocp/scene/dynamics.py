@@ -97,6 +97,8 @@ Schema of the dynamic keys (all SI; units in brackets)::
                                  planar model only; cable_ocp.dynamics.bending_terms)
     [response]                   defaults of `cable-ocp response` (frequencies, amplitudes,
                                  outputs, ...: :mod:`cable_ocp.scene.response`)
+    [deployment]                 the optimal pay-out (or haul-in) schedule of
+                                 `cable-ocp deploy` (:mod:`cable_ocp.scene.deployment`)
     [modes]                      modal analysis and the deployment chart
     count = 6                    number of modes (default 6)
     wave_band = [0.314, 1.571]   rad/s, the wave-frequency band shaded on the chart
@@ -143,6 +145,7 @@ from cable_ocp.scene.dynamic_parts import (
     parse_unit,
     vec_or_scalar,
 )
+from cable_ocp.scene.deployment import DeploymentProblem, parse_deployment
 from cable_ocp.scene.fields import number as _number
 from cable_ocp.scene.fields import require as _require
 from cable_ocp.scene.files import apply_overrides, check_kind, read_problem
@@ -193,6 +196,9 @@ class DynamicScene:
         Modal-analysis settings.
     response : ResponseDefaults
         Defaults of ``cable-ocp response`` (:mod:`cable_ocp.scene.response`).
+    deployment : DeploymentProblem or None
+        The optimal pay-out problem of ``cable-ocp deploy`` (:mod:`cable_ocp.scene.deployment`);
+        None without a ``[deployment]`` table.
     """
 
     statics: Scene
@@ -203,6 +209,7 @@ class DynamicScene:
     simulation: Simulation
     modes: ModesOptions = field(default_factory=ModesOptions)
     response: ResponseDefaults = field(default_factory=ResponseDefaults)
+    deployment: DeploymentProblem | None = None
     meta: dict[str, str] = field(default_factory=dict, compare=False, hash=False)
     raw: dict[str, Any] = field(default_factory=dict, compare=False, hash=False, repr=False)
 
@@ -418,6 +425,8 @@ def dynamic_scene_from_dict(data: dict[str, Any]) -> DynamicScene:
     sim = parse_simulation(dyn["simulation"])
     modes = parse_modes(dyn.get("modes", {}))
     response = parse_response(dyn.get("response", {}))
+    deployment = (parse_deployment(dyn["deployment"], statics.cable.length)  # type: ignore[arg-type]
+                  if "deployment" in dyn else None)
 
     if top.varying_length:
         lmin, tmin = _length_history_min(top, statics.cable.length, sim.duration)  # type: ignore[arg-type]
@@ -444,7 +453,7 @@ def dynamic_scene_from_dict(data: dict[str, Any]) -> DynamicScene:
     meta = {str(k): str(v) for k, v in (data.get("meta") or {}).items()}
     return DynamicScene(statics=statics, cable=cable, unit=unit, bodies=tuple(bodies),
                         top_motion=top, simulation=sim, modes=modes, response=response,
-                        meta=meta, raw=raw)
+                        deployment=deployment, meta=meta, raw=raw)
 
 
 def load_dynamic_scene(path: str | Path,

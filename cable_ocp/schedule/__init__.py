@@ -1,0 +1,10 @@
+"""Optimal pay-out and haul-in schedules (docs/deployment.md): the deployment and recovery
+of a subsea unit posed as an optimal-control problem on the axial or planar varying-length
+line, the vessel's motion given.
+
+Modules
+-------
+sea        the vessel's heave: the scene's own motion or seeded realisations of a sea
+forward    a schedule re-simulated on the forward simulator at a finer step, the limits
+           checked; the fastest constant speed by bisection
+"""
