@@ -122,6 +122,7 @@ from typing import Any
 
 from cable_ocp.errors import CableOCPError
 from cable_ocp.physics.current import profile_velocity_np
+from cable_ocp.scene.deployment import DeploymentProblem, parse_deployment
 from cable_ocp.scene.dynamic_parts import (
     BODY_DYN_KEYS,
     CABLE_DYN_KEYS,
@@ -145,7 +146,6 @@ from cable_ocp.scene.dynamic_parts import (
     parse_unit,
     vec_or_scalar,
 )
-from cable_ocp.scene.deployment import DeploymentProblem, parse_deployment
 from cable_ocp.scene.fields import number as _number
 from cable_ocp.scene.fields import require as _require
 from cable_ocp.scene.files import apply_overrides, check_kind, read_problem
