@@ -332,16 +332,17 @@ class AxialModel:
                "the closed-form static profile, at rest")
         return self.initial_state(), {"source": start, "converged": True, "message": how}
 
-    def driven_step(self, dt: float | None = None) -> DrivenStep:
+    def driven_step(self, dt: float | ca.SX | None = None) -> DrivenStep:
         """The midpoint step with the top's height and the length as inputs over a step of
-        ``dt`` s (default ``simulation.time_step``;
+        ``dt`` s (default ``simulation.time_step``; a CasADi symbol: the step's size an input;
         :func:`cable_ocp.dynamics.driven.axial_driven_step`; the linear law only)."""
         if self.table is not None or self.solid is not None:
             raise CableOCPError("cable.tension_strain / cable.viscoelastic: the driven axial "
                                 "step (the heave plant) has the linear law only; give "
                                 "axial_stiffness alone")
-        return axial_driven_step(self, self.scene.simulation.time_step if dt is None
-                                 else float(dt))
+        if dt is None:
+            dt = self.scene.simulation.time_step
+        return axial_driven_step(self, dt if isinstance(dt, ca.SX) else float(dt))
 
     def linearize(self) -> tuple[np.ndarray, np.ndarray]:
         """Stiffness K (N/m) and mass M (kg) about the static state (:meth:`matrices`)."""

@@ -76,8 +76,9 @@ def axial_driven_step(model: AxialModel, dt: float) -> DrivenStep:
     ----------
     model : AxialModel
         The axial model of the scene.
-    dt : float
-        The step, s.
+    dt : float or casadi.SX
+        The step, s; a symbol where one built step serves every step size (the deployment
+        schedule's free duration; the convergence scale then at ``simulation.time_step``).
     """
     sc = model.scene
     md = copy.copy(model)
@@ -89,11 +90,13 @@ def axial_driven_step(model: AxialModel, dt: float) -> DrivenStep:
     t = ca.SX.sym("t")
     x = ca.SX.sym("x", n2)
     rhs = md.rhs(t, x)
-    f = ca.Function("f", [t, x, p], [rhs])
-    scale = ca.DM([1.0 / md.elongation] * n + [1.0 / (dt * md.gravity)] * n)
+    symbolic = isinstance(dt, ca.SX)
+    f = ca.Function("f", [t, x, p] + ([dt] if symbolic else []), [rhs])
+    dt_scale = sc.simulation.time_step if symbolic else dt
+    scale = ca.DM([1.0 / md.elongation] * n + [1.0 / (dt_scale * md.gravity)] * n)
     x0 = ca.SX.sym("x0", n2)
     x1 = ca.SX.sym("x1", n2)
-    res = x1 - x0 - dt * f(0.5 * dt, 0.5 * (x0 + x1), p)
+    res = x1 - x0 - dt * f(0.5 * dt, 0.5 * (x0 + x1), p, *([dt] if symbolic else []))
     heights, tens, top, length, vel = md.outputs(t, x)
     # tension at the unit's attachment (s = 0): element 0's tension less the half
     # element that node 0 carries (its weight in water, drag and inertia)
@@ -101,11 +104,12 @@ def axial_driven_step(model: AxialModel, dt: float) -> DrivenStep:
     eps0 = tens[0] / md.ea  # (the drag's factor 1 + e; internal damping left out there)
     drag0 = quadratic_drag(md.k_drag * (1.0 + eps0), vel[0])
     t_unit = tens[0] - 0.5 * h_el * (md.w + drag0 + md.mu * rhs[n])
-    out = ca.substitute(ca.vertcat(heights[0], vel[0], t_unit, top, ca.mmin(tens)), t,
-                        ca.SX(dt))
+    out, tens_end = ca.substitute([ca.vertcat(heights[0], vel[0], t_unit, top, ca.mmin(tens)),
+                                   tens], [t], [dt if symbolic else ca.SX(dt)])
+    out, tens_end = ca.substitute([out, tens_end], [x], [x1])
     return DrivenStep(unknown=x1, state=x0, inputs=p, dt=dt, residual=res,
-                      next_state=x1, guess=x0, outputs=ca.substitute(out, x, x1),
-                      start=model.rest_state(), residual_scale=scale)
+                      next_state=x1, guess=x0, outputs=out,
+                      start=model.rest_state(), residual_scale=scale, tensions=tens_end)
 
 
 def planar_driven_step(model: PlanarModel, dt: float | None = None) -> DrivenStep:
@@ -167,4 +171,4 @@ def planar_driven_step(model: PlanarModel, dt: float | None = None) -> DrivenSte
     out = ca.vertcat(rs[1, 0], vel[1, 0], ca.norm_2(pull), top, ca.mmin(tens))
     return DrivenStep(unknown=q1, state=ca.vertcat(q0, v0), inputs=p, dt=dts,
                       residual=res, next_state=ca.vertcat(q1, v1), guess=pred,
-                      outputs=out, start=np.asarray(x_start, dtype=float))
+                      outputs=out, start=np.asarray(x_start, dtype=float), tensions=ca.vec(tens))

@@ -72,6 +72,10 @@ class DrivenStep:
     residual_scale : casadi.DM or None
         Where the residual is not scaled itself: the row scale of its convergence measure
         ``max |residual * residual_scale|`` (-).
+    tensions : casadi.SX or None
+        Every element's tension at the end of the step (N, from the unit to the top; the
+        law's own tension, ``<= 0`` slack): the tension along the whole line of the
+        deployment schedule's limits (:mod:`cable_ocp.schedule.ocp`).
     """
 
     unknown: Any
@@ -84,6 +88,7 @@ class DrivenStep:
     outputs: Any
     start: np.ndarray
     residual_scale: Any = None
+    tensions: Any = None
 
 
 @runtime_checkable
