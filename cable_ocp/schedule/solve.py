@@ -1,0 +1,372 @@
+"""The deployment schedule from a scene: the static check, the warm start, the OCP.
+
+:func:`solve_schedule` is the Python API of ``cable-ocp deploy``:
+
+1. the limits are checked against the line at rest at the start and the target lengths
+   (a ``tension_max`` below the static tension, or a ``tension_min`` above it, can be met
+   by no schedule: an honest ``"infeasible"`` that names the limit, without a solve);
+2. the warm start: the fastest constant speed (a trapezoid, ramped at ``accel_max``, or
+   where none is given at :func:`ramp_acceleration`) whose rollout on the OCP's own
+   discrete line keeps the tension and power limits, by bisection on the speed
+   (:func:`discrete_constant_speed`); its duration fixes the step count
+   N = ceil(T_0 / time_step);
+3. the OCP (:class:`cable_ocp.schedule.ocp.ScheduleOCP`), built once for N and the design
+   heaves, solved from the warm start.
+"""
+
+from __future__ import annotations
+
+import math
+import time
+from collections.abc import Sequence
+from dataclasses import dataclass, field
+from typing import Any
+
+import casadi as ca
+import numpy as np
+
+from cable_ocp.errors import CableOCPError
+from cable_ocp.scene.deployment import DeploymentProblem
+from cable_ocp.scene.dynamics import DynamicScene
+from cable_ocp.schedule.ocp import LineStep, OCPSolution, ScheduleOCP, line_step, static_tensions
+
+#: the most steps of one OCP (its variables grow as steps x states x realisations)
+MAX_STEPS = 20000
+
+__all__ = ["MAX_STEPS", "ConstantSpeed", "ScheduleResult", "discrete_constant_speed",
+           "ramp_acceleration", "solve_schedule", "static_check", "trapezoid"]
+
+
+def ramp_acceleration(scene: DynamicScene, problem: DeploymentProblem) -> float:
+    """The acceleration of a constant-speed schedule's ramps, m/s^2: ``accel_max``, or
+    where none is given half the unit's acceleration in free fall through still water,
+    W / (M + M_a) / 2 (the speed of a crane's winch is ramped; a jump in speed is a snap
+    load on an elastic line).
+
+    Parameters
+    ----------
+    scene : DynamicScene
+        The scene.
+    problem : DeploymentProblem
+        The limits.
+    """
+    if problem.accel_max is not None:
+        return float(problem.accel_max)
+    unit = scene.unit
+    if unit is None:
+        raise CableOCPError("deployment: an anchored line has no unit to lower; give [unit]")
+    mass = float(unit.mass) + float(unit.added_mass[2])
+    return 0.5 * abs(float(unit.weight_in_water)) / max(mass, 1e-9)
+
+
+def trapezoid(start: float, target: float, speed: float, accel: float, time_step: float
+              ) -> tuple[float, np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
+    """A constant-speed schedule from rest to rest: ramped at ``accel`` to ``speed``, held,
+    ramped down (a triangle when the distance is too short), sampled on
+    N = ceil(T / time_step) equal steps: (T (s), time (s), accel (m/s^2, per step), speed
+    (m/s), length (m)).
+
+    The speed at the nodes is the exact trapezoid; the step's acceleration its difference
+    quotient, the length the trapezoidal rule (the OCP's kinematics, exact for it).
+
+    Parameters
+    ----------
+    start, target : float
+        Unstretched lengths, m.
+    speed : float
+        Cruise speed magnitude, m/s (> 0).
+    accel : float
+        Ramp acceleration, m/s^2 (> 0).
+    time_step : float
+        The nominal step, s.
+    """
+    dist = abs(target - start)
+    sgn = 1.0 if target > start else -1.0
+    v = min(speed, math.sqrt(accel * dist))
+    dur = dist / v + v / accel
+    n = max(int(math.ceil(dur / time_step - 1e-9)), 4)
+    t = np.linspace(0.0, dur, n + 1)
+    spd = np.minimum.reduce([accel * t, np.full_like(t, v), accel * (dur - t)])
+    spd[0] = spd[-1] = 0.0
+    spd = spd * sgn
+    length = start + np.concatenate([[0.0], np.cumsum(0.5 * (spd[1:] + spd[:-1]) * np.diff(t))])
+    length[-1] = target
+    return dur, t, np.diff(spd) / np.diff(t), spd, length
+
+
+def static_check(scene: DynamicScene, problem: DeploymentProblem) -> tuple[str, str] | None:
+    """(the limit, why) when the line at rest at the start or the target length already
+    breaks a tension limit (no schedule can meet it), else None.
+
+    Parameters
+    ----------
+    scene : DynamicScene
+        The scene.
+    problem : DeploymentProblem
+        The limits.
+    """
+    margin = problem.tension_margin
+    for length in (scene.length, problem.target_length):
+        unit_t, top_t = static_tensions(scene, length)
+        vals = []
+        if "line" in problem.tension_at or "unit" in problem.tension_at:
+            vals.append(unit_t)
+        if "line" in problem.tension_at or "top" in problem.tension_at:
+            vals.append(top_t)
+        t_max, t_min = max(vals), min(vals)
+        if problem.tension_max is not None and t_max > problem.tension_max - margin:
+            return "tension_max", (
+                f"deployment.tension_max = {problem.tension_max:.6g} N (less the margin "
+                f"{margin:.6g} N) is below the static tension {t_max:.6g} N of the line at "
+                f"rest at L = {length:.6g} m: no schedule can meet it")
+        if problem.tension_min is not None and t_min < problem.tension_min + margin:
+            return "tension_min", (
+                f"deployment.tension_min = {problem.tension_min:.6g} N (plus the margin "
+                f"{margin:.6g} N) is above the static tension {t_min:.6g} N of the line at "
+                f"rest at L = {length:.6g} m: no schedule can meet it")
+    return None
+
+
+@dataclass(frozen=True)
+class ConstantSpeed:
+    """The fastest constant-speed schedule on a discrete line (the warm start).
+
+    Attributes
+    ----------
+    speed : float
+        m/s (magnitude; nan when none keeps the limits).
+    accel : float
+        The ramps' acceleration, m/s^2.
+    duration : float
+        s.
+    feasible : bool
+        True when the speed keeps the limits (else the slowest speed tried).
+    rollouts : int
+        The rollouts of the bisection.
+    binding : str
+        The limit that bounds the speed (the one the next faster speed breaks).
+    fastest : float
+        The fastest speed tried, m/s (``speed_max``, or the triangle's peak over the
+        distance): the OCP's warm start when no speed keeps the limits.
+    """
+
+    speed: float
+    accel: float
+    duration: float
+    feasible: bool
+    rollouts: int
+    binding: str = ""
+    fastest: float = math.nan
+
+
+def _rollout_limits(line: LineStep, heaves: Sequence[ca.Function], problem: DeploymentProblem,
+                    dur: float, spd: np.ndarray, length: np.ndarray) -> dict[str, float]:
+    """The largest relative excess of each limit (tension_min/max, power_max) over the
+    rollout of a schedule on the discrete line (inf where a step fails)."""
+    n = spd.size - 1
+    dt = dur / n
+    tg = np.arange(n + 1) * dt
+    fwd = line.forward.mapaccum(n)
+    exc = {"tension_min": 0.0, "tension_max": 0.0, "power_max": 0.0}
+    margin = problem.tension_margin
+    for hf in heaves:
+        hv = np.asarray(hf.map(n + 1)(tg)).ravel()
+        zt = line.top_height + hv
+        p = np.vstack([length[:-1], length[1:], zt[:-1], zt[1:]])
+        _, _, tens, outs = fwd(line.start, p, np.full((1, n), dt))
+        tens, outs = np.asarray(tens), np.asarray(outs)
+        if not (np.all(np.isfinite(tens)) and np.all(np.isfinite(outs))):
+            return {k: math.inf for k in exc}
+        vals = []
+        if "line" in problem.tension_at:
+            vals.append(tens)
+        if "unit" in problem.tension_at:
+            vals.append(outs[2])
+        if "top" in problem.tension_at:
+            vals.append(outs[3])
+        allv = np.concatenate([np.ravel(v) for v in vals])
+        if problem.tension_min is not None:
+            lim = problem.tension_min + margin
+            exc["tension_min"] = max(exc["tension_min"], (lim - allv.min()) / max(lim, 1.0))
+        if problem.tension_max is not None:
+            lim = problem.tension_max - margin
+            exc["tension_max"] = max(exc["tension_max"], (allv.max() - lim) / lim)
+        if problem.power_max is not None:
+            pw = np.abs(outs[3] * 0.5 * (spd[1:] + spd[:-1]))
+            exc["power_max"] = max(exc["power_max"], pw.max() / problem.power_max - 1.0)
+    return exc
+
+
+def discrete_constant_speed(scene: DynamicScene, line: LineStep, heaves: Sequence[ca.Function],
+                            problem: DeploymentProblem, time_step: float,
+                            rel_tol: float = 1e-2, floor: float = 1e-3) -> ConstantSpeed:
+    """The fastest constant speed whose rollout on the OCP's discrete line keeps the tension
+    and power limits on every heave (bisection to ``rel_tol``; module docstring).
+
+    Parameters
+    ----------
+    scene : DynamicScene
+        The scene.
+    line : LineStep
+        The OCP's line.
+    heaves : sequence of casadi.Function
+        The design heaves h(t), m.
+    problem : DeploymentProblem
+        The limits.
+    time_step : float
+        The nominal step, s.
+    rel_tol : float
+        The bisection's relative width (-).
+    floor : float
+        The slowest speed tried, as a fraction of the fastest candidate (-).
+    """
+    acc = ramp_acceleration(scene, problem)
+    dist = abs(problem.target_length - scene.length)
+    v_hi = problem.speed_max if problem.speed_max is not None else math.sqrt(acc * dist)
+    count = 0
+
+    def ok(v: float) -> tuple[bool, str]:
+        nonlocal count
+        count += 1
+        dur, _, _, spd, length = trapezoid(scene.length, problem.target_length, v, acc,
+                                           time_step)
+        exc = _rollout_limits(line, heaves, problem, dur, spd, length)
+        worst = max(exc, key=lambda k: exc[k])
+        return exc[worst] <= 0.0, worst
+
+    good, why = ok(v_hi)
+    if good:
+        dur = trapezoid(scene.length, problem.target_length, v_hi, acc, time_step)[0]
+        return ConstantSpeed(v_hi, acc, dur, True, count, "speed_max" if problem.speed_max
+                             is not None else "distance", v_hi)
+    lo, hi, binding = 0.0, v_hi, why
+    while True:
+        v = v_hi * floor if lo == 0.0 else lo
+        if lo == 0.0:
+            good, w = ok(v)
+            if not good:
+                dur = trapezoid(scene.length, problem.target_length, v, acc, time_step)[0]
+                return ConstantSpeed(v, acc, dur, False, count, w, v_hi)
+            lo = v
+        if hi - lo <= rel_tol * lo:
+            break
+        mid = 0.5 * (lo + hi)
+        good, w = ok(mid)
+        if good:
+            lo = mid
+        else:
+            hi, binding = mid, w
+    dur = trapezoid(scene.length, problem.target_length, lo, acc, time_step)[0]
+    return ConstantSpeed(lo, acc, dur, True, count, binding, v_hi)
+
+
+@dataclass(frozen=True)
+class ScheduleResult:
+    """The optimal schedule of a scene's ``[deployment]`` (or why there is none).
+
+    Attributes
+    ----------
+    status : str
+        ``"solved"``, ``"infeasible"``, ``"failed"`` or ``"interrupted"``.
+    message : str
+        What happened; for ``"infeasible"`` the limit that binds.
+    binding : tuple of str
+        The limits active at the optimum, or those no schedule can meet.
+    solution : OCPSolution or None
+        The OCP's schedule (None when the static check failed); when ``status`` is not
+        ``"solved"`` its arrays are IPOPT's last iterate, not a schedule.
+    warm_start : ConstantSpeed or None
+        The fastest constant speed on the OCP's discrete line.
+    problem : DeploymentProblem
+        The problem solved.
+    diagnostics : dict
+        Times (s: the warm start, the build, the solve), steps, sizes.
+    """
+
+    status: str
+    message: str
+    binding: tuple[str, ...]
+    solution: OCPSolution | None
+    warm_start: ConstantSpeed | None
+    problem: DeploymentProblem
+    diagnostics: dict[str, Any] = field(default_factory=dict)
+
+    @property
+    def success(self) -> bool:
+        """True for a solved schedule."""
+        return self.status == "solved"
+
+    @property
+    def duration(self) -> float:
+        """The schedule's time to the target, s (nan unless solved)."""
+        return self.solution.duration if self.success and self.solution else math.nan
+
+
+def solve_schedule(scene: DynamicScene, heaves: Sequence[ca.Function] | None = None, *,
+                   problem: DeploymentProblem | None = None, segments: int | None = None,
+                   time_step: float | None = None, steps: int | None = None,
+                   ipopt: dict[str, Any] | None = None) -> ScheduleResult:
+    """The optimal pay-out (or haul-in) schedule of a scene (module docstring).
+
+    Parameters
+    ----------
+    scene : DynamicScene
+        The scene with its ``[deployment]`` table.
+    heaves : sequence of casadi.Function, optional
+        The design realisations of the vessel's heave h(t) (m); default none (still
+        water). The command line passes :func:`cable_ocp.schedule.sea.vessel_motions`.
+    problem : DeploymentProblem, optional
+        Default ``scene.deployment``.
+    segments : int, optional
+        The OCP line's elements (default ``deployment.segments``, else the scene's).
+    time_step : float, optional
+        The nominal step, s (default ``deployment.time_step``, else the scene's).
+    steps : int, optional
+        N, overriding ceil(T_0 / time_step).
+    ipopt : dict, optional
+        Extra IPOPT options.
+
+    Raises
+    ------
+    CableOCPError
+        Without a ``[deployment]`` table, or a model without a driven step.
+    KeyboardInterrupt
+        On a Ctrl-C (never retried).
+    """
+    pb = problem if problem is not None else scene.deployment
+    if pb is None:
+        raise CableOCPError("[deployment] is missing: the schedule needs target_length and "
+                            "its limits (docs/deployment.md)")
+    diag: dict[str, Any] = {}
+    bad = static_check(scene, pb)
+    if bad is not None:
+        return ScheduleResult("infeasible", bad[1], (bad[0],), None, None, pb, diag)
+    if heaves is None:
+        heaves = [ca.Function("still", [ca.SX.sym("t")], [ca.SX(0.0)])]
+    dt_nom = time_step or pb.time_step or scene.simulation.time_step
+    t0 = time.perf_counter()
+    line = line_step(scene, segments)
+    warm = discrete_constant_speed(scene, line, heaves, pb, dt_nom)
+    diag["warm_start_s"] = time.perf_counter() - t0
+    # no constant speed keeps the limits: start from the fastest (the OCP decides)
+    v0 = warm.speed if warm.feasible else warm.fastest
+    dur, _, acc, spd, length = trapezoid(scene.length, pb.target_length, v0, warm.accel, dt_nom)
+    n = steps or acc.size
+    if n > MAX_STEPS:
+        raise CableOCPError(f"deployment.time_step = {dt_nom:.4g} s: the warm start's "
+                            f"{dur:.6g} s would take {n} steps (at most {MAX_STEPS}); give a "
+                            "longer time_step")
+    if n != acc.size:
+        dur, _, acc, spd, length = trapezoid(scene.length, pb.target_length, v0, warm.accel,
+                                             dur / n)
+    ocp = ScheduleOCP(scene, line, heaves, n, pb, ipopt)
+    diag["build_s"] = ocp.build_time
+    xs, ys = ocp.rollout(dur, acc, spd, length)
+    w0 = ocp.pack(dur, acc, spd, length, xs, ys)
+    sol = ocp.solve(w0)
+    diag.update(sol.diagnostics)
+    msg = sol.message
+    if sol.status == "infeasible" and not warm.feasible:
+        msg += (f"; no constant speed down to {warm.speed:.3g} m/s keeps the limits either "
+                f"({warm.binding} binds)")
+    return ScheduleResult(sol.status, msg, sol.binding, sol, warm, pb, diag)
