@@ -320,6 +320,7 @@ class ScheduleOCP:
         x0 = ca.DM(line.start)
         energy = 0.0
         self._heave_fns = [h.map(n_k + 1) for h in heaves]
+        outs_all: list[Any] = []  # what the result reports, from the variables
         for r in range(n_r):
             hv = self._heave_fns[r](tgrid)
             comp = gain * hv if gain is not None else 0.0 * hv
@@ -329,6 +330,7 @@ class ScheduleOCP:
             xx = ca.horzcat(x0, ca.diag(xs) @ xr[r])  # states 0..N (SI)
             yy = ca.diag(xs) @ xr[r] if line.same else ca.diag(ys) @ yr[r]
             res, nxt, tens, outs = step_map(yy, xx[:, :-1], p, ca.repmat(dt, 1, n_k))
+            outs_all += [tens, outs, hv]
             add("dynamics", res, 0.0, 0.0)
             if not line.same:
                 add("dynamics", (nxt - xx[:, 1:]) / ca.repmat(xs, 1, n_k), 0.0, 0.0)
@@ -387,18 +389,6 @@ class ScheduleOCP:
         opts.update(ipopt or {})
         self._solver = ca.nlpsol("deployment", "ipopt", {"x": w, "f": objective, "g": g_all},
                                  opts)
-        # what the result reports, from the variables
-        outs_all = []
-        for r in range(n_r):
-            hv = self._heave_fns[r](tgrid)
-            comp = gain * hv if gain is not None else 0.0 * hv
-            lw = lng + comp
-            zt = line.top_height + hv
-            p = ca.vertcat(lw[:-1], lw[1:], zt[:-1], zt[1:])
-            xx = ca.horzcat(x0, ca.diag(xs) @ xr[r])
-            yy = ca.diag(xs) @ xr[r] if line.same else ca.diag(ys) @ yr[r]
-            _, _, tens, outs = step_map(yy, xx[:, :-1], p, ca.repmat(dt, 1, n_k))
-            outs_all += [tens, outs, hv]
         self._report = ca.Function("report", [w], outs_all)
         self.build_time = time.perf_counter() - t0
         self.variables, self.constraints = int(w.shape[0]), int(g_all.shape[0])
