@@ -20,9 +20,9 @@ arrays and tables (``sol.to_xarray()``, ``sol.to_pandas()``, the extra ``[io]``)
 
 Packages
 --------
-numerics, physics, scene, statics, baselines, dynamics, mooring, heave, batch   the library,
-    in its layer order (each imports only from the ones before it; mooring: systems of many
-    lines and bodies)
+numerics, physics, scene, statics, baselines, dynamics, mooring, heave, batch, schedule
+    the library, in its layer order (each imports only from the ones before it; mooring:
+    systems of many lines and bodies; schedule: the optimal deployment schedule)
 bench, plots, report, cli   the face: benchmarks, figures, text, the command line
 errors, status, version   the one exception type, the status vocabulary, the version
 """

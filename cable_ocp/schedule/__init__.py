@@ -4,6 +4,8 @@ line, the vessel's motion given.
 
 Modules
 -------
+ocp        the OCP: implicit multiple shooting on the line model's own midpoint step
+planning   solve_schedule: the static check, the warm start, the OCP (the Python API)
 sea        the vessel's heave: the scene's own motion or seeded realisations of a sea
 forward    a schedule re-simulated on the forward simulator at a finer step, the limits
            checked; the fastest constant speed by bisection
