@@ -139,15 +139,15 @@ def _text(args: argparse.Namespace, scene: Any, res: Any, motions: list[Any],
                          + (", ..." if len(motions) > 3 else "") + ")")]
     ws = res.warm_start
     if res.success:
-        rows.append(("time to depth", f"{res.duration:.6g} s (optimal schedule)"))
+        rows.append(("time to depth", f"{res.duration:.4g} s (optimal schedule)"))
     if ws is not None:
         ok = "" if ws.feasible else ", none keeps the limits"
-        rows.append(("constant speed", f"{ws.duration:.6g} s at {ws.speed:.4g} m/s (the "
+        rows.append(("constant speed", f"{ws.duration:.4g} s at {ws.speed:.4g} m/s (the "
                                        f"fastest on the OCP's line{ok}; {ws.binding} binds); "
                                        f"saving {_saving(res.duration, ws.duration)}"))
     if compare is not None:
         if compare["status"] == "solved":
-            rows.append(("forward check", f"{compare['duration_s']:.6g} s at "
+            rows.append(("forward check", f"{compare['duration_s']:.4g} s at "
                                           f"{compare['speed_m_s']:.4g} m/s (the fastest "
                                           "constant speed on the forward simulator, "
                                           f"{compare['simulations']} runs; "
