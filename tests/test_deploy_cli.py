@@ -11,6 +11,7 @@ import csv
 import io
 import json
 import math
+import re
 from pathlib import Path
 from types import SimpleNamespace
 
@@ -61,6 +62,11 @@ def test_deploy_text_reports_status_times_and_binding_limits(run):
                  "tension_min", "steps", "elements", "variables", "build", "solve"):
         assert word in run.text, word
     assert "wrote" in run.err
+    # the saving against the warm start: 100 (T_0 - T) / T_0, as printed (3 digits)
+    ws, dur = run.data["warm_start"]["duration_s"], run.data["duration_s"]
+    shown = re.search(r"constant speed .*saving ([0-9.]+) %", run.text)
+    assert float(shown.group(1)) == pytest.approx(100.0 * (ws - dur) / ws, rel=5e-3)
+    assert re.search(rf"time to depth\s+{dur:.4g} s", run.text)
 
 
 def test_deploy_json_duration_is_the_csv_last_time_and_beats_the_warm_start(run):
@@ -106,6 +112,10 @@ def test_deploy_csv_schedule_keeps_its_kinematics_and_limits(run):
     # W + w L (the static line; 1e-9 relative: the static solve's round-off)
     assert run.table[0, 6] == pytest.approx(W_UNIT, rel=1e-9)
     assert run.table[0, 7] == pytest.approx(W_UNIT + W_CABLE * 50.0, rel=1e-9)
+    # along the line at rest, each of the 5 elements' tension at its middle: the smallest
+    # W + w L / 10 (element 0), the largest W + w L 9 / 10 (element 4)
+    assert tmin[0] == pytest.approx(W_UNIT + W_CABLE * 5.0, rel=1e-9)
+    assert tmax[0] == pytest.approx(W_UNIT + W_CABLE * 45.0, rel=1e-9)
 
 
 def test_deploy_plot_written(run):
