@@ -98,11 +98,11 @@ def schedule_figure(res: Any, title: str = "", chart: Any = None,
                label=f"{lab}, {float(tc[-1]):.4g} s")
     res_l = resonant_lengths(chart, heave_frequencies)
     for length, w, what in res_l:
-        a.axhline(length, color="firebrick" if what == "heave" else "darkorange", lw=0.9,
-                  ls=":", label=f"omega_1 = {what}" if what != "heave" else
-                  "omega_1 = heave frequency")
+        color = "firebrick" if what == "heave" else "darkorange"
+        a.axhline(length, color=color, lw=0.9, ls=":", label=f"omega_1 = {what}"
+                  if what != "heave" else "omega_1 = heave frequency")
         a.annotate(f"{length:.0f} m ({w:.3g} rad/s)", (0.01, length), xycoords=("axes fraction",
-                   "data"), fontsize=7.5, va="bottom", color="firebrick")
+                   "data"), fontsize=7.5, va="bottom", color=color)
     if chart is not None and not res_l:
         f1 = np.asarray(chart.frequencies, dtype=float)[:, 0]
         if np.any(np.isfinite(f1)):
