@@ -13,6 +13,7 @@ statics, heave, dynamics, batch, bench, cost   the command groups, and the cost 
 inverse   heave-inverse: the parameters that give an identified a, b (Huang 6.4 (2))
 system    mooring systems: solve on a system or a MoorDyn file, convert, mooring-checks
 response  frequency-response curves of a dynamic scene
+deploy    the optimal pay-out schedule of a dynamic scene's [deployment] (docs/deployment.md)
 """
 
 from cable_ocp.cli.app import build_parser, main

@@ -29,6 +29,7 @@ _COMMAND_MODULES = [
     "cable_ocp.cli.heave",
     "cable_ocp.cli.inverse",
     "cable_ocp.cli.dynamics",
+    "cable_ocp.cli.deploy",
     "cable_ocp.cli.response",
     "cable_ocp.cli.batch",
     "cable_ocp.cli.bench",

@@ -6,6 +6,8 @@ statics         cable profiles (side elevation, or 3D view, plan and elevation) 
                 tension along the cable
 statics_series  parameter sweeps; footprints
 dynamics        simulations, mode shapes, the deployment resonance chart
+deploy          the optimal pay-out schedule: length with the resonant lengths, speed,
+                the tension envelope, power
 heave           heave-compensation comparisons (spectra, time series, running RMS, limits,
                 trade-off curves); heave_cable the deployment through resonance
 system          mooring systems: plan and 3D views coloured by tension, the offset curve

@@ -1,0 +1,200 @@
+"""``cable-ocp deploy``: the optimal pay-out schedule's text, JSON, CSV and figure, the exit
+codes of an infeasible problem and a bad key, the interruption, the resonant lengths.
+
+One solve of problems/dynamics/deploy_small.toml (a few s) is shared by the module's tests.
+"""
+
+from __future__ import annotations
+
+import contextlib
+import csv
+import io
+import json
+import math
+import re
+from pathlib import Path
+from types import SimpleNamespace
+
+import numpy as np
+import pytest
+
+from cable_ocp.cli import main
+from cable_ocp.cli.output import EXIT_INPUT, EXIT_INTERRUPTED, EXIT_NOT_SUCCESS, EXIT_OK
+
+SMALL = Path(__file__).resolve().parents[1] / "problems" / "dynamics" / "deploy_small.toml"
+#: the unit's weight in water and the cable's (deploy_small.toml), N and N/m
+W_UNIT, W_CABLE = 42645.0, 53.19
+
+
+@pytest.fixture(scope="module")
+def run(tmp_path_factory: pytest.TempPathFactory) -> SimpleNamespace:
+    """``cable-ocp deploy deploy_small.toml --json --csv --plot``, once; the library's result
+    recorded (for the interruption test)."""
+    import cable_ocp.schedule.planning as planning
+
+    tmp = tmp_path_factory.mktemp("deploy")
+    paths = SimpleNamespace(json=tmp / "d.json", csv=tmp / "d.csv", plot=tmp / "d.png")
+    seen: list = []
+    real = planning.solve_schedule
+
+    def recording(*a, **k):
+        seen.append(real(*a, **k))
+        return seen[-1]
+
+    buf, err = io.StringIO(), io.StringIO()
+    with pytest.MonkeyPatch.context() as mp:
+        mp.setattr(planning, "solve_schedule", recording)
+        with contextlib.redirect_stdout(buf), contextlib.redirect_stderr(err):
+            rc = main(["deploy", str(SMALL), "--json", str(paths.json), "--csv",
+                       str(paths.csv), "--plot", str(paths.plot)])
+    with paths.csv.open() as f:
+        rows = list(csv.reader(f))
+    return SimpleNamespace(rc=rc, text=buf.getvalue(), err=err.getvalue(), paths=paths,
+                           data=json.loads(paths.json.read_text()), header=rows[0],
+                           table=np.array([[float(v) if v else math.nan for v in r]
+                                           for r in rows[1:]]),
+                           result=seen[0])
+
+
+def test_deploy_text_reports_status_times_and_binding_limits(run):
+    assert run.rc == EXIT_OK
+    for word in ("solved", "time to depth", "constant speed", "saving", "binding limits",
+                 "tension_min", "steps", "elements", "variables", "build", "solve"):
+        assert word in run.text, word
+    assert "wrote" in run.err
+    # the saving against the warm start: 100 (T_0 - T) / T_0, as printed (3 digits)
+    ws, dur = run.data["warm_start"]["duration_s"], run.data["duration_s"]
+    shown = re.search(r"constant speed .*saving ([0-9.]+) %", run.text)
+    assert float(shown.group(1)) == pytest.approx(100.0 * (ws - dur) / ws, rel=5e-3)
+    assert re.search(rf"time to depth\s+{dur:.4g} s", run.text)
+
+
+def test_deploy_json_duration_is_the_csv_last_time_and_beats_the_warm_start(run):
+    d = run.data
+    assert d["status"] == "solved"
+    assert set(d) >= {"status", "message", "version", "binding", "duration_s", "warm_start",
+                      "schedule", "realisations", "diagnostics"}
+    t = run.table[:, 0]
+    # the JSON and the CSV carry the same float (repr): equal but for JSON's round trip
+    assert d["duration_s"] == pytest.approx(t[-1], rel=1e-14)
+    assert d["duration_s"] == pytest.approx(run.result.duration, rel=1e-14)
+    ws = d["warm_start"]
+    assert ws["feasible"]
+    # the warm start is a feasible point of the OCP: the optimum is no longer (IPOPT's
+    # tolerance on the duration, 1e-6 relative)
+    assert d["duration_s"] <= ws["duration_s"] * (1.0 + 1e-6)
+    # the warm start's trapezoid, closed form: T = dist / v + v / a (the cruise reached)
+    assert ws["duration_s"] == pytest.approx(100.0 / ws["speed_m_s"] + ws["speed_m_s"] / 0.2,
+                                             rel=1e-12)
+
+
+def test_deploy_csv_schedule_keeps_its_kinematics_and_limits(run):
+    h = run.header
+    assert h[:4] == ["t [s]", "L [m]", "v [m/s]", "a [m/s^2]"]
+    assert h[4:] == ["r0_tension_min [N]", "r0_tension_max [N]", "r0_unit_tension [N]",
+                     "r0_top_tension [N]"]
+    t, length, v, a = run.table[:, 0], run.table[:, 1], run.table[:, 2], run.table[:, 3]
+    # rest to rest, 50 -> 150 m; the constraints hold to IPOPT's tolerance (1e-8 absolute
+    # on the scaled rows; 1e-6 relative allowed here)
+    assert length[0] == 50.0 and length[-1] == pytest.approx(150.0, abs=1e-6)
+    assert v[0] == pytest.approx(0.0, abs=1e-6) and v[-1] == pytest.approx(0.0, abs=1e-6)
+    assert math.isnan(a[-1])
+    assert np.all(np.abs(a[:-1]) <= 0.2 * (1 + 1e-6))
+    assert np.all(v <= 3.0 * (1 + 1e-6))
+    # the OCP's kinematics, recomputed: v by the step's acceleration, L by the trapezoid
+    dt = np.diff(t)
+    np.testing.assert_allclose(np.diff(v), a[:-1] * dt, atol=1e-7)
+    np.testing.assert_allclose(np.diff(length), 0.5 * dt * (v[1:] + v[:-1]), atol=1e-7)
+    tmin, tmax = run.table[:, 4], run.table[:, 5]
+    assert np.all(tmin >= 1e4 * (1 - 1e-6)) and np.all(tmax <= 1.2e5 * (1 + 1e-6))
+    assert np.all(tmin <= tmax)
+    # at rest at the start: the pull on the unit is its weight in water, the top tension
+    # W + w L (the static line; 1e-9 relative: the static solve's round-off)
+    assert run.table[0, 6] == pytest.approx(W_UNIT, rel=1e-9)
+    assert run.table[0, 7] == pytest.approx(W_UNIT + W_CABLE * 50.0, rel=1e-9)
+    # along the line at rest, each of the 5 elements' tension at its middle: the smallest
+    # W + w L / 10 (element 0), the largest W + w L 9 / 10 (element 4)
+    assert tmin[0] == pytest.approx(W_UNIT + W_CABLE * 5.0, rel=1e-9)
+    assert tmax[0] == pytest.approx(W_UNIT + W_CABLE * 45.0, rel=1e-9)
+
+
+def test_deploy_plot_written(run):
+    assert run.paths.plot.stat().st_size > 20_000
+
+
+def test_deploy_infeasible_tension_max_exits_1_and_writes_no_schedule(tmp_path, capsys):
+    """tension_max below the static tension W + w L = 50.6 kN at the target (150 m): no
+    schedule; the message names tension_max; the JSON carries the status, no schedule."""
+    js, cs, png = tmp_path / "f.json", tmp_path / "f.csv", tmp_path / "f.png"
+    rc = main(["deploy", str(SMALL), "--set", "deployment.tension_max=48000", "--json",
+               str(js), "--csv", str(cs), "--plot", str(png)])
+    assert rc == EXIT_NOT_SUCCESS
+    cap = capsys.readouterr()
+    assert "infeasible" in cap.out and "tension_max" in cap.out
+    assert "no CSV or figure" in cap.err
+    d = json.loads(js.read_text())
+    assert d["status"] == "infeasible" and "tension_max" in d["message"]
+    assert d["binding"] == ["tension_max"]
+    assert d["schedule"] is None and d["duration_s"] is None
+    assert not cs.exists() and not png.exists()
+
+
+def test_deploy_bad_key_names_the_key(capsys):
+    rc = main(["deploy", str(SMALL), "--set", "deployment.speed_mx=1"])
+    assert rc == EXIT_INPUT
+    assert "deployment.speed_mx" in capsys.readouterr().err
+
+
+@pytest.mark.parametrize("argv, word", [(["--segments", "0"], "--segments"),
+                                        (["--time-step", "-1"], "--time-step")])
+def test_deploy_bad_options_exit_2(argv, word, capsys):
+    assert main(["deploy", str(SMALL), *argv]) == EXIT_INPUT
+    assert word in capsys.readouterr().err
+
+
+def test_deploy_without_a_deployment_table_exits_2(problems, capsys):
+    rc = main(["deploy", str(problems / "dynamics" / "huang_3_3_5.toml")])
+    assert rc == EXIT_INPUT
+    assert "[deployment]" in capsys.readouterr().err
+
+
+def test_deploy_interrupted_comparison_writes_the_schedule_then_130(run, tmp_path, capsys,
+                                                                    monkeypatch):
+    """A Ctrl-C in --compare's bisection: the finished schedule is written (the comparison
+    marked interrupted), then the one line and exit 130."""
+    import cable_ocp.schedule.forward as forward
+    import cable_ocp.schedule.planning as planning
+
+    def stop(*a, **k):
+        raise KeyboardInterrupt
+
+    monkeypatch.setattr(planning, "solve_schedule", lambda *a, **k: run.result)
+    monkeypatch.setattr(forward, "fastest_constant_speed", stop)
+    js, cs = tmp_path / "i.json", tmp_path / "i.csv"
+    rc = main(["deploy", str(SMALL), "--compare", "--json", str(js), "--csv", str(cs)])
+    assert rc == EXIT_INTERRUPTED
+    assert "interrupted" in capsys.readouterr().err
+    d = json.loads(js.read_text())
+    assert d["status"] == "solved" and d["compare"]["status"] == "interrupted"
+    assert d["duration_s"] == pytest.approx(run.data["duration_s"], rel=1e-14)
+    assert cs.exists()
+
+
+def test_resonant_lengths_meet_the_rod_with_a_tip_mass():
+    """omega_1(L) = sqrt(EA / (L M)) (a massless rod with the tip mass M, the estimate of
+    Huang 3.3.5 (5)) meets w at L = EA / (w^2 M); on 201 lengths the chord's error is
+    below 1e-3 relative (the curve's convexity over one interval)."""
+    from cable_ocp.plots.deploy import resonant_lengths
+
+    ea, mass = 1.57012e7, 13000.0
+    lengths = np.linspace(500.0, 1000.0, 201)
+    chart = SimpleNamespace(lengths=lengths, frequencies=np.sqrt(ea / (lengths * mass))[:, None],
+                            wave_band=(0.314, 1.4))
+    found = resonant_lengths(chart, [1.26])
+    # sorted by length: the band's high edge (616 m) before the heave (760 m)
+    assert [w for _, w, _ in found] == [1.4, 1.26]
+    assert [what for _, _, what in found] == ["band high edge", "heave"]
+    for length, w, _ in found:
+        assert length == pytest.approx(ea / (w**2 * mass), rel=1e-3)
+    assert resonant_lengths(chart, [5.0]) == sorted(
+        [f for f in found if f[2] != "heave"])
