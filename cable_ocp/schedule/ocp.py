@@ -12,7 +12,7 @@ h_r(t) given for each design realisation r (:mod:`cable_ocp.schedule.sea`)::
          |a_k| <= accel_max,  0 <= s v_k <= speed_max,  |T_top v| <= power_max
          tension_min + margin <= T_j <= tension_max - margin   (every element, or the unit
                                                             and the top: ``tension_at``)
-         v_0 = v_N = 0,  L_N = target,  |V_unit(T)| <= rest_tolerance
+         v_0 = v_N = 0,  L_N = target,  |V_unit(T) - (1 - g) dh_r/dt(T)| <= rest_tolerance
 
 with ``s`` the direction (+1 pay-out, -1 haul-in: the winch does not reverse), ``a`` the
 pay-out acceleration (the control, piecewise constant), Phi the line model's own implicit
@@ -33,8 +33,9 @@ error; (iii) the Jacobian is banded and sparse, which IPOPT's sparse factorisati
 (iv) the free duration enters as the step size dt = T / N, a symbol of the built step.
 IPOPT gets the exact Hessian of the Lagrangian (CasADi's AD). The NLP is built once for
 a step count N; the warm start is the fastest constant-speed schedule that keeps the
-limits on the same discrete model (:func:`constant_speed_warm_start`), rolled out with
-the step's Newton iteration.
+limits on the same discrete model
+(:func:`~cable_ocp.schedule.planning.discrete_constant_speed`), rolled out with the
+step's Newton iteration.
 
 Scaling: the states are scaled by the model's static elongation (heights) and 1 m/s
 (velocities), the tensions by the static top tension at the longer length, the residual by
@@ -61,7 +62,8 @@ from cable_ocp.numerics import interrupt
 from cable_ocp.scene.deployment import DeploymentProblem
 from cable_ocp.scene.dynamics import DynamicScene
 
-__all__ = ["LineStep", "OCPSolution", "ScheduleOCP", "line_step", "static_tensions"]
+__all__ = ["LineStep", "OCPSolution", "ScheduleOCP", "heave_rate", "line_step",
+           "static_tensions"]
 
 
 @dataclass(frozen=True)
@@ -158,6 +160,19 @@ def line_step(scene: DynamicScene, segments: int | None = None) -> LineStep:
                     x_scale=x_scale, y_scale=y_scale, same=bool(ca.depends_on(
                         st.next_state, y) and ny == nx and _is_identity(st, nx)),
                     top_height=float(scene.top_position[2]), elements=int(n))
+
+
+def heave_rate(heave: ca.Function) -> ca.Function:
+    """dh/dt (m/s) of a heave h(t) (m), by CasADi's AD: the rest condition's reference
+    (a stopped winch on a taut line carries the unit with the ship).
+
+    Parameters
+    ----------
+    heave : casadi.Function
+        h(t), m, of one scalar time, s.
+    """
+    t = ca.MX.sym("t")
+    return ca.Function("heave_rate", [t], [ca.jacobian(heave(t), t)])
 
 
 def _is_identity(st: DrivenStep, nx: int) -> bool:
@@ -320,6 +335,7 @@ class ScheduleOCP:
         x0 = ca.DM(line.start)
         energy = 0.0
         self._heave_fns = [h.map(n_k + 1) for h in heaves]
+        self._heave_rates = [heave_rate(h) for h in heaves]
         outs_all: list[Any] = []  # what the result reports, from the variables
         for r in range(n_r):
             hv = self._heave_fns[r](tgrid)
@@ -344,7 +360,11 @@ class ScheduleOCP:
             power = outs[3, :] * 0.5 * (vel[:-1] + vel[1:])
             if pb.power_max is not None:
                 add("power_max", power / pb.power_max, -1.0, 1.0)
-            add("rest", outs[1, -1] / pb.rest_tolerance, -1.0, 1.0)
+            # at rest relative to the ship: a stopped winch on a taut line carries the unit
+            # with the top's heave, less what the compensation pays out, (1 - g) dh/dt
+            rate = self._heave_rates[r](tt)
+            ref = (1.0 - gain) * rate if gain is not None else rate
+            add("rest", (outs[1, -1] - ref) / pb.rest_tolerance, -1.0, 1.0)
             if gain is not None:
                 if pb.ahc_stroke is not None:
                     add("ahc_stroke", comp / pb.ahc_stroke, -1.0, 1.0)

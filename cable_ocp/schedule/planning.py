@@ -7,8 +7,8 @@
    by no schedule: an honest ``"infeasible"`` that names the limit, without a solve);
 2. the warm start: the fastest constant speed (a trapezoid, ramped at ``accel_max``, or
    where none is given at :func:`ramp_acceleration`) whose rollout on the OCP's own
-   discrete line keeps the tension and power limits, by bisection on the speed
-   (:func:`discrete_constant_speed`); its duration fixes the step count
+   discrete line keeps the tension and power limits, by a grid search on the speed
+   and then bisection (:func:`discrete_constant_speed`); its duration fixes the step count
    N = ceil(T_0 / time_step);
 3. the OCP (:class:`cable_ocp.schedule.ocp.ScheduleOCP`), built once for N and the design
    heaves, solved from the warm start.
@@ -28,7 +28,14 @@ import numpy as np
 from cable_ocp.errors import CableOCPError
 from cable_ocp.scene.deployment import DeploymentProblem
 from cable_ocp.scene.dynamics import DynamicScene
-from cable_ocp.schedule.ocp import LineStep, OCPSolution, ScheduleOCP, line_step, static_tensions
+from cable_ocp.schedule.forward import SCAN, trapezoid_schedule
+from cable_ocp.schedule.ocp import (
+    LineStep,
+    OCPSolution,
+    ScheduleOCP,
+    line_step,
+    static_tensions,
+)
 
 #: the most steps of one OCP (its variables grow as steps x states x realisations)
 MAX_STEPS = 20000
@@ -61,10 +68,10 @@ def ramp_acceleration(scene: DynamicScene, problem: DeploymentProblem) -> float:
 
 def trapezoid(start: float, target: float, speed: float, accel: float, time_step: float
               ) -> tuple[float, np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
-    """A constant-speed schedule from rest to rest: ramped at ``accel`` to ``speed``, held,
-    ramped down (a triangle when the distance is too short), sampled on
-    N = ceil(T / time_step) equal steps: (T (s), time (s), accel (m/s^2, per step), speed
-    (m/s), length (m)).
+    """The constant-speed schedule of :func:`~cable_ocp.schedule.forward.trapezoid_schedule`
+    (from rest to rest, ramped at ``accel``; a triangle when the distance is too short)
+    sampled on N = ceil(T / time_step) equal steps: (T (s), time (s), accel (m/s^2, per
+    step), speed (m/s), length (m)).
 
     The speed at the nodes is the exact trapezoid; the step's acceleration its difference
     quotient, the length the trapezoidal rule (the OCP's kinematics, exact for it).
@@ -80,15 +87,12 @@ def trapezoid(start: float, target: float, speed: float, accel: float, time_step
     time_step : float
         The nominal step, s.
     """
-    dist = abs(target - start)
-    sgn = 1.0 if target > start else -1.0
-    v = min(speed, math.sqrt(accel * dist))
-    dur = dist / v + v / accel
+    profile = trapezoid_schedule(start, target, speed, accel)
+    dur = profile.duration
     n = max(int(math.ceil(dur / time_step - 1e-9)), 4)
     t = np.linspace(0.0, dur, n + 1)
-    spd = np.minimum.reduce([accel * t, np.full_like(t, v), accel * (dur - t)])
+    spd = np.interp(t, profile.time, profile.speed)
     spd[0] = spd[-1] = 0.0
-    spd = spd * sgn
     length = start + np.concatenate([[0.0], np.cumsum(0.5 * (spd[1:] + spd[:-1]) * np.diff(t))])
     length[-1] = target
     return dur, t, np.diff(spd) / np.diff(t), spd, length
@@ -162,7 +166,10 @@ class ConstantSpeed:
 def _rollout_limits(line: LineStep, heaves: Sequence[ca.Function], problem: DeploymentProblem,
                     dur: float, spd: np.ndarray, length: np.ndarray) -> dict[str, float]:
     """The largest relative excess of each limit (tension_min/max, power_max) over the
-    rollout of a schedule on the discrete line (inf where a step fails)."""
+    rollout of a schedule on the discrete line (inf where a step fails). The end's rest is
+    left to the OCP: in a sea the unit's speed relative to the ship at the end depends on
+    the phase of the heave, which the OCP sets through T; a grid of speeds would only
+    sample it."""
     n = spd.size - 1
     dt = dur / n
     tg = np.arange(n + 1) * dt
@@ -201,7 +208,9 @@ def discrete_constant_speed(scene: DynamicScene, line: LineStep, heaves: Sequenc
                             problem: DeploymentProblem, time_step: float,
                             rel_tol: float = 1e-2, floor: float = 1e-3) -> ConstantSpeed:
     """The fastest constant speed whose rollout on the OCP's discrete line keeps the tension
-    and power limits on every heave (bisection to ``rel_tol``; module docstring).
+    power limits on every heave (a geometric grid of
+    :data:`~cable_ocp.schedule.forward.SCAN` speeds from the top down, then bisection to
+    ``rel_tol``; module docstring).
 
     Parameters
     ----------
@@ -239,17 +248,21 @@ def discrete_constant_speed(scene: DynamicScene, line: LineStep, heaves: Sequenc
         dur = trapezoid(scene.length, problem.target_length, v_hi, acc, time_step)[0]
         return ConstantSpeed(v_hi, acc, dur, True, count, "speed_max" if problem.speed_max
                              is not None else "distance", v_hi)
-    lo, hi, binding = 0.0, v_hi, why
-    while True:
-        v = v_hi * floor if lo == 0.0 else lo
-        if lo == 0.0:
-            good, w = ok(v)
-            if not good:
-                dur = trapezoid(scene.length, problem.target_length, v, acc, time_step)[0]
-                return ConstantSpeed(v, acc, dur, False, count, w, v_hi)
-            lo = v
-        if hi - lo <= rel_tol * lo:
+    # feasibility is not monotone in the speed (a resonance can bind a slower speed and
+    # spare a faster one): a geometric grid from the top down first, then bisection
+    # between the first speed that keeps the limits and the rejected one above it
+    grid = v_hi * floor ** (np.arange(1, SCAN + 1) / SCAN)
+    hi, binding, lo = v_hi, why, math.nan
+    for v in grid:
+        good, w = ok(float(v))
+        if good:
+            lo = float(v)
             break
+        hi, binding = float(v), w
+    if math.isnan(lo):
+        dur = trapezoid(scene.length, problem.target_length, hi, acc, time_step)[0]
+        return ConstantSpeed(hi, acc, dur, False, count, binding, v_hi)
+    while hi - lo > rel_tol * lo:
         mid = 0.5 * (lo + hi)
         good, w = ok(mid)
         if good:
