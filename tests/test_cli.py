@@ -153,6 +153,25 @@ def test_a_problem_that_is_not_a_regular_file_or_too_large_is_refused(problems, 
         signal.signal(signal.SIGALRM, old)
 
 
+@pytest.mark.parametrize("option", ["--json", "--csv"])
+def test_an_output_onto_a_pipe_is_refused_and_the_pipe_kept(problems, tmp_path, capsys,
+                                                            option: str) -> None:
+    """An output path that is not a regular file (a FIFO here; a device such as /dev/full
+    alike) is exit 2 with one line, before the solve: the whole-or-nothing write renames a
+    temporary file over its path, which would replace the pipe (or, for root, the device)
+    by a regular file."""
+    import os
+    import stat
+
+    fifo = tmp_path / "out.fifo"
+    os.mkfifo(fifo)
+    rc = main(["solve", str(problems / "dezoysa_sea_buggy.toml"), option, str(fifo)])
+    err = capsys.readouterr().err.strip().splitlines()
+    assert rc == 2 and len(err) == 1, err
+    assert err[0].startswith(f"cable-ocp: error: {option} {fifo}: is not a regular file")
+    assert stat.S_ISFIFO(fifo.stat().st_mode)
+
+
 @pytest.mark.parametrize("command", ["heave", "batch"])
 def test_an_output_onto_the_cable_scene_is_refused(problems, tmp_path, capsys,
                                                    command: str) -> None:

@@ -176,7 +176,9 @@ def check_output_path(path: str | None, option: str, *, allow_stdout: bool = Tru
     """Raise :class:`CableOCPError` unless ``path`` can be written.
 
     ``-`` (stdout) is accepted where ``allow_stdout``; otherwise the parent directory must
-    exist and be writable, the path must not be a directory, and, with ``formats``, the
+    exist and be writable, the path must not be a directory nor another file that is not a
+    regular one (a device such as /dev/full, a pipe: the whole-or-nothing write renames a
+    temporary file over the path, which would replace it), and, with ``formats``, the
     suffix must be one of them.
 
     Parameters
@@ -203,6 +205,11 @@ def check_output_path(path: str | None, option: str, *, allow_stdout: bool = Tru
     parent = p.parent if str(p.parent) else Path(".")
     if not parent.is_dir():
         raise CableOCPError(f"{option} {path}: the directory {str(parent)!r} does not exist")
+    if p.exists() and not p.is_file():
+        # a device or a pipe: the atomic rename would replace it by a regular file
+        raise CableOCPError(f"{option} {path}: is not a regular file; give a file name, or - "
+                            "for stdout" if allow_stdout else
+                            f"{option} {path}: is not a regular file; give a file name")
     if not os.access(parent, os.W_OK) or (p.exists() and not os.access(p, os.W_OK)):
         raise CableOCPError(f"{option} {path}: not writable")
     if formats is not None:

@@ -51,4 +51,11 @@ MUTATIONS = [
          tests=(_T + "resonant_lengths_meet_the_rod_with_a_tip_mass",),
          description="deploy figure: the resonant length interpolated from the wrong end "
                      "(not L = EA / (w^2 M))"),
+    dict(name="output-onto-a-device-accepted", area="faults",
+         file="cable_ocp/cli/output.py",
+         old="    if p.exists() and not p.is_file():",
+         new="    if False:",
+         tests=("tests/test_cli.py::test_an_output_onto_a_pipe_is_refused_and_the_pipe_kept",),
+         description="an output onto a FIFO or a device is renamed over (the pipe, or for "
+                     "root /dev/full, replaced by a regular file)"),
 ]
