@@ -9,4 +9,6 @@ planning   solve_schedule: the static check, the warm start, the OCP (the Python
 sea        the vessel's heave: the scene's own motion or seeded realisations of a sea
 forward    a schedule re-simulated on the forward simulator at a finer step, the limits
            checked; the fastest constant speed by bisection
+robust     schedules tallied on unseen seas (slack, over/under the tension limits), the
+           same-duration trapezoid, the nominal against the robust schedule
 """
