@@ -9,4 +9,6 @@ planning   solve_schedule: the static check, the warm start, the OCP (the Python
 sea        the vessel's heave: the scene's own motion or seeded realisations of a sea
 forward    a schedule re-simulated on the forward simulator at a finer step, the limits
            checked; the fastest constant speed by bisection
+receding   the receding-horizon form (re-planned from the measured state with a preview
+           of the heave) and its comparison with the open-loop schedule
 """
