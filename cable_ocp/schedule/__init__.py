@@ -11,4 +11,6 @@ forward    a schedule re-simulated on the forward simulator at a finer step, the
            checked; the fastest constant speed by bisection
 robust     schedules tallied on unseen seas (slack, over/under the tension limits), the
            same-duration trapezoid, the nominal against the robust schedule
+receding   the receding-horizon form (re-planned from the measured state with a preview
+           of the heave) and its comparison with the open-loop schedule
 """

@@ -46,7 +46,7 @@ from __future__ import annotations
 
 import math
 import time
-from collections.abc import Sequence
+from collections.abc import Callable, Sequence
 from dataclasses import dataclass, field
 from typing import Any
 
@@ -62,8 +62,8 @@ from cable_ocp.numerics import interrupt
 from cable_ocp.scene.deployment import DeploymentProblem
 from cable_ocp.scene.dynamics import DynamicScene
 
-__all__ = ["LineStep", "OCPSolution", "ScheduleOCP", "heave_rate", "line_step",
-           "static_tensions"]
+__all__ = ["LineStep", "OCPSolution", "ScheduleOCP", "heave_rate", "limit_constraints",
+           "line_step", "static_tensions"]
 
 
 @dataclass(frozen=True)
@@ -195,6 +195,71 @@ def static_tensions(scene: DynamicScene, length: float) -> tuple[float, float]:
     """
     line = vertical_line(scene)
     return float(line.unit_weight), float(line.unit_weight + line.weight_per_length * length)
+
+
+def limit_constraints(add: Callable[[str, Any, Any, Any], None], problem: DeploymentProblem,
+                      tension_scale: float, tensions: Any, outputs: Any, speed: Any, *,
+                      rest_ref: Any = None, comp: Any = None, dt: Any = None) -> Any:
+    """The limits of one realisation's steps, as constraint groups (the one home of the
+    tension, power, rest and compensation limits: :class:`ScheduleOCP` and the receding
+    horizon's NLP, :mod:`cable_ocp.schedule.receding`, both add them through this).
+
+    Adds, through ``add(name, expr, lo, hi)``, in this order: ``"tension"`` (every element,
+    the unit, the top: ``tension_at``; scaled by ``tension_scale``, inside [tension_min +
+    margin, tension_max - margin]), ``"power_max"`` (|T_top v| <= power_max, v the step's
+    mean speed), ``"rest"`` (|V_unit(T) - rest_ref| <= rest_tolerance at the last node;
+    skipped when ``rest_ref`` is None), ``"ahc_stroke"`` and ``"ahc_speed"`` (only with
+    ``comp``).
+
+    Parameters
+    ----------
+    add : callable
+        ``add(name, expr, lo, hi)``: the NLP's constraint collector.
+    problem : DeploymentProblem
+        The limits.
+    tension_scale : float
+        N, the tensions' scale.
+    tensions : casadi.MX (n, K)
+        Element tensions at the steps' ends, N.
+    outputs : casadi.MX (5, K)
+        The step's outputs (:class:`LineStep`): unit height (m) and velocity (m/s), unit
+        and top tension, smallest element tension (N).
+    speed : casadi.MX (1, K + 1)
+        The winch's speed at the nodes, m/s.
+    rest_ref : casadi.MX, optional
+        The unit's velocity at rest relative to the ship at the end, (1 - g) dh/dt, m/s.
+    comp : casadi.MX (1, K + 1), optional
+        The compensating length g h at the nodes, m (with the compensation).
+    dt : casadi.MX, optional
+        The step, s (with ``comp``).
+
+    Returns
+    -------
+    casadi.MX (1, K)
+        The winch's power T_top v per step, W (the energy objective's integrand).
+    """
+    pb, ts, outs = problem, tension_scale, outputs
+    margin = pb.tension_margin
+    t_lo = (pb.tension_min + margin) / ts if pb.tension_min is not None else -math.inf
+    t_hi = (pb.tension_max - margin) / ts if pb.tension_max is not None else math.inf
+    if pb.tension_min is not None or pb.tension_max is not None:
+        if "line" in pb.tension_at:
+            add("tension", tensions / ts, t_lo, t_hi)
+        if "unit" in pb.tension_at:
+            add("tension", outs[2, :] / ts, t_lo, t_hi)
+        if "top" in pb.tension_at:
+            add("tension", outs[3, :] / ts, t_lo, t_hi)
+    power = outs[3, :] * 0.5 * (speed[:-1] + speed[1:])
+    if pb.power_max is not None:
+        add("power_max", power / pb.power_max, -1.0, 1.0)
+    if rest_ref is not None:
+        add("rest", (outs[1, -1] - rest_ref) / pb.rest_tolerance, -1.0, 1.0)
+    if comp is not None:
+        if pb.ahc_stroke is not None:
+            add("ahc_stroke", comp / pb.ahc_stroke, -1.0, 1.0)
+        if pb.ahc_speed is not None:
+            add("ahc_speed", (comp[1:] - comp[:-1]) / dt / pb.ahc_speed, -1.0, 1.0)
+    return power
 
 
 @dataclass(frozen=True)
@@ -329,9 +394,6 @@ class ScheduleOCP:
             / max(abs(target - start), 1.0), 0.0, 0.0)
         inf = math.inf
         ts = self.tension_scale
-        margin = pb.tension_margin
-        t_lo = (pb.tension_min + margin) / ts if pb.tension_min is not None else -inf
-        t_hi = (pb.tension_max - margin) / ts if pb.tension_max is not None else inf
         x0 = ca.DM(line.start)
         energy = 0.0
         self._heave_fns = [h.map(n_k + 1) for h in heaves]
@@ -350,26 +412,12 @@ class ScheduleOCP:
             add("dynamics", res, 0.0, 0.0)
             if not line.same:
                 add("dynamics", (nxt - xx[:, 1:]) / ca.repmat(xs, 1, n_k), 0.0, 0.0)
-            if pb.tension_min is not None or pb.tension_max is not None:
-                if "line" in pb.tension_at:
-                    add("tension", tens / ts, t_lo, t_hi)
-                if "unit" in pb.tension_at:
-                    add("tension", outs[2, :] / ts, t_lo, t_hi)
-                if "top" in pb.tension_at:
-                    add("tension", outs[3, :] / ts, t_lo, t_hi)
-            power = outs[3, :] * 0.5 * (vel[:-1] + vel[1:])
-            if pb.power_max is not None:
-                add("power_max", power / pb.power_max, -1.0, 1.0)
             # at rest relative to the ship: a stopped winch on a taut line carries the unit
             # with the top's heave, less what the compensation pays out, (1 - g) dh/dt
             rate = self._heave_rates[r](tt)
             ref = (1.0 - gain) * rate if gain is not None else rate
-            add("rest", (outs[1, -1] - ref) / pb.rest_tolerance, -1.0, 1.0)
-            if gain is not None:
-                if pb.ahc_stroke is not None:
-                    add("ahc_stroke", comp / pb.ahc_stroke, -1.0, 1.0)
-                if pb.ahc_speed is not None:
-                    add("ahc_speed", (comp[1:] - comp[:-1]) / dt / pb.ahc_speed, -1.0, 1.0)
+            power = limit_constraints(add, pb, ts, tens, outs, vel, rest_ref=ref,
+                                      comp=comp if gain is not None else None, dt=dt)
             if pb.objective == "time_energy":
                 energy = energy + ca.sum2(ca.sqrt(power**2 + (1e-3 * ts) ** 2)) * dt / n_r
             self._outputs = None
