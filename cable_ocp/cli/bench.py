@@ -190,6 +190,8 @@ def register(sub: argparse._SubParsersAction, parent: argparse.ArgumentParser) -
                     help="long: the deployment's duration, s (600)")
     dp.add_argument("--long-segments", type=int, default=40, metavar="N",
                     help="long: the OCP line's elements (40)")
+    dp.add_argument("--long-time-step", type=float, default=None, metavar="S",
+                    help="long: the OCP's step, s (default the scene's deployment.time_step)")
     out.add_json_option(dp, "every part's rows")
     dp.set_defaults(func=cmd_bench_deploy)
 
@@ -645,6 +647,8 @@ def cmd_bench_deploy(args: argparse.Namespace) -> int:
     for t in durs + [args.long_duration]:
         if not (math.isfinite(t) and 0.0 < t <= 7200.0):
             raise out_error(f"--durations/--long-duration {t}: give 0..7200 s")
+    if args.long_time_step is not None and not 1e-3 <= args.long_time_step <= 10.0:
+        raise out_error(f"--long-time-step {args.long_time_step}: give 0.001..10 s")
     if not args.budget > 0.0:
         raise out_error(f"--budget {args.budget}: give a time > 0 s")
     load = os.getloadavg() if hasattr(os, "getloadavg") else None
@@ -670,7 +674,7 @@ def cmd_bench_deploy(args: argparse.Namespace) -> int:
         out.say(args, format_cost(data["cost"]))
     if "long" in parts:
         data["long"] = bd.long_run(duration=args.long_duration, segments=args.long_segments,
-                                   progress=note)
+                                   time_step=args.long_time_step, progress=note)
         out.say(args, format_long(data["long"]))
     load = os.getloadavg() if hasattr(os, "getloadavg") else None
     data["load_average_end"] = list(load) if load else None
