@@ -12,4 +12,5 @@ heave_mpc      the MPC's solve time per step
 moorpy_systems mooring systems in MoorPy: equilibrium, 6x6 stiffness, timings
 systems        mooring systems beside MoorPy in one run: pose, tensions, 6x6, times
 moorpy_current a current on one line: ours against MoorPy's smeared load and a closed form
+deployment     the deployment schedule beside the constant speed and today's deployment; its cost
 """

@@ -14,6 +14,7 @@ inverse   heave-inverse: the parameters that give an identified a, b (Huang 6.4 
 system    mooring systems: solve on a system or a MoorDyn file, convert, mooring-checks
 response  frequency-response curves of a dynamic scene
 deploy    the optimal pay-out schedule of a dynamic scene's [deployment] (docs/deployment.md)
+bench_deploy  the tables of ``cable-ocp bench deploy`` (:mod:`cable_ocp.bench.deployment`)
 """
 
 from cable_ocp.cli.app import build_parser, main

@@ -1,4 +1,5 @@
-"""``cable-ocp bench {sweep,accuracy,robustness,batch,dynamics}`` and ``cable-ocp bench-heave``.
+"""``cable-ocp bench {sweep,accuracy,robustness,batch,systems,dynamics,deploy}`` and
+``cable-ocp bench-heave``.
 
 Benchmarks print tables (and write JSON/CSV/plots when asked); nothing here is asserted by
 the tests. Each compares methods side by side in one run, so ratios stay meaningful on a
@@ -156,6 +157,43 @@ def register(sub: argparse._SubParsersAction, parent: argparse.ArgumentParser) -
     out.add_json_option(d, "the rows and the targets")
     out.add_plot_option(d, "error against wall time per simulated second")
     d.set_defaults(func=cmd_bench_dynamics)
+
+    dp = which.add_parser(
+        "deploy", parents=[parent],
+        help="deployment schedule: the optimum beside the constant speed and today's "
+             "deployment, its cost, a 600 s run",
+        description="Issue 25's benchmark of the deployment OCP (docs/deployment.md), in "
+                    "one run: compare (on Huang (1992) 3.3.5 and the 6.3.6 line: the optimal "
+                    "schedule, re-simulated on the forward simulator, beside the fastest "
+                    "constant speed found by bisection on the forward simulator and "
+                    "the scheduled-gain deployment of cable-ocp heave), cost (build and "
+                    "solve time, iterations and variables against the duration and the "
+                    "elements) and long (a ~600 s deployment on 40 elements). Tens of "
+                    "minutes on a shared 2-core machine; choose parts with --part.")
+    dp.add_argument("--part", action="append", choices=["compare", "cost", "long"],
+                    metavar="PART", help="compare, cost or long (repeatable; default all)")
+    dp.add_argument("--case", action="append", metavar="FILE",
+                    help="compare: a dynamic scene with [deployment] (repeatable; default "
+                         "problems/dynamics/deploy_3_3_5.toml and deploy_6_3_6.toml)")
+    dp.add_argument("--rel-tol", type=float, default=1e-2, metavar="R",
+                    help="compare: the constant speed's bisection width, relative (0.01)")
+    dp.add_argument("--durations", type=float, nargs="+", default=None, metavar="S",
+                    help="cost: the warm start's durations, s (default 60 120 240 480)")
+    dp.add_argument("--segments", type=int, nargs="+", default=None, metavar="N",
+                    help="cost: the OCP line's elements (default 5 10 20 40)")
+    dp.add_argument("--cost-file", metavar="FILE", default=None,
+                    help="cost: the scene (default problems/dynamics/deploy_small.toml)")
+    dp.add_argument("--budget", type=float, default=600.0, metavar="S",
+                    help="cost: a cell taking longer (build + solve) skips the row's larger "
+                         "cells (600 s)")
+    dp.add_argument("--long-duration", type=float, default=600.0, metavar="S",
+                    help="long: the deployment's duration, s (600)")
+    dp.add_argument("--long-segments", type=int, default=40, metavar="N",
+                    help="long: the OCP line's elements (40)")
+    dp.add_argument("--long-time-step", type=float, default=None, metavar="S",
+                    help="long: the OCP's step, s (default the scene's deployment.time_step)")
+    out.add_json_option(dp, "every part's rows")
+    dp.set_defaults(func=cmd_bench_deploy)
 
     h = sub.add_parser(
         "bench-heave", parents=[parent],
@@ -587,3 +625,61 @@ def cmd_bench_dynamics(args: argparse.Namespace) -> int:
 
         out.emit_plot(args, lambda path: plot_dynamics_work_precision(rows, path))
     return out.EXIT_OK if status == "ok" else out.EXIT_NOT_SUCCESS
+
+
+def cmd_bench_deploy(args: argparse.Namespace) -> int:
+    """``cable-ocp bench deploy``."""
+    import math
+    import os
+
+    from cable_ocp.bench import deployment as bd
+    from cable_ocp.cli.bench_deploy import format_compare, format_cost, format_long
+
+    out.check_outputs(args)
+    parts = list(dict.fromkeys(args.part or bd.PARTS))
+    if not 0.0 < args.rel_tol < 1.0:
+        raise out_error(f"--rel-tol {args.rel_tol}: give a width in (0, 1)")
+    segs = args.segments or list(bd.COST_SEGMENTS)
+    for n in segs + [args.long_segments]:
+        if not 1 <= n <= 400:
+            raise out_error(f"--segments/--long-segments {n}: give 1..400 elements")
+    durs = args.durations or list(bd.COST_DURATIONS)
+    for t in durs + [args.long_duration]:
+        if not (math.isfinite(t) and 0.0 < t <= 7200.0):
+            raise out_error(f"--durations/--long-duration {t}: give 0..7200 s")
+    if args.long_time_step is not None and not 1e-3 <= args.long_time_step <= 10.0:
+        raise out_error(f"--long-time-step {args.long_time_step}: give 0.001..10 s")
+    if not args.budget > 0.0:
+        raise out_error(f"--budget {args.budget}: give a time > 0 s")
+    load = os.getloadavg() if hasattr(os, "getloadavg") else None
+    data: dict[str, Any] = {"parts": parts, "cpu_count": os.cpu_count(),
+                            "load_average_start": list(load) if load else None}
+
+    def note(what: str) -> None:
+        out.note(args, f"bench deploy: {what} ...")
+
+    if "compare" in parts:
+        cases = args.case or [str(p) for p in bd.COMPARE_CASES]
+        data["compare"] = [bd.compare_case(c, rel_tol=args.rel_tol, progress=note)
+                           for c in cases]
+        out.say(args, format_compare(data["compare"]))
+    if "cost" in parts:
+        kw: dict[str, Any] = {"budget_s": args.budget, "progress": note}
+        if args.cost_file:
+            kw["path"] = args.cost_file
+        rows = bd.cost_grid(durs, segs, **kw)
+        data["cost"] = {"rows": rows, "fits": bd.cost_fits(rows),
+                        "file": str(args.cost_file or bd.COST_FILE),
+                        "speed_m_s": bd.COST_SPEED}
+        out.say(args, format_cost(data["cost"]))
+    if "long" in parts:
+        data["long"] = bd.long_run(duration=args.long_duration, segments=args.long_segments,
+                                   time_step=args.long_time_step, progress=note)
+        out.say(args, format_long(data["long"]))
+    load = os.getloadavg() if hasattr(os, "getloadavg") else None
+    data["load_average_end"] = list(load) if load else None
+    if load is not None:
+        out.say(args, "\nload average (1, 5, 15 min) at the end: "
+                      + ", ".join(f"{v:.2f}" for v in load) + f" on {os.cpu_count()} cores")
+    out.emit_json(args, out.envelope("ok", "benchmark completed", data))
+    return out.EXIT_OK
