@@ -65,7 +65,7 @@ LONG_DURATION = 600.0
 LONG_SEGMENTS = 40
 
 __all__ = ["COMPARE_CASES", "COST_DURATIONS", "COST_SEGMENTS", "PARTS", "compare_case",
-           "cost_fits", "cost_grid", "cruise_speed", "distance_for", "fit_exponent", "heave_payout",
+           "cost_fits", "cost_grid", "distance_for", "fit_exponent", "heave_payout",
            "long_run", "payout_schedule", "saving_pct"]
 
 
@@ -124,28 +124,6 @@ def distance_for(duration: float, speed: float, accel: float) -> float:
                             f"the cruise speed {speed:g} m/s ramped at {accel:g} m/s^2; give "
                             f"more than {2.0 * speed / accel:g} s")
     return d
-
-
-def cruise_speed(distance: float, duration: float, accel: float) -> float:
-    """The cruise speed v (m/s) of the trapezoid from rest to rest, ramped at ``accel``
-    (m/s^2), that covers ``distance`` (m) in ``duration`` (s): the smaller root of
-    v^2 / a - T v + d = 0 (:func:`distance_for` inverted; the larger root is no trapezoid,
-    its ramps would overlap).
-
-    Parameters
-    ----------
-    distance : float
-        m, > 0.
-    duration : float
-        s.
-    accel : float
-        m/s^2, > 0.
-    """
-    disc = duration**2 - 4.0 * distance / accel
-    if not disc > 0.0:
-        raise CableOCPError(f"bench deploy: {distance:g} m cannot take {duration:g} s at "
-                            f"accel_max {accel:g} m/s^2 with a cruise; give a longer duration")
-    return 0.5 * accel * (duration - math.sqrt(disc))
 
 
 def payout_schedule(start: float, final: float, speed: float, ramp: float,
@@ -486,6 +464,7 @@ def long_run(path: str | Path = LONG_FILE, *, duration: float = LONG_DURATION,
     """
     from cable_ocp.scene.dynamics import load_dynamic_scene
     from cable_ocp.schedule.planning import solve_schedule
+    from cable_ocp.schedule.robust import same_duration_speed
     from cable_ocp.schedule.sea import vessel_motions
 
     base = load_dynamic_scene(path)
@@ -493,7 +472,7 @@ def long_run(path: str | Path = LONG_FILE, *, duration: float = LONG_DURATION,
     if pb is None or pb.accel_max is None:
         raise CableOCPError(f"{path}: the long run needs [deployment] accel_max")
     dist = abs(pb.target_length - base.length)
-    speed = cruise_speed(dist, duration, pb.accel_max)
+    speed = same_duration_speed(dist, duration, pb.accel_max)
     over: dict[str, Any] = {"deployment.speed_max": speed}
     if time_step is not None:
         over["deployment.time_step"] = time_step

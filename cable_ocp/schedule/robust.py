@@ -47,11 +47,44 @@ from cable_ocp.schedule.planning import ScheduleResult, ramp_acceleration, solve
 from cable_ocp.schedule.sea import VesselMotion, vessel_motions
 
 __all__ = ["KEEP_TOL", "RobustStudy", "RobustTally", "ScheduleTally", "StudyEntry",
-           "same_duration_trapezoid", "robust_study", "schedule_of", "tally"]
+           "robust_study", "same_duration_speed", "same_duration_trapezoid", "schedule_of",
+           "tally"]
 
 #: the relative excess (-) a run may have and still keep a limit: the 1 % of issue 25's
 #: "keeps every limit to 1 % of its value" (:meth:`ForwardCheck.keeps_limits`)
 KEEP_TOL = 0.01
+
+
+def same_duration_speed(distance: float, duration: float, accel: float) -> float:
+    """The cruise speed v (m/s) of the trapezoid from rest to rest, ramped at ``accel``,
+    that covers ``distance`` in ``duration``: the smaller root of v^2 - a T v + a D = 0
+    (D / v + v / a = T), v = 2 a D / (a T + sqrt(a^2 T^2 - 4 a D)) without cancellation.
+    The larger root is no trapezoid (it exceeds sqrt(a D): the ramps would overlap).
+
+    Parameters
+    ----------
+    distance : float
+        D, m, > 0.
+    duration : float
+        T, s.
+    accel : float
+        a, m/s^2, > 0.
+
+    Raises
+    ------
+    CableOCPError
+        ``accel`` not > 0, or ``duration`` shorter than the triangle's 2 sqrt(D / a).
+    """
+    if not accel > 0.0:
+        raise CableOCPError(f"same_duration_trapezoid: accel = {accel} m/s^2 must be > 0")
+    disc = (accel * duration) ** 2 - 4.0 * accel * distance
+    if disc < 0.0:
+        shortest = 2.0 * math.sqrt(distance / accel)
+        raise CableOCPError(f"same_duration_trapezoid: duration = {duration:.6g} s: no "
+                            f"trapezoid over {distance:.6g} m ramped at {accel:.6g} m/s^2 is "
+                            f"that short; the shortest is the triangle's 2 sqrt(D / a) = "
+                            f"{shortest:.6g} s")
+    return 2.0 * accel * distance / (accel * duration + math.sqrt(disc))
 
 
 def same_duration_trapezoid(start: float, target: float, duration: float,
@@ -89,17 +122,8 @@ def same_duration_trapezoid(start: float, target: float, duration: float,
             raise CableOCPError(f"same_duration_trapezoid: duration = {duration} s: a jump "
                                 f"in speed needs more than JUMP_RAMP = {JUMP_RAMP} s")
         return trapezoid_schedule(start, target, dist / (duration - JUMP_RAMP), None)
-    if not accel > 0.0:
-        raise CableOCPError(f"same_duration_trapezoid: accel = {accel} m/s^2 must be > 0")
-    shortest = 2.0 * math.sqrt(dist / accel)
-    disc = (accel * duration) ** 2 - 4.0 * accel * dist
-    if disc < 0.0:
-        raise CableOCPError(f"same_duration_trapezoid: duration = {duration:.6g} s: no "
-                            f"trapezoid over {dist:.6g} m ramped at {accel:.6g} m/s^2 is "
-                            f"that short; the shortest is the triangle's 2 sqrt(D / a) = "
-                            f"{shortest:.6g} s")
-    speed = 2.0 * accel * dist / (accel * duration + math.sqrt(disc))
-    sched = trapezoid_schedule(start, target, speed, accel)
+    sched = trapezoid_schedule(start, target, same_duration_speed(dist, duration, accel),
+                               accel)
     # the nodes' sum D / v + v / a carries round-off: the last node is T by construction
     tt = sched.time.copy()
     tt[-1] = duration

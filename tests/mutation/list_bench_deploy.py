@@ -20,9 +20,10 @@ MUTATIONS = [
          old="d = speed * (duration - speed / accel)", new="d = speed * duration",
          tests=(_T + "distance_and_cruise_speed_invert_each_other",),
          description="bench deploy: the cost grid's distance without the ramps' loss v^2/a"),
-    dict(name="bench-deploy-cruise-larger-root", area="bench", file=LIB,
-         old="return 0.5 * accel * (duration - math.sqrt(disc))",
-         new="return 0.5 * accel * (duration + math.sqrt(disc))",
+    dict(name="bench-deploy-cruise-larger-root", area="bench",
+         file="cable_ocp/schedule/robust.py",
+         old="return 2.0 * accel * distance / (accel * duration + math.sqrt(disc))",
+         new="return 0.5 * (accel * duration + math.sqrt(disc))",
          tests=(_T + "distance_and_cruise_speed_invert_each_other",),
          description="bench deploy: the long run's cruise speed the larger root (ramps "
                      "overlapping, no trapezoid)"),
