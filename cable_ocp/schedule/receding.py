@@ -667,20 +667,16 @@ class RecedingRow:
 
 
 def _tally(checks: Sequence[ForwardCheck | None], tol: float) -> dict[str, int]:
-    """Counts of the runs: ``runs``, ``slack``, ``over_tension_max``, ``under_tension_min``
-    (relative excess above ``tol``), ``kept`` (every limit within ``tol``, no slack),
-    ``failed`` (no schedule, or the simulation failed)."""
-    out = {"runs": len(checks), "slack": 0, "over_tension_max": 0, "under_tension_min": 0,
-           "kept": 0, "failed": 0}
-    for c in checks:
-        if c is None or c.status == "failed":
-            out["failed"] += 1
-            continue
-        out["slack"] += int(c.slack or c.status == "slack")
-        out["over_tension_max"] += int(c.violations.get("tension_max", 0.0) > tol)
-        out["under_tension_min"] += int(c.violations.get("tension_min", 0.0) > tol)
-        out["kept"] += int(c.keeps_limits(tol))
-    return out
+    """Counts of the runs (:func:`cable_ocp.schedule.robust.count_checks`): ``runs``,
+    ``slack``, ``over_tension_max``, ``under_tension_min``, ``kept``, ``failed`` (a run
+    without a schedule counts as failed)."""
+    from cable_ocp.schedule.robust import count_checks
+
+    done = [c for c in checks if c is not None]
+    d = count_checks("", math.nan, done, tol, keep=False).as_dict()
+    return {"runs": len(checks), "slack": d["slack"], "over_tension_max": d["over_tension_max"],
+            "under_tension_min": d["under_tension_min"], "kept": d["keeps_limits"],
+            "failed": d["failed"] + len(checks) - len(done)}
 
 
 @dataclass(frozen=True, eq=False)

@@ -47,8 +47,8 @@ from cable_ocp.schedule.planning import ScheduleResult, ramp_acceleration, solve
 from cable_ocp.schedule.sea import VesselMotion, vessel_motions
 
 __all__ = ["KEEP_TOL", "RobustStudy", "RobustTally", "ScheduleTally", "StudyEntry",
-           "robust_study", "same_duration_speed", "same_duration_trapezoid", "schedule_of",
-           "tally"]
+           "count_checks", "robust_study", "same_duration_speed", "same_duration_trapezoid",
+           "schedule_of", "tally"]
 
 #: the relative excess (-) a run may have and still keep a limit: the 1 % of issue 25's
 #: "keeps every limit to 1 % of its value" (:meth:`ForwardCheck.keeps_limits`)
@@ -226,8 +226,25 @@ def _summary(chk: ForwardCheck) -> dict[str, Any]:
             "tension_max_N": float(np.max(chk.tension_max_line)) if n else math.nan}
 
 
-def _count(name: str, duration: float, checks: list[ForwardCheck], tol: float,
-           keep: bool) -> ScheduleTally:
+def count_checks(name: str, duration: float, checks: Sequence[ForwardCheck], tol: float,
+                 keep: bool = True) -> ScheduleTally:
+    """The counts of re-simulated runs (:class:`ScheduleTally`): the one home of what
+    counts as slack, over ``tension_max``, under ``tension_min`` (a relative excess above
+    ``tol``), failed and kept, for :func:`tally` and the receding horizon's comparison.
+
+    Parameters
+    ----------
+    name : str
+        The schedule's name.
+    duration : float
+        Its duration, s.
+    checks : sequence of ForwardCheck
+        The runs.
+    tol : float
+        The relative tolerance on each limit (-).
+    keep : bool
+        Keep the checks themselves in the result.
+    """
     limits = sorted({k for c in checks for k in c.violations})
     worst = {k: max(c.violations.get(k, 0.0) for c in checks) for k in limits}
     return ScheduleTally(
@@ -307,7 +324,7 @@ def tally(scene: DynamicScene, schedules: Mapping[str, Schedule],
             done += 1
             if progress is not None:
                 progress(done, total, name, m.name)
-        out[name] = _count(name, sched.duration, checks, tol, keep_checks)
+        out[name] = count_checks(name, sched.duration, checks, tol, keep_checks)
     return RobustTally(status=status, tol=float(tol), motions=tuple(m.name for m in motions),
                        schedules=out, time_s=time.perf_counter() - t0)
 
