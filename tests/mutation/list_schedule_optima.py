@@ -1,0 +1,28 @@
+"""Mutations of the deployment OCP (cable_ocp/schedule/ocp.py) that its known optima
+(tests/schedule/test_optima.py: the trapezoid D/v + v/a, the bang-bang time of the
+tension limit at the unit) must catch, issue 25."""
+
+_T = "tests/schedule/test_optima.py::test_"
+OCP = "cable_ocp/schedule/ocp.py"
+
+MUTATIONS = [
+    dict(name="ocp-step-is-T-over-N-plus-1", area="schedule", file=OCP,
+         old="        dt = tt / n_k", new="        dt = tt / (n_k + 1)",
+         tests=(_T + "stiff_line_speed_and_accel_limits_give_the_trapezoid",
+                _T + "tension_limit_alone_gives_the_bang_bang_time"),
+         description="the OCP's step T / (N + 1): the schedule's duration no longer T"),
+    dict(name="ocp-unit-limit-on-the-top-tension", area="schedule", file=OCP,
+         old='add("tension", outs[2, :] / ts, t_lo, t_hi)',
+         new='add("tension", outs[3, :] / ts, t_lo, t_hi)',
+         tests=(_T + "tension_limit_alone_gives_the_bang_bang_time",),
+         description="tension_at = unit bounds the top's tension instead (W + w L): the "
+                     "bang-bang accelerations change"),
+    dict(name="ocp-length-by-the-left-speed", area="schedule", file=OCP,
+         old="(lng[1:] - lng[:-1] - 0.5 * dt * (vel[1:] + vel[:-1]))",
+         new="(lng[1:] - lng[:-1] - dt * vel[:-1])",
+         tests=("tests/test_deploy_cli.py::"
+                "test_deploy_csv_schedule_keeps_its_kinematics_and_limits",),
+         description="the length integrated by the left speed, not the trapezoidal rule "
+                     "(the same total when the speed is 0 at both ends, so the optima cannot "
+                     "tell; the CSV's lengths recomputed node by node can)"),
+]
