@@ -62,6 +62,9 @@ from cable_ocp.numerics import interrupt
 from cable_ocp.scene.deployment import DeploymentProblem
 from cable_ocp.scene.dynamics import DynamicScene
 
+#: the constraint groups that are the model's equations, not limits
+_EQUATIONS = ("kinematics", "dynamics")
+
 __all__ = ["LineStep", "OCPSolution", "ScheduleOCP", "heave_rate", "limit_constraints",
            "line_step", "static_tensions"]
 
@@ -288,8 +291,9 @@ class OCPSolution:
     heave : numpy.ndarray (R, N + 1)
         The vessel heave the schedule saw, m.
     binding : tuple of str
-        The limits active at the solution (within 0.1 % of their bound), or, on failure,
-        the most violated.
+        The limits active at the solution (within 0.1 % of their bound), or, when
+        infeasible, the most violated limits (never the model's equations, which the
+        message names when IPOPT broke them instead).
     violations : dict
         The largest relative excess of each limit group at the returned point (-).
     diagnostics : dict
@@ -550,7 +554,10 @@ class ScheduleOCP:
         elif ret in _INFEASIBLE or (ret in _SOLVED):
             worst = sorted((k for k in viol if viol[k] > 1e-5), key=lambda k: -viol[k])
             status = "infeasible"
-            binding = tuple(worst[:2])
+            # the limits, not the model's own equations, are what a user can change: IPOPT's
+            # last iterate may keep the limits by breaking the equations instead
+            limits = [k for k in worst if k not in _EQUATIONS]
+            binding = tuple(limits[:2])
             msg = (f"IPOPT: {ret}: no schedule keeps the limits; most violated at its last "
                    f"iterate: " + ", ".join(f"{k} by {viol[k]:.3g} (relative)" for k in worst[:3]))
         else:

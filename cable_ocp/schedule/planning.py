@@ -378,8 +378,10 @@ def solve_schedule(scene: DynamicScene, heaves: Sequence[ca.Function] | None = N
     w0 = ocp.pack(dur, acc, spd, length, xs, ys)
     sol = ocp.solve(w0)
     diag.update(sol.diagnostics)
-    msg = sol.message
+    msg, binding = sol.message, sol.binding
     if sol.status == "infeasible" and not warm.feasible:
         msg += (f"; no constant speed down to {warm.speed:.3g} m/s keeps the limits either "
                 f"({warm.binding} binds)")
-    return ScheduleResult(sol.status, msg, sol.binding, sol, warm, pb, diag)
+        # IPOPT's iterate broke only the model's equations: the warm start names the limit
+        binding = binding or (warm.binding,)
+    return ScheduleResult(sol.status, msg, binding, sol, warm, pb, diag)

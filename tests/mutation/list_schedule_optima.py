@@ -25,4 +25,10 @@ MUTATIONS = [
          description="the length integrated by the left speed, not the trapezoidal rule "
                      "(the same total when the speed is 0 at both ends, so the optima cannot "
                      "tell; the CSV's lengths recomputed node by node can)"),
+    dict(name="ocp-infeasible-names-the-equations", area="schedule",
+         file="cable_ocp/schedule/planning.py",
+         old="        binding = binding or (warm.binding,)", new="        binding = binding",
+         tests=(_T + "a_limit_no_schedule_meets_in_the_heave_is_an_honest_infeasible",),
+         description="an infeasible schedule whose IPOPT iterate broke only the model's "
+                     "equations names no limit (the warm start's binding limit dropped)"),
 ]

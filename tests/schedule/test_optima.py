@@ -15,7 +15,7 @@ import casadi as ca
 import numpy as np
 import pytest
 
-from cable_ocp.scene.dynamics import dynamic_scene_from_dict
+from cable_ocp.scene.dynamics import dynamic_scene_from_dict, load_dynamic_scene
 from cable_ocp.schedule.ocp import ScheduleOCP, line_step
 from cable_ocp.schedule.planning import solve_schedule, trapezoid
 
@@ -107,3 +107,22 @@ def test_tension_limit_alone_gives_the_bang_bang_time():
     # the issue's 1e-3 at N = 600 (the error dt/2 = 8.3e-4 of T*)
     assert sol.duration == pytest.approx(exact, rel=1e-3)
     assert sol.duration > exact  # the discrete schedule cannot beat the continuous one
+
+
+def test_a_limit_no_schedule_meets_in_the_heave_is_an_honest_infeasible() -> None:
+    """deploy_small (0.5 m heave at 1.26 rad/s) with tension_min = 40 kN: the static
+    check passes (the unit's static tension is W = 42.6 kN), but the heave swings the
+    tension by more than 2.6 kN at any speed, so IPOPT finds no schedule. The result is
+    "infeasible", no duration, and its binding names the limit (tension_min), not the
+    model's equations that IPOPT's last iterate broke instead."""
+    from cable_ocp.schedule.sea import vessel_motions
+
+    path = Path(__file__).resolve().parents[2] / "problems" / "dynamics" / "deploy_small.toml"
+    scene = load_dynamic_scene(path, overrides={"deployment.tension_min": 40000.0,
+                                                "deployment.target_length": 70.0})
+    res = solve_schedule(scene, [m.casadi_heave() for m in vessel_motions(scene)])
+    assert res.status == "infeasible" and not res.success
+    assert math.isnan(res.duration)
+    assert res.binding and set(res.binding) <= {"tension_min", "tension_max", "power_max",
+                                                "rest"}
+    assert "tension_min" in res.binding and "tension_min" in res.message
