@@ -31,4 +31,9 @@ MUTATIONS = [
          tests=(_T + "a_limit_no_schedule_meets_in_the_heave_is_an_honest_infeasible",),
          description="an infeasible schedule whose IPOPT iterate broke only the model's "
                      "equations names no limit (the warm start's binding limit dropped)"),
+    dict(name="ocp-haul-in-pays-out", area="schedule", file=OCP,
+         old="        self.direction = 1.0 if target > start else -1.0",
+         new="        self.direction = 1.0",
+         tests=(_T + "haul_in_is_the_mirrored_trapezoid_inside_the_limits",),
+         description="a haul-in gets the pay-out's speed bounds (0 <= v): no recovery"),
 ]

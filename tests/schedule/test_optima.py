@@ -126,3 +126,27 @@ def test_a_limit_no_schedule_meets_in_the_heave_is_an_honest_infeasible() -> Non
     assert res.binding and set(res.binding) <= {"tension_min", "tension_max", "power_max",
                                                 "rest"}
     assert "tension_min" in res.binding and "tension_min" in res.message
+
+
+def test_haul_in_is_the_mirrored_trapezoid_inside_the_limits() -> None:
+    """Recovery: deploy_small's line hauled in 150 -> 50 m in its heave. The tension
+    limits do not bind at 3 m/s and 0.2 m/s^2, so the optimum is the mirrored trapezoid,
+    D/v + v/a = 48.33 s, no shorter; the rest condition at the end may cost a fraction of
+    a step (0.5 s). The speed is <= 0 throughout (the winch does not reverse: bounds,
+    kept to IPOPT's bound tolerance, 1e-8 relative), the length falls monotonically to
+    the target, and every element's tension stays inside [10, 120] kN."""
+    from cable_ocp.schedule.sea import vessel_motions
+
+    path = Path(__file__).resolve().parents[2] / "problems" / "dynamics" / "deploy_small.toml"
+    scene = load_dynamic_scene(path, overrides={"cable.length": 150.0,
+                                                "deployment.target_length": 50.0})
+    res = solve_schedule(scene, [m.casadi_heave() for m in vessel_motions(scene)])
+    assert res.success, res.message
+    sol, pb = res.solution, scene.deployment
+    t_trap = 100.0 / 3.0 + 3.0 / 0.2
+    assert t_trap * (1 - 1e-6) <= res.duration <= t_trap + pb.time_step
+    assert np.all(sol.speed <= 1e-9) and sol.speed.min() >= -pb.speed_max * (1 + 1e-7)
+    assert np.all(np.diff(sol.length) <= 1e-9) and sol.length[-1] == pytest.approx(50.0)
+    tol = 1e-6 * pb.tension_max  # IPOPT's constraint tolerance on the scaled tensions
+    assert sol.tensions.min() >= pb.tension_min - tol
+    assert sol.tensions.max() <= pb.tension_max + tol
