@@ -1,5 +1,6 @@
 """``cable-ocp deploy``: the optimal pay-out (or haul-in) schedule of a dynamic scene's
-``[deployment]`` (parse, call :func:`cable_ocp.schedule.planning.solve_schedule`, format).
+``[deployment]`` (parse, call :func:`cable_ocp.schedule.planning.verified_schedule`: the
+OCP and its forward check, format).
 
 docs/deployment.md describes the problem and the outputs; docs/cli.md the command.
 """
@@ -51,6 +52,9 @@ def register(sub: argparse._SubParsersAction, parent: argparse.ArgumentParser) -
     d.add_argument("--time-step", type=float, metavar="S", dest="time_step",
                    help="the OCP's nominal step in s (default deployment.time_step, else "
                         "simulation.time_step)")
+    d.add_argument("--check-rounds", type=int, metavar="N", dest="check_rounds",
+                   help="re-solves the forward check may ask for (default "
+                        "deployment.check_rounds, 4; 0: the OCP alone, not re-simulated)")
     d.add_argument("--compare", action="store_true",
                    help="also find the fastest constant speed on the forward simulator "
                         "(bisection, one simulation per speed tried)")
@@ -69,12 +73,14 @@ def _check_options(args: argparse.Namespace) -> None:
     if args.time_step is not None and not (math.isfinite(args.time_step)
                                            and args.time_step > 0.0):
         raise CableOCPError(f"--time-step {args.time_step}: give a step > 0 s")
+    if args.check_rounds is not None and not 0 <= args.check_rounds <= 10:
+        raise CableOCPError(f"--check-rounds {args.check_rounds}: give 0..10 re-solves")
 
 
 def cmd_deploy(args: argparse.Namespace) -> int:
     """``cable-ocp deploy FILE``."""
     from cable_ocp.scene.dynamics import load_dynamic_scene
-    from cable_ocp.schedule.planning import solve_schedule
+    from cable_ocp.schedule.planning import verified_schedule
     from cable_ocp.schedule.sea import vessel_motions
 
     out.check_outputs(args)
@@ -87,8 +93,8 @@ def cmd_deploy(args: argparse.Namespace) -> int:
     title = scene.statics.meta.get("title", Path(args.file).stem)
     out.note(args, f"deploy: {scene.length:.6g} -> {scene.deployment.target_length:.6g} m, "
                    f"{len(motions)} realisation(s): warm start, build, solve ...")
-    res = solve_schedule(scene, [m.casadi_heave() for m in motions], segments=args.segments,
-                         time_step=args.time_step)
+    res = verified_schedule(scene, motions, segments=args.segments, time_step=args.time_step,
+                            rounds=args.check_rounds)
     compare: dict[str, Any] | None = None
     stopped = False
     if args.compare and res.success:
@@ -122,6 +128,26 @@ def _forward_compare(args: argparse.Namespace, scene: Any, motions: list[Any]
                 "speed_m_s": fc.schedule.speed}}
 
 
+def _check_text(scene: Any, res: Any) -> str:
+    """The forward check's row: the last round's worst excess, the margins, the rounds."""
+    pb, last = res.problem, res.checks[-1]
+    name, val = last.worst
+    step = pb.check_time_step or scene.simulation.time_step
+    seg = pb.check_segments or scene.simulation.segments
+    first = res.checks[0]
+    fname, fval = first.worst
+    text = (f"worst excess {100 * val:.2g} % ({name or '-'}; accepted "
+            f"{100 * pb.check_tolerance:g} %) on the forward simulator, {seg} elements, "
+            f"{step:g} s")
+    if len(res.checks) > 1:
+        margins = ", ".join(f"{k} {v:.4g} {'W' if k == 'power_max' else 'N'}"
+                            for k, v in last.margins.items())
+        text += (f"; the OCP alone broke {fname} by {100 * fval:.3g} % "
+                 f"({first.duration:.4g} s): {len(res.checks) - 1} re-solve(s), margins "
+                 f"{margins}")
+    return text
+
+
 def _saving(optimal: float, other: float) -> str:
     if not (math.isfinite(optimal) and math.isfinite(other) and other > 0.0):
         return "-"
@@ -140,6 +166,8 @@ def _text(args: argparse.Namespace, scene: Any, res: Any, motions: list[Any],
     ws = res.warm_start
     if res.success:
         rows.append(("time to depth", f"{res.duration:.4g} s (optimal schedule)"))
+    if res.checks:
+        rows.append(("re-simulated", _check_text(scene, res)))
     if ws is not None:
         ok = "" if ws.feasible else ", none keeps the limits"
         rows.append(("constant speed", f"{ws.duration:.4g} s at {ws.speed:.4g} m/s (the "
@@ -167,7 +195,8 @@ def _text(args: argparse.Namespace, scene: Any, res: Any, motions: list[Any],
         rows.append(("times", f"warm start {d.get('warm_start_s', math.nan):.3g} s, build "
                               f"{d.get('build_s', math.nan):.3g} s, solve "
                               f"{d['solve_time_s']:.3g} s ({d.get('iterations', '-')} "
-                              "iterations)"))
+                              "iterations)" + (f", check {d['check_s']:.3g} s" if "check_s"
+                                               in d else "")))
     width = max(len(k) for k, _ in rows)
     out.say(args, title)
     out.say(args, "\n".join(f"{k:<{width}}  {v}" for k, v in rows))
@@ -224,6 +253,9 @@ def _json(res: Any, motions: list[Any], compare: dict[str, Any] | None) -> dict[
             "feasible": ws.feasible, "binding": ws.binding, "rollouts": ws.rollouts},
         "compare": compare,
         "diagnostics": res.diagnostics,
+        "checks": [{"margins": c.margins, "status": c.status, "duration_s": c.duration,
+                    "violations": c.violations, "failed_runs": c.failed_runs}
+                   for c in res.checks],
         "schedule": None,
         "realisations": None,
     }

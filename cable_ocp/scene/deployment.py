@@ -33,6 +33,13 @@ Schema (SI units)::
                                  the steps are duration / steps, the count fixed from the
                                  warm start
     segments = 10                elements of the OCP's line (default simulation.segments)
+    check_rounds = 4             int, 0..10: the schedule is re-simulated on the forward
+                                 simulator and, while a limit is broken by more than
+                                 check_tolerance, re-solved with that limit moved inwards by
+                                 the excess seen, at most this often (0: no check)
+    check_tolerance = 0.01       -, in (0, 0.5): the relative excess the check accepts
+    check_time_step = 0.01       s, the check's step (default simulation.time_step)
+    check_segments = 20          the check's elements (default simulation.segments)
     ahc_stroke = 2.0             m: the active heave compensation on top (a compensating
                                  length of gain g in [0, 1] on the measured heave,
                                  |g heave| <= ahc_stroke); off when neither is given
@@ -65,6 +72,7 @@ __all__ = ["DEPLOYMENT_KEYS", "OBJECTIVES", "SEA_KEYS", "DeploymentProblem", "Se
 DEPLOYMENT_KEYS = {"target_length", "objective", "energy_weight", "speed_max", "accel_max",
                    "power_max", "tension_min", "tension_max", "tension_at",
                    "tension_margin", "rest_tolerance", "time_step", "segments",
+                   "check_rounds", "check_tolerance", "check_time_step", "check_segments",
                    "ahc_stroke", "ahc_speed", "replan_interval", "preview", "sea"}
 SEA_KEYS = {"significant_height", "peak_frequency", "spectrum", "seed", "realisations",
             "unseen", "components", "fade_in"}
@@ -134,6 +142,14 @@ class DeploymentProblem:
         s (None: the scene's ``simulation.time_step``).
     segments : int or None
         (None: the scene's ``simulation.segments``).
+    check_rounds : int
+        Re-solves the forward check may ask for (0: no check).
+    check_tolerance : float
+        -, relative.
+    check_time_step : float or None
+        s (None: the scene's ``simulation.time_step``).
+    check_segments : int or None
+        (None: the scene's ``simulation.segments``).
     ahc_stroke, ahc_speed : float or None
         m, m/s (both None: no compensation).
     replan_interval, preview : float
@@ -155,6 +171,10 @@ class DeploymentProblem:
     rest_tolerance: float = 0.05
     time_step: float | None = None
     segments: int | None = None
+    check_rounds: int = 4
+    check_tolerance: float = 0.01
+    check_time_step: float | None = None
+    check_segments: int | None = None
     ahc_stroke: float | None = None
     ahc_speed: float | None = None
     replan_interval: float = 10.0
@@ -223,14 +243,23 @@ def parse_deployment(t: Any, start_length: float) -> DeploymentProblem:
     for key, unit in (("speed_max", "m/s"), ("accel_max", "m/s^2"), ("power_max", "W"),
                       ("tension_max", "N"), ("time_step", "s"), ("ahc_speed", "m/s"),
                       ("ahc_stroke", "m"), ("rest_tolerance", "m/s"),
-                      ("replan_interval", "s"), ("preview", "s")):
+                      ("replan_interval", "s"), ("preview", "s"), ("check_time_step", "s")):
         if key in t:
             kw[key] = number(t[key], f"deployment.{key}", positive=True, unit=unit)
     for key in ("tension_min", "tension_margin"):
         if key in t:
             kw[key] = number(t[key], f"deployment.{key}", nonneg=True, unit="N")
-    if "segments" in t:
-        kw["segments"] = integer(t["segments"], "deployment.segments", 1, 2000)
+    for key, lo_n, hi_n in (("segments", 1, 2000), ("check_segments", 1, 2000),
+                            ("check_rounds", 0, 10)):
+        if key in t:
+            kw[key] = integer(t[key], f"deployment.{key}", lo_n, hi_n)
+    if "check_tolerance" in t:
+        tol = number(t["check_tolerance"], "deployment.check_tolerance", positive=True,
+                     unit="-")
+        if not tol < 0.5:
+            raise CableOCPError(f"deployment.check_tolerance = {tol}: give a relative excess "
+                                "in (0, 0.5), e.g. 0.01")
+        kw["check_tolerance"] = tol
     if "tension_at" in t:
         v = t["tension_at"]
         if v == "line":

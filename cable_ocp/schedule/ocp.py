@@ -299,6 +299,9 @@ class OCPSolution:
     diagnostics : dict
         build and solve times (s), iterations, variables, constraints, steps, IPOPT's
         return status.
+    variables_vector : numpy.ndarray
+        The NLP's variables at the returned point (scaled: :meth:`ScheduleOCP.pack`), the
+        warm start of a re-solve.
     """
 
     status: str
@@ -314,6 +317,7 @@ class OCPSolution:
     binding: tuple[str, ...] = ()
     violations: dict[str, float] = field(default_factory=dict)
     diagnostics: dict[str, Any] = field(default_factory=dict)
+    variables_vector: np.ndarray = field(default_factory=lambda: np.zeros(0))
 
     @property
     def duration(self) -> float:
@@ -527,13 +531,38 @@ class ScheduleOCP:
         return xs_all, ys_all
 
     # ---------------------------------------------------------------- solving
-    def solve(self, w0: np.ndarray) -> OCPSolution:
+    def bounds(self, tighten: dict[str, float] | None = None) -> tuple[np.ndarray, np.ndarray]:
+        """The constraints' (lower, upper) bounds, the limits moved inwards by ``tighten``
+        (the verified schedule's margins, :func:`cable_ocp.schedule.planning.verified_schedule`:
+        the bounds are the solver's parameters, so no rebuild).
+
+        Parameters
+        ----------
+        tighten : dict, optional
+            ``"tension_min"``, ``"tension_max"`` (N) and ``"power_max"`` (W): how far inside
+            its limit each is kept, on top of ``tension_margin``.
+        """
+        lbg, ubg = self._lbg.copy(), self._ubg.copy()
+        extra = tighten or {}
+        ts, pm = self.tension_scale, self.problem.power_max
+        for name, a, b, _, _ in self._groups:
+            if name == "tension":
+                lbg[a:b] += extra.get("tension_min", 0.0) / ts
+                ubg[a:b] -= extra.get("tension_max", 0.0) / ts
+            elif name == "power_max" and pm is not None:
+                ubg[a:b] -= extra.get("power_max", 0.0) / pm
+                lbg[a:b] += extra.get("power_max", 0.0) / pm
+        return lbg, ubg
+
+    def solve(self, w0: np.ndarray, tighten: dict[str, float] | None = None) -> OCPSolution:
         """Solve from the variable vector ``w0`` (:meth:`pack`).
 
         Parameters
         ----------
         w0 : ndarray
-            The warm start.
+            The warm start (a previous :attr:`OCPSolution.variables_vector` too).
+        tighten : dict, optional
+            Margins moving the limits inwards (:meth:`bounds`; N, W).
 
         Raises
         ------
@@ -541,16 +570,17 @@ class ScheduleOCP:
             On a Ctrl-C inside IPOPT (never retried).
         """
         t0 = time.perf_counter()
+        lbg, ubg = self.bounds(tighten)
         res, stats = interrupt.call_solver(self._solver, x0=w0, lbx=self._lbx, ubx=self._ubx,
-                                           lbg=self._lbg, ubg=self._ubg)
+                                           lbg=lbg, ubg=ubg)
         solve_time = time.perf_counter() - t0
         ret = str(stats.get("return_status", "unknown"))
         w = np.asarray(res["x"]).ravel()
         g = np.asarray(res["g"]).ravel()
-        viol = self._violations(g)
+        viol = self._violations(g, lbg, ubg)
         if ret in _SOLVED and max(viol.values(), default=0.0) <= 1e-5:
             status, msg = "solved", f"IPOPT: {ret}"
-            binding = self._active(g, w)
+            binding = self._active(g, w, lbg, ubg)
         elif ret in _INFEASIBLE or (ret in _SOLVED):
             worst = sorted((k for k in viol if viol[k] > 1e-5), key=lambda k: -viol[k])
             status = "infeasible"
@@ -575,10 +605,11 @@ class ScheduleOCP:
             i += s
         return out
 
-    def _violations(self, g: np.ndarray) -> dict[str, float]:
+    def _violations(self, g: np.ndarray, lbg: np.ndarray, ubg: np.ndarray
+                    ) -> dict[str, float]:
         viol: dict[str, float] = {}
-        for name, a, b, lo, hi in self._groups:
-            seg = g[a:b]
+        for name, a, b, _, _ in self._groups:
+            seg, lo, hi = g[a:b], lbg[a:b], ubg[a:b]
             with np.errstate(invalid="ignore"):
                 exc = np.maximum(np.nan_to_num(lo - seg, nan=0.0, neginf=0.0),
                                  np.nan_to_num(seg - hi, nan=0.0, neginf=0.0))
@@ -595,12 +626,13 @@ class ScheduleOCP:
         return "tension_min" if np.max(low, initial=-np.inf) >= np.max(high, initial=-np.inf) \
             else "tension_max"
 
-    def _active(self, g: np.ndarray, w: np.ndarray) -> tuple[str, ...]:
+    def _active(self, g: np.ndarray, w: np.ndarray, lbg: np.ndarray, ubg: np.ndarray
+                ) -> tuple[str, ...]:
         act: list[str] = []
-        for name, a, b, lo, hi in self._groups:
+        for name, a, b, _, _ in self._groups:
             if name in ("kinematics", "dynamics", "rest"):
                 continue
-            seg = g[a:b]
+            seg, lo, hi = g[a:b], lbg[a:b], ubg[a:b]
             if np.any(np.isfinite(lo) & (seg - lo <= 1e-3 * np.maximum(abs(lo), 1e-9))):
                 act.append("tension_min" if name == "tension" else name)
             if np.any(np.isfinite(hi) & (hi - seg <= 1e-3 * np.maximum(abs(hi), 1e-9))):
@@ -639,4 +671,4 @@ class ScheduleOCP:
                            ahc_gain=float(parts[4][0]) if parts[4].size else 0.0,
                            tensions=np.array(tens_l), outputs=np.array(outs_l),
                            heave=np.array(heave_l), binding=binding, violations=viol,
-                           diagnostics=diag)
+                           diagnostics=diag, variables_vector=w.copy())

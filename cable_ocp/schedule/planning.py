@@ -12,10 +12,22 @@
    N = ceil(T_0 / time_step);
 3. the OCP (:class:`cable_ocp.schedule.ocp.ScheduleOCP`), built once for N and the design
    heaves, solved from the warm start.
+
+:func:`verified_schedule` adds the forward check (docs/deployment.md, "Checks"): the
+schedule is re-simulated on the forward simulator (:func:`cable_ocp.schedule.forward.resimulate`,
+the scene's own model at ``check_time_step`` and ``check_segments``: independent of the
+OCP's transcription) on every design motion, and while a limit (tension_min, tension_max,
+power_max) is broken there by more than ``check_tolerance`` of its value the OCP is solved
+again, warm, with that limit moved inwards by the excess seen (the bounds are the built
+solver's parameters: no rebuild), at most ``check_rounds`` times. The OCP's midpoint step
+and its coarser line carry an error of the tensions of a few % at 0.25-0.5 s (second order
+in the step); the margin the check finds is that error, measured, not guessed. A schedule
+the check still rejects is ``"failed"``, never reported as a schedule.
 """
 
 from __future__ import annotations
 
+import dataclasses
 import math
 import time
 from collections.abc import Sequence
@@ -26,9 +38,10 @@ import casadi as ca
 import numpy as np
 
 from cable_ocp.errors import CableOCPError
+from cable_ocp.numerics import interrupt
 from cable_ocp.scene.deployment import DeploymentProblem
 from cable_ocp.scene.dynamics import DynamicScene
-from cable_ocp.schedule.forward import SCAN, trapezoid_schedule
+from cable_ocp.schedule.forward import SCAN, Schedule, resimulate, trapezoid_schedule
 from cable_ocp.schedule.ocp import (
     LineStep,
     OCPSolution,
@@ -40,8 +53,13 @@ from cable_ocp.schedule.ocp import (
 #: the most steps of one OCP (its variables grow as steps x states x realisations)
 MAX_STEPS = 20000
 
-__all__ = ["MAX_STEPS", "ConstantSpeed", "ScheduleResult", "discrete_constant_speed",
-           "ramp_acceleration", "solve_schedule", "static_check", "trapezoid"]
+__all__ = ["CHECKED_LIMITS", "MAX_STEPS", "CheckRound", "ConstantSpeed", "ScheduleResult",
+           "discrete_constant_speed", "ramp_acceleration", "solve_schedule", "static_check",
+           "trapezoid", "verified_schedule"]
+
+#: the limits the forward check moves inwards when the re-simulation breaks them (speed
+#: and acceleration are the schedule's own, the same in both)
+CHECKED_LIMITS = ("tension_min", "tension_max", "power_max")
 
 
 def ramp_acceleration(scene: DynamicScene, problem: DeploymentProblem) -> float:
@@ -274,6 +292,40 @@ def discrete_constant_speed(scene: DynamicScene, line: LineStep, heaves: Sequenc
 
 
 @dataclass(frozen=True)
+class CheckRound:
+    """One round of the forward check (:func:`verified_schedule`).
+
+    Attributes
+    ----------
+    margins : dict of str to float
+        How far inside each limit the OCP kept its tensions (N) and power (W) this round,
+        on top of ``tension_margin``.
+    status : str
+        The OCP's status this round.
+    duration : float
+        Its schedule's duration, s.
+    violations : dict of str to float
+        The re-simulation's worst relative excess of each limit over the motions (-).
+    failed_runs : int
+        Re-simulations that went slack or failed.
+    """
+
+    margins: dict[str, float]
+    status: str
+    duration: float
+    violations: dict[str, float]
+    failed_runs: int = 0
+
+    @property
+    def worst(self) -> tuple[str, float]:
+        """(limit, relative excess) of the largest excess ("", 0.0 without limits)."""
+        if not self.violations:
+            return "", 0.0
+        k = max(self.violations, key=lambda n: self.violations[n])
+        return k, self.violations[k]
+
+
+@dataclass(frozen=True)
 class ScheduleResult:
     """The optimal schedule of a scene's ``[deployment]`` (or why there is none).
 
@@ -293,7 +345,9 @@ class ScheduleResult:
     problem : DeploymentProblem
         The problem solved.
     diagnostics : dict
-        Times (s: the warm start, the build, the solve), steps, sizes.
+        Times (s: the warm start, the build, the solve, the check), steps, sizes.
+    checks : tuple of CheckRound
+        The forward check's rounds (:func:`verified_schedule`; empty without the check).
     """
 
     status: str
@@ -303,6 +357,7 @@ class ScheduleResult:
     warm_start: ConstantSpeed | None
     problem: DeploymentProblem
     diagnostics: dict[str, Any] = field(default_factory=dict)
+    checks: tuple[CheckRound, ...] = ()
 
     @property
     def success(self) -> bool:
@@ -346,6 +401,25 @@ def solve_schedule(scene: DynamicScene, heaves: Sequence[ca.Function] | None = N
     KeyboardInterrupt
         On a Ctrl-C (never retried).
     """
+    return _solve(scene, heaves, problem, segments, time_step, steps, ipopt)[0]
+
+
+def _tightened(pb: DeploymentProblem, margins: dict[str, float]) -> DeploymentProblem:
+    """The problem with its limits moved inwards by ``margins`` (N, W; the warm start's
+    search of a re-solve)."""
+    kw: dict[str, Any] = {}
+    for name, sign in (("tension_min", 1.0), ("tension_max", -1.0), ("power_max", -1.0)):
+        if getattr(pb, name) is not None and name in margins:
+            kw[name] = getattr(pb, name) + sign * margins[name]
+    return dataclasses.replace(pb, **kw)
+
+
+def _solve(scene: DynamicScene, heaves: Sequence[ca.Function] | None,
+           problem: DeploymentProblem | None, segments: int | None, time_step: float | None,
+           steps: int | None, ipopt: dict[str, Any] | None
+           ) -> tuple[ScheduleResult, ScheduleOCP | None, Any]:
+    """:func:`solve_schedule`, the built OCP (None when the static check failed) and
+    ``restart(margins) -> w0``: the warm start of the limits moved inwards, for its N."""
     pb = problem if problem is not None else scene.deployment
     if pb is None:
         raise CableOCPError("[deployment] is missing: the schedule needs target_length and "
@@ -353,7 +427,7 @@ def solve_schedule(scene: DynamicScene, heaves: Sequence[ca.Function] | None = N
     diag: dict[str, Any] = {}
     bad = static_check(scene, pb)
     if bad is not None:
-        return ScheduleResult("infeasible", bad[1], (bad[0],), None, None, pb, diag)
+        return ScheduleResult("infeasible", bad[1], (bad[0],), None, None, pb, diag), None, None
     if heaves is None:
         heaves = [ca.Function("still", [ca.SX.sym("t")], [ca.SX(0.0)])]
     dt_nom = time_step or pb.time_step or scene.simulation.time_step
@@ -376,6 +450,14 @@ def solve_schedule(scene: DynamicScene, heaves: Sequence[ca.Function] | None = N
     diag["build_s"] = ocp.build_time
     xs, ys = ocp.rollout(dur, acc, spd, length)
     w0 = ocp.pack(dur, acc, spd, length, xs, ys)
+
+    def restart(margins: dict[str, float]) -> np.ndarray:
+        ws = discrete_constant_speed(scene, line, heaves, _tightened(pb, margins), dt_nom)
+        v = ws.speed if ws.feasible else ws.fastest
+        d0 = trapezoid(scene.length, pb.target_length, v, ws.accel, dt_nom)[0]
+        d1, _, a1, s1, l1 = trapezoid(scene.length, pb.target_length, v, ws.accel, d0 / n)
+        return ocp.pack(d1, a1, s1, l1, *ocp.rollout(d1, a1, s1, l1))
+
     sol = ocp.solve(w0)
     diag.update(sol.diagnostics)
     msg, binding = sol.message, sol.binding
@@ -384,4 +466,125 @@ def solve_schedule(scene: DynamicScene, heaves: Sequence[ca.Function] | None = N
                 f"({warm.binding} binds)")
         # IPOPT's iterate broke only the model's equations: the warm start names the limit
         binding = binding or (warm.binding,)
-    return ScheduleResult(sol.status, msg, binding, sol, warm, pb, diag)
+    return ScheduleResult(sol.status, msg, binding, sol, warm, pb, diag), ocp, restart
+
+
+def verified_schedule(scene: DynamicScene, motions: Sequence[Any], *,
+                      problem: DeploymentProblem | None = None, segments: int | None = None,
+                      time_step: float | None = None, steps: int | None = None,
+                      ipopt: dict[str, Any] | None = None, rounds: int | None = None,
+                      tolerance: float | None = None, check_time_step: float | None = None,
+                      check_segments: int | None = None) -> ScheduleResult:
+    """The optimal schedule, re-simulated on the forward simulator and re-solved with
+    margins until the re-simulation keeps its limits (module docstring).
+
+    Parameters
+    ----------
+    scene : DynamicScene
+        The scene with its ``[deployment]`` table.
+    motions : sequence of VesselMotion
+        The design motions (:func:`cable_ocp.schedule.sea.vessel_motions`): the OCP's
+        heaves and the check's.
+    problem, segments, time_step, steps, ipopt
+        As :func:`solve_schedule`.
+    rounds : int, optional
+        Re-solves allowed (default ``deployment.check_rounds``; 0: the OCP alone).
+    tolerance : float, optional
+        The relative excess accepted (default ``deployment.check_tolerance``).
+    check_time_step : float, optional
+        The check's step, s (default ``deployment.check_time_step``, else the scene's).
+    check_segments : int, optional
+        The check's elements (default ``deployment.check_segments``, else the scene's).
+
+    Raises
+    ------
+    CableOCPError
+        As :func:`solve_schedule`.
+    KeyboardInterrupt
+        On a Ctrl-C inside IPOPT (never retried).
+    """
+    res, ocp, restart = _solve(scene, [m.casadi_heave() for m in motions], problem,
+                               segments, time_step, steps, ipopt)
+    pb = res.problem
+    n_rounds = pb.check_rounds if rounds is None else int(rounds)
+    if n_rounds < 0:
+        raise CableOCPError(f"check rounds = {n_rounds}: give 0 (no check) or more")
+    if not res.success or ocp is None or n_rounds == 0:
+        return res
+    tol = pb.check_tolerance if tolerance is None else float(tolerance)
+    if not 0.0 < tol < 0.5:
+        raise CableOCPError(f"check tolerance = {tol}: give a relative excess in (0, 0.5)")
+    c_step = check_time_step or pb.check_time_step or scene.simulation.time_step
+    c_seg = check_segments or pb.check_segments or scene.simulation.segments
+    sol = res.solution
+    assert sol is not None
+    t0 = time.perf_counter()
+    margins: dict[str, float] = {}
+    rounds_done: list[CheckRound] = []
+    diag = dict(res.diagnostics)
+    where = (f"on the forward simulator ({c_seg} elements, {c_step:g} s, "
+             f"{len(motions)} motion(s))")
+    while True:
+        sched = Schedule.from_speed(sol.time, sol.speed, scene.length, sol.ahc_gain)
+        runs = [resimulate(scene, sched, m, time_step=c_step, segments=c_seg)
+                for m in motions]
+        worst: dict[str, float] = {}
+        for run in runs:
+            for k, v in run.violations.items():
+                worst[k] = max(worst.get(k, 0.0), v)
+        broken = sum(1 for run in runs if run.status != "solved" or run.slack)
+        rnd = CheckRound(dict(margins), sol.status, sol.duration, worst, broken)
+        rounds_done.append(rnd)
+        diag.update(check_s=time.perf_counter() - t0, check_rounds=len(rounds_done) - 1)
+        if interrupt.requested() or any(run.status == "interrupted" for run in runs):
+            return ScheduleResult("interrupted", "the forward check was interrupted", (),
+                                  sol, res.warm_start, pb, diag, tuple(rounds_done))
+        over = {k: v for k, v in worst.items() if v > tol}
+        if not over and broken == 0:
+            msg = (f"{res.message}; the limits kept to {100 * tol:g} % {where}"
+                   + (f" after {len(rounds_done) - 1} re-solve(s) with margins "
+                      + _margins_text(margins) if margins else ""))
+            return ScheduleResult("solved", msg, sol.binding, sol, res.warm_start, pb, diag,
+                                  tuple(rounds_done))
+        fixable = {k: v for k, v in over.items() if k in CHECKED_LIMITS}
+        if len(rounds_done) > n_rounds or len(fixable) < len(over):
+            why = ", ".join(f"{k} by {100 * v:.3g} %" for k, v in sorted(
+                over.items(), key=lambda kv: -kv[1]))
+            msg = (f"the schedule breaks {why or 'nothing'} {where}"
+                   + (f" ({broken} run(s) slack or failed)" if broken else "")
+                   + f" after {len(rounds_done) - 1} re-solve(s)"
+                   + (f" with margins {_margins_text(margins)}" if margins else "")
+                   + "; not a schedule: give a finer deployment.time_step or more "
+                     "deployment.segments (docs/deployment.md, Checks)")
+            return ScheduleResult("failed", msg, tuple(over), sol, res.warm_start, pb, diag,
+                                  tuple(rounds_done))
+        first = not margins
+        for k, v in fixable.items():
+            # aim half the tolerance inside: the excess changes with the schedule
+            margins[k] = margins.get(k, 0.0) + (v + 0.5 * tol) * _limit_value(
+                pb, k, ocp.tension_scale)
+        # the first re-solve starts from the warm start of the moved limits (from the
+        # optimum, which breaks them by the whole excess, IPOPT took 10-100 times longer,
+        # and once called a feasible problem infeasible); later ones, small moves, from
+        # the last schedule, falling back to the warm start
+        sol = ocp.solve(restart(margins) if first else sol.variables_vector, margins)
+        if not first and not sol.success:
+            sol = ocp.solve(restart(margins), margins)
+        diag.update({f"resolve_{len(rounds_done)}_s": sol.diagnostics.get("solve_time_s")})
+        if not sol.success:
+            msg = (f"{sol.message} (re-solved with margins {_margins_text(margins)} after "
+                   f"the forward check {where} broke " + ", ".join(sorted(fixable)) + ")")
+            return ScheduleResult(sol.status, msg, sol.binding or tuple(fixable), sol,
+                                  res.warm_start, pb, diag, tuple(rounds_done))
+
+
+def _limit_value(pb: DeploymentProblem, name: str, scale: float) -> float:
+    """A limit's value (N, W) that its relative excess refers to (the scale for a zero
+    tension_min, as :func:`cable_ocp.schedule.forward.resimulate`)."""
+    value = getattr(pb, name)
+    return float(value) if value else float(scale)
+
+
+def _margins_text(margins: dict[str, float]) -> str:
+    return ", ".join(f"{k} {v:.4g} {'W' if k == 'power_max' else 'N'}"
+                     for k, v in margins.items())
