@@ -5,7 +5,10 @@ deployment chart (where the first natural frequency omega_1(L) meets the heave's
 frequency or an edge of the wave band) as horizontal lines and the constant-speed
 schedules for comparison; (b) the pay-out speed, ``speed_max`` dashed; (c) the tension
 envelope (the smallest and largest element tension per step, the unit and the top
-tension), ``tension_min`` and ``tension_max`` dashed; (d) the winch's power
+tension), ``tension_min`` and ``tension_max`` dashed, and with the forward check
+(:func:`cable_ocp.schedule.planning.verified_schedule`) the re-simulated smallest tension
+along the line and the limits as the OCP kept them (moved in by the check's margins),
+dotted; (d) the winch's power
 |T_top dL/dt|, ``power_max`` dashed.
 """
 
@@ -141,6 +144,16 @@ def schedule_figure(res: Any, title: str = "", chart: Any = None,
                label=f"top tension{tag}")
     _limit(c, pb.tension_min, "limit", scale)
     _limit(c, pb.tension_max, "limit", scale)
+    if res.checks:
+        last = res.checks[-1]
+        for k, run in enumerate(last.runs[:n_r]):
+            c.plot(run.t, run.tension_min_line / scale, color="k", lw=0.8,
+                   label="re-simulated, smallest along the line" if k == 0 else "_sim")
+        for name, sign in (("tension_min", 1.0), ("tension_max", -1.0)):
+            limit, m = getattr(pb, name), last.margins.get(name, 0.0) + pb.tension_margin
+            if limit is not None and m > 0.0:
+                c.axhline((limit + sign * m) / scale, color="0.25", ls=":", lw=1.0,
+                          label=f"the OCP's {name} (check's margin {m:.3g} N)")
     c.set_ylim(bottom=0.0)
     c.set_ylabel(f"tension ({unit})")
     c.set_xlabel("time t (s)")

@@ -308,6 +308,9 @@ class CheckRound:
         The re-simulation's worst relative excess of each limit over the motions (-).
     failed_runs : int
         Re-simulations that went slack or failed.
+    runs : tuple of ForwardCheck
+        The re-simulations themselves, one per motion
+        (:class:`cable_ocp.schedule.forward.ForwardCheck`).
     """
 
     margins: dict[str, float]
@@ -315,6 +318,7 @@ class CheckRound:
     duration: float
     violations: dict[str, float]
     failed_runs: int = 0
+    runs: tuple[Any, ...] = ()
 
     @property
     def worst(self) -> tuple[str, float]:
@@ -533,7 +537,7 @@ def verified_schedule(scene: DynamicScene, motions: Sequence[Any], *,
             for k, v in run.violations.items():
                 worst[k] = max(worst.get(k, 0.0), v)
         broken = sum(1 for run in runs if run.status != "solved" or run.slack)
-        rnd = CheckRound(dict(margins), sol.status, sol.duration, worst, broken)
+        rnd = CheckRound(dict(margins), sol.status, sol.duration, worst, broken, tuple(runs))
         rounds_done.append(rnd)
         diag.update(check_s=time.perf_counter() - t0, check_rounds=len(rounds_done) - 1)
         if interrupt.requested() or any(run.status == "interrupted" for run in runs):
