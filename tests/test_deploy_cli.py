@@ -206,6 +206,79 @@ def test_deploy_schedule_the_check_rejects_is_not_a_schedule(tmp_path, capsys, m
     assert not cs.exists()
 
 
+SEA = ["--set", "deployment.sea.significant_height=0.5", "--set",
+       "deployment.sea.peak_frequency=0.6", "--set", "deployment.sea.unseen=2"]
+
+
+def test_deploy_unseen_counts_are_the_runs_on_the_unseen_seas(run, tmp_path, monkeypatch,
+                                                               capsys):
+    """--unseen: the schedule and the constant speed of its duration re-simulated on the
+    sea's unseen realisations; the counts against resimulate's own runs, the constant
+    speed against the smaller root of v^2 - a T v + a D = 0 (deploy_small's schedule,
+    solved in its own heave, stands in for one solved on the sea)."""
+    import cable_ocp.schedule.planning as planning
+    from cable_ocp.scene.dynamics import load_dynamic_scene
+    from cable_ocp.schedule.forward import Schedule, resimulate
+    from cable_ocp.schedule.sea import vessel_motions
+
+    monkeypatch.setattr(planning, "verified_schedule", lambda *a, **k: run.result)
+    js = tmp_path / "u.json"
+    assert main(["deploy", str(SMALL), *SEA, "--unseen", "--json", str(js)]) == EXIT_OK
+    text = capsys.readouterr().out
+    u = json.loads(js.read_text())["unseen"]
+    scene = load_dynamic_scene(SMALL, {"deployment.sea.significant_height": 0.5,
+                                       "deployment.sea.peak_frequency": 0.6,
+                                       "deployment.sea.unseen": 2})
+    seas = vessel_motions(scene, "unseen")
+    assert u["motions"] == [m.name for m in seas] and len(seas) == 2
+    sol = run.result.solution
+    mine = [resimulate(scene, Schedule.from_speed(sol.time, sol.speed, 50.0), m) for m in seas]
+    opt = u["schedules"]["optimal"]
+    assert opt["runs"] == 2 and opt["duration_s"] == pytest.approx(sol.duration, rel=1e-14)
+    assert opt["slack"] == sum(c.slack for c in mine)
+    assert opt["under_tension_min"] == sum(c.violations["tension_min"] > 0.01 for c in mine)
+    assert opt["keeps_limits"] == sum(c.keeps_limits(0.01) for c in mine)
+    # T = D / v + v / a: a = 0.2 m/s^2, D = 100 m
+    a, d, t = 0.2, 100.0, sol.duration
+    v = (a * t - math.sqrt((a * t) ** 2 - 4 * a * d)) / 2
+    assert u["constant_speed_m_s"] == pytest.approx(v, rel=1e-9)
+    assert u["schedules"]["constant"]["duration_s"] == pytest.approx(t, rel=1e-12)
+    assert "unseen seas" in text and "2 realisations" in text
+
+
+def test_deploy_receding_keeps_the_checks_margins(run, tmp_path, monkeypatch):
+    """--receding: the horizon gets the limits moved in by the forward check's margins,
+    the open-loop schedule and the unseen seas; its counts go to the JSON."""
+    import cable_ocp.schedule.planning as planning
+    import cable_ocp.schedule.receding as receding
+
+    seen = {}
+
+    def fake(scene, motions, open_loop, **kw):
+        seen.update(kw, motions=[m.name for m in motions], open_loop=open_loop)
+        c = {"runs": 2, "slack": 0, "over_tension_max": 0, "under_tension_min": 1,
+             "kept": 1, "failed": 0}
+        return receding.RecedingComparison("solved", (), open_loop.duration,
+                                           {"open_loop": c, "receding": c}, 0.01)
+
+    monkeypatch.setattr(planning, "verified_schedule", lambda *a, **k: run.result)
+    monkeypatch.setattr(receding, "compare_receding", fake)
+    js = tmp_path / "r.json"
+    assert main(["deploy", str(SMALL), *SEA, "--receding", "--json", str(js)]) == EXIT_OK
+    margin = run.result.margins["tension_min"]
+    assert seen["problem"].tension_min == pytest.approx(1e4 + margin, rel=1e-15)
+    assert seen["problem"].tension_max == 1.2e5 and len(seen["motions"]) == 2
+    assert seen["open_loop"].duration == pytest.approx(run.result.duration, rel=1e-14)
+    r = json.loads(js.read_text())["receding"]
+    assert r["counts"]["receding"]["under_tension_min"] == 1
+    assert r["margins"]["tension_min"] == pytest.approx(margin, rel=1e-15)
+
+
+def test_deploy_unseen_without_a_sea_exits_2(capsys):
+    assert main(["deploy", str(SMALL), "--receding"]) == EXIT_INPUT
+    assert "[deployment.sea]" in capsys.readouterr().err
+
+
 def test_deploy_bad_key_names_the_key(capsys):
     rc = main(["deploy", str(SMALL), "--set", "deployment.speed_mx=1"])
     assert rc == EXIT_INPUT

@@ -58,8 +58,18 @@ def register(sub: argparse._SubParsersAction, parent: argparse.ArgumentParser) -
     d.add_argument("--compare", action="store_true",
                    help="also find the fastest constant speed on the forward simulator "
                         "(bisection, one simulation per speed tried)")
+    d.add_argument("--unseen", action="store_true",
+                   help="also re-simulate the schedule, and the constant speed of the same "
+                        "duration, on the [deployment.sea]'s unseen realisations (its "
+                        "'unseen' count, seeds disjoint from the design ones) and count the "
+                        "runs that go slack, exceed tension_max, fall under tension_min")
+    d.add_argument("--receding", action="store_true",
+                   help="also run the receding-horizon form (re-planned every "
+                        "deployment.replan_interval s with deployment.preview s of the sea, "
+                        "the forward check's margins kept) on the unseen realisations, "
+                        "against the open-loop schedule, both re-simulated")
     out.add_json_option(d, "the status, the schedule (t, L, v, a), the tensions per "
-                           "realisation and the comparison")
+                           "realisation, the forward check and the comparisons")
     out.add_csv_option(d, "the schedule: t, L, v, a and per realisation the smallest and "
                           "largest tension along the line, the unit and the top tension")
     out.add_plot_option(d, "length (with the resonant lengths), speed, the tension envelope "
@@ -89,30 +99,39 @@ def cmd_deploy(args: argparse.Namespace) -> int:
     if scene.deployment is None:
         raise CableOCPError(f"{args.file}: no [deployment] table; give target_length and the "
                             "limits (docs/deployment.md)")
+    for flag in ("unseen", "receding"):
+        if getattr(args, flag) and scene.deployment.sea is None:
+            raise CableOCPError(f"--{flag}: the scene has no [deployment.sea]; give its "
+                                "significant_height and peak_frequency (and 'unseen', the "
+                                "count)")
     motions = vessel_motions(scene)
     title = scene.statics.meta.get("title", Path(args.file).stem)
     out.note(args, f"deploy: {scene.length:.6g} -> {scene.deployment.target_length:.6g} m, "
                    f"{len(motions)} realisation(s): warm start, build, solve ...")
     res = verified_schedule(scene, motions, segments=args.segments, time_step=args.time_step,
                             rounds=args.check_rounds)
-    compare: dict[str, Any] | None = None
+    extra: dict[str, dict[str, Any]] = {}  # the comparisons asked for, JSON-ready
     stopped = False
-    if args.compare and res.success:
+    for flag, job in (("compare", _forward_compare), ("unseen", _unseen),
+                      ("receding", _receding)):
+        if not (getattr(args, flag) and res.success) or stopped:
+            continue
         try:
-            compare = _forward_compare(args, scene, motions)
+            extra[flag] = job(args, scene, motions, res)
         except KeyboardInterrupt:  # the schedule is whole: written, then exit 130
             stopped = True
         stopped = stopped or interrupt.requested()  # a Ctrl-C a simulation returned as status
         if stopped:
-            compare = {"status": "interrupted", "message": "the comparison was interrupted"}
+            extra[flag] = {"status": "interrupted",
+                           "message": f"the {flag} runs were interrupted"}
     with interrupt.deferred():  # a Ctrl-C from here waits until the outputs are written
-        rc = _outputs(args, scene, res, motions, compare, title)
+        rc = _outputs(args, scene, res, motions, extra, title)
     if stopped:
         raise KeyboardInterrupt
     return rc
 
 
-def _forward_compare(args: argparse.Namespace, scene: Any, motions: list[Any]
+def _forward_compare(args: argparse.Namespace, scene: Any, motions: list[Any], res: Any
                      ) -> dict[str, Any]:
     """The fastest constant speed on the forward simulator (a JSON-ready dict)."""
     from cable_ocp.schedule.forward import fastest_constant_speed
@@ -148,6 +167,94 @@ def _check_text(scene: Any, res: Any) -> str:
     return text
 
 
+def _unseen(args: argparse.Namespace, scene: Any, motions: list[Any], res: Any
+            ) -> dict[str, Any]:
+    """The schedule and its same-duration constant speed on the unseen seas (a JSON-ready
+    dict: :func:`cable_ocp.schedule.robust.tally`'s counts)."""
+    from cable_ocp.schedule.planning import ramp_acceleration
+    from cable_ocp.schedule.robust import same_duration_trapezoid, schedule_of, tally
+    from cable_ocp.schedule.sea import vessel_motions
+
+    pb = res.problem
+    seas = vessel_motions(scene, "unseen")
+    sched = schedule_of(res, scene.length)
+    const = same_duration_trapezoid(scene.length, pb.target_length, res.duration,
+                                    ramp_acceleration(scene, pb))
+    out.note(args, f"deploy --unseen: the schedule and the constant speed of the same "
+                   f"duration on {len(seas)} unseen seas ...")
+    tal = tally(scene, {"optimal": sched, "constant": const}, seas,
+                time_step=pb.check_time_step, segments=pb.check_segments, keep_checks=False)
+    data = tal.as_dict()
+    data["constant_speed_m_s"] = float(np.max(np.abs(const.speed)))
+    data["time_step_s"] = pb.check_time_step or scene.simulation.time_step
+    data["segments"] = pb.check_segments or scene.simulation.segments
+    return data
+
+
+def _unseen_text(u: dict[str, Any]) -> str:
+    if u["status"] != "solved":
+        return f"{u['status']}: {u.get('message', '')}"
+    opt, con = u["schedules"]["optimal"], u["schedules"]["constant"]
+
+    def counts(t: dict[str, Any]) -> str:
+        return (f"{t['slack']} slack, {t['over_tension_max']} over tension_max, "
+                f"{t['under_tension_min']} under tension_min, {t['keeps_limits']} keep "
+                "every limit")
+
+    return (f"{len(u['motions'])} realisations ({u['segments']} elements, "
+            f"{u['time_step_s']:g} s): the optimal schedule {counts(opt)}; the constant "
+            f"speed of the same duration ({u['constant_speed_m_s']:.4g} m/s) {counts(con)}")
+
+
+def _receding(args: argparse.Namespace, scene: Any, motions: list[Any], res: Any
+              ) -> dict[str, Any]:
+    """The receding horizon against the open-loop schedule on the unseen seas (a
+    JSON-ready dict: :func:`cable_ocp.schedule.receding.compare_receding`'s counts)."""
+    from cable_ocp.schedule.planning import with_margins
+    from cable_ocp.schedule.receding import compare_receding
+    from cable_ocp.schedule.robust import schedule_of
+    from cable_ocp.schedule.sea import vessel_motions
+
+    pb = res.problem
+    seas = vessel_motions(scene, "unseen")
+    out.note(args, f"deploy --receding: the receding horizon and the open-loop schedule on "
+                   f"{len(seas)} unseen seas ...")
+    # the plan's line is the OCP's: it keeps the margins the forward check found
+    cmp = compare_receding(scene, seas, schedule_of(res, scene.length),
+                           problem=with_margins(pb, res.margins),
+                           check_time_step=pb.check_time_step,
+                           check_segments=pb.check_segments)
+    dur = cmp.durations
+    st = cmp.solve_times
+    return {"status": cmp.status, "message": "", "motions": [r.motion for r in cmp.rows],
+            "counts": cmp.counts, "open_loop_duration_s": cmp.open_loop_duration,
+            "durations_s": dur, "failed_replans": cmp.failed_replans,
+            "replans": int(st.size), "replan_solve_s_median":
+                float(np.median(st)) if st.size else math.nan,
+            "replan_interval_s": pb.replan_interval, "preview_s": pb.preview,
+            "margins": res.margins}
+
+
+def _receding_text(r: dict[str, Any]) -> str:
+    if r["status"] != "solved":
+        return f"{r['status']}: {r.get('message', '')}"
+
+    def counts(c: dict[str, int]) -> str:
+        return (f"{c['slack']} slack, {c['over_tension_max']} over tension_max, "
+                f"{c['under_tension_min']} under tension_min, {c['failed']} failed, "
+                f"{c['kept']} keep every limit")
+
+    dur = np.asarray(r["durations_s"], dtype=float)
+    ok = dur[np.isfinite(dur)]
+    span = (f"{np.mean(ok):.4g} s on average ({np.min(ok):.4g}..{np.max(ok):.4g})"
+            if ok.size else "never at rest at the target")
+    return (f"{len(r['motions'])} realisations, re-planned every {r['replan_interval_s']:g} s "
+            f"with {r['preview_s']:g} s of preview: {counts(r['counts']['receding'])}; "
+            f"{span}; {r['failed_replans']} of {r['replans']} re-plans failed (median "
+            f"solve {r['replan_solve_s_median']:.3g} s). The open-loop schedule "
+            f"({r['open_loop_duration_s']:.4g} s): {counts(r['counts']['open_loop'])}")
+
+
 def _saving(optimal: float, other: float) -> str:
     if not (math.isfinite(optimal) and math.isfinite(other) and other > 0.0):
         return "-"
@@ -155,7 +262,7 @@ def _saving(optimal: float, other: float) -> str:
 
 
 def _text(args: argparse.Namespace, scene: Any, res: Any, motions: list[Any],
-          compare: dict[str, Any] | None, title: str) -> None:
+          extra: dict[str, dict[str, Any]], title: str) -> None:
     pb = res.problem
     d = res.diagnostics
     rows = [("status", f"{res.status}: {res.message}"),
@@ -173,6 +280,7 @@ def _text(args: argparse.Namespace, scene: Any, res: Any, motions: list[Any],
         rows.append(("constant speed", f"{ws.duration:.4g} s at {ws.speed:.4g} m/s (the "
                                        f"fastest on the OCP's line{ok}; {ws.binding} binds); "
                                        f"saving {_saving(res.duration, ws.duration)}"))
+    compare = extra.get("compare")
     if compare is not None:
         if compare["status"] == "solved":
             rows.append(("forward check", f"{compare['duration_s']:.4g} s at "
@@ -184,6 +292,10 @@ def _text(args: argparse.Namespace, scene: Any, res: Any, motions: list[Any],
         else:
             rows.append(("forward check", f"{compare['status']}: "
                                           f"{compare.get('message', '')}"))
+    if "unseen" in extra:
+        rows.append(("unseen seas", _unseen_text(extra["unseen"])))
+    if "receding" in extra:
+        rows.append(("receding horizon", _receding_text(extra["receding"])))
     rows.append(("binding limits", ", ".join(res.binding) if res.binding else "none"))
     if res.success and pb.ahc:
         rows.append(("heave compensation", f"gain {res.solution.ahc_gain:.4g}"))
@@ -302,10 +414,13 @@ def _resampled(t: np.ndarray, speed: np.ndarray, start: float
 
 
 def _outputs(args: argparse.Namespace, scene: Any, res: Any, motions: list[Any],
-             compare: dict[str, Any] | None, title: str) -> int:
+             extra: dict[str, dict[str, Any]], title: str) -> int:
     """The text, JSON, CSV and figure of a finished solve."""
-    _text(args, scene, res, motions, compare, title)
+    compare = extra.get("compare")
+    _text(args, scene, res, motions, extra, title)
     data = _json(res, motions, compare)
+    data["unseen"] = extra.get("unseen")
+    data["receding"] = extra.get("receding")
     data["start_length_m"] = scene.length
     out.emit_json(args, out.envelope(res.status, res.message, data))
     if not res.success:

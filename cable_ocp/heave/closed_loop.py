@@ -33,6 +33,7 @@ import numpy as np
 from cable_ocp.heave.controllers import Controller
 from cable_ocp.heave.delay import DelayLine
 from cable_ocp.heave.estimators import Observation
+from cable_ocp.numerics.ramp import smoothstep
 from cable_ocp.status import Status
 
 __all__ = ["INTERRUPTED", "STATUSES", "UNSTABLE_FACTOR", "CableTrace", "LoopPlant", "LoopRun",
@@ -200,7 +201,7 @@ def make_wave(t_fine: np.ndarray, x0_fine: np.ndarray, h: float, substeps: int, 
     """
     t = np.arange(n_ctrl * substeps + 1) * (h / substeps)
     x = np.clip(t / fade_in, 0.0, 1.0) if fade_in > 0 else np.ones_like(t)
-    ramp = x**3 * (10.0 - 15.0 * x + 6.0 * x**2)
+    ramp = smoothstep(x)
     return Wave(t=t, x0=ramp * np.interp(t, t_fine, x0_fine),
                 ldep=np.asarray(ldep(t), dtype=float), substeps=substeps)
 

@@ -46,6 +46,7 @@ import numpy as np
 
 from cable_ocp.errors import CableOCPError
 from cable_ocp.heave.identify import IdentificationResult, identify_unit
+from cable_ocp.numerics.ramp import smoothstep
 from cable_ocp.scene.dynamics import DynamicScene
 from cable_ocp.scene.heave import HeaveScene
 
@@ -96,8 +97,7 @@ class CableIdentification:
 
 
 def _fade(t: np.ndarray, t_fade: float) -> np.ndarray:
-    x = np.clip(t / t_fade, 0.0, 1.0)
-    return x**3 * (10.0 - 15.0 * x + 6.0 * x**2)
+    return smoothstep(np.clip(t / t_fade, 0.0, 1.0))
 
 
 def excitation_signal(kind: str, t: np.ndarray, amplitude: float, band: tuple[float, float],
@@ -140,7 +140,7 @@ def excitation_signal(kind: str, t: np.ndarray, amplitude: float, band: tuple[fl
     elif kind == "step":
         t_on = min(5.0, duration / 4)
         s = np.clip((t - t_on) / 0.5, 0.0, 1.0)
-        return 2.0 * amplitude * s**3 * (10.0 - 15.0 * s + 6.0 * s**2)
+        return 2.0 * amplitude * smoothstep(s)
     elif kind == "sea":
         if sea is None:
             raise CableOCPError("excitation 'sea' needs the boom-tip record")

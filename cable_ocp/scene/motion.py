@@ -28,6 +28,8 @@ from typing import TYPE_CHECKING
 import casadi as ca
 import numpy as np
 
+from cable_ocp.numerics.ramp import smoothstep, smoothstep_integral
+
 if TYPE_CHECKING:  # types only: the scene module uses this one at run time
     from cable_ocp.scene.dynamic_parts import TopMotion, Tow
     from cable_ocp.scene.dynamics import DynamicScene
@@ -42,8 +44,8 @@ def _ramp(tm: TopMotion, t: ca.SX) -> tuple[ca.SX, ca.SX]:
     if tau <= 0.0:
         return ca.SX(1.0), t
     x = ca.fmin(ca.fmax(t / tau, 0.0), 1.0)
-    r = x**3 * (10.0 - 15.0 * x + 6.0 * x**2)
-    big_r = ca.if_else(t < tau, tau * x**4 * (2.5 - 3.0 * x + x**2), t - 0.5 * tau)
+    r = smoothstep(x)
+    big_r = ca.if_else(t < tau, tau * smoothstep_integral(x), t - 0.5 * tau)
     return r, big_r
 
 

@@ -61,6 +61,7 @@ from cable_ocp.errors import CableOCPError
 from cable_ocp.numerics import interrupt
 from cable_ocp.scene.deployment import DeploymentProblem
 from cable_ocp.scene.dynamics import DynamicScene
+from cable_ocp.schedule.sea import heave_rate  # the rest condition's reference
 
 #: the constraint groups that are the model's equations, not limits
 _EQUATIONS = ("kinematics", "dynamics")
@@ -163,19 +164,6 @@ def line_step(scene: DynamicScene, segments: int | None = None) -> LineStep:
                     x_scale=x_scale, y_scale=y_scale, same=bool(ca.depends_on(
                         st.next_state, y) and ny == nx and _is_identity(st, nx)),
                     top_height=float(scene.top_position[2]), elements=int(n))
-
-
-def heave_rate(heave: ca.Function) -> ca.Function:
-    """dh/dt (m/s) of a heave h(t) (m), by CasADi's AD: the rest condition's reference
-    (a stopped winch on a taut line carries the unit with the ship).
-
-    Parameters
-    ----------
-    heave : casadi.Function
-        h(t), m, of one scalar time, s.
-    """
-    t = ca.MX.sym("t")
-    return ca.Function("heave_rate", [t], [ca.jacobian(heave(t), t)])
 
 
 def _is_identity(st: DrivenStep, nx: int) -> bool:

@@ -55,7 +55,7 @@ MAX_STEPS = 20000
 
 __all__ = ["CHECKED_LIMITS", "MAX_STEPS", "CheckRound", "ConstantSpeed", "ScheduleResult",
            "discrete_constant_speed", "ramp_acceleration", "solve_schedule", "static_check",
-           "trapezoid", "verified_schedule"]
+           "trapezoid", "verified_schedule", "with_margins"]
 
 #: the limits the forward check moves inwards when the re-simulation breaks them (speed
 #: and acceleration are the schedule's own, the same in both)
@@ -373,6 +373,12 @@ class ScheduleResult:
         """The schedule's time to the target, s (nan unless solved)."""
         return self.solution.duration if self.success and self.solution else math.nan
 
+    @property
+    def margins(self) -> dict[str, float]:
+        """The forward check's margins of the returned schedule (N, W; empty without
+        the check or when the OCP alone passed it)."""
+        return dict(self.checks[-1].margins) if self.checks else {}
+
 
 def solve_schedule(scene: DynamicScene, heaves: Sequence[ca.Function] | None = None, *,
                    problem: DeploymentProblem | None = None, segments: int | None = None,
@@ -408,9 +414,18 @@ def solve_schedule(scene: DynamicScene, heaves: Sequence[ca.Function] | None = N
     return _solve(scene, heaves, problem, segments, time_step, steps, ipopt)[0]
 
 
-def _tightened(pb: DeploymentProblem, margins: dict[str, float]) -> DeploymentProblem:
-    """The problem with its limits moved inwards by ``margins`` (N, W; the warm start's
-    search of a re-solve)."""
+def with_margins(pb: DeploymentProblem, margins: dict[str, float]) -> DeploymentProblem:
+    """The problem with its limits moved inwards by ``margins`` (N, W): the warm start's
+    search of a re-solve, and the receding horizon's limits after the forward check
+    (:attr:`ScheduleResult.margins`).
+
+    Parameters
+    ----------
+    pb : DeploymentProblem
+        The problem.
+    margins : dict of str to float
+        ``"tension_min"``, ``"tension_max"`` (N), ``"power_max"`` (W).
+    """
     kw: dict[str, Any] = {}
     for name, sign in (("tension_min", 1.0), ("tension_max", -1.0), ("power_max", -1.0)):
         if getattr(pb, name) is not None and name in margins:
@@ -456,7 +471,7 @@ def _solve(scene: DynamicScene, heaves: Sequence[ca.Function] | None,
     w0 = ocp.pack(dur, acc, spd, length, xs, ys)
 
     def restart(margins: dict[str, float]) -> np.ndarray:
-        ws = discrete_constant_speed(scene, line, heaves, _tightened(pb, margins), dt_nom)
+        ws = discrete_constant_speed(scene, line, heaves, with_margins(pb, margins), dt_nom)
         v = ws.speed if ws.feasible else ws.fastest
         d0 = trapezoid(scene.length, pb.target_length, v, ws.accel, dt_nom)[0]
         d1, _, a1, s1, l1 = trapezoid(scene.length, pb.target_length, v, ws.accel, d0 / n)

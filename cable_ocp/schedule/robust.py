@@ -43,7 +43,7 @@ from cable_ocp.schedule.forward import (
     resimulate,
     trapezoid_schedule,
 )
-from cable_ocp.schedule.planning import ScheduleResult, ramp_acceleration, solve_schedule
+from cable_ocp.schedule.planning import ScheduleResult, ramp_acceleration, verified_schedule
 from cable_ocp.schedule.sea import VesselMotion, vessel_motions
 
 __all__ = ["KEEP_TOL", "RobustStudy", "RobustTally", "ScheduleTally", "StudyEntry",
@@ -474,7 +474,8 @@ def robust_study(scene: DynamicScene, *, design: Sequence[VesselMotion] | None =
     time_step, segments, hold, tol
         Of the re-simulations (:func:`tally`; s, -, s, -).
     ocp_segments, ocp_time_step
-        Of the OCPs (:func:`~cable_ocp.schedule.planning.solve_schedule`; -, s).
+        Of the OCPs (:func:`~cable_ocp.schedule.planning.verified_schedule`, each checked
+        on its design motions; -, s).
     progress : callable, optional
         :func:`tally`'s, on the unseen runs.
 
@@ -507,9 +508,10 @@ def robust_study(scene: DynamicScene, *, design: Sequence[VesselMotion] | None =
     t0 = time.perf_counter()
     entries: list[StudyEntry] = []
     for name, motions, margin in variants:
-        res = solve_schedule(scene, [m.casadi_heave() for m in motions],
-                             problem=replace(pb, tension_margin=margin),
-                             segments=ocp_segments, time_step=ocp_time_step)
+        # each schedule passes the forward check on its own design motions first
+        # (:func:`~cable_ocp.schedule.planning.verified_schedule`)
+        res = verified_schedule(scene, motions, problem=replace(pb, tension_margin=margin),
+                                segments=ocp_segments, time_step=ocp_time_step)
         sched = const = None
         speed, msg = math.nan, ""
         if res.success:

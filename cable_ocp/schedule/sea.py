@@ -1,10 +1,12 @@
 """The vessel's heave for the pay-out schedule: the scene's own motion or seeded seas.
 
 A :class:`VesselMotion` is the vertical offset z(t) (m, positive up) of the top (end_b)
-from ``end_b.position``, as a numpy law (:meth:`VesselMotion.heave`, its exact rate
-:meth:`VesselMotion.heave_rate`), the same law as a CasADi function of a symbolic time
-(:meth:`VesselMotion.casadi_heave`, for the NLP in which t depends on the decisions) and
-as rows of ``top_motion.series`` for the forward simulator (:meth:`VesselMotion.series_rows`).
+from ``end_b.position``, written once as a CasADi function of a symbolic time
+(:meth:`VesselMotion.casadi_heave`, for the NLP in which t depends on the decisions; the
+scene's own heave through :func:`cable_ocp.scene.motion.top_offset_expr`), evaluated on
+numpy times (:meth:`VesselMotion.heave`, its exact rate by AD :meth:`VesselMotion.heave_rate`)
+and as rows of ``top_motion.series`` for the forward simulator
+(:meth:`VesselMotion.series_rows`).
 
 A seeded sea (``[deployment.sea]``, :class:`cable_ocp.scene.deployment.SeaState`) is the
 random-phase sum (the standard spectral representation, e.g. Faltinsen (1990), "Sea
@@ -41,6 +43,7 @@ schedule handles heave only, so a horizontal, circular or tow motion is refused.
 
 from __future__ import annotations
 
+import functools
 import math
 from dataclasses import dataclass, replace
 
@@ -49,11 +52,12 @@ import numpy as np
 
 from cable_ocp.errors import CableOCPError
 from cable_ocp.heave.sea import bretschneider, jonswap
+from cable_ocp.numerics.ramp import smoothstep, smoothstep_rate
 from cable_ocp.scene.dynamic_parts import TopMotion
 from cable_ocp.scene.dynamics import DynamicScene
 from cable_ocp.scene.motion import top_offset_expr
 
-__all__ = ["BAND_HIGH", "BAND_LOW", "UNSEEN_OFFSET", "VesselMotion", "fade",
+__all__ = ["BAND_HIGH", "BAND_LOW", "UNSEEN_OFFSET", "VesselMotion", "fade", "heave_rate",
            "sea_components", "vessel_motions"]
 
 #: the band of the sea's components, in units of omega_m (module docstring)
@@ -78,16 +82,39 @@ def fade(t: np.ndarray, fade_in: float) -> tuple[np.ndarray, np.ndarray]:
     if fade_in <= 0.0:
         return np.ones_like(t), np.zeros_like(t)
     x = np.clip(t / fade_in, 0.0, 1.0)
-    f = x**3 * (10.0 - 15.0 * x + 6.0 * x**2)
-    df = 30.0 * x**2 * (1.0 - x) ** 2 / fade_in
+    f = smoothstep(x)
+    df = smoothstep_rate(x) / fade_in
     return f, df
+
+
+def heave_rate(heave: ca.Function) -> ca.Function:
+    """dh/dt (m/s) of a heave h(t) (m), by CasADi's AD (the one home of the heave's rate:
+    :meth:`VesselMotion.heave_rate` and the OCP's rest condition,
+    :mod:`cable_ocp.schedule.ocp`).
+
+    Parameters
+    ----------
+    heave : casadi.Function
+        h(t), m, of one scalar time, s.
+    """
+    t = ca.MX.sym("t")
+    return ca.Function("heave_rate", [t], [ca.jacobian(heave(t), t)])
+
+
+def _evaluate(fn: ca.Function, t: np.ndarray) -> np.ndarray:
+    """A scalar Function of time on an array of times (same shape)."""
+    t = np.asarray(t, dtype=float)
+    flat = t.ravel()
+    if flat.size == 0:
+        return np.zeros(t.shape)
+    return np.asarray(fn.map(flat.size)(flat[None, :])).reshape(t.shape)
 
 
 def _fade_expr(t: ca.SX, fade_in: float) -> ca.SX:
     if fade_in <= 0.0:
         return ca.SX(1.0)
     x = ca.fmin(ca.fmax(t / fade_in, 0.0), 1.0)
-    return x**3 * (10.0 - 15.0 * x + 6.0 * x**2)
+    return smoothstep(x)
 
 
 @dataclass(frozen=True)
@@ -136,46 +163,34 @@ class VesselMotion:
                 np.asarray(self.frequencies, dtype=float),
                 np.asarray(self.phases, dtype=float))
 
+    @functools.cached_property
+    def _laws(self) -> tuple[ca.Function, ca.Function]:
+        """(z(t), dz/dt(t)): :meth:`casadi_heave` and its derivative by AD, built once."""
+        z = self.casadi_heave()
+        return z, heave_rate(z)
+
     def heave(self, t: np.ndarray) -> np.ndarray:
-        """The top's vertical offset z(t), m (same shape as ``t``).
+        """The top's vertical offset z(t), m (same shape as ``t``): :meth:`casadi_heave`
+        evaluated (the law's one writing).
 
         Parameters
         ----------
         t : numpy.ndarray
             Times, s.
         """
-        t = np.asarray(t, dtype=float)
-        a, w, p = self._arrays()
-        f, _ = fade(t, self.fade_in)
-        arg = w * t[..., None] + p
-        out = f * np.sum(a * np.cos(arg), axis=-1)
-        if self.series:
-            rows = np.asarray(self.series, dtype=float)
-            out = out + np.interp(t, rows[:, 0], rows[:, 1])
-        return out
+        return _evaluate(self._laws[0], t)
 
     def heave_rate(self, t: np.ndarray) -> np.ndarray:
-        """dz/dt, m/s: the exact derivative of :meth:`heave` (a series' slope is taken
-        on the interval right of a row; 0 after the last row).
+        """dz/dt, m/s: the exact derivative of :meth:`heave`, by CasADi's AD of
+        :meth:`casadi_heave` (a series' slope is taken on the interval right of a row; 0
+        before the first row and after the last).
 
         Parameters
         ----------
         t : numpy.ndarray
             Times, s.
         """
-        t = np.asarray(t, dtype=float)
-        a, w, p = self._arrays()
-        f, df = fade(t, self.fade_in)
-        arg = w * t[..., None] + p
-        out = (df * np.sum(a * np.cos(arg), axis=-1)
-               - f * np.sum(a * w * np.sin(arg), axis=-1))
-        if self.series:
-            rows = np.asarray(self.series, dtype=float)
-            ts, zs = rows[:, 0], rows[:, 1]
-            slope = np.append(np.diff(zs) / np.diff(ts), 0.0)
-            k = np.clip(np.searchsorted(ts, t, side="right") - 1, 0, len(ts) - 1)
-            out = out + np.where(t < ts[0], 0.0, slope[k])
-        return out
+        return _evaluate(self._laws[1], t)
 
     def casadi_heave(self) -> ca.Function:
         """``casadi.Function("heave", [t], [z])``: :meth:`heave` of a scalar SX time (s),
@@ -197,7 +212,7 @@ class VesselMotion:
                 for j in range(len(ts) - 2, -1, -1):
                     seg = zs[j] + (zs[j + 1] - zs[j]) * (t - ts[j]) / (ts[j + 1] - ts[j])
                     expr = ca.if_else(t < ts[j + 1], seg, expr)
-                z = z + expr
+                z = z + ca.if_else(t < ts[0], float(zs[0]), expr)
         return ca.Function("heave", [t], [z], ["t"], ["heave"])
 
     def series_rows(self, duration: float, step: float) -> list[list[float]]:
