@@ -543,6 +543,31 @@ def receding_horizon(scene: DynamicScene, motion: VesselMotion, *,
     def arrived() -> bool:
         return s * (target - length) <= LENGTH_TOL and speed == 0.0
 
+    fwd: dict[int, ca.Function] = {}  # the plant's steps over an interval, one call each
+
+    def plant(x0: np.ndarray, lengths: Sequence[float], t0: float
+              ) -> tuple[np.ndarray, np.ndarray]:
+        """The plant (the line's step, Newton) over len(lengths) - 1 steps from t0: the
+        states (nx, n) and the outputs (5, n) at the steps' ends."""
+        n = len(lengths) - 1
+        if n not in fwd:
+            fwd[n] = line.forward.mapaccum(n)
+        zt = line.top_height + motion.heave(t0 + dt * np.arange(n + 1))
+        lv = np.asarray(lengths, dtype=float)
+        p = np.vstack([lv[:-1], lv[1:], zt[:-1], zt[1:]])
+        xn, _, _, outs = fwd[n](x0, p, np.full((1, n), dt))
+        return np.asarray(xn).reshape(-1, n), np.asarray(outs).reshape(-1, n)
+
+    def record(t1: np.ndarray, l1: Sequence[float], v1: Sequence[float],
+               a1: Sequence[float], outs: np.ndarray) -> None:
+        ts_v.extend(t1.tolist())
+        ls_v.extend(l1)
+        vs_v.extend(v1)
+        as_v.extend(a1)
+        unit_t.extend(outs[2].tolist())
+        top_t.extend(outs[3].tolist())
+        min_t.extend(outs[4].tolist())
+
     try:
         while k < k_max:
             if arrived():
@@ -561,35 +586,36 @@ def receding_horizon(scene: DynamicScene, motion: VesselMotion, *,
                 r_time.append(sol.solve_time)
                 if sol.status == "solved":
                     plan, w_prev, since = list(sol.accel), sol.w, 0
-            a = plan.pop(0) if plan else brake(speed)
-            # the limits exactly: |a| <= accel_max, 0 <= s v <= speed_max
-            a = min(max(a, -a_max), a_max)
-            lo, hi = (0.0, v_max) if s > 0 else (-v_max, 0.0)
-            v1 = min(max(speed + a * dt, lo), hi)
-            if abs(v1) <= SPEED_TOL and abs(speed) <= a_max * dt:
-                v1 = 0.0
-            a = (v1 - speed) / dt
-            l1 = length + 0.5 * dt * (speed + v1)
-            t0, t1 = k * dt, (k + 1) * dt
-            z0, z1 = motion.heave(np.array([t0, t1]))
-            p = [length, l1, line.top_height + z0, line.top_height + z1]
-            xn, _, tens, outs = line.forward(x, p, dt)
-            xn = np.asarray(xn).ravel()
-            outs = np.asarray(outs).ravel()
-            if not (np.all(np.isfinite(xn)) and np.all(np.isfinite(outs))):
-                message = f"the plant's step failed at t = {t1:.4g} s"
+            # the winch to the next re-plan (or the arrival), then the plant in one call
+            ls, vs, accs = [length], [speed], []
+            while k + len(accs) < k_max and len(accs) < m - k % m:
+                if s * (target - ls[-1]) <= LENGTH_TOL and vs[-1] == 0.0:
+                    break  # arrived
+                v0 = vs[-1]
+                a = plan.pop(0) if plan else brake(v0)
+                # the limits exactly: |a| <= accel_max, 0 <= s v <= speed_max
+                a = min(max(a, -a_max), a_max)
+                lo, hi = (0.0, v_max) if s > 0 else (-v_max, 0.0)
+                v1 = min(max(v0 + a * dt, lo), hi)
+                if abs(v1) <= SPEED_TOL and abs(v0) <= a_max * dt:
+                    v1 = 0.0
+                accs.append((v1 - v0) / dt)
+                ls.append(ls[-1] + 0.5 * dt * (v0 + v1))
+                vs.append(v1)
+            n = len(accs)
+            xn, outs = plant(x, ls, k * dt)
+            good = np.all(np.isfinite(xn), axis=0) & np.all(np.isfinite(outs), axis=0)
+            keep = n if bool(np.all(good)) else int(np.argmin(good))
+            t1 = (k + 1 + np.arange(keep)) * dt
+            record(t1, ls[1:keep + 1], vs[1:keep + 1], accs[:keep], outs[:, :keep])
+            if keep:
+                x, length, speed = xn[:, keep - 1], ls[keep], vs[keep]
+                vz_unit = float(outs[1, keep - 1])
+            k += keep
+            since += keep
+            if keep < n:
+                message = f"the plant's step failed at t = {(k + 1) * dt:.4g} s"
                 break
-            x, length, speed = xn, l1, v1
-            vz_unit = float(outs[1])
-            ts_v.append(t1)
-            ls_v.append(l1)
-            vs_v.append(v1)
-            as_v.append(a)
-            unit_t.append(float(outs[2]))
-            top_t.append(float(outs[3]))
-            min_t.append(float(outs[4]))
-            k += 1
-            since += 1
         if math.isnan(arrival) and arrived():
             arrival = k * dt
         if not math.isnan(arrival):
@@ -606,19 +632,17 @@ def receding_horizon(scene: DynamicScene, motion: VesselMotion, *,
                     message = (f"arrived at {arrival:.4g} s but not at rest (relative speed "
                                f"{rest_speed:.3g} m/s) by max_time = {t_end:.4g} s")
                     break
-                z0, z1 = motion.heave(np.array([k * dt, (k + 1) * dt]))
-                p = [length, length, line.top_height + z0, line.top_height + z1]
-                xn, _, tens, outs = line.forward(x, p, dt)
-                x, outs = np.asarray(xn).ravel(), np.asarray(outs).ravel()
-                vz_unit = float(outs[1])
-                k += 1
-                ts_v.append(k * dt)
-                ls_v.append(length)
-                vs_v.append(0.0)
-                as_v.append(0.0)
-                unit_t.append(float(outs[2]))
-                top_t.append(float(outs[3]))
-                min_t.append(float(outs[4]))
+                # held over up to one interval in one call; the first node at rest ends it
+                n = min(m, k_max - k)
+                xn, outs = plant(x, [length] * (n + 1), k * dt)
+                t1 = (k + 1 + np.arange(n)) * dt
+                rel = np.abs(outs[1] - motion.heave_rate(t1))
+                at_rest = np.flatnonzero(rel <= pb.rest_tolerance)
+                keep = int(at_rest[0]) + 1 if at_rest.size else n
+                record(t1[:keep], [length] * keep, [0.0] * keep, [0.0] * keep,
+                       outs[:, :keep])
+                x, vz_unit = xn[:, keep - 1], float(outs[1, keep - 1])
+                k += keep
         elif not message:
             message = (f"not at the target by max_time = {t_end:.4g} s (at {length:.6g} m, "
                        f"{speed:.3g} m/s)")

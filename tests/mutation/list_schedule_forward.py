@@ -7,12 +7,14 @@ SEA = "cable_ocp/schedule/sea.py"
 FWD = "cable_ocp/schedule/forward.py"
 
 MUTATIONS = [
-    dict(name="schedule-fade-cubic-exponent", area="schedule", file=SEA,
-         old="f = x**3 * (10.0 - 15.0 * x + 6.0 * x**2)",
-         new="f = x**2 * (10.0 - 15.0 * x + 6.0 * x**2)",
-         tests=(_S + "fade_in_is_the_quintic", _S + "heave_rate_is_the_derivative"),
-         description="sea: the fade-in's leading power x^3 taken as x^2 (no longer 1 at the "
-                     "end, its rate no longer its derivative)"),
+    dict(name="schedule-fade-cubic-exponent", area="schedule",
+         file="cable_ocp/numerics/ramp.py",
+         old="return x**3 * (10.0 - 15.0 * x + 6.0 * x**2)",
+         new="return x**2 * (10.0 - 15.0 * x + 6.0 * x**2)",
+         tests=(_S + "fade_in_is_the_quintic",
+                _S + "sea_heave_and_its_rate_are_the_faded_sum_written_here"),
+         description="the smooth step's leading power x^3 taken as x^2 (no longer 1 at the "
+                     "end; the sea's heave no longer the faded sum)"),
     dict(name="schedule-sea-amplitude-no-two", area="schedule", file=SEA,
          old="np.sqrt(2.0 * s * dw)", new="np.sqrt(s * dw)",
          tests=(_S + "sea_variance_over_its_period_is_the_component_sum_and_near_m0",),
