@@ -66,8 +66,8 @@ from cable_ocp.schedule.sea import heave_rate  # the rest condition's reference
 #: the constraint groups that are the model's equations, not limits
 _EQUATIONS = ("kinematics", "dynamics")
 
-__all__ = ["LineStep", "OCPSolution", "ScheduleOCP", "heave_rate", "limit_constraints",
-           "line_step", "static_tensions"]
+__all__ = ["LineStep", "OCPSolution", "ScheduleOCP", "constrained_tensions", "heave_rate",
+           "limit_constraints", "line_step", "static_tensions", "winch_power"]
 
 
 @dataclass(frozen=True)
@@ -188,6 +188,45 @@ def static_tensions(scene: DynamicScene, length: float) -> tuple[float, float]:
     return float(line.unit_weight), float(line.unit_weight + line.weight_per_length * length)
 
 
+def constrained_tensions(problem: DeploymentProblem, tensions: Any, outputs: Any) -> list[Any]:
+    """The tensions ``tension_at`` constrains (N): every element's (``"line"``), the unit's
+    and the top's (the outputs' rows 2 and 3), on numpy arrays or CasADi expressions (the
+    one home of the selection: :func:`limit_constraints` and the warm start's rollout,
+    :func:`cable_ocp.schedule.planning.discrete_constant_speed`).
+
+    Parameters
+    ----------
+    problem : DeploymentProblem
+        Its ``tension_at``.
+    tensions : array or casadi expression (n, K)
+        Element tensions, N.
+    outputs : array or casadi expression (5, K)
+        The step's outputs (:class:`LineStep`).
+    """
+    out = []
+    if "line" in problem.tension_at:
+        out.append(tensions)
+    if "unit" in problem.tension_at:
+        out.append(outputs[2, :])
+    if "top" in problem.tension_at:
+        out.append(outputs[3, :])
+    return out
+
+
+def winch_power(outputs: Any, speed: Any) -> Any:
+    """The winch's power T_top v per step (W): the top tension at the step's end times
+    the step's mean speed (numpy or CasADi).
+
+    Parameters
+    ----------
+    outputs : array or casadi expression (5, K)
+        The step's outputs (:class:`LineStep`).
+    speed : array or casadi expression (K + 1,) or (1, K + 1)
+        The winch's speed at the nodes, m/s.
+    """
+    return outputs[3, :] * 0.5 * (speed[:-1] + speed[1:])
+
+
 def limit_constraints(add: Callable[[str, Any, Any, Any], None], problem: DeploymentProblem,
                       tension_scale: float, tensions: Any, outputs: Any, speed: Any, *,
                       rest_ref: Any = None, comp: Any = None, dt: Any = None) -> Any:
@@ -234,13 +273,9 @@ def limit_constraints(add: Callable[[str, Any, Any, Any], None], problem: Deploy
     t_lo = (pb.tension_min + margin) / ts if pb.tension_min is not None else -math.inf
     t_hi = (pb.tension_max - margin) / ts if pb.tension_max is not None else math.inf
     if pb.tension_min is not None or pb.tension_max is not None:
-        if "line" in pb.tension_at:
-            add("tension", tensions / ts, t_lo, t_hi)
-        if "unit" in pb.tension_at:
-            add("tension", outs[2, :] / ts, t_lo, t_hi)
-        if "top" in pb.tension_at:
-            add("tension", outs[3, :] / ts, t_lo, t_hi)
-    power = outs[3, :] * 0.5 * (speed[:-1] + speed[1:])
+        for tens in constrained_tensions(pb, tensions, outs):
+            add("tension", tens / ts, t_lo, t_hi)
+    power = winch_power(outs, speed)
     if pb.power_max is not None:
         add("power_max", power / pb.power_max, -1.0, 1.0)
     if rest_ref is not None:

@@ -46,8 +46,10 @@ from cable_ocp.schedule.ocp import (
     LineStep,
     OCPSolution,
     ScheduleOCP,
+    constrained_tensions,
     line_step,
     static_tensions,
+    winch_power,
 )
 
 #: the most steps of one OCP (its variables grow as steps x states x realisations)
@@ -202,13 +204,7 @@ def _rollout_limits(line: LineStep, heaves: Sequence[ca.Function], problem: Depl
         tens, outs = np.asarray(tens), np.asarray(outs)
         if not (np.all(np.isfinite(tens)) and np.all(np.isfinite(outs))):
             return {k: math.inf for k in exc}
-        vals = []
-        if "line" in problem.tension_at:
-            vals.append(tens)
-        if "unit" in problem.tension_at:
-            vals.append(outs[2])
-        if "top" in problem.tension_at:
-            vals.append(outs[3])
+        vals = constrained_tensions(problem, tens, outs)
         allv = np.concatenate([np.ravel(v) for v in vals])
         if problem.tension_min is not None:
             lim = problem.tension_min + margin
@@ -217,7 +213,7 @@ def _rollout_limits(line: LineStep, heaves: Sequence[ca.Function], problem: Depl
             lim = problem.tension_max - margin
             exc["tension_max"] = max(exc["tension_max"], (allv.max() - lim) / lim)
         if problem.power_max is not None:
-            pw = np.abs(outs[3] * 0.5 * (spd[1:] + spd[:-1]))
+            pw = np.abs(winch_power(outs, spd))
             exc["power_max"] = max(exc["power_max"], pw.max() / problem.power_max - 1.0)
     return exc
 

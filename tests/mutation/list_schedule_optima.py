@@ -12,8 +12,8 @@ MUTATIONS = [
                 _T + "tension_limit_alone_gives_the_bang_bang_time"),
          description="the OCP's step T / (N + 1): the schedule's duration no longer T"),
     dict(name="ocp-unit-limit-on-the-top-tension", area="schedule", file=OCP,
-         old='add("tension", outs[2, :] / ts, t_lo, t_hi)',
-         new='add("tension", outs[3, :] / ts, t_lo, t_hi)',
+         old="out.append(outputs[2, :])",
+         new="out.append(outputs[3, :])",
          tests=(_T + "tension_limit_alone_gives_the_bang_bang_time",),
          description="tension_at = unit bounds the top's tension instead (W + w L): the "
                      "bang-bang accelerations change"),
