@@ -191,16 +191,19 @@ def _unseen(args: argparse.Namespace, scene: Any, motions: list[Any], res: Any
     return data
 
 
+def _counts(c: dict[str, Any]) -> str:
+    """The counts of re-simulated runs (robust.tally's or the receding comparison's)."""
+    failed = f"{c['failed']} failed, " if c.get("failed") else ""
+    return (f"{c['slack']} slack, {c['over_tension_max']} over tension_max, "
+            f"{c['under_tension_min']} under tension_min, {failed}"
+            f"{c.get('keeps_limits', c.get('kept'))} keep every limit")
+
+
 def _unseen_text(u: dict[str, Any]) -> str:
     if u["status"] != "solved":
         return f"{u['status']}: {u.get('message', '')}"
     opt, con = u["schedules"]["optimal"], u["schedules"]["constant"]
-
-    def counts(t: dict[str, Any]) -> str:
-        return (f"{t['slack']} slack, {t['over_tension_max']} over tension_max, "
-                f"{t['under_tension_min']} under tension_min, {t['keeps_limits']} keep "
-                "every limit")
-
+    counts = _counts
     return (f"{len(u['motions'])} realisations ({u['segments']} elements, "
             f"{u['time_step_s']:g} s): the optimal schedule {counts(opt)}; the constant "
             f"speed of the same duration ({u['constant_speed_m_s']:.4g} m/s) {counts(con)}")
@@ -239,11 +242,7 @@ def _receding_text(r: dict[str, Any]) -> str:
     if r["status"] != "solved":
         return f"{r['status']}: {r.get('message', '')}"
 
-    def counts(c: dict[str, int]) -> str:
-        return (f"{c['slack']} slack, {c['over_tension_max']} over tension_max, "
-                f"{c['under_tension_min']} under tension_min, {c['failed']} failed, "
-                f"{c['kept']} keep every limit")
-
+    counts = _counts
     dur = np.asarray(r["durations_s"], dtype=float)
     ok = dur[np.isfinite(dur)]
     span = (f"{np.mean(ok):.4g} s on average ({np.min(ok):.4g}..{np.max(ok):.4g})"
