@@ -522,7 +522,7 @@ def receding_horizon(scene: DynamicScene, motion: VesselMotion, *,
     ts0 = static_tensions(scene, scene.length)
     x = np.asarray(line.start, dtype=float).copy()
     length, speed = float(scene.length), 0.0
-    ts_v, ls_v, vs_v, as_v = [0.0], [length], [0.0], []
+    ts_v, vs_v = [0.0], [0.0]  # the applied schedule: node times (s), speeds (m/s)
     unit_t, top_t, min_t = [ts0[0]], [ts0[1]], [min(ts0)]
     r_t: list[float] = []
     r_st: list[str] = []
@@ -558,12 +558,9 @@ def receding_horizon(scene: DynamicScene, motion: VesselMotion, *,
         xn, _, _, outs = fwd[n](x0, p, np.full((1, n), dt))
         return np.asarray(xn).reshape(-1, n), np.asarray(outs).reshape(-1, n)
 
-    def record(t1: np.ndarray, l1: Sequence[float], v1: Sequence[float],
-               a1: Sequence[float], outs: np.ndarray) -> None:
+    def record(t1: np.ndarray, v1: Sequence[float], outs: np.ndarray) -> None:
         ts_v.extend(t1.tolist())
-        ls_v.extend(l1)
         vs_v.extend(v1)
-        as_v.extend(a1)
         unit_t.extend(outs[2].tolist())
         top_t.extend(outs[3].tolist())
         min_t.extend(outs[4].tolist())
@@ -607,7 +604,7 @@ def receding_horizon(scene: DynamicScene, motion: VesselMotion, *,
             good = np.all(np.isfinite(xn), axis=0) & np.all(np.isfinite(outs), axis=0)
             keep = n if bool(np.all(good)) else int(np.argmin(good))
             t1 = (k + 1 + np.arange(keep)) * dt
-            record(t1, ls[1:keep + 1], vs[1:keep + 1], accs[:keep], outs[:, :keep])
+            record(t1, vs[1:keep + 1], outs[:, :keep])
             if keep:
                 x, length, speed = xn[:, keep - 1], ls[keep], vs[keep]
                 vz_unit = float(outs[1, keep - 1])
@@ -639,8 +636,7 @@ def receding_horizon(scene: DynamicScene, motion: VesselMotion, *,
                 rel = np.abs(outs[1] - motion.heave_rate(t1))
                 at_rest = np.flatnonzero(rel <= pb.rest_tolerance)
                 keep = int(at_rest[0]) + 1 if at_rest.size else n
-                record(t1[:keep], [length] * keep, [0.0] * keep, [0.0] * keep,
-                       outs[:, :keep])
+                record(t1[:keep], [0.0] * keep, outs[:, :keep])
                 x, vz_unit = xn[:, keep - 1], float(outs[1, keep - 1])
                 k += keep
         elif not message:

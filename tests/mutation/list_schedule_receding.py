@@ -18,4 +18,17 @@ MUTATIONS = [
          tests=(_T + "receding_horizon_reaches_the_target_within_a_step_of_the_trapezoid",),
          description="the preview always from t = 0 (not from the re-plan's time): "
                      "a still sea cannot tell, so this one is expected to survive"),
+    dict(name="receding-hold-one-node-late", area="schedule", file=REC,
+         old="keep = int(at_rest[0]) + 1 if at_rest.size else n",
+         new="keep = int(at_rest[0]) + 2 if at_rest.size else n",
+         tests=(_T + "receding_records_are_the_plants_and_the_hold_ends_at_the_first_rest",),
+         description="the hold's chunk kept one node past the first at rest: the end is "
+                     "no longer the first node at rest"),
+    dict(name="receding-chunk-records-shifted", area="schedule", file=REC,
+         old="record(t1, vs[1:keep + 1], outs[:, :keep])",
+         new="record(t1, vs[:keep], outs[:, :keep])",
+         tests=(_T + "receding_records_are_the_plants_and_the_hold_ends_at_the_first_rest",
+                _T + "receding_horizon_reaches_the_target_within_a_step_of_the_trapezoid"),
+         description="an interval's speeds recorded one node early (the plant's own are "
+                     "right): the applied schedule is not what the plant saw"),
 ]

@@ -67,3 +67,42 @@ def test_receding_horizon_keeps_the_winch_limits_and_its_grid(run) -> None:
     assert np.allclose(k, np.arange(k.size), atol=1e-9)
     assert np.allclose(np.diff(sch.time), pb.time_step, rtol=1e-9)
     assert not math.isnan(res.duration) and res.duration >= res.arrival
+
+
+@pytest.fixture(scope="module")
+def heaved():
+    """deploy_small in its 0.5 m heave, without tension limits, 3 elements: the unit is
+    not at rest relative to the ship when the winch stops (the hold is not empty)."""
+    scene = _without_tension_limits(load_dynamic_scene(SMALL, overrides={
+        "deployment.segments": 3}))
+    motion = vessel_motions(scene, "design")[0]
+    return scene, motion, receding_horizon(scene, motion)
+
+
+def test_receding_records_are_the_plants_and_the_hold_ends_at_the_first_rest(heaved) -> None:
+    """The plant stepped over whole intervals in one call: its recorded tensions are the
+    line's own steps along the applied schedule (recomputed here in one rollout), and
+    the winch's hold ends at the first node after the arrival where the unit is at rest
+    relative to the ship (|V_unit - dh/dt| <= rest_tolerance)."""
+    from cable_ocp.schedule.ocp import line_step
+
+    scene, motion, res = heaved
+    assert res.status == "solved", res.message
+    pb = scene.deployment
+    dt = pb.time_step
+    line = line_step(scene, 3)
+    sch = res.schedule
+    n = sch.time.size - 1
+    zt = line.top_height + motion.heave(sch.time)
+    p = np.vstack([sch.length[:-1], sch.length[1:], zt[:-1], zt[1:]])
+    _, _, _, outs = line.forward.mapaccum(n)(line.start, p, np.full((1, n), dt))
+    outs = np.asarray(outs)
+    # the same steps, another grouping of the calls: round-off only (1e-9 of ~45 kN)
+    np.testing.assert_allclose(res.unit_tension[1:], outs[2], rtol=1e-9)
+    np.testing.assert_allclose(res.top_tension[1:], outs[3], rtol=1e-9)
+    k_arr, k_end = round(res.arrival / dt), round(res.duration / dt)
+    assert k_end == n and k_end > k_arr  # the schedule ends at the end; the hold is there
+    rel = np.abs(outs[1] - motion.heave_rate(sch.time[1:]))  # at node j + 1
+    rest = rel <= pb.rest_tolerance
+    assert rest[k_end - 1] and not np.any(rest[k_arr - 1:k_end - 1])
+    assert res.rest_speed == pytest.approx(rel[-1], rel=1e-9)
