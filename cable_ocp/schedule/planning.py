@@ -54,6 +54,13 @@ from cable_ocp.schedule.ocp import (
 
 #: the most steps of one OCP (its variables grow as steps x states x realisations)
 MAX_STEPS = 20000
+#: the warm start's fine grid under the top speed: this many speeds (a geometric grid, a
+#: factor 1.06 apart) down to WARM_TOP_FLOOR of it, before the coarse descent of
+#: forward.SCAN speeds to the floor (a window of feasible speeds under speed_max, as
+#: through a resonance on Huang's 3.3.5 line, 1.5-2.07 of 3 m/s, is not stepped over)
+WARM_TOP = 24
+#: ... the fine grid's slowest speed, as a fraction of the top speed
+WARM_TOP_FLOOR = 0.25
 
 __all__ = ["CHECKED_LIMITS", "MAX_STEPS", "CheckRound", "ConstantSpeed", "ScheduleResult",
            "discrete_constant_speed", "ramp_acceleration", "solve_schedule", "static_check",
@@ -171,7 +178,10 @@ class ConstantSpeed:
         The limit that bounds the speed (the one the next faster speed breaks).
     fastest : float
         The fastest speed tried, m/s (``speed_max``, or the triangle's peak over the
-        distance): the OCP's warm start when no speed keeps the limits.
+        distance).
+    least_excess : float
+        The speed tried whose worst limit excess was the smallest, m/s: the OCP's warm
+        start when no speed keeps the limits (the fastest breaks them most, often).
     """
 
     speed: float
@@ -181,6 +191,7 @@ class ConstantSpeed:
     rollouts: int
     binding: str = ""
     fastest: float = math.nan
+    least_excess: float = math.nan
 
 
 def _rollout_limits(line: LineStep, heaves: Sequence[ca.Function], problem: DeploymentProblem,
@@ -222,9 +233,11 @@ def discrete_constant_speed(scene: DynamicScene, line: LineStep, heaves: Sequenc
                             problem: DeploymentProblem, time_step: float,
                             rel_tol: float = 1e-2, floor: float = 1e-3) -> ConstantSpeed:
     """The fastest constant speed whose rollout on the OCP's discrete line keeps the tension
-    power limits on every heave (a geometric grid of
-    :data:`~cable_ocp.schedule.forward.SCAN` speeds from the top down, then bisection to
-    ``rel_tol``; module docstring).
+    and power limits on every heave (module docstring): from the top speed down, a fine
+    geometric grid of :data:`WARM_TOP` speeds to :data:`WARM_TOP_FLOOR` of it, then
+    :data:`~cable_ocp.schedule.forward.SCAN` coarser ones to ``floor``; then bisection to
+    ``rel_tol`` between the first speed that keeps the limits and the rejected one above.
+    When none does, ``least_excess`` is the speed of the smallest worst excess.
 
     Parameters
     ----------
@@ -247,6 +260,7 @@ def discrete_constant_speed(scene: DynamicScene, line: LineStep, heaves: Sequenc
     dist = abs(problem.target_length - scene.length)
     v_hi = problem.speed_max if problem.speed_max is not None else math.sqrt(acc * dist)
     count = 0
+    least = [math.inf, math.nan]  # the smallest worst excess seen, and its speed
 
     def ok(v: float) -> tuple[bool, str]:
         nonlocal count
@@ -255,6 +269,8 @@ def discrete_constant_speed(scene: DynamicScene, line: LineStep, heaves: Sequenc
                                            time_step)
         exc = _rollout_limits(line, heaves, problem, dur, spd, length)
         worst = max(exc, key=lambda k: exc[k])
+        if exc[worst] < least[0]:
+            least[:] = [exc[worst], v]
         return exc[worst] <= 0.0, worst
 
     good, why = ok(v_hi)
@@ -265,7 +281,10 @@ def discrete_constant_speed(scene: DynamicScene, line: LineStep, heaves: Sequenc
     # feasibility is not monotone in the speed (a resonance can bind a slower speed and
     # spare a faster one): a geometric grid from the top down first, then bisection
     # between the first speed that keeps the limits and the rejected one above it
-    grid = v_hi * floor ** (np.arange(1, SCAN + 1) / SCAN)
+    fine = v_hi * WARM_TOP_FLOOR ** (np.arange(1, WARM_TOP + 1) / WARM_TOP)
+    coarse = fine[-1] * (floor / WARM_TOP_FLOOR) ** (np.arange(1, SCAN + 1) / SCAN)
+    grid = np.concatenate([fine, coarse]) if floor < WARM_TOP_FLOOR else v_hi * floor ** (
+        np.arange(1, SCAN + 1) / SCAN)
     hi, binding, lo = v_hi, why, math.nan
     for v in grid:
         good, w = ok(float(v))
@@ -275,7 +294,7 @@ def discrete_constant_speed(scene: DynamicScene, line: LineStep, heaves: Sequenc
         hi, binding = float(v), w
     if math.isnan(lo):
         dur = trapezoid(scene.length, problem.target_length, hi, acc, time_step)[0]
-        return ConstantSpeed(hi, acc, dur, False, count, binding, v_hi)
+        return ConstantSpeed(hi, acc, dur, False, count, binding, v_hi, least[1])
     while hi - lo > rel_tol * lo:
         mid = 0.5 * (lo + hi)
         good, w = ok(mid)
@@ -451,7 +470,8 @@ def _solve(scene: DynamicScene, heaves: Sequence[ca.Function] | None,
     warm = discrete_constant_speed(scene, line, heaves, pb, dt_nom)
     diag["warm_start_s"] = time.perf_counter() - t0
     # no constant speed keeps the limits: start from the fastest (the OCP decides)
-    v0 = warm.speed if warm.feasible else warm.fastest
+    v0 = warm.speed if warm.feasible else (
+        warm.least_excess if math.isfinite(warm.least_excess) else warm.fastest)
     dur, _, acc, spd, length = trapezoid(scene.length, pb.target_length, v0, warm.accel, dt_nom)
     n = steps or acc.size
     if n > MAX_STEPS:
@@ -468,7 +488,8 @@ def _solve(scene: DynamicScene, heaves: Sequence[ca.Function] | None,
 
     def restart(margins: dict[str, float]) -> np.ndarray:
         ws = discrete_constant_speed(scene, line, heaves, with_margins(pb, margins), dt_nom)
-        v = ws.speed if ws.feasible else ws.fastest
+        v = ws.speed if ws.feasible else (
+            ws.least_excess if math.isfinite(ws.least_excess) else ws.fastest)
         d0 = trapezoid(scene.length, pb.target_length, v, ws.accel, dt_nom)[0]
         d1, _, a1, s1, l1 = trapezoid(scene.length, pb.target_length, v, ws.accel, d0 / n)
         return ocp.pack(d1, a1, s1, l1, *ocp.rollout(d1, a1, s1, l1))
