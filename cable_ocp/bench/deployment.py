@@ -225,14 +225,16 @@ def _forward_checks(scene: Any, schedule: Any, motions: Sequence[Any]) -> dict[s
 
 def compare_case(path: str | Path, *, heave_path: str | Path | None = None,
                  rel_tol: float = 1e-2,
-                 progress: Callable[[str], None] | None = None) -> dict[str, Any]:
+                 progress: Callable[[str], None] | None = None,
+                 on_row: Callable[[dict[str, Any]], None] | None = None) -> dict[str, Any]:
     """The optimal schedule of one case beside the fastest constant speed and today's
     scheduled-gain deployment (module docstring).
 
     Returns ``{"case", "file", "start_length_m", "target_length_m", "motions", "ocp": {...},
-    "rows": [...]}``: one row per method (``method``, ``status``, ``duration_s``,
-    ``saving_pct`` of the optimum against it, ``speed_m_s``, ``binding``, the forward
-    check's ``worst_excess`` and ``worst_limit``, ``note``).
+    "heave": {...} or None, "rows": [...], "complete": True}``: one row per method
+    (``method``, ``status``, ``duration_s``, ``saving_pct`` of the optimum against it,
+    ``speed_m_s``, ``binding``, the forward check's ``worst_excess`` and ``worst_limit``,
+    ``note``).
 
     Parameters
     ----------
@@ -245,6 +247,9 @@ def compare_case(path: str | Path, *, heave_path: str | Path | None = None,
         The constant speed's bisection width, relative (-).
     progress : callable, optional
         ``progress(what)`` before each stage.
+    on_row : callable, optional
+        ``on_row(case)`` after each row, with the case's result so far (the same keys,
+        ``"complete"`` False until the last row): a stopped run keeps what it finished.
     """
     from cable_ocp.scene.dynamics import load_dynamic_scene
     from cable_ocp.schedule.forward import Schedule, fastest_constant_speed
@@ -273,6 +278,16 @@ def compare_case(path: str | Path, *, heave_path: str | Path | None = None,
            "violations": dict(res.solution.violations) if res.solution is not None else {}}
     t_opt = res.duration
     rows: list[dict[str, Any]] = []
+    case: dict[str, Any] = {"case": path.stem, "file": str(path),
+                            "start_length_m": scene.length,
+                            "target_length_m": scene.deployment.target_length,
+                            "motions": [m.name for m in motions], "ocp": ocp, "heave": None,
+                            "rows": rows, "complete": False}
+
+    def done(row: dict[str, Any]) -> None:
+        rows.append(row)
+        if on_row is not None:
+            on_row(case)
     opt_row: dict[str, Any] = {"method": "optimal schedule (OCP)", "status": res.status,
                                "duration_s": t_opt, "saving_pct": math.nan,
                                "speed_m_s": float(np.max(res.solution.speed))
@@ -289,10 +304,10 @@ def compare_case(path: str | Path, *, heave_path: str | Path | None = None,
     else:
         opt_row["note"] = (f"{res.message} ({d.get('iterations', '-')} iterations); "
                            "not a schedule")
-    rows.append(opt_row)
+    done(opt_row)
     ws = res.warm_start
     if ws is not None:
-        rows.append({"method": "constant speed, OCP's line", "status":
+        done({"method": "constant speed, OCP's line", "status":
                      "solved" if ws.feasible else "infeasible", "duration_s": ws.duration
                      if ws.feasible else math.nan,
                      "saving_pct": saving_pct(t_opt, ws.duration) if ws.feasible else math.nan,
@@ -311,11 +326,12 @@ def compare_case(path: str | Path, *, heave_path: str | Path | None = None,
     if fc.checks:
         chk = _check_row(fc.checks[-1])
         fc_row.update(worst_excess=chk["worst_excess"], worst_limit=chk["worst_limit"])
-    rows.append(fc_row)
-    heave: dict[str, Any] | None = None
+    if heave_path is None:
+        case["complete"] = True
+    done(fc_row)
     if heave_path is not None:
         say(f"{path.stem}: today's scheduled-gain deployment re-simulated")
-        heave = heave_payout(heave_path)
+        heave = case["heave"] = heave_payout(heave_path)
         sched = payout_schedule(scene.length, scene.deployment.target_length,
                                 heave["payout_speed_m_s"], heave["ramp_time_s"])
         same = (abs(heave["start_length_m"] - scene.length) < 1e-6
@@ -329,10 +345,9 @@ def compare_case(path: str | Path, *, heave_path: str | Path | None = None,
                         f"{heave['ramp_time_s']:g} s ramps; re-simulated without the "
                         "compensator" + ("" if same else "; lengths differ from the case"))}
         row.update(_forward_checks(scene, sched, motions))
-        rows.append(row)
-    return {"case": path.stem, "file": str(path), "start_length_m": scene.length,
-            "target_length_m": scene.deployment.target_length,
-            "motions": [m.name for m in motions], "ocp": ocp, "heave": heave, "rows": rows}
+        case["complete"] = True
+        done(row)
+    return case
 
 
 def cost_grid(durations: Sequence[float] = COST_DURATIONS,

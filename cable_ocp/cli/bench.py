@@ -631,9 +631,11 @@ def cmd_bench_deploy(args: argparse.Namespace) -> int:
     """``cable-ocp bench deploy``."""
     import math
     import os
+    import sys
 
     from cable_ocp.bench import deployment as bd
     from cable_ocp.cli.bench_deploy import format_compare, format_cost, format_long
+    from cable_ocp.numerics.atomic import write_text_file
 
     out.check_outputs(args)
     parts = list(dict.fromkeys(args.part or bd.PARTS))
@@ -658,11 +660,30 @@ def cmd_bench_deploy(args: argparse.Namespace) -> int:
     def note(what: str) -> None:
         out.note(args, f"bench deploy: {what} ...")
 
+    def save(what: str) -> None:
+        # the JSON so far, rewritten whole after each finished step (a file, not stdout:
+        # one document there), so that a stopped run keeps what it finished
+        if args.json and args.json != out.STDOUT:
+            out.write_output("--json", args.json, lambda tmp: write_text_file(
+                tmp, out.json_text(out.envelope("partial", f"bench deploy: running; "
+                                                f"done: {what}", data)) + "\n"))
+
     if "compare" in parts:
         cases = args.case or [str(p) for p in bd.COMPARE_CASES]
-        data["compare"] = [bd.compare_case(c, rel_tol=args.rel_tol, progress=note)
-                           for c in cases]
-        out.say(args, format_compare(data["compare"]))
+        data["compare"] = []
+
+        def keep(case: dict[str, Any]) -> None:
+            if not data["compare"] or data["compare"][-1] is not case:
+                data["compare"].append(case)  # a new case: its slot, filled row by row
+            save(f"{case['case']}: {case['rows'][-1]['method']}")
+
+        for c in cases:
+            res = bd.compare_case(c, rel_tol=args.rel_tol, progress=note, on_row=keep)
+            if not data["compare"] or data["compare"][-1] is not res:
+                data["compare"].append(res)
+            out.say(args, format_compare([res]))  # the case's table at once
+            sys.stdout.flush()
+        save("compare")
     if "cost" in parts:
         kw: dict[str, Any] = {"budget_s": args.budget, "progress": note}
         if args.cost_file:
@@ -672,6 +693,7 @@ def cmd_bench_deploy(args: argparse.Namespace) -> int:
                         "file": str(args.cost_file or bd.COST_FILE),
                         "speed_m_s": bd.COST_SPEED}
         out.say(args, format_cost(data["cost"]))
+        save("cost")
     if "long" in parts:
         data["long"] = bd.long_run(duration=args.long_duration, segments=args.long_segments,
                                    time_step=args.long_time_step, progress=note)
