@@ -177,6 +177,13 @@ def register(sub: argparse._SubParsersAction, parent: argparse.ArgumentParser) -
                          "problems/dynamics/deploy_3_3_5.toml and deploy_6_3_6.toml)")
     dp.add_argument("--rel-tol", type=float, default=1e-2, metavar="R",
                     help="compare: the constant speed's bisection width, relative (0.01)")
+    dp.add_argument("--motion-step", type=float, default=None, metavar="S",
+                    help="compare: the forward simulator's sampling of a sea's heave, s "
+                         "(default the case's [simulation] time_step; a run costs about "
+                         "its steps times its samples)")
+    dp.add_argument("--floor-fraction", type=float, default=None, metavar="F",
+                    help="compare: the slowest constant speed tried on the forward "
+                         "simulator, as a fraction of speed_max (default 1/32)")
     dp.add_argument("--durations", type=float, nargs="+", default=None, metavar="S",
                     help="cost: the warm start's durations, s (default 60 120 240 480)")
     dp.add_argument("--segments", type=int, nargs="+", default=None, metavar="N",
@@ -641,6 +648,10 @@ def cmd_bench_deploy(args: argparse.Namespace) -> int:
     parts = list(dict.fromkeys(args.part or bd.PARTS))
     if not 0.0 < args.rel_tol < 1.0:
         raise out_error(f"--rel-tol {args.rel_tol}: give a width in (0, 1)")
+    if args.motion_step is not None and not 1e-3 <= args.motion_step <= 10.0:
+        raise out_error(f"--motion-step {args.motion_step}: give 0.001..10 s")
+    if args.floor_fraction is not None and not 0.0 < args.floor_fraction < 1.0:
+        raise out_error(f"--floor-fraction {args.floor_fraction}: give a fraction in (0, 1)")
     segs = args.segments or list(bd.COST_SEGMENTS)
     for n in segs + [args.long_segments]:
         if not 1 <= n <= 400:
@@ -678,7 +689,9 @@ def cmd_bench_deploy(args: argparse.Namespace) -> int:
             save(f"{case['case']}: {case['rows'][-1]['method']}")
 
         for c in cases:
-            res = bd.compare_case(c, rel_tol=args.rel_tol, progress=note, on_row=keep)
+            res = bd.compare_case(c, rel_tol=args.rel_tol, motion_step=args.motion_step,
+                                  floor_fraction=args.floor_fraction, progress=note,
+                                  on_row=keep)
             if not data["compare"] or data["compare"][-1] is not res:
                 data["compare"].append(res)
             out.say(args, format_compare([res]))  # the case's table at once
