@@ -34,7 +34,11 @@ def save(case):
     open(sys.argv[2], "w").write(out.json_text(data) + "\n")
 
 
+max_iter = int(sys.argv[7]) if len(sys.argv) > 7 else 500
+data["patch"]["ipopt.max_iter"] = max_iter
 res = bd.compare_case(sys.argv[1], motion_step=motion_step, floor_fraction=floor_fraction,
+                      ipopt={"ipopt.max_iter": max_iter, "ipopt.print_level": 5,
+                             "ipopt.print_frequency_iter": 50},
                       on_row=save, progress=lambda w: print(w, file=sys.stderr, flush=True))
 save(res)
 data["load_average_end"] = list(os.getloadavg())

@@ -231,7 +231,7 @@ def _forward_checks(scene: Any, schedule: Any, motions: Sequence[Any],
 
 def compare_case(path: str | Path, *, heave_path: str | Path | None = None,
                  rel_tol: float = 1e-2, motion_step: float | None = None,
-                 floor_fraction: float | None = None,
+                 floor_fraction: float | None = None, ipopt: dict[str, Any] | None = None,
                  progress: Callable[[str], None] | None = None,
                  on_row: Callable[[dict[str, Any]], None] | None = None) -> dict[str, Any]:
     """The optimal schedule of one case beside the fastest constant speed and today's
@@ -262,6 +262,9 @@ def compare_case(path: str | Path, *, heave_path: str | Path | None = None,
         The slowest constant speed tried, as a fraction of ``speed_max`` (-; default
         1 / :data:`cable_ocp.schedule.forward.FLOOR_DIVISOR`): a floor of v_f over a
         distance d simulates d / v_f s, and slow runs are the dearest.
+    ipopt : dict, optional
+        IPOPT options for the OCP (``ipopt.`` prefixed; e.g. ``{"ipopt.max_iter": 2000}``:
+        the OCP's default is 500 iterations).
     progress : callable, optional
         ``progress(what)`` before each stage.
     on_row : callable, optional
@@ -283,7 +286,7 @@ def compare_case(path: str | Path, *, heave_path: str | Path | None = None,
     motions = vessel_motions(scene)
     say(f"{path.stem}: the OCP")
     t0 = time.perf_counter()
-    res = solve_schedule(scene, [m.casadi_heave() for m in motions])
+    res = solve_schedule(scene, [m.casadi_heave() for m in motions], ipopt=ipopt)
     wall = time.perf_counter() - t0
     d = res.diagnostics
     ocp = {"status": res.status, "message": res.message, "binding": list(res.binding),

@@ -181,6 +181,9 @@ def register(sub: argparse._SubParsersAction, parent: argparse.ArgumentParser) -
                     help="compare: the forward simulator's sampling of a sea's heave, s "
                          "(default the case's [simulation] time_step; a run costs about "
                          "its steps times its samples)")
+    dp.add_argument("--max-iter", type=int, default=None, metavar="N",
+                    help="compare: IPOPT's iteration limit for the OCP (default the OCP's "
+                         "500)")
     dp.add_argument("--floor-fraction", type=float, default=None, metavar="F",
                     help="compare: the slowest constant speed tried on the forward "
                          "simulator, as a fraction of speed_max (default 1/32)")
@@ -650,6 +653,8 @@ def cmd_bench_deploy(args: argparse.Namespace) -> int:
         raise out_error(f"--rel-tol {args.rel_tol}: give a width in (0, 1)")
     if args.motion_step is not None and not 1e-3 <= args.motion_step <= 10.0:
         raise out_error(f"--motion-step {args.motion_step}: give 0.001..10 s")
+    if args.max_iter is not None and not 1 <= args.max_iter <= 100000:
+        raise out_error(f"--max-iter {args.max_iter}: give 1..100000 iterations")
     if args.floor_fraction is not None and not 0.0 < args.floor_fraction < 1.0:
         raise out_error(f"--floor-fraction {args.floor_fraction}: give a fraction in (0, 1)")
     segs = args.segments or list(bd.COST_SEGMENTS)
@@ -690,7 +695,9 @@ def cmd_bench_deploy(args: argparse.Namespace) -> int:
 
         for c in cases:
             res = bd.compare_case(c, rel_tol=args.rel_tol, motion_step=args.motion_step,
-                                  floor_fraction=args.floor_fraction, progress=note,
+                                  floor_fraction=args.floor_fraction,
+                                  ipopt={"ipopt.max_iter": args.max_iter}
+                                  if args.max_iter else None, progress=note,
                                   on_row=keep)
             if not data["compare"] or data["compare"][-1] is not res:
                 data["compare"].append(res)
