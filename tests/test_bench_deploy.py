@@ -11,6 +11,7 @@ import numpy as np
 import pytest
 
 from cable_ocp.bench import deployment as bd
+from cable_ocp.cli import output as out
 from cable_ocp.cli.app import main
 from cable_ocp.errors import CableOCPError
 from cable_ocp.schedule.robust import same_duration_speed
@@ -102,3 +103,73 @@ def test_bench_deploy_cost_json_rows(tmp_path):
     for r in rows:
         n_k, n = r["steps"], r["segments"]
         assert r["variables"] == 1 + n_k + 2 * (n_k + 1) + 2 * n * n_k
+
+
+_TINY = """
+[environment]
+water_depth = 3000.0
+water_density = 1025.0
+[cable]
+length = 50.0
+diameter = 0.047
+weight_in_water = 53.19
+axial_stiffness = 1.57012e7
+tangential_drag = 0.01
+mass_per_length = 7.2
+[unit]
+mass = 5000.0
+added_mass = 8000.0
+weight_in_water = 42645.0
+[end_b]
+position = [0.0, 0.0, 3000.0]
+[simulation]
+model = "axial"
+duration = 20.0
+time_step = 0.1
+output_step = 0.5
+segments = 2
+[deployment]
+target_length = 56.0
+speed_max = 1.0
+accel_max = 0.2
+tension_min = 10000.0
+tension_max = 120000.0
+time_step = 0.5
+segments = 2
+"""
+
+
+def test_bench_deploy_compare_keeps_each_finished_row(tmp_path, monkeypatch):
+    # a stopped run keeps what it finished: the JSON is rewritten after every row, so a
+    # bisection stopped by hand leaves the OCP's rows on disk ("partial")
+    from cable_ocp.schedule import forward
+
+    case = tmp_path / "tiny.toml"
+    case.write_text(_TINY)  # still water, 50 -> 56 m on 2 elements: a trapezoid
+    path = tmp_path / "cmp.json"
+
+    def stopped(*args, **kwargs):
+        raise KeyboardInterrupt
+
+    monkeypatch.setattr(forward, "fastest_constant_speed", stopped)
+    rc = main(["bench", "deploy", "--quiet", "--part", "compare", "--case", str(case),
+               "--json", str(path)])
+    assert rc == out.EXIT_INTERRUPTED
+    data = json.loads(path.read_text())
+    assert data["status"] == "partial"
+    (got,) = data["compare"]
+    assert got["complete"] is False
+    assert [r["method"] for r in got["rows"]] == ["optimal schedule (OCP)",
+                                                  "constant speed, OCP's line"]
+    assert got["rows"][0]["status"] == "solved"
+    monkeypatch.undo()
+    # the whole run: the case complete, the last envelope "ok"
+    assert main(["bench", "deploy", "--quiet", "--part", "compare", "--case", str(case),
+                 "--json", str(path)]) == 0
+    data = json.loads(path.read_text())
+    assert data["status"] == "ok"
+    (got,) = data["compare"]
+    assert got["complete"] is True and len(got["rows"]) == 3
+    # the trapezoid 6 m at 1 m/s ramped at 0.2 m/s^2: D/v + v/a = 11 s is the optimum's
+    # bound from below (the rest at the end and the steps add; 5 %: the 0.5 s steps)
+    assert got["rows"][0]["duration_s"] == pytest.approx(11.0, rel=0.05)

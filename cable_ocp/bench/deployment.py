@@ -132,7 +132,9 @@ def payout_schedule(start: float, final: float, speed: float, ramp: float,
     (:func:`cable_ocp.heave.deployment.length_history` from t0 = 0) as a
     :class:`cable_ocp.schedule.forward.Schedule`: the speed v (f(s / r) - f((s - T_c) / r)),
     f the quintic ramp 10x^3 - 15x^4 + 6x^5 clipped to [0, 1], T_c = |final - start| / v,
-    sampled every ``step`` s over its duration T_c + r (linear between samples).
+    sampled every ``step`` s over the two ramps, [0, r] and [T_c, T_c + r] (linear between
+    samples; the cruise between them is constant, so its two ends are exact: a short
+    speed table keeps the forward simulator's table lookup cheap).
 
     Parameters
     ----------
@@ -151,8 +153,10 @@ def payout_schedule(start: float, final: float, speed: float, ramp: float,
     tc = dist / speed
     ramp = min(ramp, tc)
     dur = tc + ramp
-    n = max(int(math.ceil(dur / step)), 2)
-    t = np.linspace(0.0, dur, n + 1)
+    n = max(int(math.ceil(ramp / step)), 2)
+    t = np.union1d(np.linspace(0.0, ramp, n + 1), np.linspace(tc, dur, n + 1))
+    if ramp <= 0.0:
+        t = np.array([0.0, tc])
 
     def f(x: np.ndarray) -> np.ndarray:
         x = np.clip(x, 0.0, 1.0)
@@ -210,11 +214,13 @@ def _check_row(chk: Any) -> dict[str, Any]:
             if chk.tension_max_line.size else math.nan}
 
 
-def _forward_checks(scene: Any, schedule: Any, motions: Sequence[Any]) -> dict[str, Any]:
+def _forward_checks(scene: Any, schedule: Any, motions: Sequence[Any],
+                    motion_step: float | None = None) -> dict[str, Any]:
     """The worst over the motions of :func:`_check_row`."""
     from cable_ocp.schedule.forward import resimulate
 
-    rows = [_check_row(resimulate(scene, schedule, m)) for m in motions]
+    rows = [_check_row(resimulate(scene, schedule, m, motion_step=motion_step))
+            for m in motions]
     worst = max(rows, key=lambda r: (r["forward_status"] != "solved", r["slack"],
                                      r["worst_excess"]))
     out = dict(worst)
@@ -224,15 +230,18 @@ def _forward_checks(scene: Any, schedule: Any, motions: Sequence[Any]) -> dict[s
 
 
 def compare_case(path: str | Path, *, heave_path: str | Path | None = None,
-                 rel_tol: float = 1e-2,
-                 progress: Callable[[str], None] | None = None) -> dict[str, Any]:
+                 rel_tol: float = 1e-2, motion_step: float | None = None,
+                 floor_fraction: float | None = None, ipopt: dict[str, Any] | None = None,
+                 progress: Callable[[str], None] | None = None,
+                 on_row: Callable[[dict[str, Any]], None] | None = None) -> dict[str, Any]:
     """The optimal schedule of one case beside the fastest constant speed and today's
     scheduled-gain deployment (module docstring).
 
     Returns ``{"case", "file", "start_length_m", "target_length_m", "motions", "ocp": {...},
-    "rows": [...]}``: one row per method (``method``, ``status``, ``duration_s``,
-    ``saving_pct`` of the optimum against it, ``speed_m_s``, ``binding``, the forward
-    check's ``worst_excess`` and ``worst_limit``, ``note``).
+    "heave": {...} or None, "rows": [...], "complete": True}``: one row per method
+    (``method``, ``status``, ``duration_s``, ``saving_pct`` of the optimum against it,
+    ``speed_m_s``, ``binding``, the forward check's ``worst_excess`` and ``worst_limit``,
+    ``note``).
 
     Parameters
     ----------
@@ -243,8 +252,24 @@ def compare_case(path: str | Path, *, heave_path: str | Path | None = None,
         :data:`HEAVE_COUNTERPARTS`, else none).
     rel_tol : float
         The constant speed's bisection width, relative (-).
+    motion_step : float, optional
+        The forward simulator's sampling of a sea's heave (a ``series``) and of the
+        compensation, s (default its ``[simulation] time_step``;
+        :func:`cable_ocp.schedule.forward.resimulate`). The series is looked up in a chain
+        as long as the run's samples, so a run costs about (duration / time_step) x
+        (duration / motion_step): a coarser motion step makes long runs affordable.
+    floor_fraction : float, optional
+        The slowest constant speed tried, as a fraction of ``speed_max`` (-; default
+        1 / :data:`cable_ocp.schedule.forward.FLOOR_DIVISOR`): a floor of v_f over a
+        distance d simulates d / v_f s, and slow runs are the dearest.
+    ipopt : dict, optional
+        IPOPT options for the OCP (``ipopt.`` prefixed; e.g. ``{"ipopt.max_iter": 2000}``:
+        the OCP's default is 500 iterations).
     progress : callable, optional
         ``progress(what)`` before each stage.
+    on_row : callable, optional
+        ``on_row(case)`` after each row, with the case's result so far (the same keys,
+        ``"complete"`` False until the last row): a stopped run keeps what it finished.
     """
     from cable_ocp.scene.dynamics import load_dynamic_scene
     from cable_ocp.schedule.forward import Schedule, fastest_constant_speed
@@ -261,7 +286,7 @@ def compare_case(path: str | Path, *, heave_path: str | Path | None = None,
     motions = vessel_motions(scene)
     say(f"{path.stem}: the OCP")
     t0 = time.perf_counter()
-    res = solve_schedule(scene, [m.casadi_heave() for m in motions])
+    res = solve_schedule(scene, [m.casadi_heave() for m in motions], ipopt=ipopt)
     wall = time.perf_counter() - t0
     d = res.diagnostics
     ocp = {"status": res.status, "message": res.message, "binding": list(res.binding),
@@ -273,6 +298,19 @@ def compare_case(path: str | Path, *, heave_path: str | Path | None = None,
            "violations": dict(res.solution.violations) if res.solution is not None else {}}
     t_opt = res.duration
     rows: list[dict[str, Any]] = []
+    sim = scene.simulation
+    res_note = (f"{sim.time_step:g} s, {sim.segments} elements"
+                + (f", heave sampled every {motion_step:g} s" if motion_step else ""))
+    case: dict[str, Any] = {"case": path.stem, "file": str(path),
+                            "start_length_m": scene.length,
+                            "target_length_m": scene.deployment.target_length,
+                            "motions": [m.name for m in motions], "ocp": ocp, "heave": None,
+                            "rows": rows, "complete": False}
+
+    def done(row: dict[str, Any]) -> None:
+        rows.append(row)
+        if on_row is not None:
+            on_row(case)
     opt_row: dict[str, Any] = {"method": "optimal schedule (OCP)", "status": res.status,
                                "duration_s": t_opt, "saving_pct": math.nan,
                                "speed_m_s": float(np.max(res.solution.speed))
@@ -283,16 +321,15 @@ def compare_case(path: str | Path, *, heave_path: str | Path | None = None,
         say(f"{path.stem}: the optimum re-simulated")
         sol = res.solution
         sched = Schedule.from_speed(sol.time, sol.speed, scene.length, sol.ahc_gain)
-        opt_row.update(_forward_checks(scene, sched, motions))
-        opt_row["note"] = (f"forward check at {scene.simulation.time_step:g} s, "
-                           f"{scene.simulation.segments} elements")
+        opt_row.update(_forward_checks(scene, sched, motions, motion_step))
+        opt_row["note"] = "forward check at " + res_note
     else:
         opt_row["note"] = (f"{res.message} ({d.get('iterations', '-')} iterations); "
                            "not a schedule")
-    rows.append(opt_row)
+    done(opt_row)
     ws = res.warm_start
     if ws is not None:
-        rows.append({"method": "constant speed, OCP's line", "status":
+        done({"method": "constant speed, OCP's line", "status":
                      "solved" if ws.feasible else "infeasible", "duration_s": ws.duration
                      if ws.feasible else math.nan,
                      "saving_pct": saving_pct(t_opt, ws.duration) if ws.feasible else math.nan,
@@ -300,22 +337,27 @@ def compare_case(path: str | Path, *, heave_path: str | Path | None = None,
                      "worst_limit": None, "note": f"warm start, {ws.rollouts} rollouts"})
     say(f"{path.stem}: the fastest constant speed on the forward simulator (bisection)")
     t1 = time.perf_counter()
-    fc = fastest_constant_speed(scene, motions, rel_tol=rel_tol)
+    top = scene.deployment.speed_max
+    floor = floor_fraction * top if floor_fraction is not None and top is not None else None
+    fc = fastest_constant_speed(scene, motions, rel_tol=rel_tol, motion_step=motion_step,
+                                floor=floor)
     fc_row: dict[str, Any] = {
         "method": "constant speed, forward simulator", "status": fc.status,
         "duration_s": fc.duration, "saving_pct": saving_pct(t_opt, fc.duration),
         "speed_m_s": fc.speed, "binding": fc.binding or "speed_max",
         "worst_excess": math.nan, "worst_limit": None,
-        "note": f"{fc.simulations} runs, {time.perf_counter() - t1:.0f} s; bracket "
-                f"{fc.bracket[0]:.4g}-{fc.bracket[1]:.4g} m/s"}
+        "note": f"{fc.simulations} runs at {res_note}, {time.perf_counter() - t1:.0f} s; "
+                f"bracket {fc.bracket[0]:.4g}-{fc.bracket[1]:.4g} m/s"
+                + (f" (floor {floor:.4g} m/s)" if floor is not None else "")}
     if fc.checks:
         chk = _check_row(fc.checks[-1])
         fc_row.update(worst_excess=chk["worst_excess"], worst_limit=chk["worst_limit"])
-    rows.append(fc_row)
-    heave: dict[str, Any] | None = None
+    if heave_path is None:
+        case["complete"] = True
+    done(fc_row)
     if heave_path is not None:
         say(f"{path.stem}: today's scheduled-gain deployment re-simulated")
-        heave = heave_payout(heave_path)
+        heave = case["heave"] = heave_payout(heave_path)
         sched = payout_schedule(scene.length, scene.deployment.target_length,
                                 heave["payout_speed_m_s"], heave["ramp_time_s"])
         same = (abs(heave["start_length_m"] - scene.length) < 1e-6
@@ -327,12 +369,12 @@ def compare_case(path: str | Path, *, heave_path: str | Path | None = None,
                "note": (f"{heave['payout_speed_m_s']:g} m/s over "
                         f"{abs(heave['final_length_m'] - heave['start_length_m']):g} m, "
                         f"{heave['ramp_time_s']:g} s ramps; re-simulated without the "
-                        "compensator" + ("" if same else "; lengths differ from the case"))}
-        row.update(_forward_checks(scene, sched, motions))
-        rows.append(row)
-    return {"case": path.stem, "file": str(path), "start_length_m": scene.length,
-            "target_length_m": scene.deployment.target_length,
-            "motions": [m.name for m in motions], "ocp": ocp, "heave": heave, "rows": rows}
+                        "compensator at " + res_note
+                        + ("" if same else "; lengths differ from the case"))}
+        row.update(_forward_checks(scene, sched, motions, motion_step))
+        case["complete"] = True
+        done(row)
+    return case
 
 
 def cost_grid(durations: Sequence[float] = COST_DURATIONS,

@@ -177,6 +177,16 @@ def register(sub: argparse._SubParsersAction, parent: argparse.ArgumentParser) -
                          "problems/dynamics/deploy_3_3_5.toml and deploy_6_3_6.toml)")
     dp.add_argument("--rel-tol", type=float, default=1e-2, metavar="R",
                     help="compare: the constant speed's bisection width, relative (0.01)")
+    dp.add_argument("--motion-step", type=float, default=None, metavar="S",
+                    help="compare: the forward simulator's sampling of a sea's heave, s "
+                         "(default the case's [simulation] time_step; a run costs about "
+                         "its steps times its samples)")
+    dp.add_argument("--max-iter", type=int, default=None, metavar="N",
+                    help="compare: IPOPT's iteration limit for the OCP (default the OCP's "
+                         "500)")
+    dp.add_argument("--floor-fraction", type=float, default=None, metavar="F",
+                    help="compare: the slowest constant speed tried on the forward "
+                         "simulator, as a fraction of speed_max (default 1/32)")
     dp.add_argument("--durations", type=float, nargs="+", default=None, metavar="S",
                     help="cost: the warm start's durations, s (default 60 120 240 480)")
     dp.add_argument("--segments", type=int, nargs="+", default=None, metavar="N",
@@ -631,14 +641,22 @@ def cmd_bench_deploy(args: argparse.Namespace) -> int:
     """``cable-ocp bench deploy``."""
     import math
     import os
+    import sys
 
     from cable_ocp.bench import deployment as bd
     from cable_ocp.cli.bench_deploy import format_compare, format_cost, format_long
+    from cable_ocp.numerics.atomic import write_text_file
 
     out.check_outputs(args)
     parts = list(dict.fromkeys(args.part or bd.PARTS))
     if not 0.0 < args.rel_tol < 1.0:
         raise out_error(f"--rel-tol {args.rel_tol}: give a width in (0, 1)")
+    if args.motion_step is not None and not 1e-3 <= args.motion_step <= 10.0:
+        raise out_error(f"--motion-step {args.motion_step}: give 0.001..10 s")
+    if args.max_iter is not None and not 1 <= args.max_iter <= 100000:
+        raise out_error(f"--max-iter {args.max_iter}: give 1..100000 iterations")
+    if args.floor_fraction is not None and not 0.0 < args.floor_fraction < 1.0:
+        raise out_error(f"--floor-fraction {args.floor_fraction}: give a fraction in (0, 1)")
     segs = args.segments or list(bd.COST_SEGMENTS)
     for n in segs + [args.long_segments]:
         if not 1 <= n <= 400:
@@ -658,11 +676,34 @@ def cmd_bench_deploy(args: argparse.Namespace) -> int:
     def note(what: str) -> None:
         out.note(args, f"bench deploy: {what} ...")
 
+    def save(what: str) -> None:
+        # the JSON so far, rewritten whole after each finished step (a file, not stdout:
+        # one document there), so that a stopped run keeps what it finished
+        if args.json and args.json != out.STDOUT:
+            out.write_output("--json", args.json, lambda tmp: write_text_file(
+                tmp, out.json_text(out.envelope("partial", f"bench deploy: running; "
+                                                f"done: {what}", data)) + "\n"))
+
     if "compare" in parts:
         cases = args.case or [str(p) for p in bd.COMPARE_CASES]
-        data["compare"] = [bd.compare_case(c, rel_tol=args.rel_tol, progress=note)
-                           for c in cases]
-        out.say(args, format_compare(data["compare"]))
+        data["compare"] = []
+
+        def keep(case: dict[str, Any]) -> None:
+            if not data["compare"] or data["compare"][-1] is not case:
+                data["compare"].append(case)  # a new case: its slot, filled row by row
+            save(f"{case['case']}: {case['rows'][-1]['method']}")
+
+        for c in cases:
+            res = bd.compare_case(c, rel_tol=args.rel_tol, motion_step=args.motion_step,
+                                  floor_fraction=args.floor_fraction,
+                                  ipopt={"ipopt.max_iter": args.max_iter}
+                                  if args.max_iter else None, progress=note,
+                                  on_row=keep)
+            if not data["compare"] or data["compare"][-1] is not res:
+                data["compare"].append(res)
+            out.say(args, format_compare([res]))  # the case's table at once
+            sys.stdout.flush()
+        save("compare")
     if "cost" in parts:
         kw: dict[str, Any] = {"budget_s": args.budget, "progress": note}
         if args.cost_file:
@@ -672,6 +713,7 @@ def cmd_bench_deploy(args: argparse.Namespace) -> int:
                         "file": str(args.cost_file or bd.COST_FILE),
                         "speed_m_s": bd.COST_SPEED}
         out.say(args, format_cost(data["cost"]))
+        save("cost")
     if "long" in parts:
         data["long"] = bd.long_run(duration=args.long_duration, segments=args.long_segments,
                                    time_step=args.long_time_step, progress=note)

@@ -55,4 +55,10 @@ MUTATIONS = [
          tests=(_T + "cost_fits_on_synthetic_rows",),
          description="bench deploy: the growth with the duration fitted against the "
                      "elements"),
+    dict(name="bench-deploy-rows-not-saved", area="bench", file=LIB,
+         old="        rows.append(row)\n        if on_row is not None:",
+         new="        rows.append(row)\n        if False:",
+         tests=(_T + "bench_deploy_compare_keeps_each_finished_row",),
+         description="bench deploy: the JSON not rewritten after each row (a stopped "
+                     "run loses the OCP's rows)"),
 ]
