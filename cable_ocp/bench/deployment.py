@@ -6,7 +6,8 @@ Three parts, each returning rows (dicts, SI units) that the command line formats
   lowered 50 -> 1050 m through its resonant length, and the 6.3.6 line lowered 200 ->
   1000 m in the 6.3.6 sea), side by side in one run, the time to depth of
 
-  - the optimal schedule (:func:`cable_ocp.schedule.planning.solve_schedule`), re-simulated
+  - the optimal schedule (:func:`cable_ocp.schedule.planning.verified_schedule`: the OCP
+    and its forward check), re-simulated
     on the forward simulator at the scene's own (finer) ``[simulation]`` step and
     elements (:func:`cable_ocp.schedule.forward.resimulate`) with its worst limit excess;
   - the fastest constant speed that keeps the same limits on the forward simulator
@@ -273,7 +274,7 @@ def compare_case(path: str | Path, *, heave_path: str | Path | None = None,
     """
     from cable_ocp.scene.dynamics import load_dynamic_scene
     from cable_ocp.schedule.forward import Schedule, fastest_constant_speed
-    from cable_ocp.schedule.planning import solve_schedule
+    from cable_ocp.schedule.planning import verified_schedule
     from cable_ocp.schedule.sea import vessel_motions
 
     say = progress or (lambda what: None)
@@ -286,7 +287,7 @@ def compare_case(path: str | Path, *, heave_path: str | Path | None = None,
     motions = vessel_motions(scene)
     say(f"{path.stem}: the OCP")
     t0 = time.perf_counter()
-    res = solve_schedule(scene, [m.casadi_heave() for m in motions], ipopt=ipopt)
+    res = verified_schedule(scene, motions, ipopt=ipopt)
     wall = time.perf_counter() - t0
     d = res.diagnostics
     ocp = {"status": res.status, "message": res.message, "binding": list(res.binding),
@@ -295,6 +296,8 @@ def compare_case(path: str | Path, *, heave_path: str | Path | None = None,
            "solve_s": d.get("solve_time_s"), "iterations": d.get("iterations"),
            "variables": d.get("variables"), "constraints": d.get("constraints"),
            "steps": d.get("steps"), "elements": d.get("elements"),
+           "check_s": d.get("check_s"), "check_rounds": d.get("check_rounds"),
+           "margins": res.margins,
            "violations": dict(res.solution.violations) if res.solution is not None else {}}
     t_opt = res.duration
     rows: list[dict[str, Any]] = []

@@ -484,6 +484,7 @@ class ScheduleOCP:
         self._ubg = np.concatenate([grp[4] for grp in self._groups])
         opts = {"ipopt.print_level": 0, "print_time": False, "ipopt.sb": "yes",
                 "ipopt.max_iter": 500, "ipopt.tol": 1e-8, "ipopt.acceptable_tol": 1e-3,
+                "ipopt.acceptable_constr_viol_tol": 1e-6,
                 "ipopt.mu_strategy": "adaptive"}
         opts.update(ipopt or {})
         self._solver = ca.nlpsol("deployment", "ipopt", {"x": w, "f": objective, "g": g_all},
@@ -604,6 +605,12 @@ class ScheduleOCP:
         if ret in _SOLVED and max(viol.values(), default=0.0) <= 1e-5:
             status, msg = "solved", f"IPOPT: {ret}"
             binding = self._active(g, w, lbg, ubg)
+        elif ret in _SOLVED and all(k in _EQUATIONS for k in viol if viol[k] > 1e-5):
+            worst = sorted((k for k in viol if viol[k] > 1e-5), key=lambda k: -viol[k])
+            status, binding = "failed", ()
+            msg = (f"IPOPT: {ret}, but its point breaks the model's equations: "
+                   + ", ".join(f"{k} by {viol[k]:.3g} (relative)" for k in worst[:2])
+                   + "; not a schedule")
         elif ret in _INFEASIBLE or (ret in _SOLVED):
             worst = sorted((k for k in viol if viol[k] > 1e-5), key=lambda k: -viol[k])
             status = "infeasible"
