@@ -42,6 +42,7 @@ from typing import Any
 import numpy as np
 
 from cable_ocp.errors import CableOCPError
+from cable_ocp.numerics.ramp import smoothstep
 
 ROOT = Path(__file__).resolve().parents[2] / "problems"
 
@@ -160,8 +161,7 @@ def payout_schedule(start: float, final: float, speed: float, ramp: float,
         t = np.array([0.0, tc])
 
     def f(x: np.ndarray) -> np.ndarray:
-        x = np.clip(x, 0.0, 1.0)
-        return x**3 * (10.0 - 15.0 * x + 6.0 * x**2)
+        return smoothstep(np.clip(x, 0.0, 1.0))
 
     if ramp > 0.0:
         v = speed * (f(t / ramp) - f((t - tc) / ramp))
