@@ -206,6 +206,24 @@ def test_deploy_schedule_the_check_rejects_is_not_a_schedule(tmp_path, capsys, m
     assert not cs.exists()
 
 
+def test_deploy_ctrl_c_in_the_forward_check_writes_nothing_and_exits_130(tmp_path, capsys,
+                                                                         monkeypatch):
+    """A Ctrl-C while the schedule is re-simulated (the simulator returns "interrupted"):
+    the result is "interrupted", nothing is written, exit 130."""
+    import cable_ocp.schedule.planning as planning
+
+    real = planning.resimulate
+
+    def stopped(*a, **k):
+        return dataclasses.replace(real(*a, **k), status="interrupted")
+
+    monkeypatch.setattr(planning, "resimulate", stopped)
+    js = tmp_path / "i.json"
+    assert main(["deploy", str(SMALL), "--json", str(js)]) == EXIT_INTERRUPTED
+    assert "interrupted" in capsys.readouterr().err
+    assert not js.exists()
+
+
 SEA = ["--set", "deployment.sea.significant_height=0.5", "--set",
        "deployment.sea.peak_frequency=0.6", "--set", "deployment.sea.unseen=2"]
 

@@ -110,6 +110,8 @@ def cmd_deploy(args: argparse.Namespace) -> int:
                    f"{len(motions)} realisation(s): warm start, build, solve ...")
     res = verified_schedule(scene, motions, segments=args.segments, time_step=args.time_step,
                             rounds=args.check_rounds)
+    if res.status == "interrupted":  # a Ctrl-C in the forward check: nothing is written
+        raise KeyboardInterrupt
     extra: dict[str, dict[str, Any]] = {}  # the comparisons asked for, JSON-ready
     stopped = False
     for flag, job in (("compare", _forward_compare), ("unseen", _unseen),

@@ -43,4 +43,10 @@ MUTATIONS = [
          new='            return ScheduleResult("solved", msg, tuple(over), sol,',
          tests=(_C + "schedule_the_check_rejects_is_not_a_schedule",),
          description="a schedule the forward check rejects reported as a schedule"),
+    dict(name="check-interrupt-written-as-a-result", area="schedule",
+         file="cable_ocp/cli/deploy.py",
+         old='    if res.status == "interrupted":  # a Ctrl-C in the forward check',
+         new='    if False:  # a Ctrl-C in the forward check',
+         tests=(_C + "ctrl_c_in_the_forward_check_writes_nothing_and_exits_130",),
+         description="a Ctrl-C in the forward check written out as a failed result, exit 1"),
 ]
