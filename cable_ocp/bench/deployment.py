@@ -33,6 +33,7 @@ on a shared one. Nothing here is asserted by the tests but the bookkeeping.
 from __future__ import annotations
 
 import math
+import sys
 import time
 from collections.abc import Callable, Sequence
 from pathlib import Path
@@ -451,7 +452,8 @@ def long_run(path: str | Path = LONG_FILE, *, duration: float = LONG_DURATION,
     ``speed_max`` replaced by the cruise speed v with d = v (T - v / a) its distance
     (:func:`distance_for`, solved for v), so that the warm start lasts ``duration`` when
     the speed binds. Returns the times apart (``warm_start_s``, ``build_s``, ``solve_s``,
-    ``wall_s``), the status, the duration and the sizes.
+    ``wall_s``), the status, the duration, the sizes, the nlpsol options (``ipopt``) and
+    the process's peak resident memory so far (``peak_rss_bytes``, bytes).
 
     Parameters
     ----------
@@ -488,8 +490,8 @@ def long_run(path: str | Path = LONG_FILE, *, duration: float = LONG_DURATION,
     if progress is not None:
         progress(f"long: {duration:g} s, {segments} elements")
     t0 = time.perf_counter()
-    res = solve_schedule(scene, heaves, segments=segments,
-                         ipopt=dict(LONG_IPOPT if ipopt is None else ipopt))
+    opts = dict(LONG_IPOPT if ipopt is None else ipopt)
+    res = solve_schedule(scene, heaves, segments=segments, ipopt=opts)
     wall = time.perf_counter() - t0
     d = res.diagnostics
     ws = res.warm_start
@@ -503,4 +505,15 @@ def long_run(path: str | Path = LONG_FILE, *, duration: float = LONG_DURATION,
             "warm_start_s": d.get("warm_start_s", math.nan),
             "build_s": d.get("build_s", math.nan), "solve_s": d.get("solve_time_s", math.nan),
             "iterations": d.get("iterations"), "variables": d.get("variables"),
-            "constraints": d.get("constraints"), "steps": d.get("steps"), "wall_s": wall}
+            "constraints": d.get("constraints"), "steps": d.get("steps"), "wall_s": wall,
+            "ipopt": opts, "peak_rss_bytes": _peak_rss_bytes()}
+
+
+def _peak_rss_bytes() -> float:
+    """The process's peak resident memory so far, bytes (nan where unknown)."""
+    try:
+        import resource
+    except ImportError:  # not on Windows
+        return math.nan
+    scale = 1 if sys.platform == "darwin" else 1024  # ru_maxrss: bytes on macOS, else kB
+    return float(resource.getrusage(resource.RUSAGE_SELF).ru_maxrss * scale)

@@ -1,0 +1,36 @@
+"""The long run's bookkeeping (cable_ocp/bench/deployment.py ``long_run``, issue 25): its
+nlpsol options and peak memory as reported, and the line that prints them. The long run
+itself takes hours (docs/deployment.md, "The long run"); nothing here solves it."""
+
+from __future__ import annotations
+
+import math
+import resource
+
+from cable_ocp.bench import deployment as bd
+from cable_ocp.cli.bench_deploy import format_long
+
+
+def test_peak_memory_is_the_process_peak_in_bytes():
+    # ru_maxrss is kB on Linux: the reported bytes are 1024 x it, never below the 1 MB
+    # that any Python process already holds (a kB-for-bytes slip would give ~1e5)
+    kb = resource.getrusage(resource.RUSAGE_SELF).ru_maxrss
+    got = bd._peak_rss_bytes()
+    assert got >= 1024.0 * kb > 1e6
+
+
+def test_long_run_defaults_to_the_expanded_graph():
+    # the measured winner at 40 elements (docs/deployment.md, "Cost"); a copy is passed on
+    assert bd.LONG_IPOPT == {"expand": True}
+
+
+def test_long_line_reports_memory_and_options():
+    row = dict(file="x.toml", distance_m=800.0, speed_max_m_s=1.3507, segments=40,
+               time_step_s=0.5, status="interrupted", message="stopped", duration_s=math.nan,
+               warm_duration_s=600.0, saving_pct=math.nan, steps=1200, variables=99,
+               constraints=98, warm_start_s=1.0, build_s=2.0, solve_s=math.nan,
+               iterations=None, wall_s=3.0, binding=[], ipopt={"expand": True},
+               peak_rss_bytes=2.5e9)
+    text = format_long(row)
+    assert "peak memory 2.50 GB" in text and "'expand': True" in text
+    assert "nlpsol options the defaults" in format_long({**row, "ipopt": {}})
