@@ -34,3 +34,23 @@ def test_long_line_reports_memory_and_options():
     text = format_long(row)
     assert "peak memory 2.50 GB" in text and "'expand': True" in text
     assert "nlpsol options the defaults" in format_long({**row, "ipopt": {}})
+
+
+def test_warm_start_scan_stops_before_max_steps():
+    # no constant speed keeps a tension_min above the line's static tension, so the scan
+    # runs down its whole grid: 100 m at 1 m/s * 1e-3^(k/6) on 4 s steps gives about 80,
+    # 250, 800, 2500, 8000 and 25000 steps (k = 1..6); the last exceeds MAX_STEPS (20000) and
+    # is not rolled out: 1 + 5 rollouts (the OOM of the 6.3.6 long run, docs/deployment.md)
+    import casadi as ca
+
+    from cable_ocp.scene.dynamics import load_dynamic_scene
+    from cable_ocp.schedule.ocp import line_step
+    from cable_ocp.schedule.planning import MAX_STEPS, discrete_constant_speed
+
+    scene = load_dynamic_scene("problems/dynamics/deploy_small.toml",
+                               {"deployment.speed_max": 1.0, "deployment.tension_min": 1e9,
+                                "deployment.tension_max": 2e9})
+    still = ca.Function("still", [ca.SX.sym("t")], [ca.SX(0.0)])
+    warm = discrete_constant_speed(scene, line_step(scene, 2), [still], scene.deployment, 4.0)
+    assert MAX_STEPS == 20000 and not warm.feasible
+    assert warm.rollouts == 6 and warm.binding == "tension_min"

@@ -21,4 +21,11 @@ MUTATIONS = [
          new="row.get('peak_rss_bytes', math.nan) / 1e6:.2f} GB",
          tests=(_T + "long_line_reports_memory_and_options",),
          description="bench long: the peak memory printed in MB labelled GB"),
+    dict(name="bench-long-scan-past-max-steps", area="schedule",
+         file="cable_ocp/schedule/planning.py",
+         old="time_step)[3].size - 1 > MAX_STEPS:",
+         new="time_step)[3].size - 1 > 10 * MAX_STEPS:",
+         tests=(_T + "warm_start_scan_stops_before_max_steps",),
+         description="warm start: the constant-speed scan rolls out speeds whose trapezoid "
+                     "exceeds MAX_STEPS (10^5-10^6-step rollouts, out of memory)"),
 ]
