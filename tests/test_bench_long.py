@@ -21,7 +21,7 @@ def test_peak_memory_is_the_process_peak_in_bytes():
 
 def test_long_run_defaults_to_the_measured_options():
     # the measured winners at 40 elements (docs/deployment.md, "Cost")
-    assert bd.LONG_IPOPT == {"expand": True, "ipopt.mumps_pivtol": 1e-4}
+    assert bd.LONG_IPOPT == {"expand": True}
 
 
 def test_long_line_reports_memory_and_options():
