@@ -34,6 +34,7 @@ on a shared one. Nothing here is asserted by the tests but the bookkeeping.
 from __future__ import annotations
 
 import math
+import sys
 import time
 from collections.abc import Callable, Sequence
 from pathlib import Path
@@ -65,6 +66,11 @@ COST_SEGMENTS = (5, 10, 20, 40)
 LONG_FILE = ROOT / "dynamics" / "deploy_6_3_6.toml"
 LONG_DURATION = 600.0
 LONG_SEGMENTS = 40
+#: the long run's nlpsol options (docs/deployment.md, "Cost"): the MX graph expanded to SX,
+#: whose Hessian has half the structural nonzeros and evaluates ~20x faster at 40 elements.
+#: (``"ipopt.mumps_pivtol": 1e-4`` cut IPOPT's CPU time 2-3x on the cost grid's line up to
+#: 240 s, but the 6.3.6 long run stalled with it from its infeasible warm start.)
+LONG_IPOPT: dict[str, Any] = {"expand": True}
 
 __all__ = ["COMPARE_CASES", "COST_DURATIONS", "COST_SEGMENTS", "PARTS", "compare_case",
            "cost_fits", "cost_grid", "distance_for", "fit_exponent", "heave_payout",
@@ -487,12 +493,14 @@ def cost_fits(rows: Sequence[dict[str, Any]]) -> dict[str, dict[str, float]]:
 
 def long_run(path: str | Path = LONG_FILE, *, duration: float = LONG_DURATION,
              segments: int = LONG_SEGMENTS, time_step: float | None = None,
+             ipopt: dict[str, Any] | None = None,
              progress: Callable[[str], None] | None = None) -> dict[str, Any]:
     """A deployment of about ``duration`` s on ``segments`` elements: the scene's
     ``speed_max`` replaced by the cruise speed v with d = v (T - v / a) its distance
     (:func:`distance_for`, solved for v), so that the warm start lasts ``duration`` when
     the speed binds. Returns the times apart (``warm_start_s``, ``build_s``, ``solve_s``,
-    ``wall_s``), the status, the duration and the sizes.
+    ``wall_s``), the status, the duration, the sizes, the nlpsol options (``ipopt``) and
+    the process's peak resident memory so far (``peak_rss_bytes``, bytes).
 
     Parameters
     ----------
@@ -504,6 +512,9 @@ def long_run(path: str | Path = LONG_FILE, *, duration: float = LONG_DURATION,
         The OCP line's elements.
     time_step : float, optional
         The OCP's step, s (default ``deployment.time_step``).
+    ipopt : dict, optional
+        Options added to the OCP's nlpsol options (default :data:`LONG_IPOPT`; ``{}``
+        for the OCP's own defaults).
     progress : callable, optional
         ``progress(what)``.
     """
@@ -526,7 +537,8 @@ def long_run(path: str | Path = LONG_FILE, *, duration: float = LONG_DURATION,
     if progress is not None:
         progress(f"long: {duration:g} s, {segments} elements")
     t0 = time.perf_counter()
-    res = solve_schedule(scene, heaves, segments=segments)
+    opts = dict(LONG_IPOPT if ipopt is None else ipopt)
+    res = solve_schedule(scene, heaves, segments=segments, ipopt=opts)
     wall = time.perf_counter() - t0
     d = res.diagnostics
     ws = res.warm_start
@@ -540,4 +552,15 @@ def long_run(path: str | Path = LONG_FILE, *, duration: float = LONG_DURATION,
             "warm_start_s": d.get("warm_start_s", math.nan),
             "build_s": d.get("build_s", math.nan), "solve_s": d.get("solve_time_s", math.nan),
             "iterations": d.get("iterations"), "variables": d.get("variables"),
-            "constraints": d.get("constraints"), "steps": d.get("steps"), "wall_s": wall}
+            "constraints": d.get("constraints"), "steps": d.get("steps"), "wall_s": wall,
+            "ipopt": opts, "peak_rss_bytes": _peak_rss_bytes()}
+
+
+def _peak_rss_bytes() -> float:
+    """The process's peak resident memory so far, bytes (nan where unknown)."""
+    try:
+        import resource
+    except ImportError:  # not on Windows
+        return math.nan
+    scale = 1 if sys.platform == "darwin" else 1024  # ru_maxrss: bytes on macOS, else kB
+    return float(resource.getrusage(resource.RUSAGE_SELF).ru_maxrss * scale)

@@ -119,5 +119,7 @@ def format_long(row: dict[str, Any]) -> str:
             f"{row['steps']} steps, {row['variables']} variables, {row['constraints']} "
             f"constraints; warm start {_s(row['warm_start_s'])}, build "
             f"{_s(row['build_s'])}, solve {_s(row['solve_s'])} ({row['iterations']} "
-            f"iterations), wall {_s(row['wall_s'])}; binding "
+            f"iterations), wall {_s(row['wall_s'])}, peak memory "
+            f"{row.get('peak_rss_bytes', math.nan) / 1e9:.2f} GB; nlpsol options "
+            f"{row.get('ipopt') or 'the defaults'}; binding "
             + (", ".join(row["binding"]) or "none"))

@@ -287,6 +287,12 @@ def discrete_constant_speed(scene: DynamicScene, line: LineStep, heaves: Sequenc
         np.arange(1, SCAN + 1) / SCAN)
     hi, binding, lo = v_hi, why, math.nan
     for v in grid:
+        # a slower speed's rollout has more steps (~ 1 / v): past MAX_STEPS no warm start
+        # of the OCP (:func:`solve_schedule` refuses it) and, at 40 elements over 800 m,
+        # rollouts of 10^5-10^6 steps whose memory ran out (docs/deployment.md, "Cost")
+        if trapezoid(scene.length, problem.target_length, float(v), acc,
+                     time_step)[3].size - 1 > MAX_STEPS:
+            break
         good, w = ok(float(v))
         if good:
             lo = float(v)

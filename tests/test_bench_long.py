@@ -1,0 +1,56 @@
+"""The long run's bookkeeping (cable_ocp/bench/deployment.py ``long_run``, issue 25): its
+nlpsol options and peak memory as reported, and the line that prints them. The long run
+itself takes hours (docs/deployment.md, "The long run"); nothing here solves it."""
+
+from __future__ import annotations
+
+import math
+import resource
+
+from cable_ocp.bench import deployment as bd
+from cable_ocp.cli.bench_deploy import format_long
+
+
+def test_peak_memory_is_the_process_peak_in_bytes():
+    # ru_maxrss is kB on Linux: the reported bytes are 1024 x it, never below the 1 MB
+    # that any Python process already holds (a kB-for-bytes slip would give ~1e5)
+    kb = resource.getrusage(resource.RUSAGE_SELF).ru_maxrss
+    got = bd._peak_rss_bytes()
+    assert got >= 1024.0 * kb > 1e6
+
+
+def test_long_run_defaults_to_the_measured_options():
+    # the measured winners at 40 elements (docs/deployment.md, "Cost")
+    assert bd.LONG_IPOPT == {"expand": True}
+
+
+def test_long_line_reports_memory_and_options():
+    row = dict(file="x.toml", distance_m=800.0, speed_max_m_s=1.3507, segments=40,
+               time_step_s=0.5, status="interrupted", message="stopped", duration_s=math.nan,
+               warm_duration_s=600.0, saving_pct=math.nan, steps=1200, variables=99,
+               constraints=98, warm_start_s=1.0, build_s=2.0, solve_s=math.nan,
+               iterations=None, wall_s=3.0, binding=[], ipopt={"expand": True},
+               peak_rss_bytes=2.5e9)
+    text = format_long(row)
+    assert "peak memory 2.50 GB" in text and "'expand': True" in text
+    assert "nlpsol options the defaults" in format_long({**row, "ipopt": {}})
+
+
+def test_warm_start_scan_stops_before_max_steps():
+    # no constant speed keeps a tension_min above the line's static tension, so the scan
+    # runs down its whole grid: 100 m at 1 m/s * 1e-3^(k/6) on 4 s steps gives about 80,
+    # 250, 800, 2500, 8000 and 25000 steps (k = 1..6); the last exceeds MAX_STEPS (20000) and
+    # is not rolled out: 1 + 5 rollouts (the OOM of the 6.3.6 long run, docs/deployment.md)
+    import casadi as ca
+
+    from cable_ocp.scene.dynamics import load_dynamic_scene
+    from cable_ocp.schedule.ocp import line_step
+    from cable_ocp.schedule.planning import MAX_STEPS, discrete_constant_speed
+
+    scene = load_dynamic_scene("problems/dynamics/deploy_small.toml",
+                               {"deployment.speed_max": 1.0, "deployment.tension_min": 1e9,
+                                "deployment.tension_max": 2e9})
+    still = ca.Function("still", [ca.SX.sym("t")], [ca.SX(0.0)])
+    warm = discrete_constant_speed(scene, line_step(scene, 2), [still], scene.deployment, 4.0)
+    assert MAX_STEPS == 20000 and not warm.feasible
+    assert warm.rollouts == 6 and warm.binding == "tension_min"
