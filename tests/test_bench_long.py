@@ -38,14 +38,15 @@ def test_long_line_reports_memory_and_options():
 
 def test_warm_start_scan_stops_before_max_steps():
     # no constant speed keeps a tension_min above the line's static tension, so the scan
-    # runs down its whole grid: 100 m at 1 m/s * 1e-3^(k/6) on 4 s steps gives about 80,
-    # 250, 800, 2500, 8000 and 25000 steps (k = 1..6); the last exceeds MAX_STEPS (20000) and
-    # is not rolled out: 1 + 5 rollouts (the OOM of the 6.3.6 long run, docs/deployment.md)
+    # runs down its whole grid: the top speed, WARM_TOP speeds down to 0.25 m/s, then
+    # 0.25 m/s * (1e-3 / 0.25)^(k/6), k = 1..6: 100 m at 0.0025 m/s on 4 s steps is about
+    # 10 000 steps, at 0.001 m/s 25 000 > MAX_STEPS (20000), not rolled out: 1 + WARM_TOP
+    # + 5 rollouts (the OOM of the 6.3.6 long run, docs/deployment.md)
     import casadi as ca
 
     from cable_ocp.scene.dynamics import load_dynamic_scene
     from cable_ocp.schedule.ocp import line_step
-    from cable_ocp.schedule.planning import MAX_STEPS, discrete_constant_speed
+    from cable_ocp.schedule.planning import MAX_STEPS, WARM_TOP, discrete_constant_speed
 
     scene = load_dynamic_scene("problems/dynamics/deploy_small.toml",
                                {"deployment.speed_max": 1.0, "deployment.tension_min": 1e9,
@@ -53,4 +54,4 @@ def test_warm_start_scan_stops_before_max_steps():
     still = ca.Function("still", [ca.SX.sym("t")], [ca.SX(0.0)])
     warm = discrete_constant_speed(scene, line_step(scene, 2), [still], scene.deployment, 4.0)
     assert MAX_STEPS == 20000 and not warm.feasible
-    assert warm.rollouts == 6 and warm.binding == "tension_min"
+    assert warm.rollouts == 1 + WARM_TOP + 5 and warm.binding == "tension_min"
