@@ -107,7 +107,7 @@ def cmd_deploy(args: argparse.Namespace) -> int:
     motions = vessel_motions(scene)
     title = scene.statics.meta.get("title", Path(args.file).stem)
     out.note(args, f"deploy: {scene.length:.6g} -> {scene.deployment.target_length:.6g} m, "
-                   f"{len(motions)} realisation(s): warm start, build, solve ...")
+                   f"{len(motions)} realisation(s): warm start, build, solve, forward check ...")
     res = verified_schedule(scene, motions, segments=args.segments, time_step=args.time_step,
                             rounds=args.check_rounds)
     if res.status == "interrupted":  # a Ctrl-C in the forward check: nothing is written
