@@ -224,8 +224,11 @@ def test_deploy_ctrl_c_in_the_forward_check_writes_nothing_and_exits_130(tmp_pat
     assert not js.exists()
 
 
+#: a sea on deploy_small, 2 unseen realisations, re-simulated coarsely (0.2 s, 5 elements:
+#: the counts' bookkeeping, not their accuracy, is tested here)
 SEA = ["--set", "deployment.sea.significant_height=0.5", "--set",
-       "deployment.sea.peak_frequency=0.6", "--set", "deployment.sea.unseen=2"]
+       "deployment.sea.peak_frequency=0.6", "--set", "deployment.sea.unseen=2",
+       "--set", "deployment.check_time_step=0.2", "--set", "deployment.check_segments=5"]
 
 
 def test_deploy_unseen_counts_are_the_runs_on_the_unseen_seas(run, tmp_path, monkeypatch,
@@ -247,10 +250,12 @@ def test_deploy_unseen_counts_are_the_runs_on_the_unseen_seas(run, tmp_path, mon
     scene = load_dynamic_scene(SMALL, {"deployment.sea.significant_height": 0.5,
                                        "deployment.sea.peak_frequency": 0.6,
                                        "deployment.sea.unseen": 2})
+    assert u["time_step_s"] == 0.2 and u["segments"] == 5
     seas = vessel_motions(scene, "unseen")
     assert u["motions"] == [m.name for m in seas] and len(seas) == 2
     sol = run.result.solution
-    mine = [resimulate(scene, Schedule.from_speed(sol.time, sol.speed, 50.0), m) for m in seas]
+    mine = [resimulate(scene, Schedule.from_speed(sol.time, sol.speed, 50.0), m,
+                       time_step=0.2, segments=5) for m in seas]
     opt = u["schedules"]["optimal"]
     assert opt["runs"] == 2 and opt["duration_s"] == pytest.approx(sol.duration, rel=1e-14)
     assert opt["slack"] == sum(c.slack for c in mine)

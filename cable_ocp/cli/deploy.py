@@ -177,7 +177,7 @@ def _unseen(args: argparse.Namespace, scene: Any, motions: list[Any], res: Any
     from cable_ocp.schedule.robust import same_duration_trapezoid, schedule_of, tally
     from cable_ocp.schedule.sea import vessel_motions
 
-    pb = res.problem
+    pb = scene.deployment  # the problem solved; its check settings
     seas = vessel_motions(scene, "unseen")
     sched = schedule_of(res, scene.length)
     const = same_duration_trapezoid(scene.length, pb.target_length, res.duration,
