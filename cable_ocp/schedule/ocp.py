@@ -602,17 +602,16 @@ class ScheduleOCP:
         w = np.asarray(res["x"]).ravel()
         g = np.asarray(res["g"]).ravel()
         viol = self._violations(g, lbg, ubg)
-        if ret in _SOLVED and max(viol.values(), default=0.0) <= 1e-5:
+        worst = sorted((k for k in viol if viol[k] > 1e-5), key=lambda k: -viol[k])
+        if ret in _SOLVED and not worst:
             status, msg = "solved", f"IPOPT: {ret}"
             binding = self._active(g, w, lbg, ubg)
-        elif ret in _SOLVED and all(k in _EQUATIONS for k in viol if viol[k] > 1e-5):
-            worst = sorted((k for k in viol if viol[k] > 1e-5), key=lambda k: -viol[k])
+        elif ret in _SOLVED and all(k in _EQUATIONS for k in worst):
             status, binding = "failed", ()
             msg = (f"IPOPT: {ret}, but its point breaks the model's equations: "
                    + ", ".join(f"{k} by {viol[k]:.3g} (relative)" for k in worst[:2])
                    + "; not a schedule")
         elif ret in _INFEASIBLE or (ret in _SOLVED):
-            worst = sorted((k for k in viol if viol[k] > 1e-5), key=lambda k: -viol[k])
             status = "infeasible"
             # the limits, not the model's own equations, are what a user can change: IPOPT's
             # last iterate may keep the limits by breaking the equations instead
