@@ -280,7 +280,7 @@ def test_deploy_receding_keeps_the_checks_margins(run, tmp_path, monkeypatch):
     def fake(scene, motions, open_loop, **kw):
         seen.update(kw, motions=[m.name for m in motions], open_loop=open_loop)
         c = {"runs": 2, "slack": 0, "over_tension_max": 0, "under_tension_min": 1,
-             "kept": 1, "failed": 0}
+             "keeps_limits": 1, "failed": 0}
         return receding.RecedingComparison("solved", (), open_loop.duration,
                                            {"open_loop": c, "receding": c}, 0.01)
 

@@ -198,7 +198,7 @@ def _counts(c: dict[str, Any]) -> str:
     failed = f"{c['failed']} failed, " if c.get("failed") else ""
     return (f"{c['slack']} slack, {c['over_tension_max']} over tension_max, "
             f"{c['under_tension_min']} under tension_min, {failed}"
-            f"{c.get('keeps_limits', c.get('kept'))} keep every limit")
+            f"{c['keeps_limits']} keep every limit")
 
 
 def _unseen_text(u: dict[str, Any]) -> str:

@@ -688,14 +688,14 @@ class RecedingRow:
 
 def _tally(checks: Sequence[ForwardCheck | None], tol: float) -> dict[str, int]:
     """Counts of the runs (:func:`cable_ocp.schedule.robust.count_checks`): ``runs``,
-    ``slack``, ``over_tension_max``, ``under_tension_min``, ``kept``, ``failed`` (a run
+    ``slack``, ``over_tension_max``, ``under_tension_min``, ``keeps_limits``, ``failed`` (a run
     without a schedule counts as failed)."""
     from cable_ocp.schedule.robust import count_checks
 
     done = [c for c in checks if c is not None]
     d = count_checks("", math.nan, done, tol, keep=False).as_dict()
     return {"runs": len(checks), "slack": d["slack"], "over_tension_max": d["over_tension_max"],
-            "under_tension_min": d["under_tension_min"], "kept": d["keeps_limits"],
+            "under_tension_min": d["under_tension_min"], "keeps_limits": d["keeps_limits"],
             "failed": d["failed"] + len(checks) - len(done)}
 
 
@@ -714,7 +714,7 @@ class RecedingComparison:
         s.
     counts : dict
         ``{"open_loop": {...}, "receding": {...}}``: the counts of :func:`_tally` (runs,
-        slack, over_tension_max, under_tension_min, kept, failed).
+        slack, over_tension_max, under_tension_min, keeps_limits, failed).
     tol : float
         The relative excess counted as a violation (-).
     """
