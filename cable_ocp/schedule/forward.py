@@ -32,7 +32,7 @@ from cable_ocp.scene.dynamics import DynamicScene, dynamic_scene_from_dict
 from cable_ocp.schedule.sea import VesselMotion
 
 __all__ = ["JUMP_RAMP", "MAX_SAMPLES", "ConstantSpeedResult", "ForwardCheck", "Schedule",
-           "fastest_constant_speed", "resimulate", "trapezoid_schedule"]
+           "fastest_constant_speed", "resimulate", "trapezoid_schedule", "worst_violations"]
 
 #: s: a speed step without an acceleration limit is a linear ramp this short (the
 #: Schedule keeps every interval of positive length; the simulator's step of 1e-3..1e-1 s
@@ -372,6 +372,22 @@ def resimulate(scene: DynamicScene, schedule: Schedule, motion: VesselMotion, *,
                         tension_min_line=tmin, tension_max_line=tmax, top_tension=top_t,
                         unit_tension=unit, power=power, accel_peak=accel_peak,
                         violations=viol, slack=bool(res.slack.get("occurred", False)))
+
+
+def worst_violations(checks: Any) -> dict[str, float]:
+    """Per limit, the largest relative excess over the runs (-; the limits sorted by
+    name): the one home of that reduction (the forward check of
+    :func:`cable_ocp.schedule.planning.verified_schedule`, the tallies of
+    :func:`cable_ocp.schedule.robust.count_checks`).
+
+    Parameters
+    ----------
+    checks : iterable of ForwardCheck
+        The runs.
+    """
+    checks = list(checks)
+    limits = sorted({k for c in checks for k in c.violations})
+    return {k: max(c.violations.get(k, 0.0) for c in checks) for k in limits}
 
 
 @dataclass(frozen=True, eq=False)

@@ -41,7 +41,13 @@ from cable_ocp.errors import CableOCPError
 from cable_ocp.numerics import interrupt
 from cable_ocp.scene.deployment import DeploymentProblem
 from cable_ocp.scene.dynamics import DynamicScene
-from cable_ocp.schedule.forward import SCAN, Schedule, resimulate, trapezoid_schedule
+from cable_ocp.schedule.forward import (
+    SCAN,
+    Schedule,
+    resimulate,
+    trapezoid_schedule,
+    worst_violations,
+)
 from cable_ocp.schedule.ocp import (
     LineStep,
     OCPSolution,
@@ -192,6 +198,14 @@ class ConstantSpeed:
     binding: str = ""
     fastest: float = math.nan
     least_excess: float = math.nan
+
+    @property
+    def start_speed(self) -> float:
+        """The OCP's warm-start speed, m/s: ``speed`` when it keeps the limits, else
+        ``least_excess`` (else ``fastest``): the OCP decides."""
+        if self.feasible:
+            return self.speed
+        return self.least_excess if math.isfinite(self.least_excess) else self.fastest
 
 
 def _rollout_limits(line: LineStep, heaves: Sequence[ca.Function], problem: DeploymentProblem,
@@ -475,32 +489,30 @@ def _solve(scene: DynamicScene, heaves: Sequence[ca.Function] | None,
     line = line_step(scene, segments)
     warm = discrete_constant_speed(scene, line, heaves, pb, dt_nom)
     diag["warm_start_s"] = time.perf_counter() - t0
-    # no constant speed keeps the limits: start from the fastest (the OCP decides)
-    v0 = warm.speed if warm.feasible else (
-        warm.least_excess if math.isfinite(warm.least_excess) else warm.fastest)
-    dur, _, acc, spd, length = trapezoid(scene.length, pb.target_length, v0, warm.accel, dt_nom)
+    dur, _, acc, _, _ = trapezoid(scene.length, pb.target_length, warm.start_speed,
+                                  warm.accel, dt_nom)
     n = steps or acc.size
     if n > MAX_STEPS:
         raise CableOCPError(f"deployment.time_step = {dt_nom:.4g} s: the warm start's "
                             f"{dur:.6g} s would take {n} steps (at most {MAX_STEPS}); give a "
                             "longer time_step")
-    if n != acc.size:
-        dur, _, acc, spd, length = trapezoid(scene.length, pb.target_length, v0, warm.accel,
-                                             dur / n)
     ocp = ScheduleOCP(scene, line, heaves, n, pb, ipopt)
     diag["build_s"] = ocp.build_time
-    xs, ys = ocp.rollout(dur, acc, spd, length)
-    w0 = ocp.pack(dur, acc, spd, length, xs, ys)
+
+    def start(ws: ConstantSpeed) -> np.ndarray:
+        """The NLP's variables of a constant-speed warm start, on the OCP's N steps."""
+        d, _, a, v, length = trapezoid(scene.length, pb.target_length, ws.start_speed,
+                                       ws.accel, dt_nom)
+        if a.size != n:
+            d, _, a, v, length = trapezoid(scene.length, pb.target_length, ws.start_speed,
+                                           ws.accel, d / n)
+        return ocp.pack(d, a, v, length, *ocp.rollout(d, a, v, length))
 
     def restart(margins: dict[str, float]) -> np.ndarray:
-        ws = discrete_constant_speed(scene, line, heaves, with_margins(pb, margins), dt_nom)
-        v = ws.speed if ws.feasible else (
-            ws.least_excess if math.isfinite(ws.least_excess) else ws.fastest)
-        d0 = trapezoid(scene.length, pb.target_length, v, ws.accel, dt_nom)[0]
-        d1, _, a1, s1, l1 = trapezoid(scene.length, pb.target_length, v, ws.accel, d0 / n)
-        return ocp.pack(d1, a1, s1, l1, *ocp.rollout(d1, a1, s1, l1))
+        return start(discrete_constant_speed(scene, line, heaves, with_margins(pb, margins),
+                                             dt_nom))
 
-    sol = ocp.solve(w0)
+    sol = ocp.solve(start(warm))
     diag.update(sol.diagnostics)
     msg, binding = sol.message, sol.binding
     if sol.status == "infeasible" and not warm.feasible:
@@ -574,10 +586,7 @@ def verified_schedule(scene: DynamicScene, motions: Sequence[Any], *,
         sched = Schedule.from_speed(sol.time, sol.speed, scene.length, sol.ahc_gain)
         runs = [resimulate(scene, sched, m, time_step=c_step, segments=c_seg)
                 for m in motions]
-        worst: dict[str, float] = {}
-        for run in runs:
-            for k, v in run.violations.items():
-                worst[k] = max(worst.get(k, 0.0), v)
+        worst = worst_violations(runs)
         broken = sum(1 for run in runs if run.status != "solved" or run.slack)
         rnd = CheckRound(dict(margins), sol.status, sol.duration, worst, broken, tuple(runs))
         rounds_done.append(rnd)

@@ -42,6 +42,7 @@ from cable_ocp.schedule.forward import (
     Schedule,
     resimulate,
     trapezoid_schedule,
+    worst_violations,
 )
 from cable_ocp.schedule.planning import ScheduleResult, ramp_acceleration, verified_schedule
 from cable_ocp.schedule.sea import VesselMotion, vessel_motions
@@ -245,8 +246,7 @@ def count_checks(name: str, duration: float, checks: Sequence[ForwardCheck], tol
     keep : bool
         Keep the checks themselves in the result.
     """
-    limits = sorted({k for c in checks for k in c.violations})
-    worst = {k: max(c.violations.get(k, 0.0) for c in checks) for k in limits}
+    worst = worst_violations(checks)
     return ScheduleTally(
         name=name, duration=duration, runs=len(checks),
         slack=sum(1 for c in checks if c.slack or c.status == "slack"),
