@@ -34,7 +34,7 @@ MUTATIONS = [
          description="bench deploy: today's deployment lasting distance / speed, its ramps "
                      "forgotten (length_history stops at T_c + ramp)"),
     dict(name="bench-deploy-payout-linear-ramp", area="bench", file=LIB,
-         old="return x**3 * (10.0 - 15.0 * x + 6.0 * x**2)", new="return x",
+         old="return smoothstep(np.clip(x, 0.0, 1.0))", new="return np.clip(x, 0.0, 1.0)",
          tests=(_T + "heave_payout_lasts_distance_over_speed_plus_ramp",),
          description="bench deploy: today's pay-out re-simulated with a linear ramp, not "
                      "length_history's quintic (peak acceleration v / r, not 15 v / 8 r)"),
