@@ -262,9 +262,9 @@ def compare_case(path: str | Path, *, heave_path: str | Path | None = None,
     motion_step : float, optional
         The forward simulator's sampling of a sea's heave (a ``series``) and of the
         compensation, s (default its ``[simulation] time_step``;
-        :func:`cable_ocp.schedule.forward.resimulate`). The series is looked up in a chain
-        as long as the run's samples, so a run costs about (duration / time_step) x
-        (duration / motion_step): a coarser motion step makes long runs affordable.
+        :func:`cable_ocp.schedule.forward.resimulate`; the series is interpolated
+        linearly, :mod:`cable_ocp.numerics.table`, its error about motion_step^2
+        max|z''| / 8).
     floor_fraction : float, optional
         The slowest constant speed tried, as a fraction of ``speed_max`` (-; default
         1 / :data:`cable_ocp.schedule.forward.FLOOR_DIVISOR`): a floor of v_f over a

@@ -8,8 +8,10 @@ hold (:mod:`~cable_ocp.numerics.jsonable`), files written whole or not at all
 the optional pandas and xarray, netCDF files (:mod:`~cable_ocp.numerics.export`), text
 tables that fit 100 columns (:mod:`~cable_ocp.numerics.text_table`) and the one handling of
 Ctrl-C and SIGTERM, also inside CasADi's solvers (:mod:`~cable_ocp.numerics.interrupt`), and
-the rotations of rigid bodies (:mod:`~cable_ocp.numerics.rotation`), and the quintic
-smooth step of every fade-in and ramp (:mod:`~cable_ocp.numerics.ramp`).
+the rotations of rigid bodies (:mod:`~cable_ocp.numerics.rotation`), the quintic
+smooth step of every fade-in and ramp (:mod:`~cable_ocp.numerics.ramp`), and the
+piecewise-linear tables of time whose cost does not grow with their rows
+(:mod:`~cable_ocp.numerics.table`).
 
 Nothing here knows about cables: these modules import no other part of the package.
 """

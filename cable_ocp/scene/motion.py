@@ -29,6 +29,7 @@ import casadi as ca
 import numpy as np
 
 from cable_ocp.numerics.ramp import smoothstep, smoothstep_integral
+from cable_ocp.numerics.table import piecewise_linear, speed_table_length
 
 if TYPE_CHECKING:  # types only: the scene module uses this one at run time
     from cable_ocp.scene.dynamic_parts import TopMotion, Tow
@@ -116,11 +117,8 @@ def top_offset_expr(tm: TopMotion, t: ca.SX) -> ca.SX:
             vals = rows[:, 1 + comp]
             if not np.any(vals):
                 continue
-            expr = ca.SX(float(vals[-1]))
-            # piecewise linear, held after the last row: nested if_else from the end
-            for j in range(len(ts) - 2, -1, -1):
-                seg = vals[j] + (vals[j + 1] - vals[j]) * (t - ts[j]) / (ts[j + 1] - ts[j])
-                expr = ca.if_else(t < ts[j + 1], seg, expr)
+            # piecewise linear, held after the last row (its cost independent of the rows)
+            expr = piecewise_linear(ts, vals, t)
             if k == 0:
                 dx = dx + expr
             elif k == 1:
@@ -181,24 +179,8 @@ def table_length_expr(rows: Sequence[tuple[float, float]], kind: str, length0: f
     ts = [float(r[0]) for r in rows]
     vs = [float(r[1]) for r in rows]
     if kind == "length":
-        expr = ca.SX(vs[-1])
-        for j in range(len(ts) - 2, -1, -1):
-            seg = vs[j] + (vs[j + 1] - vs[j]) * (t - ts[j]) / (ts[j + 1] - ts[j])
-            expr = ca.if_else(t < ts[j + 1], seg, expr)
-        return expr
-    # L_j at each row: trapezoidal sums of the linear speed (zero over a jump)
-    ls = [float(length0)]
-    for j in range(len(ts) - 1):
-        ls.append(ls[-1] + 0.5 * (vs[j] + vs[j + 1]) * (ts[j + 1] - ts[j]))
-    expr = ls[-1] + vs[-1] * (t - ts[-1])
-    for j in range(len(ts) - 2, -1, -1):
-        width = ts[j + 1] - ts[j]
-        if width == 0.0:
-            continue  # a jump: no time between the two rows
-        tau = t - ts[j]
-        seg = ls[j] + vs[j] * tau + (vs[j + 1] - vs[j]) * tau * tau / (2.0 * width)
-        expr = ca.if_else(t < ts[j + 1], seg, expr)
-    return expr
+        return piecewise_linear(ts, vs, t)
+    return speed_table_length(ts, vs, length0, t)
 
 
 def motion_function(scene: DynamicScene) -> ca.Function:

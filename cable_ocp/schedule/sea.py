@@ -53,6 +53,7 @@ import numpy as np
 from cable_ocp.errors import CableOCPError
 from cable_ocp.heave.sea import bretschneider, jonswap
 from cable_ocp.numerics.ramp import smoothstep, smoothstep_rate
+from cable_ocp.numerics.table import piecewise_linear
 from cable_ocp.scene.dynamic_parts import TopMotion
 from cable_ocp.scene.dynamics import DynamicScene
 from cable_ocp.scene.motion import top_offset_expr
@@ -208,11 +209,7 @@ class VesselMotion:
             if self.series:
                 rows = np.asarray(self.series, dtype=float)
                 ts, zs = rows[:, 0], rows[:, 1]
-                expr = ca.SX(float(zs[-1]))
-                for j in range(len(ts) - 2, -1, -1):
-                    seg = zs[j] + (zs[j + 1] - zs[j]) * (t - ts[j]) / (ts[j + 1] - ts[j])
-                    expr = ca.if_else(t < ts[j + 1], seg, expr)
-                z = z + ca.if_else(t < ts[0], float(zs[0]), expr)
+                z = z + piecewise_linear(ts, zs, t, hold_before=True)
         return ca.Function("heave", [t], [z], ["t"], ["heave"])
 
     def series_rows(self, duration: float, step: float) -> list[list[float]]:

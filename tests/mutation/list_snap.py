@@ -38,9 +38,9 @@ MUTATIONS = [
          tests=(SNAP + "::test_step_halving_resolves_the_snap_when_the_full_step_fails",),
          description="a failed sample is not computed again with the step halved"),
     dict(name="speed-table-rectangle-rule", area="dynamics",
-         file="cable_ocp/scene/motion.py",
-         old="ls.append(ls[-1] + 0.5 * (vs[j] + vs[j + 1]) * (ts[j + 1] - ts[j]))",
-         new="ls.append(ls[-1] + vs[j] * (ts[j + 1] - ts[j]))",
+         file="cable_ocp/numerics/table.py",
+         old="0.5 * (vs[:-1] + vs[1:]) * width)))",
+         new="vs[:-1] * width)))",
          tests=(TABLE,),
          description="speed table: the length at the rows summed with the left speed, "
                      "not the exact (trapezoidal) integral of the linear speed"),
