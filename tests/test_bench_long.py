@@ -55,3 +55,16 @@ def test_warm_start_scan_stops_before_max_steps():
     warm = discrete_constant_speed(scene, line_step(scene, 2), [still], scene.deployment, 4.0)
     assert MAX_STEPS == 20000 and not warm.feasible
     assert warm.rollouts == 1 + WARM_TOP + 5 and warm.binding == "tension_min"
+
+
+def test_long_run_speed_sets_the_target_length():
+    # with a speed v the target is the start + v (T - v / a): 0.5 (600 - 0.5 / 0.2) =
+    # 298.75 m on the cost grid's line (start 50 m, a = 0.2 m/s^2), exact in binary
+    # fractions; without one the scene's 100 m is kept and v solves d / v + v / a = T
+    scene, dist, v = bd._long_scene(bd.LONG_FILE, 600.0, bd.LONG_SPEED, None)
+    assert bd.LONG_SPEED == 0.5 and dist == 298.75 and v == 0.5
+    assert scene.deployment.target_length == 348.75 and scene.deployment.speed_max == 0.5
+    scene, dist, v = bd._long_scene(bd.LONG_FILE, 600.0, None, 1.0)
+    assert dist == 100.0 and scene.deployment.target_length == 150.0
+    assert scene.deployment.time_step == 1.0
+    assert math.isclose(dist / v + v / 0.2, 600.0, rel_tol=1e-12)  # the root, to rounding
