@@ -11,13 +11,18 @@ Three parts, each returning rows (dicts, SI units) that the command line formats
     on the forward simulator at the scene's own (finer) ``[simulation]`` step and
     elements (:func:`cable_ocp.schedule.forward.resimulate`) with its worst limit excess;
   - the fastest constant speed that keeps the same limits on the forward simulator
-    (bisection: :func:`cable_ocp.schedule.forward.fastest_constant_speed`);
+    (bisection: :func:`cable_ocp.schedule.forward.fastest_constant_speed`); when the case
+    has heave compensation (``ahc_stroke`` / ``ahc_speed``), every trapezoid carries the
+    optimum's gain g (:func:`comparison_gain`), so that both pay out L + g h with the same
+    compensator and its limits;
   - where the case has a heave counterpart (:data:`HEAVE_COUNTERPARTS`), the
     scheduled-gain deployment of ``cable-ocp heave`` (its ``[deployment]``: the distance
     at ``payout_speed``, the speed ramped in and out over ``ramp_time``,
     :func:`cable_ocp.heave.deployment.length_history`: it lasts distance / speed +
     ramp_time), its pay-out re-simulated on the same motion (the forward simulator has no
-    compensator: the pay-out alone, the compensating winch held);
+    LQR compensator: with the case's compensation, the pay-out with the same gain g as
+    the constant speed, a stand-in for its compensator; without, the pay-out alone, the
+    compensating winch held);
 
   the saving of the optimum against each, 100 (T_other - T_opt) / T_other (%).
 * ``cost``: the OCP's build time, solve time, iterations and variables on a grid of
@@ -80,8 +85,8 @@ LONG_SPEED = 0.5
 LONG_IPOPT: dict[str, Any] = {"expand": True, "ipopt.mumps_pivtol": 1e-4}
 
 __all__ = ["COMPARE_CASES", "COST_DURATIONS", "COST_SEGMENTS", "PARTS", "compare_case",
-           "cost_fits", "cost_grid", "distance_for", "fit_exponent", "heave_payout",
-           "long_run", "payout_schedule", "saving_pct"]
+           "comparison_gain", "cost_fits", "cost_grid", "distance_for", "fit_exponent",
+           "heave_payout", "long_run", "payout_schedule", "saving_pct"]
 
 
 def saving_pct(optimal: float, other: float) -> float:
@@ -216,6 +221,42 @@ def heave_payout(heave_path: str | Path) -> dict[str, Any]:
                        "compensator_stroke_max_m": getattr(w, "stroke_max", None)}}
 
 
+def comparison_gain(scene: Any, motions: Sequence[Any], result: Any,
+                    duration: float) -> tuple[float, str]:
+    """The compensation's gain g (-) of the compared schedules and where it comes from:
+    0 without compensation (``[deployment]`` without ``ahc_stroke`` / ``ahc_speed``); the
+    optimum's own g when the OCP solved; else the largest g in [0, 1] that keeps
+    |g h| <= ahc_stroke and |g dh/dt| <= ahc_speed over the motions' first ``duration``
+    s (sampled every 0.01 s).
+
+    Parameters
+    ----------
+    scene : DynamicScene
+        The case.
+    motions : sequence of VesselMotion
+        The design motions.
+    result : ScheduleResult
+        The OCP's (:func:`cable_ocp.schedule.planning.verified_schedule`).
+    duration : float
+        s, the span over which the fallback's heave is measured.
+    """
+    dp = scene.deployment
+    if dp is None or not dp.ahc:
+        return 0.0, "no compensation"
+    if result.success and result.solution is not None:
+        g = float(result.solution.ahc_gain)
+        return g, f"the optimum's compensation gain g = {g:.4g}"
+    t = np.linspace(0.0, duration, max(int(math.ceil(duration / 0.01)), 2) + 1)
+    g = 1.0
+    for m in motions:
+        for limit, peak in ((dp.ahc_stroke, np.max(np.abs(m.heave(t)))),
+                            (dp.ahc_speed, np.max(np.abs(m.heave_rate(t))))):
+            if limit is not None and peak > 0.0:
+                g = min(g, float(limit) / float(peak))
+    return g, (f"no optimum: the largest compensation gain the stroke and speed allow, "
+               f"g = {g:.4g}")
+
+
 def _check_row(chk: Any) -> dict[str, Any]:
     """The forward check's worst excess and its limit."""
     worst = max(chk.violations.values(), default=0.0)
@@ -344,19 +385,25 @@ def compare_case(path: str | Path, *, heave_path: str | Path | None = None,
                            "not a schedule")
     done(opt_row)
     ws = res.warm_start
+    dp = scene.deployment
+    gain, gain_note = comparison_gain(
+        scene, motions, res, (t_opt if math.isfinite(t_opt) else 0.0)
+        + abs(dp.target_length - scene.length) / (dp.speed_max or 1.0) + 60.0)
+    case["ahc_gain"] = gain
     if ws is not None:
         done({"method": "constant speed, OCP's line", "status":
                      "solved" if ws.feasible else "infeasible", "duration_s": ws.duration
                      if ws.feasible else math.nan,
                      "saving_pct": saving_pct(t_opt, ws.duration) if ws.feasible else math.nan,
                      "speed_m_s": ws.speed, "binding": ws.binding, "worst_excess": math.nan,
-                     "worst_limit": None, "note": f"warm start, {ws.rollouts} rollouts"})
+                     "worst_limit": None, "note": f"warm start, {ws.rollouts} rollouts"
+                     + ("; rolled out without the compensation (g = 0)" if dp.ahc else "")})
     say(f"{path.stem}: the fastest constant speed on the forward simulator (bisection)")
     t1 = time.perf_counter()
-    top = scene.deployment.speed_max
+    top = dp.speed_max
     floor = floor_fraction * top if floor_fraction is not None and top is not None else None
     fc = fastest_constant_speed(scene, motions, rel_tol=rel_tol, motion_step=motion_step,
-                                floor=floor)
+                                floor=floor, ahc_gain=gain)
     fc_row: dict[str, Any] = {
         "method": "constant speed, forward simulator", "status": fc.status,
         "duration_s": fc.duration, "saving_pct": saving_pct(t_opt, fc.duration),
@@ -364,7 +411,8 @@ def compare_case(path: str | Path, *, heave_path: str | Path | None = None,
         "worst_excess": math.nan, "worst_limit": None,
         "note": f"{fc.simulations} runs at {res_note}, {time.perf_counter() - t1:.0f} s; "
                 f"bracket {fc.bracket[0]:.4g}-{fc.bracket[1]:.4g} m/s"
-                + (f" (floor {floor:.4g} m/s)" if floor is not None else "")}
+                + (f" (floor {floor:.4g} m/s)" if floor is not None else "")
+                + (f"; with {gain_note}" if dp.ahc else "")}
     if fc.checks:
         chk = _check_row(fc.checks[-1])
         fc_row.update(worst_excess=chk["worst_excess"], worst_limit=chk["worst_limit"])
@@ -376,6 +424,8 @@ def compare_case(path: str | Path, *, heave_path: str | Path | None = None,
         heave = case["heave"] = heave_payout(heave_path)
         sched = payout_schedule(scene.length, scene.deployment.target_length,
                                 heave["payout_speed_m_s"], heave["ramp_time_s"])
+        sched = Schedule(time=sched.time, length=sched.length, speed=sched.speed,
+                         accel=sched.accel, ahc_gain=gain)
         same = (abs(heave["start_length_m"] - scene.length) < 1e-6
                 and abs(heave["final_length_m"] - scene.deployment.target_length) < 1e-6)
         row = {"method": "scheduled-gain deployment (heave)", "status": "solved",
@@ -384,8 +434,10 @@ def compare_case(path: str | Path, *, heave_path: str | Path | None = None,
                "speed_m_s": heave["payout_speed_m_s"], "binding": "chosen",
                "note": (f"{heave['payout_speed_m_s']:g} m/s over "
                         f"{abs(heave['final_length_m'] - heave['start_length_m']):g} m, "
-                        f"{heave['ramp_time_s']:g} s ramps; re-simulated without the "
-                        "compensator at " + res_note
+                        f"{heave['ramp_time_s']:g} s ramps; re-simulated "
+                        + (f"with {gain_note} for its compensator (the forward simulator "
+                           "has no LQR)" if dp.ahc else "without the compensator")
+                        + " at " + res_note
                         + ("" if same else "; lengths differ from the case"))}
         row.update(_forward_checks(scene, sched, motions, motion_step))
         case["complete"] = True

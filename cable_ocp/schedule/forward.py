@@ -114,7 +114,7 @@ class Schedule:
 
 
 def trapezoid_schedule(start: float, target: float, speed: float, accel_max: float | None,
-                       hold: float = 0.0) -> Schedule:
+                       hold: float = 0.0, ahc_gain: float = 0.0) -> Schedule:
     """Constant speed between two ramps at ``accel_max``: start -> target.
 
     The duration is D / v + v / a (D = |target - start|) when D >= v^2 / a; else a
@@ -131,7 +131,10 @@ def trapezoid_schedule(start: float, target: float, speed: float, accel_max: flo
         m/s^2, > 0; None: a jump (module constant :data:`JUMP_RAMP`).
     hold : float
         s of rest appended at the end, >= 0.
+    ahc_gain : float
+        g, -, in [0, 1]: the heave compensation's gain (:attr:`Schedule.ahc_gain`).
     """
+    _check_gain("trapezoid_schedule", ahc_gain)
     if not speed > 0.0:
         raise CableOCPError(f"trapezoid_schedule: speed = {speed} m/s must be > 0")
     if accel_max is not None and not accel_max > 0.0:
@@ -159,7 +162,15 @@ def trapezoid_schedule(start: float, target: float, speed: float, accel_max: flo
     # the trapezoidal sums carry round-off: the end is the target by construction
     length = sched.length.copy()
     length[-1 - (hold > 0.0):] = target
-    return Schedule(time=sched.time, length=length, speed=sched.speed, accel=sched.accel)
+    return Schedule(time=sched.time, length=length, speed=sched.speed, accel=sched.accel,
+                    ahc_gain=float(ahc_gain))
+
+
+def _check_gain(where: str, gain: float) -> None:
+    """The compensation's gain must be in [0, 1] (-), as the OCP's bounds on g."""
+    if not 0.0 <= gain <= 1.0:
+        raise CableOCPError(f"{where}: ahc_gain = {gain} must be in [0, 1] (the heave "
+                            "compensation's gain; 0 without compensation)")
 
 
 @dataclass(frozen=True, eq=False)
@@ -188,14 +199,21 @@ class ForwardCheck:
         Element 0's tension (at its middle: the pull on the unit plus half an element's
         weight, N).
     power : numpy.ndarray (n,)
-        top_tension |speed|, W.
+        top_tension |v|, W, v the schedule's own pay-out speed (the compensation not
+        included: the OCP's winch power, :func:`cable_ocp.schedule.ocp.winch_power`).
     accel_peak : float
-        The largest |d^2L/dt^2| of the commanded pay-out over the run, m/s^2.
+        The largest |d^2L/dt^2| of the schedule's own pay-out over the run, m/s^2 (the
+        compensation's g d^2z/dt^2 not included, as the OCP's accel_max).
     violations : dict of str to float
         Per limit imposed in ``[deployment]`` (``tension_min``, ``tension_max``,
-        ``speed_max``, ``accel_max``, ``power_max``): the worst relative excess, e.g.
+        ``speed_max``, ``accel_max``, ``power_max``; with a compensation's gain g > 0 and
+        ``ahc_stroke`` / ``ahc_speed`` given, those too): the worst relative excess, e.g.
         (limit - min) / limit for tension_min, 0 when inside (a zero tension_min is
         measured on the first sample's top tension); inf when the run has no sample.
+        As in the OCP, speed_max, accel_max and power_max bound the schedule's own
+        pay-out (v, its acceleration), and the compensation is bounded apart:
+        |g z| <= ahc_stroke and |g dz/dt| <= ahc_speed, measured on the motion itself at
+        the samples (a property of g and the heave only).
     slack : bool
         The simulator found a tension <= 0.
     """
@@ -332,14 +350,16 @@ def resimulate(scene: DynamicScene, schedule: Schedule, motion: VesselMotion, *,
     ten = np.asarray(res.segment_tensions, dtype=float).reshape(len(t), -1)
     top_t = np.asarray(res.top_tension, dtype=float)
     speed = np.interp(t, tt, vv)
-    acc = np.diff(vv) / np.diff(tt)
-    live = tt[:-1] < (t[-1] if len(t) else 0.0)
-    accel_peak = float(np.max(np.abs(acc[live]))) if np.any(live) else 0.0
+    # the limits of the pay-out are the schedule's own (the OCP's v and a); the
+    # compensation's g z is bounded by ahc_stroke / ahc_speed below
+    own = np.interp(t, schedule.time, schedule.speed, right=0.0)
+    live = schedule.time[:-1] < (t[-1] if len(t) else 0.0)
+    accel_peak = float(np.max(np.abs(schedule.accel[live]))) if np.any(live) else 0.0
     empty = len(t) == 0
     tmin = ten.min(axis=1) if not empty else np.zeros(0)
     tmax = ten.max(axis=1) if not empty else np.zeros(0)
     unit = ten[:, 0] if not empty else np.zeros(0)
-    power = top_t * np.abs(speed)
+    power = top_t * np.abs(own)
     viol: dict[str, float] = {}
     dp = scene.deployment
     if dp is not None:
@@ -351,8 +371,12 @@ def resimulate(scene: DynamicScene, schedule: Schedule, motion: VesselMotion, *,
         checks: list[tuple[str, float | None, list[np.ndarray], bool]] = [
             ("tension_min", dp.tension_min, lows, False),
             ("tension_max", dp.tension_max, highs, True),
-            ("speed_max", dp.speed_max, [np.abs(speed)], True),
+            ("speed_max", dp.speed_max, [np.abs(own)], True),
             ("power_max", dp.power_max, [power], True)]
+        g = schedule.ahc_gain
+        if g > 0.0:
+            checks += [("ahc_stroke", dp.ahc_stroke, [np.abs(g * motion.heave(t))], True),
+                       ("ahc_speed", dp.ahc_speed, [np.abs(g * motion.heave_rate(t))], True)]
         for name, limit, series, upper in checks:
             if limit is None:
                 continue
@@ -446,7 +470,8 @@ def fastest_constant_speed(scene: DynamicScene, motions: list[VesselMotion], *,
                            rel_tol: float = 1e-3, time_step: float | None = None,
                            segments: int | None = None, hold: float = 20.0,
                            floor: float | None = None, tol: float = 0.0,
-                           motion_step: float | None = None) -> ConstantSpeedResult:
+                           motion_step: float | None = None,
+                           ahc_gain: float = 0.0) -> ConstantSpeedResult:
     """The fastest cruise speed of a trapezoid schedule (ramps at ``accel_max``) from
     cable.length to ``deployment.target_length`` that keeps every limit on every motion.
 
@@ -484,12 +509,19 @@ def fastest_constant_speed(scene: DynamicScene, motions: list[VesselMotion], *,
         Relative excess accepted, -.
     motion_step : float, optional
         s (:func:`resimulate`).
+    ahc_gain : float
+        g, -, in [0, 1]: every trapezoid carries the heave compensation of this gain (the
+        winch pays out L(t) + g z(t), :attr:`Schedule.ahc_gain`; e.g. the optimum's own g,
+        :attr:`cable_ocp.schedule.ocp.OCPSolution.ahc_gain`), and its runs check
+        ``ahc_stroke`` and ``ahc_speed`` as the optimum's do (:attr:`ForwardCheck.violations`);
+        0: no compensation.
 
     Raises
     ------
     CableOCPError
         No ``[deployment]``, no motion or an invalid value (named).
     """
+    _check_gain("fastest_constant_speed", ahc_gain)
     dp = scene.deployment
     if dp is None:
         raise CableOCPError("fastest_constant_speed: the scene has no [deployment] table "
@@ -507,7 +539,8 @@ def fastest_constant_speed(scene: DynamicScene, motions: list[VesselMotion], *,
 
     def trial(v: float) -> tuple[bool, Schedule, list[ForwardCheck]]:
         nonlocal count
-        sched = trapezoid_schedule(scene.length, dp.target_length, v, dp.accel_max)
+        sched = trapezoid_schedule(scene.length, dp.target_length, v, dp.accel_max,
+                                   ahc_gain=ahc_gain)
         out = []
         for m in motions:
             chk = resimulate(scene, sched, m, time_step=time_step, segments=segments,
