@@ -9,7 +9,8 @@ import casadi as ca
 import numpy as np
 import pytest
 
-from cable_ocp.numerics.table import piecewise_linear, speed_table_length
+from cable_ocp.numerics import table
+from cable_ocp.numerics.table import CHAIN_ROWS, piecewise_linear, speed_table_length
 
 T = ca.SX.sym("t")
 
@@ -25,8 +26,17 @@ def _table(rows: int, seed: int) -> tuple[np.ndarray, np.ndarray]:
     return ts, rng.normal(size=rows)
 
 
+@pytest.fixture(params=["chain", "lookup"])
+def form(request: pytest.FixtureRequest, monkeypatch: pytest.MonkeyPatch) -> str:
+    """Both writings of a table: the if_else chain (short tables) and the lookup (long
+    ones), by moving the threshold between them."""
+    if request.param == "lookup":
+        monkeypatch.setattr(table, "CHAIN_ROWS", 0)
+    return request.param
+
+
 @pytest.mark.parametrize("rows", [2, 3, 17])
-def test_piecewise_linear_is_numpys_interpolation_and_its_slope(rows: int) -> None:
+def test_piecewise_linear_is_numpys_interpolation_and_its_slope(rows: int, form: str) -> None:
     ts, vs = _table(rows, rows)
     grid = np.linspace(0.0, ts[-1] + 3.0, 801)
     # inside and after the table (held): np.interp holds the last value; round-off only
@@ -44,7 +54,7 @@ def test_piecewise_linear_is_numpys_interpolation_and_its_slope(rows: int) -> No
     assert held == pytest.approx(vs[0], abs=1e-15)
 
 
-def test_speed_table_length_is_the_exact_integral_of_the_speed_with_a_jump() -> None:
+def test_speed_table_length_is_the_exact_integral_of_the_speed_with_a_jump(form: str) -> None:
     # a speed linear between rows, a jump at t = 3 (a time given twice), held after 7 s
     ts = np.array([0.0, 1.0, 3.0, 3.0, 4.5, 7.0])
     vs = np.array([0.0, 2.0, 1.0, -0.5, 0.25, 0.75])
@@ -80,7 +90,7 @@ def test_the_cost_does_not_grow_with_the_rows() -> None:
     # the instructions of one evaluation: a binary search inside a call node, not a row
     # chain (a chain of 2000 rows is ~24 000 instructions)
     sizes = []
-    for rows in (10, 2000):
+    for rows in (CHAIN_ROWS + 1, 2000):
         ts, vs = _table(rows, 1)
         f = ca.Function("f", [T], [piecewise_linear(ts, vs, T),
                                    speed_table_length(ts, vs, 0.0, T)])

@@ -3,7 +3,8 @@ home of the piecewise-linear lookups of the package (a ``[top_motion] series``, 
 length or speed table, :mod:`cable_ocp.scene.motion`; a vessel motion's series,
 :mod:`cable_ocp.schedule.sea`).
 
-A chain of ``if_else`` over the rows costs every row at every evaluation: a simulation of
+A chain of ``if_else`` over the rows (what a table of at most :data:`CHAIN_ROWS` rows
+still is) costs every row at every evaluation: a simulation of
 n steps on a table of m rows then costs n m (a 600 s schedule at 0.5 s and a heave sampled
 at 0.25 s: m ~ 3600 operations per right-hand side). Here the segment is found by a
 linear ``casadi.interpolant`` of the row index over the times (a binary search, a call
@@ -30,7 +31,12 @@ from collections.abc import Sequence
 import casadi as ca
 import numpy as np
 
-__all__ = ["piecewise_linear", "speed_table_length"]
+__all__ = ["CHAIN_ROWS", "piecewise_linear", "speed_table_length"]
+
+#: up to this many rows a table is the chain of ``if_else`` itself: inline SX is cheaper
+#: than the interpolants' call nodes for short tables (the pay-out and forward-check tests'
+#: 2-30-row tables ran 1.5x slower through call nodes, 2026-12-03); above it, the lookup
+CHAIN_ROWS = 64
 
 
 def _on_index(name: str, values: np.ndarray) -> ca.Function:
@@ -72,6 +78,14 @@ def piecewise_linear(times: Sequence[float] | np.ndarray, values: Sequence[float
     """
     ts = np.asarray(times, dtype=float)
     vs = np.asarray(values, dtype=float)
+    if ts.size <= CHAIN_ROWS:
+        expr = ca.SX(float(vs[-1]))
+        for k in range(ts.size - 2, -1, -1):
+            seg = vs[k] + (vs[k + 1] - vs[k]) * (t - ts[k]) / (ts[k + 1] - ts[k])
+            expr = ca.if_else(t < float(ts[k + 1]), seg, expr)
+        if hold_before:
+            expr = ca.if_else(t < float(ts[0]), float(vs[0]), expr)
+        return expr
     j = _segment(ts, t)
     t0, t1 = _on_index("t", ts)(j), _on_index("t", ts)(j + 1)
     v0, v1 = _on_index("v", vs)(j), _on_index("v", vs)(j + 1)
@@ -106,6 +120,15 @@ def speed_table_length(times: Sequence[float] | np.ndarray,
     ls = np.concatenate(([float(length0)], float(length0) + np.cumsum(
         0.5 * (vs[:-1] + vs[1:]) * width)))
     keep = np.flatnonzero(width > 0.0)  # the segments with time in them
+    after = float(ls[-1]) + float(vs[-1]) * (t - float(ts[-1]))
+    if ts.size <= CHAIN_ROWS:
+        expr = after
+        for k in keep[::-1]:
+            tau = t - float(ts[k])
+            seg = float(ls[k]) + float(vs[k]) * tau + float(vs[k + 1] - vs[k]) * tau * tau / (
+                2.0 * float(width[k]))
+            expr = ca.if_else(t < float(ts[k + 1]), seg, expr)
+        return expr
     starts = np.append(ts[keep], ts[-1])
     j = _segment(starts, t)
     t0, w = _on_index("t", ts[keep])(j), _on_index("w", width[keep])(j)
@@ -113,5 +136,4 @@ def speed_table_length(times: Sequence[float] | np.ndarray,
     v0, v1 = _on_index("v", vs[keep])(j), _on_index("v1", vs[keep + 1])(j)
     tau = t - t0
     seg = l0 + v0 * tau + (v1 - v0) * tau * tau / (2.0 * w)
-    after = float(ls[-1]) + float(vs[-1]) * (t - float(ts[-1]))
     return ca.if_else(t < float(ts[-1]), seg, after)
