@@ -87,8 +87,9 @@ def piecewise_linear(times: Sequence[float] | np.ndarray, values: Sequence[float
             expr = ca.if_else(t < float(ts[0]), float(vs[0]), expr)
         return expr
     j = _segment(ts, t)
-    t0, t1 = _on_index("t", ts)(j), _on_index("t", ts)(j + 1)
-    v0, v1 = _on_index("v", vs)(j), _on_index("v", vs)(j + 1)
+    at_t, at_v = _on_index("t", ts), _on_index("v", vs)
+    t0, t1 = at_t(j), at_t(j + 1)
+    v0, v1 = at_v(j), at_v(j + 1)
     seg = v0 + (v1 - v0) * (t - t0) / (t1 - t0)
     expr = ca.if_else(t < float(ts[-1]), seg, float(vs[-1]))
     if hold_before:
