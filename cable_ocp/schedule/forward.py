@@ -31,13 +31,18 @@ from cable_ocp.errors import CableOCPError
 from cable_ocp.scene.dynamics import DynamicScene, dynamic_scene_from_dict
 from cable_ocp.schedule.sea import VesselMotion
 
-__all__ = ["JUMP_RAMP", "MAX_SAMPLES", "ConstantSpeedResult", "ForwardCheck", "Schedule",
-           "fastest_constant_speed", "resimulate", "trapezoid_schedule", "worst_violations"]
+__all__ = ["CHECK_HOLD", "JUMP_RAMP", "MAX_SAMPLES", "ConstantSpeedResult", "ForwardCheck",
+           "Schedule", "fastest_constant_speed", "resimulate", "trapezoid_schedule",
+           "worst_violations"]
 
 #: s: a speed step without an acceleration limit is a linear ramp this short (the
 #: Schedule keeps every interval of positive length; the simulator's step of 1e-3..1e-1 s
 #: sees it as the jump)
 JUMP_RAMP = 1e-6
+#: s simulated after a schedule's end, the winch stopped (the default ``hold`` of
+#: :func:`resimulate` and :func:`fastest_constant_speed`, the forward check's, and what
+#: ``hold`` of :func:`cable_ocp.schedule.planning.verified_schedule` gives the OCP to match)
+CHECK_HOLD = 20.0
 #: the most samples a re-simulation stores (output_step a multiple of time_step above it)
 MAX_SAMPLES = 4000
 #: relative allowance of the commanded acceleration against accel_max (round-off)
@@ -288,7 +293,7 @@ def _relative_excess(value: float, limit: float, scale: float, upper: bool) -> f
 
 def resimulate(scene: DynamicScene, schedule: Schedule, motion: VesselMotion, *,
                time_step: float | None = None, segments: int | None = None,
-               hold: float = 20.0, motion_step: float | None = None) -> ForwardCheck:
+               hold: float = CHECK_HOLD, motion_step: float | None = None) -> ForwardCheck:
     """Run the forward simulator with a schedule and a vessel motion; check the limits.
 
     The scene's ``[top_motion]`` is replaced: ``payout_law = "table"`` with the
@@ -468,7 +473,7 @@ def _top_speed(scene: DynamicScene) -> float:
 
 def fastest_constant_speed(scene: DynamicScene, motions: list[VesselMotion], *,
                            rel_tol: float = 1e-3, time_step: float | None = None,
-                           segments: int | None = None, hold: float = 20.0,
+                           segments: int | None = None, hold: float = CHECK_HOLD,
                            floor: float | None = None, tol: float = 0.0,
                            motion_step: float | None = None,
                            ahc_gain: float = 0.0) -> ConstantSpeedResult:
