@@ -438,6 +438,7 @@ class ScheduleOCP:
         tgrid = ca.horzcat(ca.DM(np.arange(n_a + 1)).T * dt,
                            n_a * dt + ca.DM(np.arange(1, m_h + 1)).T * dt_h)
         dts = ca.horzcat(ca.repmat(dt, 1, n_a), ca.DM.ones(1, m_h) * dt_h)  # each step's
+        self._grid = ca.Function("grid", [tt], [tgrid])  # the nodes' times, s
         step_map = line.step.map(n_k)
         g_list: list[Any] = []
         self._groups: list[tuple[str, int, int, np.ndarray, np.ndarray]] = []
@@ -766,7 +767,8 @@ class ScheduleOCP:
             outs_l.append(np.vstack([first, outs[:n_a]]))
             heave_l.append(np.asarray(rep[3 * r + 2]).ravel()[:n_a + 1])
         if self.hold_steps:
-            diag.update(hold_steps=self.hold_steps, hold_s=self.hold_steps * self.hold_step)
+            grid = np.asarray(self._grid(dur)).ravel()  # the NLP's own nodes
+            diag.update(hold_steps=self.hold_steps, hold_s=float(grid[-1] - grid[n_a]))
         # the schedule up to the arrival (the hold is the NLP's, not the schedule's)
         return OCPSolution(status=status, message=msg,
                            time=np.arange(n_a + 1) * dur / n_a,
