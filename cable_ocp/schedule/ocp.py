@@ -435,9 +435,8 @@ class ScheduleOCP:
         yr = [] if line.same else [ca.MX.sym(f"y{r}", ny, n_k) for r in range(n_r)]
         dt = tt / n_a
         m_h, dt_h = self.hold_steps, self.hold_step
-        tgrid = ca.horzcat(ca.DM(np.arange(n_a + 1)).T * dt,
-                           n_a * dt + ca.DM(np.arange(1, m_h + 1)).T * dt_h)
         dts = ca.horzcat(ca.repmat(dt, 1, n_a), ca.DM.ones(1, m_h) * dt_h)  # each step's
+        tgrid = ca.horzcat(ca.MX(0.0), ca.cumsum(dts, 1))  # the nodes' times, from the steps
         self._grid = ca.Function("grid", [tt], [tgrid])  # the nodes' times, s
         step_map = line.step.map(n_k)
         g_list: list[Any] = []
