@@ -31,7 +31,7 @@ if TYPE_CHECKING:
     from cable_ocp.dynamics.axial import AxialModel
     from cable_ocp.dynamics.planar import PlanarModel
 
-__all__ = ["axial_driven_step", "planar_driven_step", "sampled_motion"]
+__all__ = ["axial_driven_step", "axial_unit_pull", "planar_driven_step", "sampled_motion"]
 
 
 def sampled_motion(top: Any, p: ca.SX, dt: Any) -> Callable[[Any], tuple]:
@@ -59,6 +59,39 @@ def sampled_motion(top: Any, p: ca.SX, dt: Any) -> Callable[[Any], tuple]:
                 ca.SX.zeros(3))
 
     return motion
+
+
+def axial_unit_pull(model: AxialModel, tension0: Any, element_length: Any, velocity: Any,
+                    acceleration: Any) -> Any:
+    """The axial line's pull on the unit (N): element 0's tension less the half element that
+    node 0 carries, P = T_0 - (h / 2) (w + D + mu a), D = k (1 + T_0 / EA) |V| V its
+    tangential drag (the model's own factor k, the strain taken from T_0, the internal
+    damping left out there) -- the balance of the unit's half element, (mu h / 2) a = T_0 -
+    P - (h / 2) (w + D). The one home of that pull: the driven step's output (the OCP's
+    ``tension_at = "unit"``) and the forward check's (:func:`cable_ocp.schedule.forward.
+    resimulate`), so that both bound the same point, s = 0, whatever their elements
+    (element 0's own tension is at its middle, w h / 2 higher: 1350 N apart between 10
+    and 20 elements on 1000 m of the 6.3.6 line).
+
+    Parameters
+    ----------
+    model : AxialModel
+        The line (w, mu, EA, k).
+    tension0 : float, numpy.ndarray or casadi expression
+        Element 0's tension, N.
+    element_length : same
+        h = L / n, m.
+    velocity : same
+        Node 0's (the unit's) vertical velocity, m/s (positive up).
+    acceleration : same
+        Its acceleration, m/s^2 (positive up).
+    """
+    k = model.k_drag * (1.0 + tension0 / model.ea)
+    if isinstance(velocity, (ca.SX, ca.MX, ca.DM)):
+        drag = quadratic_drag(k, velocity)
+    else:
+        drag = k * np.abs(velocity) * velocity
+    return tension0 - 0.5 * element_length * (model.w + drag + model.mu * acceleration)
 
 
 def axial_driven_step(model: AxialModel, dt: float) -> DrivenStep:
@@ -100,10 +133,7 @@ def axial_driven_step(model: AxialModel, dt: float) -> DrivenStep:
     heights, tens, top, length, vel = md.outputs(t, x)
     # tension at the unit's attachment (s = 0): element 0's tension less the half
     # element that node 0 carries (its weight in water, drag and inertia)
-    h_el = length / n
-    eps0 = tens[0] / md.ea  # (the drag's factor 1 + e; internal damping left out there)
-    drag0 = quadratic_drag(md.k_drag * (1.0 + eps0), vel[0])
-    t_unit = tens[0] - 0.5 * h_el * (md.w + drag0 + md.mu * rhs[n])
+    t_unit = axial_unit_pull(md, tens[0], length / n, vel[0], rhs[n])
     out, tens_end = ca.substitute([ca.vertcat(heights[0], vel[0], t_unit, top, ca.mmin(tens)),
                                    tens], [t], [dt if symbolic else ca.SX(dt)])
     out, tens_end = ca.substitute([out, tens_end], [x], [x1])

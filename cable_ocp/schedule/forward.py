@@ -27,17 +27,25 @@ from typing import Any
 import numpy as np
 
 from cable_ocp.dynamics import simulate
+from cable_ocp.dynamics.axial import AxialModel
+from cable_ocp.dynamics.driven import axial_unit_pull
 from cable_ocp.errors import CableOCPError
 from cable_ocp.scene.dynamics import DynamicScene, dynamic_scene_from_dict
+from cable_ocp.schedule.ocp import constrained_tensions
 from cable_ocp.schedule.sea import VesselMotion
 
-__all__ = ["JUMP_RAMP", "MAX_SAMPLES", "ConstantSpeedResult", "ForwardCheck", "Schedule",
-           "fastest_constant_speed", "resimulate", "trapezoid_schedule", "worst_violations"]
+__all__ = ["CHECK_HOLD", "JUMP_RAMP", "MAX_SAMPLES", "ConstantSpeedResult", "ForwardCheck",
+           "Schedule", "fastest_constant_speed", "resimulate", "trapezoid_schedule",
+           "worst_violations"]
 
 #: s: a speed step without an acceleration limit is a linear ramp this short (the
 #: Schedule keeps every interval of positive length; the simulator's step of 1e-3..1e-1 s
 #: sees it as the jump)
 JUMP_RAMP = 1e-6
+#: s simulated after a schedule's end, the winch stopped (the default ``hold`` of
+#: :func:`resimulate` and :func:`fastest_constant_speed`, the forward check's, and what
+#: ``hold`` of :func:`cable_ocp.schedule.planning.verified_schedule` gives the OCP to match)
+CHECK_HOLD = 20.0
 #: the most samples a re-simulation stores (output_step a multiple of time_step above it)
 MAX_SAMPLES = 4000
 #: relative allowance of the commanded acceleration against accel_max (round-off)
@@ -196,8 +204,13 @@ class ForwardCheck:
     top_tension : numpy.ndarray (n,)
         At the sheave, N.
     unit_tension : numpy.ndarray (n,)
-        Element 0's tension (at its middle: the pull on the unit plus half an element's
-        weight, N).
+        The line's pull on the unit, N: on the axial line element 0's tension less the half
+        element node 0 carries (:func:`cable_ocp.dynamics.driven.axial_unit_pull`, the
+        OCP's own ``tension_at = "unit"``; the unit's acceleration the samples' central
+        differences); on the planar line element 0's tension (at its middle: the pull
+        plus about half an element's weight). Until 2026-12-03 (gap636) element 0's on
+        both, w h / 2 above the OCP's (1350 N on 1000 m of the 6.3.6 line at 20
+        elements).
     power : numpy.ndarray (n,)
         top_tension |v|, W, v the schedule's own pay-out speed (the compensation not
         included: the OCP's winch power, :func:`cable_ocp.schedule.ocp.winch_power`).
@@ -288,7 +301,7 @@ def _relative_excess(value: float, limit: float, scale: float, upper: bool) -> f
 
 def resimulate(scene: DynamicScene, schedule: Schedule, motion: VesselMotion, *,
                time_step: float | None = None, segments: int | None = None,
-               hold: float = 20.0, motion_step: float | None = None) -> ForwardCheck:
+               hold: float = CHECK_HOLD, motion_step: float | None = None) -> ForwardCheck:
     """Run the forward simulator with a schedule and a vessel motion; check the limits.
 
     The scene's ``[top_motion]`` is replaced: ``payout_law = "table"`` with the
@@ -344,7 +357,8 @@ def resimulate(scene: DynamicScene, schedule: Schedule, motion: VesselMotion, *,
     sim.update(duration=duration, time_step=dt, output_step=every * dt,
                segments=int(segments if segments is not None else scene.simulation.segments))
     raw["simulation"] = sim
-    res = simulate(dynamic_scene_from_dict(raw))
+    run_scene = dynamic_scene_from_dict(raw)
+    res = simulate(run_scene)
 
     t = np.asarray(res.t, dtype=float)
     ten = np.asarray(res.segment_tensions, dtype=float).reshape(len(t), -1)
@@ -359,15 +373,23 @@ def resimulate(scene: DynamicScene, schedule: Schedule, motion: VesselMotion, *,
     tmin = ten.min(axis=1) if not empty else np.zeros(0)
     tmax = ten.max(axis=1) if not empty else np.zeros(0)
     unit = ten[:, 0] if not empty else np.zeros(0)
+    if run_scene.simulation.model == "axial" and len(t) > 1:
+        # the pull on the unit, as the OCP's (axial_unit_pull: one home)
+        v0 = np.asarray(res.node_velocities, dtype=float)[:, 0, 2]
+        a0 = np.gradient(v0, t)
+        line = AxialModel(run_scene)
+        unit = axial_unit_pull(line, unit, np.asarray(res.length, dtype=float) / line.n, v0,
+                               a0)
     power = top_t * np.abs(own)
     viol: dict[str, float] = {}
     dp = scene.deployment
     if dp is not None:
         scale = float(top_t[0]) if not empty else 1.0
-        at = dp.tension_at
-        lows = [tmin] if "line" in at else [x for k, x in (("unit", unit), ("top", top_t))
-                                            if k in at]
-        highs = [tmax] if "line" in at else lows
+        # the OCP's selection (constrained_tensions: every element, the unit, the top)
+        outs = np.vstack([np.full_like(unit, np.nan), np.full_like(unit, np.nan), unit,
+                          top_t, np.full_like(unit, np.nan)]) if not empty else np.zeros((5, 0))
+        lows = constrained_tensions(dp, tmin[None, :], outs)
+        highs = constrained_tensions(dp, tmax[None, :], outs)
         checks: list[tuple[str, float | None, list[np.ndarray], bool]] = [
             ("tension_min", dp.tension_min, lows, False),
             ("tension_max", dp.tension_max, highs, True),
@@ -468,7 +490,7 @@ def _top_speed(scene: DynamicScene) -> float:
 
 def fastest_constant_speed(scene: DynamicScene, motions: list[VesselMotion], *,
                            rel_tol: float = 1e-3, time_step: float | None = None,
-                           segments: int | None = None, hold: float = 20.0,
+                           segments: int | None = None, hold: float = CHECK_HOLD,
                            floor: float | None = None, tol: float = 0.0,
                            motion_step: float | None = None,
                            ahc_gain: float = 0.0) -> ConstantSpeedResult:

@@ -229,7 +229,8 @@ def winch_power(outputs: Any, speed: Any) -> Any:
 
 def limit_constraints(add: Callable[[str, Any, Any, Any], None], problem: DeploymentProblem,
                       tension_scale: float, tensions: Any, outputs: Any, speed: Any, *,
-                      rest_ref: Any = None, comp: Any = None, dt: Any = None) -> Any:
+                      rest_ref: Any = None, comp: Any = None, dt: Any = None,
+                      rest_index: int = -1) -> Any:
     """The limits of one realisation's steps, as constraint groups (the one home of the
     tension, power, rest and compensation limits: :class:`ScheduleOCP` and the receding
     horizon's NLP, :mod:`cable_ocp.schedule.receding`, both add them through this).
@@ -262,6 +263,9 @@ def limit_constraints(add: Callable[[str, Any, Any, Any], None], problem: Deploy
         The compensating length g h at the nodes, m (with the compensation).
     dt : casadi.MX, optional
         The step, s (with ``comp``).
+    rest_index : int
+        The column of ``outputs`` the rest condition reads (default the last; the node
+        of arrival when a hold follows it, :class:`ScheduleOCP`).
 
     Returns
     -------
@@ -279,7 +283,7 @@ def limit_constraints(add: Callable[[str, Any, Any, Any], None], problem: Deploy
     if pb.power_max is not None:
         add("power_max", power / pb.power_max, -1.0, 1.0)
     if rest_ref is not None:
-        add("rest", (outs[1, -1] - rest_ref) / pb.rest_tolerance, -1.0, 1.0)
+        add("rest", (outs[1, rest_index] - rest_ref) / pb.rest_tolerance, -1.0, 1.0)
     if comp is not None:
         if pb.ahc_stroke is not None:
             add("ahc_stroke", comp / pb.ahc_stroke, -1.0, 1.0)
@@ -373,22 +377,46 @@ class ScheduleOCP:
     heaves : sequence of casadi.Function
         The vessel heave h_r(t) (m) of each design realisation.
     steps : int
-        N.
+        N, the hold's steps included.
     problem : DeploymentProblem, optional
         Default ``scene.deployment``.
     ipopt : dict, optional
         IPOPT options added to the defaults (``ipopt.`` prefixed keys).
+    hold_steps : int
+        M >= 0: the last M of the N steps are a hold of ``hold`` s (steps of hold / M s,
+        fixed; the free duration T is the arrival's, T / (N - M) the other steps'), the
+        winch stopped at the target (v = 0, a = 0, L = target) while the sea goes on, its
+        tensions inside the limits as every step's; the rest condition is at the arrival,
+        node N - M, and the solution reports the schedule up to it (:meth:`extend` appends
+        the hold to a schedule). Why: a
+        minimum-time arrival stops the winch with the line stretched (6.3.6: the unit's
+        tension 92.6 kN at the stop against 50 kN static), and the free oscillation after
+        the stop, which the forward check simulates (:func:`~cable_ocp.schedule.forward.
+        resimulate`'s ``hold``) and an OCP ending at the arrival does not see, falls below
+        tension_min (docs/deployment.md, "The 6.3.6 line with compensation").
+    hold : float
+        s, > 0 with ``hold_steps``.
     """
 
     def __init__(self, scene: DynamicScene, line: LineStep, heaves: Sequence[ca.Function],
                  steps: int, problem: DeploymentProblem | None = None,
-                 ipopt: dict[str, Any] | None = None) -> None:
+                 ipopt: dict[str, Any] | None = None, hold_steps: int = 0,
+                 hold: float = 0.0) -> None:
         t0 = time.perf_counter()
         pb = problem if problem is not None else scene.deployment
         if pb is None:
             raise CableOCPError("[deployment] is missing: the schedule needs target_length "
                                 "and its limits")
         self.scene, self.line, self.problem, self.steps = scene, line, pb, int(steps)
+        self.hold_steps = int(hold_steps)
+        if not 0 <= self.hold_steps < self.steps:
+            raise CableOCPError(f"ScheduleOCP: hold_steps = {hold_steps} must be in [0, "
+                                f"steps = {steps})")
+        n_a = self.steps - self.hold_steps  # the node of arrival
+        if self.hold_steps and not (math.isfinite(hold) and hold > 0.0):
+            raise CableOCPError(f"ScheduleOCP: hold = {hold} s must be > 0 with hold_steps")
+        #: the hold's step, s (0 without a hold)
+        self.hold_step = float(hold) / self.hold_steps if self.hold_steps else 0.0
         n_r = len(heaves)
         self.realisations = n_r
         start, target = scene.length, pb.target_length
@@ -405,8 +433,11 @@ class ScheduleOCP:
         gain = ca.MX.sym("g") if pb.ahc else None
         xr = [ca.MX.sym(f"x{r}", nx, n_k) for r in range(n_r)]  # states 1..N (scaled)
         yr = [] if line.same else [ca.MX.sym(f"y{r}", ny, n_k) for r in range(n_r)]
-        dt = tt / n_k
-        tgrid = ca.DM(np.arange(n_k + 1)).T * dt
+        dt = tt / n_a
+        m_h, dt_h = self.hold_steps, self.hold_step
+        dts = ca.horzcat(ca.repmat(dt, 1, n_a), ca.DM.ones(1, m_h) * dt_h)  # each step's
+        tgrid = ca.horzcat(ca.MX(0.0), ca.cumsum(dts, 1))  # the nodes' times, from the steps
+        self._grid = ca.Function("grid", [tt], [tgrid])  # the nodes' times, s
         step_map = line.step.map(n_k)
         g_list: list[Any] = []
         self._groups: list[tuple[str, int, int, np.ndarray, np.ndarray]] = []
@@ -420,8 +451,9 @@ class ScheduleOCP:
                                  np.broadcast_to(hi, (k,)).astype(float)))
 
         # kinematics of the winch
-        add("kinematics", vel[1:] - vel[:-1] - acc * dt, 0.0, 0.0)
-        add("kinematics", (lng[1:] - lng[:-1] - 0.5 * dt * (vel[1:] + vel[:-1]))
+        # (up to the arrival: in the hold the bounds fix v = a = 0 and L = target)
+        add("kinematics", vel[1:n_a + 1] - vel[:n_a] - acc[:n_a] * dt, 0.0, 0.0)
+        add("kinematics", (lng[1:n_a + 1] - lng[:n_a] - 0.5 * dt * (vel[1:n_a + 1] + vel[:n_a]))
             / max(abs(target - start), 1.0), 0.0, 0.0)
         inf = math.inf
         ts = self.tension_scale
@@ -438,19 +470,21 @@ class ScheduleOCP:
             p = ca.vertcat(lw[:-1], lw[1:], zt[:-1], zt[1:])
             xx = ca.horzcat(x0, ca.diag(xs) @ xr[r])  # states 0..N (SI)
             yy = ca.diag(xs) @ xr[r] if line.same else ca.diag(ys) @ yr[r]
-            res, nxt, tens, outs = step_map(yy, xx[:, :-1], p, ca.repmat(dt, 1, n_k))
+            res, nxt, tens, outs = step_map(yy, xx[:, :-1], p, dts)
             outs_all += [tens, outs, hv]
             add("dynamics", res, 0.0, 0.0)
             if not line.same:
                 add("dynamics", (nxt - xx[:, 1:]) / ca.repmat(xs, 1, n_k), 0.0, 0.0)
             # at rest relative to the ship: a stopped winch on a taut line carries the unit
             # with the top's heave, less what the compensation pays out, (1 - g) dh/dt
-            rate = self._heave_rates[r](tt)
+            rate = self._heave_rates[r](n_a * dt)
             ref = (1.0 - gain) * rate if gain is not None else rate
             power = limit_constraints(add, pb, ts, tens, outs, vel, rest_ref=ref,
-                                      comp=comp if gain is not None else None, dt=dt)
+                                      comp=comp if gain is not None else None, dt=dts,
+                                      rest_index=n_a - 1)
             if pb.objective == "time_energy":
-                energy = energy + ca.sum2(ca.sqrt(power**2 + (1e-3 * ts) ** 2)) * dt / n_r
+                energy = energy + ca.sum2(ca.sqrt(power[:, :n_a]**2 + (1e-3 * ts) ** 2)) \
+                    * dt / n_r
             self._outputs = None
         objective = tt + pb.energy_weight * energy
         # the variables and their bounds
@@ -471,7 +505,11 @@ class ScheduleOCP:
         for b, val in ((lbx, 0.0), (ubx, 0.0)):
             b[2][0] = b[2][-1] = val
         lbx[3][0] = ubx[3][0] = start
-        lbx[3][-1] = ubx[3][-1] = target
+        lbx[3][n_a:] = ubx[3][n_a:] = target
+        # the hold: the winch stopped at the target
+        for b in (lbx, ubx):
+            b[2][n_a:] = 0.0
+            b[1][n_a:] = 0.0
         if gain is not None:
             lbx.append(np.array([0.0]))
             ubx.append(np.array([1.0]))
@@ -494,6 +532,32 @@ class ScheduleOCP:
         self.variables, self.constraints = int(w.shape[0]), int(g_all.shape[0])
 
     # ---------------------------------------------------------------- packing
+    def extend(self, duration: float, accel: np.ndarray, speed: np.ndarray,
+               length: np.ndarray) -> tuple[float, np.ndarray, np.ndarray, np.ndarray]:
+        """A schedule of N - M equal steps with the hold's M steps appended (the winch
+        stopped at its last length): (duration (s, the arrival's: unchanged), accel
+        (m/s^2), speed (m/s), length (m)) on the NLP's N steps, for :meth:`pack` and
+        :meth:`rollout`; unchanged without a hold.
+
+        Parameters
+        ----------
+        duration : float
+            The schedule's, s.
+        accel : ndarray (N - M,)
+            m/s^2.
+        speed, length : ndarray (N - M + 1,)
+            m/s, m.
+        """
+        m = self.hold_steps
+        accel, speed, length = (np.asarray(x, dtype=float) for x in (accel, speed, length))
+        if accel.size != self.steps - m:
+            raise CableOCPError(f"ScheduleOCP.extend: {accel.size} steps given, the OCP's "
+                                f"schedule has {self.steps - m} before its hold")
+        if m == 0:
+            return duration, accel, speed, length
+        return (duration, np.append(accel, np.zeros(m)), np.append(speed, np.zeros(m)),
+                np.append(length, np.full(m, length[-1])))
+
     def pack(self, duration: float, accel: np.ndarray, speed: np.ndarray, length: np.ndarray,
              states: Sequence[np.ndarray], unknowns: Sequence[np.ndarray] = (),
              gain: float = 0.0) -> np.ndarray:
@@ -540,8 +604,10 @@ class ScheduleOCP:
             The compensation's gain (-).
         """
         n_k = self.steps
-        dt = duration / n_k
-        tg = np.arange(n_k + 1) * dt
+        n_a, m_h = n_k - self.hold_steps, self.hold_steps
+        dt = duration / n_a
+        steps = np.concatenate([np.full(n_a, dt), np.full(m_h, self.hold_step)])
+        tg = np.concatenate([[0.0], np.cumsum(steps)])
         fwd = self.line.forward.mapaccum(n_k)
         xs_all, ys_all = [], []
         for hf in self._heave_fns:
@@ -549,7 +615,7 @@ class ScheduleOCP:
             lw = np.asarray(length) + gain * hv
             zt = self.line.top_height + hv
             p = np.vstack([lw[:-1], lw[1:], zt[:-1], zt[1:]])
-            xn, yn, _, _ = fwd(self.line.start, p, np.full((1, n_k), dt))
+            xn, yn, _, _ = fwd(self.line.start, p, steps.reshape(1, -1))
             xs_all.append(np.hstack([self.line.start[:, None], np.asarray(xn)]))
             ys_all.append(np.asarray(yn))
         return xs_all, ys_all
@@ -678,6 +744,7 @@ class ScheduleOCP:
                   viol: dict[str, float], diag: dict[str, Any]) -> OCPSolution:
         parts = self._split(w)
         n_k = self.steps
+        n_a = n_k - self.hold_steps
         dur = float(parts[0][0])
         rep = self._report(w)
         rep = rep if isinstance(rep, (list, tuple)) else [rep]
@@ -690,13 +757,22 @@ class ScheduleOCP:
         for r in range(self.realisations):
             tens = np.asarray(rep[3 * r]).T
             outs = np.asarray(rep[3 * r + 1]).T
-            tens_l.append(np.vstack([start_t, tens]))
+            if self.hold_steps:
+                diag = dict(diag)
+                low = float(np.min(tens[n_a:]))
+                diag["hold_min_tension_N"] = min(diag.get("hold_min_tension_N", low), low)
+            tens_l.append(np.vstack([start_t, tens[:n_a]]))
             first = np.array([[np.nan, 0.0, ts0[0], ts0[1], min(ts0)]])
-            outs_l.append(np.vstack([first, outs]))
-            heave_l.append(np.asarray(rep[3 * r + 2]).ravel())
+            outs_l.append(np.vstack([first, outs[:n_a]]))
+            heave_l.append(np.asarray(rep[3 * r + 2]).ravel()[:n_a + 1])
+        if self.hold_steps:
+            grid = np.asarray(self._grid(dur)).ravel()  # the NLP's own nodes
+            diag.update(hold_steps=self.hold_steps, hold_s=float(grid[-1] - grid[n_a]))
+        # the schedule up to the arrival (the hold is the NLP's, not the schedule's)
         return OCPSolution(status=status, message=msg,
-                           time=np.arange(n_k + 1) * dur / n_k, length=parts[3].copy(),
-                           speed=parts[2].copy(), accel=parts[1].copy(),
+                           time=np.arange(n_a + 1) * dur / n_a,
+                           length=parts[3][:n_a + 1].copy(),
+                           speed=parts[2][:n_a + 1].copy(), accel=parts[1][:n_a].copy(),
                            ahc_gain=float(parts[4][0]) if parts[4].size else 0.0,
                            tensions=np.array(tens_l), outputs=np.array(outs_l),
                            heave=np.array(heave_l), binding=binding, violations=viol,

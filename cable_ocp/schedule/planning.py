@@ -42,6 +42,7 @@ from cable_ocp.numerics import interrupt
 from cable_ocp.scene.deployment import DeploymentProblem
 from cable_ocp.scene.dynamics import DynamicScene
 from cable_ocp.schedule.forward import (
+    CHECK_HOLD,
     SCAN,
     Schedule,
     resimulate,
@@ -418,7 +419,7 @@ class ScheduleResult:
 def solve_schedule(scene: DynamicScene, heaves: Sequence[ca.Function] | None = None, *,
                    problem: DeploymentProblem | None = None, segments: int | None = None,
                    time_step: float | None = None, steps: int | None = None,
-                   ipopt: dict[str, Any] | None = None) -> ScheduleResult:
+                   ipopt: dict[str, Any] | None = None, hold: float = 0.0) -> ScheduleResult:
     """The optimal pay-out (or haul-in) schedule of a scene (module docstring).
 
     Parameters
@@ -438,6 +439,12 @@ def solve_schedule(scene: DynamicScene, heaves: Sequence[ca.Function] | None = N
         N, overriding ceil(T_0 / time_step).
     ipopt : dict, optional
         Extra IPOPT options.
+    hold : float
+        s, >= 0: the OCP goes on this long after the arrival, the winch stopped, its
+        tensions kept inside the limits (:class:`~cable_ocp.schedule.ocp.ScheduleOCP`'s
+        ``hold_steps``: ceil(hold / time_step) steps of hold / M s); 0: the OCP
+        ends at the arrival. The forward check simulates
+        :data:`~cable_ocp.schedule.forward.CHECK_HOLD` s after it.
 
     Raises
     ------
@@ -446,7 +453,7 @@ def solve_schedule(scene: DynamicScene, heaves: Sequence[ca.Function] | None = N
     KeyboardInterrupt
         On a Ctrl-C (never retried).
     """
-    return _solve(scene, heaves, problem, segments, time_step, steps, ipopt)[0]
+    return _solve(scene, heaves, problem, segments, time_step, steps, ipopt, hold)[0]
 
 
 def with_margins(pb: DeploymentProblem, margins: dict[str, float]) -> DeploymentProblem:
@@ -470,7 +477,7 @@ def with_margins(pb: DeploymentProblem, margins: dict[str, float]) -> Deployment
 
 def _solve(scene: DynamicScene, heaves: Sequence[ca.Function] | None,
            problem: DeploymentProblem | None, segments: int | None, time_step: float | None,
-           steps: int | None, ipopt: dict[str, Any] | None
+           steps: int | None, ipopt: dict[str, Any] | None, hold: float = 0.0
            ) -> tuple[ScheduleResult, ScheduleOCP | None, Any]:
     """:func:`solve_schedule`, the built OCP (None when the static check failed) and
     ``restart(margins) -> w0``: the warm start of the limits moved inwards, for its N."""
@@ -496,16 +503,22 @@ def _solve(scene: DynamicScene, heaves: Sequence[ca.Function] | None,
         raise CableOCPError(f"deployment.time_step = {dt_nom:.4g} s: the warm start's "
                             f"{dur:.6g} s would take {n} steps (at most {MAX_STEPS}); give a "
                             "longer time_step")
-    ocp = ScheduleOCP(scene, line, heaves, n, pb, ipopt)
+    if not (math.isfinite(hold) and hold >= 0.0):
+        raise CableOCPError(f"hold = {hold} s: give the time after the arrival that the OCP "
+                            "keeps the limits, >= 0 (0: none)")
+    m = int(math.ceil(hold / dt_nom - 1e-9)) if hold > 0.0 else 0
+    ocp = ScheduleOCP(scene, line, heaves, n + m, pb, ipopt, hold_steps=m, hold=hold)
     diag["build_s"] = ocp.build_time
 
     def start(ws: ConstantSpeed) -> np.ndarray:
-        """The NLP's variables of a constant-speed warm start, on the OCP's N steps."""
+        """The NLP's variables of a constant-speed warm start, on the OCP's N steps (the
+        hold's appended)."""
         d, _, a, v, length = trapezoid(scene.length, pb.target_length, ws.start_speed,
                                        ws.accel, dt_nom)
         if a.size != n:
             d, _, a, v, length = trapezoid(scene.length, pb.target_length, ws.start_speed,
                                            ws.accel, d / n)
+        d, a, v, length = ocp.extend(d, a, v, length)
         return ocp.pack(d, a, v, length, *ocp.rollout(d, a, v, length))
 
     def restart(margins: dict[str, float]) -> np.ndarray:
@@ -528,7 +541,8 @@ def verified_schedule(scene: DynamicScene, motions: Sequence[Any], *,
                       time_step: float | None = None, steps: int | None = None,
                       ipopt: dict[str, Any] | None = None, rounds: int | None = None,
                       tolerance: float | None = None, check_time_step: float | None = None,
-                      check_segments: int | None = None) -> ScheduleResult:
+                      check_segments: int | None = None, hold: float = 0.0
+                      ) -> ScheduleResult:
     """The optimal schedule, re-simulated on the forward simulator and re-solved with
     margins until the re-simulation keeps its limits (module docstring).
 
@@ -549,6 +563,9 @@ def verified_schedule(scene: DynamicScene, motions: Sequence[Any], *,
         The check's step, s (default ``deployment.check_time_step``, else the scene's).
     check_segments : int, optional
         The check's elements (default ``deployment.check_segments``, else the scene's).
+    hold : float
+        s after the arrival that the OCP keeps the limits (:func:`solve_schedule`); the
+        check simulates :data:`~cable_ocp.schedule.forward.CHECK_HOLD` s after it.
 
     Raises
     ------
@@ -558,7 +575,7 @@ def verified_schedule(scene: DynamicScene, motions: Sequence[Any], *,
         On a Ctrl-C inside IPOPT (never retried).
     """
     res, ocp, restart = _solve(scene, [m.casadi_heave() for m in motions], problem,
-                               segments, time_step, steps, ipopt)
+                               segments, time_step, steps, ipopt, hold)
     pb = res.problem
     n_rounds = pb.check_rounds if rounds is None else int(rounds)
     if n_rounds < 0:
@@ -584,8 +601,8 @@ def verified_schedule(scene: DynamicScene, motions: Sequence[Any], *,
              f"{len(motions)} motion(s))")
     while True:
         sched = Schedule.from_speed(sol.time, sol.speed, scene.length, sol.ahc_gain)
-        runs = [resimulate(scene, sched, m, time_step=c_step, segments=c_seg)
-                for m in motions]
+        runs = [resimulate(scene, sched, m, time_step=c_step, segments=c_seg,
+                           hold=CHECK_HOLD) for m in motions]
         worst = worst_violations(runs)
         broken = sum(1 for run in runs if run.status != "solved" or run.slack)
         rnd = CheckRound(dict(margins), sol.status, sol.duration, worst, broken, tuple(runs))
