@@ -53,6 +53,12 @@ def format_compare(cases: Sequence[dict[str, Any]]) -> str:
                 f"{o.get('constraints')} constraints; warm start "
                 f"{_s(o.get('warm_start_s'))}, build {_s(o.get('build_s'))}, solve "
                 f"{_s(o.get('solve_s'))} ({it} iterations)")
+        starts = o.get("starts") or []
+        if len(starts) > 1:
+            tail += f"; kept the start from the {o.get('start')}, of " + "; ".join(
+                f"the {st['start']} ({st['speed_m_s']:.4g} m/s): {st['status']}, "
+                f"{st['duration_s']:.6g} s, {st['iterations']} iterations, "
+                f"{_s(st['solve_time_s'])}" for st in starts)
         hv = c.get("heave")
         if hv is not None:
             lim = hv["limits"]
