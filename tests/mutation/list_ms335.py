@@ -35,4 +35,11 @@ MUTATIONS = [
          new="and v > 2.0 * pb.speed_max):",
          tests=(_T + "a_start_speed_outside_0_speed_max_is_refused",),
          description="a start speed above speed_max accepted"),
+    dict(name="ms335-bench-compare-without-forward-start", area="schedule",
+         file="cable_ocp/bench/deployment.py",
+         old='start_speeds=[fc.speed] if (', new='start_speeds=[] if (',
+         tests=("tests/test_bench_deploy.py::"
+                "test_bench_deploy_compare_keeps_each_finished_row",),
+         description="the compare's OCP not started from the forward simulator's constant "
+                     "speed"),
 ]
