@@ -371,6 +371,11 @@ def compare_case(path: str | Path, *, heave_path: str | Path | None = None,
            "steps": d.get("steps"), "elements": d.get("elements"),
            "check_s": d.get("check_s"), "check_rounds": d.get("check_rounds"),
            "margins": res.margins,
+           "rounds": [{"margins": dict(r.margins), "status": r.status,
+                       "duration_s": r.duration, "violations": dict(r.violations),
+                       "failed_runs": r.failed_runs,
+                       "resolve_s": d.get(f"resolve_{i}_s") if i else None}
+                      for i, r in enumerate(res.checks)],
            "violations": dict(res.solution.violations) if res.solution is not None else {}}
     t_opt = res.duration
     rows: list[dict[str, Any]] = []
