@@ -46,8 +46,12 @@ JUMP_RAMP = 1e-6
 #: :func:`resimulate` and :func:`fastest_constant_speed`, the forward check's, and what
 #: ``hold`` of :func:`cable_ocp.schedule.planning.verified_schedule` gives the OCP to match)
 CHECK_HOLD = 20.0
-#: the most samples a re-simulation stores (output_step a multiple of time_step above it)
-MAX_SAMPLES = 4000
+#: the most samples a re-simulation stores (output_step a multiple of time_step above it;
+#: the check reads the limits at the samples only). 40 000: every step of a 2000 s run
+#: at 0.05 s (an axial line of 20 elements: about 50 MB); it was 4000 until 2026-12-03,
+#: so that a 0.1 s check of the 6.3.6 line's 560 s read every second step and missed
+#: 90 N of the start ramp's dip (docs/deployment.md, "The 6.3.6 line with compensation")
+MAX_SAMPLES = 40000
 #: relative allowance of the commanded acceleration against accel_max (round-off)
 ACCEL_ROUNDOFF = 1e-9
 #: the bracket's top without speed_max and without unit drag, m/s (checked first)

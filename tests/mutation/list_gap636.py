@@ -37,4 +37,20 @@ MUTATIONS = [
          tests=(_U + "the_check_reproduces_the_ocps_pull_at_its_own_resolution",),
          description="forward check: the unit's tension element 0's (its middle), not the "
                      "OCP's pull"),
+    dict(name="check-samples-every-other-step", area="schedule",
+         file="cable_ocp/schedule/forward.py",
+         old="    every = max(1, math.ceil(steps / MAX_SAMPLES))",
+         new="    every = max(2, math.ceil(steps / MAX_SAMPLES))",
+         tests=("tests/schedule/test_schedule_forward.py::"
+                "test_the_check_reads_every_step_up_to_max_samples",),
+         description="forward check: the limits read at every second step though the "
+                     "steps fit MAX_SAMPLES"),
+    dict(name="check-samples-run-not-lengthened", area="schedule",
+         file="cable_ocp/schedule/forward.py",
+         old="    steps = every * math.ceil(steps / every)",
+         new="    steps = every * (steps // every)",
+         tests=("tests/schedule/test_schedule_forward.py::"
+                "test_the_check_reads_every_step_up_to_max_samples",),
+         description="forward check: the thinned run cut short of the hold's end instead "
+                     "of lengthened to a whole number of samples"),
 ]

@@ -102,6 +102,28 @@ def test_resimulate_keeps_limits_and_ends_at_the_target():
     assert chk.unit_tension[0] == pytest.approx(42645.0, abs=1.0)
 
 
+def test_the_check_reads_every_step_up_to_max_samples(monkeypatch):
+    """The limits are read at the stored samples: every step of the check's time_step
+    (0.05 s here, 52 s: 1041 samples) while the steps fit MAX_SAMPLES; above it every
+    ceil(steps / MAX_SAMPLES)-th step, the run lengthened to a whole number of those."""
+    import cable_ocp.schedule.forward as fwd
+
+    scene = _scene(tension_min=15000.0)
+    motion = vessel_motions(scene)[0]
+    sched = trapezoid_schedule(50.0, 80.0, 1.0, 0.5)  # 32 s, and the 20 s hold
+    chk = resimulate(scene, sched, motion)
+    assert np.allclose(np.diff(chk.t), 0.05, rtol=0, atol=1e-9) and chk.t.size == 1041
+    monkeypatch.setattr(fwd, "MAX_SAMPLES", 300)
+    few = resimulate(scene, sched, motion)  # 1040 steps: every 4th
+    assert np.allclose(np.diff(few.t), 0.2, rtol=0, atol=1e-9) and few.t.size == 261
+    # the same run, read at every 4th step (the line's tensions to round-off; the unit's
+    # pull moves by a few N: its acceleration is the samples' central differences)
+    assert few.tension_min_line == pytest.approx(chk.tension_min_line[::4], rel=1e-9)
+    # a hold of 20.1 s: 1042 steps, lengthened to 1044 (not cut to 1040, short of the hold)
+    odd = resimulate(scene, sched, motion, hold=20.1)
+    assert odd.t.size == 262 and odd.t[-1] == pytest.approx(52.2, abs=1e-9)
+
+
 def test_violations_are_relative_excesses():
     scene = _scene(tension_max=50000.0, speed_max=0.8)
     chk = resimulate(scene, trapezoid_schedule(50.0, 80.0, 1.0, 0.5), vessel_motions(scene)[0])
