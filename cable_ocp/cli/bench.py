@@ -175,8 +175,9 @@ def register(sub: argparse._SubParsersAction, parent: argparse.ArgumentParser) -
     dp.add_argument("--case", action="append", metavar="FILE",
                     help="compare: a dynamic scene with [deployment] (repeatable; default "
                          "problems/dynamics/deploy_3_3_5.toml and deploy_6_3_6.toml)")
-    dp.add_argument("--rel-tol", type=float, default=1e-2, metavar="R",
-                    help="compare: the constant speed's bisection width, relative (0.01)")
+    dp.add_argument("--rel-tol", type=float, default=1e-3, metavar="R",
+                    help="compare: the constant speed's bisection width, relative (0.001: "
+                         "narrower than the savings it is compared with)")
     dp.add_argument("--motion-step", type=float, default=None, metavar="S",
                     help="compare: the forward simulator's sampling of a sea's heave, s "
                          "(default the case's [simulation] time_step; the linear "
