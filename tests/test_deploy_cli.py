@@ -157,9 +157,10 @@ def test_deploy_schedule_keeps_its_limits_on_a_finer_forward_simulation(run):
             a.margins.get("tension_min", 0.0) + (a.violations["tension_min"] + 0.005) * 1e4,
             rel=1e-12)
     margin = checks[-1].margins["tension_min"]
-    # the final OCP keeps its node tensions the margin above the limit: the CSV's smallest
-    # tension is tension_min + margin (IPOPT's tolerance, 1e-6 relative)
-    assert np.min(run.table[1:, 4]) == pytest.approx(1e4 + margin, rel=1e-6)
+    # the final OCP keeps the line's tensions (its elements and both ends: tension_at =
+    # "line") the margin above the limit: the CSV's smallest of them is tension_min +
+    # margin (IPOPT's tolerance, 1e-6 relative)
+    assert np.min(run.table[1:, 4:8]) == pytest.approx(1e4 + margin, rel=1e-6)
     assert np.min(run.table[1:, 4]) >= (1e4 + margin) * (1 - 1e-6)
     # the round count in the JSON and the diagnostics
     assert len(run.data["checks"]) == len(checks)

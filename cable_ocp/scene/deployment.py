@@ -23,8 +23,9 @@ Schema (SI units)::
                                  line taut with a margin)
     tension_max = 2e5            N, every constrained tension <= tension_max (the MBL over a
                                  safety factor)
-    tension_at = "line"          "line": every element's tension; or a list of the named
-                                 points "unit" (the pull on the unit) and "top"
+    tension_at = "line"          "line": the whole line, every element's tension and both
+                                 ends' (the pull on the unit, the top's); or a list of the
+                                 named points "unit" and "top" alone
     tension_margin = 0.0         N, >= 0: the OCP keeps its tensions this far inside the
                                  limits (a robust margin for the sea it does not know)
     rest_tolerance = 0.05        m/s, > 0: at the end the winch is stopped and the unit's

@@ -189,10 +189,20 @@ def static_tensions(scene: DynamicScene, length: float) -> tuple[float, float]:
 
 
 def constrained_tensions(problem: DeploymentProblem, tensions: Any, outputs: Any) -> list[Any]:
-    """The tensions ``tension_at`` constrains (N): every element's (``"line"``), the unit's
-    and the top's (the outputs' rows 2 and 3), on numpy arrays or CasADi expressions (the
-    one home of the selection: :func:`limit_constraints` and the warm start's rollout,
-    :func:`cable_ocp.schedule.planning.discrete_constant_speed`).
+    """The tensions ``tension_at`` constrains (N): ``"line"`` the whole line, every
+    element's and both ends' (the pull on the unit and the top's, the outputs' rows 2 and
+    3); ``"unit"``, ``"top"`` those ends alone; on numpy arrays or CasADi expressions (the
+    one home of the selection: :func:`limit_constraints`, the warm start's rollout,
+    :func:`cable_ocp.schedule.planning.discrete_constant_speed`, and the forward check,
+    :func:`cable_ocp.schedule.forward.resimulate`).
+
+    Why the ends with ``"line"``: an element's tension is at its middle, w h / 2 above the
+    unit's end of a hanging line (h = L / n), so the elements alone bound a point that
+    moves with the mesh: the OCP's 10 elements and the check's 20 read 1350 N apart at
+    1000 m of the 6.3.6 line, and a schedule the OCP kept at tension_min broke it by 5 %
+    when re-simulated (docs/deployment.md, "The 6.3.6 line with compensation"). The ends
+    are where a hanging line's tension is smallest (the unit) and largest (the top),
+    whatever the mesh. Until 2026-12-03 ``"line"`` was the elements alone.
 
     Parameters
     ----------
@@ -204,11 +214,12 @@ def constrained_tensions(problem: DeploymentProblem, tensions: Any, outputs: Any
         The step's outputs (:class:`LineStep`).
     """
     out = []
-    if "line" in problem.tension_at:
+    at = problem.tension_at
+    if "line" in at:
         out.append(tensions)
-    if "unit" in problem.tension_at:
+    if "line" in at or "unit" in at:
         out.append(outputs[2, :])
-    if "top" in problem.tension_at:
+    if "line" in at or "top" in at:
         out.append(outputs[3, :])
     return out
 

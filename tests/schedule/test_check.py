@@ -31,8 +31,8 @@ def test_margins_move_only_their_limits_rows_by_their_scale():
     ts = ocp.tension_scale
     rows = {name: np.concatenate([np.arange(a, b) for n, a, b, _, _ in ocp._groups
                                   if n == name]) for name in ("tension", "power_max")}
-    # 10 steps x (2 elements + none named): the tension rows; 10 power rows
-    assert rows["tension"].size == 20 and rows["power_max"].size == 10
+    # 10 steps x (2 elements + the line's 2 ends): the tension rows; 10 power rows
+    assert rows["tension"].size == 40 and rows["power_max"].size == 10
     # exact in floating point but for the division's rounding (1e-12 relative)
     np.testing.assert_allclose(lo[rows["tension"]] - lo0[rows["tension"]], 100.0 / ts,
                                rtol=1e-9)
