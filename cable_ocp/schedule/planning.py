@@ -541,7 +541,7 @@ def verified_schedule(scene: DynamicScene, motions: Sequence[Any], *,
                       time_step: float | None = None, steps: int | None = None,
                       ipopt: dict[str, Any] | None = None, rounds: int | None = None,
                       tolerance: float | None = None, check_time_step: float | None = None,
-                      check_segments: int | None = None, hold: float = 0.0
+                      check_segments: int | None = None, hold: float | None = None
                       ) -> ScheduleResult:
     """The optimal schedule, re-simulated on the forward simulator and re-solved with
     margins until the re-simulation keeps its limits (module docstring).
@@ -574,6 +574,8 @@ def verified_schedule(scene: DynamicScene, motions: Sequence[Any], *,
     KeyboardInterrupt
         On a Ctrl-C inside IPOPT (never retried).
     """
+    if hold is None:  # the OCP bounds what the check simulates
+        hold = CHECK_HOLD
     res, ocp, restart = _solve(scene, [m.casadi_heave() for m in motions], problem,
                                segments, time_step, steps, ipopt, hold)
     pb = res.problem
