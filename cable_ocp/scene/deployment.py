@@ -29,7 +29,7 @@ Schema (SI units)::
                                  limits (a robust margin for the sea it does not know)
     rest_tolerance = 0.05        m/s, > 0: at the end the winch is stopped and the unit's
                                  speed is below this
-    hold = 20.0                  s, >= 0: the OCP goes on this long after the arrival, the
+    hold = 20.0                  s, 0..600: the OCP goes on this long after the arrival, the
                                  winch stopped, its tensions kept inside the limits (default:
                                  the forward check's 20 s, schedule.forward.CHECK_HOLD, with
                                  the check; none for the OCP alone, solve_schedule; 0: the
@@ -71,8 +71,8 @@ from typing import Any
 from cable_ocp.errors import CableOCPError
 from cable_ocp.scene.fields import check_keys, choice, integer, number
 
-__all__ = ["DEPLOYMENT_KEYS", "MAX_HOLD", "OBJECTIVES", "SEA_KEYS", "DeploymentProblem", "SeaState",
-           "TENSION_POINTS", "parse_deployment"]
+__all__ = ["DEPLOYMENT_KEYS", "MAX_HOLD", "OBJECTIVES", "SEA_KEYS", "DeploymentProblem",
+           "SeaState", "TENSION_POINTS", "parse_deployment"]
 
 DEPLOYMENT_KEYS = {"target_length", "objective", "energy_weight", "speed_max", "accel_max",
                    "power_max", "tension_min", "tension_max", "tension_at",
@@ -261,7 +261,7 @@ def parse_deployment(t: Any, start_length: float) -> DeploymentProblem:
         if key in t:
             kw[key] = number(t[key], f"deployment.{key}", nonneg=True, unit="N")
     if "hold" in t:
-        kw["hold"] = number(t["hold"], "deployment.hold", nonneg=True, high=MAX_HOLD,
+        kw["hold"] = number(t["hold"], "deployment.hold", low=0.0, high=MAX_HOLD,
                             unit="s", why="the time after the arrival, the winch stopped, "
                             "that the OCP keeps the limits (0: none)")
     for key, lo_n, hi_n in (("segments", 1, 2000), ("check_segments", 1, 2000),
