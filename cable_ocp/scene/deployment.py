@@ -146,8 +146,9 @@ class DeploymentProblem:
     rest_tolerance : float
         m/s.
     hold : float or None
-        s after the arrival that the OCP keeps the limits (None: the caller's default,
-        :func:`cable_ocp.schedule.planning.verified_schedule`'s the forward check's hold).
+        s after the arrival that the OCP keeps the limits (None: the caller's default:
+        the forward check's hold in :func:`cable_ocp.schedule.planning.verified_schedule`,
+        none in ``solve_schedule``).
     time_step : float or None
         s (None: the scene's ``simulation.time_step``).
     segments : int or None
