@@ -141,8 +141,10 @@ segments = 2
 
 def test_bench_deploy_compare_keeps_each_finished_row(tmp_path, monkeypatch):
     # a stopped run keeps what it finished: the JSON is rewritten after every row, so a
-    # bisection stopped by hand leaves the OCP's rows on disk ("partial")
-    from cable_ocp.schedule import forward
+    # run stopped by hand after the OCP's row leaves it on disk ("partial"). (Without
+    # compensation the bisection on the forward simulator runs first, the OCP's second
+    # warm start; the stop is put after the OCP's row, in the compared gain.)
+    from cable_ocp.bench import deployment as bd
 
     case = tmp_path / "tiny.toml"
     case.write_text(_TINY)  # still water, 50 -> 56 m on 2 elements: a trapezoid
@@ -151,7 +153,7 @@ def test_bench_deploy_compare_keeps_each_finished_row(tmp_path, monkeypatch):
     def stopped(*args, **kwargs):
         raise KeyboardInterrupt
 
-    monkeypatch.setattr(forward, "fastest_constant_speed", stopped)
+    monkeypatch.setattr(bd, "comparison_gain", stopped)
     rc = main(["bench", "deploy", "--quiet", "--part", "compare", "--case", str(case),
                "--json", str(path)])
     assert rc == out.EXIT_INTERRUPTED
@@ -159,8 +161,7 @@ def test_bench_deploy_compare_keeps_each_finished_row(tmp_path, monkeypatch):
     assert data["status"] == "partial"
     (got,) = data["compare"]
     assert got["complete"] is False
-    assert [r["method"] for r in got["rows"]] == ["optimal schedule (OCP)",
-                                                  "constant speed, OCP's line"]
+    assert [r["method"] for r in got["rows"]] == ["optimal schedule (OCP)"]
     assert got["rows"][0]["status"] == "solved"
     monkeypatch.undo()
     # the whole run: the case complete, the last envelope "ok"
@@ -170,6 +171,10 @@ def test_bench_deploy_compare_keeps_each_finished_row(tmp_path, monkeypatch):
     assert data["status"] == "ok"
     (got,) = data["compare"]
     assert got["complete"] is True and len(got["rows"]) == 3
-    # the trapezoid 6 m at 1 m/s ramped at 0.2 m/s^2: D/v + v/a = 11 s is the optimum's
-    # bound from below (the rest at the end and the steps add; 5 %: the 0.5 s steps)
+    # the OCP solved from both starts: its own line's constant speed and the forward
+    # simulator's (the row's speed, here speed_max: still water keeps the limits at it)
+    starts = got["ocp"]["starts"]
+    assert [s["start"] for s in starts] == ["OCP line's constant speed", "given start speed"]
+    assert starts[1]["speed_m_s"] == got["rows"][2]["speed_m_s"] == 1.0
+    assert got["ocp"]["start"] in {s["start"] for s in starts if s["status"] == "solved"}
     assert got["rows"][0]["duration_s"] == pytest.approx(11.0, rel=0.05)

@@ -81,6 +81,20 @@ def test_deploy_text_reports_status_times_and_binding_limits(run):
     assert re.search(rf"time to depth\s+{dur:.4g} s", run.text)
 
 
+def test_the_readme_deploy_sample_is_this_run(run):
+    """The README's ``cable-ocp deploy problems/dynamics/deploy_small.toml`` sample is this
+    run's standard output (the same command, output files added), by the rules of
+    tests/test_readme_outputs.py (which leaves this sample to this test: one solve)."""
+    from test_readme_outputs import CHECKED_ELSEWHERE, ROOT, samples, shown_lines_missing
+
+    cmd = "cable-ocp deploy problems/dynamics/deploy_small.toml"
+    assert CHECKED_ELSEWHERE[cmd].endswith(
+        "test_deploy_cli.py::test_the_readme_deploy_sample_is_this_run")
+    shown = dict(samples((ROOT / "README.md").read_text(encoding="utf-8")))[cmd]
+    assert len([line for line in shown if line.strip()]) >= 5
+    assert shown_lines_missing(shown, run.text) == []
+
+
 def test_deploy_json_duration_is_the_csv_last_time_and_beats_the_warm_start(run):
     d = run.data
     assert d["status"] == "solved"

@@ -7,7 +7,9 @@ Three parts, each returning rows (dicts, SI units) that the command line formats
   1000 m in the 6.3.6 sea), side by side in one run, the time to depth of
 
   - the optimal schedule (:func:`cable_ocp.schedule.planning.verified_schedule`: the OCP
-    and its forward check), re-simulated
+    and its forward check; without heave compensation the forward simulator's fastest
+    constant speed, found first, is the OCP's second warm start, ``start_speeds``: the
+    shorter solve is kept and the OCP's ``start`` / ``starts`` say which), re-simulated
     on the forward simulator at the scene's own (finer) ``[simulation]`` step and
     elements (:func:`cable_ocp.schedule.forward.resimulate`) with its worst limit excess;
   - the fastest constant speed that keeps the same limits on the forward simulator
@@ -339,19 +341,41 @@ def compare_case(path: str | Path, *, heave_path: str | Path | None = None,
     if scene.deployment is None:
         raise CableOCPError(f"{path}: no [deployment] table")
     motions = vessel_motions(scene)
+    dp = scene.deployment
+    top = dp.speed_max
+    floor = floor_fraction * top if floor_fraction is not None and top is not None else None
+
+    def bisection(gain: float) -> tuple[Any, float]:
+        say(f"{path.stem}: the fastest constant speed on the forward simulator (bisection)")
+        t1 = time.perf_counter()
+        out = fastest_constant_speed(scene, motions, rel_tol=rel_tol, motion_step=motion_step,
+                                     floor=floor, ahc_gain=gain)
+        return out, time.perf_counter() - t1
+
+    # without compensation the constant speed does not depend on the optimum (its gain):
+    # found first, it is the OCP's second warm start
+    fc, fc_s = bisection(0.0) if not dp.ahc else (None, math.nan)
     say(f"{path.stem}: the OCP")
     t0 = time.perf_counter()
-    res = verified_schedule(scene, motions, ipopt=ipopt)
+    res = verified_schedule(scene, motions, ipopt=ipopt, start_speeds=[fc.speed] if (
+        fc is not None and fc.status == "solved") else ())
     wall = time.perf_counter() - t0
     d = res.diagnostics
     ocp = {"status": res.status, "message": res.message, "binding": list(res.binding),
            "duration_s": res.duration, "wall_s": wall,
            "warm_start_s": d.get("warm_start_s"), "build_s": d.get("build_s"),
            "solve_s": d.get("solve_time_s"), "iterations": d.get("iterations"),
+           "start": d.get("start"), "starts": d.get("starts", []),
+           "solve_total_s": d.get("solve_total_s"),
            "variables": d.get("variables"), "constraints": d.get("constraints"),
            "steps": d.get("steps"), "elements": d.get("elements"),
            "check_s": d.get("check_s"), "check_rounds": d.get("check_rounds"),
            "margins": res.margins,
+           "rounds": [{"margins": dict(r.margins), "status": r.status,
+                       "duration_s": r.duration, "violations": dict(r.violations),
+                       "failed_runs": r.failed_runs,
+                       "resolve_s": d.get(f"resolve_{i}_s") if i else None}
+                      for i, r in enumerate(res.checks)],
            "violations": dict(res.solution.violations) if res.solution is not None else {}}
     t_opt = res.duration
     rows: list[dict[str, Any]] = []
@@ -385,7 +409,6 @@ def compare_case(path: str | Path, *, heave_path: str | Path | None = None,
                            "not a schedule")
     done(opt_row)
     ws = res.warm_start
-    dp = scene.deployment
     gain, gain_note = comparison_gain(
         scene, motions, res, (t_opt if math.isfinite(t_opt) else 0.0)
         + abs(dp.target_length - scene.length) / (dp.speed_max or 1.0) + 60.0)
@@ -398,18 +421,14 @@ def compare_case(path: str | Path, *, heave_path: str | Path | None = None,
                      "speed_m_s": ws.speed, "binding": ws.binding, "worst_excess": math.nan,
                      "worst_limit": None, "note": f"warm start, {ws.rollouts} rollouts"
                      + ("; rolled out without the compensation (g = 0)" if dp.ahc else "")})
-    say(f"{path.stem}: the fastest constant speed on the forward simulator (bisection)")
-    t1 = time.perf_counter()
-    top = dp.speed_max
-    floor = floor_fraction * top if floor_fraction is not None and top is not None else None
-    fc = fastest_constant_speed(scene, motions, rel_tol=rel_tol, motion_step=motion_step,
-                                floor=floor, ahc_gain=gain)
+    if fc is None:
+        fc, fc_s = bisection(gain)
     fc_row: dict[str, Any] = {
         "method": "constant speed, forward simulator", "status": fc.status,
         "duration_s": fc.duration, "saving_pct": saving_pct(t_opt, fc.duration),
         "speed_m_s": fc.speed, "binding": fc.binding or "speed_max",
         "worst_excess": math.nan, "worst_limit": None,
-        "note": f"{fc.simulations} runs at {res_note}, {time.perf_counter() - t1:.0f} s; "
+        "note": f"{fc.simulations} runs at {res_note}, {fc_s:.0f} s; "
                 f"bracket {fc.bracket[0]:.4g}-{fc.bracket[1]:.4g} m/s"
                 + (f" (floor {floor:.4g} m/s)" if floor is not None else "")
                 + (f"; with {gain_note}" if dp.ahc else "")}

@@ -53,6 +53,20 @@ def format_compare(cases: Sequence[dict[str, Any]]) -> str:
                 f"{o.get('constraints')} constraints; warm start "
                 f"{_s(o.get('warm_start_s'))}, build {_s(o.get('build_s'))}, solve "
                 f"{_s(o.get('solve_s'))} ({it} iterations)")
+        starts = o.get("starts") or []
+        if len(starts) > 1:
+            tail += f"; kept the start from the {o.get('start')}, of " + "; ".join(
+                f"the {st['start']} ({st['speed_m_s']:.4g} m/s): {st['status']}, "
+                f"{st['duration_s']:.6g} s, {st['iterations']} iterations, "
+                f"{_s(st['solve_time_s'])}" for st in starts)
+        for i, rd in enumerate(o.get("rounds") or []):
+            worst = max(rd["violations"].items(), key=lambda kv: kv[1], default=("", 0.0))
+            tail += (f"\ncheck round {i}: {rd['status']} at {rd['duration_s']:.6g} s"
+                     + (f" (re-solved in {_s(rd['resolve_s'])})" if rd.get("resolve_s")
+                        else "")
+                     + ", margins " + (", ".join(f"{k} {v:.4g}" for k, v in
+                                                 rd["margins"].items()) or "none")
+                     + f"; re-simulated, worst excess {100 * worst[1]:.3g} % {worst[0]}")
         hv = c.get("heave")
         if hv is not None:
             lim = hv["limits"]

@@ -522,7 +522,7 @@ class ScheduleOCP:
         self._ubg = np.concatenate([grp[4] for grp in self._groups])
         opts = {"ipopt.print_level": 0, "print_time": False, "ipopt.sb": "yes",
                 "ipopt.max_iter": 500, "ipopt.tol": 1e-8, "ipopt.acceptable_tol": 1e-3,
-                "ipopt.acceptable_constr_viol_tol": 1e-6,
+                "ipopt.acceptable_constr_viol_tol": 1e-5,
                 "ipopt.mu_strategy": "adaptive"}
         opts.update(ipopt or {})
         self._solver = ca.nlpsol("deployment", "ipopt", {"x": w, "f": objective, "g": g_all},

@@ -11,7 +11,10 @@
    and then bisection (:func:`discrete_constant_speed`); its duration fixes the step count
    N = ceil(T_0 / time_step);
 3. the OCP (:class:`cable_ocp.schedule.ocp.ScheduleOCP`), built once for N and the design
-   heaves, solved from the warm start.
+   heaves, solved from the warm start and, when the caller gives ``start_speeds`` (e.g.
+   the forward simulator's fastest constant speed), from each of their trapezoids too,
+   re-sampled on the same N steps: the shortest solved schedule is kept
+   (:func:`best_start`), the diagnostics name its start and every start's outcome.
 
 :func:`verified_schedule` adds the forward check (docs/deployment.md, "Checks"): the
 schedule is re-simulated on the forward simulator (:func:`cable_ocp.schedule.forward.resimulate`,
@@ -68,10 +71,17 @@ MAX_STEPS = 20000
 WARM_TOP = 24
 #: ... the fine grid's slowest speed, as a fraction of the top speed
 WARM_TOP_FLOOR = 0.25
+#: the name of the OCP's own start (the OCP line's fastest constant speed) in the
+#: diagnostics' ``"start"`` and ``"starts"`` (:func:`solve_schedule`)
+OCP_LINE_START = "OCP line's constant speed"
+#: ... and of a start speed given by the caller (``start_speeds``; the diagnostics'
+#: ``"start_speed_m_s"`` and ``"start_index"`` tell several apart)
+EXTRA_START = "given start speed"
 
-__all__ = ["CHECKED_LIMITS", "MAX_STEPS", "CheckRound", "ConstantSpeed", "ScheduleResult",
-           "discrete_constant_speed", "ramp_acceleration", "solve_schedule", "static_check",
-           "trapezoid", "verified_schedule", "with_margins"]
+__all__ = ["CHECKED_LIMITS", "EXTRA_START", "MAX_STEPS", "OCP_LINE_START", "CheckRound",
+           "ConstantSpeed", "ScheduleResult", "best_start", "discrete_constant_speed",
+           "ramp_acceleration", "solve_schedule", "static_check", "trapezoid",
+           "verified_schedule", "with_margins"]
 
 #: the limits the forward check moves inwards when the re-simulation breaks them (speed
 #: and acceleration are the schedule's own, the same in both)
@@ -416,12 +426,40 @@ class ScheduleResult:
         return dict(self.checks[-1].margins) if self.checks else {}
 
 
+def best_start(results: Sequence[tuple[str, float]]) -> int:
+    """The index of the start whose solve is kept (:func:`solve_schedule`): the shortest
+    duration among the ``"solved"`` ones (the first of equal durations), else 0 (the OCP
+    line's start, whose failure the result then reports).
+
+    Parameters
+    ----------
+    results : sequence of (str, float)
+        Each start's (status, duration (s)), in the order of the starts.
+    """
+    best = -1
+    for i, (status, dur) in enumerate(results):
+        if status == "solved" and math.isfinite(dur) and (
+                best < 0 or dur < results[best][1]):
+            best = i
+    return max(best, 0)
+
+
 def solve_schedule(scene: DynamicScene, heaves: Sequence[ca.Function] | None = None, *,
                    problem: DeploymentProblem | None = None, segments: int | None = None,
                    time_step: float | None = None, steps: int | None = None,
-                   ipopt: dict[str, Any] | None = None, hold: float | None = None
-                   ) -> ScheduleResult:
+                   ipopt: dict[str, Any] | None = None, hold: float | None = None,
+                   start_speeds: Sequence[float] = ()) -> ScheduleResult:
     """The optimal pay-out (or haul-in) schedule of a scene (module docstring).
+
+    A multi-start: the built OCP is solved from the OCP line's fastest constant speed
+    (:func:`discrete_constant_speed`) and from the trapezoid of each of ``start_speeds``
+    (the same ramps, re-sampled on the same N steps); the solved one of the shortest
+    duration is kept (:func:`best_start`; none solved: the first start's failure). The
+    diagnostics name the start kept (``"start"``: :data:`OCP_LINE_START` or
+    :data:`EXTRA_START`, ``"start_speed_m_s"``, ``"start_index"`` (0 the OCP line's); its IPOPT
+    numbers are ``"solve_time_s"`` and ``"iterations"``), list every start's status,
+    duration, iterations and solve time (``"starts"``) and their total solve time
+    (``"solve_total_s"``); with more than one start the message names them too.
 
     Parameters
     ----------
@@ -447,16 +485,23 @@ def solve_schedule(scene: DynamicScene, heaves: Sequence[ca.Function] | None = N
         ends at the arrival. Default ``deployment.hold``, else 0 (the OCP alone; the
         forward check simulates :data:`~cable_ocp.schedule.forward.CHECK_HOLD` s after
         it, and :func:`verified_schedule` models that hold by default).
+    start_speeds : sequence of float, optional
+        Further warm starts' cruise speeds, m/s (magnitudes, > 0, at most ``speed_max``):
+        e.g. the forward simulator's fastest constant speed
+        (:func:`cable_ocp.schedule.forward.fastest_constant_speed`), which on Huang's
+        3.3.5 line starts IPOPT where the OCP line's own does not converge
+        (docs/deployment.md, "Comparisons"). Each costs one more solve. Default none.
 
     Raises
     ------
     CableOCPError
-        Without a ``[deployment]`` table, or a model without a driven step.
+        Without a ``[deployment]`` table, a model without a driven step, or a start speed
+        that is not positive or is above ``speed_max``.
     KeyboardInterrupt
         On a Ctrl-C (never retried).
     """
     return _solve(scene, heaves, problem, segments, time_step, steps, ipopt,
-                  _hold(scene, problem, hold, 0.0))[0]
+                  _hold(scene, problem, hold, 0.0), start_speeds)[0]
 
 
 def with_margins(pb: DeploymentProblem, margins: dict[str, float]) -> DeploymentProblem:
@@ -480,14 +525,25 @@ def with_margins(pb: DeploymentProblem, margins: dict[str, float]) -> Deployment
 
 def _solve(scene: DynamicScene, heaves: Sequence[ca.Function] | None,
            problem: DeploymentProblem | None, segments: int | None, time_step: float | None,
-           steps: int | None, ipopt: dict[str, Any] | None, hold: float = 0.0
+           steps: int | None, ipopt: dict[str, Any] | None, hold: float = 0.0,
+           start_speeds: Sequence[float] = ()
            ) -> tuple[ScheduleResult, ScheduleOCP | None, Any]:
     """:func:`solve_schedule`, the built OCP (None when the static check failed) and
-    ``restart(margins) -> w0``: the warm start of the limits moved inwards, for its N."""
+    ``restart(margins) -> w0``: the warm start of the limits moved inwards, for its N (of
+    the start kept: the OCP line's constant speed of the moved limits, or the given start
+    speed's trapezoid itself)."""
     pb = problem if problem is not None else scene.deployment
     if pb is None:
         raise CableOCPError("[deployment] is missing: the schedule needs target_length and "
                             "its limits (docs/deployment.md)")
+    extra = [float(v) for v in start_speeds]
+    for v in extra:
+        if not (math.isfinite(v) and v > 0.0) or (pb.speed_max is not None
+                                                  and v > pb.speed_max * (1.0 + 1e-12)):
+            raise CableOCPError(
+                f"start_speeds: {v!r} m/s is no warm start; give cruise speeds > 0"
+                + (f" and at most deployment.speed_max = {pb.speed_max:g} m/s"
+                   if pb.speed_max is not None else ""))
     diag: dict[str, Any] = {}
     bad = static_check(scene, pb)
     if bad is not None:
@@ -513,24 +569,45 @@ def _solve(scene: DynamicScene, heaves: Sequence[ca.Function] | None,
     ocp = ScheduleOCP(scene, line, heaves, n + m, pb, ipopt, hold_steps=m, hold=hold)
     diag["build_s"] = ocp.build_time
 
-    def start(ws: ConstantSpeed) -> np.ndarray:
-        """The NLP's variables of a constant-speed warm start, on the OCP's N steps (the
-        hold's appended)."""
-        d, _, a, v, length = trapezoid(scene.length, pb.target_length, ws.start_speed,
-                                       ws.accel, dt_nom)
+    def start(speed: float) -> np.ndarray:
+        """The NLP's variables of a constant-speed warm start (a trapezoid at ``speed``,
+        m/s, ramped as the warm start), re-sampled on the OCP's N steps (the hold's
+        appended)."""
+        d, _, a, v, length = trapezoid(scene.length, pb.target_length, speed, warm.accel,
+                                       dt_nom)
         if a.size != n:
-            d, _, a, v, length = trapezoid(scene.length, pb.target_length, ws.start_speed,
-                                           ws.accel, d / n)
+            d, _, a, v, length = trapezoid(scene.length, pb.target_length, speed, warm.accel,
+                                           d / n)
         d, a, v, length = ocp.extend(d, a, v, length)
         return ocp.pack(d, a, v, length, *ocp.rollout(d, a, v, length))
 
-    def restart(margins: dict[str, float]) -> np.ndarray:
-        return start(discrete_constant_speed(scene, line, heaves, with_margins(pb, margins),
-                                             dt_nom))
+    # the starts: the OCP line's constant speed, then each given speed (one built OCP)
+    starts = [(OCP_LINE_START, warm.start_speed)] + [(EXTRA_START, v) for v in extra]
+    sols = [ocp.solve(start(v)) for _, v in starts]
+    best = best_start([(s.status, s.duration) for s in sols])
+    sol = sols[best]
+    label, speed = starts[best]
 
-    sol = ocp.solve(start(warm))
+    def restart(margins: dict[str, float]) -> np.ndarray:
+        # the OCP line's start moves with the limits; a given speed is the caller's own
+        if best > 0:
+            return start(speed)
+        return start(discrete_constant_speed(scene, line, heaves, with_margins(pb, margins),
+                                             dt_nom).start_speed)
+
     diag.update(sol.diagnostics)
+    diag.update(start=label, start_speed_m_s=speed, start_index=best, starts=[
+        {"start": lb, "speed_m_s": v, "status": s.status, "duration_s": s.duration,
+         "iterations": s.diagnostics.get("iterations"),
+         "solve_time_s": s.diagnostics.get("solve_time_s"),
+         "return_status": s.diagnostics.get("return_status")}
+        for (lb, v), s in zip(starts, sols, strict=True)],
+        solve_total_s=sum(float(s.diagnostics.get("solve_time_s", 0.0)) for s in sols))
     msg, binding = sol.message, sol.binding
+    if len(starts) > 1:
+        msg += f" (kept the start from the {label}, {speed:.4g} m/s; " + "; ".join(
+            f"from the {lb}, {v:.4g} m/s: {s.status} at {s.duration:.6g} s"
+            for i, ((lb, v), s) in enumerate(zip(starts, sols, strict=True)) if i != best) + ")"
     if sol.status == "infeasible" and not warm.feasible:
         msg += (f"; no constant speed down to {warm.speed:.3g} m/s keeps the limits either "
                 f"({warm.binding} binds)")
@@ -544,10 +621,14 @@ def verified_schedule(scene: DynamicScene, motions: Sequence[Any], *,
                       time_step: float | None = None, steps: int | None = None,
                       ipopt: dict[str, Any] | None = None, rounds: int | None = None,
                       tolerance: float | None = None, check_time_step: float | None = None,
-                      check_segments: int | None = None, hold: float | None = None
-                      ) -> ScheduleResult:
+                      check_segments: int | None = None, hold: float | None = None,
+                      start_speeds: Sequence[float] = ()) -> ScheduleResult:
     """The optimal schedule, re-simulated on the forward simulator and re-solved with
     margins until the re-simulation keeps its limits (module docstring).
+
+    The OCP is :func:`solve_schedule`'s multi-start; the forward check is run on the start
+    kept (the shortest solved), and its first re-solve starts from that start's trapezoid
+    (the OCP line's constant speed of the moved limits, or the given speed itself).
 
     Parameters
     ----------
@@ -556,8 +637,9 @@ def verified_schedule(scene: DynamicScene, motions: Sequence[Any], *,
     motions : sequence of VesselMotion
         The design motions (:func:`cable_ocp.schedule.sea.vessel_motions`): the OCP's
         heaves and the check's.
-    problem, segments, time_step, steps, ipopt
-        As :func:`solve_schedule`.
+    problem, segments, time_step, steps, ipopt, start_speeds
+        As :func:`solve_schedule` (e.g. ``start_speeds=[fastest_constant_speed(scene,
+        motions).speed]``: ``cable-ocp bench deploy --part compare`` does).
     rounds : int, optional
         Re-solves allowed (default ``deployment.check_rounds``; 0: the OCP alone).
     tolerance : float, optional
@@ -582,7 +664,7 @@ def verified_schedule(scene: DynamicScene, motions: Sequence[Any], *,
     """
     res, ocp, restart = _solve(scene, [m.casadi_heave() for m in motions], problem,
                                segments, time_step, steps, ipopt,
-                               _hold(scene, problem, hold, CHECK_HOLD))
+                               _hold(scene, problem, hold, CHECK_HOLD), start_speeds)
     pb = res.problem
     n_rounds = pb.check_rounds if rounds is None else int(rounds)
     if n_rounds < 0:

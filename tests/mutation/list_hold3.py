@@ -7,8 +7,8 @@ PLAN = "cable_ocp/schedule/planning.py"
 
 MUTATIONS = [
     dict(name="hold-verified-default-none", area="schedule", file=PLAN,
-         old="                               _hold(scene, problem, hold, CHECK_HOLD))",
-         new="                               _hold(scene, problem, hold, 0.0))",
+         old="_hold(scene, problem, hold, CHECK_HOLD), start_speeds)",
+         new="_hold(scene, problem, hold, 0.0), start_speeds)",
          tests=(_H + "the_hold_defaults_to_the_checks_in_verified_schedule_and_to_none_alone",),
          description="schedule hold: verified_schedule's OCP ends at the arrival by default "
                      "(the check's 20 s hold never bounded)"),
