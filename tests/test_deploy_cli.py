@@ -57,6 +57,17 @@ def run(tmp_path_factory: pytest.TempPathFactory) -> SimpleNamespace:
                            result=seen[0])
 
 
+def test_deploy_models_the_checks_hold_by_default(run):
+    # the OCP keeps the limits through the forward check's hold after the arrival: 40 more
+    # steps of 0.5 s (deploy_small's time_step), reported on the size row
+    from cable_ocp.schedule.forward import CHECK_HOLD
+
+    d = run.result.diagnostics
+    assert d["hold_steps"] == math.ceil(CHECK_HOLD / 0.5) == 40
+    assert d["hold_s"] == pytest.approx(CHECK_HOLD, rel=1e-9)
+    assert f"(the last 40: the {CHECK_HOLD:g} s hold after the arrival)" in run.text
+
+
 def test_deploy_text_reports_status_times_and_binding_limits(run):
     assert run.rc == EXIT_OK
     for word in ("solved", "time to depth", "constant speed", "saving", "binding limits",
@@ -326,6 +337,10 @@ def test_deploy_bad_key_names_the_key(capsys):
 @pytest.mark.parametrize("argv, word", [(["--segments", "0"], "--segments"),
                                         (["--time-step", "-1"], "--time-step"),
                                         (["--check-rounds", "11"], "--check-rounds"),
+                                        (["--hold", "-1"], "--hold -1.0: give 0..600 s"),
+                                        (["--hold", "nan"], "--hold nan: give 0..600 s"),
+                                        (["--set", "deployment.hold=601"],
+                                         "deployment.hold = 601: must be in [0, 600] (s)"),
                                         (["--set", "deployment.check_tolerance=0.5"],
                                          "deployment.check_tolerance"),
                                         (["--set", "deployment.check_rounds=-1"],

@@ -52,6 +52,10 @@ def register(sub: argparse._SubParsersAction, parent: argparse.ArgumentParser) -
     d.add_argument("--time-step", type=float, metavar="S", dest="time_step",
                    help="the OCP's nominal step in s (default deployment.time_step, else "
                         "simulation.time_step)")
+    d.add_argument("--hold", type=float, metavar="S",
+                   help="s after the arrival, the winch stopped, through which the OCP "
+                        "keeps the limits (default deployment.hold, else the forward "
+                        "check's 20 s hold; 0: the OCP ends at the arrival)")
     d.add_argument("--check-rounds", type=int, metavar="N", dest="check_rounds",
                    help="re-solves the forward check may ask for (default "
                         "deployment.check_rounds, 4; 0: the OCP alone, not re-simulated)")
@@ -78,11 +82,17 @@ def register(sub: argparse._SubParsersAction, parent: argparse.ArgumentParser) -
 
 
 def _check_options(args: argparse.Namespace) -> None:
+    from cable_ocp.scene.deployment import MAX_HOLD
+
     if args.segments is not None and not 1 <= args.segments <= 2000:
         raise CableOCPError(f"--segments {args.segments}: give 1..2000 elements")
     if args.time_step is not None and not (math.isfinite(args.time_step)
                                            and args.time_step > 0.0):
         raise CableOCPError(f"--time-step {args.time_step}: give a step > 0 s")
+    if args.hold is not None and not (math.isfinite(args.hold)
+                                      and 0.0 <= args.hold <= MAX_HOLD):
+        raise CableOCPError(f"--hold {args.hold}: give 0..{MAX_HOLD:g} s after the arrival "
+                            "(0: the OCP ends at the arrival)")
     if args.check_rounds is not None and not 0 <= args.check_rounds <= 10:
         raise CableOCPError(f"--check-rounds {args.check_rounds}: give 0..10 re-solves")
 
@@ -109,7 +119,7 @@ def cmd_deploy(args: argparse.Namespace) -> int:
     out.note(args, f"deploy: {scene.length:.6g} -> {scene.deployment.target_length:.6g} m, "
                    f"{len(motions)} realisation(s): warm start, build, solve, forward check ...")
     res = verified_schedule(scene, motions, segments=args.segments, time_step=args.time_step,
-                            rounds=args.check_rounds)
+                            rounds=args.check_rounds, hold=args.hold)
     if res.status == "interrupted":  # a Ctrl-C in the forward check: nothing is written
         raise KeyboardInterrupt
     extra: dict[str, dict[str, Any]] = {}  # the comparisons asked for, JSON-ready
@@ -301,7 +311,9 @@ def _text(args: argparse.Namespace, scene: Any, res: Any, motions: list[Any],
     if res.success and pb.ahc:
         rows.append(("heave compensation", f"gain {res.solution.ahc_gain:.4g}"))
     if "steps" in d:
-        rows.append(("size", f"{d['steps']} steps, {d.get('elements', '-')} elements, "
+        hold = (f" (the last {d['hold_steps']}: the {d['hold_s']:.3g} s hold after the "
+                "arrival)" if d.get("hold_steps") else "")
+        rows.append(("size", f"{d['steps']} steps{hold}, {d.get('elements', '-')} elements, "
                              f"{d.get('variables', '-')} variables, "
                              f"{d.get('constraints', '-')} constraints"))
     if "solve_time_s" in d:

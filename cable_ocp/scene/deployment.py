@@ -30,6 +30,11 @@ Schema (SI units)::
                                  limits (a robust margin for the sea it does not know)
     rest_tolerance = 0.05        m/s, > 0: at the end the winch is stopped and the unit's
                                  speed is below this
+    hold = 20.0                  s, 0..600: the OCP goes on this long after the arrival, the
+                                 winch stopped, its tensions kept inside the limits (default:
+                                 the forward check's 20 s, schedule.forward.CHECK_HOLD, with
+                                 the check; none for the OCP alone, solve_schedule; 0: the
+                                 OCP ends at the arrival)
     time_step = 0.2              s, the OCP's nominal step (default simulation.time_step):
                                  the steps are duration / steps, the count fixed from the
                                  warm start
@@ -67,12 +72,12 @@ from typing import Any
 from cable_ocp.errors import CableOCPError
 from cable_ocp.scene.fields import check_keys, choice, integer, number
 
-__all__ = ["DEPLOYMENT_KEYS", "OBJECTIVES", "SEA_KEYS", "DeploymentProblem", "SeaState",
-           "TENSION_POINTS", "parse_deployment"]
+__all__ = ["DEPLOYMENT_KEYS", "MAX_HOLD", "OBJECTIVES", "SEA_KEYS", "DeploymentProblem",
+           "SeaState", "TENSION_POINTS", "parse_deployment"]
 
 DEPLOYMENT_KEYS = {"target_length", "objective", "energy_weight", "speed_max", "accel_max",
                    "power_max", "tension_min", "tension_max", "tension_at",
-                   "tension_margin", "rest_tolerance", "time_step", "segments",
+                   "tension_margin", "rest_tolerance", "hold", "time_step", "segments",
                    "check_rounds", "check_tolerance", "check_time_step", "check_segments",
                    "ahc_stroke", "ahc_speed", "replan_interval", "preview", "sea"}
 SEA_KEYS = {"significant_height", "peak_frequency", "spectrum", "seed", "realisations",
@@ -81,6 +86,8 @@ SEA_KEYS = {"significant_height", "peak_frequency", "spectrum", "seed", "realisa
 OBJECTIVES = ("time", "time_energy")
 #: the named points of ``deployment.tension_at``
 TENSION_POINTS = ("unit", "top")
+#: s, the longest ``deployment.hold`` (its steps are the OCP's, at ``time_step`` each)
+MAX_HOLD = 600.0
 
 
 @dataclass(frozen=True)
@@ -139,6 +146,10 @@ class DeploymentProblem:
         N.
     rest_tolerance : float
         m/s.
+    hold : float or None
+        s after the arrival that the OCP keeps the limits (None: the caller's default:
+        the forward check's hold in :func:`cable_ocp.schedule.planning.verified_schedule`,
+        none in ``solve_schedule``).
     time_step : float or None
         s (None: the scene's ``simulation.time_step``).
     segments : int or None
@@ -170,6 +181,7 @@ class DeploymentProblem:
     tension_at: tuple[str, ...] = ("line",)
     tension_margin: float = 0.0
     rest_tolerance: float = 0.05
+    hold: float | None = None
     time_step: float | None = None
     segments: int | None = None
     check_rounds: int = 4
@@ -250,6 +262,10 @@ def parse_deployment(t: Any, start_length: float) -> DeploymentProblem:
     for key in ("tension_min", "tension_margin"):
         if key in t:
             kw[key] = number(t[key], f"deployment.{key}", nonneg=True, unit="N")
+    if "hold" in t:
+        kw["hold"] = number(t["hold"], "deployment.hold", low=0.0, high=MAX_HOLD,
+                            unit="s", why="the time after the arrival, the winch stopped, "
+                            "that the OCP keeps the limits (0: none)")
     for key, lo_n, hi_n in (("segments", 1, 2000), ("check_segments", 1, 2000),
                             ("check_rounds", 0, 10)):
         if key in t:

@@ -447,7 +447,7 @@ def best_start(results: Sequence[tuple[str, float]]) -> int:
 def solve_schedule(scene: DynamicScene, heaves: Sequence[ca.Function] | None = None, *,
                    problem: DeploymentProblem | None = None, segments: int | None = None,
                    time_step: float | None = None, steps: int | None = None,
-                   ipopt: dict[str, Any] | None = None, hold: float = 0.0,
+                   ipopt: dict[str, Any] | None = None, hold: float | None = None,
                    start_speeds: Sequence[float] = ()) -> ScheduleResult:
     """The optimal pay-out (or haul-in) schedule of a scene (module docstring).
 
@@ -478,12 +478,13 @@ def solve_schedule(scene: DynamicScene, heaves: Sequence[ca.Function] | None = N
         N, overriding ceil(T_0 / time_step).
     ipopt : dict, optional
         Extra IPOPT options.
-    hold : float
+    hold : float, optional
         s, >= 0: the OCP goes on this long after the arrival, the winch stopped, its
         tensions kept inside the limits (:class:`~cable_ocp.schedule.ocp.ScheduleOCP`'s
         ``hold_steps``: ceil(hold / time_step) steps of hold / M s); 0: the OCP
-        ends at the arrival. The forward check simulates
-        :data:`~cable_ocp.schedule.forward.CHECK_HOLD` s after it.
+        ends at the arrival. Default ``deployment.hold``, else 0 (the OCP alone; the
+        forward check simulates :data:`~cable_ocp.schedule.forward.CHECK_HOLD` s after
+        it, and :func:`verified_schedule` models that hold by default).
     start_speeds : sequence of float, optional
         Further warm starts' cruise speeds, m/s (magnitudes, > 0, at most ``speed_max``):
         e.g. the forward simulator's fastest constant speed
@@ -499,8 +500,8 @@ def solve_schedule(scene: DynamicScene, heaves: Sequence[ca.Function] | None = N
     KeyboardInterrupt
         On a Ctrl-C (never retried).
     """
-    return _solve(scene, heaves, problem, segments, time_step, steps, ipopt, hold,
-                  start_speeds)[0]
+    return _solve(scene, heaves, problem, segments, time_step, steps, ipopt,
+                  _hold(scene, problem, hold, 0.0), start_speeds)[0]
 
 
 def with_margins(pb: DeploymentProblem, margins: dict[str, float]) -> DeploymentProblem:
@@ -620,7 +621,7 @@ def verified_schedule(scene: DynamicScene, motions: Sequence[Any], *,
                       time_step: float | None = None, steps: int | None = None,
                       ipopt: dict[str, Any] | None = None, rounds: int | None = None,
                       tolerance: float | None = None, check_time_step: float | None = None,
-                      check_segments: int | None = None, hold: float = 0.0,
+                      check_segments: int | None = None, hold: float | None = None,
                       start_speeds: Sequence[float] = ()) -> ScheduleResult:
     """The optimal schedule, re-simulated on the forward simulator and re-solved with
     margins until the re-simulation keeps its limits (module docstring).
@@ -647,9 +648,12 @@ def verified_schedule(scene: DynamicScene, motions: Sequence[Any], *,
         The check's step, s (default ``deployment.check_time_step``, else the scene's).
     check_segments : int, optional
         The check's elements (default ``deployment.check_segments``, else the scene's).
-    hold : float
-        s after the arrival that the OCP keeps the limits (:func:`solve_schedule`); the
-        check simulates :data:`~cable_ocp.schedule.forward.CHECK_HOLD` s after it.
+    hold : float, optional
+        s after the arrival that the OCP keeps the limits (:func:`solve_schedule`).
+        Default ``deployment.hold``, else :data:`~cable_ocp.schedule.forward.CHECK_HOLD`:
+        the check simulates that long after the arrival, and an OCP that ends at the
+        arrival is checked on a hold it never bounded (docs/deployment.md, "The 6.3.6
+        line with compensation").
 
     Raises
     ------
@@ -659,7 +663,8 @@ def verified_schedule(scene: DynamicScene, motions: Sequence[Any], *,
         On a Ctrl-C inside IPOPT (never retried).
     """
     res, ocp, restart = _solve(scene, [m.casadi_heave() for m in motions], problem,
-                               segments, time_step, steps, ipopt, hold, start_speeds)
+                               segments, time_step, steps, ipopt,
+                               _hold(scene, problem, hold, CHECK_HOLD), start_speeds)
     pb = res.problem
     n_rounds = pb.check_rounds if rounds is None else int(rounds)
     if n_rounds < 0:
@@ -732,6 +737,15 @@ def verified_schedule(scene: DynamicScene, motions: Sequence[Any], *,
                    f"the forward check {where} broke " + ", ".join(sorted(fixable)) + ")")
             return ScheduleResult(sol.status, msg, sol.binding or tuple(fixable), sol,
                                   res.warm_start, pb, diag, tuple(rounds_done))
+
+
+def _hold(scene: DynamicScene, problem: DeploymentProblem | None, hold: float | None,
+          default: float) -> float:
+    """The OCP's hold, s: ``hold``, else ``deployment.hold``, else ``default``."""
+    if hold is not None:
+        return float(hold)
+    pb = problem if problem is not None else scene.deployment
+    return default if pb is None or pb.hold is None else float(pb.hold)
 
 
 def _limit_value(pb: DeploymentProblem, name: str, scale: float) -> float:

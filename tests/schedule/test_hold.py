@@ -15,14 +15,17 @@ own resolution (one element, the OCP's step), so that only the hold differs.
 from __future__ import annotations
 
 import copy
+import dataclasses
+import math
 import tomllib
 from pathlib import Path
 
 import pytest
 
+from cable_ocp.errors import CableOCPError
 from cable_ocp.scene.dynamics import dynamic_scene_from_dict
 from cable_ocp.schedule.forward import CHECK_HOLD, Schedule, resimulate
-from cable_ocp.schedule.planning import solve_schedule
+from cable_ocp.schedule.planning import solve_schedule, verified_schedule
 from cable_ocp.schedule.sea import vessel_motions
 
 HUANG = Path(__file__).resolve().parents[2] / "problems" / "dynamics" / "huang_3_3_5.toml"
@@ -74,3 +77,43 @@ def test_the_hold_keeps_tension_min_after_the_stop():
     # the reported schedule ends at the arrival, the winch stopped at the target
     assert res1.solution.length[-1] == pytest.approx(80.0, abs=1e-9)
     assert res1.solution.speed[-1] == 0.0
+
+
+def test_the_hold_defaults_to_the_checks_in_verified_schedule_and_to_none_alone():
+    """verified_schedule models the check's hold unless told otherwise; solve_schedule (the
+    OCP alone) none; ``deployment.hold`` sets both, an argument overrides it (the hold's
+    steps: ceil(hold / time_step) of 0.25 s)."""
+    scene = _scene()
+    motions = vessel_motions(scene)
+    heaves = [m.casadi_heave() for m in motions]
+    res = verified_schedule(scene, motions, rounds=0)
+    assert res.success, res.message
+    assert res.diagnostics["hold_steps"] == math.ceil(CHECK_HOLD / 0.25) == 80
+    assert "hold_steps" not in solve_schedule(scene, heaves).diagnostics
+    held = dataclasses.replace(scene, deployment=dataclasses.replace(scene.deployment,
+                                                                     hold=5.0))
+    assert solve_schedule(held, heaves).diagnostics["hold_steps"] == 20
+    assert verified_schedule(held, motions, rounds=0).diagnostics["hold_steps"] == 20
+    assert "hold_steps" not in verified_schedule(held, motions, rounds=0,
+                                                 hold=0.0).diagnostics
+
+
+@pytest.mark.parametrize("value, word", [(-1.0, "in [0, 600]"), (601.0, "in [0, 600]"),
+                                         ("20", "expected a number"),
+                                         (math.inf, "finite")])
+def test_a_bad_deployment_hold_names_the_key_and_the_valid_values(value, word):
+    with HUANG.open("rb") as fh:
+        d = tomllib.load(fh)
+    d["deployment"] = dict(target_length=80.0, hold=value)
+    with pytest.raises(CableOCPError, match=r"deployment\.hold") as err:
+        dynamic_scene_from_dict(d)
+    assert word in str(err.value)
+
+
+def test_deployment_hold_reads_seconds():
+    with HUANG.open("rb") as fh:
+        d = tomllib.load(fh)
+    d["deployment"] = dict(target_length=80.0, hold=12.5)
+    assert dynamic_scene_from_dict(d).deployment.hold == 12.5
+    d["deployment"] = dict(target_length=80.0)
+    assert dynamic_scene_from_dict(d).deployment.hold is None
