@@ -156,7 +156,7 @@ def test_deploy_schedule_keeps_its_limits_on_a_finer_forward_simulation(run):
     res = run.result
     checks = res.checks
     assert res.status == "solved" and len(checks) >= 2
-    # 27 % seen: the transcription's error at 0.5 s, which the check exists to catch
+    # 21 % seen: the transcription's error at 0.5 s, which the check exists to catch
     assert checks[0].margins == {} and checks[0].violations["tension_min"] > 0.1
     assert all(v <= 0.01 for v in checks[-1].violations.values())
     assert checks[-1].failed_runs == 0
