@@ -81,6 +81,33 @@ def test_deploy_text_reports_status_times_and_binding_limits(run):
     assert re.search(rf"time to depth\s+{dur:.4g} s", run.text)
 
 
+def test_no_saving_is_claimed_against_a_constant_speed_that_breaks_the_limits(run, capsys):
+    """The constant-speed row of a case where no constant speed keeps the limits (the 6.3.6
+    line: the warm start's slowest, 5355 s, was called a saving of 89.9 %) names the
+    speed and claims no saving; a feasible one gives the saving, 100 (T_0 - T) / T_0."""
+    import argparse
+
+    import cable_ocp.cli.deploy as dep
+    from cable_ocp.scene.dynamics import load_dynamic_scene
+    from cable_ocp.schedule.sea import vessel_motions
+
+    res = run.result
+    scene = load_dynamic_scene(SMALL)
+    args = argparse.Namespace(json=None, csv=None, quiet=True)
+    bad = dataclasses.replace(res, warm_start=dataclasses.replace(res.warm_start,
+                                                                  feasible=False))
+    dep._text(args, scene, bad, vessel_motions(scene), {}, "t")
+    (row,) = [x for x in capsys.readouterr().out.splitlines()
+              if x.startswith("constant speed")]
+    assert "none keeps the limits" in row and "no saving" in row and "%" not in row
+    assert f"{res.warm_start.speed:.4g} m/s" in row
+    dep._text(args, scene, res, vessel_motions(scene), {}, "t")
+    (row,) = [x for x in capsys.readouterr().out.splitlines()
+              if x.startswith("constant speed")]
+    ws = res.warm_start.duration
+    assert f"saving {100.0 * (ws - res.duration) / ws:.3g} %" in row
+
+
 def test_the_readme_deploy_sample_is_this_run(run):
     """The README's ``cable-ocp deploy problems/dynamics/deploy_small.toml`` sample is this
     run's standard output (the same command, output files added), by the rules of

@@ -286,11 +286,15 @@ def _text(args: argparse.Namespace, scene: Any, res: Any, motions: list[Any],
         rows.append(("time to depth", f"{res.duration:.4g} s (optimal schedule)"))
     if res.checks:
         rows.append(("re-simulated", _check_text(scene, res)))
-    if ws is not None:
-        ok = "" if ws.feasible else ", none keeps the limits"
+    if ws is not None and ws.feasible:
         rows.append(("constant speed", f"{ws.duration:.4g} s at {ws.speed:.4g} m/s (the "
-                                       f"fastest on the OCP's line{ok}; {ws.binding} binds); "
+                                       f"fastest on the OCP's line; {ws.binding} binds); "
                                        f"saving {_saving(res.duration, ws.duration)}"))
+    elif ws is not None:
+        # no saving against a schedule that breaks the limits: it is none
+        rows.append(("constant speed", f"none keeps the limits on the OCP's line (down to "
+                                       f"{ws.speed:.4g} m/s, {ws.duration:.4g} s; "
+                                       f"{ws.binding} binds): no saving to give"))
     compare = extra.get("compare")
     if compare is not None:
         if compare["status"] == "solved":

@@ -53,4 +53,12 @@ MUTATIONS = [
                 "test_the_check_reads_every_step_up_to_max_samples",),
          description="forward check: the thinned run cut short of the hold's end instead "
                      "of lengthened to a whole number of samples"),
+    dict(name="deploy-text-saving-against-an-infeasible-speed", area="schedule",
+         file="cable_ocp/cli/deploy.py",
+         old="    if ws is not None and ws.feasible:\n        rows.append",
+         new="    if ws is not None:\n        rows.append",
+         tests=("tests/test_deploy_cli.py::"
+                "test_no_saving_is_claimed_against_a_constant_speed_that_breaks_the_limits",),
+         description="deploy text: a saving claimed against a constant speed that breaks "
+                     "the limits"),
 ]
