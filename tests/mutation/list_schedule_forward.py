@@ -59,9 +59,24 @@ MUTATIONS = [
          tests=(_F + "compensation_adds_the_heave_to_the_length",),
          description="forward: the heave compensation's speed left out of the winch's table"),
     dict(name="schedule-tension-at-line-top-only", area="schedule", file=FWD,
-         old="lows = [tmin] if \"line\" in at else",
-         new="lows = [top_t] if \"line\" in at else",
+         old="        lows = constrained_tensions(dp, tmin[None, :], outs)",
+         new="        lows = [top_t]",
          tests=(_F + "fastest_constant_speed_bracket_is_honest",),
          description="forward: tension_at = \"line\" checks the top tension only (the unit's "
                      "slack side missed)"),
+    dict(name="schedule-line-without-the-unit-end", area="schedule",
+         file="cable_ocp/schedule/ocp.py",
+         old="    if \"line\" in at or \"unit\" in at:",
+         new="    if \"unit\" in at:",
+         tests=("tests/test_deploy_cli.py::"
+                "test_deploy_schedule_keeps_its_limits_on_a_finer_forward_simulation",),
+         description="tension_at = \"line\" the elements without the unit's end (the "
+                     "element middles: a lowest point that moves with the mesh)"),
+    dict(name="schedule-line-without-the-top-end", area="schedule",
+         file="cable_ocp/schedule/ocp.py",
+         old="    if \"line\" in at or \"top\" in at:",
+         new="    if \"top\" in at:",
+         tests=(_F + "violations_are_relative_excesses",),
+         description="tension_at = \"line\" the elements without the top's end (the "
+                     "largest tension of a hanging line missed)"),
 ]

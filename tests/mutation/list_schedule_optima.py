@@ -7,7 +7,7 @@ OCP = "cable_ocp/schedule/ocp.py"
 
 MUTATIONS = [
     dict(name="ocp-step-is-T-over-N-plus-1", area="schedule", file=OCP,
-         old="        dt = tt / n_k", new="        dt = tt / (n_k + 1)",
+         old="        dt = tt / n_a", new="        dt = tt / (n_a + 1)",
          tests=(_T + "stiff_line_speed_and_accel_limits_give_the_trapezoid",
                 _T + "tension_limit_alone_gives_the_bang_bang_time"),
          description="the OCP's step T / (N + 1): the schedule's duration no longer T"),
@@ -18,8 +18,8 @@ MUTATIONS = [
          description="tension_at = unit bounds the top's tension instead (W + w L): the "
                      "bang-bang accelerations change"),
     dict(name="ocp-length-by-the-left-speed", area="schedule", file=OCP,
-         old="(lng[1:] - lng[:-1] - 0.5 * dt * (vel[1:] + vel[:-1]))",
-         new="(lng[1:] - lng[:-1] - dt * vel[:-1])",
+         old="(lng[1:n_a + 1] - lng[:n_a] - 0.5 * dt * (vel[1:n_a + 1] + vel[:n_a]))",
+         new="(lng[1:n_a + 1] - lng[:n_a] - dt * vel[:n_a])",
          tests=("tests/test_deploy_cli.py::"
                 "test_deploy_csv_schedule_keeps_its_kinematics_and_limits",),
          description="the length integrated by the left speed, not the trapezoidal rule "

@@ -628,8 +628,8 @@ MUTATIONS: tuple[Mutation, ...] = (
              "lumped plant's driven step: the top segment keeps its start length over the "
              "step (the winch's pay-out lost within a step)"),
     Mutation("axial-plant-unit-tension-inertia-dropped", DYN, "cable_ocp/dynamics/driven.py",
-             "t_unit = tens[0] - 0.5 * h_el * (md.w + drag0 + md.mu * rhs[n])",
-             "t_unit = tens[0] - 0.5 * h_el * (md.w + drag0)",
+             "(model.w + drag + model.mu * acceleration)",
+             "(model.w + drag)",
              ("tests/heave/test_planar_plant.py::test_vertical_planar_plant_equals_axial",),
              "axial driven step: the unit's tension without the inertia of the half element "
              "its node carries"),
