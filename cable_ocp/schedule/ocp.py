@@ -751,6 +751,20 @@ class ScheduleOCP:
             act.append("speed_max")
         return tuple(dict.fromkeys(act))
 
+    def gain_of(self, w: np.ndarray) -> float:
+        """The compensation's gain g of a variable vector (-; 0 without compensation),
+        put back into its bounds [0, 1]: IPOPT's relaxed bounds (``bound_relax_factor``
+        1e-8) may return 1 + 1e-8 (the 6.3.6 line's 1.0000000098), which the forward
+        check and the constant speed's bisection refuse as a gain.
+
+        Parameters
+        ----------
+        w : numpy.ndarray
+            The NLP's variables (:meth:`pack`, :attr:`OCPSolution.variables_vector`).
+        """
+        g = self._split(w)[4]
+        return float(np.clip(g[0], 0.0, 1.0)) if g.size else 0.0
+
     def _solution(self, w: np.ndarray, status: str, msg: str, binding: tuple[str, ...],
                   viol: dict[str, float], diag: dict[str, Any]) -> OCPSolution:
         parts = self._split(w)
@@ -784,7 +798,7 @@ class ScheduleOCP:
                            time=np.arange(n_a + 1) * dur / n_a,
                            length=parts[3][:n_a + 1].copy(),
                            speed=parts[2][:n_a + 1].copy(), accel=parts[1][:n_a].copy(),
-                           ahc_gain=float(parts[4][0]) if parts[4].size else 0.0,
+                           ahc_gain=self.gain_of(w),
                            tensions=np.array(tens_l), outputs=np.array(outs_l),
                            heave=np.array(heave_l), binding=binding, violations=viol,
                            diagnostics=diag, variables_vector=w.copy())

@@ -61,4 +61,11 @@ MUTATIONS = [
                 "test_no_saving_is_claimed_against_a_constant_speed_that_breaks_the_limits",),
          description="deploy text: a saving claimed against a constant speed that breaks "
                      "the limits"),
+    dict(name="ocp-gain-not-clipped", area="schedule", file="cable_ocp/schedule/ocp.py",
+         old="        return float(np.clip(g[0], 0.0, 1.0)) if g.size else 0.0",
+         new="        return float(g[0]) if g.size else 0.0",
+         tests=("tests/schedule/test_schedule_ahc_constant.py::"
+                "test_the_ocps_gain_is_put_back_into_its_bounds",),
+         description="the OCP's gain as IPOPT returns it, 1 + 1e-8 past its bound (the "
+                     "bisection then refuses it)"),
 ]

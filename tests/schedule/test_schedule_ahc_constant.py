@@ -12,6 +12,7 @@ from __future__ import annotations
 import dataclasses
 from pathlib import Path
 
+import casadi as ca
 import numpy as np
 import pytest
 
@@ -112,3 +113,20 @@ def test_comparison_gain_is_the_largest_the_compensator_allows():
     assert g == 1.0
     g, why = comparison_gain(_scene(), motions, _Failed(), 120.0)
     assert g == 0.0 and why == "no compensation"
+
+
+def test_the_ocps_gain_is_put_back_into_its_bounds():
+    """IPOPT's relaxed bounds may return g = 1 + 1e-8 (the 6.3.6 line: 1.0000000098, which
+    the bisection then refused as a gain): the solution's gain is g clipped to [0, 1],
+    any g inside unchanged."""
+    from cable_ocp.schedule.ocp import ScheduleOCP, line_step
+
+    scene = _scene(ahc_stroke=2.0, ahc_speed=1.5, segments=2)
+    still = [ca.Function("still", [ca.SX.sym("t")], [ca.SX(0.0)])]
+    ocp = ScheduleOCP(scene, line_step(scene), still, 10)
+    w = np.zeros(ocp.variables)
+    k = sum(ocp._sizes[:4])  # the gain's place: after T, the accelerations, v and L
+    for g, want in ((1.0 + 1e-8, 1.0), (-1e-8, 0.0), (0.695, 0.695)):
+        w[k] = g
+        assert ocp._split(w)[4][0] == g
+        assert ocp.gain_of(w) == want
