@@ -136,6 +136,20 @@ def test_table_fits_100_columns_and_a_failed_row_keeps_its_columns() -> None:
         table(headers, [good[:-1]])
 
 
+def test_table_block_without_units_has_no_units_line() -> None:
+    """A block of columns none of which (but the first) has a unit prints no empty units
+    line between its headings and its dashes (bench deploy's second and third blocks)."""
+    headers = ["method", "time", "binding", "note"]
+    units = ["", "[s]", "", ""]
+    row = ["ocp", 541.9, "x" * 40, "y" * 60]  # the note does not fit beside the binding
+    blocks = table(headers, [row], units).split("\n\n")
+    assert len(blocks) == 2
+    first, *rest = (b.splitlines() for b in blocks)
+    assert len(first) == 4 and first[1].split() == ["[s]"]  # headings, units, dashes, row
+    for b in rest:
+        assert len(b) == 3 and set(b[1]) == {"-", " "}  # headings, dashes, row
+
+
 def test_bench_tables_fit_100_columns() -> None:
     """The benchmarks' tables (bench-heave, bench dynamics, bench sweep's headings and
     labels) at their widest rows, through the one formatter: <= 100 columns; a failed or

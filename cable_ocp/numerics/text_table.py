@@ -57,6 +57,8 @@ def table(headers: Sequence[str], rows: Sequence[Sequence[Any]],
         to its widest cell.
     units : sequence of str, optional
         A second heading line (e.g. ``"[m]"``), one per heading; None (default): none.
+        A block of columns (below) none of which but the first has a unit has no such
+        line.
     width : int
         The widest line (default :data:`WIDTH`): the columns that do not fit go into
         further blocks below, each starting with the first column again. A single column
@@ -84,5 +86,7 @@ def table(headers: Sequence[str], rows: Sequence[Sequence[Any]],
     for k, cols in enumerate(blocks):
         if k:
             out.append("")
-        out += _block(cols, heads, cells, widths, left)
+        # a block whose columns have no units has no units line
+        hk = [h for j, h in enumerate(heads) if j == 0 or any(h[i] for i in cols[1:])]
+        out += _block(cols, hk, cells, widths, left)
     return "\n".join(out)
