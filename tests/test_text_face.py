@@ -137,8 +137,9 @@ def test_table_fits_100_columns_and_a_failed_row_keeps_its_columns() -> None:
 
 
 def test_table_block_without_units_has_no_units_line() -> None:
-    """A block of columns none of which (but the first) has a unit prints no empty units
-    line between its headings and its dashes (bench deploy's second and third blocks)."""
+    """A block of columns none of which has a unit prints no empty units line between its
+    headings and its dashes (bench deploy's second and third blocks); a first column with
+    a unit keeps the line in every block."""
     headers = ["method", "time", "binding", "note"]
     units = ["", "[s]", "", ""]
     row = ["ocp", 541.9, "x" * 40, "y" * 60]  # the note does not fit beside the binding
@@ -148,6 +149,10 @@ def test_table_block_without_units_has_no_units_line() -> None:
     assert len(first) == 4 and first[1].split() == ["[s]"]  # headings, units, dashes, row
     for b in rest:
         assert len(b) == 3 and set(b[1]) == {"-", " "}  # headings, dashes, row
+    timed = table(headers, [row], ["[s]", "", "", ""]).split("\n\n")
+    assert len(timed) == 2
+    for b in timed:
+        assert b.splitlines()[1].split() == ["[s]"]
 
 
 def test_bench_tables_fit_100_columns() -> None:

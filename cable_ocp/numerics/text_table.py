@@ -57,8 +57,7 @@ def table(headers: Sequence[str], rows: Sequence[Sequence[Any]],
         to its widest cell.
     units : sequence of str, optional
         A second heading line (e.g. ``"[m]"``), one per heading; None (default): none.
-        A block of columns (below) none of which but the first has a unit has no such
-        line.
+        A block of columns (below) none of which has a unit has no such line.
     width : int
         The widest line (default :data:`WIDTH`): the columns that do not fit go into
         further blocks below, each starting with the first column again. A single column
@@ -87,6 +86,6 @@ def table(headers: Sequence[str], rows: Sequence[Sequence[Any]],
         if k:
             out.append("")
         # a block whose columns have no units has no units line
-        hk = [h for j, h in enumerate(heads) if j == 0 or any(h[i] for i in cols[1:])]
+        hk = [h for j, h in enumerate(heads) if j == 0 or any(h[i] for i in cols)]
         out += _block(cols, hk, cells, widths, left)
     return "\n".join(out)

@@ -910,7 +910,7 @@ MUTATIONS: tuple[Mutation, ...] = (
              (TEXT + "table_fits_100_columns_and_a_failed_row_keeps_its_columns",),
              "a table wider than 100 columns is printed in one block"),
     Mutation("table-keeps-empty-units-line", "bookkeeping", "cable_ocp/numerics/text_table.py",
-             "if j == 0 or any(h[i] for i in cols[1:])]",
+             "if j == 0 or any(h[i] for i in cols)]",
              "if True]",
              (TEXT + "table_block_without_units_has_no_units_line",),
              "a block without units prints an empty units line"),
